@@ -1,0 +1,26 @@
+#include "cuda/check.hpp"
+#include "cuda/device.hpp"
+
+#include <fmt/format.h>
+
+namespace canopy::cuda {
+
+DeviceReport query_devices() {
+  DeviceReport r;
+  int count = 0;
+  const cudaError_t e = cudaGetDeviceCount(&count);
+  if (e != cudaSuccess) {
+    r.unavailable_reason = fmt::format("{} ({})", cudaGetErrorString(e), cudaGetErrorName(e));
+    cudaGetLastError();  // clear the error so later calls start clean
+    return r;
+  }
+  if (count == 0) r.unavailable_reason = "no CUDA device found";
+  for (int i = 0; i < count; ++i) {
+    cudaDeviceProp p{};
+    if (cudaGetDeviceProperties(&p, i) != cudaSuccess) continue;
+    r.devices.push_back({i, p.name, p.major, p.minor, p.totalGlobalMem, p.multiProcessorCount});
+  }
+  return r;
+}
+
+}  // namespace canopy::cuda

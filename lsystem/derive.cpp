@@ -1,0 +1,179 @@
+#include "lsystem/derive.hpp"
+
+#include <cstring>
+#include <limits>
+
+namespace canopy {
+namespace {
+
+[[noreturn]] void cap_exceeded(std::size_t cap, std::size_t step) {
+  throw ModuleCapError(fmt::format(
+      "the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
+      "many steps; lower --steps or raise --max-modules)",
+      cap, step == 0 ? std::string() : fmt::format(" at step {}", step)));
+}
+
+ModuleString evaluate_axiom(const Grammar& g, Rng& rng) {
+  ModuleString s;
+  for (const auto& m : g.axiom) {
+    s.symbols.push_back(m.symbol);
+    for (const auto& a : m.args) s.params.push_back(a.eval(nullptr, rng));
+  }
+  return s;
+}
+
+}  // namespace
+
+void ContextIndex::build(const Grammar& g, const ModuleString& s) {
+  const std::size_t n = s.size();
+  if (n >= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw ModuleCapError("string too long for context matching (2^31 modules)");
+  left.resize(n);
+  right.resize(n);
+  param_offset.resize(n + 1);
+  const Symbol open = g.symbols.open_bracket(), close = g.symbols.close_bracket();
+  const auto ignored = [&](Symbol x) { return x < g.ignored.size() && g.ignored[x]; };
+  PodBuffer<std::int32_t> stack;
+  std::uint64_t off = 0;
+  std::int32_t last = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Symbol x = s.symbols[i];
+    param_offset[i] = static_cast<std::uint32_t>(off);
+    off += static_cast<std::uint64_t>(g.symbols.arity(x) < 0 ? 0 : g.symbols.arity(x));
+    if (off > std::numeric_limits<std::uint32_t>::max()) throw ModuleCapError("too many parameters for context matching");
+    left[i] = last;
+    if (x == open) stack.push_back(last);
+    else if (x == close) {
+      if (stack.empty()) throw ModuleCapError("unbalanced ']' in the derived string");
+      last = stack[stack.size() - 1];
+      stack.resize(stack.size() - 1);
+    } else if (!ignored(x)) last = static_cast<std::int32_t>(i);
+  }
+  param_offset[n] = static_cast<std::uint32_t>(off);
+  stack.clear();
+  std::int32_t next = -1;
+  for (std::size_t k = n; k-- > 0;) {
+    const Symbol x = s.symbols[k];
+    right[k] = next;
+    if (x == close) {  // modules inside this branch end at its ']': no right context past it
+      stack.push_back(next);
+      next = -1;
+    } else if (x == open) {
+      if (stack.empty()) next = -1;
+      else {
+        next = stack[stack.size() - 1];
+        stack.resize(stack.size() - 1);
+      }
+    } else if (!ignored(x)) next = static_cast<std::int32_t>(k);
+  }
+}
+
+void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
+             std::size_t max_modules) {
+  out.symbols.clear();
+  out.params.clear();
+  out.symbols.reserve(in.size() + in.size() / 2 + 16);
+  out.params.reserve(in.params.size() + in.params.size() / 2 + 16);
+  ContextIndex ctx;
+  if (table.context_sensitive) ctx.build(g, in);
+
+  const std::size_t nsym = table.mode.size();
+  std::vector<int> arity(g.symbols.size());
+  for (std::size_t s = 0; s < arity.size(); ++s) arity[s] = std::max(0, g.symbols.arity(static_cast<Symbol>(s)));
+
+  const Symbol* sym = in.symbols.data();
+  const double* par = in.params.data();
+  const std::size_t n = in.size();
+  std::size_t p = 0;
+  double frame[kMaxFrame];
+  for (std::size_t i = 0; i < n; ++i) {
+    const Symbol x = sym[i];
+    const int ar = arity[x];
+    const RewriteMode mode = x < nsym ? table.mode[x] : RewriteMode::copy;
+    if (mode == RewriteMode::copy) {
+      out.symbols.push_back(x);
+      if (ar) out.params.append(par + p, static_cast<std::size_t>(ar));
+    } else if (mode == RewriteMode::constant) {
+      const Successor& sc = table.groups[table.by_symbol[x][0]].successors[0];
+      out.symbols.append(sc.constant_symbols.data(), sc.constant_symbols.size());
+      out.params.append(sc.constant_params.data(), sc.constant_params.size());
+    } else {
+      bool matched = false;
+      for (int gi : table.by_symbol[x]) {
+        const RuleGroup& rg = table.groups[static_cast<std::size_t>(gi)];
+        std::int32_t j = static_cast<std::int32_t>(i);
+        bool ok = true;
+        for (std::size_t k = rg.left.size(); ok && k-- > 0;) {
+          j = ctx.left[static_cast<std::size_t>(j)];
+          if (j < 0 || sym[j] != rg.left[k].symbol) ok = false;
+          else std::memcpy(frame + rg.left[k].first_slot, par + ctx.param_offset[static_cast<std::size_t>(j)],
+                           sizeof(double) * static_cast<std::size_t>(arity[sym[j]]));
+        }
+        j = static_cast<std::int32_t>(i);
+        for (std::size_t k = 0; ok && k < rg.right.size(); ++k) {
+          j = ctx.right[static_cast<std::size_t>(j)];
+          if (j < 0 || sym[j] != rg.right[k].symbol) ok = false;
+          else std::memcpy(frame + rg.right[k].first_slot, par + ctx.param_offset[static_cast<std::size_t>(j)],
+                           sizeof(double) * static_cast<std::size_t>(arity[sym[j]]));
+        }
+        if (!ok) continue;
+        if (ar) std::memcpy(frame + rg.predecessor.first_slot, par + p, sizeof(double) * static_cast<std::size_t>(ar));
+        if (rg.condition && rg.condition->eval(frame, rng) == 0) continue;
+        const Successor* sc = &rg.successors[0];
+        if (rg.successors.size() > 1) {
+          const double u = rng.uniform();
+          for (const auto& cand : rg.successors) {
+            sc = &cand;
+            if (u < cand.cumulative) break;
+          }
+        }
+        if (sc->constant) {
+          out.symbols.append(sc->constant_symbols.data(), sc->constant_symbols.size());
+          out.params.append(sc->constant_params.data(), sc->constant_params.size());
+        } else {
+          for (const SuccessorModule& m : sc->modules) {
+            out.symbols.push_back(m.symbol);
+            for (const Expr& e : m.args) out.params.push_back(e.eval(frame, rng));
+          }
+        }
+        matched = true;
+        break;
+      }
+      if (!matched) {
+        out.symbols.push_back(x);
+        if (ar) out.params.append(par + p, static_cast<std::size_t>(ar));
+      }
+    }
+    p += static_cast<std::size_t>(ar);
+    if (out.symbols.size() > max_modules) cap_exceeded(max_modules, 0);
+  }
+}
+
+ModuleString derive(const Grammar& g, const DeriveRequest& req) {
+  const int steps = req.steps.value_or(g.steps);
+  Rng rng(req.seed.value_or(g.seed));
+  ModuleString cur = evaluate_axiom(g, rng);
+  if (cur.size() > req.max_modules) cap_exceeded(req.max_modules, 0);
+  if (g.productions.empty()) return cur;
+  ModuleString next;
+  for (int step = 1; step <= steps; ++step) {
+    try {
+      rewrite(g, g.productions, cur, next, rng, req.max_modules);
+    } catch (const ModuleCapError&) {
+      cap_exceeded(req.max_modules, static_cast<std::size_t>(step));
+    }
+    std::swap(cur, next);
+  }
+  return cur;
+}
+
+ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint64_t seed, std::size_t max_modules) {
+  if (g.interpretation.empty()) return derived;
+  std::uint64_t s = seed;
+  Rng rng(Rng::splitmix64(s) ^ 0x696e746572707265ULL);  // "interpre": a stream apart from derivation's
+  ModuleString out;
+  rewrite(g, g.interpretation, derived, out, rng, max_modules);
+  return out;
+}
+
+}  // namespace canopy

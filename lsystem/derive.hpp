@@ -1,0 +1,45 @@
+#pragma once
+/// Derivation: parallel rewriting of the module string (ABOP ch. 1), with context matching that
+/// skips branches (ABOP §1.8) and stochastic groups drawn from the plant's own seeded stream.
+#include "lsystem/grammar.hpp"
+#include "lsystem/module_string.hpp"
+#include "lsystem/rng.hpp"
+
+#include <cstdint>
+#include <optional>
+
+namespace canopy {
+
+/// Default module cap: 40 M modules keeps two strings, their parameters and the context arrays
+/// of a derivation under about 2 GB.
+inline constexpr std::size_t kDefaultMaxModules = 40'000'000;
+
+struct DeriveRequest {
+  std::optional<int> steps;           // default: the grammar's `steps`
+  std::optional<std::uint64_t> seed;  // default: the grammar's `seed`
+  std::size_t max_modules = kDefaultMaxModules;
+};
+
+/// The string after `steps` rewriting steps, before interpretation. Throws ModuleCapError when the
+/// string would exceed the cap and GrammarError when an expression fails.
+ModuleString derive(const Grammar& g, const DeriveRequest& request = {});
+
+/// The interpretation (homomorphism) applied once to a derived string, as the turtle sees it.
+/// It draws from a second stream of the same seed, so it never shifts the derivation's draws.
+ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint64_t seed,
+                       std::size_t max_modules = kDefaultMaxModules);
+
+/// One parallel rewriting step of `in` by `table` into `out`.
+void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
+             std::size_t max_modules);
+
+/// Context neighbours (ABOP §1.8): for each module, the nearest preceding module on its path to
+/// the root and the next module on the same axis, skipping whole branches and ignored names; -1
+/// where there is none. Also each module's offset into the parameter array.
+struct ContextIndex {
+  PodBuffer<std::int32_t> left, right;
+  PodBuffer<std::uint32_t> param_offset;
+  void build(const Grammar& g, const ModuleString& s);
+};
+
+}  // namespace canopy

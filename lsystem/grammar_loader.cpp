@@ -1,0 +1,280 @@
+// Reads a grammar file (DESIGN.md "Grammar file") into a compiled Grammar.
+#include "lsystem/grammar.hpp"
+#include "lsystem/production_syntax.hpp"
+#include "lsystem/rule_builder.hpp"
+#include "lsystem/yaml_source.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace canopy {
+namespace {
+
+constexpr std::string_view kTopKeys =
+    "name seed steps angle step constants axiom productions interpretation ignore organs "
+    "compound_leaf tropism stand modules";
+
+bool is_identifier(std::string_view s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return true;
+}
+
+class Loader {
+ public:
+  Loader(const YamlSource& src, const LoadOptions& options) : src_(src), options_(options) {}
+
+  Grammar load(const YAML::Node& root) {
+    g_.file = src_.file();
+    if (!root.IsMap()) fail_at(src_.at(root), "a grammar file is a YAML map with keys such as axiom and productions");
+    src_.check_map(root, "the grammar", kTopKeys);
+    if (root["name"]) g_.name = src_.string(root["name"], "name");
+    if (root["seed"]) g_.seed = static_cast<std::uint64_t>(src_.integer(root["seed"], "seed", 0, INT64_MAX));
+    if (root["steps"]) g_.steps = static_cast<int>(src_.integer(root["steps"], "steps", 0, 100000));
+    if (root["angle"]) g_.angle = src_.number(root["angle"], "angle");
+    if (root["step"]) g_.step = src_.number(root["step"], "step");
+    read_constants(root["constants"]);
+    if (!root["axiom"]) fail_at({g_.file, 1, 1}, "the grammar has no 'axiom'");
+
+    collect_declared_names(root);
+    RuleBuilder builder(g_, ModuleLexer(g_.multi_char_names));
+    g_.axiom = builder.module_list(src_.string(root["axiom"], "axiom"), [&](std::size_t off) { return src_.at(root["axiom"], off); }, "the axiom");
+    builder.check_brackets(g_.axiom, src_.at(root["axiom"]), "the axiom");
+    g_.productions = build_rules(builder, root["productions"], "productions");
+    g_.interpretation = build_rules(builder, root["interpretation"], "interpretation");
+    read_organs(root["organs"], builder);
+    builder.check_turtle_arities(g_.organs);
+    read_names(root);
+    read_tropism(root["tropism"]);
+    read_stand(root["stand"]);
+    return std::move(g_);
+  }
+
+ private:
+  void read_constants(const YAML::Node& node) {
+    std::vector<bool> applied(options_.overrides.size(), false);
+    if (node) {
+      src_.check_map(node, "constants", "");
+      for (const auto& kv : node) {
+        const std::string name = kv.first.Scalar();
+        if (!is_identifier(name)) fail_at(src_.at(kv.first), "constant name '{}' is not a name (letters, digits, _)", name);
+        double value = 0;
+        bool overridden = false;
+        for (std::size_t i = 0; i < options_.overrides.size(); ++i)
+          if (options_.overrides[i].name == name) {
+            value = options_.overrides[i].value;
+            applied[i] = overridden = true;
+          }
+        if (!overridden) {
+          const std::string text = src_.string(kv.second, fmt::format("constant '{}'", name));
+          const Expr e = Expr::compile(text, src_.at(kv.second, 0), [this](std::string_view n) -> std::optional<NameRef> {
+            for (const auto& [cn, cv] : g_.constants)
+              if (cn == n) return NameRef{false, 0, cv};
+            return std::nullopt;
+          });
+          if (e.uses_rand()) fail_at(src_.at(kv.second, 0), "constant '{}' may not use rand(); draw per plant in a production instead", name);
+          value = e.eval_constant();
+        }
+        g_.constants.emplace_back(name, value);
+      }
+    }
+    for (std::size_t i = 0; i < options_.overrides.size(); ++i) {
+      if (applied[i]) continue;
+      std::string known;
+      for (const auto& [cn, cv] : g_.constants) known += (known.empty() ? "" : ", ") + cn;
+      throw std::invalid_argument(fmt::format("--set {}: {} has no constant '{}' (its constants: {})",
+                                              options_.overrides[i].name, src_.file(), options_.overrides[i].name,
+                                              known.empty() ? "none" : known));
+    }
+  }
+
+  void collect_declared_names(const YAML::Node& root) {
+    std::set<std::string> names;
+    auto add = [&](const std::string& n) {
+      if (n.size() > 1 || (!n.empty() && static_cast<unsigned char>(n[0]) >= 0x80)) names.insert(n);
+    };
+    if (const auto& o = root["organs"]; o && o.IsMap())
+      for (const auto& kv : o) add(kv.first.Scalar());
+    if (const auto& c = root["compound_leaf"]; c) add(src_.string(c, "compound_leaf"));
+    for (const char* key : {"ignore", "modules"}) {
+      if (const auto& l = root[key]; l) {
+        src_.check_sequence(l, key);
+        for (const auto& item : l) add(src_.string(item, key));
+      }
+    }
+    for (const char* key : {"productions", "interpretation"}) {
+      const auto& list = root[key];
+      if (!list) continue;
+      src_.check_sequence(list, key);
+      for (const auto& item : list) {
+        const std::string text = src_.string(item, "a production");
+        const ProductionParts parts = split_production(text, src_.at(item, 0));
+        std::string_view pred = parts.predecessor.of(text);
+        pred = trim(pred.substr(0, pred.find('(')));
+        add(std::string(pred));
+      }
+    }
+    g_.multi_char_names.assign(names.begin(), names.end());
+    std::stable_sort(g_.multi_char_names.begin(), g_.multi_char_names.end(),
+                     [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  }
+
+  RuleTable build_rules(RuleBuilder& builder, const YAML::Node& list, const char* what) {
+    std::vector<RuleBuilder::Source> sources;
+    if (list) {
+      for (const auto& item : list) {
+        RuleBuilder::Source s;
+        s.text = src_.string(item, "a production");
+        s.locate = [this, item](std::size_t off) { return src_.at(item, off); };
+        sources.push_back(std::move(s));
+      }
+    }
+    return builder.rule_table(sources, what);
+  }
+
+  void read_organs(const YAML::Node& node, RuleBuilder& builder) {
+    if (!node) return;
+    src_.check_map(node, "organs", "");
+    for (const auto& kv : node) {
+      const std::string name = kv.first.Scalar();
+      const YAML::Node& e = kv.second;
+      const std::string what = fmt::format("organ '{}'", name);
+      src_.check_map(e, what, "prototype kind joint_limit lod");
+      OrganEntry organ;
+      organ.pos = src_.at(kv.first);
+      if (!e["prototype"]) fail_at(src_.at(kv.first), "{} needs a prototype (cylinder, leaflet, sphere or disk)", what);
+      if (!e["kind"]) fail_at(src_.at(kv.first), "{} needs a kind (internode, petiole, rachis, leaflet, peduncle, fruit or flower)", what);
+      const std::string proto = src_.string(e["prototype"], "prototype");
+      const auto p = parse_prototype(proto);
+      if (!p) fail_at(src_.at(e["prototype"]), "unknown prototype '{}' (expected cylinder, leaflet, sphere or disk)", proto);
+      organ.prototype = *p;
+      const std::string kind = src_.string(e["kind"], "kind");
+      const auto k = parse_organ_kind(kind);
+      if (!k) fail_at(src_.at(e["kind"]), "unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit or flower)", kind);
+      organ.kind = *k;
+      if (e["joint_limit"]) {
+        organ.joint_limit_deg = src_.number(e["joint_limit"], "joint_limit");
+        if (organ.joint_limit_deg < 0 || organ.joint_limit_deg > 180)
+          fail_at(src_.at(e["joint_limit"]), "joint_limit must lie in [0, 180] degrees, got {}", organ.joint_limit_deg);
+      }
+      if (e["lod"]) organ.lod = static_cast<int>(src_.integer(e["lod"], "lod", 1, 1024));
+      const Symbol sym = g_.symbols.intern(name);
+      const int want = arity_of(organ.prototype);
+      if (const SourcePos* used = builder.first_use(sym); used && g_.symbols.arity(sym) != want)
+        fail_at(*used, "organ '{}' is a {} and takes {} parameter(s), but is used with {}", name, proto, want,
+                g_.symbols.arity(sym));
+      g_.symbols.set_arity(sym, want);
+      g_.organs[sym] = organ;
+    }
+  }
+
+  void read_names(const YAML::Node& root) {
+    if (const auto& c = root["compound_leaf"]) g_.compound_leaf = g_.symbols.intern(src_.string(c, "compound_leaf"));
+    std::vector<Symbol> ignored;
+    if (const auto& l = root["ignore"])
+      for (const auto& item : l) {
+        const std::string n = src_.string(item, "ignore");
+        if (n == "[" || n == "]") fail_at(src_.at(item), "brackets cannot be ignored");
+        ignored.push_back(g_.symbols.intern(n));
+      }
+    if (const auto& l = root["modules"])
+      for (const auto& item : l) g_.symbols.intern(src_.string(item, "modules"));
+    g_.ignored.assign(g_.symbols.size(), 0);
+    for (Symbol s : ignored) g_.ignored[s] = 1;
+    for (RuleTable* t : {&g_.productions, &g_.interpretation}) {
+      t->by_symbol.resize(g_.symbols.size());
+      t->mode.resize(g_.symbols.size(), RewriteMode::copy);
+    }
+  }
+
+  void read_tropism(const YAML::Node& node) {
+    if (!node) return;
+    src_.check_map(node, "tropism", "direction strength");
+    Tropism t;
+    if (const auto& d = node["direction"]) {
+      if (!d.IsSequence() || d.size() != 3) fail_at(src_.at(d), "tropism direction must be a list of 3 numbers");
+      for (int i = 0; i < 3; ++i) t.direction[i] = src_.number(d[i], "a tropism direction component");
+      const double n = std::hypot(t.direction[0], t.direction[1], t.direction[2]);
+      if (n == 0) fail_at(src_.at(d), "tropism direction must not be zero");
+    }
+    if (const auto& s = node["strength"]) t.strength = src_.number(s, "tropism strength");
+    g_.tropism = t;
+  }
+
+  void read_stand(const YAML::Node& node) {
+    if (!node) return;
+    src_.check_map(node, "stand",
+                   "rows per_row row_spacing plant_spacing double_rows jitter random_rotation seed positions");
+    StandSpec s;
+    auto positive = [&](const char* key) -> std::optional<double> {
+      if (!node[key]) return std::nullopt;
+      const double v = src_.number(node[key], key);
+      if (v < 0) fail_at(src_.at(node[key]), "{} must not be negative, got {}", key, v);
+      return v;
+    };
+    if (node["rows"]) s.rows = static_cast<int>(src_.integer(node["rows"], "rows", 1, 100000000));
+    if (node["per_row"]) s.per_row = static_cast<int>(src_.integer(node["per_row"], "per_row", 1, 100000000));
+    s.row_spacing = positive("row_spacing");
+    s.plant_spacing = positive("plant_spacing");
+    s.double_rows = positive("double_rows");
+    s.jitter = positive("jitter");
+    if (node["random_rotation"]) s.random_rotation = src_.boolean(node["random_rotation"], "random_rotation");
+    if (node["seed"]) s.seed = static_cast<std::uint64_t>(src_.integer(node["seed"], "seed", 0, INT64_MAX));
+    if (node["positions"]) s.positions = src_.string(node["positions"], "positions");
+    g_.stand = s;
+  }
+
+  const YamlSource& src_;
+  const LoadOptions& options_;
+  Grammar g_;
+};
+
+}  // namespace
+
+std::optional<double> Grammar::constant(const std::string& n) const {
+  for (const auto& [cn, cv] : constants)
+    if (cn == n) return cv;
+  return std::nullopt;
+}
+
+ConstantOverride parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument(fmt::format("--set {}: expected NAME=VALUE", text));
+  ConstantOverride o;
+  o.name = std::string(trim(std::string_view(text).substr(0, eq)));
+  const std::string_view v = trim(std::string_view(text).substr(eq + 1));
+  const auto r = std::from_chars(v.data(), v.data() + v.size(), o.value);
+  if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(o.value))
+    throw std::invalid_argument(fmt::format("--set {}: '{}' is not a finite number", text, v));
+  return o;
+}
+
+Grammar parse_grammar(const std::string& text, const std::string& file, const LoadOptions& options) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);
+  }
+  const YamlSource src(file, text);
+  try {
+    return Loader(src, options).load(root);
+  } catch (const YAML::Exception& e) {
+    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "unexpected YAML structure: " + e.msg);
+  }
+}
+
+Grammar load_grammar(const std::string& path, const LoadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw GrammarError({path, 0, 0}, "cannot open the grammar file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parse_grammar(ss.str(), path, options);
+}
+
+}  // namespace canopy

@@ -1,0 +1,28 @@
+#include "lsystem/module_string.hpp"
+
+#include <stdexcept>
+
+namespace canopy {
+
+SymbolTable::SymbolTable() {
+  intern("[");
+  intern("]");
+  arity_[0] = arity_[1] = 0;
+}
+
+Symbol SymbolTable::intern(const std::string& name) {
+  if (auto it = index_.find(name); it != index_.end()) return it->second;
+  if (names_.size() >= 0xffff) throw std::runtime_error("too many distinct module names (at most 65535)");
+  const auto id = static_cast<Symbol>(names_.size());
+  names_.push_back(name);
+  arity_.push_back(-1);
+  index_.emplace(name, id);
+  return id;
+}
+
+int SymbolTable::find(const std::string& name) const {
+  auto it = index_.find(name);
+  return it == index_.end() ? -1 : it->second;
+}
+
+}  // namespace canopy

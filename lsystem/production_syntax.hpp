@@ -1,0 +1,58 @@
+#pragma once
+/// The text syntax of productions and module lists (ABOP / L-Py notation):
+///   left_context < predecessor > right_context : condition -> successor : probability
+#include "lsystem/error.hpp"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace canopy {
+
+/// A piece of a production's text: [begin, end) offsets, or absent.
+struct Span {
+  std::size_t begin = 0, end = 0;
+  bool present = false;
+  std::string_view of(std::string_view text) const { return text.substr(begin, end - begin); }
+};
+
+struct ProductionParts {
+  Span left, predecessor, right, condition, successor, probability;
+};
+
+/// Splits a production at its top-level (outside parentheses) `<`, `>`, `:`, `->` and `:`.
+ProductionParts split_production(std::string_view text, const SourcePos& pos);
+
+/// One module as written: its name, where it starts, and its argument texts.
+struct RawModule {
+  std::string name;
+  std::size_t offset = 0;
+  struct Arg {
+    std::string_view text;
+    std::size_t offset = 0;
+  };
+  std::vector<Arg> args;
+};
+
+/// Splits module lists into modules: declared names of several characters first, longest first;
+/// any other character is a module of its own; white space separates; `(a, b)` follows a name.
+class ModuleLexer {
+ public:
+  explicit ModuleLexer(std::vector<std::string> multi_char_names);
+  /// Lexes `text`, found at `pos`; offsets in the result are relative to `text`.
+  std::vector<RawModule> lex(std::string_view text, const SourcePos& pos) const;
+  /// Length of the module name that starts at text[i].
+  std::size_t name_length(std::string_view text, std::size_t i) const;
+
+ private:
+  std::vector<std::string> names_;  // longest first
+};
+
+/// Length of the UTF-8 character that starts with byte `c` (1 for anything malformed).
+std::size_t utf8_length(unsigned char c);
+
+std::string_view trim(std::string_view s);
+/// Offset of the first non-blank character of `s` within `s`.
+std::size_t leading_blanks(std::string_view s);
+
+}  // namespace canopy

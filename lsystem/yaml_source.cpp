@@ -1,0 +1,98 @@
+#include "lsystem/yaml_source.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+namespace canopy {
+
+SourcePos YamlSource::at(const YAML::Node& node) const {
+  const YAML::Mark m = node.Mark();
+  if (m.line < 0) return {file_, 0, 0};
+  return {file_, m.line + 1, m.column + 1};
+}
+
+SourcePos YamlSource::at(const YAML::Node& node, std::size_t offset) const {
+  SourcePos p = at(node);
+  const YAML::Mark m = node.Mark();
+  if (m.pos < 0 || static_cast<std::size_t>(m.pos) >= text_.size()) return p;
+  const char first = text_[static_cast<std::size_t>(m.pos)];
+  if (first == '"' || first == '\'') return p.shifted(1 + static_cast<int>(offset));
+  if (first == '|' || first == '>') {
+    // Block scalar: its lines start on the next line of the file, at their indentation.
+    const std::string value = node.Scalar();
+    std::size_t line = 0, col = 0;
+    for (std::size_t i = 0; i < offset && i < value.size(); ++i) {
+      if (value[i] == '\n') { ++line; col = 0; }
+      else ++col;
+    }
+    std::size_t k = text_.find('\n', static_cast<std::size_t>(m.pos));
+    int indent = 0;
+    if (k != std::string::npos)
+      while (k + 1 + indent < text_.size() && text_[k + 1 + indent] == ' ') ++indent;
+    return {file_, p.line + 1 + static_cast<int>(line), indent + 1 + static_cast<int>(col)};
+  }
+  return p.shifted(static_cast<int>(offset));
+}
+
+double YamlSource::number(const YAML::Node& node, std::string_view what) const {
+  if (!node.IsScalar()) fail_at(at(node), "{} must be a number", what);
+  const std::string s = node.Scalar();
+  double v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
+    fail_at(at(node), "{} must be a finite number, got '{}'", what, s);
+  return v;
+}
+
+long long YamlSource::integer(const YAML::Node& node, std::string_view what, long long lo, long long hi) const {
+  if (!node.IsScalar()) fail_at(at(node), "{} must be a whole number", what);
+  const std::string s = node.Scalar();
+  long long v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+    fail_at(at(node), "{} must be a whole number, got '{}'", what, s);
+  if (v < lo || v > hi) fail_at(at(node), "{} must be between {} and {}, got {}", what, lo, hi, v);
+  return v;
+}
+
+std::string YamlSource::string(const YAML::Node& node, std::string_view what) const {
+  if (!node.IsScalar()) fail_at(at(node), "{} must be a string", what);
+  return node.Scalar();
+}
+
+bool YamlSource::boolean(const YAML::Node& node, std::string_view what) const {
+  if (node.IsScalar()) {
+    const std::string s = node.Scalar();
+    if (s == "true" || s == "yes" || s == "on") return true;
+    if (s == "false" || s == "no" || s == "off") return false;
+  }
+  fail_at(at(node), "{} must be true or false", what);
+}
+
+void YamlSource::check_map(const YAML::Node& node, std::string_view what, std::string_view allowed) const {
+  if (!node.IsMap()) fail_at(at(node), "{} must be a map", what);
+  std::vector<std::string> seen;
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    for (const auto& k : seen)
+      if (k == key) fail_at(at(kv.first), "key '{}' appears twice in {}", key, what);
+    seen.push_back(key);
+    if (allowed.empty()) continue;  // any key
+    bool ok = false;
+    std::size_t i = 0;
+    while (i < allowed.size()) {
+      std::size_t j = allowed.find(' ', i);
+      if (j == std::string_view::npos) j = allowed.size();
+      if (allowed.substr(i, j - i) == key) ok = true;
+      i = j + 1;
+    }
+    if (!ok) fail_at(at(kv.first), "unknown key '{}' in {} (expected one of: {})", key, what, allowed);
+  }
+}
+
+void YamlSource::check_sequence(const YAML::Node& node, std::string_view what) const {
+  if (!node.IsSequence()) fail_at(at(node), "{} must be a list", what);
+}
+
+}  // namespace canopy

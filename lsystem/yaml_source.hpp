@@ -1,0 +1,38 @@
+#pragma once
+/// Helpers that read typed values out of yaml-cpp nodes and locate them in the source text, so
+/// every grammar error can name file, line and column.
+#include "lsystem/error.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <string_view>
+
+namespace canopy {
+
+class YamlSource {
+ public:
+  YamlSource(std::string file, std::string text) : file_(std::move(file)), text_(std::move(text)) {}
+
+  const std::string& file() const { return file_; }
+  /// Where `node` starts.
+  SourcePos at(const YAML::Node& node) const;
+  /// Where character `offset` of a scalar node's value stands in the file (quoted, plain and
+  /// literal block scalars).
+  SourcePos at(const YAML::Node& node, std::size_t offset) const;
+
+  double number(const YAML::Node& node, std::string_view what) const;
+  long long integer(const YAML::Node& node, std::string_view what, long long lo, long long hi) const;
+  std::string string(const YAML::Node& node, std::string_view what) const;
+  bool boolean(const YAML::Node& node, std::string_view what) const;
+  /// Throws unless `node` is a map; checks every key against `allowed` (space separated;
+  /// empty: any key) and that none appears twice.
+  void check_map(const YAML::Node& node, std::string_view what, std::string_view allowed) const;
+  void check_sequence(const YAML::Node& node, std::string_view what) const;
+
+ private:
+  std::string file_;
+  std::string text_;
+};
+
+}  // namespace canopy

@@ -1,0 +1,89 @@
+// Derivation speed: modules per second (all modules written over all steps / wall time) for the
+// grammars given, median of repeats, one thread. Prints a table and writes CSV.
+#include "lsystem/derive.hpp"
+#include "lsystem/grammar.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace canopy;
+
+namespace {
+
+struct Case {
+  std::string file;
+  int steps;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<Case> cases;
+  std::string csv = "bench/results/derive.csv";
+  int repeats = 5;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
+    else {
+      std::string a = argv[i];
+      const auto colon = a.rfind(':');
+      if (colon != std::string::npos && colon + 1 < a.size() && std::isdigit(static_cast<unsigned char>(a[colon + 1])))
+        cases.push_back({a.substr(0, colon), std::atoi(a.c_str() + colon + 1)});
+      else cases.push_back({a, -1});
+    }
+  }
+  if (cases.empty()) {
+    fmt::print(stderr, "usage: bench_derive GRAMMAR[:STEPS]... [--repeats N] [--csv FILE]\n");
+    return 2;
+  }
+  std::FILE* out = std::fopen(csv.c_str(), "w");
+  if (!out) {
+    fmt::print(stderr, "bench_derive: cannot write {}\n", csv);
+    return 1;
+  }
+  fmt::print(out, "grammar,engine,steps,final_modules,modules_written,median_s,modules_per_s\n");
+  fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10} {:>14}\n", "grammar", "steps", "final modules", "modules written",
+             "median s", "Mmodules/s");
+  for (const Case& c : cases) {
+    const Grammar g = load_grammar(c.file);
+    const int steps = c.steps >= 0 ? c.steps : g.steps;
+    // Count what the derivation writes: the sum of the string lengths after each step.
+    std::size_t written = 0, final_size = 0;
+    {
+      Rng rng(g.seed);
+      ModuleString cur = derive(g, DeriveRequest{0, g.seed, kDefaultMaxModules}), next;
+      for (int s = 1; s <= steps; ++s) {
+        rewrite(g, g.productions, cur, next, rng, kDefaultMaxModules);
+        written += next.size();
+        std::swap(cur, next);
+      }
+      final_size = cur.size();
+    }
+    std::vector<double> times;
+    for (int r = 0; r < repeats + 1; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const ModuleString s = derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
+      const double t = seconds_since(t0);
+      if (s.size() != final_size) throw std::runtime_error("nondeterministic derivation length");
+      if (r > 0) times.push_back(t);  // the first run warms caches and the allocator
+    }
+    std::sort(times.begin(), times.end());
+    const double med = times[times.size() / 2];
+    const double rate = static_cast<double>(written) / med;
+    fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10.4f} {:>14.1f}\n", c.file, steps, final_size, written, med, rate / 1e6);
+    fmt::print(out, "{},canopy,{},{},{},{:.6f},{:.0f}\n", c.file, steps, final_size, written, med, rate);
+  }
+  std::fclose(out);
+  fmt::print("wrote {}\n", csv);
+  return 0;
+}

@@ -1,0 +1,40 @@
+// canopy: grow tomato stands from L-system grammars, find and remove organ interpenetration.
+#include "lsystem/error.hpp"
+#include "tools/cli_common.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <new>
+
+int main(int argc, char** argv) {
+  CLI::App app{"canopy: penetration-free plant stands from parametric L-system grammars", "canopy"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string(CANOPY_VERSION));
+  std::vector<canopy::cli::Command> commands{canopy::cli::add_derive(app), canopy::cli::add_info(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (auto& c : commands)
+      if (c.app->parsed()) return c.run();
+  } catch (const canopy::GrammarError& e) {
+    fmt::print(stderr, "canopy: error: {}\n", e.what());
+    return 1;
+  } catch (const canopy::ModuleCapError& e) {
+    fmt::print(stderr, "canopy: error: {}\n", e.what());
+    return 1;
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "canopy: error: {}\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "canopy: error: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "canopy: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,35 @@
+// canopy info: version and which detection backends this build and machine offer.
+#include "tools/cli_common.hpp"
+
+#include <fmt/format.h>
+#ifdef CANOPY_HAVE_CUDA
+#include "cuda/device.hpp"
+#endif
+
+namespace canopy::cli {
+
+Command add_info(CLI::App& root) {
+  CLI::App* app = root.add_subcommand("info", "Print the version and the detection backends available here");
+  auto self_test = std::make_shared<bool>(false);
+  app->add_flag("--self-test", *self_test, "Run a small kernel on each CUDA device and check its result");
+  return {app, [self_test]() {
+            fmt::print("canopy {}\nbackend cpu: available\n", CANOPY_VERSION);
+#ifdef CANOPY_HAVE_CUDA
+            const auto report = cuda::query_devices();
+            if (report.devices.empty()) fmt::print("backend cuda: built, no device ({})\n", report.unavailable_reason);
+            for (const auto& d : report.devices) {
+              fmt::print("backend cuda: device {} {} (sm_{}{}, {:.1f} GiB, {} SMs)\n", d.index, d.name, d.major, d.minor,
+                         static_cast<double>(d.memory_bytes) / (1u << 30), d.multiprocessors);
+              if (*self_test) {
+                cuda::self_test(d.index);
+                fmt::print("  self test passed\n");
+              }
+            }
+#else
+            fmt::print("backend cuda: not built\n");
+#endif
+            return 0;
+          }};
+}
+
+}  // namespace canopy::cli
