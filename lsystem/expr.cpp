@@ -87,8 +87,8 @@ class ExprParser {
     unary();
     for (;;) {
       const BinOp* b = peek_binop();
+      if (b && b->prec == 0) error(i_, "'=' is not an operator; use '==' to compare");
       if (!b || b->prec < min_prec) return;
-      if (b->prec == 0) error(i_, "'=' is not an operator; use '==' to compare");
       const std::size_t col = i_;
       i_ += b->tok.size();
       if (b->op == Op::AndJump || b->op == Op::OrJump) {
@@ -295,8 +295,8 @@ double Expr::run(const double* frame, Rng* rng) const {
     }
   }
   const double r = st[0];
-  if (!std::isfinite(r))
-    fail_at(pos_, "'{}' evaluates to {} (a NaN or infinite value)", text_, r);
+  if (std::isnan(r)) fail_at(pos_, "'{}' is not a number (NaN)", text_);
+  if (std::isinf(r)) fail_at(pos_, "'{}' is infinite", text_);
   return r;
 }
 

@@ -111,6 +111,7 @@ class Loader {
       if (!list) continue;
       src_.check_sequence(list, key);
       for (const auto& item : list) {
+        if (item.IsMap()) continue;  // reported with its place by build_rules
         const std::string text = src_.string(item, "a production");
         const ProductionParts parts = split_production(text, src_.at(item, 0));
         std::string_view pred = parts.predecessor.of(text);
@@ -128,6 +129,8 @@ class Loader {
     if (list) {
       for (const auto& item : list) {
         RuleBuilder::Source s;
+        if (item.IsMap())
+          fail_at(src_.at(item), "this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");
         s.text = src_.string(item, "a production");
         s.locate = [this, item](std::size_t off) { return src_.at(item, off); };
         sources.push_back(std::move(s));

@@ -1,0 +1,73 @@
+// Stochastic productions: reproducible from the plant's seed, frequencies as written.
+#include "helpers.hpp"
+
+using namespace canopy;
+using namespace canopy::test;
+
+namespace {
+const char* kCoin = R"g(
+steps: 1
+axiom: A A A A A A A A A A
+productions:
+  - "A -> B : 0.25"
+  - "A -> C : 0.75"
+)g";
+}
+
+TEST_CASE("the same seed derives the same string; other seeds differ") {
+  const Grammar g = grammar(kCoin);
+  const std::string first = derived(g, 1, 42);
+  CHECK(derived(g, 1, 42) == first);
+  derived(g, 1, 7);  // another plant in between changes nothing for plant 42
+  CHECK(derived(g, 1, 42) == first);
+  int different = 0;
+  for (std::uint64_t s = 0; s < 20; ++s) different += derived(g, 1, s) != first;
+  CHECK(different >= 15);
+}
+
+TEST_CASE("frequencies over many seeds match the probabilities") {
+  const Grammar g = grammar(kCoin);
+  std::size_t b = 0, total = 0;
+  for (std::uint64_t s = 0; s < 4000; ++s) {
+    const auto counts = count_modules(g, derive(g, DeriveRequest{1, s, kDefaultMaxModules}));
+    b += counts[static_cast<std::size_t>(g.symbols.find("B"))];
+    total += 10;
+  }
+  const double p = static_cast<double>(b) / static_cast<double>(total);
+  // 40,000 draws: standard error sqrt(0.25 * 0.75 / 40000) = 0.0022; allow 5 of them.
+  CHECK(p == doctest::Approx(0.25).epsilon(0.011 / 0.25));
+}
+
+TEST_CASE("rand() in successors draws from the plant stream") {
+  const Grammar g = grammar(R"g(
+axiom: A(0)
+productions:
+  - "A(x) -> A(rand(0, 1)) B(rand(5, 6))"
+)g");
+  CHECK(derived(g, 3, 9) == derived(g, 3, 9));
+  CHECK(derived(g, 3, 9) != derived(g, 3, 10));
+  const ModuleString s = derive(g, DeriveRequest{1, 9, kDefaultMaxModules});
+  REQUIRE(s.params.size() == 2);
+  CHECK(s.params[0] >= 0);
+  CHECK(s.params[0] < 1);
+  CHECK(s.params[1] >= 5);
+  CHECK(s.params[1] < 6);
+}
+
+TEST_CASE("a group is tried at its first member's place; conditions select before the draw") {
+  const Grammar g = grammar(R"g(
+axiom: A(1) A(5)
+productions:
+  - "A(x) : x < 3 -> S : 0.5"
+  - "A(x) : x >= 3 -> L"
+  - "A(x) : x < 3 -> T : 0.5"
+)g");
+  for (std::uint64_t s = 0; s < 20; ++s) {
+    const std::string d = derived(g, 1, s);
+    CHECK((d == "SL" || d == "TL"));
+  }
+}
+
+TEST_CASE("probabilities within 1e-9 of 1 are accepted") {
+  CHECK_NOTHROW(grammar("axiom: A\nproductions:\n  - 'A -> B : 0.3333333333'\n  - 'A -> C : 0.3333333333'\n  - 'A -> D : 0.3333333334'\n"));
+}
