@@ -13,6 +13,11 @@ namespace {
       cap, step == 0 ? std::string() : fmt::format(" at step {}", step)));
 }
 
+/// Copies a module's `n` parameters, starting at params[offset], into the production's frame.
+inline void bind(double* frame, const double* params, std::size_t offset, int n) {
+  if (n > 0) std::memcpy(frame, params + offset, sizeof(double) * static_cast<std::size_t>(n));
+}
+
 ModuleString evaluate_axiom(const Grammar& g, Rng& rng) {
   ModuleString s;
   for (const auto& m : g.axiom) {
@@ -106,18 +111,16 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
         for (std::size_t k = rg.left.size(); ok && k-- > 0;) {
           j = ctx.left[static_cast<std::size_t>(j)];
           if (j < 0 || sym[j] != rg.left[k].symbol) ok = false;
-          else std::memcpy(frame + rg.left[k].first_slot, par + ctx.param_offset[static_cast<std::size_t>(j)],
-                           sizeof(double) * static_cast<std::size_t>(arity[sym[j]]));
+          else bind(frame + rg.left[k].first_slot, par, ctx.param_offset[static_cast<std::size_t>(j)], arity[sym[j]]);
         }
         j = static_cast<std::int32_t>(i);
         for (std::size_t k = 0; ok && k < rg.right.size(); ++k) {
           j = ctx.right[static_cast<std::size_t>(j)];
           if (j < 0 || sym[j] != rg.right[k].symbol) ok = false;
-          else std::memcpy(frame + rg.right[k].first_slot, par + ctx.param_offset[static_cast<std::size_t>(j)],
-                           sizeof(double) * static_cast<std::size_t>(arity[sym[j]]));
+          else bind(frame + rg.right[k].first_slot, par, ctx.param_offset[static_cast<std::size_t>(j)], arity[sym[j]]);
         }
         if (!ok) continue;
-        if (ar) std::memcpy(frame + rg.predecessor.first_slot, par + p, sizeof(double) * static_cast<std::size_t>(ar));
+        bind(frame + rg.predecessor.first_slot, par, p, ar);
         if (rg.condition && rg.condition->eval(frame, rng) == 0) continue;
         const Successor* sc = &rg.successors[0];
         if (rg.successors.size() > 1) {

@@ -107,7 +107,7 @@ std::string stats_json(const Grammar& g, const ModuleString& s) {
   std::string out = fmt::format("{{\"modules\": {}, \"counts\": {{", s.size());
   bool first = true;
   for (const auto& [name, n] : by_name) {
-    out += fmt::format("{}{}: {}", first ? "" : ", ", nlohmann::json(name).dump(), n);
+    out += fmt::format("{}{}: {}", first ? "" : ", ", nlohmann::json(name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), n);
     first = false;
   }
   return out + "}}";

@@ -26,6 +26,20 @@ std::size_t utf8_length(unsigned char c) {
   return 1;
 }
 
+bool valid_utf8(std::string_view s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const std::size_t n = utf8_length(c);
+    if (n == 1 && c >= 0x80) return false;
+    if (i + n > s.size()) return false;
+    for (std::size_t k = 1; k < n; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) & 0xc0) != 0x80) return false;
+    i += n;
+  }
+  return true;
+}
+
 namespace {
 
 /// Offsets of every top-level occurrence of `tok` in [from, to), checking parentheses.
@@ -116,6 +130,7 @@ std::vector<RawModule> ModuleLexer::lex(std::string_view text, const SourcePos& 
     RawModule m;
     m.offset = i;
     const std::size_t len = name_length(text, i);
+    if (!valid_utf8(text.substr(i, len))) fail_at(at(i), "invalid UTF-8 in a module name");
     m.name = std::string(text.substr(i, len));
     i += len;
     std::size_t j = i;

@@ -51,6 +51,9 @@ class ModuleLexer {
 /// Length of the UTF-8 character that starts with byte `c` (1 for anything malformed).
 std::size_t utf8_length(unsigned char c);
 
+/// Whether `s` is well-formed UTF-8.
+bool valid_utf8(std::string_view s);
+
 std::string_view trim(std::string_view s);
 /// Offset of the first non-blank character of `s` within `s`.
 std::size_t leading_blanks(std::string_view s);

@@ -59,23 +59,26 @@ int main(int argc, char** argv) {
     const int steps = c.steps >= 0 ? c.steps : g.steps;
     // Count what the derivation writes: the sum of the string lengths after each step.
     std::size_t written = 0, final_size = 0;
-    {
-      Rng rng(g.seed);
-      ModuleString cur = derive(g, DeriveRequest{0, g.seed, kDefaultMaxModules}), next;
-      for (int s = 1; s <= steps; ++s) {
-        rewrite(g, g.productions, cur, next, rng, kDefaultMaxModules);
-        written += next.size();
-        std::swap(cur, next);
-      }
-      final_size = cur.size();
+    for (int k = 1; k <= steps; ++k) {
+      final_size = derive(g, DeriveRequest{k, g.seed, kDefaultMaxModules}).size();
+      written += final_size;
+    }
+    // Each timing repeats the derivation often enough to last about 0.1 s.
+    int loops = 1;
+    for (;;) {
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int l = 0; l < loops; ++l) derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
+      if (seconds_since(t0) > 0.05 || loops > (1 << 24)) break;
+      loops *= 4;
     }
     std::vector<double> times;
-    for (int r = 0; r < repeats + 1; ++r) {
+    for (int r = 0; r < repeats; ++r) {
       const auto t0 = std::chrono::steady_clock::now();
-      const ModuleString s = derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
-      const double t = seconds_since(t0);
-      if (s.size() != final_size) throw std::runtime_error("nondeterministic derivation length");
-      if (r > 0) times.push_back(t);  // the first run warms caches and the allocator
+      for (int l = 0; l < loops; ++l) {
+        const ModuleString s = derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
+        if (s.size() != final_size) throw std::runtime_error("nondeterministic derivation length");
+      }
+      times.push_back(seconds_since(t0) / loops);
     }
     std::sort(times.begin(), times.end());
     const double med = times[times.size() / 2];

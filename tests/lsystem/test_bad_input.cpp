@@ -77,6 +77,11 @@ TEST_CASE("stochastic groups must sum to 1") {
   CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 1.5\"\n") == "test.yaml:3:15: a probability must lie in [0, 1], got 1.5");
 }
 
+TEST_CASE("invalid UTF-8 in module names (found by the fuzzer)") {
+  CHECK(error_of("axiom: F\xc2\xc2\n") == "test.yaml:1:9: invalid UTF-8 in a module name");
+  CHECK(error_of("axiom: F\xc3\xa9\n") == "");  // a well-formed two-byte name is fine
+}
+
 TEST_CASE("production syntax") {
   CHECK(error_of("axiom: A\nproductions:\n  - A -> B : 0.5\n") ==
         "test.yaml:3:5: this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");

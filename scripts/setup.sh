@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs what canopy needs from Debian's packages (as root), only what is missing; safe to rerun.
+set -euo pipefail
+packages=(cmake ninja-build g++ pkg-config libeigen3-dev libyaml-cpp-dev libfmt-dev doctest-dev libcli11-dev
+          nlohmann-json3-dev libtinygltf-dev clang-14 libclang-rt-14-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

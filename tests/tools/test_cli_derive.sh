@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# canopy derive end to end: output, --stats, --steps/--seed/--set, located errors, exit codes, and
+# no partial output on failure. Usage: CANOPY=path/to/canopy test_cli_derive.sh SOURCE_DIR
+set -u
+src=$1
+canopy=${CANOPY:?set CANOPY to the canopy binary}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+pass=0
+check() {  # check NAME EXPECTED ACTUAL
+  if [ "$2" == "$3" ]; then pass=$((pass + 1)); else
+    failures=$((failures + 1)); printf 'FAIL %s\n  expected: %s\n  actual:   %s\n' "$1" "$2" "$3"; fi
+}
+
+check "1.24a two steps" "F[+F]F[-F]F[+F[+F]F[-F]F]F[+F]F[-F]F[-F[+F]F[-F]F]F[+F]F[-F]F" \
+  "$("$canopy" derive "$src/grammars/classic/abop_1_24a.yaml" --steps 2)"
+check "1.24a stats" '{"modules": 7811, "counts": {"+": 781, "-": 781, "F": 3125, "[": 1562, "]": 1562}}' \
+  "$("$canopy" derive "$src/grammars/classic/abop_1_24a.yaml" --stats)"
+check "1.30 step 5" "CB(0)B(8)A(1.1428571428571428,0)" "$("$canopy" derive "$src/grammars/classic/abop_1_30.yaml")"
+a=$("$canopy" derive "$src/grammars/tomato.yaml" --seed 3)
+b=$("$canopy" derive "$src/grammars/tomato.yaml" --seed 3)
+c=$("$canopy" derive "$src/grammars/tomato.yaml" --seed 4)
+check "seed reproducible" "$a" "$b"
+check "seeds differ" "1" "$([ "$a" != "$c" ] && echo 1 || echo 0)"
+check "--set" "A(5,15)" "$(printf 'constants: {a: 2, b: a * 3}\naxiom: A(a, b)\n' > "$tmp/s.yaml"; "$canopy" derive "$tmp/s.yaml" --set a=5)"
+
+# Errors: one located line on stderr, non-zero exit, nothing on stdout.
+printf 'steps: 2\naxiom: A(1)\nproductions:\n  - A(x) -> A(x / (x - 1))\n' > "$tmp/div.yaml"
+out=$("$canopy" derive "$tmp/div.yaml" 2>"$tmp/err"); rc=$?
+check "division exit" "1" "$rc"
+check "division stdout" "" "$out"
+check "division message" "canopy: error: $tmp/div.yaml:4:17: division by zero in 'x / (x - 1)'" "$(cat "$tmp/err")"
+printf 'axiom: A\nsteps: 100\nproductions:\n  - A -> AA\n' > "$tmp/exp.yaml"
+out=$("$canopy" derive "$tmp/exp.yaml" --max-modules 100000 2>"$tmp/err"); rc=$?
+check "cap exit" "1" "$rc"
+check "cap stdout" "" "$out"
+check "cap message" "1" "$(grep -c 'exceeds the module cap of 100000 modules at step 17' "$tmp/err")"
+out=$("$canopy" derive "$tmp/s.yaml" --set zz=1 2>"$tmp/err"); rc=$?
+check "--set unknown exit" "2" "$rc"
+check "--set unknown message" "canopy: error: --set zz: $tmp/s.yaml has no constant 'zz' (its constants: a, b)" "$(cat "$tmp/err")"
+"$canopy" derive "$tmp/missing.yaml" >/dev/null 2>"$tmp/err"; rc=$?
+check "missing file" "1:canopy: error: $tmp/missing.yaml: cannot open the grammar file" "$rc:$(cat "$tmp/err")"
+printf 'axiom: [F\n' > "$tmp/bad.yaml"
+"$canopy" derive "$tmp/bad.yaml" >/dev/null 2>"$tmp/err"; rc=$?
+check "bad yaml" "1" "$(grep -c "^canopy: error: $tmp/bad.yaml:2:1: malformed YAML" "$tmp/err")"
+check "one line" "1" "$(wc -l < "$tmp/err" | tr -d ' ')"
+
+# Every option has a --help line.
+help=$("$canopy" derive --help)
+for opt in --steps --seed --set --stats --max-modules --interpreted; do
+  check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
+done
+
+echo "$pass passed, $failures failed"
+[ "$failures" -eq 0 ]
