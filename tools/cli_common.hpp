@@ -15,5 +15,6 @@ struct Command {
 
 Command add_derive(CLI::App& root);
 Command add_info(CLI::App& root);
+Command add_stand(CLI::App& root);
 
 }  // namespace canopy::cli

@@ -1,0 +1,65 @@
+#include "geometry/atomic_file.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace canopy {
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  tmp_ = fmt::format("{}.tmp-{}", path_, ::getpid());
+  f_ = std::fopen(tmp_.c_str(), "wb");
+  if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", tmp_, std::strerror(errno)));
+  std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
+}
+
+AtomicFile::~AtomicFile() {
+  if (f_) std::fclose(f_);
+  if (!committed_) std::remove(tmp_.c_str());
+}
+
+void AtomicFile::write(const void* data, std::size_t n) {
+  if (n && std::fwrite(data, 1, n, f_) != n)
+    throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
+}
+
+void AtomicFile::close() {
+  if (!f_) return;
+  const bool bad = std::ferror(f_) != 0;
+  const int rc = std::fclose(f_);
+  f_ = nullptr;
+  if (bad || rc != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
+}
+
+void AtomicFile::commit() {
+  close();
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
+    throw std::runtime_error(fmt::format("cannot rename {} to {}: {}", tmp_, path_, std::strerror(errno)));
+  committed_ = true;
+}
+
+OutputSet::OutputSet(std::string dir) : dir_(std::move(dir)) {}
+
+AtomicFile& OutputSet::open(const std::string& name) {
+  files_.push_back(std::make_unique<AtomicFile>((std::filesystem::path(dir_) / name).string()));
+  return *files_.back();
+}
+
+void OutputSet::commit_all() {
+  for (auto& f : files_) f->close();  // every file complete before any is renamed
+  for (auto& f : files_) f->commit();
+}
+
+void prepare_output_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, ec.message()));
+  AtomicFile probe((std::filesystem::path(dir) / ".canopy-write-test").string());
+  probe.close();  // destroyed uncommitted: removed
+}
+
+}  // namespace canopy

@@ -1,0 +1,32 @@
+#pragma once
+/// Mesh and table exports of a stand (DESIGN.md "Exports"). Meshes are streamed organ by organ
+/// from prototypes and transforms, so a large stand never holds all its triangles in memory.
+#include "geometry/atomic_file.hpp"
+#include "geometry/prototype.hpp"
+#include "geometry/stand.hpp"
+
+#include <string>
+
+namespace canopy {
+
+/// stand.obj (+ stand.mtl): world metres, Z up, `o plant_<p>`, `g organ_<id>`, `usemtl <kind>`.
+void write_obj(const Stand& stand, PrototypeLibrary& lib, AtomicFile& obj, AtomicFile& mtl, const std::string& mtl_name);
+/// stand.ply: binary little endian, float32 vertices relative to stand_origin, normals, per face
+/// `plant` and `organ`.
+void write_ply(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
+/// stand.glb: glTF 2.0, Y up, root node at stand_origin, one node and mesh per plant, one
+/// primitive per organ kind, `_ORGAN` vertex attribute, one material per kind, UVs on leaflets.
+void write_glb(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
+
+/// organs.csv: id,plant,parent,kind,leaf,area,length then prototype,p0,p1,lod,joint_limit and the
+/// plant-frame transform (columns h, l, u and joint t), enough to read the stand back.
+void write_organs_csv(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
+/// plants.csv: id,x,y,rotation,seed,grammar,steps.
+void write_plants_csv(const Stand& stand, AtomicFile& out);
+/// Reads a stand back from DIR/organs.csv and DIR/plants.csv (bit-exact transforms).
+Stand read_stand(const std::string& dir);
+
+/// glTF's Y-up frame from canopy's Z-up one: (x, y, z) -> (x, z, -y).
+inline Vec3f to_y_up(Vec3f v) { return {v.x, v.z, -v.y}; }
+
+}  // namespace canopy

@@ -1,0 +1,136 @@
+#include "geometry/layout.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+namespace canopy {
+namespace {
+
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+/// A small stream for jitter and rotation draws (splitmix64), apart from the plants' own.
+struct LayoutStream {
+  std::uint64_t state;
+  double uniform() { return static_cast<double>(mix(state++) >> 11) * 0x1.0p-53; }
+};
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::pair<std::string_view, int>> split(std::string_view line) {
+  std::vector<std::pair<std::string_view, int>> cells;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i <= line.size(); ++i)
+    if (i == line.size() || line[i] == ',') {
+      const std::string_view raw = line.substr(start, i - start);
+      const std::string_view cell = trim(raw);
+      cells.emplace_back(cell, static_cast<int>(start + (cell.empty() ? 0 : cell.data() - raw.data())) + 1);
+      start = i + 1;
+    }
+  return cells;
+}
+
+}  // namespace
+
+std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant) {
+  return mix(mix(stand_seed) ^ (plant * 0xd1b54a32d192ed03ULL)) >> 1;  // 63 bits: prints as a plain number
+}
+
+std::vector<PlantPlacement> row_layout(const RowLayout& l) {
+  if (l.rows < 1 || l.per_row < 1) throw std::invalid_argument(fmt::format("--rows and --per-row must be at least 1 (got {} and {})", l.rows, l.per_row));
+  if (!(l.row_spacing >= 0) || !(l.plant_spacing >= 0) || !(l.jitter >= 0) || (l.double_rows && !(*l.double_rows >= 0)))
+    throw std::invalid_argument("--row-spacing, --plant-spacing, --double-rows and --jitter must be finite and not negative");
+  std::vector<PlantPlacement> out;
+  out.reserve(static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.per_row));
+  LayoutStream rng{mix(l.seed ^ 0x6c61796f7574ULL)};
+  for (int r = 0; r < l.rows; ++r) {
+    const double y = l.double_rows ? (r / 2) * l.row_spacing + (r % 2) * *l.double_rows : r * l.row_spacing;
+    for (int k = 0; k < l.per_row; ++k) {
+      PlantPlacement p;
+      p.x = k * l.plant_spacing;
+      p.y = y;
+      if (l.jitter > 0) {
+        const double rad = l.jitter * std::sqrt(rng.uniform());
+        const double a = 2 * std::numbers::pi * rng.uniform();
+        p.x += rad * std::cos(a);
+        p.y += rad * std::sin(a);
+      }
+      if (l.random_rotation) p.rotation_deg = 360 * rng.uniform();
+      p.seed = plant_seed(l.seed, out.size());
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
+std::vector<PlantPlacement> read_positions(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(fmt::format("{}: cannot open the positions file", path));
+  std::string line;
+  int line_no = 0;
+  std::map<std::string, int> col;
+  std::vector<PlantPlacement> out;
+  std::size_t ncols = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (trim(line).empty() || trim(line)[0] == '#') continue;
+    const auto cells = split(line);
+    if (col.empty()) {
+      for (std::size_t i = 0; i < cells.size(); ++i) col[std::string(cells[i].first)] = static_cast<int>(i);
+      for (const char* need : {"x", "y", "rotation", "seed"})
+        if (!col.count(need))
+          throw std::invalid_argument(fmt::format("{}:{}: missing column '{}' (the header needs x,y,rotation,seed and may add grammar,steps)", path, line_no, need));
+      ncols = cells.size();
+      continue;
+    }
+    if (cells.size() != ncols)
+      throw std::invalid_argument(fmt::format("{}:{}: expected {} cells as in the header, got {}", path, line_no, ncols, cells.size()));
+    auto number = [&](const char* name) {
+      const auto& [cell, column] = cells[static_cast<std::size_t>(col[name])];
+      double v = 0;
+      const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+      if (cell.empty() || r.ec != std::errc() || r.ptr != cell.data() + cell.size() || !std::isfinite(v))
+        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}'", path, line_no, column, name, cell));
+      return v;
+    };
+    auto whole = [&](const char* name, double lo) {
+      const double v = number(name);
+      const auto& [cell, column] = cells[static_cast<std::size_t>(col[name])];
+      if (v != std::floor(v) || v < lo || v > 9.2e18)
+        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a whole number of at least {}, got '{}'", path, line_no, column, name, lo, cell));
+      return v;
+    };
+    PlantPlacement p;
+    p.x = number("x");
+    p.y = number("y");
+    p.rotation_deg = number("rotation");
+    {
+      const auto& [cell, column] = cells[static_cast<std::size_t>(col["seed"])];
+      const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), p.seed);
+      if (cell.empty() || r.ec != std::errc() || r.ptr != cell.data() + cell.size())
+        throw std::invalid_argument(fmt::format("{}:{}:{}: column 'seed' needs a whole number, got '{}'", path, line_no, column, cell));
+    }
+    if (col.count("grammar")) p.grammar = std::string(cells[static_cast<std::size_t>(col["grammar"])].first);
+    if (col.count("steps") && !cells[static_cast<std::size_t>(col["steps"])].first.empty())
+      p.steps = static_cast<int>(whole("steps", 0));
+    out.push_back(p);
+  }
+  if (col.empty()) throw std::invalid_argument(fmt::format("{}: empty positions file (expected a header x,y,rotation,seed)", path));
+  return out;
+}
+
+}  // namespace canopy

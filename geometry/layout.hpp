@@ -1,0 +1,42 @@
+#pragma once
+/// Where plants stand (DESIGN.md "Layout"): rows along +X spaced along +Y with the first plant at
+/// the origin, or a positions file. Each plant gets its own seed from the stand seed.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace canopy {
+
+struct PlantPlacement {
+  double x = 0, y = 0;
+  double rotation_deg = 0;
+  std::uint64_t seed = 0;
+  std::string grammar;       // empty: the stand's grammar
+  std::optional<int> steps;  // empty: the grammar's (or the command line's) steps
+};
+
+struct RowLayout {
+  int rows = 1;
+  int per_row = 1;
+  double row_spacing = 1.0;
+  double plant_spacing = 0.4;
+  /// Greenhouse double rows: rows come in pairs GAP apart; pairs are `row_spacing` apart
+  /// (first row of a pair to the first row of the next).
+  std::optional<double> double_rows;
+  double jitter = 0;  // radius of a uniform disc around each nominal position, metres
+  bool random_rotation = false;
+  std::uint64_t seed = 1;
+};
+
+/// Plant p's seed: a hash of the stand seed and p, so plants differ and the stand is reproducible.
+std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant);
+
+/// Positions in row-major order. Throws std::invalid_argument on a negative spacing or count.
+std::vector<PlantPlacement> row_layout(const RowLayout& layout);
+
+/// Reads a CSV with a header naming at least x,y,rotation,seed (and optionally grammar, steps),
+/// in any column order. Errors name file, line and column.
+std::vector<PlantPlacement> read_positions(const std::string& path);
+
+}  // namespace canopy

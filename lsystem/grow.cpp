@@ -1,0 +1,159 @@
+#include "lsystem/grow.hpp"
+
+#include "lsystem/turtle.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <omp.h>
+
+namespace canopy {
+namespace {
+
+/// Plant p's organs before placement, and what its grammar said of it.
+struct GrownPlant {
+  TurtleResult turtle;
+  int grammar = 0;
+  int steps = 0;
+  std::size_t modules = 0;
+};
+
+Affine3f rotate_z(const Affine3f& m, double deg) {
+  const double a = deg * std::numbers::pi / 180;
+  const float c = static_cast<float>(std::cos(a)), s = static_cast<float>(std::sin(a));
+  const auto r = [&](Vec3f v) { return Vec3f{c * v.x - s * v.y, s * v.x + c * v.y, v.z}; };
+  return {r(m.c0), r(m.c1), r(m.c2), r(m.t)};
+}
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+}  // namespace
+
+std::size_t available_memory() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  std::size_t kb = 0;
+  std::string unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024;
+  return 0;
+}
+
+Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
+  Stand stand;
+  // Each grammar file is loaded once.
+  std::map<std::string, int> index;
+  std::vector<std::unique_ptr<Grammar>> grammars;
+  auto grammar_index = [&](const std::string& name) {
+    std::string path = name.empty() ? req.grammar : name;
+    if (!name.empty() && !req.relative_to.empty() && std::filesystem::path(path).is_relative())
+      path = (std::filesystem::path(req.relative_to) / path).string();
+    auto it = index.find(path);
+    if (it != index.end()) return it->second;
+    grammars.push_back(std::make_unique<Grammar>(load_grammar(path, req.load)));
+    stand.grammars.push_back(name.empty() ? req.grammar : name);
+    return index[path] = static_cast<int>(grammars.size() - 1);
+  };
+  const std::size_t n = req.plants.size();
+  std::vector<GrownPlant> grown(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    grown[p].grammar = grammar_index(req.plants[p].grammar);
+    const Grammar& g = *grammars[static_cast<std::size_t>(grown[p].grammar)];
+    grown[p].steps = req.plants[p].steps.value_or(req.steps.value_or(g.steps));
+  }
+
+  std::vector<std::string> errors(n);
+  auto grow_one = [&](std::size_t p) {
+    const Grammar& g = *grammars[static_cast<std::size_t>(grown[p].grammar)];
+    const PlantPlacement& pl = req.plants[p];
+    const ModuleString s = derive(g, DeriveRequest{grown[p].steps, pl.seed, req.max_modules});
+    const ModuleString t = interpret(g, s, pl.seed, req.max_modules);
+    grown[p].modules = t.size();
+    TurtleConfig tc;
+    tc.lod = req.lod;
+    tc.where = fmt::format("plant {} (seed {})", p, pl.seed);
+    grown[p].turtle = run_turtle(g, t, tc);
+  };
+
+  const double t0 = now();
+  if (n > 0) {
+    // Grow the first plant alone to estimate the memory the stand needs, before trying.
+    grow_one(0);
+    const std::size_t per_organ = sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) +
+                                  sizeof(OrganInstance);
+    const std::size_t need = n * (grown[0].turtle.organs.size() + 1) * per_organ + n * grown[0].modules * 10;
+    const std::size_t limit = req.memory_limit ? req.memory_limit : available_memory();
+    if (limit && need > limit)
+      throw std::runtime_error(fmt::format(
+          "a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} GB available; "
+          "use fewer plants or a coarser --lod",
+          n, static_cast<double>(need) / 1e9, grown[0].turtle.organs.size(), static_cast<double>(limit) / 1e9));
+  }
+  const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+  for (std::size_t p = 1; p < n; ++p) {
+    try {
+      grow_one(p);
+    } catch (const std::exception& e) {
+      errors[p] = e.what();
+    }
+  }
+  for (const auto& e : errors)
+    if (!e.empty()) throw std::runtime_error(e);  // the first failing plant, in plant order
+  const double t1 = now();
+
+  // Place: global ids plant by plant, then in string order.
+  std::size_t organs = 0;
+  for (const auto& gp : grown) organs += gp.turtle.organs.size();
+  stand.transforms.resize(organs);
+  stand.organs.resize(organs);
+  stand.params.resize(organs);
+  stand.joint_limit_deg.resize(organs);
+  stand.plants.resize(n);
+  std::uint32_t first = 0, first_leaf = 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    const PlantPlacement& pl = req.plants[p];
+    PlantRecord& pr = stand.plants[p];
+    pr.x = pl.x;
+    pr.y = pl.y;
+    pr.rotation_deg = pl.rotation_deg;
+    pr.seed = pl.seed;
+    pr.grammar = grown[p].grammar;
+    pr.steps = grown[p].steps;
+    pr.first_organ = first;
+    pr.organ_count = static_cast<std::uint32_t>(grown[p].turtle.organs.size());
+    pr.first_leaf = first_leaf;
+    pr.leaf_count = static_cast<std::uint32_t>(grown[p].turtle.leaf_count);
+    first += pr.organ_count;
+    first_leaf += pr.leaf_count;
+  }
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::size_t p = 0; p < n; ++p) {
+    const PlantRecord& pr = stand.plants[p];
+    const auto& src = grown[p].turtle.organs;
+    for (std::size_t k = 0; k < src.size(); ++k) {
+      const OrganInstance& o = src[k];
+      const std::size_t id = pr.first_organ + k;
+      stand.transforms[id] = rotate_z(o.transform, pr.rotation_deg);
+      OrganRecord& r = stand.organs[id];
+      r.plant = static_cast<std::int32_t>(p);
+      r.parent = o.parent < 0 ? -1 : static_cast<std::int32_t>(pr.first_organ) + o.parent;
+      r.leaf = o.leaf < 0 ? -1 : static_cast<std::int32_t>(pr.first_leaf) + o.leaf;
+      r.kind = o.kind;
+      r.prototype = o.prototype;
+      r.lod = static_cast<std::uint8_t>(o.lod);
+      stand.params[id] = {o.params[0], o.params[1]};
+      stand.joint_limit_deg[id] = o.joint_limit_deg;
+    }
+  }
+  if (n > 0) stand.stand_origin = {stand.plants[0].x, stand.plants[0].y, 0};
+  if (timings) {
+    timings->derive_s = t1 - t0;  // derivation and turtle together, per plant in parallel
+    timings->place_s = now() - t1;
+  }
+  return stand;
+}
+
+}  // namespace canopy

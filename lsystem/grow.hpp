@@ -1,0 +1,41 @@
+#pragma once
+/// Grows a stand: for each placed plant, derive its string from its own seed, interpret it, run
+/// the turtle, and place its organs (rotation about +Z; origin kept apart in double).
+#include "geometry/layout.hpp"
+#include "geometry/stand.hpp"
+#include "lsystem/derive.hpp"
+#include "lsystem/grammar.hpp"
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace canopy {
+
+struct GrowRequest {
+  std::string grammar;                  // the stand's grammar file
+  std::vector<PlantPlacement> plants;   // a placement may name another grammar (positions files)
+  std::string relative_to;              // folder for relative grammar paths in placements
+  LoadOptions load;                     // --set overrides, applied to every grammar
+  std::optional<int> steps;             // overrides every grammar's steps (a placement's own wins)
+  int lod = 2;
+  std::size_t max_modules = kDefaultMaxModules;
+  int threads = 0;                      // 0: all cores
+  /// Refuse before growing when the stand would need more than this many bytes (0: the
+  /// machine's available memory).
+  std::size_t memory_limit = 0;
+};
+
+struct GrowTimings {
+  double derive_s = 0, turtle_s = 0, place_s = 0;
+};
+
+/// Throws GrammarError for grammar problems, std::runtime_error naming the plant for turtle
+/// problems and for a stand too large for memory (said before growing it).
+Stand grow_stand(const GrowRequest& request, GrowTimings* timings = nullptr);
+
+/// Bytes of memory this machine has available (MemAvailable), or 0 when unknown.
+std::size_t available_memory();
+
+}  // namespace canopy

@@ -1,0 +1,52 @@
+#pragma once
+/// Turtle interpretation (ABOP §1.5, §2.2): the interpreted module string becomes organ instances
+/// in the plant's frame (before the plant's rotation), with their structure-tree parents and
+/// compound-leaf ids. Initial frame H = +Z, L = -Y, U = +X; `+` turns left about U (R_U),
+/// `&` pitches down about L (R_L), `\` rolls left about H (R_H), as ABOP's matrices.
+#include "geometry/organ_kind.hpp"
+#include "geometry/vec.hpp"
+#include "lsystem/grammar.hpp"
+#include "lsystem/module_string.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace canopy {
+
+/// The turtle's frame at an organ: where it is attached and how it is oriented when grown.
+struct TurtleFrame {
+  Vec3d position;
+  Vec3d heading{0, 0, 1}, left{0, -1, 0}, up{1, 0, 0};
+};
+
+struct OrganInstance {
+  OrganKind kind = OrganKind::internode;
+  PrototypeKind prototype = PrototypeKind::cylinder;
+  float params[2] = {0, 0};  // the prototype's parameters, in order
+  int parent = -1;          // index in this plant, -1 at a root
+  int leaf = -1;            // compound leaf in this plant, -1 outside one
+  int lod = 2;
+  float joint_limit_deg = 60;
+  Affine3f transform;       // prototype frame -> plant frame
+  std::uint32_t module = 0; // index in the interpreted string, for messages
+};
+
+struct TurtleResult {
+  std::vector<OrganInstance> organs;
+  int leaf_count = 0;
+};
+
+struct TurtleConfig {
+  int lod = 2;  // default level of detail for organs without their own
+  /// Names the plant in error messages ("plant 3 (seed 17)").
+  std::string where = "the plant";
+};
+
+/// Throws GrammarError-like std::runtime_error naming the plant and module when a length or
+/// radius is negative or not finite.
+TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleConfig& config);
+
+/// The organ transform for `prototype` with `params` at `frame` (DESIGN.md "Organs").
+Affine3f organ_transform(PrototypeKind prototype, const float* params, const TurtleFrame& frame);
+
+}  // namespace canopy

@@ -1,0 +1,30 @@
+#pragma once
+/// report.json (DESIGN.md "Exports") and the terminal summary of a run.
+#include "geometry/atomic_file.hpp"
+#include "geometry/prototype.hpp"
+#include "geometry/stand.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <string>
+
+namespace canopy::cli {
+
+struct StandReport {
+  nlohmann::ordered_json config;
+  std::string grammar;
+  nlohmann::ordered_json seed;
+  std::map<std::string, double> timings;  // seconds per stage
+  std::string backend = "none";           // detection has not run
+  nlohmann::ordered_json device = nullptr;
+  nlohmann::ordered_json contacts_before = nullptr, contacts_after = nullptr, resolution = nullptr;
+};
+
+/// Triangles of each plant at its organs' levels of detail.
+std::vector<std::size_t> triangles_per_plant(const Stand& stand, PrototypeLibrary& lib);
+
+void write_report(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, AtomicFile& out);
+void print_summary(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, const std::string& dir);
+
+}  // namespace canopy::cli
