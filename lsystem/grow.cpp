@@ -29,7 +29,37 @@ Affine3f rotate_z(const Affine3f& m, double deg) {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit) {
+  const std::size_t per_organ = sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) +
+                                sizeof(OrganInstance);
+  const double need = static_cast<double>(n) *
+                      (static_cast<double>((first.turtle.organs.size() + 1) * per_organ + first.modules * 10) +
+                       sizeof(PlantPlacement) + sizeof(PlantRecord));
+  const std::size_t limit = memory_limit ? memory_limit : available_memory();
+  if (limit && need > static_cast<double>(limit))
+    throw std::runtime_error(fmt::format(
+        "a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} GB available; "
+        "use fewer plants or a coarser --lod",
+        n, need / 1e9, first.turtle.organs.size(), static_cast<double>(limit) / 1e9));
+}
+
 }  // namespace
+
+void check_stand_fits(const GrowRequest& req, std::size_t plants) {
+  if (req.plants.empty()) return;
+  GrowRequest one = req;
+  one.plants.resize(1);
+  const Grammar g = load_grammar(req.plants[0].grammar.empty() ? req.grammar : req.plants[0].grammar, req.load);
+  GrownPlant first;
+  const PlantPlacement& pl = req.plants[0];
+  const ModuleString s = interpret(g, derive(g, DeriveRequest{pl.steps.value_or(req.steps.value_or(g.steps)), pl.seed, req.max_modules}),
+                                   pl.seed, req.max_modules);
+  first.modules = s.size();
+  TurtleConfig tc;
+  tc.lod = req.lod;
+  first.turtle = run_turtle(g, s, tc);
+  check_fits(first, plants, req.memory_limit);
+}
 
 std::size_t available_memory() {
   std::ifstream in("/proc/meminfo");
@@ -79,17 +109,8 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
 
   const double t0 = now();
   if (n > 0) {
-    // Grow the first plant alone to estimate the memory the stand needs, before trying.
     grow_one(0);
-    const std::size_t per_organ = sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) +
-                                  sizeof(OrganInstance);
-    const std::size_t need = n * (grown[0].turtle.organs.size() + 1) * per_organ + n * grown[0].modules * 10;
-    const std::size_t limit = req.memory_limit ? req.memory_limit : available_memory();
-    if (limit && need > limit)
-      throw std::runtime_error(fmt::format(
-          "a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} GB available; "
-          "use fewer plants or a coarser --lod",
-          n, static_cast<double>(need) / 1e9, grown[0].turtle.organs.size(), static_cast<double>(limit) / 1e9));
+    check_fits(grown[0], n, req.memory_limit);
   }
   const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)

@@ -35,6 +35,10 @@ struct GrowTimings {
 /// problems and for a stand too large for memory (said before growing it).
 Stand grow_stand(const GrowRequest& request, GrowTimings* timings = nullptr);
 
+/// Grows the first plant of `request` alone and throws, before anything large is allocated, when
+/// `plants` plants like it would not fit in the memory limit (a stand too large for memory).
+void check_stand_fits(const GrowRequest& request, std::size_t plants);
+
 /// Bytes of memory this machine has available (MemAvailable), or 0 when unknown.
 std::size_t available_memory();
 

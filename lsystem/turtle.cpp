@@ -14,7 +14,7 @@ constexpr double kDeg = std::numbers::pi / 180;
 struct State {
   TurtleFrame f;
   int last_organ = -1;
-  int leaf = -1;
+  int leaf_slot = -1;  // the compound leaf this state is in (index into the slots), -1 outside
 };
 
 /// Rotates a and b (two frame vectors) by angle in their plane: a' = a cos + b sin, b' = b cos - a sin.
@@ -67,6 +67,9 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
   TurtleResult out;
   std::vector<State> stack;
   State st;
+  // A compound leaf gets its id when its first organ appears, so leaves with no organs (a bud
+  // not yet unfolded) take no id; ids stay in string order.
+  std::vector<int> leaf_ids;
   std::vector<const OrganEntry*> organ_of(g.symbols.size(), nullptr);
   for (const auto& [sym, entry] : g.organs) organ_of[sym] = &entry;
   const auto fail = [&](std::size_t i, std::size_t p, const std::string& what) {
@@ -93,7 +96,11 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
         o.params[k] = static_cast<float>(a[k]);
       }
       o.parent = st.last_organ;
-      o.leaf = st.leaf;
+      if (st.leaf_slot >= 0) {
+        int& id = leaf_ids[static_cast<std::size_t>(st.leaf_slot)];
+        if (id < 0) id = out.leaf_count++;
+        o.leaf = id;
+      }
       o.lod = organ->lod.value_or(config.lod);
       o.joint_limit_deg = static_cast<float>(organ->joint_limit_deg);
       o.transform = organ_transform(o.prototype, o.params, st.f);
@@ -105,7 +112,8 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
         if (g.tropism) apply_tropism(st.f, *g.tropism);
       }
     } else if (static_cast<int>(x) == g.compound_leaf) {
-      st.leaf = out.leaf_count++;
+      st.leaf_slot = static_cast<int>(leaf_ids.size());
+      leaf_ids.push_back(-1);
     } else if (x == g.symbols.open_bracket()) {
       stack.push_back(st);
     } else if (x == g.symbols.close_bracket()) {

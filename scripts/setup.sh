@@ -2,7 +2,7 @@
 # Installs what canopy needs from Debian's packages (as root), only what is missing; safe to rerun.
 set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libyaml-cpp-dev libfmt-dev doctest-dev libcli11-dev
-          nlohmann-json3-dev libtinygltf-dev clang-14 libclang-rt-14-dev)
+          nlohmann-json3-dev libtinygltf-dev clang-14 libclang-rt-14-dev assimp-utils python3)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -12,4 +12,15 @@ if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+# Node.js runs the Khronos glTF validator in the tests (and the lindenmayer benchmark). An
+# installed node (Debian's or another vendor's package) is kept as it is.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  echo "setup: installing nodejs npm"
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+fi
+cd "$(dirname "$0")/.."
+if [ ! -d tests/tools/node/node_modules/gltf-validator ]; then
+  (cd tests/tools/node && npm install --no-audit --no-fund --silent)
 fi

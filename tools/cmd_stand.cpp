@@ -121,6 +121,11 @@ Command add_stand(CLI::App& root) {
               req.relative_to = std::filesystem::path(o->positions).parent_path().string();
             } else {
               layout = choose_layout(*o, g, from_grammar);
+              // Say so before trying when the stand cannot fit: probe with its first plant.
+              RowLayout first = layout;
+              first.rows = first.per_row = 1;
+              req.plants = row_layout(first);
+              check_stand_fits(req, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
               req.plants = row_layout(layout);
             }
             const auto t_grow = std::chrono::steady_clock::now();

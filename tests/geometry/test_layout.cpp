@@ -1,0 +1,124 @@
+// Layouts: counts, spacings, double rows, jitter, rotation, seeds, positions files.
+#include "geometry/layout.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <unistd.h>
+
+using namespace canopy;
+
+TEST_CASE("rows run along +X, spaced along +Y, the first plant at the origin") {
+  RowLayout l;
+  l.rows = 3;
+  l.per_row = 4;
+  l.row_spacing = 1.5;
+  l.plant_spacing = 0.4;
+  const auto p = row_layout(l);
+  REQUIRE(p.size() == 12);
+  CHECK(p[0].x == 0);
+  CHECK(p[0].y == 0);
+  CHECK(p[1].x == doctest::Approx(0.4));
+  CHECK(p[4].y == doctest::Approx(1.5));
+  CHECK(p[11].x == doctest::Approx(1.2));
+  CHECK(p[11].y == doctest::Approx(3.0));
+  for (const auto& q : p) CHECK(q.rotation_deg == 0);
+}
+
+TEST_CASE("double rows: pairs GAP apart, pairs row_spacing apart") {
+  RowLayout l;
+  l.rows = 4;
+  l.per_row = 1;
+  l.row_spacing = 1.6;
+  l.double_rows = 0.5;
+  const auto p = row_layout(l);
+  CHECK(p[0].y == 0);
+  CHECK(p[1].y == doctest::Approx(0.5));
+  CHECK(p[2].y == doctest::Approx(1.6));
+  CHECK(p[3].y == doctest::Approx(2.1));
+}
+
+TEST_CASE("jitter stays in its disc, rotations in [0, 360), all reproducible from the seed") {
+  RowLayout l;
+  l.rows = 10;
+  l.per_row = 50;
+  l.jitter = 0.02;
+  l.random_rotation = true;
+  l.seed = 7;
+  const auto a = row_layout(l), b = row_layout(l);
+  std::set<std::uint64_t> seeds;
+  double max_r = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double dx = a[i].x - (i % 50) * 0.4, dy = a[i].y - (i / 50) * 1.0;
+    max_r = std::max(max_r, std::hypot(dx, dy));
+    CHECK(a[i].rotation_deg >= 0);
+    CHECK(a[i].rotation_deg < 360);
+    CHECK(a[i].x == b[i].x);
+    CHECK(a[i].seed == b[i].seed);
+    CHECK(a[i].seed == plant_seed(7, i));
+    seeds.insert(a[i].seed);
+  }
+  CHECK(max_r <= 0.02 + 1e-12);
+  CHECK(max_r > 0.015);  // 500 draws fill the disc
+  CHECK(seeds.size() == a.size());
+  l.seed = 8;
+  CHECK(row_layout(l)[0].seed != a[0].seed);
+}
+
+TEST_CASE("bad row layouts") {
+  RowLayout l;
+  l.plant_spacing = -1;
+  CHECK_THROWS_AS(row_layout(l), std::invalid_argument);
+  l.plant_spacing = 0.4;
+  l.rows = 0;
+  CHECK_THROWS_AS(row_layout(l), std::invalid_argument);
+}
+
+namespace {
+std::string write_temp(const std::string& text) {
+  char name[] = "/tmp/canopy-positions-XXXXXX";
+  const int fd = mkstemp(name);
+  REQUIRE(fd >= 0);
+  close(fd);
+  std::ofstream(name) << text;
+  return name;
+}
+std::string error_of(const std::string& text) {
+  const std::string f = write_temp(text);
+  try {
+    read_positions(f);
+  } catch (const std::invalid_argument& e) {
+    std::remove(f.c_str());
+    std::string m = e.what();
+    return m.substr(f.size());
+  }
+  std::remove(f.c_str());
+  return "";
+}
+}  // namespace
+
+TEST_CASE("positions files: any column order, optional grammar and steps") {
+  const std::string f = write_temp("seed,x,y,rotation,grammar,steps\n5,1.5,2,90,young.yaml,8\n6, 3 ,4,0,,\n");
+  const auto p = read_positions(f);
+  std::remove(f.c_str());
+  REQUIRE(p.size() == 2);
+  CHECK(p[0].x == 1.5);
+  CHECK(p[0].seed == 5);
+  CHECK(p[0].grammar == "young.yaml");
+  CHECK(p[0].steps == 8);
+  CHECK(p[1].x == 3);
+  CHECK(p[1].grammar.empty());
+  CHECK_FALSE(p[1].steps.has_value());
+}
+
+TEST_CASE("positions files: missing columns and bad cells name the place") {
+  CHECK(error_of("x,y,seed\n1,2,3\n") == ":1: missing column 'rotation' (the header needs x,y,rotation,seed and may add grammar,steps)");
+  CHECK(error_of("x,y,rotation,seed\n1,abc,0,1\n") == ":2:3: column 'y' needs a finite number, got 'abc'");
+  CHECK(error_of("x,y,rotation,seed\n1,2,0\n") == ":2: expected 4 cells as in the header, got 3");
+  CHECK(error_of("x,y,rotation,seed\n1,2,0,-4\n") == ":2:7: column 'seed' needs a whole number, got '-4'");
+  CHECK(error_of("x,y,rotation,seed,steps\n1,2,0,4,2.5\n") == ":2:9: column 'steps' needs a whole number of at least 0, got '2.5'");
+  CHECK(error_of("") == ": empty positions file (expected a header x,y,rotation,seed)");
+}

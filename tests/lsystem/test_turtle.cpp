@@ -1,0 +1,148 @@
+// The turtle: frames against hand-computed matrices for each symbol, structure-tree parents and
+// compound-leaf ids, organs attached to their parents' joints.
+#include "helpers.hpp"
+#include "lsystem/turtle.hpp"
+
+#include <cmath>
+
+using namespace canopy;
+using namespace canopy::test;
+
+namespace {
+
+const char* kOrgans = R"g(
+organs:
+  I: {prototype: cylinder, kind: internode}
+  P: {prototype: cylinder, kind: petiole}
+  R: {prototype: cylinder, kind: rachis}
+  L: {prototype: leaflet, kind: leaflet}
+  S: {prototype: sphere, kind: fruit}
+  K: {prototype: disk, kind: flower}
+compound_leaf: Leaf
+)g";
+
+TurtleResult turtle(const std::string& axiom, const std::string& extra = "") {
+  const Grammar g = grammar(std::string(kOrgans) + "axiom: \"" + axiom + "\"\n" + extra);
+  return run_turtle(g, derive(g, DeriveRequest{0, 1, kDefaultMaxModules}), {});
+}
+
+void check_vec(Vec3f v, double x, double y, double z) {
+  CHECK(v.x == doctest::Approx(x).epsilon(1e-6));
+  CHECK(v.y == doctest::Approx(y).epsilon(1e-6));
+  CHECK(v.z == doctest::Approx(z).epsilon(1e-6));
+}
+
+/// The heading after the given turns, read from a unit cylinder's first column.
+Vec3f heading_after(const std::string& turns) { return turtle(turns + " I(1, 1)").organs.at(0).transform.c0; }
+Vec3f left_after(const std::string& turns) { return turtle(turns + " I(1, 1)").organs.at(0).transform.c1; }
+
+}  // namespace
+
+TEST_CASE("initial frame: H = +Z, L = -Y, U = +X") {
+  const Affine3f m = turtle("I(2, 0.5)").organs.at(0).transform;
+  check_vec(m.c0, 0, 0, 2);     // H * length
+  check_vec(m.c1, 0, -0.5, 0);  // L * radius
+  check_vec(m.c2, 0.5, 0, 0);   // U * radius
+  check_vec(m.t, 0, 0, 0);
+}
+
+TEST_CASE("each turtle symbol against ABOP's rotation matrices") {
+  // R_U(a): H' = H cos a - L sin a. '+' = R_U(d), '-' = R_U(-d).
+  check_vec(heading_after("+(90)"), 0, 1, 0);
+  check_vec(heading_after("-(90)"), 0, -1, 0);
+  // R_L(a): H' = H cos a + U sin a. '&' = R_L(d), '^' = R_L(-d).
+  check_vec(heading_after("&(90)"), 1, 0, 0);
+  check_vec(heading_after("^(90)"), -1, 0, 0);
+  // R_H(a): L' = L cos a + U sin a. '\' = R_H(d), '/' = R_H(-d).
+  check_vec(left_after("\\\\(90)"), 1, 0, 0);
+  check_vec(left_after("/(90)"), -1, 0, 0);
+  check_vec(heading_after("\\\\(90) &(90)"), 0, 1, 0);
+  check_vec(heading_after("/(90) &(90)"), 0, -1, 0);
+  // '|' turns around: R_U(180).
+  check_vec(heading_after("|"), 0, 0, -1);
+  // 30 degrees, a general angle.
+  check_vec(heading_after("+(30)"), 0, std::sin(M_PI / 6), std::cos(M_PI / 6));
+}
+
+TEST_CASE("default angle and step, F and f move") {
+  const TurtleResult r = turtle("F f(0.5) + I(1, 1)", "angle: 90\nstep: 2\n");
+  check_vec(r.organs.at(0).transform.t, 0, 0, 2.5);
+  check_vec(r.organs.at(0).transform.c0, 0, 1, 0);
+  const TurtleResult a = turtle("& I(1, 1)", "angle: 45\n");
+  check_vec(a.organs.at(0).transform.c0, std::sqrt(0.5), 0, std::sqrt(0.5));
+}
+
+TEST_CASE("$ rolls L into the horizontal plane, keeping H") {
+  const Affine3f m = turtle("&(30) /(40) +(10) $ I(1, 1)").organs.at(0).transform;
+  const Affine3f before = turtle("&(30) /(40) +(10) I(1, 1)").organs.at(0).transform;
+  check_vec(m.c0, before.c0.x, before.c0.y, before.c0.z);
+  CHECK(std::fabs(m.c1.z) < 1e-6);
+  CHECK(length(m.c1) == doctest::Approx(1));
+  CHECK(dot(m.c1, m.c0) == doctest::Approx(0).epsilon(1e-6));
+}
+
+TEST_CASE("cylinders advance; leaflets, spheres and disks do not") {
+  const TurtleResult r = turtle("I(1, 0.1) L(0.2, 0.1) S(0.05) K(0.03) I(0.5, 0.1)");
+  REQUIRE(r.organs.size() == 5);
+  check_vec(r.organs[1].transform.t, 0, 0, 1);
+  check_vec(r.organs[2].transform.t, 0, 0, 1);
+  check_vec(r.organs[3].transform.t, 0, 0, 1);
+  check_vec(r.organs[4].transform.t, 0, 0, 1);
+  check_vec(r.organs[2].transform.c0, 0, 0, 0.05);  // sphere: radius along H, centred r ahead
+}
+
+TEST_CASE("tropism bends H towards T by e |H x T| after each cylinder (ABOP 2.2)") {
+  const TurtleResult r = turtle("&(90) I(1, 0.1) I(1, 0.1)", "tropism: {direction: [0, 0, -1], strength: 0.2}\n");
+  // After the first cylinder H = +X, |H x T| = 1: H turns 0.2 rad towards -Z.
+  check_vec(r.organs[1].transform.c0, std::cos(0.2), 0, -std::sin(0.2));
+}
+
+TEST_CASE("structure tree: parents skip closed branches; compound leaves end at their branch") {
+  const TurtleResult r = turtle("I(1,1) [ Leaf P(1,1) [ L(1,1) ] [ L(1,1) ] R(1,1) L(1,1) ] I(1,1) [ I(1,1) ] I(1,1) [ Leaf P(1,1) ]");
+  REQUIRE(r.organs.size() == 10);
+  const int parent[] = {-1, 0, 1, 1, 1, 4, 0, 6, 6, 8};
+  const int leaf[] = {-1, 0, 0, 0, 0, 0, -1, -1, -1, 1};
+  for (std::size_t i = 0; i < 10; ++i) {
+    INFO("organ " << i);
+    CHECK(r.organs[i].parent == parent[i]);
+    CHECK(r.organs[i].leaf == leaf[i]);
+  }
+  CHECK(r.leaf_count == 2);
+  // A compound leaf with no organs (an unfolded bud) takes no id.
+  const TurtleResult bud = turtle("I(1,1) [ Leaf ] [ Leaf P(1,1) ]");
+  CHECK(bud.organs[1].leaf == 0);
+  CHECK(bud.leaf_count == 1);
+  // Two roots: organs with no predecessor.
+  const TurtleResult roots = turtle("[ I(1,1) ] I(1,1)");
+  CHECK(roots.organs[0].parent == -1);
+  CHECK(roots.organs[1].parent == -1);
+}
+
+TEST_CASE("every organ of the default tomato sits on its parent's joint") {
+  const Grammar g = load_grammar(source("grammars/tomato.yaml"));
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const TurtleResult r = run_turtle(g, interpret(g, derive(g, DeriveRequest{std::nullopt, seed, kDefaultMaxModules}), seed), {});
+    REQUIRE(r.organs.size() > 200);
+    int roots = 0;
+    for (const OrganInstance& o : r.organs) {
+      if (o.parent < 0) {
+        ++roots;
+        continue;
+      }
+      const OrganInstance& p = r.organs[static_cast<std::size_t>(o.parent)];
+      const Vec3f joint = p.prototype == PrototypeKind::cylinder ? p.transform.t + p.transform.c0 : p.transform.t;
+      CHECK(length(o.transform.t - joint) < 1e-5f);
+    }
+    CHECK(roots == 1);
+  }
+}
+
+TEST_CASE("negative or non-finite sizes reaching the turtle are errors naming the module") {
+  const Grammar g = grammar(std::string(kOrgans) + "axiom: I(1, 1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\n");
+  try {
+    run_turtle(g, derive(g), {});
+    FAIL("no error");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()) == "test.yaml: the plant, module 0 'I(-1,1)': cylinder parameter 1 must not be negative");
+  }
+}

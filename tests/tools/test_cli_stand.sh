@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# canopy stand end to end: files written, the Khronos glTF validator and assimp on them, the
+# grammar's stand entry, per-plant seeds matching canopy derive, bad input with no partial output.
+# Usage: CANOPY=path/to/canopy test_cli_stand.sh SOURCE_DIR
+set -u
+src=$1
+canopy=${CANOPY:?set CANOPY to the canopy binary}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+failures=0
+pass=0
+check() {  # check NAME EXPECTED ACTUAL
+  if [ "$2" == "$3" ]; then pass=$((pass + 1)); else
+    failures=$((failures + 1)); printf 'FAIL %s\n  expected: %s\n  actual:   %s\n' "$1" "$2" "$3"; fi
+}
+
+out=$tmp/s
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 \
+  --steps 14 --formats glb,obj,ply -o "$out" >"$tmp/log" 2>&1
+check "stand exit" "0" "$?"
+check "files" "organs.csv plants.csv report.json stand.glb stand.mtl stand.obj stand.ply" "$(ls "$out" | tr '\n' ' ' | sed 's/ $//')"
+check "plants.csv rows" "7" "$(wc -l < "$out/plants.csv" | tr -d ' ')"
+organs=$(($(wc -l < "$out/organs.csv") - 1))
+check "report organs" "$organs" "$(python3 -c "import json;print(json.load(open('$out/report.json'))['counts']['organs'])")"
+
+# glTF validator (npm gltf-validator, installed by scripts/setup.sh) and assimp (Debian assimp-utils).
+validator="$src/tests/tools/node/validate_gltf.js"
+if [ -d "$src/tests/tools/node/node_modules/gltf-validator" ]; then
+  node "$validator" "$out/stand.glb" >"$tmp/v" 2>&1
+  check "gltf validator" "0" "$?"
+  check "gltf validator errors" "1" "$(grep -c '^errors 0 ' "$tmp/v")"
+else
+  check "gltf validator installed (run scripts/setup.sh)" "yes" "no"
+fi
+if command -v assimp >/dev/null; then
+  tris=$(python3 -c "import json;print(json.load(open('$out/report.json'))['counts']['triangles'])")
+  for f in stand.obj stand.ply; do
+    assimp info "$out/$f" >"$tmp/a" 2>&1
+    check "assimp $f" "0" "$?"
+    check "assimp $f faces" "$tris" "$(grep -E '^Faces:' "$tmp/a" | awk '{print $2}')"
+  done
+  check "assimp obj meshes (one per organ)" "$organs" "$(assimp info "$out/stand.obj" 2>/dev/null | grep -E '^Meshes:' | head -1 | awk '{print $2}')"
+else
+  check "assimp installed (run scripts/setup.sh)" "yes" "no"
+fi
+
+# The grammar's stand entry applies without layout options.
+"$canopy" stand "$src/grammars/sunflower.yaml" --steps 4 -o "$tmp/g" >/dev/null 2>&1
+check "grammar stand entry" "41" "$(wc -l < "$tmp/g/plants.csv" | tr -d ' ')"
+
+# A plant with seed s derives exactly what canopy derive --seed s prints: its organs, counted.
+seed=$(sed -n '4p' "$out/plants.csv" | cut -d, -f5)
+want=$("$canopy" derive "$src/grammars/tomato.yaml" --steps 14 --seed "$seed" --stats | python3 -c "
+import json,sys; c=json.load(sys.stdin)['counts']; print(sum(c.get(k,0) for k in ['I','P','R','L','D','Fr']))")
+check "plant seed derives the same" "$want" "$(awk -F, '$2==2' "$out/organs.csv" | wc -l | tr -d ' ')"
+
+# Bad input: one line, non-zero exit, no partial output.
+expect_error() {  # expect_error NAME PATTERN ARGS...
+  local name=$1 pattern=$2; shift 2
+  rm -rf "$tmp/bad"
+  "$canopy" stand "$@" -o "$tmp/bad" >"$tmp/o" 2>"$tmp/e"
+  local rc=$?
+  check "$name exit" "1" "$([ $rc -ne 0 ] && echo 1 || echo 0)"
+  check "$name message" "1" "$(grep -c -- "$pattern" "$tmp/e")"
+  check "$name one line" "1" "$(wc -l < "$tmp/e" | tr -d ' ')"
+  check "$name no files" "0" "$(ls "$tmp/bad" 2>/dev/null | wc -l | tr -d ' ')"
+}
+printf 'axiom: I(1, 0.1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\norgans:\n  I: {prototype: cylinder, kind: internode}\n' > "$tmp/neg.yaml"
+expect_error "negative length" "module 0 'I(-1,0.1)': cylinder parameter 1 must not be negative" "$tmp/neg.yaml"
+printf 'axiom: L(1)\norgans:\n  L: {prototype: leaflet, kind: leaflet}\n' > "$tmp/arity.yaml"
+expect_error "organ arity" "arity.yaml:1:8: organ 'L' is a leaflet and takes 2 parameter(s), but is used with 1" "$tmp/arity.yaml"
+printf 'x,y,seed\n0,0,1\n' > "$tmp/pos.csv"
+expect_error "positions columns" "pos.csv:1: missing column 'rotation'" "$src/grammars/tomato.yaml" --positions "$tmp/pos.csv"
+printf 'x,y,rotation,seed\n0,zero,0,1\n' > "$tmp/pos2.csv"
+expect_error "positions cell" "pos2.csv:2:3: column 'y' needs a finite number, got 'zero'" "$src/grammars/tomato.yaml" --positions "$tmp/pos2.csv"
+expect_error "too large" "needs about .* GB .* more than the .* GB available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
+expect_error "formats" "unknown format 'fbx'" "$src/grammars/tomato.yaml" --formats glb,fbx
+"$canopy" stand "$src/grammars/tomato.yaml" -o /proc/canopy-no >/dev/null 2>"$tmp/e"
+check "unwritable exit" "1" "$?"
+check "unwritable message" "1" "$(grep -c 'cannot create the output folder /proc/canopy-no' "$tmp/e")"
+
+# Positions files may mix grammars and ages.
+printf 'x,y,rotation,seed,grammar,steps\n0,0,0,1,tomato.yaml,10\n0.5,0,90,2,sunflower.yaml,6\n' > "$tmp/mixed.csv"
+cp "$src/grammars/tomato.yaml" "$src/grammars/sunflower.yaml" "$tmp/"
+"$canopy" stand "$src/grammars/tomato.yaml" --positions "$tmp/mixed.csv" -o "$tmp/m" >/dev/null 2>"$tmp/e"
+check "mixed exit" "0" "$?"
+check "mixed plants" "1,0.5,0,90,2,sunflower.yaml,6" "$(sed -n 3p "$tmp/m/plants.csv")"
+
+# Help lines for every option.
+help=$("$canopy" stand --help)
+for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
+           --double-rows --jitter --random-rotation --seed --positions --max-modules; do
+  check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
+done
+
+echo "$pass passed, $failures failed"
+[ "$failures" -eq 0 ]
