@@ -17,12 +17,31 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
 }
 
+AtomicFile::AtomicFile(std::string path, Direct) : path_(std::move(path)), direct_(true) {
+  f_ = std::fopen(path_.c_str(), "wb");
+  if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", path_, std::strerror(errno)));
+  std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
+}
+
 AtomicFile::~AtomicFile() {
   if (f_) std::fclose(f_);
-  if (!committed_) std::remove(tmp_.c_str());
+  if (!committed_ && !direct_) std::remove(tmp_.c_str());
 }
 
 void AtomicFile::write(const void* data, std::size_t n) {
+  if (n >= (std::size_t(1) << 16)) {
+    // Large blocks go straight to the kernel: no second copy through stdio's buffer.
+    if (std::fflush(f_) != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
+    const char* p = static_cast<const char*>(data);
+    while (n > 0) {
+      const ssize_t w = ::write(fileno(f_), p, n);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
+      p += w;
+      n -= static_cast<std::size_t>(w);
+    }
+    return;
+  }
   if (n && std::fwrite(data, 1, n, f_) != n)
     throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
 }
@@ -37,6 +56,7 @@ void AtomicFile::close() {
 
 void AtomicFile::commit() {
   close();
+  if (direct_) return;
   if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
     throw std::runtime_error(fmt::format("cannot rename {} to {}: {}", tmp_, path_, std::strerror(errno)));
   committed_ = true;

@@ -11,6 +11,9 @@ namespace canopy {
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path);
+  /// A file written in place, with no temporary name (for /dev/null in benchmarks).
+  struct Direct {};
+  AtomicFile(std::string path, Direct);
   ~AtomicFile();  // removes the temporary file unless committed
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
@@ -28,6 +31,7 @@ class AtomicFile {
   std::string path_, tmp_;
   std::FILE* f_ = nullptr;
   bool committed_ = false;
+  bool direct_ = false;
 };
 
 /// The files of one run: each written in full, then all renamed into place together.

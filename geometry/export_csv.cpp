@@ -1,5 +1,6 @@
 // organs.csv and plants.csv, and reading a stand back from them.
 #include "geometry/export.hpp"
+#include "geometry/atomic_file.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/text_out.hpp"
 
@@ -43,35 +44,46 @@ T parse(std::string_view cell, const std::string& file, int line, int column) {
 }  // namespace
 
 void write_organs_csv(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
-  std::string t = kOrganHeader;
-  for (std::size_t id = 0; id < s.organ_count(); ++id) {
-    const OrganRecord& r = s.organs[id];
-    t += fmt::format("{},{},{},{},{},", id, r.plant, r.parent, name_of(r.kind), r.leaf);
-    append_number(t, organ_area(s, id, lib));
-    t += ',';
-    append_number(t, organ_length(s, id));
-    t += fmt::format(",{},", name_of(r.prototype));
-    append_number(t, s.params[id][0]);
-    t += ',';
-    append_number(t, s.params[id][1]);
-    t += fmt::format(",{},", r.lod);
-    append_number(t, s.joint_limit_deg[id]);
-    const Affine3f& m = s.transforms[id];
-    for (const Vec3f& c : {m.c0, m.c1, m.c2, m.t}) {
+  out.write(std::string_view(kOrganHeader));
+  for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // meshes made before threads share them
+  write_ordered(out, s.organ_count(), 4096, [&](std::size_t first, std::size_t last, std::string& t) {
+    for (std::size_t id = first; id < last; ++id) {
+      const OrganRecord& r = s.organs[id];
+      append_number(t, id);
       t += ',';
-      append_number(t, c.x);
+      append_number(t, r.plant);
       t += ',';
-      append_number(t, c.y);
+      append_number(t, r.parent);
       t += ',';
-      append_number(t, c.z);
+      t += name_of(r.kind);
+      t += ',';
+      append_number(t, r.leaf);
+      t += ',';
+      append_number(t, organ_area(s, id, lib));
+      t += ',';
+      append_number(t, organ_length(s, id));
+      t += ',';
+      t += name_of(r.prototype);
+      t += ',';
+      append_number(t, s.params[id][0]);
+      t += ',';
+      append_number(t, s.params[id][1]);
+      t += ',';
+      append_number(t, static_cast<int>(r.lod));
+      t += ',';
+      append_number(t, s.joint_limit_deg[id]);
+      const Affine3f& m = s.transforms[id];
+      for (const Vec3f& c : {m.c0, m.c1, m.c2, m.t}) {
+        t += ',';
+        append_number(t, c.x);
+        t += ',';
+        append_number(t, c.y);
+        t += ',';
+        append_number(t, c.z);
+      }
+      t += '\n';
     }
-    t += '\n';
-    if (t.size() > (1u << 22)) {
-      out.write(t);
-      t.clear();
-    }
-  }
-  out.write(t);
+  });
 }
 
 void write_plants_csv(const Stand& s, AtomicFile& out) {

@@ -4,7 +4,9 @@
 #include "geometry/export.hpp"
 #include "geometry/organ_mesh.hpp"
 
-#include <nlohmann/json.hpp>
+#include "geometry/text_out.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
@@ -56,7 +58,7 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
   OrganMesh mesh;
   for (Primitive& q : L.prims) {
     for (std::uint32_t id : q.organs) {
-      organ_mesh(s, id, lib, mesh);
+      organ_mesh(s, id, lib, mesh, /*positions_only=*/true);
       for (const Vec3f& v : mesh.positions) {
         const Vec3f w = glb_position(off, v);
         q.lo = {std::min(q.lo.x, w.x), std::min(q.lo.y, w.y), std::min(q.lo.z, w.z)};
@@ -75,8 +77,8 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
 
 /// The plant's binary block: positions, normals, UVs, organ ids, indices (each primitive in turn).
 void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLibrary& lib, bool float_ids,
-                std::vector<char>& out) {
-  out.assign(L.bytes(), 0);
+                std::string& out) {
+  out.resize(L.bytes());
   char* pos = out.data();
   char* nrm = pos + L.pos_bytes;
   char* uvp = nrm + L.pos_bytes;
@@ -122,79 +124,95 @@ void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
 #pragma omp parallel for schedule(dynamic, 8)
   for (std::size_t p = 0; p < n; ++p) plan[p] = plan_plant(s, p, lib, 4);
 
-  using json = nlohmann::json;
-  json j;
-  j["asset"] = {{"version", "2.0"}, {"generator", "canopy"}};
-  j["scene"] = 0;
-  json root = {{"name", "stand"},
-               {"translation", {s.stand_origin.x, s.stand_origin.z, -s.stand_origin.y}},
-               {"children", json::array()}};
-  json nodes = json::array({root});
-  json meshes = json::array(), accessors = json::array(), views = json::array(), materials = json::array();
+  // The JSON chunk, written directly (a document tree for a large stand costs more than the mesh).
   std::array<int, 7> material_of{};
   material_of.fill(-1);
   for (const auto& L : plan)
     for (const auto& q : L.prims) material_of[static_cast<std::size_t>(q.kind)] = 0;
+  std::string materials;
+  int nmat = 0;
   for (std::size_t k = 0; k < material_of.size(); ++k) {
     if (material_of[k] < 0) continue;
-    material_of[k] = static_cast<int>(materials.size());
+    material_of[k] = nmat++;
     const Vec3f c = kind_colour(static_cast<OrganKind>(k));
-    materials.push_back({{"name", std::string(kOrganKindNames[k])},
-                         {"doubleSided", true},
-                         {"pbrMetallicRoughness", {{"baseColorFactor", {c.x, c.y, c.z, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.8}}}});
+    materials += fmt::format(
+        "{}{{\"name\":\"{}\",\"doubleSided\":true,\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0],"
+        "\"metallicFactor\":0.0,\"roughnessFactor\":0.8}}}}",
+        nmat > 1 ? "," : "", kOrganKindNames[k], c.x, c.y, c.z);
   }
-  std::size_t offset = 0;
+  std::string nodes, meshes, accessors, views;
+  std::string children;
+  std::size_t offset = 0, nview = 0, nacc = 0, nmesh = 0;
+  const auto sep = [](std::string& s) {
+    if (!s.empty()) s += ',';
+  };
   for (std::size_t p = 0; p < n; ++p) {
     const PlantLayout& L = plan[p];
-    nodes[0]["children"].push_back(p + 1);
+    sep(children);
+    children += std::to_string(p + 1);
+    sep(nodes);
     if (L.prims.empty()) {  // a plant without organs: a node without a mesh
-      nodes.push_back({{"name", "plant_" + std::to_string(p)}});
+      nodes += fmt::format("{{\"name\":\"plant_{}\"}}", p);
       continue;
     }
+    nodes += fmt::format("{{\"name\":\"plant_{}\",\"mesh\":{}}}", p, nmesh);
     const auto view = [&](std::size_t bytes, int stride, int target) {
-      json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}};
-      if (stride) v["byteStride"] = stride;
-      views.push_back(v);
+      sep(views);
+      views += fmt::format("{{\"buffer\":0,\"byteOffset\":{},\"byteLength\":{},\"target\":{}", offset, bytes, target);
+      if (stride) views += fmt::format(",\"byteStride\":{}", stride);
+      views += '}';
       offset += bytes;
-      return static_cast<int>(views.size() - 1);
+      return nview++;
     };
-    const int vpos = view(L.pos_bytes, 12, 34962), vnrm = view(L.pos_bytes, 12, 34962);
-    const int vuv = L.uv_bytes ? view(L.uv_bytes, 8, 34962) : -1;
-    const int vid = view(L.id_bytes, 4, 34962), vidx = view(L.index_bytes, 0, 34963);
+    const std::size_t vpos = view(L.pos_bytes, 12, 34962), vnrm = view(L.pos_bytes, 12, 34962);
+    const std::size_t vuv = L.uv_bytes ? view(L.uv_bytes, 8, 34962) : 0;
+    const std::size_t vid = view(L.id_bytes, 4, 34962), vidx = view(L.index_bytes, 0, 34963);
     std::size_t o_pos = 0, o_uv = 0, o_id = 0, o_idx = 0;
-    json prims = json::array();
+    std::string prims;
     for (const Primitive& q : L.prims) {
-      const auto accessor = [&](int v, std::size_t off, int type_comp, std::size_t count, const char* type) {
-        accessors.push_back({{"bufferView", v}, {"byteOffset", off}, {"componentType", type_comp}, {"count", count}, {"type", type}});
-        return static_cast<int>(accessors.size() - 1);
+      const auto accessor = [&](std::size_t v, std::size_t off, int comp, std::size_t count, const char* type,
+                                const std::string& extra = {}) {
+        sep(accessors);
+        accessors += fmt::format("{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}",
+                                 v, off, comp, count, type, extra);
+        return nacc++;
       };
-      const int apos = accessor(vpos, o_pos, 5126, q.vertices, "VEC3");
-      accessors.back()["min"] = {q.lo.x, q.lo.y, q.lo.z};
-      accessors.back()["max"] = {q.hi.x, q.hi.y, q.hi.z};
-      json attrs = {{"POSITION", apos}, {"NORMAL", accessor(vnrm, o_pos, 5126, q.vertices, "VEC3")}};
-      if (q.uv) attrs["TEXCOORD_0"] = accessor(vuv, o_uv, 5126, q.vertices, "VEC2");
-      attrs["_ORGAN"] = float_ids ? accessor(vid, o_id, 5126, q.vertices, "SCALAR") : accessor(vid, o_id, 5123, q.vertices, "VEC2");
-      const int aidx = accessor(vidx, o_idx, 5125, q.indices, "SCALAR");
-      prims.push_back({{"attributes", attrs}, {"indices", aidx}, {"material", material_of[static_cast<std::size_t>(q.kind)]}, {"mode", 4}});
+      std::string bounds = ",\"min\":[";
+      append_number(bounds, q.lo.x), bounds += ',', append_number(bounds, q.lo.y), bounds += ',', append_number(bounds, q.lo.z);
+      bounds += "],\"max\":[";
+      append_number(bounds, q.hi.x), bounds += ',', append_number(bounds, q.hi.y), bounds += ',', append_number(bounds, q.hi.z);
+      bounds += ']';
+      const std::size_t apos = accessor(vpos, o_pos, 5126, q.vertices, "VEC3", bounds);
+      const std::size_t anrm = accessor(vnrm, o_pos, 5126, q.vertices, "VEC3");
+      std::string attrs = fmt::format("\"POSITION\":{},\"NORMAL\":{}", apos, anrm);
+      if (q.uv) attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(vuv, o_uv, 5126, q.vertices, "VEC2"));
+      attrs += fmt::format(",\"_ORGAN\":{}", float_ids ? accessor(vid, o_id, 5126, q.vertices, "SCALAR")
+                                                         : accessor(vid, o_id, 5123, q.vertices, "VEC2"));
+      const std::size_t aidx = accessor(vidx, o_idx, 5125, q.indices, "SCALAR");
+      sep(prims);
+      prims += fmt::format("{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}", attrs, aidx,
+                           material_of[static_cast<std::size_t>(q.kind)]);
       o_pos += 12 * q.vertices;
       if (q.uv) o_uv += 8 * q.vertices;
       o_id += 4 * q.vertices;
       o_idx += 4 * q.indices;
     }
-    nodes.push_back({{"name", "plant_" + std::to_string(p)}, {"mesh", meshes.size()}});
-    meshes.push_back({{"name", "plant_" + std::to_string(p)}, {"primitives", prims}});
+    sep(meshes);
+    meshes += fmt::format("{{\"name\":\"plant_{}\",\"primitives\":[{}]}}", p, prims);
+    ++nmesh;
   }
-  j["scenes"] = json::array({{{"nodes", {0}}}});
-  j["nodes"] = nodes;
-  if (!meshes.empty()) {
-    j["meshes"] = meshes;
-    j["accessors"] = accessors;
-    j["bufferViews"] = views;
-    j["materials"] = materials;
-    j["buffers"] = json::array({{{"byteLength", offset}}});
-  }
-  if (!float_ids) j["extras"] = {{"_ORGAN", "VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)"}};
-  std::string text = j.dump();
+  std::string origin;
+  append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z), origin += ',';
+  append_number(origin, -s.stand_origin.y);
+  std::string text = fmt::format(
+      "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
+      "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[{}]}}{}{}]",
+      origin, children, nodes.empty() ? "" : ",", nodes);
+  if (nmesh > 0)
+    text += fmt::format(",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]",
+                        meshes, accessors, views, materials, offset);
+  if (!float_ids) text += ",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}";
+  text += '}';
   while (text.size() % 4) text.push_back(' ');
   const std::size_t bin = offset;  // every block is a multiple of 4 bytes
   const std::size_t total = 12 + 8 + text.size() + (bin ? 8 + bin : 0);
@@ -205,14 +223,7 @@ void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
   if (bin) {
     const std::uint32_t chunk[2] = {static_cast<std::uint32_t>(bin), kBinChunk};
     out.write(chunk, sizeof chunk);
-    constexpr std::size_t kBatch = 64;
-    std::vector<std::vector<char>> blocks(kBatch);
-    for (std::size_t first = 0; first < n; first += kBatch) {
-      const std::size_t last = std::min(n, first + kBatch);
-#pragma omp parallel for schedule(dynamic, 1)
-      for (std::size_t p = first; p < last; ++p) fill_plant(s, p, plan[p], lib, float_ids, blocks[p - first]);
-      for (std::size_t p = first; p < last; ++p) out.write(blocks[p - first].data(), blocks[p - first].size());
-    }
+    write_ordered(out, n, 1, [&](std::size_t p, std::size_t, std::string& buf) { fill_plant(s, p, plan[p], lib, float_ids, buf); });
   }
 }
 

@@ -1,10 +1,19 @@
 #include "geometry/organ_mesh.hpp"
 
+#include "geometry/atomic_file.hpp"
+
+#include <omp.h>
+
+#include <future>
+
 namespace canopy {
 
-Vec3f transform_normal(const Affine3f& m, Vec3f n) {
-  // Columns of the cofactor matrix of A = [c0 c1 c2] are c1 x c2, c2 x c0, c0 x c1.
-  const Vec3f r = cross(m.c1, m.c2) * n.x + cross(m.c2, m.c0) * n.y + cross(m.c0, m.c1) * n.z;
+Affine3f cofactor(const Affine3f& m) { return {cross(m.c1, m.c2), cross(m.c2, m.c0), cross(m.c0, m.c1), {0, 0, 0}}; }
+
+Vec3f transform_normal(const Affine3f& m, Vec3f n) { return transform_normal(m, cofactor(m), n); }
+
+Vec3f transform_normal(const Affine3f& m, const Affine3f& cof, Vec3f n) {
+  const Vec3f r = apply_linear(cof, n);
   const float len = length(r);
   if (len > 0 && std::isfinite(len)) return r * (1 / len);
   const Vec3f d = apply_linear(m, n);  // degenerate (zero-length or zero-width) organ
@@ -13,17 +22,41 @@ Vec3f transform_normal(const Affine3f& m, Vec3f n) {
   return {0, 0, 1};
 }
 
-void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out) {
+void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out, bool positions_only) {
   const OrganRecord& r = stand.organs[id];
   const Affine3f& m = stand.transforms[id];
   out.prototype = &library.get(r.prototype, r.lod);
   const auto& pm = *out.prototype;
   out.positions.resize(pm.positions.size());
+  for (std::size_t i = 0; i < pm.positions.size(); ++i) out.positions[i] = apply(m, pm.positions[i]);
+  if (positions_only) return;
+  const Affine3f cof = cofactor(m);
   out.normals.resize(pm.normals.size());
-  for (std::size_t i = 0; i < pm.positions.size(); ++i) {
-    out.positions[i] = apply(m, pm.positions[i]);
-    out.normals[i] = transform_normal(m, pm.normals[i]);
+  for (std::size_t i = 0; i < pm.normals.size(); ++i) out.normals[i] = transform_normal(m, cof, pm.normals[i]);
+}
+
+void write_ordered(AtomicFile& out, std::size_t n, std::size_t chunk,
+                   const std::function<void(std::size_t, std::size_t, std::string&)>& write) {
+  // Two sets of buffers: while one wave is written (by another thread), the next is formatted.
+  const std::size_t chunks = (n + chunk - 1) / chunk;
+  const std::size_t wave = static_cast<std::size_t>(std::max(1, omp_get_max_threads())) * 4;
+  std::vector<std::string> bufs[2] = {std::vector<std::string>(wave), std::vector<std::string>(wave)};
+  std::future<void> writing;
+  int cur = 0;
+  for (std::size_t first = 0; first < chunks; first += wave, cur ^= 1) {
+    const std::size_t last = std::min(chunks, first + wave);
+    std::vector<std::string>& b = bufs[cur];
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::size_t c = first; c < last; ++c) {
+      b[c - first].clear();
+      write(c * chunk, std::min(n, (c + 1) * chunk), b[c - first]);
+    }
+    if (writing.valid()) writing.get();
+    writing = std::async(std::launch::async, [&out, &b, count = last - first] {
+      for (std::size_t k = 0; k < count; ++k) out.write(b[k]);
+    });
   }
+  if (writing.valid()) writing.get();
 }
 
 double organ_area(const Stand& stand, std::size_t id, PrototypeLibrary& library) {

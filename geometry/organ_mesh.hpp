@@ -4,6 +4,8 @@
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
 
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace canopy {
@@ -19,8 +21,19 @@ struct OrganMesh {
   std::vector<Vec3f> normals;
 };
 
-/// Fills `out` with organ `id` of `stand`.
-void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out);
+/// Fills `out` with organ `id` of `stand` (normals too unless `positions_only`).
+void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out, bool positions_only = false);
+
+/// The cofactor matrix of m's linear part (columns c1 x c2, c2 x c0, c0 x c1): it carries surface
+/// normals and area elements, computed once per organ.
+Affine3f cofactor(const Affine3f& m);
+/// transform_normal with a precomputed cofactor matrix.
+Vec3f transform_normal(const Affine3f& m, const Affine3f& cof, Vec3f n);
+
+/// Calls `write(begin, end, buffer)` for consecutive ranges of [0, n) on all threads, a wave of
+/// ranges at a time, and writes the buffers to `out` in order: parallel formatting, ordered output.
+void write_ordered(class AtomicFile& out, std::size_t n, std::size_t chunk,
+                   const std::function<void(std::size_t, std::size_t, std::string&)>& write);
 
 /// One-sided blade area for leaflets and disks, outer surface area for cylinders and spheres (m2).
 double organ_area(const Stand& stand, std::size_t id, PrototypeLibrary& library);

@@ -18,6 +18,10 @@ double leaflet_norm() {
 }
 
 void finish_box(PrototypeMesh& m) {
+  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
+    const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]], c = m.positions[m.indices[i + 2]];
+    m.face_cross.push_back(cross(b - a, c - a));
+  }
   Vec3f lo = m.positions.front(), hi = lo;
   for (const Vec3f& p : m.positions) {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
@@ -162,21 +166,22 @@ PrototypeMesh make_prototype(PrototypeKind kind, int lod) {
 }
 
 const PrototypeMesh& PrototypeLibrary::get(PrototypeKind kind, int lod) {
+  if (lod < 1 || lod > kMaxLod) throw std::invalid_argument("level of detail must lie in 1..16");
+  auto& slot = made_[static_cast<std::size_t>(kind)][static_cast<std::size_t>(lod)];
+  if (const PrototypeMesh* m = slot.load(std::memory_order_acquire)) return *m;
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto key = std::make_pair(static_cast<int>(kind), lod);
-  auto it = cache_.find(key);
-  if (it == cache_.end()) it = cache_.emplace(key, make_prototype(kind, lod)).first;
-  return it->second;
+  if (const PrototypeMesh* m = slot.load(std::memory_order_relaxed)) return *m;
+  owned_.push_back(std::make_unique<PrototypeMesh>(make_prototype(kind, lod)));
+  slot.store(owned_.back().get(), std::memory_order_release);
+  return *owned_.back();
 }
 
 double transformed_area(const PrototypeMesh& m, const Affine3f& t) {
+  // A u x A v = cof(A) (u x v): one cofactor matrix per organ, one product per triangle.
+  const Vec3d c0 = to_double(t.c0), c1 = to_double(t.c1), c2 = to_double(t.c2);
+  const Vec3d k0 = cross(c1, c2), k1 = cross(c2, c0), k2 = cross(c0, c1);
   double area = 0;
-  for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-    const Vec3d a = to_double(apply(t, m.positions[m.indices[i]]));
-    const Vec3d b = to_double(apply(t, m.positions[m.indices[i + 1]]));
-    const Vec3d c = to_double(apply(t, m.positions[m.indices[i + 2]]));
-    area += 0.5 * length(cross(b - a, c - a));
-  }
+  for (const Vec3f& f : m.face_cross) area += 0.5 * length(k0 * f.x + k1 * f.y + k2 * f.z);
   return area;
 }
 

@@ -12,7 +12,8 @@
 
 #include <array>
 #include <cstdint>
-#include <map>
+#include <atomic>
+#include <memory>
 #include <mutex>
 #include <utility>
 #include <vector>
@@ -28,6 +29,7 @@ struct PrototypeMesh {
   std::vector<Vec3f> normals;
   std::vector<std::array<float, 2>> uvs;  // leaflets only
   std::vector<std::uint32_t> indices;     // triangles, counter-clockwise seen from the normal
+  std::vector<Vec3f> face_cross;          // (b - a) x (c - a) per triangle, local frame
   Box3f box;                              // local box (exact bounds of the vertices)
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -47,14 +49,16 @@ double leaflet_half_width(double s);
 /// Area of the analytic unit leaflet outline: 2 * integral of leaflet_half_width (= 0.6928...).
 double leaflet_outline_area();
 
-/// Meshes of every prototype and level of detail used, made once; safe to share between threads.
+/// Meshes of every prototype and level of detail used, made once on first use; safe to share
+/// between threads (reads of a made mesh take no lock).
 class PrototypeLibrary {
  public:
   const PrototypeMesh& get(PrototypeKind kind, int lod);
 
  private:
   std::mutex mutex_;
-  std::map<std::pair<int, int>, PrototypeMesh> cache_;  // node-based: references stay valid
+  std::array<std::array<std::atomic<const PrototypeMesh*>, kMaxLod + 1>, 4> made_{};
+  std::vector<std::unique_ptr<PrototypeMesh>> owned_;
 };
 
 /// One-sided area of the mesh of `m` carried by `t` (for leaflets and disks the blade area).

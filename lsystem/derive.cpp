@@ -96,8 +96,15 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
     const int ar = arity[x];
     const RewriteMode mode = x < nsym ? table.mode[x] : RewriteMode::copy;
     if (mode == RewriteMode::copy) {
-      out.symbols.push_back(x);
-      if (ar) out.params.append(par + p, static_cast<std::size_t>(ar));
+      // A run of modules that stay as they are: copied in one piece.
+      std::size_t j = i + 1, q = p + static_cast<std::size_t>(ar);
+      while (j < n && (sym[j] >= nsym || table.mode[sym[j]] == RewriteMode::copy)) q += static_cast<std::size_t>(arity[sym[j++]]);
+      out.symbols.append(sym + i, j - i);
+      out.params.append(par + p, q - p);
+      i = j - 1;
+      p = q;
+      if (out.symbols.size() > max_modules) cap_exceeded(max_modules, 0);
+      continue;
     } else if (mode == RewriteMode::constant) {
       const Successor& sc = table.groups[table.by_symbol[x][0]].successors[0];
       out.symbols.append(sc.constant_symbols.data(), sc.constant_symbols.size());

@@ -99,12 +99,17 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     const Grammar& g = *grammars[static_cast<std::size_t>(grown[p].grammar)];
     const PlantPlacement& pl = req.plants[p];
     const ModuleString s = derive(g, DeriveRequest{grown[p].steps, pl.seed, req.max_modules});
-    const ModuleString t = interpret(g, s, pl.seed, req.max_modules);
-    grown[p].modules = t.size();
     TurtleConfig tc;
     tc.lod = req.lod;
     tc.where = fmt::format("plant {} (seed {})", p, pl.seed);
-    grown[p].turtle = run_turtle(g, t, tc);
+    if (g.interpretation.empty()) {
+      grown[p].modules = s.size();
+      grown[p].turtle = run_turtle(g, s, tc);
+    } else {
+      const ModuleString t = interpret(g, s, pl.seed, req.max_modules);
+      grown[p].modules = t.size();
+      grown[p].turtle = run_turtle(g, t, tc);
+    }
   };
 
   const double t0 = now();
