@@ -17,6 +17,9 @@ void write_ply(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
 /// stand.glb: glTF 2.0, Y up, root node at stand_origin, one node and mesh per plant, one
 /// primitive per organ kind, `_ORGAN` vertex attribute, one material per kind, UVs on leaflets.
 void write_glb(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
+/// stand.glb with one shared mesh per prototype, level of detail and kind, drawn per organ
+/// through EXT_mesh_gpu_instancing (translation, rotation, scale and `_ORGAN` per instance).
+void write_glb_instanced(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
 
 /// organs.csv: id,plant,parent,kind,leaf,area,length then prototype,p0,p1,lod,joint_limit and the
 /// plant-frame transform (columns h, l, u and joint t), enough to read the stand back.

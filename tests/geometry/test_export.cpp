@@ -228,3 +228,58 @@ TEST_CASE("a failed run leaves no file behind") {
   fs::remove_all(dir);
   CHECK_THROWS_AS(prepare_output_dir("/proc/canopy-cannot-write-here"), std::runtime_error);
 }
+
+TEST_CASE("instanced glb: every organ's translation, rotation and scale give back its vertices") {
+  const Stand s = small_stand();
+  const std::string dir = temp_dir();
+  PrototypeLibrary lib;
+  {
+    OutputSet files(dir);
+    write_glb_instanced(s, lib, files.open("stand.glb"));
+    files.commit_all();
+  }
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  REQUIRE(loader.LoadBinaryFromFile(&model, &err, &warn, dir + "/stand.glb"));
+  const auto floats = [&](int accessor) {
+    const auto& a = model.accessors[static_cast<std::size_t>(accessor)];
+    const auto& v = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    return reinterpret_cast<const float*>(model.buffers[0].data.data() + v.byteOffset + a.byteOffset);
+  };
+  std::size_t seen = 0;
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    const auto& plant = model.nodes[p + 1];
+    CHECK(plant.name == "plant_" + std::to_string(p));
+    for (int child : plant.children) {
+      const auto& node = model.nodes[static_cast<std::size_t>(child)];
+      const auto& ext = node.extensions.at("EXT_mesh_gpu_instancing").Get("attributes");
+      const float* t = floats(ext.Get("TRANSLATION").GetNumberAsInt());
+      const float* q = floats(ext.Get("ROTATION").GetNumberAsInt());
+      const float* sc = floats(ext.Get("SCALE").GetNumberAsInt());
+      const float* id = floats(ext.Get("_ORGAN").GetNumberAsInt());
+      const std::size_t n = model.accessors[static_cast<std::size_t>(ext.Get("_ORGAN").GetNumberAsInt())].count;
+      const auto& prim = model.meshes[static_cast<std::size_t>(node.mesh)].primitives[0];
+      const float* pos = floats(prim.attributes.at("POSITION"));
+      const std::size_t nv = model.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))].count;
+      for (std::size_t i = 0; i < n; ++i, ++seen) {
+        const std::size_t organ = static_cast<std::size_t>(id[i]);
+        CHECK(static_cast<std::size_t>(s.organs[organ].plant) == p);
+        const PrototypeMesh& pm = lib.get(s.organs[organ].prototype, s.organs[organ].lod);
+        REQUIRE(nv == pm.positions.size());
+        for (std::size_t k = 0; k < nv; k += 5) {
+          // S, then R (unit quaternion), then T: the plant-frame vertex.
+          const Vec3d v{pos[3 * k] * sc[3 * i], pos[3 * k + 1] * sc[3 * i + 1], pos[3 * k + 2] * sc[3 * i + 2]};
+          const Vec3d u{q[4 * i], q[4 * i + 1], q[4 * i + 2]};
+          const double w = q[4 * i + 3];
+          const Vec3d r = v + cross(u, cross(u, v) + v * w) * 2.0;
+          const Vec3d got = r + Vec3d{t[3 * i], t[3 * i + 1], t[3 * i + 2]};
+          const Vec3f want = apply(s.transforms[organ], pm.positions[k]);
+          CHECK(length(got - to_double(want)) < 1e-6);
+        }
+      }
+    }
+  }
+  CHECK(seen == s.organ_count());
+  fs::remove_all(dir);
+}

@@ -29,6 +29,9 @@ if [ -d "$src/tests/tools/node/node_modules/gltf-validator" ]; then
   node "$validator" "$out/stand.glb" >"$tmp/v" 2>&1
   check "gltf validator" "0" "$?"
   check "gltf validator errors" "1" "$(grep -c '^errors 0 ' "$tmp/v")"
+  "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 2 --steps 10 --glb-instancing -o "$tmp/inst" >/dev/null 2>&1
+  node "$validator" "$tmp/inst/stand.glb" >"$tmp/v" 2>&1
+  check "gltf validator (instanced)" "0" "$?"
 else
   check "gltf validator installed (run scripts/setup.sh)" "yes" "no"
 fi
@@ -89,7 +92,7 @@ check "mixed plants" "1,0.5,0,90,2,sunflower.yaml,6" "$(sed -n 3p "$tmp/m/plants
 # Help lines for every option.
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
-           --double-rows --jitter --random-rotation --seed --positions --max-modules; do
+           --double-rows --jitter --random-rotation --seed --positions --max-modules --glb-instancing; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
 done
 
