@@ -16,5 +16,6 @@ struct Command {
 Command add_derive(CLI::App& root);
 Command add_info(CLI::App& root);
 Command add_stand(CLI::App& root);
+Command add_detect(CLI::App& root);
 
 }  // namespace canopy::cli

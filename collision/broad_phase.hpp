@@ -1,0 +1,20 @@
+#pragma once
+/// Broad phase over plants: a uniform grid of cell size twice the largest plant radius over the
+/// plant origins (any layout: rows, double rows, positions files), giving the plant pairs whose
+/// bounds overlap.
+#include "collision/mbvt.hpp"
+#include "geometry/stand.hpp"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace canopy {
+
+/// Whether the bounds of plants p and q (vertical cylinders about their origins) overlap.
+bool plant_bounds_overlap(const Stand& stand, const Mbvt& m, std::size_t p, std::size_t q);
+
+/// Plant pairs (p < q) whose bounds overlap, sorted.
+std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& stand, const Mbvt& m);
+
+}  // namespace canopy

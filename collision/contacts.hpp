@@ -1,0 +1,50 @@
+#pragma once
+/// Contacts (DESIGN.md "Contact levels", "contacts.csv"): organ pairs at the organ and exact
+/// levels; plant pairs and cluster (compound-leaf) pairs, with organ ids -1, at the plant and
+/// leaf levels. Lists are sorted, so they are the same on every run, thread count and backend.
+#include "collision/contact_level.hpp"
+#include "geometry/stand.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace canopy {
+
+struct Contact {
+  std::int32_t organ_a = -1, organ_b = -1;
+  std::int32_t plant_a = -1, plant_b = -1;
+  std::int32_t cluster_a = -1, cluster_b = -1;  // leaf level: the clusters (compound leaves) met
+  auto key() const { return std::tie(organ_a, organ_b, plant_a, plant_b, cluster_a, cluster_b); }
+  bool operator<(const Contact& o) const { return key() < o.key(); }
+  bool operator==(const Contact& o) const { return key() == o.key(); }
+};
+
+/// Pairs found at a level: between two plants and inside one plant.
+struct LevelCount {
+  std::size_t between = 0, within = 0;
+  std::size_t total() const { return between + within; }
+};
+
+struct Contacts {
+  ContactLevel level = ContactLevel::exact;
+  std::vector<Contact> pairs;                     // at `level`, sorted
+  std::array<std::optional<LevelCount>, 4> counts;  // every level up to `level`
+  std::array<double, 4> seconds{};                // time spent per level
+  double build_s = 0;                             // bounding volume build or refit
+};
+
+/// Organs joined in the structure tree (parent and child, or two children of one parent, roots
+/// of one plant included) touch by construction and are never a contact (DESIGN.md "Adjacency").
+inline bool adjacent(const OrganRecord& a, std::int32_t ia, const OrganRecord& b, std::int32_t ib) {
+  return a.plant == b.plant && (a.parent == ib || b.parent == ia || a.parent == b.parent);
+}
+
+/// contacts.csv text: header `organ_a,organ_b,plant_a,plant_b,level`, rows sorted.
+std::string contacts_csv(const Contacts& c);
+
+}  // namespace canopy

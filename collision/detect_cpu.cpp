@@ -1,0 +1,206 @@
+// CPU detection: plant pairs from the grid, cluster (compound-leaf) pairs by LCD boxes, organ
+// pairs by OBBs through the LCD trees, then the exact test; inside one plant the same between
+// its clusters (the paper's m(m-1)/2 leaf pairs, §3.4) and all pairs within a cluster, with the
+// structure tree's adjacent pairs left out.
+#include "collision/backend.hpp"
+#include "collision/broad_phase.hpp"
+#include "collision/exact.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+
+namespace canopy {
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+struct Work {
+  std::int32_t p, q;  // plants, p <= q
+};
+
+/// Whether a cluster has a pair of organs that are not adjacent (so it can hold a contact).
+bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint32_t count) {
+  for (std::uint32_t i = first; i < first + count; ++i)
+    for (std::uint32_t j = i + 1; j < first + count; ++j) {
+      const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
+      if (!adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return true;
+    }
+  return false;
+}
+
+struct Collector {
+  std::vector<Contact> leaf, organ;
+};
+
+void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, Vec3f offset_ab, Collector& out,
+                std::int32_t plant_a, std::int32_t plant_b) {
+  // offset_ab moves b into a's plant frame when a is the lower organ; callers pass organs of
+  // one plant pair with the lower plant's organ first.
+  if (adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return;
+  if (!obb_overlap(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)], offset_ab)) return;
+  Contact c;
+  c.organ_a = std::min(a, b), c.organ_b = std::max(a, b);
+  c.plant_a = plant_a, c.plant_b = plant_b;
+  out.organ.push_back(c);
+}
+
+/// Descends two clusters' LCD trees together down to organ pairs.
+void traverse(const Stand& s, const Mbvt& m, const Cluster& ca, const Cluster& cb, Vec3f offset, Collector& out) {
+  std::uint32_t stack[128][2];
+  int top = 0;
+  stack[top][0] = ca.root, stack[top][1] = cb.root, ++top;
+  while (top > 0) {
+    --top;
+    const LcdNode& na = m.nodes[stack[top][0]];
+    const LcdNode& nb = m.nodes[stack[top][1]];
+    if (!lcd_overlap(na.box, nb.box, offset)) continue;
+    const bool leaf_a = na.left < 0, leaf_b = nb.left < 0;
+    if (leaf_a && leaf_b) {
+      for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+        for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+          organ_pair(s, m, static_cast<std::int32_t>(m.cluster_organs[i]), static_cast<std::int32_t>(m.cluster_organs[j]), offset,
+                     out, ca.plant, cb.plant);
+      continue;
+    }
+    const std::uint32_t a = stack[top][0], b = stack[top][1];
+    if (!leaf_a && (leaf_b || na.count >= nb.count)) {
+      stack[top][0] = static_cast<std::uint32_t>(na.left), stack[top][1] = b, ++top;
+      stack[top][0] = static_cast<std::uint32_t>(na.right), stack[top][1] = b, ++top;
+    } else {
+      stack[top][0] = a, stack[top][1] = static_cast<std::uint32_t>(nb.left), ++top;
+      stack[top][0] = a, stack[top][1] = static_cast<std::uint32_t>(nb.right), ++top;
+    }
+  }
+}
+
+class CpuBackend : public DetectionBackend {
+ public:
+  std::string name() const override { return "cpu"; }
+  std::string device() const override {
+    return fmt::format("{} CPU threads", std::max(1u, std::thread::hardware_concurrency()));
+  }
+
+  Contacts detect(const Stand& s, const DetectRequest& req) override {
+    Contacts out;
+    out.level = req.level;
+    PrototypeLibrary lib;
+    MbvtConfig cfg;
+    cfg.collide = req.collide;
+    cfg.clearance = req.clearance;
+    double t = now();
+    const Mbvt m = build_mbvt(s, lib, cfg);
+    out.build_s = now() - t;
+    const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
+
+    // Plant level: pairs of plants whose bounds meet, and each plant with itself.
+    t = now();
+    std::vector<Work> work;
+    for (const auto& [p, q] : plant_pairs(s, m)) work.push_back({p, q});
+    std::vector<std::uint8_t> self(s.plant_count(), 0);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+    for (std::size_t p = 0; p < s.plant_count(); ++p) {
+      const PlantBound& pb = m.plants[p];
+      if (pb.cluster_count == 0) continue;
+      // The plant's organs that take part are contiguous in cluster_organs.
+      const Cluster& first = m.clusters[pb.first_cluster];
+      const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
+      self[p] = has_free_pair(s, m, first.first, last.first + last.count - first.first) ? 1 : 0;
+    }
+    LevelCount plant_count{work.size(), 0};
+    for (std::size_t p = 0; p < s.plant_count(); ++p)
+      if (self[p]) work.push_back({static_cast<std::int32_t>(p), static_cast<std::int32_t>(p)}), ++plant_count.within;
+    std::sort(work.begin(), work.end(), [](const Work& a, const Work& b) { return std::tie(a.p, a.q) < std::tie(b.p, b.q); });
+    out.counts[0] = plant_count;
+    out.seconds[0] = now() - t;
+    if (req.level == ContactLevel::plant) {
+      for (const Work& w : work) out.pairs.push_back({-1, -1, w.p, w.q, -1, -1});
+      std::sort(out.pairs.begin(), out.pairs.end());
+      return out;
+    }
+
+    // Leaf and organ levels, plant pair by plant pair.
+    t = now();
+    std::vector<Collector> per(work.size());
+#pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
+    for (std::size_t w = 0; w < work.size(); ++w) {
+      const auto [p, q] = work[w];
+      const PlantBound& pa = m.plants[static_cast<std::size_t>(p)];
+      const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
+      const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
+      Collector& col = per[w];
+      for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
+        const Cluster& ca = m.clusters[i];
+        for (std::uint32_t j = p == q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
+          const Cluster& cb = m.clusters[j];
+          if (i == j) {  // within one cluster: all its pairs
+            if (!has_free_pair(s, m, ca.first, ca.count)) continue;
+            col.leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+            if (req.level == ContactLevel::leaf) continue;
+            for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
+              for (std::uint32_t y = x + 1; y < ca.first + ca.count; ++y)
+                organ_pair(s, m, static_cast<std::int32_t>(m.cluster_organs[x]), static_cast<std::int32_t>(m.cluster_organs[y]),
+                           offset, col, p, q);
+            continue;
+          }
+          if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
+          col.leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+          if (req.level != ContactLevel::leaf) traverse(s, m, ca, cb, offset, col);
+        }
+      }
+    }
+    std::vector<Contact> leaf, organ;
+    LevelCount leaf_count, organ_count;
+    for (const Collector& c : per) {
+      leaf.insert(leaf.end(), c.leaf.begin(), c.leaf.end());
+      organ.insert(organ.end(), c.organ.begin(), c.organ.end());
+    }
+    for (const Contact& c : leaf) (c.plant_a == c.plant_b ? leaf_count.within : leaf_count.between)++;
+    out.counts[1] = leaf_count;
+    out.seconds[1] = now() - t;
+    if (req.level == ContactLevel::leaf) {
+      out.pairs = std::move(leaf);
+      std::sort(out.pairs.begin(), out.pairs.end());
+      return out;
+    }
+    std::sort(organ.begin(), organ.end());
+    organ.erase(std::unique(organ.begin(), organ.end()), organ.end());
+    for (const Contact& c : organ) (c.plant_a == c.plant_b ? organ_count.within : organ_count.between)++;
+    out.counts[2] = organ_count;
+    out.seconds[2] = 0;  // organ pairs come out of the same pass as the leaf level
+    if (req.level == ContactLevel::organ) {
+      out.pairs = std::move(organ);
+      return out;
+    }
+
+    // Exact level.
+    t = now();
+    std::vector<std::uint8_t> hit(organ.size(), 0);
+    for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // every mesh made before threads share them
+#pragma omp parallel num_threads(threads)
+    {
+      ExactScratch scratch;
+#pragma omp for schedule(dynamic, 64)
+      for (std::size_t i = 0; i < organ.size(); ++i)
+        hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch) ? 1 : 0;
+    }
+    LevelCount exact_count;
+    for (std::size_t i = 0; i < organ.size(); ++i)
+      if (hit[i]) {
+        out.pairs.push_back(organ[i]);
+        (organ[i].plant_a == organ[i].plant_b ? exact_count.within : exact_count.between)++;
+      }
+    out.counts[3] = exact_count;
+    out.seconds[3] = now() - t;
+    return out;
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<DetectionBackend> make_cpu_backend() { return std::make_unique<CpuBackend>(); }
+
+}  // namespace canopy

@@ -1,0 +1,30 @@
+#pragma once
+/// The exact level for one organ pair on the host: the organs' triangles made on the fly from
+/// prototype x transform (the higher organ moved into the lower organ's plant frame by the
+/// origin difference), a triangle-box filter, then the shared closed triangle test; capped
+/// cylinders and spheres are solids, so an organ wholly inside one counts too.
+#include "geometry/prototype.hpp"
+#include "geometry/stand.hpp"
+
+#include <vector>
+
+namespace canopy {
+
+struct ExactScratch {
+  std::vector<Vec3f> va, vb;
+  std::vector<float> boxes_b;  // 6 per triangle of b
+};
+
+/// Whether organs a < b touch (or come within `clearance`). Same answer on both backends.
+bool organs_touch(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance,
+                  ExactScratch& scratch);
+
+/// The organ's vertices in the plant frame of `frame_plant` (its own frame moved by the origin
+/// difference), as every exact test computes them.
+void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, std::int32_t organ, std::int32_t frame_plant,
+                    std::vector<Vec3f>& out);
+
+/// Solids: closed cylinders and spheres contain what lies inside them.
+inline bool is_solid(PrototypeKind k) { return k == PrototypeKind::cylinder || k == PrototypeKind::sphere; }
+
+}  // namespace canopy

@@ -1,0 +1,199 @@
+#include "collision/mbvt.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+namespace canopy {
+namespace {
+
+/// Boxes of every node of cluster c, from its organs' OBBs, bottom-up.
+void fit_cluster(Mbvt& m, const Cluster& c) {
+  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n) {
+    LcdNode& node = m.nodes[n];
+    const float ax = node.box.ax, ay = node.box.ay;
+    node.box = Lcd{};
+    node.box.ax = ax, node.box.ay = ay;
+    if (node.left < 0) {
+      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) lcd_add(node.box, m.obbs[m.cluster_organs[k]]);
+      lcd_inflate(node.box, 0);  // rounding slack of the projection
+    } else {  // children come before parents, and share the axis: an exact merge
+      lcd_merge(node.box, m.nodes[static_cast<std::size_t>(node.left)].box);
+      lcd_merge(node.box, m.nodes[static_cast<std::size_t>(node.right)].box);
+    }
+  }
+}
+
+void fit_plant(Mbvt& m, PlantBound& pb) {
+  float r2 = 0, zlo = 0, zhi = -1;
+  bool any = false;
+  for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) {
+    const Lcd& l = m.nodes[m.clusters[c].root].box;
+    if (lcd_empty(l)) continue;
+    for (int i = 0; i < 4; ++i) {
+      const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
+      const float x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
+      r2 = fmaxf(r2, x * x + y * y);
+    }
+    zlo = any ? fminf(zlo, l.lo[2]) : l.lo[2];
+    zhi = any ? fmaxf(zhi, l.hi[2]) : l.hi[2];
+    any = true;
+  }
+  const float r = sqrtf(r2);
+  pb.radius = any ? r + kBoundRelSlack * (r + fabsf(zlo) + fabsf(zhi)) + kBoundAbsSlack : 0;
+  pb.zlo = zlo;
+  pb.zhi = zhi;
+}
+
+}  // namespace
+
+KindMask default_collide_kinds() {
+  KindMask k{};
+  for (OrganKind o : {OrganKind::leaflet, OrganKind::petiole, OrganKind::rachis, OrganKind::internode, OrganKind::peduncle})
+    k[static_cast<std::size_t>(o)] = true;
+  return k;
+}
+
+KindMask parse_collide_kinds(const std::string& list) {
+  KindMask k{};
+  if (list == "all") {
+    k.fill(true);
+    return k;
+  }
+  std::size_t i = 0;
+  while (i <= list.size()) {
+    std::size_t j = list.find(',', i);
+    if (j == std::string::npos) j = list.size();
+    const std::string name = list.substr(i, j - i);
+    const auto kind = parse_organ_kind(name);
+    if (!kind)
+      throw std::invalid_argument(fmt::format(
+          "--collide: unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit, flower or all)", name));
+    k[static_cast<std::size_t>(*kind)] = true;
+    i = j + 1;
+  }
+  return k;
+}
+
+Vec3f plant_offset(const Stand& s, std::int32_t a, std::int32_t b) {
+  const PlantRecord& pa = s.plants[static_cast<std::size_t>(a)];
+  const PlantRecord& pb = s.plants[static_cast<std::size_t>(b)];
+  return {static_cast<float>(pb.x - pa.x), static_cast<float>(pb.y - pa.y), 0.0f};
+}
+
+Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config) {
+  Mbvt m;
+  m.config = config;
+  const std::size_t n = s.organ_count();
+  m.obbs.resize(n);
+  m.takes_part.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const OrganRecord& r = s.organs[i];
+    m.obbs[i] = make_obb(s.transforms[i], lib.get(r.prototype, r.lod).box, config.clearance);
+    m.takes_part[i] = config.collide[static_cast<std::size_t>(r.kind)] ? 1 : 0;
+  }
+  m.plants.resize(s.plant_count());
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    const PlantRecord& pr = s.plants[p];
+    PlantBound& pb = m.plants[p];
+    pb.first_cluster = static_cast<std::uint32_t>(m.clusters.size());
+    // Group this plant's organs: one group per compound leaf (in order of first organ), then the
+    // stem organs in runs of config.stem_cluster.
+    std::map<std::int32_t, std::size_t> group_of_leaf;
+    std::vector<std::vector<std::uint32_t>> groups;
+    std::vector<std::int32_t> group_leaf;
+    std::vector<std::uint32_t> stem;
+    for (std::uint32_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
+      if (!m.takes_part[id]) continue;
+      const std::int32_t leaf = s.organs[id].leaf;
+      if (leaf < 0) {
+        stem.push_back(id);
+        continue;
+      }
+      auto it = group_of_leaf.find(leaf);
+      if (it == group_of_leaf.end()) {
+        it = group_of_leaf.emplace(leaf, groups.size()).first;
+        groups.emplace_back();
+        group_leaf.push_back(leaf);
+      }
+      groups[it->second].push_back(id);
+    }
+    for (std::size_t i = 0; i < stem.size(); i += static_cast<std::size_t>(config.stem_cluster)) {
+      groups.emplace_back(stem.begin() + static_cast<std::ptrdiff_t>(i),
+                          stem.begin() + static_cast<std::ptrdiff_t>(std::min(stem.size(), i + static_cast<std::size_t>(config.stem_cluster))));
+      group_leaf.push_back(-1);
+    }
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      Cluster c;
+      c.plant = static_cast<std::int32_t>(p);
+      c.leaf = group_leaf[g];
+      c.first = static_cast<std::uint32_t>(m.cluster_organs.size());
+      c.count = static_cast<std::uint32_t>(groups[g].size());
+      m.cluster_organs.insert(m.cluster_organs.end(), groups[g].begin(), groups[g].end());
+      // The cluster's horizontal axis: from its first organ towards the mean of its organs.
+      float mx = 0, my = 0;
+      for (std::uint32_t id : groups[g]) mx += m.obbs[id].centre.x, my += m.obbs[id].centre.y;
+      mx = mx / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.x;
+      my = my / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.y;
+      const float len = sqrtf(mx * mx + my * my);
+      const float ax = len > 1e-6f ? mx / len : 1.0f, ay = len > 1e-6f ? my / len : 0.0f;
+      // Tree leaves over chunks in string order, then parents pairing neighbours level by level.
+      c.first_node = static_cast<std::uint32_t>(m.nodes.size());
+      std::vector<std::uint32_t> level;
+      for (std::uint32_t k = 0; k < c.count; k += static_cast<std::uint32_t>(config.leaf_chunk)) {
+        LcdNode node;
+        node.box.ax = ax, node.box.ay = ay;
+        node.first = c.first + k;
+        node.count = std::min<std::uint32_t>(static_cast<std::uint32_t>(config.leaf_chunk), c.count - k);
+        level.push_back(static_cast<std::uint32_t>(m.nodes.size()));
+        m.nodes.push_back(node);
+      }
+      while (level.size() > 1) {
+        std::vector<std::uint32_t> up;
+        for (std::size_t i = 0; i < level.size(); i += 2) {
+          if (i + 1 == level.size()) {
+            up.push_back(level[i]);
+            continue;
+          }
+          LcdNode node;
+          node.box.ax = ax, node.box.ay = ay;
+          node.left = static_cast<std::int32_t>(level[i]);
+          node.right = static_cast<std::int32_t>(level[i + 1]);
+          node.first = m.nodes[level[i]].first;
+          node.count = m.nodes[level[i]].count + m.nodes[level[i + 1]].count;
+          up.push_back(static_cast<std::uint32_t>(m.nodes.size()));
+          m.nodes.push_back(node);
+        }
+        level = up;
+      }
+      c.root = level[0];
+      c.node_count = static_cast<std::uint32_t>(m.nodes.size()) - c.first_node;
+      m.clusters.push_back(c);
+      fit_cluster(m, m.clusters.back());
+    }
+    pb.cluster_count = static_cast<std::uint32_t>(m.clusters.size()) - pb.first_cluster;
+    fit_plant(m, pb);
+    m.max_radius = std::max(m.max_radius, pb.radius);
+  }
+  return m;
+}
+
+void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs) {
+  std::vector<std::uint8_t> plant_dirty(m.plants.size(), 0);
+  for (std::uint32_t id : organs) {
+    const OrganRecord& r = s.organs[id];
+    m.obbs[id] = make_obb(s.transforms[id], lib.get(r.prototype, r.lod).box, m.config.clearance);
+    plant_dirty[static_cast<std::size_t>(r.plant)] = 1;
+  }
+  for (std::size_t p = 0; p < m.plants.size(); ++p) {
+    if (!plant_dirty[p]) continue;
+    PlantBound& pb = m.plants[p];
+    for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) fit_cluster(m, m.clusters[c]);
+    fit_plant(m, pb);
+    m.max_radius = std::max(m.max_radius, pb.radius);
+  }
+}
+
+}  // namespace canopy

@@ -1,0 +1,74 @@
+#pragma once
+/// The mixed bounding volume tree (Ding et al. 2019 §3.2): per organ an OBB (prototype box x
+/// transform), per cluster a small bottom-up tree of LCD boxes over its organs in string order
+/// (along the petiole), per plant a bound from its largest outward extent. Clusters are the
+/// compound leaves, plus consecutive runs of the organs outside any compound leaf (stem
+/// internodes, trusses, fruit), so those take part like any other organ. Bounds are in each
+/// plant's frame (origin excluded); tests between plants add the origin difference.
+#include "collision/contacts.hpp"
+#include "geometry/lcd.hpp"
+#include "geometry/obb.hpp"
+#include "geometry/prototype.hpp"
+#include "geometry/stand.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace canopy {
+
+/// Organ kinds that take part in detection: leaflet, petiole, rachis, internode, peduncle by
+/// default; fruit and flower on request (DESIGN.md "Organ kinds by role").
+using KindMask = std::array<bool, 7>;
+KindMask default_collide_kinds();
+/// Parses "leaflet,fruit,..." (or "all"); throws std::invalid_argument naming a bad kind.
+KindMask parse_collide_kinds(const std::string& list);
+
+struct MbvtConfig {
+  KindMask collide = default_collide_kinds();
+  float clearance = 0;     // every bound is inflated by it
+  int leaf_chunk = 4;      // organs per LCD tree leaf
+  int stem_cluster = 8;    // organs per cluster outside compound leaves
+};
+
+struct LcdNode {
+  Lcd box;
+  std::int32_t left = -1, right = -1;  // children (node indices), -1 at a leaf of the tree
+  std::uint32_t first = 0, count = 0;  // organs (in cluster_organs) under this node
+};
+
+struct Cluster {
+  std::int32_t plant = 0;
+  std::int32_t leaf = -1;               // compound leaf id, -1 for a stem cluster
+  std::uint32_t first = 0, count = 0;   // organs in cluster_organs
+  std::uint32_t root = 0;               // root node
+  std::uint32_t first_node = 0, node_count = 0;
+};
+
+struct PlantBound {
+  float radius = 0;          // horizontal, around the plant origin
+  float zlo = 0, zhi = -1;   // empty when zlo > zhi
+  std::uint32_t first_cluster = 0, cluster_count = 0;
+};
+
+struct Mbvt {
+  MbvtConfig config;
+  std::vector<Obb> obbs;                      // per organ (of every organ; unused where not taking part)
+  std::vector<std::uint8_t> takes_part;       // per organ
+  std::vector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
+  std::vector<Cluster> clusters;              // plant by plant
+  std::vector<LcdNode> nodes;
+  std::vector<PlantBound> plants;
+  float max_radius = 0;
+};
+
+/// Builds the tree from the stand (never from meshes).
+Mbvt build_mbvt(const Stand& stand, PrototypeLibrary& lib, const MbvtConfig& config);
+/// After organs turned: new OBBs for `organs` (ids) and new boxes for their clusters and plants,
+/// with the tree's shape and axes kept: a transform per organ, not a rebuild.
+void refit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs);
+
+/// The organ pair (a, b) and the offset that carries b's plant frame into a's.
+Vec3f plant_offset(const Stand& stand, std::int32_t plant_a, std::int32_t plant_b);
+
+}  // namespace canopy

@@ -1,0 +1,271 @@
+#pragma once
+/// The exact test: closed triangle-triangle intersection and distance, and point-in-convex-solid,
+/// on orientation predicates evaluated in double from float inputs (so answers agree with exact
+/// arithmetic wherever gaps or overlaps exceed about 1e-12 m at plant scale). Every entry point
+/// first puts its arguments in a canonical order (vertices sorted, triangles sorted), so the
+/// answer is bit for bit the same for any vertex order, either argument order, and on either
+/// backend (compiled with -ffp-contract=off / --fmad=false). Shared by the CPU and CUDA backends.
+#include "geometry/hd.hpp"
+#include "geometry/vec.hpp"
+
+namespace canopy {
+
+struct D3 {
+  double x, y, z;
+};
+CANOPY_HD inline D3 d3(Vec3f v) { return {v.x, v.y, v.z}; }
+CANOPY_HD inline D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+CANOPY_HD inline D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+CANOPY_HD inline D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+CANOPY_HD inline double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+CANOPY_HD inline D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+CANOPY_HD inline bool less(D3 a, D3 b) {
+  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+}
+CANOPY_HD inline bool same(D3 a, D3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+/// det[b - a, c - a, d - a]: positive when d lies on the side of plane (a, b, c) that
+/// (b - a) x (c - a) points to.
+CANOPY_HD inline double orient3d(D3 a, D3 b, D3 c, D3 d) {
+  const D3 ba = b - a, ca = c - a, da = d - a;
+  return ba.x * (ca.y * da.z - ca.z * da.y) - ba.y * (ca.x * da.z - ca.z * da.x) + ba.z * (ca.x * da.y - ca.y * da.x);
+}
+
+struct P2 {
+  double u, v;
+};
+CANOPY_HD inline double orient2d(P2 a, P2 b, P2 c) { return (b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u); }
+CANOPY_HD inline int sign(double x) { return (x > 0) - (x < 0); }
+
+/// Drops the coordinate `axis` (0, 1, 2).
+CANOPY_HD inline P2 project(D3 p, int axis) {
+  return axis == 0 ? P2{p.y, p.z} : axis == 1 ? P2{p.z, p.x} : P2{p.x, p.y};
+}
+CANOPY_HD inline int dominant_axis(D3 n) {
+  const double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
+  return ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
+}
+
+/// p on closed segment [a, b], given that the three are collinear.
+CANOPY_HD inline bool on_segment_2d(P2 a, P2 b, P2 p) {
+  return fmin(a.u, b.u) <= p.u && p.u <= fmax(a.u, b.u) && fmin(a.v, b.v) <= p.v && p.v <= fmax(a.v, b.v);
+}
+
+/// Closed segments [a, b] and [c, d] in the plane meet.
+CANOPY_HD inline bool segments_2d(P2 a, P2 b, P2 c, P2 d) {
+  const int o1 = sign(orient2d(a, b, c)), o2 = sign(orient2d(a, b, d));
+  const int o3 = sign(orient2d(c, d, a)), o4 = sign(orient2d(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  if (o1 == 0 && on_segment_2d(a, b, c)) return true;
+  if (o2 == 0 && on_segment_2d(a, b, d)) return true;
+  if (o3 == 0 && on_segment_2d(c, d, a)) return true;
+  if (o4 == 0 && on_segment_2d(c, d, b)) return true;
+  return false;
+}
+
+/// p in the closed triangle (a, b, c) of the plane; a degenerate triangle counts as its edges.
+CANOPY_HD inline bool point_in_triangle_2d(P2 p, P2 a, P2 b, P2 c) {
+  if (orient2d(a, b, c) == 0)
+    return segments_2d(a, b, p, p) || segments_2d(b, c, p, p) || segments_2d(c, a, p, p);
+  const int s1 = sign(orient2d(a, b, p)), s2 = sign(orient2d(b, c, p)), s3 = sign(orient2d(c, a, p));
+  return !((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0));
+}
+
+/// Closed triangles in a common plane (projected along `axis`) meet.
+CANOPY_HD inline bool triangles_2d(const D3 t[3], const D3 u[3], int axis) {
+  P2 a[3], b[3];
+  for (int i = 0; i < 3; ++i) a[i] = project(t[i], axis), b[i] = project(u[i], axis);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (segments_2d(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3])) return true;
+  return point_in_triangle_2d(a[0], b[0], b[1], b[2]) || point_in_triangle_2d(b[0], a[0], a[1], a[2]);
+}
+
+/// Closed segments [a, b] and [c, d] in space meet (degenerate segments are points).
+CANOPY_HD inline bool segments_3d(D3 a, D3 b, D3 c, D3 d) {
+  if (orient3d(a, b, c, d) != 0) return false;  // skew
+  // Coplanar: project along the normal of their plane, or of any plane holding them.
+  D3 n = cross(b - a, d - c);
+  if (n.x == 0 && n.y == 0 && n.z == 0) n = cross(b - a, c - a);
+  if (n.x == 0 && n.y == 0 && n.z == 0) n = cross(d - c, a - c);
+  if (n.x == 0 && n.y == 0 && n.z == 0) {
+    // All four on one line (or coincident): compare intervals along the coordinate of largest
+    // spread, on which distinct points of the line always differ.
+    D3 lo = a, hi = a;
+    const D3 ps[3] = {b, c, d};
+    for (const D3& p : ps) {
+      lo = {fmin(lo.x, p.x), fmin(lo.y, p.y), fmin(lo.z, p.z)};
+      hi = {fmax(hi.x, p.x), fmax(hi.y, p.y), fmax(hi.z, p.z)};
+    }
+    const D3 ext = hi - lo;
+    const int k = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
+    const double ak = k == 0 ? a.x : k == 1 ? a.y : a.z, bk = k == 0 ? b.x : k == 1 ? b.y : b.z;
+    const double ck = k == 0 ? c.x : k == 1 ? c.y : c.z, dk = k == 0 ? d.x : k == 1 ? d.y : d.z;
+    return fmax(fmin(ak, bk), fmin(ck, dk)) <= fmin(fmax(ak, bk), fmax(ck, dk));
+  }
+  const int axis = dominant_axis(n);
+  return segments_2d(project(a, axis), project(b, axis), project(c, axis), project(d, axis));
+}
+
+/// Closed segment [a, b] meets the closed triangle t (which may be degenerate).
+CANOPY_HD inline bool segment_triangle(D3 a, D3 b, const D3 t[3]) {
+  const D3 n = cross(t[1] - t[0], t[2] - t[0]);
+  if (n.x == 0 && n.y == 0 && n.z == 0)  // degenerate triangle: its edges
+    return segments_3d(a, b, t[0], t[1]) || segments_3d(a, b, t[1], t[2]) || segments_3d(a, b, t[2], t[0]);
+  const double sa = orient3d(t[0], t[1], t[2], a), sb = orient3d(t[0], t[1], t[2], b);
+  if ((sa > 0 && sb > 0) || (sa < 0 && sb < 0)) return false;
+  if (sa == 0 && sb == 0) {  // in the triangle's plane
+    const int axis = dominant_axis(n);
+    const P2 pa = project(a, axis), pb = project(b, axis);
+    P2 q[3];
+    for (int i = 0; i < 3; ++i) q[i] = project(t[i], axis);
+    if (point_in_triangle_2d(pa, q[0], q[1], q[2]) || point_in_triangle_2d(pb, q[0], q[1], q[2])) return true;
+    for (int i = 0; i < 3; ++i)
+      if (segments_2d(pa, pb, q[i], q[(i + 1) % 3])) return true;
+    return false;
+  }
+  // The segment crosses or touches the plane: does its line pass through the closed triangle?
+  const int s1 = sign(orient3d(a, b, t[0], t[1])), s2 = sign(orient3d(a, b, t[1], t[2])),
+            s3 = sign(orient3d(a, b, t[2], t[0]));
+  return !((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0));
+}
+
+/// Sorts a triangle's vertices (lexicographically): the canonical order.
+CANOPY_HD inline void sort3(D3 t[3]) {
+  if (less(t[1], t[0])) { const D3 x = t[0]; t[0] = t[1]; t[1] = x; }
+  if (less(t[2], t[1])) { const D3 x = t[1]; t[1] = t[2]; t[2] = x; }
+  if (less(t[1], t[0])) { const D3 x = t[0]; t[0] = t[1]; t[1] = x; }
+}
+CANOPY_HD inline bool triangle_less(const D3 a[3], const D3 b[3]) {
+  for (int i = 0; i < 3; ++i) {
+    if (less(a[i], b[i])) return true;
+    if (less(b[i], a[i])) return false;
+  }
+  return false;
+}
+
+/// Whether two closed triangles meet (touching counts). Any vertex order, either argument order.
+CANOPY_HD inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
+  D3 a[3] = {d3(pa[0]), d3(pa[1]), d3(pa[2])}, b[3] = {d3(pb[0]), d3(pb[1]), d3(pb[2])};
+  sort3(a);
+  sort3(b);
+  const D3* t = a;
+  const D3* u = b;
+  if (triangle_less(b, a)) t = b, u = a;
+  const D3 nt = cross(t[1] - t[0], t[2] - t[0]), nu = cross(u[1] - u[0], u[2] - u[0]);
+  const bool dt = nt.x == 0 && nt.y == 0 && nt.z == 0, du = nu.x == 0 && nu.y == 0 && nu.z == 0;
+  if (!dt) {  // quick rejection: u wholly on one side of t's plane
+    const double d0 = orient3d(t[0], t[1], t[2], u[0]), d1 = orient3d(t[0], t[1], t[2], u[1]), d2 = orient3d(t[0], t[1], t[2], u[2]);
+    if ((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0)) return false;
+    if (!du && d0 == 0 && d1 == 0 && d2 == 0) return triangles_2d(t, u, dominant_axis(nt));
+  }
+  if (!du) {
+    const double d0 = orient3d(u[0], u[1], u[2], t[0]), d1 = orient3d(u[0], u[1], u[2], t[1]), d2 = orient3d(u[0], u[1], u[2], t[2]);
+    if ((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0)) return false;
+  }
+  // Not coplanar (or degenerate): they meet exactly when an edge of one meets the other.
+  for (int i = 0; i < 3; ++i)
+    if (segment_triangle(t[i], t[(i + 1) % 3], u)) return true;
+  for (int i = 0; i < 3; ++i)
+    if (segment_triangle(u[i], u[(i + 1) % 3], t)) return true;
+  return false;
+}
+
+/// Squared distance between closed segments [p1, q1] and [p2, q2] (Ericsson §5.1.9).
+CANOPY_HD inline double segment_segment_dist2(D3 p1, D3 q1, D3 p2, D3 q2) {
+  const D3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+  double s = 0, t = 0;
+  if (a == 0 && e == 0) {
+    s = t = 0;
+  } else if (a == 0) {
+    s = 0;
+    t = fmin(fmax(f / e, 0.0), 1.0);
+  } else {
+    const double c = dot(d1, r);
+    if (e == 0) {
+      t = 0;
+      s = fmin(fmax(-c / a, 0.0), 1.0);
+    } else {
+      const double b = dot(d1, d2), denom = a * e - b * b;
+      s = denom != 0 ? fmin(fmax((b * f - c * e) / denom, 0.0), 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = fmin(fmax(-c / a, 0.0), 1.0);
+      } else if (t > 1) {
+        t = 1;
+        s = fmin(fmax((b - c) / a, 0.0), 1.0);
+      }
+    }
+  }
+  const D3 c1 = p1 + d1 * s, c2 = p2 + d2 * t, w = c1 - c2;
+  return dot(w, w);
+}
+
+/// Squared distance from p to the closed triangle t (Ericsson §5.1.5); a degenerate triangle
+/// counts as its edges.
+CANOPY_HD inline double point_triangle_dist2(D3 p, const D3 t[3]) {
+  const D3 a = t[0], b = t[1], c = t[2];
+  const D3 n = cross(b - a, c - a);
+  if (n.x == 0 && n.y == 0 && n.z == 0)
+    return fmin(segment_segment_dist2(p, p, a, b), fmin(segment_segment_dist2(p, p, b, c), segment_segment_dist2(p, p, c, a)));
+  const D3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  D3 q;
+  if (d1 <= 0 && d2 <= 0) q = a;
+  else {
+    const D3 bp = p - b;
+    const double d3v = dot(ab, bp), d4 = dot(ac, bp);
+    const D3 cp = p - c;
+    const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+    const double vc = d1 * d4 - d3v * d2, vb = d5 * d2 - d1 * d6, va = d3v * d6 - d5 * d4;
+    if (d3v >= 0 && d4 <= d3v) q = b;
+    else if (vc <= 0 && d1 >= 0 && d3v <= 0) q = a + ab * (d1 / (d1 - d3v));
+    else if (d6 >= 0 && d5 <= d6) q = c;
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = a + ac * (d2 / (d2 - d6));
+    else if (va <= 0 && (d4 - d3v) >= 0 && (d5 - d6) >= 0) q = b + (c - b) * ((d4 - d3v) / ((d4 - d3v) + (d5 - d6)));
+    else {
+      const double denom = 1.0 / (va + vb + vc);
+      q = a + ab * (vb * denom) + ac * (vc * denom);
+    }
+  }
+  const D3 w = p - q;
+  return dot(w, w);
+}
+
+/// Whether two closed triangles come within `clearance` of each other (intersecting counts).
+CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance) {
+  if (triangles_intersect(pa, pb)) return true;
+  D3 a[3] = {d3(pa[0]), d3(pa[1]), d3(pa[2])}, b[3] = {d3(pb[0]), d3(pb[1]), d3(pb[2])};
+  sort3(a);
+  sort3(b);
+  const D3* t = a;
+  const D3* u = b;
+  if (triangle_less(b, a)) t = b, u = a;
+  const double c2 = clearance * clearance;
+  for (int i = 0; i < 3; ++i) {
+    if (point_triangle_dist2(t[i], u) <= c2 || point_triangle_dist2(u[i], t) <= c2) return true;
+    for (int j = 0; j < 3; ++j)
+      if (segment_segment_dist2(t[i], t[(i + 1) % 3], u[j], u[(j + 1) % 3]) <= c2) return true;
+  }
+  return false;
+}
+
+/// Whether p lies in the closed convex solid bounded by triangles (outward, counter-clockwise
+/// seen from outside): on the inner side of, or on, every face plane, and strictly inside at
+/// least one. Degenerate faces do not constrain; a solid of no volume (all faces flat or
+/// degenerate, as a zero-length or zero-radius cylinder) contains nothing beyond its surface,
+/// which the triangle tests see.
+CANOPY_HD inline bool point_in_convex(D3 p, const Vec3f* vertices, const unsigned* indices, int triangles) {
+  bool inner = false;
+  for (int f = 0; f < triangles; ++f) {
+    const D3 a = d3(vertices[indices[3 * f]]), b = d3(vertices[indices[3 * f + 1]]), c = d3(vertices[indices[3 * f + 2]]);
+    const double o = orient3d(a, b, c, p);
+    if (o > 0) return false;
+    inner |= o < 0;
+  }
+  return inner;
+}
+
+}  // namespace canopy

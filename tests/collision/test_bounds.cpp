@@ -1,0 +1,162 @@
+// Bounding volumes: every vertex inside its organ's OBB and its cluster's LCD boxes and plant
+// bound; OBB and LCD overlap against a brute-force separating-axis test over all 15 axes; refit.
+#include "collision/mbvt.hpp"
+#include "geometry/organ_mesh.hpp"
+#include "helpers.hpp"
+
+#include <cmath>
+
+using namespace canopy;
+using namespace canopy::test;
+
+namespace {
+
+/// Brute force: project both boxes' corners on all 15 candidate axes (skipping vanished ones).
+bool sat_brute(const Vec3f a_axes[3], const Vec3f a_corners[8], const Vec3f b_axes[3], const Vec3f b_corners[8]) {
+  std::vector<D3> axes;
+  for (int i = 0; i < 3; ++i) axes.push_back(d3(a_axes[i])), axes.push_back(d3(b_axes[i]));
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) axes.push_back(cross(d3(a_axes[i]), d3(b_axes[j])));
+  for (const D3& ax : axes) {
+    if (dot(ax, ax) < 1e-18) continue;  // parallel edges: no axis
+    double alo = 1e300, ahi = -1e300, blo = 1e300, bhi = -1e300;
+    for (int k = 0; k < 8; ++k) {
+      const double pa = dot(ax, d3(a_corners[k])), pb = dot(ax, d3(b_corners[k]));
+      alo = std::min(alo, pa), ahi = std::max(ahi, pa), blo = std::min(blo, pb), bhi = std::max(bhi, pb);
+    }
+    if (alo > bhi || blo > ahi) return false;
+  }
+  return true;
+}
+
+Obb random_obb(std::mt19937& g, bool axis_aligned) {
+  std::uniform_real_distribution<float> u(-1, 1), h(0.01f, 0.6f);
+  Vec3f x{1, 0, 0}, y{0, 1, 0};
+  if (!axis_aligned) {
+    x = Vec3f{u(g), u(g), u(g)};
+    x = x * (1 / length(x));
+    Vec3f t{u(g), u(g), u(g)};
+    y = cross(x, t);
+    y = y * (1 / length(y));
+  }
+  Obb o;
+  o.centre = {u(g), u(g), u(g)};
+  o.axis[0] = x, o.axis[1] = y, o.axis[2] = cross(x, y);
+  for (float& e : o.half) e = h(g);
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("OBB overlap agrees with the brute-force 15-axis test, parallel boxes included") {
+  std::mt19937 g(3);
+  int overlaps = 0, agree = 0, n = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const bool parallel = i % 3 == 0;
+    const Obb a = random_obb(g, parallel), b = random_obb(g, parallel);
+    Vec3f ca[8], cb[8];
+    obb_corners(a, ca);
+    obb_corners(b, cb);
+    const bool want = sat_brute(a.axis, ca, b.axis, cb);
+    const bool got = obb_overlap(a, b, {0, 0, 0});
+    overlaps += want;
+    agree += want == got;
+    ++n;
+    if (want) CHECK(got);  // never a miss
+  }
+  CHECK(agree == n);
+  CHECK(overlaps > 2000);
+}
+
+TEST_CASE("LCD overlap agrees with the brute-force test of the same boxes as OBBs") {
+  std::mt19937 g(5);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int agree = 0, n = 0, overlaps = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Lcd l[2];
+    Vec3f axes[2][3], corners[2][8];
+    for (int k = 0; k < 2; ++k) {
+      const float ang = i % 4 == 0 ? 0.3f : u(g) * 3.14159f;  // every fourth pair parallel
+      l[k].ax = std::cos(ang), l[k].ay = std::sin(ang);
+      for (int d = 0; d < 3; ++d) {
+        const float c = u(g), e = 0.05f + 0.5f * std::fabs(u(g));
+        l[k].lo[d] = c - e, l[k].hi[d] = c + e;
+      }
+      axes[k][0] = {l[k].ax, l[k].ay, 0}, axes[k][1] = {-l[k].ay, l[k].ax, 0}, axes[k][2] = {0, 0, 1};
+      for (int c = 0; c < 8; ++c) {
+        const float su = (c & 1) ? l[k].hi[0] : l[k].lo[0], sv = (c & 2) ? l[k].hi[1] : l[k].lo[1], sz = (c & 4) ? l[k].hi[2] : l[k].lo[2];
+        corners[k][c] = axes[k][0] * su + axes[k][1] * sv + Vec3f{0, 0, sz};
+      }
+    }
+    const bool want = sat_brute(axes[0], corners[0], axes[1], corners[1]);
+    const bool got = lcd_overlap(l[0], l[1], {0, 0, 0});
+    overlaps += want;
+    agree += want == got;
+    ++n;
+    if (want) CHECK(got);
+  }
+  CHECK(agree == n);
+  CHECK(overlaps > 2000);
+}
+
+TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD boxes and its plant's bound") {
+  const Stand s = random_stand(7);
+  PrototypeLibrary lib;
+  MbvtConfig cfg;
+  cfg.collide = parse_collide_kinds("all");
+  const Mbvt m = build_mbvt(s, lib, cfg);
+  OrganMesh mesh;
+  std::vector<std::int32_t> node_of_leaf_organ(s.organ_count(), -1);
+  for (const Cluster& c : m.clusters)
+    for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n)
+      for (std::uint32_t k = m.nodes[n].first; k < m.nodes[n].first + m.nodes[n].count; ++k) {
+        const std::uint32_t organ = m.cluster_organs[k];
+        organ_mesh(s, organ, lib, mesh, true);
+        for (const Vec3f& v : mesh.positions) {
+          Lcd point;
+          point.ax = m.nodes[n].box.ax, point.ay = m.nodes[n].box.ay;
+          lcd_add(point, v);
+          for (int d = 0; d < 3; ++d) {
+            CHECK(point.lo[d] >= m.nodes[n].box.lo[d]);
+            CHECK(point.hi[d] <= m.nodes[n].box.hi[d]);
+          }
+        }
+      }
+  for (std::size_t id = 0; id < s.organ_count(); ++id) {
+    organ_mesh(s, id, lib, mesh, true);
+    const Obb& o = m.obbs[id];
+    const PlantBound& pb = m.plants[static_cast<std::size_t>(s.organs[id].plant)];
+    for (const Vec3f& v : mesh.positions) {
+      const Vec3f d = v - o.centre;
+      for (int k = 0; k < 3; ++k) CHECK(std::fabs(dot(d, o.axis[k])) <= o.half[k]);
+      CHECK(std::hypot(v.x, v.y) <= pb.radius);
+      CHECK(v.z >= pb.zlo);
+      CHECK(v.z <= pb.zhi);
+    }
+  }
+}
+
+TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
+  Stand s = random_stand(9);
+  PrototypeLibrary lib;
+  Mbvt m = build_mbvt(s, lib, MbvtConfig{});
+  std::vector<std::uint32_t> moved;
+  for (std::uint32_t id = 5; id < s.organ_count(); id += 17) {
+    Affine3f& t = s.transforms[id];
+    const float c = std::cos(0.3f), sn = std::sin(0.3f);
+    const auto rot = [&](Vec3f v) { return Vec3f{c * v.x - sn * v.y, sn * v.x + c * v.y, v.z}; };
+    t.c0 = rot(t.c0), t.c1 = rot(t.c1), t.c2 = rot(t.c2);
+    moved.push_back(id);
+  }
+  refit_mbvt(m, s, lib, moved);
+  const Mbvt fresh = build_mbvt(s, lib, MbvtConfig{});
+  for (std::uint32_t id : moved) CHECK(m.obbs[id].centre.x == fresh.obbs[id].centre.x);
+  // Boxes contain what they must (axes kept from the first build, so not equal to the fresh ones).
+  OrganMesh mesh;
+  for (std::uint32_t id : moved) {
+    if (!m.takes_part[id]) continue;
+    organ_mesh(s, id, lib, mesh, true);
+    for (const Vec3f& v : mesh.positions)
+      CHECK(std::hypot(v.x, v.y) <= m.plants[static_cast<std::size_t>(s.organs[id].plant)].radius);
+  }
+}

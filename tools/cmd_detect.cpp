@@ -1,0 +1,43 @@
+// canopy detect: detection alone on a stand written by canopy stand (organs.csv + plants.csv).
+#include "geometry/atomic_file.hpp"
+#include "geometry/export.hpp"
+#include "tools/cli_common.hpp"
+#include "tools/detect_options.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+namespace canopy::cli {
+
+Command add_detect(CLI::App& root) {
+  struct Options {
+    std::string dir;
+    std::string csv;
+    DetectOptions detect;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* app = root.add_subcommand("detect", "Detect contacts in a stand folder written by canopy stand and print a table");
+  app->add_option("DIR", o->dir, "Stand folder (with organs.csv and plants.csv)")->required();
+  app->add_option("--csv", o->csv, "Also write the contacts to this file (contacts.csv columns)");
+  o->detect.add_to(*app);
+  return {app, [o]() {
+            const auto t0 = std::chrono::steady_clock::now();
+            const Stand stand = read_stand(o->dir);
+            const double read_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::string note;
+            auto backend = make_backend(o->detect.backend, note);
+            const Contacts c = backend->detect(stand, o->detect.request());
+            fmt::print("stand: {} plants, {} organs (read in {:.3f} s)\n", stand.plant_count(), stand.organ_count(), read_s);
+            print_contacts_table(c, note);
+            if (!o->csv.empty()) {
+              AtomicFile f(o->csv);
+              f.write(contacts_csv(c));
+              f.commit();
+              fmt::print("wrote {}\n", o->csv);
+            }
+            return 0;
+          }};
+}
+
+}  // namespace canopy::cli

@@ -1,0 +1,34 @@
+#pragma once
+/// The detection options shared by `canopy stand` and `canopy detect`, and the backend factory.
+#include "collision/backend.hpp"
+#include "tools/cli_common.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+
+namespace canopy::cli {
+
+struct DetectOptions {
+  std::string level = "exact";
+  double clearance = 0;
+  std::string collide = "leaflet,petiole,rachis,internode,peduncle";
+  std::string backend = "auto";
+  int threads = 0;
+
+  void add_to(CLI::App& app);
+  DetectRequest request() const;
+};
+
+/// The backend `name` asks for: cpu, cuda, or auto (CUDA where a GPU is present, else the CPU);
+/// `note` says what auto picked and why.
+std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note);
+
+/// Per-level counts as JSON: {"plant": {"between": n, "within": m, "total": t}, ...}, null for
+/// levels not computed.
+nlohmann::ordered_json counts_json(const Contacts& c);
+/// The terminal table of a detection.
+void print_contacts_table(const Contacts& c, const std::string& backend);
+
+}  // namespace canopy::cli
