@@ -3,6 +3,7 @@
 #include "geometry/layout.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/detect_options.hpp"
 #include "tools/report.hpp"
 
 #include <fmt/format.h>
@@ -22,7 +23,6 @@ struct StandOptions {
   int lod = kDefaultLod;
   std::string formats = "glb";
   bool glb_instancing = false;
-  int threads = 0;
   std::size_t max_modules = kDefaultMaxModules;
   // layout
   std::optional<int> rows, per_row;
@@ -30,6 +30,7 @@ struct StandOptions {
   bool random_rotation = false;
   std::optional<std::uint64_t> seed;
   std::string positions;
+  DetectOptions detect;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
@@ -81,8 +82,8 @@ Command add_stand(CLI::App& root) {
   app->add_flag("--glb-instancing", o->glb_instancing,
                 "Write stand.glb with one shared mesh per prototype drawn per organ (EXT_mesh_gpu_instancing): "
                 "about 20 times smaller; organ ids become a per-instance _ORGAN attribute");
-  app->add_option("--threads", o->threads, "Threads (default: all cores)")->check(CLI::NonNegativeNumber);
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation")->check(CLI::PositiveNumber);
+  o->detect.add_to(*app);
   auto* layout = app->add_option_group("layout", "Rows (any of these replaces the grammar's stand entry) or a positions file");
   layout->add_option("--rows", o->rows, "Number of rows (along +X, spaced along +Y)")->check(CLI::PositiveNumber);
   layout->add_option("--per-row", o->per_row, "Plants per row")->check(CLI::PositiveNumber);
@@ -108,6 +109,9 @@ Command add_stand(CLI::App& root) {
             if (!o->positions.empty() && (o->rows || o->per_row || o->row_spacing || o->plant_spacing || o->double_rows ||
                                           o->jitter || o->random_rotation || o->seed))
               throw std::invalid_argument("--positions cannot be combined with row options");
+            const DetectRequest dreq = o->detect.request();  // bad options fail before any work
+            std::string backend_note;
+            auto backend = make_backend(o->detect.backend, backend_note);
             prepare_output_dir(o->out);
 
             GrowRequest req;
@@ -115,7 +119,7 @@ Command add_stand(CLI::App& root) {
             for (const auto& s : o->set) req.load.overrides.push_back(parse_override(s));
             req.steps = o->steps;
             req.lod = o->lod;
-            req.threads = o->threads;
+            req.threads = o->detect.threads;
             req.max_modules = o->max_modules;
             const Grammar g = load_grammar(o->grammar, req.load);
             bool from_grammar = false;
@@ -138,6 +142,14 @@ Command add_stand(CLI::App& root) {
             StandReport rep;
             rep.timings["generate"] = seconds_since(t_grow);
 
+            // Detection (resolution comes with a later issue: the stand is exported as grown).
+            const auto t_detect = std::chrono::steady_clock::now();
+            const Contacts contacts = backend->detect(stand, dreq);
+            rep.timings["detect"] = seconds_since(t_detect);
+            rep.backend = backend->name();
+            rep.device = backend->device();
+            rep.contacts_before = counts_json(contacts);
+
             PrototypeLibrary lib;
             OutputSet files(o->out);
             const auto t_export = std::chrono::steady_clock::now();
@@ -149,6 +161,7 @@ Command add_stand(CLI::App& root) {
             if (formats.count("ply")) write_ply(stand, lib, files.open("stand.ply"));
             write_organs_csv(stand, lib, files.open("organs.csv"));
             write_plants_csv(stand, files.open("plants.csv"));
+            files.open("contacts.csv").write(contacts_csv(contacts));
             rep.timings["export"] = seconds_since(t_export);
 
             nlohmann::ordered_json config;
@@ -159,6 +172,11 @@ Command add_stand(CLI::App& root) {
             config["formats"] = std::vector<std::string>(formats.begin(), formats.end());
             config["glb_instancing"] = o->glb_instancing;
             config["max_modules"] = o->max_modules;
+            config["level"] = o->detect.level;
+            config["clearance"] = o->detect.clearance;
+            config["collide"] = o->detect.collide;
+            config["backend"] = o->detect.backend;
+            config["threads"] = o->detect.threads;
             if (!o->positions.empty()) {
               config["layout"] = {{"positions", o->positions}};
             } else {
@@ -179,6 +197,7 @@ Command add_stand(CLI::App& root) {
             write_report(stand, lib, rep, files.open("report.json"));
             files.commit_all();
             print_summary(stand, lib, rep, o->out);
+            print_contacts_table(contacts, backend_note);
             return 0;
           }};
 }

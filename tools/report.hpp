@@ -16,7 +16,7 @@ struct StandReport {
   std::string grammar;
   nlohmann::ordered_json seed;
   std::map<std::string, double> timings;  // seconds per stage
-  std::string backend = "none";           // detection has not run
+  std::string backend = "none";
   nlohmann::ordered_json device = nullptr;
   nlohmann::ordered_json contacts_before = nullptr, contacts_after = nullptr, resolution = nullptr;
 };

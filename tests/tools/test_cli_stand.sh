@@ -18,7 +18,7 @@ out=$tmp/s
 "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 \
   --steps 14 --formats glb,obj,ply -o "$out" >"$tmp/log" 2>&1
 check "stand exit" "0" "$?"
-check "files" "organs.csv plants.csv report.json stand.glb stand.mtl stand.obj stand.ply" "$(ls "$out" | tr '\n' ' ' | sed 's/ $//')"
+check "files" "contacts.csv organs.csv plants.csv report.json stand.glb stand.mtl stand.obj stand.ply" "$(ls "$out" | tr '\n' ' ' | sed 's/ $//')"
 check "plants.csv rows" "7" "$(wc -l < "$out/plants.csv" | tr -d ' ')"
 organs=$(($(wc -l < "$out/organs.csv") - 1))
 check "report organs" "$organs" "$(python3 -c "import json;print(json.load(open('$out/report.json'))['counts']['organs'])")"
@@ -46,6 +46,19 @@ if command -v assimp >/dev/null; then
 else
   check "assimp installed (run scripts/setup.sh)" "yes" "no"
 fi
+
+# Contacts: sorted, the header of DESIGN.md, and the report's exact count.
+check "contacts header" "organ_a,organ_b,plant_a,plant_b,level" "$(head -1 "$out/contacts.csv")"
+check "contacts sorted" "$(tail -n +2 "$out/contacts.csv" | sort -t, -k1,1n -k2,2n)" "$(tail -n +2 "$out/contacts.csv")"
+check "report exact" "$(($(wc -l < "$out/contacts.csv") - 1))" \
+  "$(python3 -c "import json;print(json.load(open('$out/report.json'))['contacts_before']['exact']['total'])")"
+"$canopy" detect "$out" --backend cpu --csv "$tmp/again.csv" >/dev/null 2>&1
+check "detect reads the stand back" "$(cat "$out/contacts.csv")" "$(cat "$tmp/again.csv")"
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 --steps 14 \
+  --level organ -o "$tmp/lv" >/dev/null 2>&1
+check "organ level rows" "1" "$(tail -n +2 "$tmp/lv/contacts.csv" | awk -F, '$5!="organ"' | wc -l | awk '{print ($1==0)}')"
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --steps 14 --level leaf -o "$tmp/lf" >/dev/null 2>&1
+check "leaf level rows have no organs" "0" "$(tail -n +2 "$tmp/lf/contacts.csv" | awk -F, '$1!=-1 || $2!=-1' | wc -l | tr -d ' ')"
 
 # The grammar's stand entry applies without layout options.
 "$canopy" stand "$src/grammars/sunflower.yaml" --steps 4 -o "$tmp/g" >/dev/null 2>&1
@@ -78,6 +91,7 @@ printf 'x,y,rotation,seed\n0,zero,0,1\n' > "$tmp/pos2.csv"
 expect_error "positions cell" "pos2.csv:2:3: column 'y' needs a finite number, got 'zero'" "$src/grammars/tomato.yaml" --positions "$tmp/pos2.csv"
 expect_error "too large" "needs about .* GB .* more than the .* GB available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
 expect_error "formats" "unknown format 'fbx'" "$src/grammars/tomato.yaml" --formats glb,fbx
+expect_error "collide" "unknown organ kind 'root'" "$src/grammars/tomato.yaml" --collide leaflet,root
 "$canopy" stand "$src/grammars/tomato.yaml" -o /proc/canopy-no >/dev/null 2>"$tmp/e"
 check "unwritable exit" "1" "$?"
 check "unwritable message" "1" "$(grep -c 'cannot create the output folder /proc/canopy-no' "$tmp/e")"
@@ -92,7 +106,8 @@ check "mixed plants" "1,0.5,0,90,2,sunflower.yaml,6" "$(sed -n 3p "$tmp/m/plants
 # Help lines for every option.
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
-           --double-rows --jitter --random-rotation --seed --positions --max-modules --glb-instancing; do
+           --double-rows --jitter --random-rotation --seed --positions --max-modules --glb-instancing \
+           --level --clearance --collide --backend; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
 done
 

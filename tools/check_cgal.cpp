@@ -1,0 +1,182 @@
+// An end-to-end check that does not use canopy's predicates: CGAL's exact predicates on the
+// triangles of an exported stand.obj, against the exact rows of contacts.csv. Organ pairs that
+// disagree are allowed only where the organs come within 1 um of each other (DESIGN.md: closer
+// than that either answer is allowed; the OBJ itself is rounded to 0.1 um).
+// Usage: check_cgal DIR [--collide KINDS] [--clearance D]
+#include "collision/contacts.hpp"
+#include "collision/mbvt.hpp"
+#include "geometry/export.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/intersections.h>
+#include <CGAL/squared_distance_3.h>
+#include <fmt/format.h>
+
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Triangle = K::Triangle_3;
+using Segment = K::Segment_3;
+using namespace canopy;
+
+namespace {
+
+struct OrganGeometry {
+  std::vector<Point> v;
+  std::vector<std::array<int, 3>> f;
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+};
+
+/// A triangle that may be degenerate, as CGAL objects: a triangle, up to three segments, or a point.
+bool meet(const Point& a0, const Point& a1, const Point& a2, const Point& b0, const Point& b1, const Point& b2) {
+  const Triangle ta(a0, a1, a2), tb(b0, b1, b2);
+  const bool da = ta.is_degenerate(), db = tb.is_degenerate();
+  if (!da && !db) return CGAL::do_intersect(ta, tb);
+  auto pieces = [](const Point& p, const Point& q, const Point& r) {
+    std::vector<Segment> s;
+    for (auto [x, y] : {std::pair{p, q}, std::pair{q, r}, std::pair{r, p}})
+      if (x != y) s.emplace_back(x, y);
+    return s;
+  };
+  if (da && !db) {
+    const auto s = pieces(a0, a1, a2);
+    if (s.empty()) return tb.has_on(a0);
+    for (const auto& x : s)
+      if (CGAL::do_intersect(x, tb)) return true;
+    return false;
+  }
+  if (!da && db) return meet(b0, b1, b2, a0, a1, a2);
+  const auto sa = pieces(a0, a1, a2), sb = pieces(b0, b1, b2);
+  if (sa.empty() && sb.empty()) return a0 == b0;
+  if (sa.empty()) {
+    for (const auto& y : sb)
+      if (y.has_on(a0)) return true;
+    return false;
+  }
+  if (sb.empty()) return meet(b0, b1, b2, a0, a1, a2);
+  for (const auto& x : sa)
+    for (const auto& y : sb)
+      if (CGAL::do_intersect(x, y)) return true;
+  return false;
+}
+
+bool inside_convex(const Point& p, const OrganGeometry& solid) {
+  bool inner = false;
+  for (const auto& f : solid.f) {
+    const auto o = CGAL::orientation(solid.v[f[0]], solid.v[f[1]], solid.v[f[2]], p);
+    if (o == CGAL::POSITIVE) return false;
+    inner |= o == CGAL::NEGATIVE;
+  }
+  return inner;
+}
+
+double min_distance2(const OrganGeometry& a, const OrganGeometry& b) {
+  double best = 1e300;
+  for (const auto& fa : a.f)
+    for (const auto& fb : b.f) {
+      const Triangle ta(a.v[fa[0]], a.v[fa[1]], a.v[fa[2]]), tb(b.v[fb[0]], b.v[fb[1]], b.v[fb[2]]);
+      if (ta.is_degenerate() || tb.is_degenerate()) {
+        for (int i = 0; i < 3; ++i) best = std::min(best, CGAL::to_double(CGAL::squared_distance(a.v[fa[i]], b.v[fb[0]])));
+        continue;
+      }
+      best = std::min(best, CGAL::to_double(CGAL::squared_distance(ta, tb)));
+    }
+  return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS]\n");
+    return 2;
+  }
+  const std::string dir = argv[1];
+  KindMask collide = default_collide_kinds();
+  for (int i = 2; i + 1 < argc; ++i)
+    if (!std::strcmp(argv[i], "--collide")) collide = parse_collide_kinds(argv[++i]);
+  const Stand s = read_stand(dir);
+  std::vector<OrganGeometry> organs(s.organ_count());
+  {
+    std::ifstream obj(dir + "/stand.obj");
+    std::string line;
+    std::vector<Point> all;
+    long current = -1;
+    std::vector<long> owner;
+    while (std::getline(obj, line)) {
+      if (line.rfind("g organ_", 0) == 0) current = std::stol(line.substr(8));
+      else if (line.rfind("v ", 0) == 0) {
+        double x, y, z;
+        std::sscanf(line.c_str() + 2, "%lf %lf %lf", &x, &y, &z);
+        all.emplace_back(x, y, z);
+        owner.push_back(current);
+        OrganGeometry& g = organs[static_cast<std::size_t>(current)];
+        g.v.emplace_back(x, y, z);
+        const double c[3] = {x, y, z};
+        for (int k = 0; k < 3; ++k) g.lo[k] = std::min(g.lo[k], c[k]), g.hi[k] = std::max(g.hi[k], c[k]);
+      } else if (line.rfind("f ", 0) == 0) {
+        std::istringstream in(line.substr(2));
+        std::string t;
+        std::array<int, 3> f{};
+        for (int k = 0; k < 3 && (in >> t); ++k) {
+          const long global = std::stol(t.substr(0, t.find('/'))) - 1;
+          // Local index: vertices of an organ are contiguous in the file.
+          long first = global;
+          while (first > 0 && owner[static_cast<std::size_t>(first - 1)] == current) --first;
+          f[k] = static_cast<int>(global - first);
+        }
+        organs[static_cast<std::size_t>(current)].f.push_back(f);
+      }
+    }
+  }
+  std::set<std::pair<int, int>> listed;
+  {
+    std::ifstream in(dir + "/contacts.csv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      int a, b, pa, pb;
+      char level[16];
+      if (std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &a, &b, &pa, &pb, level) == 5 && std::string(level) == "exact")
+        listed.insert({a, b});
+    }
+  }
+  std::size_t tested = 0, found = 0, near = 0, bad = 0;
+  for (std::size_t a = 0; a < organs.size(); ++a) {
+    if (!collide[static_cast<std::size_t>(s.organs[a].kind)]) continue;
+    for (std::size_t b = a + 1; b < organs.size(); ++b) {
+      if (!collide[static_cast<std::size_t>(s.organs[b].kind)]) continue;
+      if (adjacent(s.organs[a], static_cast<std::int32_t>(a), s.organs[b], static_cast<std::int32_t>(b))) continue;
+      const OrganGeometry &ga = organs[a], &gb = organs[b];
+      bool apart = false;
+      for (int k = 0; k < 3; ++k) apart |= ga.lo[k] > gb.hi[k] + 1e-6 || gb.lo[k] > ga.hi[k] + 1e-6;
+      const bool in_list = listed.count({static_cast<int>(a), static_cast<int>(b)}) > 0;
+      if (apart && !in_list) continue;
+      ++tested;
+      bool hit = false;
+      for (std::size_t i = 0; i < ga.f.size() && !hit; ++i)
+        for (std::size_t j = 0; j < gb.f.size() && !hit; ++j)
+          hit = meet(ga.v[ga.f[i][0]], ga.v[ga.f[i][1]], ga.v[ga.f[i][2]], gb.v[gb.f[j][0]], gb.v[gb.f[j][1]], gb.v[gb.f[j][2]]);
+      const auto solid = [](PrototypeKind k) { return k == PrototypeKind::cylinder || k == PrototypeKind::sphere; };
+      if (!hit && solid(s.organs[b].prototype)) hit = inside_convex(ga.v[0], gb);
+      if (!hit && solid(s.organs[a].prototype)) hit = inside_convex(gb.v[0], ga);
+      found += hit;
+      if (hit != in_list) {
+        const double d = std::sqrt(min_distance2(ga, gb));
+        if (d <= 1e-6) ++near;
+        else {
+          ++bad;
+          if (bad <= 10)
+            fmt::print("disagree: organs {} {}: CGAL {}, contacts.csv {}, distance {:.3g} m\n", a, b, hit, in_list, d);
+        }
+      }
+    }
+  }
+  fmt::print("CGAL check of {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} disagree\n", dir,
+             tested, found, listed.size(), near, bad);
+  return bad == 0 ? 0 : 1;
+}
