@@ -34,6 +34,12 @@ bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint
 
 struct Collector {
   std::vector<Contact> leaf, organ;
+  LevelCount leaves;
+  bool keep_leaves = false;
+  void leaf_pair(std::int32_t p, std::int32_t q, std::uint32_t i, std::uint32_t j) {
+    (p == q ? leaves.within : leaves.between)++;
+    if (keep_leaves) leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+  }
 };
 
 void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, Vec3f offset_ab, Collector& out,
@@ -132,13 +138,14 @@ class CpuBackend : public DetectionBackend {
       const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
       const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
       Collector& col = per[w];
+      col.keep_leaves = req.level == ContactLevel::leaf;
       for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
         const Cluster& ca = m.clusters[i];
         for (std::uint32_t j = p == q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
           const Cluster& cb = m.clusters[j];
           if (i == j) {  // within one cluster: all its pairs
             if (!has_free_pair(s, m, ca.first, ca.count)) continue;
-            col.leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+            col.leaf_pair(p, q, i, j);
             if (req.level == ContactLevel::leaf) continue;
             for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
               for (std::uint32_t y = x + 1; y < ca.first + ca.count; ++y)
@@ -147,18 +154,23 @@ class CpuBackend : public DetectionBackend {
             continue;
           }
           if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
-          col.leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+          col.leaf_pair(p, q, i, j);
           if (req.level != ContactLevel::leaf) traverse(s, m, ca, cb, offset, col);
         }
       }
     }
     std::vector<Contact> leaf, organ;
     LevelCount leaf_count, organ_count;
+    std::size_t n_leaf = 0, n_organ = 0;
+    for (const Collector& c : per) n_leaf += c.leaf.size(), n_organ += c.organ.size();
+    leaf.reserve(n_leaf);
+    organ.reserve(n_organ);
     for (const Collector& c : per) {
       leaf.insert(leaf.end(), c.leaf.begin(), c.leaf.end());
       organ.insert(organ.end(), c.organ.begin(), c.organ.end());
+      leaf_count.between += c.leaves.between;
+      leaf_count.within += c.leaves.within;
     }
-    for (const Contact& c : leaf) (c.plant_a == c.plant_b ? leaf_count.within : leaf_count.between)++;
     out.counts[1] = leaf_count;
     out.seconds[1] = now() - t;
     if (req.level == ContactLevel::leaf) {

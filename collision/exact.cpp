@@ -30,16 +30,16 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
   for (std::size_t j = 0; j < tb; ++j) {
     const Vec3f p = x.vb[mb.indices[3 * j]], q = x.vb[mb.indices[3 * j + 1]], r = x.vb[mb.indices[3 * j + 2]];
     float* bx = &x.boxes_b[6 * j];
-    bx[0] = fminf(p.x, fminf(q.x, r.x)), bx[1] = fminf(p.y, fminf(q.y, r.y)), bx[2] = fminf(p.z, fminf(q.z, r.z));
-    bx[3] = fmaxf(p.x, fmaxf(q.x, r.x)), bx[4] = fmaxf(p.y, fmaxf(q.y, r.y)), bx[5] = fmaxf(p.z, fmaxf(q.z, r.z));
+    bx[0] = min_f(p.x, min_f(q.x, r.x)), bx[1] = min_f(p.y, min_f(q.y, r.y)), bx[2] = min_f(p.z, min_f(q.z, r.z));
+    bx[3] = max_f(p.x, max_f(q.x, r.x)), bx[4] = max_f(p.y, max_f(q.y, r.y)), bx[5] = max_f(p.z, max_f(q.z, r.z));
   }
   for (std::size_t i = 0; i < ta; ++i) {
     const Vec3f tri_a[3] = {x.va[ma.indices[3 * i]], x.va[ma.indices[3 * i + 1]], x.va[ma.indices[3 * i + 2]]};
     // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
-    const double lo[3] = {fminf(tri_a[0].x, fminf(tri_a[1].x, tri_a[2].x)) - c, fminf(tri_a[0].y, fminf(tri_a[1].y, tri_a[2].y)) - c,
-                          fminf(tri_a[0].z, fminf(tri_a[1].z, tri_a[2].z)) - c};
-    const double hi[3] = {fmaxf(tri_a[0].x, fmaxf(tri_a[1].x, tri_a[2].x)) + c, fmaxf(tri_a[0].y, fmaxf(tri_a[1].y, tri_a[2].y)) + c,
-                          fmaxf(tri_a[0].z, fmaxf(tri_a[1].z, tri_a[2].z)) + c};
+    const double lo[3] = {min_f(tri_a[0].x, min_f(tri_a[1].x, tri_a[2].x)) - c, min_f(tri_a[0].y, min_f(tri_a[1].y, tri_a[2].y)) - c,
+                          min_f(tri_a[0].z, min_f(tri_a[1].z, tri_a[2].z)) - c};
+    const double hi[3] = {max_f(tri_a[0].x, max_f(tri_a[1].x, tri_a[2].x)) + c, max_f(tri_a[0].y, max_f(tri_a[1].y, tri_a[2].y)) + c,
+                          max_f(tri_a[0].z, max_f(tri_a[1].z, tri_a[2].z)) + c};
     for (std::size_t j = 0; j < tb; ++j) {
       const float* bx = &x.boxes_b[6 * j];
       if (bx[0] > hi[0] || bx[1] > hi[1] || bx[2] > hi[2] || bx[3] < lo[0] || bx[4] < lo[1] || bx[5] < lo[2]) continue;

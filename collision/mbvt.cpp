@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <map>
+#include <algorithm>
 #include <stdexcept>
 
 namespace canopy {
@@ -35,10 +35,10 @@ void fit_plant(Mbvt& m, PlantBound& pb) {
     for (int i = 0; i < 4; ++i) {
       const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
       const float x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
-      r2 = fmaxf(r2, x * x + y * y);
+      r2 = max_f(r2, x * x + y * y);
     }
-    zlo = any ? fminf(zlo, l.lo[2]) : l.lo[2];
-    zhi = any ? fmaxf(zhi, l.hi[2]) : l.hi[2];
+    zlo = any ? min_f(zlo, l.lo[2]) : l.lo[2];
+    zhi = any ? max_f(zhi, l.hi[2]) : l.hi[2];
     any = true;
   }
   const float r = sqrtf(r2);
@@ -83,100 +83,153 @@ Vec3f plant_offset(const Stand& s, std::int32_t a, std::int32_t b) {
   return {static_cast<float>(pb.x - pa.x), static_cast<float>(pb.y - pa.y), 0.0f};
 }
 
+namespace {
+
+/// One plant's clusters, organs and tree nodes, with indices local to the plant.
+struct PlantPart {
+  std::vector<Cluster> clusters;
+  std::vector<std::uint32_t> organs;
+  std::vector<LcdNode> nodes;
+};
+
+PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
+  PlantPart part;
+  const PlantRecord& pr = s.plants[p];
+  const MbvtConfig& config = m.config;
+  // One group per compound leaf (in order of first organ), then the stem organs in runs.
+  std::vector<std::int32_t> group_of_leaf(pr.leaf_count, -1);
+  std::vector<std::vector<std::uint32_t>> groups;
+  std::vector<std::int32_t> group_leaf;
+  std::vector<std::uint32_t> stem;
+  for (std::uint32_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
+    if (!m.takes_part[id]) continue;
+    const std::int32_t leaf = s.organs[id].leaf;
+    const std::int64_t local = static_cast<std::int64_t>(leaf) - pr.first_leaf;
+    if (leaf < 0 || local < 0 || local >= static_cast<std::int64_t>(pr.leaf_count)) {
+      stem.push_back(id);
+      continue;
+    }
+    std::int32_t& g = group_of_leaf[static_cast<std::size_t>(local)];
+    if (g < 0) {
+      g = static_cast<std::int32_t>(groups.size());
+      groups.emplace_back();
+      group_leaf.push_back(leaf);
+    }
+    groups[static_cast<std::size_t>(g)].push_back(id);
+  }
+  const auto chunk = static_cast<std::size_t>(config.stem_cluster);
+  for (std::size_t i = 0; i < stem.size(); i += chunk) {
+    groups.emplace_back(stem.begin() + static_cast<std::ptrdiff_t>(i),
+                        stem.begin() + static_cast<std::ptrdiff_t>(std::min(stem.size(), i + chunk)));
+    group_leaf.push_back(-1);
+  }
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    Cluster c;
+    c.plant = static_cast<std::int32_t>(p);
+    c.leaf = group_leaf[g];
+    c.first = static_cast<std::uint32_t>(part.organs.size());
+    c.count = static_cast<std::uint32_t>(groups[g].size());
+    part.organs.insert(part.organs.end(), groups[g].begin(), groups[g].end());
+    // The cluster's horizontal axis: from its first organ towards the mean of its organs.
+    float mx = 0, my = 0;
+    for (std::uint32_t id : groups[g]) mx += m.obbs[id].centre.x, my += m.obbs[id].centre.y;
+    mx = mx / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.x;
+    my = my / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.y;
+    const float len = sqrtf(mx * mx + my * my);
+    const float ax = len > 1e-6f ? mx / len : 1.0f, ay = len > 1e-6f ? my / len : 0.0f;
+    // Tree leaves over chunks in string order, then parents pairing neighbours level by level.
+    c.first_node = static_cast<std::uint32_t>(part.nodes.size());
+    std::vector<std::uint32_t> level;
+    for (std::uint32_t k = 0; k < c.count; k += static_cast<std::uint32_t>(config.leaf_chunk)) {
+      LcdNode node;
+      node.box.ax = ax, node.box.ay = ay;
+      node.first = c.first + k;
+      node.count = std::min<std::uint32_t>(static_cast<std::uint32_t>(config.leaf_chunk), c.count - k);
+      level.push_back(static_cast<std::uint32_t>(part.nodes.size()));
+      part.nodes.push_back(node);
+    }
+    while (level.size() > 1) {
+      std::vector<std::uint32_t> up;
+      for (std::size_t i = 0; i < level.size(); i += 2) {
+        if (i + 1 == level.size()) {
+          up.push_back(level[i]);
+          continue;
+        }
+        LcdNode node;
+        node.box.ax = ax, node.box.ay = ay;
+        node.left = static_cast<std::int32_t>(level[i]);
+        node.right = static_cast<std::int32_t>(level[i + 1]);
+        node.first = part.nodes[level[i]].first;
+        node.count = part.nodes[level[i]].count + part.nodes[level[i + 1]].count;
+        up.push_back(static_cast<std::uint32_t>(part.nodes.size()));
+        part.nodes.push_back(node);
+      }
+      level = up;
+    }
+    c.root = level[0];
+    c.node_count = static_cast<std::uint32_t>(part.nodes.size()) - c.first_node;
+    part.clusters.push_back(c);
+  }
+  return part;
+}
+
+}  // namespace
+
 Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config) {
   Mbvt m;
   m.config = config;
   const std::size_t n = s.organ_count();
   m.obbs.resize(n);
   m.takes_part.resize(n);
+  const PrototypeMesh* meshes[4][kMaxLod + 1] = {};
+  for (const OrganRecord& r : s.organs) {
+    const PrototypeMesh*& slot = meshes[static_cast<int>(r.prototype)][r.lod];
+    if (!slot) slot = &lib.get(r.prototype, r.lod);
+  }
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const OrganRecord& r = s.organs[i];
-    m.obbs[i] = make_obb(s.transforms[i], lib.get(r.prototype, r.lod).box, config.clearance);
+    m.obbs[i] = make_obb(s.transforms[i], meshes[static_cast<int>(r.prototype)][r.lod]->box, config.clearance);
     m.takes_part[i] = config.collide[static_cast<std::size_t>(r.kind)] ? 1 : 0;
   }
-  m.plants.resize(s.plant_count());
-  for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    const PlantRecord& pr = s.plants[p];
-    PlantBound& pb = m.plants[p];
-    pb.first_cluster = static_cast<std::uint32_t>(m.clusters.size());
-    // Group this plant's organs: one group per compound leaf (in order of first organ), then the
-    // stem organs in runs of config.stem_cluster.
-    std::map<std::int32_t, std::size_t> group_of_leaf;
-    std::vector<std::vector<std::uint32_t>> groups;
-    std::vector<std::int32_t> group_leaf;
-    std::vector<std::uint32_t> stem;
-    for (std::uint32_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
-      if (!m.takes_part[id]) continue;
-      const std::int32_t leaf = s.organs[id].leaf;
-      if (leaf < 0) {
-        stem.push_back(id);
-        continue;
-      }
-      auto it = group_of_leaf.find(leaf);
-      if (it == group_of_leaf.end()) {
-        it = group_of_leaf.emplace(leaf, groups.size()).first;
-        groups.emplace_back();
-        group_leaf.push_back(leaf);
-      }
-      groups[it->second].push_back(id);
-    }
-    for (std::size_t i = 0; i < stem.size(); i += static_cast<std::size_t>(config.stem_cluster)) {
-      groups.emplace_back(stem.begin() + static_cast<std::ptrdiff_t>(i),
-                          stem.begin() + static_cast<std::ptrdiff_t>(std::min(stem.size(), i + static_cast<std::size_t>(config.stem_cluster))));
-      group_leaf.push_back(-1);
-    }
-    for (std::size_t g = 0; g < groups.size(); ++g) {
-      Cluster c;
-      c.plant = static_cast<std::int32_t>(p);
-      c.leaf = group_leaf[g];
-      c.first = static_cast<std::uint32_t>(m.cluster_organs.size());
-      c.count = static_cast<std::uint32_t>(groups[g].size());
-      m.cluster_organs.insert(m.cluster_organs.end(), groups[g].begin(), groups[g].end());
-      // The cluster's horizontal axis: from its first organ towards the mean of its organs.
-      float mx = 0, my = 0;
-      for (std::uint32_t id : groups[g]) mx += m.obbs[id].centre.x, my += m.obbs[id].centre.y;
-      mx = mx / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.x;
-      my = my / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.y;
-      const float len = sqrtf(mx * mx + my * my);
-      const float ax = len > 1e-6f ? mx / len : 1.0f, ay = len > 1e-6f ? my / len : 0.0f;
-      // Tree leaves over chunks in string order, then parents pairing neighbours level by level.
-      c.first_node = static_cast<std::uint32_t>(m.nodes.size());
-      std::vector<std::uint32_t> level;
-      for (std::uint32_t k = 0; k < c.count; k += static_cast<std::uint32_t>(config.leaf_chunk)) {
-        LcdNode node;
-        node.box.ax = ax, node.box.ay = ay;
-        node.first = c.first + k;
-        node.count = std::min<std::uint32_t>(static_cast<std::uint32_t>(config.leaf_chunk), c.count - k);
-        level.push_back(static_cast<std::uint32_t>(m.nodes.size()));
-        m.nodes.push_back(node);
-      }
-      while (level.size() > 1) {
-        std::vector<std::uint32_t> up;
-        for (std::size_t i = 0; i < level.size(); i += 2) {
-          if (i + 1 == level.size()) {
-            up.push_back(level[i]);
-            continue;
-          }
-          LcdNode node;
-          node.box.ax = ax, node.box.ay = ay;
-          node.left = static_cast<std::int32_t>(level[i]);
-          node.right = static_cast<std::int32_t>(level[i + 1]);
-          node.first = m.nodes[level[i]].first;
-          node.count = m.nodes[level[i]].count + m.nodes[level[i + 1]].count;
-          up.push_back(static_cast<std::uint32_t>(m.nodes.size()));
-          m.nodes.push_back(node);
-        }
-        level = up;
-      }
-      c.root = level[0];
-      c.node_count = static_cast<std::uint32_t>(m.nodes.size()) - c.first_node;
-      m.clusters.push_back(c);
-      fit_cluster(m, m.clusters.back());
-    }
-    pb.cluster_count = static_cast<std::uint32_t>(m.clusters.size()) - pb.first_cluster;
-    fit_plant(m, pb);
-    m.max_radius = std::max(m.max_radius, pb.radius);
+  // Plants in parallel, then placed one after another (local indices moved to global ones).
+  const std::size_t np = s.plant_count();
+  std::vector<PlantPart> parts(np);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t p = 0; p < np; ++p) parts[p] = build_plant(s, m, p);
+  std::vector<std::size_t> c0(np + 1, 0), o0(np + 1, 0), n0(np + 1, 0);
+  for (std::size_t p = 0; p < np; ++p) {
+    c0[p + 1] = c0[p] + parts[p].clusters.size();
+    o0[p + 1] = o0[p] + parts[p].organs.size();
+    n0[p + 1] = n0[p] + parts[p].nodes.size();
   }
+  m.clusters.resize(c0[np]);
+  m.cluster_organs.resize(o0[np]);
+  m.nodes.resize(n0[np]);
+  m.plants.resize(np);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t p = 0; p < np; ++p) {
+    const PlantPart& part = parts[p];
+    const auto oo = static_cast<std::uint32_t>(o0[p]), no = static_cast<std::uint32_t>(n0[p]);
+    std::copy(part.organs.begin(), part.organs.end(), m.cluster_organs.begin() + static_cast<std::ptrdiff_t>(o0[p]));
+    for (std::size_t k = 0; k < part.nodes.size(); ++k) {
+      LcdNode node = part.nodes[k];
+      node.first += oo;
+      if (node.left >= 0) node.left += static_cast<std::int32_t>(no), node.right += static_cast<std::int32_t>(no);
+      m.nodes[n0[p] + k] = node;
+    }
+    for (std::size_t k = 0; k < part.clusters.size(); ++k) {
+      Cluster c = part.clusters[k];
+      c.first += oo, c.first_node += no, c.root += no;
+      m.clusters[c0[p] + k] = c;
+      fit_cluster(m, c);
+    }
+    PlantBound& pb = m.plants[p];
+    pb.first_cluster = static_cast<std::uint32_t>(c0[p]);
+    pb.cluster_count = static_cast<std::uint32_t>(part.clusters.size());
+    fit_plant(m, pb);
+  }
+  for (const PlantBound& pb : m.plants) m.max_radius = std::max(m.max_radius, pb.radius);
   return m;
 }
 

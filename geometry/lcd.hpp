@@ -26,8 +26,8 @@ CANOPY_HD inline void lcd_add(Lcd& l, Vec3f p) {
     return;
   }
   for (int k = 0; k < 3; ++k) {
-    l.lo[k] = fminf(l.lo[k], q[k]);
-    l.hi[k] = fmaxf(l.hi[k], q[k]);
+    l.lo[k] = min_f(l.lo[k], q[k]);
+    l.hi[k] = max_f(l.hi[k], q[k]);
   }
 }
 
@@ -46,8 +46,8 @@ CANOPY_HD inline void lcd_merge(Lcd& l, const Lcd& o) {
     return;
   }
   for (int k = 0; k < 3; ++k) {
-    l.lo[k] = fminf(l.lo[k], o.lo[k]);
-    l.hi[k] = fmaxf(l.hi[k], o.hi[k]);
+    l.lo[k] = min_f(l.lo[k], o.lo[k]);
+    l.hi[k] = max_f(l.hi[k], o.hi[k]);
   }
 }
 

@@ -6,6 +6,11 @@
 
 namespace canopy {
 
+/// min and max that compile to single instructions (fminf/fmaxf must honour NaN and become
+/// library calls); arguments here are never NaN.
+CANOPY_HD inline float min_f(float a, float b) { return a < b ? a : b; }
+CANOPY_HD inline float max_f(float a, float b) { return a > b ? a : b; }
+
 struct Vec3f {
   float x = 0, y = 0, z = 0;
 };
