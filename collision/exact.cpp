@@ -3,6 +3,7 @@
 #include "collision/mbvt.hpp"
 #include "geometry/triangle_test.hpp"
 
+#include <algorithm>
 #include <cassert>
 
 namespace canopy {
@@ -26,25 +27,50 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
   organ_vertices(s, mb, b, ra.plant, x.vb);
   const std::size_t ta = ma.triangle_count(), tb = mb.triangle_count();
   const double c = clearance;
-  x.boxes_b.resize(6 * tb);
-  for (std::size_t j = 0; j < tb; ++j) {
-    const Vec3f p = x.vb[mb.indices[3 * j]], q = x.vb[mb.indices[3 * j + 1]], r = x.vb[mb.indices[3 * j + 2]];
-    float* bx = &x.boxes_b[6 * j];
+  // Boxes of both organs' triangles; only triangles inside the other organ's (widened) box can
+  // meet anything of it.
+  const auto tri_box = [](const std::vector<Vec3f>& v, const std::vector<std::uint32_t>& idx, std::size_t t, float* bx) {
+    const Vec3f p = v[idx[3 * t]], q = v[idx[3 * t + 1]], r = v[idx[3 * t + 2]];
     bx[0] = min_f(p.x, min_f(q.x, r.x)), bx[1] = min_f(p.y, min_f(q.y, r.y)), bx[2] = min_f(p.z, min_f(q.z, r.z));
     bx[3] = max_f(p.x, max_f(q.x, r.x)), bx[4] = max_f(p.y, max_f(q.y, r.y)), bx[5] = max_f(p.z, max_f(q.z, r.z));
+  };
+  const auto organ_box = [](const std::vector<Vec3f>& v, double* bx, double widen) {
+    bx[0] = bx[1] = bx[2] = 1e300, bx[3] = bx[4] = bx[5] = -1e300;
+    for (const Vec3f& p : v) {
+      bx[0] = std::min<double>(bx[0], p.x), bx[1] = std::min<double>(bx[1], p.y), bx[2] = std::min<double>(bx[2], p.z);
+      bx[3] = std::max<double>(bx[3], p.x), bx[4] = std::max<double>(bx[4], p.y), bx[5] = std::max<double>(bx[5], p.z);
+    }
+    for (int k = 0; k < 3; ++k) bx[k] -= widen, bx[k + 3] += widen;
+  };
+  const auto meets = [](const float* t, const double* o) {
+    return !(t[0] > o[3] || t[1] > o[4] || t[2] > o[5] || t[3] < o[0] || t[4] < o[1] || t[5] < o[2]);
+  };
+  double box_a[6], box_b[6];
+  organ_box(x.va, box_a, c);
+  organ_box(x.vb, box_b, c);
+  x.boxes_b.clear();
+  x.near_b.clear();
+  float bx[6];
+  for (std::size_t j = 0; j < tb; ++j) {
+    tri_box(x.vb, mb.indices, j, bx);
+    if (!meets(bx, box_a)) continue;
+    x.near_b.push_back(static_cast<std::uint32_t>(j));
+    x.boxes_b.insert(x.boxes_b.end(), bx, bx + 6);
   }
-  for (std::size_t i = 0; i < ta; ++i) {
-    const Vec3f tri_a[3] = {x.va[ma.indices[3 * i]], x.va[ma.indices[3 * i + 1]], x.va[ma.indices[3 * i + 2]]};
-    // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
-    const double lo[3] = {min_f(tri_a[0].x, min_f(tri_a[1].x, tri_a[2].x)) - c, min_f(tri_a[0].y, min_f(tri_a[1].y, tri_a[2].y)) - c,
-                          min_f(tri_a[0].z, min_f(tri_a[1].z, tri_a[2].z)) - c};
-    const double hi[3] = {max_f(tri_a[0].x, max_f(tri_a[1].x, tri_a[2].x)) + c, max_f(tri_a[0].y, max_f(tri_a[1].y, tri_a[2].y)) + c,
-                          max_f(tri_a[0].z, max_f(tri_a[1].z, tri_a[2].z)) + c};
-    for (std::size_t j = 0; j < tb; ++j) {
-      const float* bx = &x.boxes_b[6 * j];
-      if (bx[0] > hi[0] || bx[1] > hi[1] || bx[2] > hi[2] || bx[3] < lo[0] || bx[4] < lo[1] || bx[5] < lo[2]) continue;
-      const Vec3f tri_b[3] = {x.vb[mb.indices[3 * j]], x.vb[mb.indices[3 * j + 1]], x.vb[mb.indices[3 * j + 2]]};
-      if (c > 0 ? triangles_within(tri_a, tri_b, c) : triangles_intersect(tri_a, tri_b)) return true;
+  if (!x.near_b.empty()) {
+    for (std::size_t i = 0; i < ta; ++i) {
+      tri_box(x.va, ma.indices, i, bx);
+      if (!meets(bx, box_b)) continue;
+      const Vec3f tri_a[3] = {x.va[ma.indices[3 * i]], x.va[ma.indices[3 * i + 1]], x.va[ma.indices[3 * i + 2]]};
+      // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
+      const double lo[3] = {bx[0] - c, bx[1] - c, bx[2] - c}, hi[3] = {bx[3] + c, bx[4] + c, bx[5] + c};
+      for (std::size_t k = 0; k < x.near_b.size(); ++k) {
+        const float* b6 = &x.boxes_b[6 * k];
+        if (b6[0] > hi[0] || b6[1] > hi[1] || b6[2] > hi[2] || b6[3] < lo[0] || b6[4] < lo[1] || b6[5] < lo[2]) continue;
+        const std::uint32_t j = x.near_b[k];
+        const Vec3f tri_b[3] = {x.vb[mb.indices[3 * j]], x.vb[mb.indices[3 * j + 1]], x.vb[mb.indices[3 * j + 2]]};
+        if (c > 0 ? triangles_within(tri_a, tri_b, c) : triangles_intersect(tri_a, tri_b)) return true;
+      }
     }
   }
   // No surfaces meet: one organ may still lie wholly inside the other's solid.

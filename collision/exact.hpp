@@ -12,7 +12,8 @@ namespace canopy {
 
 struct ExactScratch {
   std::vector<Vec3f> va, vb;
-  std::vector<float> boxes_b;  // 6 per triangle of b
+  std::vector<float> boxes_b;        // 6 per triangle of b near a
+  std::vector<std::uint32_t> near_b;  // those triangles
 };
 
 /// Whether organs a < b touch (or come within `clearance`). Same answer on both backends.

@@ -13,13 +13,22 @@ struct Obb {
   Vec3f centre;
   Vec3f axis[3];    // orthonormal
   float half[3];    // half extents along the axes
+  float radius;     // of the bounding sphere about the centre: a quick rejection first
 };
+
+struct Obb;
+CANOPY_HD inline void set_radius(Obb& o);
 
 /// Relative and absolute slack added to every bound so that float rounding never lets a vertex
 /// of the organ's mesh (computed with the same transform) fall outside it. Bounds only: exact
 /// answers never use it.
 inline constexpr float kBoundRelSlack = 4e-6f;
 inline constexpr float kBoundAbsSlack = 1e-7f;
+
+/// Sets the bounding-sphere radius from the half extents (after any change to them).
+CANOPY_HD inline void set_radius(Obb& o) {
+  o.radius = sqrtf(o.half[0] * o.half[0] + o.half[1] * o.half[1] + o.half[2] * o.half[2]) * (1 + kBoundRelSlack);
+}
 
 CANOPY_HD inline Vec3f unit_or_zero(Vec3f v, float& len) {
   len = sqrtf(dot(v, v));
@@ -53,6 +62,7 @@ CANOPY_HD inline Obb make_obb(const Affine3f& m, const Box3f& local, float infla
   float size = fabsf(o.centre.x) + fabsf(o.centre.y) + fabsf(o.centre.z);
   for (int k = 0; k < 3; ++k) size += h[k] * len[k];
   for (int k = 0; k < 3; ++k) o.half[k] = h[k] * len[k] + inflate + kBoundRelSlack * size + kBoundAbsSlack;
+  set_radius(o);
   return o;
 }
 
@@ -71,6 +81,9 @@ CANOPY_HD inline void obb_corners(const Obb& o, Vec3f out[8]) {
 /// reports separated boxes as separated unless they are.
 CANOPY_HD inline bool obb_overlap(const Obb& a, const Obb& b, Vec3f offset) {
   constexpr float kEps = 1e-6f;
+  const Vec3f gap = b.centre + offset - a.centre;
+  const float reach = a.radius + b.radius;
+  if (dot(gap, gap) > reach * reach * (1 + 4 * kBoundRelSlack)) return false;  // bounding spheres apart
   float r[3][3], ar[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {

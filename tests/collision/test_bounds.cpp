@@ -43,6 +43,7 @@ Obb random_obb(std::mt19937& g, bool axis_aligned) {
   o.centre = {u(g), u(g), u(g)};
   o.axis[0] = x, o.axis[1] = y, o.axis[2] = cross(x, y);
   for (float& e : o.half) e = h(g);
+  set_radius(o);
   return o;
 }
 

@@ -166,6 +166,7 @@ TEST_CASE("OBBs with parallel axes: the vanished cross-product axes do not matte
   for (Obb* o : {&a, &b}) {
     o->axis[0] = {1, 0, 0}, o->axis[1] = {0, 1, 0}, o->axis[2] = {0, 0, 1};
     o->half[0] = o->half[1] = o->half[2] = 0.5f;
+    set_radius(*o);
   }
   a.centre = {0, 0, 0};
   b.centre = {1.0f, 0, 0};  // faces touching

@@ -1,0 +1,170 @@
+// Detection speed against error on the default stand (Ding et al. 2019 Tables 2-4): per level,
+// the time to reach it (bounds built included), its pairs, and false positives against the
+// exact level (organ pairs the level could not rule out that do not touch); the AABB-tree
+// baseline's build / test / update beside the MBVT's (Table 3); and FCL side by side at the
+// exact level, one thread against one thread. Prints tables, writes CSV.
+// Usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--csv FILE] [--repeats R]
+#include "collision/aabb_baseline.hpp"
+#include "collision/backend.hpp"
+#include "lsystem/grow.hpp"
+#include "tools/fcl/fcl_reference.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <numeric>
+
+using namespace canopy;
+
+namespace {
+
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+template <typename F>
+double median_time(int repeats, F&& f) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    t.push_back(since(t0));
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+Stand default_stand(int n) {
+  GrowRequest req;
+  req.grammar = "grammars/tomato.yaml";
+  RowLayout l;
+  l.per_row = std::min(n, 100);
+  l.rows = (n + l.per_row - 1) / l.per_row;
+  l.random_rotation = true;
+  l.jitter = 0.02;
+  req.plants = row_layout(l);
+  req.plants.resize(static_cast<std::size_t>(n));
+  return grow_stand(req);
+}
+
+/// Organ pairs a plant- or leaf-level row leaves open: every pair of organs taking part under
+/// it, adjacent pairs left out.
+std::size_t implied_pairs(const Stand& s, const Mbvt& m, const std::vector<Contact>& rows, bool leaf) {
+  std::size_t total = 0;
+  std::vector<std::uint32_t> a, b;
+  const auto organs_of_plant = [&](std::int32_t p, std::vector<std::uint32_t>& out) {
+    out.clear();
+    const PlantBound& pb = m.plants[static_cast<std::size_t>(p)];
+    for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c)
+      for (std::uint32_t k = m.clusters[c].first; k < m.clusters[c].first + m.clusters[c].count; ++k) out.push_back(m.cluster_organs[k]);
+  };
+  const auto organs_of_cluster = [&](std::int32_t c, std::vector<std::uint32_t>& out) {
+    const Cluster& cl = m.clusters[static_cast<std::size_t>(c)];
+    out.assign(m.cluster_organs.begin() + cl.first, m.cluster_organs.begin() + cl.first + cl.count);
+  };
+  for (const Contact& r : rows) {
+    if (leaf) organs_of_cluster(r.cluster_a, a), organs_of_cluster(r.cluster_b, b);
+    else organs_of_plant(r.plant_a, a), organs_of_plant(r.plant_b, b);
+    const bool same = leaf ? r.cluster_a == r.cluster_b : r.plant_a == r.plant_b;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t j = same ? i + 1 : 0; j < b.size(); ++j) {
+        const auto x = static_cast<std::int32_t>(a[i]), y = static_cast<std::int32_t>(b[j]);
+        total += !adjacent(s.organs[a[i]], x, s.organs[b[j]], y);
+      }
+  }
+  return total;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes{200, 400, 600, 800, 1000, 2000, 10000};
+  int fcl_max = 1000, repeats = 3;
+  std::string csv = "bench/results/detect_cpu.csv";
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else if (!std::strcmp(argv[i], "--fcl-max") && i + 1 < argc) fcl_max = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
+      sizes.clear();
+      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+    }
+  }
+  std::FILE* out = std::fopen(csv.c_str(), "w");
+  if (!out) return 1;
+  fmt::print(out, "plants,organs_per_plant,triangles_per_plant,threads,method,stage,seconds,pairs,false_positives,missed\n");
+  const int all = omp_get_max_threads();
+  auto cpu = make_cpu_backend();
+  fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9} {:>10} {:>12} {:>8}\n", "plants", "thr", "method", "stage", "seconds", "pairs",
+             "false pos.", "missed");
+  for (int n : sizes) {
+    const Stand s = default_stand(n);
+    PrototypeLibrary lib;
+    std::size_t tris = 0;
+    for (const OrganRecord& r : s.organs) tris += lib.get(r.prototype, r.lod).triangle_count();
+    const double opp = static_cast<double>(s.organ_count()) / n, tpp = static_cast<double>(tris) / n;
+    // The exact answer and the implied pairs of each level (one thread, outside the timings).
+    DetectRequest req;
+    const std::vector<Contact> exact = cpu->detect(s, req).pairs;
+    const Mbvt m = build_mbvt(s, lib, MbvtConfig{});
+    std::array<std::size_t, 4> pairs{}, fp{};
+    for (ContactLevel level : {ContactLevel::plant, ContactLevel::leaf, ContactLevel::organ}) {
+      req.level = level;
+      const auto rows = cpu->detect(s, req).pairs;
+      const auto l = static_cast<std::size_t>(level);
+      pairs[l] = rows.size();
+      fp[l] = (level == ContactLevel::organ ? rows.size() : implied_pairs(s, m, rows, level == ContactLevel::leaf)) - exact.size();
+    }
+    pairs[3] = exact.size();
+    for (int threads : {1, all}) {
+      if (threads == all && all == 1) continue;
+      omp_set_num_threads(threads);
+      const auto row = [&](const char* method, const std::string& stage, double sec, std::size_t p, long long f, long long missed) {
+        fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10} {:>12} {:>8}\n", n, threads, method, stage, sec, p, f, missed);
+        fmt::print(out, "{},{:.1f},{:.0f},{},{},{},{:.6f},{},{},{}\n", n, opp, tpp, threads, method, stage, sec, p, f, missed);
+      };
+      for (ContactLevel level : {ContactLevel::plant, ContactLevel::leaf, ContactLevel::organ, ContactLevel::exact}) {
+        DetectRequest r;
+        r.level = level;
+        r.threads = threads;
+        const double t = median_time(repeats, [&] { cpu->detect(s, r); });
+        const auto l = static_cast<std::size_t>(level);
+        row("mbvt", std::string("to ") + std::string(name_of(level)), t, pairs[l], static_cast<long long>(fp[l]), 0);
+      }
+      // Table 3: build, test (organ level), update.
+      Mbvt mb;
+      const double build = median_time(repeats, [&] { mb = build_mbvt(s, lib, MbvtConfig{}); });
+      std::vector<std::uint32_t> everything(s.organ_count());
+      std::iota(everything.begin(), everything.end(), 0u);
+      const double refit = median_time(repeats, [&] { refit_mbvt(mb, s, lib, everything); });
+      row("mbvt", "build", build, 0, -1, -1);
+      row("mbvt", "update(refit)", refit, 0, -1, -1);
+      AabbTree tree;
+      const double abuild = median_time(repeats, [&] { tree.build(s, lib, default_collide_kinds()); });
+      std::vector<Contact> boxes;
+      const double atest = median_time(repeats, [&] { boxes = tree.overlapping_pairs(s); });
+      row("aabb-tree", "build", abuild, 0, -1, -1);
+      row("aabb-tree", "test(organ)", atest, boxes.size(), static_cast<long long>(boxes.size() - exact.size()), 0);
+      row("aabb-tree", "update(rebuild)", abuild, 0, -1, -1);
+    }
+    if (n <= fcl_max) {
+      const FclResult f = fcl_collide(s, lib, default_collide_kinds());
+      std::vector<std::pair<int, int>> ours;
+      for (const Contact& c : exact) ours.emplace_back(c.organ_a, c.organ_b);
+      std::vector<std::pair<int, int>> only_ours, only_fcl;
+      std::set_difference(ours.begin(), ours.end(), f.pairs.begin(), f.pairs.end(), std::back_inserter(only_ours));
+      std::set_difference(f.pairs.begin(), f.pairs.end(), ours.begin(), ours.end(), std::back_inserter(only_fcl));
+      fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10}   build {:.3f} s; only canopy {}, only FCL {}\n", n, 1, "fcl",
+                 "to exact", f.detect_s, f.pairs.size(), f.build_s, only_ours.size(), only_fcl.size());
+      fmt::print(out, "{},{:.1f},{:.0f},1,fcl,build,{:.6f},0,-1,-1\n", n, opp, tpp, f.build_s);
+      fmt::print(out, "{},{:.1f},{:.0f},1,fcl,to exact,{:.6f},{},{},{}\n", n, opp, tpp, f.detect_s, f.pairs.size(),
+                 only_fcl.size(), only_ours.size());
+    }
+  }
+  std::fclose(out);
+  fmt::print("wrote {}\n", csv);
+  return 0;
+}
