@@ -27,8 +27,8 @@ KindMask parse_collide_kinds(const std::string& list);
 struct MbvtConfig {
   KindMask collide = default_collide_kinds();
   float clearance = 0;     // every bound is inflated by it
-  int leaf_chunk = 3;      // organs per LCD tree leaf
-  int stem_cluster = 6;    // organs per cluster outside compound leaves
+  int leaf_chunk = 4;      // organs per LCD tree leaf
+  int stem_cluster = 8;    // organs per cluster outside compound leaves
 };
 
 struct LcdNode {
