@@ -3,6 +3,7 @@
 /// levels; plant pairs and cluster (compound-leaf) pairs, with organ ids -1, at the plant and
 /// leaf levels. Lists are sorted, so they are the same on every run, thread count and backend.
 #include "collision/contact_level.hpp"
+#include "geometry/hd.hpp"
 #include "geometry/stand.hpp"
 
 #include <algorithm>
@@ -40,7 +41,7 @@ struct Contacts {
 
 /// Organs joined in the structure tree (parent and child, or two children of one parent, roots
 /// of one plant included) touch by construction and are never a contact (DESIGN.md "Adjacency").
-inline bool adjacent(const OrganRecord& a, std::int32_t ia, const OrganRecord& b, std::int32_t ib) {
+CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const OrganRecord& b, std::int32_t ib) {
   return a.plant == b.plant && (a.parent == ib || b.parent == ia || a.parent == b.parent);
 }
 

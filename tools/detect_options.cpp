@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #ifdef CANOPY_HAVE_CUDA
+#include "cuda/detect_cuda.hpp"
 #include "cuda/device.hpp"
 #endif
 
@@ -35,13 +36,16 @@ std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::str
   }
 #ifdef CANOPY_HAVE_CUDA
   const auto report = cuda::query_devices();
-  const std::string gpu = report.devices.empty() ? report.unavailable_reason : report.devices[0].name;
+  if (!report.devices.empty()) {
+    note = fmt::format("cuda on {} ({})", report.devices[0].name, name == "cuda" ? "asked for" : "auto: a GPU is present");
+    return cuda::make_cuda_backend(0);
+  }
+  const std::string why = report.unavailable_reason;
 #else
-  const std::string gpu = "this build has no CUDA backend";
+  const std::string why = "this build has no CUDA backend";
 #endif
-  if (name == "cuda")
-    throw std::invalid_argument(fmt::format("--backend cuda: CUDA detection is not available yet ({}); use --backend cpu", gpu));
-  note = fmt::format("cpu (auto: CUDA detection not available yet; {})", gpu);
+  if (name == "cuda") throw std::invalid_argument(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
+  note = fmt::format("cpu (auto: no usable GPU: {})", why);
   return make_cpu_backend();
 }
 

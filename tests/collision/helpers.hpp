@@ -7,11 +7,17 @@
 
 #include <doctest/doctest.h>
 
+#include <cstdlib>
 #include <random>
 
 namespace canopy::test {
 
-inline std::string source(const std::string& relative) { return std::string(CANOPY_SOURCE_DIR) + "/" + relative; }
+/// A file of the source tree; CANOPY_SOURCE_DIR in the environment overrides the build's path
+/// (tests run on another machine, from a copy of the tree).
+inline std::string source(const std::string& relative) {
+  if (const char* e = std::getenv("CANOPY_SOURCE_DIR")) return std::string(e) + "/" + relative;
+  return std::string(CANOPY_SOURCE_DIR) + "/" + relative;
+}
 
 /// A seeded random small stand: 2-20 plants of the tomato at a random age, rows or a cluster
 /// of random positions (dense), random rotations, sometimes two plants on one spot.

@@ -1,0 +1,193 @@
+#include "cuda/detect_cuda.hpp"
+
+#include "collision/broad_phase.hpp"
+#include "cuda/detect_kernels.hpp"
+#include "cuda/device.hpp"
+#include "cuda/device_buffer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+
+namespace canopy::cuda {
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+/// Runs `launch` into a buffer of `capacity` items; when more were found, grows the buffer to fit
+/// and runs again. Returns the item count.
+template <typename T, typename Launch>
+std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t capacity, Launch&& launch) {
+  for (;;) {
+    out.resize(std::max<std::size_t>(capacity, 1));
+    const Counters zero{};
+    CANOPY_CUDA_CHECK(cudaMemcpy(counters.get(), &zero, sizeof zero, cudaMemcpyHostToDevice));
+    launch(out.get(), static_cast<unsigned long long>(out.size()));
+    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+    CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters.get(), sizeof host, cudaMemcpyDeviceToHost));
+    if (host.appended <= out.size()) return static_cast<std::size_t>(host.appended);
+    capacity = static_cast<std::size_t>(host.appended);
+  }
+}
+
+class CudaBackend : public DetectionBackend {
+ public:
+  explicit CudaBackend(int device) : device_(device) {
+    const DeviceReport r = query_devices();
+    if (device < 0 || static_cast<std::size_t>(device) >= r.devices.size())
+      throw CudaError(fmt::format("no CUDA device {} ({})", device, r.devices.empty() ? r.unavailable_reason : "out of range"));
+    name_ = r.devices[static_cast<std::size_t>(device)].name;
+    CANOPY_CUDA_CHECK(cudaSetDevice(device));
+  }
+  std::string name() const override { return "cuda"; }
+  std::string device() const override { return name_; }
+
+  Contacts detect(const Stand& s, const DetectRequest& req) override {
+    Contacts out;
+    out.level = req.level;
+    PrototypeLibrary lib;
+    MbvtConfig cfg;
+    cfg.collide = req.collide;
+    cfg.clearance = req.clearance;
+    double t = now();
+    const Mbvt m = build_mbvt(s, lib, cfg);
+    // Prototype meshes, stored once.
+    std::vector<MeshRef> meshes(4 * (kMaxLod + 1));
+    std::vector<Vec3f> positions;
+    std::vector<std::uint32_t> indices;
+    for (const OrganRecord& r : s.organs) {
+      MeshRef& ref = meshes[static_cast<std::size_t>(r.prototype) * (kMaxLod + 1) + r.lod];
+      if (ref.vertex_count) continue;
+      const PrototypeMesh& pm = lib.get(r.prototype, r.lod);
+      ref = {static_cast<std::uint32_t>(positions.size()), static_cast<std::uint32_t>(pm.positions.size()),
+             static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(pm.triangle_count())};
+      positions.insert(positions.end(), pm.positions.begin(), pm.positions.end());
+      indices.insert(indices.end(), pm.indices.begin(), pm.indices.end());
+    }
+    upload(s, m, meshes, positions, indices);
+    out.build_s = now() - t;
+
+    // Plant level on the host, exactly as the CPU backend: grid pairs and plants with themselves.
+    t = now();
+    std::vector<WorkItem> work;
+    for (const auto& [p, q] : plant_pairs(s, m)) work.push_back({p, q, plant_offset(s, p, q)});
+    LevelCount plants{work.size(), 0};
+    for (std::size_t p = 0; p < s.plant_count(); ++p) {
+      const PlantBound& pb = m.plants[p];
+      if (!pb.cluster_count) continue;
+      const Cluster& first = m.clusters[pb.first_cluster];
+      const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
+      bool free = false;
+      for (std::uint32_t i = first.first; i < last.first + last.count && !free; ++i)
+        for (std::uint32_t j = i + 1; j < last.first + last.count && !free; ++j) {
+          const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
+          free = !adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b);
+        }
+      if (free) work.push_back({static_cast<std::int32_t>(p), static_cast<std::int32_t>(p), {0, 0, 0}}), ++plants.within;
+    }
+    std::sort(work.begin(), work.end(), [](const WorkItem& a, const WorkItem& b) { return a.p != b.p ? a.p < b.p : a.q < b.q; });
+    out.counts[0] = plants;
+    out.seconds[0] = now() - t;
+    if (req.level == ContactLevel::plant) {
+      for (const WorkItem& w : work) out.pairs.push_back({-1, -1, w.p, w.q, -1, -1});
+      return out;
+    }
+
+    t = now();
+    work_.upload(work);
+    Counters host{};
+    const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * work.size(), [&](ClusterPair* o, unsigned long long cap) {
+      launch_cluster_pairs(view_, work_.get(), static_cast<std::uint32_t>(work.size()), o, cap, counters_.get());
+    });
+    out.counts[1] = LevelCount{static_cast<std::size_t>(host.between), static_cast<std::size_t>(host.within)};
+    out.seconds[1] = now() - t;
+    if (req.level == ContactLevel::leaf) {
+      for (const ClusterPair& c : cluster_pairs_.download(nc))
+        out.pairs.push_back({-1, -1, work[c.work].p, work[c.work].q, static_cast<std::int32_t>(c.a), static_cast<std::int32_t>(c.b)});
+      std::sort(out.pairs.begin(), out.pairs.end());
+      return out;
+    }
+
+    t = now();
+    const std::size_t no = collect(organ_pairs_, counters_, host, 4 * nc + 1024, [&](OrganPair* o, unsigned long long cap) {
+      launch_organ_pairs(view_, work_.get(), cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap, counters_.get());
+    });
+    std::vector<OrganPair> organ = organ_pairs_.download(no);
+    std::sort(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a != b.a ? a.a < b.a : a.b < b.b; });
+    organ.erase(std::unique(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a == b.a && a.b == b.b; }),
+                organ.end());
+    LevelCount oc;
+    std::vector<Contact> organ_contacts;
+    for (const OrganPair& p : organ) {
+      const Contact c{p.a, p.b, s.organs[static_cast<std::size_t>(p.a)].plant, s.organs[static_cast<std::size_t>(p.b)].plant, -1, -1};
+      (c.plant_a == c.plant_b ? oc.within : oc.between)++;
+      organ_contacts.push_back(c);
+    }
+    out.counts[2] = oc;
+    out.seconds[2] = now() - t;
+    if (req.level == ContactLevel::organ) {
+      out.pairs = std::move(organ_contacts);
+      return out;
+    }
+
+    t = now();
+    organ_pairs_.upload(organ);
+    hit_.resize(std::max<std::size_t>(organ.size(), 1));
+    launch_exact(view_, work_.get(), organ_pairs_.get(), static_cast<std::uint32_t>(organ.size()), req.clearance, hit_.get());
+    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+    const std::vector<std::uint8_t> hit = hit_.download(organ.size());
+    LevelCount ec;
+    for (std::size_t i = 0; i < organ.size(); ++i)
+      if (hit[i]) {
+        out.pairs.push_back(organ_contacts[i]);
+        (organ_contacts[i].plant_a == organ_contacts[i].plant_b ? ec.within : ec.between)++;
+      }
+    out.counts[3] = ec;
+    out.seconds[3] = now() - t;
+    return out;
+  }
+
+ private:
+  void upload(const Stand& s, const Mbvt& m, const std::vector<MeshRef>& meshes, const std::vector<Vec3f>& positions,
+              const std::vector<std::uint32_t>& indices) {
+    transforms_.upload(s.transforms);
+    organs_.upload(s.organs);
+    obbs_.upload(m.obbs);
+    cluster_organs_.upload(m.cluster_organs);
+    clusters_.upload(m.clusters);
+    nodes_.upload(m.nodes);
+    plants_.upload(m.plants);
+    positions_.upload(positions);
+    indices_.upload(indices);
+    meshes_.upload(meshes);
+    counters_.resize(1);
+    view_ = {transforms_.get(), organs_.get(), obbs_.get(), cluster_organs_.get(), clusters_.get(), nodes_.get(),
+             plants_.get(), positions_.get(), indices_.get(), meshes_.get()};
+  }
+
+  int device_;
+  std::string name_;
+  DeviceBuffer<Affine3f> transforms_;
+  DeviceBuffer<OrganRecord> organs_;
+  DeviceBuffer<Obb> obbs_;
+  DeviceBuffer<std::uint32_t> cluster_organs_;
+  DeviceBuffer<Cluster> clusters_;
+  DeviceBuffer<LcdNode> nodes_;
+  DeviceBuffer<PlantBound> plants_;
+  DeviceBuffer<Vec3f> positions_;
+  DeviceBuffer<std::uint32_t> indices_;
+  DeviceBuffer<MeshRef> meshes_;
+  DeviceBuffer<WorkItem> work_;
+  DeviceBuffer<ClusterPair> cluster_pairs_;
+  DeviceBuffer<OrganPair> organ_pairs_;
+  DeviceBuffer<std::uint8_t> hit_;
+  DeviceBuffer<Counters> counters_;
+  StandView view_{};
+};
+
+}  // namespace
+
+std::unique_ptr<DetectionBackend> make_cuda_backend(int device) { return std::make_unique<CudaBackend>(device); }
+
+}  // namespace canopy::cuda

@@ -1,0 +1,189 @@
+// The CUDA detection kernels. Same contact semantics as collision/detect_cpu.cpp: the same
+// LCD, OBB and triangle predicates (geometry/*.hpp, CANOPY_HD), compiled with --fmad=false.
+#include "collision/contacts.hpp"
+#include "cuda/check.hpp"
+#include "cuda/detect_kernels.hpp"
+#include "geometry/lcd.hpp"
+#include "geometry/obb.hpp"
+#include "geometry/triangle_test.hpp"
+
+namespace canopy::cuda {
+namespace {
+
+constexpr int kThreads = 128;
+
+__device__ bool free_pair(const StandView& v, std::uint32_t first, std::uint32_t count) {
+  for (std::uint32_t i = first; i < first + count; ++i)
+    for (std::uint32_t j = i + 1; j < first + count; ++j) {
+      const auto a = static_cast<std::int32_t>(v.cluster_organs[i]), b = static_cast<std::int32_t>(v.cluster_organs[j]);
+      if (!adjacent(v.organs[a], a, v.organs[b], b)) return true;
+    }
+  return false;
+}
+
+template <typename T>
+__device__ void append(T* out, unsigned long long capacity, Counters* c, const T& item) {
+  const unsigned long long at = atomicAdd(&c->appended, 1ull);
+  if (at < capacity) out[at] = item;
+}
+
+__global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uint32_t n_work, ClusterPair* out,
+                                     unsigned long long capacity, Counters* c) {
+  const std::uint32_t w = blockIdx.x * blockDim.x + threadIdx.x;
+  if (w >= n_work) return;
+  const WorkItem it = work[w];
+  const PlantBound pa = v.plants[it.p], pb = v.plants[it.q];
+  unsigned long long found = 0;
+  for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
+    const Cluster ca = v.clusters[i];
+    for (std::uint32_t j = it.p == it.q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
+      const Cluster cb = v.clusters[j];
+      const bool meet = i == j ? free_pair(v, ca.first, ca.count) : lcd_overlap(v.nodes[ca.root].box, v.nodes[cb.root].box, it.offset);
+      if (!meet) continue;
+      ++found;
+      append(out, capacity, c, ClusterPair{w, i, j});
+    }
+  }
+  if (found) atomicAdd(it.p == it.q ? &c->within : &c->between, found);
+}
+
+__device__ void organ_pair(const StandView& v, std::int32_t a, std::int32_t b, const WorkItem& it, std::uint32_t w,
+                           OrganPair* out, unsigned long long capacity, Counters* c) {
+  if (adjacent(v.organs[a], a, v.organs[b], b)) return;
+  if (!obb_overlap(v.obbs[a], v.obbs[b], it.offset)) return;
+  append(out, capacity, c, OrganPair{a < b ? a : b, a < b ? b : a, w});
+}
+
+__global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n,
+                                   OrganPair* out, unsigned long long capacity, Counters* c) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const ClusterPair cp = pairs[k];
+  const WorkItem it = work[cp.work];
+  const Cluster ca = v.clusters[cp.a], cb = v.clusters[cp.b];
+  if (cp.a == cp.b) {
+    for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
+      for (std::uint32_t y = x + 1; y < ca.first + ca.count; ++y)
+        organ_pair(v, static_cast<std::int32_t>(v.cluster_organs[x]), static_cast<std::int32_t>(v.cluster_organs[y]), it, cp.work,
+                   out, capacity, c);
+    return;
+  }
+  std::uint32_t stack[64][2];
+  int top = 0;
+  stack[0][0] = ca.root, stack[0][1] = cb.root, top = 1;
+  while (top > 0) {
+    --top;
+    const std::uint32_t ia = stack[top][0], ib = stack[top][1];
+    const LcdNode na = v.nodes[ia], nb = v.nodes[ib];
+    if (!lcd_overlap(na.box, nb.box, it.offset)) continue;
+    const bool leaf_a = na.left < 0, leaf_b = nb.left < 0;
+    if (leaf_a && leaf_b) {
+      for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
+        for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
+          organ_pair(v, static_cast<std::int32_t>(v.cluster_organs[i]), static_cast<std::int32_t>(v.cluster_organs[j]), it, cp.work,
+                     out, capacity, c);
+      continue;
+    }
+    if (top + 2 > 64) continue;  // trees of this depth do not occur (2^32 organs per cluster)
+    if (!leaf_a && (leaf_b || na.count >= nb.count)) {
+      stack[top][0] = static_cast<std::uint32_t>(na.left), stack[top][1] = ib, ++top;
+      stack[top][0] = static_cast<std::uint32_t>(na.right), stack[top][1] = ib, ++top;
+    } else {
+      stack[top][0] = ia, stack[top][1] = static_cast<std::uint32_t>(nb.left), ++top;
+      stack[top][0] = ia, stack[top][1] = static_cast<std::uint32_t>(nb.right), ++top;
+    }
+  }
+}
+
+/// Vertex k of organ o, in the frame of the lower organ's plant (moved by `offset`), exactly as
+/// the host computes it: apply(m, p) + d.
+__device__ Vec3f vertex(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset, std::uint32_t k) {
+  return apply(t, v.mesh_positions[m.first_vertex + k]) + offset;
+}
+
+__global__ void exact_kernel(StandView v, const WorkItem* work, const OrganPair* pairs, std::uint32_t n, float clearance,
+                             std::uint8_t* hit) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const OrganPair op = pairs[k];
+  const OrganRecord ra = v.organs[op.a], rb = v.organs[op.b];
+  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
+  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
+  const Affine3f ta = v.transforms[op.a], tb = v.transforms[op.b];
+  const Vec3f zero{0, 0, 0};
+  const Vec3f db = ra.plant == rb.plant ? zero : work[op.work].offset;
+  // b's box, widened by the clearance: only a's triangles inside it need the full test.
+  float lo[3] = {3e38f, 3e38f, 3e38f}, hi[3] = {-3e38f, -3e38f, -3e38f};
+  for (std::uint32_t i = 0; i < mb.vertex_count; ++i) {
+    const Vec3f p = vertex(v, mb, tb, db, i);
+    lo[0] = min_f(lo[0], p.x), lo[1] = min_f(lo[1], p.y), lo[2] = min_f(lo[2], p.z);
+    hi[0] = max_f(hi[0], p.x), hi[1] = max_f(hi[1], p.y), hi[2] = max_f(hi[2], p.z);
+  }
+  const double c = clearance;
+  bool found = false;
+  for (std::uint32_t i = 0; i < ma.triangle_count && !found; ++i) {
+    Vec3f a3[3];
+    for (int q = 0; q < 3; ++q) a3[q] = vertex(v, ma, ta, zero, v.mesh_indices[ma.first_index + 3 * i + q]);
+    const float alo[3] = {min_f(a3[0].x, min_f(a3[1].x, a3[2].x)), min_f(a3[0].y, min_f(a3[1].y, a3[2].y)), min_f(a3[0].z, min_f(a3[1].z, a3[2].z))};
+    const float ahi[3] = {max_f(a3[0].x, max_f(a3[1].x, a3[2].x)), max_f(a3[0].y, max_f(a3[1].y, a3[2].y)), max_f(a3[0].z, max_f(a3[1].z, a3[2].z))};
+    bool near = true;
+    for (int d = 0; d < 3; ++d) near = near && alo[d] - c <= hi[d] && ahi[d] + c >= lo[d];
+    if (!near) continue;
+    for (std::uint32_t j = 0; j < mb.triangle_count && !found; ++j) {
+      Vec3f b3[3];
+      for (int q = 0; q < 3; ++q) b3[q] = vertex(v, mb, tb, db, v.mesh_indices[mb.first_index + 3 * j + q]);
+      bool box = true;
+      for (int d = 0; d < 3; ++d) {
+        const float bl = d == 0 ? min_f(b3[0].x, min_f(b3[1].x, b3[2].x)) : d == 1 ? min_f(b3[0].y, min_f(b3[1].y, b3[2].y)) : min_f(b3[0].z, min_f(b3[1].z, b3[2].z));
+        const float bh = d == 0 ? max_f(b3[0].x, max_f(b3[1].x, b3[2].x)) : d == 1 ? max_f(b3[0].y, max_f(b3[1].y, b3[2].y)) : max_f(b3[0].z, max_f(b3[1].z, b3[2].z));
+        box = box && bl <= ahi[d] + c && bh >= alo[d] - c;
+      }
+      if (!box) continue;
+      found = c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3);
+    }
+  }
+  // Containment: a point of one organ inside the other's convex solid (faces made on the fly).
+  const auto solid = [](PrototypeKind p) { return p == PrototypeKind::cylinder || p == PrototypeKind::sphere; };
+  const auto inside = [&](Vec3f p, const MeshRef& m, const Affine3f& t, Vec3f d) {
+    bool inner = false;
+    for (std::uint32_t f = 0; f < m.triangle_count; ++f) {
+      const D3 x = d3(vertex(v, m, t, d, v.mesh_indices[m.first_index + 3 * f]));
+      const D3 y = d3(vertex(v, m, t, d, v.mesh_indices[m.first_index + 3 * f + 1]));
+      const D3 z = d3(vertex(v, m, t, d, v.mesh_indices[m.first_index + 3 * f + 2]));
+      const double o = orient3d(x, y, z, d3(p));
+      if (o > 0) return false;
+      inner = inner || o < 0;
+    }
+    return inner;
+  };
+  if (!found && solid(rb.prototype) && ma.vertex_count) found = inside(vertex(v, ma, ta, zero, 0), mb, tb, db);
+  if (!found && solid(ra.prototype) && mb.vertex_count) found = inside(vertex(v, mb, tb, db, 0), ma, ta, zero);
+  hit[k] = found ? 1 : 0;
+}
+
+unsigned blocks(std::uint64_t n) { return static_cast<unsigned>((n + kThreads - 1) / kThreads); }
+
+}  // namespace
+
+void launch_cluster_pairs(const StandView& v, const WorkItem* work, std::uint32_t n_work, ClusterPair* out,
+                          unsigned long long capacity, Counters* counters) {
+  if (!n_work) return;
+  cluster_pairs_kernel<<<blocks(n_work), kThreads>>>(v, work, n_work, out, capacity, counters);
+  CANOPY_CUDA_CHECK_LAUNCH("cluster_pairs_kernel");
+}
+
+void launch_organ_pairs(const StandView& v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n_pairs,
+                        OrganPair* out, unsigned long long capacity, Counters* counters) {
+  if (!n_pairs) return;
+  organ_pairs_kernel<<<blocks(n_pairs), kThreads>>>(v, work, pairs, n_pairs, out, capacity, counters);
+  CANOPY_CUDA_CHECK_LAUNCH("organ_pairs_kernel");
+}
+
+void launch_exact(const StandView& v, const WorkItem* work, const OrganPair* pairs, std::uint32_t n_pairs, float clearance,
+                  std::uint8_t* hit) {
+  if (!n_pairs) return;
+  exact_kernel<<<blocks(n_pairs), kThreads>>>(v, work, pairs, n_pairs, clearance, hit);
+  CANOPY_CUDA_CHECK_LAUNCH("exact_kernel");
+}
+
+}  // namespace canopy::cuda

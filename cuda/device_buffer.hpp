@@ -1,0 +1,51 @@
+#pragma once
+/// The owner of a device array (RAII) and the views kernels take by value.
+#include "cuda/check.hpp"
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace canopy::cuda {
+
+template <typename T>
+class DeviceBuffer {
+ public:
+  DeviceBuffer() = default;
+  explicit DeviceBuffer(std::size_t n) { resize(n); }
+  DeviceBuffer(const DeviceBuffer&) = delete;
+  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+  DeviceBuffer(DeviceBuffer&& o) noexcept : p_(std::exchange(o.p_, nullptr)), n_(std::exchange(o.n_, 0)) {}
+  DeviceBuffer& operator=(DeviceBuffer&& o) noexcept {
+    std::swap(p_, o.p_);
+    std::swap(n_, o.n_);
+    return *this;
+  }
+  ~DeviceBuffer() {
+    if (p_) cudaFree(p_);
+  }
+  void resize(std::size_t n) {
+    if (n == n_) return;
+    if (p_) CANOPY_CUDA_CHECK(cudaFree(p_));
+    p_ = nullptr;
+    n_ = n;
+    if (n) CANOPY_CUDA_CHECK(cudaMalloc(&p_, n * sizeof(T)));
+  }
+  void upload(const std::vector<T>& v) {
+    resize(v.size());
+    if (!v.empty()) CANOPY_CUDA_CHECK(cudaMemcpy(p_, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
+  }
+  std::vector<T> download(std::size_t n) const {
+    std::vector<T> v(n);
+    if (n) CANOPY_CUDA_CHECK(cudaMemcpy(v.data(), p_, n * sizeof(T), cudaMemcpyDeviceToHost));
+    return v;
+  }
+  T* get() const { return p_; }
+  std::size_t size() const { return n_; }
+
+ private:
+  T* p_ = nullptr;
+  std::size_t n_ = 0;
+};
+
+}  // namespace canopy::cuda

@@ -1,0 +1,96 @@
+// The CUDA backend gives exactly the CPU backend's contacts, at every level, on the oracle
+// stands, crowded plants, twins on one spot, a stand far from the origin, with a clearance, and
+// on 1,000- and 10,000-plant default stands. (Skipped without a GPU: see test_device.cpp.)
+#include "../collision/helpers.hpp"
+#include "cuda/detect_cuda.hpp"
+
+#include <chrono>
+
+using namespace canopy;
+using namespace canopy::test;
+
+namespace {
+
+void same_everywhere(const Stand& s, DetectRequest req, const char* what) {
+  auto cpu = make_cpu_backend();
+  auto gpu = cuda::make_cuda_backend();
+  for (ContactLevel level : {ContactLevel::plant, ContactLevel::leaf, ContactLevel::organ, ContactLevel::exact}) {
+    req.level = level;
+    const Contacts a = cpu->detect(s, req), b = gpu->detect(s, req);
+    INFO(what << " level " << name_of(level));
+    CHECK(a.pairs == b.pairs);
+    for (std::size_t l = 0; l <= static_cast<std::size_t>(level); ++l) {
+      REQUIRE(a.counts[l].has_value());
+      REQUIRE(b.counts[l].has_value());
+      CHECK(a.counts[l]->between == b.counts[l]->between);
+      CHECK(a.counts[l]->within == b.counts[l]->within);
+    }
+  }
+}
+
+Stand default_stand(int n) {
+  GrowRequest req;
+  req.grammar = source("grammars/tomato.yaml");
+  RowLayout l;
+  l.per_row = std::min(n, 100);
+  l.rows = (n + l.per_row - 1) / l.per_row;
+  l.random_rotation = true;
+  l.jitter = 0.02;
+  req.plants = row_layout(l);
+  return grow_stand(req);
+}
+
+}  // namespace
+
+TEST_CASE("CUDA equals CPU on the oracle stands, and both equal brute force") {
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    const Stand s = random_stand(seed);
+    DetectRequest req;
+    same_everywhere(s, req, "random");
+    req.collide = parse_collide_kinds("all");
+    same_everywhere(s, req, "random, all kinds");
+    req.level = ContactLevel::exact;
+    CHECK(cuda::make_cuda_backend()->detect(s, req).pairs == brute_force_exact(s, req.collide));
+  }
+}
+
+TEST_CASE("CUDA equals CPU with a clearance, on crowded plants, twins and far from the origin") {
+  DetectRequest req;
+  req.clearance = 0.005f;
+  same_everywhere(random_stand(21, 8), req, "clearance");
+  GrowRequest g;
+  g.grammar = source("grammars/tomato.yaml");
+  for (const char* o : {"phyllotaxis=15", "internode_min=0.015", "internode_max=0.02"}) g.load.overrides.push_back(parse_override(o));
+  g.steps = 14;
+  PlantPlacement p;
+  p.seed = 3;
+  g.plants = {p, p};
+  p.x = 0.2, p.seed = 4;
+  g.plants.push_back(p);
+  same_everywhere(grow_stand(g), DetectRequest{}, "crowded twins");
+  for (auto& q : g.plants) q.x += 1e6, q.y -= 2e6;
+  same_everywhere(grow_stand(g), DetectRequest{}, "far from the origin");
+}
+
+TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
+  for (int n : {1000, 10000}) {
+    const Stand s = default_stand(n);
+    auto cpu = make_cpu_backend();
+    auto gpu = cuda::make_cuda_backend();
+    DetectRequest req;
+    const auto t0 = std::chrono::steady_clock::now();
+    const Contacts a = cpu->detect(s, req);
+    const auto t1 = std::chrono::steady_clock::now();
+    gpu->detect(s, req);  // warm-up
+    const auto t2 = std::chrono::steady_clock::now();
+    const Contacts b = gpu->detect(s, req);
+    const auto t3 = std::chrono::steady_clock::now();
+    INFO(n << " plants");
+    CHECK(a.pairs == b.pairs);
+    MESSAGE(n << " plants: " << b.pairs.size() << " exact contacts; cpu "
+              << std::chrono::duration<double>(t1 - t0).count() << " s, cuda (host build included) "
+              << std::chrono::duration<double>(t3 - t2).count() << " s on " << gpu->device());
+    req.level = ContactLevel::organ;
+    CHECK(cpu->detect(s, req).pairs == gpu->detect(s, req).pairs);
+  }
+}
