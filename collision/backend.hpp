@@ -18,6 +18,14 @@ struct DetectRequest {
   int threads = 0;      // 0: all cores
 };
 
+/// The bounding-volume settings a request implies (same on every backend).
+inline MbvtConfig mbvt_config(const DetectRequest& r) {
+  MbvtConfig c;
+  c.collide = r.collide;
+  c.clearance = r.clearance;
+  return c;
+}
+
 class DetectionBackend {
  public:
   virtual ~DetectionBackend() = default;

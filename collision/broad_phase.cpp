@@ -60,4 +60,27 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, c
   return out;
 }
 
+std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, const Mbvt& m, LevelCount& count) {
+  auto work = plant_pairs(s, m);
+  count = {work.size(), 0};
+  std::vector<std::uint8_t> self(s.plant_count(), 0);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    const PlantBound& pb = m.plants[p];
+    if (pb.cluster_count == 0) continue;
+    // The plant's organs that take part are contiguous in cluster_organs.
+    const Cluster& first = m.clusters[pb.first_cluster];
+    const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
+    for (std::uint32_t i = first.first; i < last.first + last.count && !self[p]; ++i)
+      for (std::uint32_t j = i + 1; j < last.first + last.count && !self[p]; ++j) {
+        const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
+        if (!adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) self[p] = 1;
+      }
+  }
+  for (std::size_t p = 0; p < s.plant_count(); ++p)
+    if (self[p]) work.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(p)), ++count.within;
+  std::sort(work.begin(), work.end());
+  return work;
+}
+
 }  // namespace canopy

@@ -94,32 +94,16 @@ class CpuBackend : public DetectionBackend {
     Contacts out;
     out.level = req.level;
     PrototypeLibrary lib;
-    MbvtConfig cfg;
-    cfg.collide = req.collide;
-    cfg.clearance = req.clearance;
     double t = now();
-    const Mbvt m = build_mbvt(s, lib, cfg);
+    const Mbvt m = build_mbvt(s, lib, mbvt_config(req));
     out.build_s = now() - t;
     const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
 
     // Plant level: pairs of plants whose bounds meet, and each plant with itself.
     t = now();
+    LevelCount plant_count;
     std::vector<Work> work;
-    for (const auto& [p, q] : plant_pairs(s, m)) work.push_back({p, q});
-    std::vector<std::uint8_t> self(s.plant_count(), 0);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-    for (std::size_t p = 0; p < s.plant_count(); ++p) {
-      const PlantBound& pb = m.plants[p];
-      if (pb.cluster_count == 0) continue;
-      // The plant's organs that take part are contiguous in cluster_organs.
-      const Cluster& first = m.clusters[pb.first_cluster];
-      const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-      self[p] = has_free_pair(s, m, first.first, last.first + last.count - first.first) ? 1 : 0;
-    }
-    LevelCount plant_count{work.size(), 0};
-    for (std::size_t p = 0; p < s.plant_count(); ++p)
-      if (self[p]) work.push_back({static_cast<std::int32_t>(p), static_cast<std::int32_t>(p)}), ++plant_count.within;
-    std::sort(work.begin(), work.end(), [](const Work& a, const Work& b) { return std::tie(a.p, a.q) < std::tie(b.p, b.q); });
+    for (const auto& [p, q] : plant_level(s, m, plant_count)) work.push_back({p, q});
     out.counts[0] = plant_count;
     out.seconds[0] = now() - t;
     if (req.level == ContactLevel::plant) {

@@ -47,11 +47,8 @@ class CudaBackend : public DetectionBackend {
     Contacts out;
     out.level = req.level;
     PrototypeLibrary lib;
-    MbvtConfig cfg;
-    cfg.collide = req.collide;
-    cfg.clearance = req.clearance;
     double t = now();
-    const Mbvt m = build_mbvt(s, lib, cfg);
+    const Mbvt m = build_mbvt(s, lib, mbvt_config(req));
     // Prototype meshes, stored once.
     std::vector<MeshRef> meshes(4 * (kMaxLod + 1));
     std::vector<Vec3f> positions;
@@ -70,23 +67,10 @@ class CudaBackend : public DetectionBackend {
 
     // Plant level on the host, exactly as the CPU backend: grid pairs and plants with themselves.
     t = now();
+    LevelCount plants;
     std::vector<WorkItem> work;
-    for (const auto& [p, q] : plant_pairs(s, m)) work.push_back({p, q, plant_offset(s, p, q)});
-    LevelCount plants{work.size(), 0};
-    for (std::size_t p = 0; p < s.plant_count(); ++p) {
-      const PlantBound& pb = m.plants[p];
-      if (!pb.cluster_count) continue;
-      const Cluster& first = m.clusters[pb.first_cluster];
-      const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-      bool free = false;
-      for (std::uint32_t i = first.first; i < last.first + last.count && !free; ++i)
-        for (std::uint32_t j = i + 1; j < last.first + last.count && !free; ++j) {
-          const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
-          free = !adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b);
-        }
-      if (free) work.push_back({static_cast<std::int32_t>(p), static_cast<std::int32_t>(p), {0, 0, 0}}), ++plants.within;
-    }
-    std::sort(work.begin(), work.end(), [](const WorkItem& a, const WorkItem& b) { return a.p != b.p ? a.p < b.p : a.q < b.q; });
+    for (const auto& [p, q] : plant_level(s, m, plants))
+      work.push_back({p, q, p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q)});
     out.counts[0] = plants;
     out.seconds[0] = now() - t;
     if (req.level == ContactLevel::plant) {

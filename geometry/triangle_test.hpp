@@ -144,14 +144,21 @@ CANOPY_HD inline bool triangle_less(const D3 a[3], const D3 b[3]) {
   return false;
 }
 
-/// Whether two closed triangles meet (touching counts). Any vertex order, either argument order.
-CANOPY_HD inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
-  D3 a[3] = {d3(pa[0]), d3(pa[1]), d3(pa[2])}, b[3] = {d3(pb[0]), d3(pb[1]), d3(pb[2])};
+/// The canonical order of a triangle pair: each triangle's vertices sorted, then the smaller
+/// triangle first (t), so every vertex order and argument order computes the same thing.
+CANOPY_HD inline void canonical_pair(const Vec3f* pa, const Vec3f* pb, D3 a[3], D3 b[3], const D3*& t, const D3*& u) {
+  for (int i = 0; i < 3; ++i) a[i] = d3(pa[i]), b[i] = d3(pb[i]);
   sort3(a);
   sort3(b);
-  const D3* t = a;
-  const D3* u = b;
+  t = a, u = b;
   if (triangle_less(b, a)) t = b, u = a;
+}
+
+/// Whether two closed triangles meet (touching counts). Any vertex order, either argument order.
+CANOPY_HD inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
+  D3 a[3], b[3];
+  const D3 *t, *u;
+  canonical_pair(pa, pb, a, b, t, u);
   const D3 nt = cross(t[1] - t[0], t[2] - t[0]), nu = cross(u[1] - u[0], u[2] - u[0]);
   const bool dt = nt.x == 0 && nt.y == 0 && nt.z == 0, du = nu.x == 0 && nu.y == 0 && nu.z == 0;
   if (!dt) {  // quick rejection: u wholly on one side of t's plane
@@ -237,12 +244,9 @@ CANOPY_HD inline double point_triangle_dist2(D3 p, const D3 t[3]) {
 /// Whether two closed triangles come within `clearance` of each other (intersecting counts).
 CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance) {
   if (triangles_intersect(pa, pb)) return true;
-  D3 a[3] = {d3(pa[0]), d3(pa[1]), d3(pa[2])}, b[3] = {d3(pb[0]), d3(pb[1]), d3(pb[2])};
-  sort3(a);
-  sort3(b);
-  const D3* t = a;
-  const D3* u = b;
-  if (triangle_less(b, a)) t = b, u = a;
+  D3 a[3], b[3];
+  const D3 *t, *u;
+  canonical_pair(pa, pb, a, b, t, u);
   const double c2 = clearance * clearance;
   for (int i = 0; i < 3; ++i) {
     if (point_triangle_dist2(t[i], u) <= c2 || point_triangle_dist2(u[i], t) <= c2) return true;
