@@ -1,0 +1,97 @@
+// GPU detection against the CPU on the default stand (Ding et al. 2019 Table 4, then on to
+// 100,000 plants): per level, the median over repeats (after a warm-up) of the CUDA backend's
+// stage times as it reports them (host wall clock around synchronised launches; the MBVT build
+// on the host apart), pairs, false positives against the exact level, the CPU backend's time on
+// the same stand, and the device name. Prints a table, writes CSV.
+// Usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]
+#include "collision/backend.hpp"
+#include "cuda/detect_cuda.hpp"
+#include "lsystem/grow.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+using namespace canopy;
+
+namespace {
+
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<int> sizes{2000, 4000, 6000, 8000, 10000, 100000};
+  int repeats = 5;
+  std::string csv = "bench/results/detect_cuda.csv";
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
+    else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
+      sizes.clear();
+      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+    }
+  }
+  auto gpu = cuda::make_cuda_backend();
+  auto cpu = make_cpu_backend();
+  std::FILE* out = std::fopen(csv.c_str(), "w");
+  if (!out) return 1;
+  fmt::print(out, "device,plants,organs_per_plant,triangles_per_plant,level,host_build_s,gpu_stage_s,gpu_total_s,cpu_total_s,pairs,false_positives_vs_exact\n");
+  fmt::print("device: {}\n{:>7} {:<6} {:>10} {:>10} {:>10} {:>10} {:>10} {:>12}\n", gpu->device(), "plants", "level", "build s",
+             "stage s", "gpu tot s", "cpu tot s", "pairs", "organ FP");
+  for (int n : sizes) {
+    GrowRequest req;
+    req.grammar = "grammars/tomato.yaml";
+    RowLayout l;
+    l.per_row = std::min(n, 100);
+    l.rows = (n + l.per_row - 1) / l.per_row;
+    l.random_rotation = true;
+    l.jitter = 0.02;
+    req.plants = row_layout(l);
+    const Stand s = grow_stand(req);
+    PrototypeLibrary lib;
+    std::size_t tris = 0;
+    for (const OrganRecord& r : s.organs) tris += lib.get(r.prototype, r.lod).triangle_count();
+    std::size_t exact_pairs = 0;
+    for (ContactLevel level : {ContactLevel::exact, ContactLevel::organ, ContactLevel::leaf, ContactLevel::plant}) {
+      DetectRequest dr;
+      dr.level = level;
+      gpu->detect(s, dr);  // warm-up
+      std::vector<double> build, stage, total, cpu_total;
+      Contacts c;
+      for (int r = 0; r < repeats; ++r) {
+        auto t = std::chrono::steady_clock::now();
+        c = gpu->detect(s, dr);
+        total.push_back(since(t));
+        build.push_back(c.build_s);
+        double st = 0;
+        for (double x : c.seconds) st += x;
+        stage.push_back(st);
+      }
+      for (int r = 0; r < std::max(1, repeats / 2); ++r) {
+        auto t = std::chrono::steady_clock::now();
+        cpu->detect(s, dr);
+        cpu_total.push_back(since(t));
+      }
+      if (level == ContactLevel::exact) exact_pairs = c.pairs.size();
+      const long long fp = level == ContactLevel::organ ? static_cast<long long>(c.pairs.size() - exact_pairs) : -1;
+      fmt::print("{:>7} {:<6} {:>10.4f} {:>10.4f} {:>10.4f} {:>10.4f} {:>10} {:>12}\n", n, name_of(level), median(build),
+                 median(stage), median(total), median(cpu_total), c.pairs.size(), fp);
+      fmt::print(out, "{},{},{:.1f},{:.0f},{},{:.6f},{:.6f},{:.6f},{:.6f},{},{}\n", gpu->device(), n,
+                 static_cast<double>(s.organ_count()) / n, static_cast<double>(tris) / n, name_of(level), median(build),
+                 median(stage), median(total), median(cpu_total), c.pairs.size(), fp);
+    }
+  }
+  std::fclose(out);
+  fmt::print("wrote {}\n", csv);
+  return 0;
+}
