@@ -60,6 +60,15 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, c
   return out;
 }
 
+bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint32_t count) {
+  for (std::uint32_t i = first; i < first + count; ++i)
+    for (std::uint32_t j = i + 1; j < first + count; ++j) {
+      const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
+      if (!adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return true;
+    }
+  return false;
+}
+
 std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, const Mbvt& m, LevelCount& count) {
   auto work = plant_pairs(s, m);
   count = {work.size(), 0};
@@ -71,11 +80,7 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, c
     // The plant's organs that take part are contiguous in cluster_organs.
     const Cluster& first = m.clusters[pb.first_cluster];
     const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-    for (std::uint32_t i = first.first; i < last.first + last.count && !self[p]; ++i)
-      for (std::uint32_t j = i + 1; j < last.first + last.count && !self[p]; ++j) {
-        const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
-        if (!adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) self[p] = 1;
-      }
+    self[p] = has_free_pair(s, m, first.first, last.first + last.count - first.first) ? 1 : 0;
   }
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     if (self[p]) work.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(p)), ++count.within;

@@ -17,6 +17,10 @@ bool plant_bounds_overlap(const Stand& stand, const Mbvt& m, std::size_t p, std:
 /// Plant pairs (p < q) whose bounds overlap, sorted.
 std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& stand, const Mbvt& m);
 
+/// Whether organs cluster_organs[first, first + count) hold a pair that is not adjacent (so a
+/// contact among them is possible).
+bool has_free_pair(const Stand& stand, const Mbvt& m, std::uint32_t first, std::uint32_t count);
+
 /// The plant level as both backends run it: the grid's plant pairs (p < q) and each plant with
 /// itself (p, p) where it holds a pair of organs that may meet, sorted; `count` gets the level's
 /// numbers between and within plants.

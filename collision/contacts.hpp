@@ -39,6 +39,21 @@ struct Contacts {
   double build_s = 0;                             // bounding volume build or refit
 };
 
+/// The numbers of `pairs` between and within plants.
+inline LevelCount count_pairs(const std::vector<Contact>& pairs) {
+  LevelCount n;
+  for (const Contact& c : pairs) (c.plant_a == c.plant_b ? n.within : n.between)++;
+  return n;
+}
+
+/// The pairs whose flag in `hit` is set, in order (the exact level out of the organ level).
+inline std::vector<Contact> keep_hits(const std::vector<Contact>& pairs, const std::vector<std::uint8_t>& hit) {
+  std::vector<Contact> out;
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    if (hit[i]) out.push_back(pairs[i]);
+  return out;
+}
+
 /// Organs joined in the structure tree (parent and child, or two children of one parent, roots
 /// of one plant included) touch by construction and are never a contact (DESIGN.md "Adjacency").
 CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const OrganRecord& b, std::int32_t ib) {

@@ -22,16 +22,6 @@ struct Work {
   std::int32_t p, q;  // plants, p <= q
 };
 
-/// Whether a cluster has a pair of organs that are not adjacent (so it can hold a contact).
-bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint32_t count) {
-  for (std::uint32_t i = first; i < first + count; ++i)
-    for (std::uint32_t j = i + 1; j < first + count; ++j) {
-      const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
-      if (!adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return true;
-    }
-  return false;
-}
-
 struct Collector {
   std::vector<Contact> leaf, organ;
   LevelCount leaves;
@@ -144,7 +134,7 @@ class CpuBackend : public DetectionBackend {
       }
     }
     std::vector<Contact> leaf, organ;
-    LevelCount leaf_count, organ_count;
+    LevelCount leaf_count;
     std::size_t n_leaf = 0, n_organ = 0;
     for (const Collector& c : per) n_leaf += c.leaf.size(), n_organ += c.organ.size();
     leaf.reserve(n_leaf);
@@ -164,8 +154,7 @@ class CpuBackend : public DetectionBackend {
     }
     std::sort(organ.begin(), organ.end());
     organ.erase(std::unique(organ.begin(), organ.end()), organ.end());
-    for (const Contact& c : organ) (c.plant_a == c.plant_b ? organ_count.within : organ_count.between)++;
-    out.counts[2] = organ_count;
+    out.counts[2] = count_pairs(organ);
     out.seconds[2] = 0;  // organ pairs come out of the same pass as the leaf level
     if (req.level == ContactLevel::organ) {
       out.pairs = std::move(organ);
@@ -183,13 +172,8 @@ class CpuBackend : public DetectionBackend {
       for (std::size_t i = 0; i < organ.size(); ++i)
         hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch) ? 1 : 0;
     }
-    LevelCount exact_count;
-    for (std::size_t i = 0; i < organ.size(); ++i)
-      if (hit[i]) {
-        out.pairs.push_back(organ[i]);
-        (organ[i].plant_a == organ[i].plant_b ? exact_count.within : exact_count.between)++;
-      }
-    out.counts[3] = exact_count;
+    out.pairs = keep_hits(organ, hit);
+    out.counts[3] = count_pairs(out.pairs);
     out.seconds[3] = now() - t;
     return out;
   }

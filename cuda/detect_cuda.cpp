@@ -101,14 +101,10 @@ class CudaBackend : public DetectionBackend {
     std::sort(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a != b.a ? a.a < b.a : a.b < b.b; });
     organ.erase(std::unique(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a == b.a && a.b == b.b; }),
                 organ.end());
-    LevelCount oc;
     std::vector<Contact> organ_contacts;
-    for (const OrganPair& p : organ) {
-      const Contact c{p.a, p.b, s.organs[static_cast<std::size_t>(p.a)].plant, s.organs[static_cast<std::size_t>(p.b)].plant, -1, -1};
-      (c.plant_a == c.plant_b ? oc.within : oc.between)++;
-      organ_contacts.push_back(c);
-    }
-    out.counts[2] = oc;
+    for (const OrganPair& p : organ)
+      organ_contacts.push_back({p.a, p.b, s.organs[static_cast<std::size_t>(p.a)].plant, s.organs[static_cast<std::size_t>(p.b)].plant, -1, -1});
+    out.counts[2] = count_pairs(organ_contacts);
     out.seconds[2] = now() - t;
     if (req.level == ContactLevel::organ) {
       out.pairs = std::move(organ_contacts);
@@ -121,13 +117,8 @@ class CudaBackend : public DetectionBackend {
     launch_exact(view_, work_.get(), organ_pairs_.get(), static_cast<std::uint32_t>(organ.size()), req.clearance, hit_.get());
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
     const std::vector<std::uint8_t> hit = hit_.download(organ.size());
-    LevelCount ec;
-    for (std::size_t i = 0; i < organ.size(); ++i)
-      if (hit[i]) {
-        out.pairs.push_back(organ_contacts[i]);
-        (organ_contacts[i].plant_a == organ_contacts[i].plant_b ? ec.within : ec.between)++;
-      }
-    out.counts[3] = ec;
+    out.pairs = keep_hits(organ_contacts, hit);
+    out.counts[3] = count_pairs(out.pairs);
     out.seconds[3] = now() - t;
     return out;
   }

@@ -2,6 +2,7 @@
 // pass computes every count and POSITION bound; the second pass makes the same numbers again
 // (same float operations) and writes them.
 #include "geometry/export.hpp"
+#include "geometry/glb_container.hpp"
 #include "geometry/organ_mesh.hpp"
 
 #include "geometry/text_out.hpp"
@@ -16,7 +17,6 @@
 namespace canopy {
 namespace {
 
-constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
 constexpr std::size_t kFloatIdLimit = std::size_t(1) << 24;  // FLOAT holds organ ids exactly below this
 
 struct Primitive {
@@ -134,11 +134,8 @@ void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
   for (std::size_t k = 0; k < material_of.size(); ++k) {
     if (material_of[k] < 0) continue;
     material_of[k] = nmat++;
-    const Vec3f c = kind_colour(static_cast<OrganKind>(k));
-    materials += fmt::format(
-        "{}{{\"name\":\"{}\",\"doubleSided\":true,\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0],"
-        "\"metallicFactor\":0.0,\"roughnessFactor\":0.8}}}}",
-        nmat > 1 ? "," : "", kOrganKindNames[k], c.x, c.y, c.z);
+    if (nmat > 1) materials += ',';
+    materials += material_json(static_cast<OrganKind>(k));
   }
   std::string nodes, meshes, accessors, views;
   std::string children;
@@ -213,16 +210,8 @@ void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
                         meshes, accessors, views, materials, offset);
   if (!float_ids) text += ",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}";
   text += '}';
-  while (text.size() % 4) text.push_back(' ');
-  const std::size_t bin = offset;  // every block is a multiple of 4 bytes
-  const std::size_t total = 12 + 8 + text.size() + (bin ? 8 + bin : 0);
-  if (total > 0xffffffffULL) throw std::runtime_error("stand.glb would exceed 4 GiB, the GLB limit; export fewer plants or use obj/ply");
-  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(text.size()), kJsonChunk};
-  out.write(header, sizeof header);
-  out.write(text);
-  if (bin) {
-    const std::uint32_t chunk[2] = {static_cast<std::uint32_t>(bin), kBinChunk};
-    out.write(chunk, sizeof chunk);
+  begin_glb(out, text, offset);  // every block is a multiple of 4 bytes
+  if (offset) {
     write_ordered(out, n, 1, [&](std::size_t p, std::size_t, std::string& buf) { fill_plant(s, p, plan[p], lib, float_ids, buf); });
   }
 }

@@ -3,6 +3,7 @@
 // and its id as the per-instance `_ORGAN` attribute. Much smaller than the baked file; for
 // engines that read the extension.
 #include "geometry/export.hpp"
+#include "geometry/glb_container.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/text_out.hpp"
 
@@ -16,8 +17,6 @@
 
 namespace canopy {
 namespace {
-
-constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
 
 /// Translation, rotation (unit quaternion x, y, z, w) and scale of an organ transform, whose
 /// linear part is an orthonormal frame times a diagonal scale. Zero columns (zero-length or
@@ -106,12 +105,8 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     const PrototypeMesh& pm = lib.get(static_cast<PrototypeKind>(proto), lod);
     if (material_of[static_cast<std::size_t>(kind)] < 0) {
       material_of[static_cast<std::size_t>(kind)] = nmat++;
-      const Vec3f c = kind_colour(static_cast<OrganKind>(kind));
       sep(materials);
-      materials += fmt::format(
-          "{{\"name\":\"{}\",\"doubleSided\":true,\"pbrMetallicRoughness\":{{\"baseColorFactor\":[{},{},{},1.0],"
-          "\"metallicFactor\":0.0,\"roughnessFactor\":0.8}}}}",
-          kOrganKindNames[static_cast<std::size_t>(kind)], c.x, c.y, c.z);
+      materials += material_json(static_cast<OrganKind>(kind));
     }
     std::string bounds = ",\"min\":[";
     append_number(bounds, pm.box.lo.x), bounds += ',', append_number(bounds, pm.box.lo.y), bounds += ',';
@@ -186,18 +181,9 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     text += fmt::format(",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]",
                         meshes, accessors, views, materials, bin.size());
   text += '}';
-  while (text.size() % 4) text.push_back(' ');
   while (bin.size() % 4) bin.push_back('\0');
-  const std::size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size());
-  if (total > 0xffffffffULL) throw std::runtime_error("stand.glb would exceed 4 GiB, the GLB limit");
-  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(text.size()), kJsonChunk};
-  out.write(header, sizeof header);
-  out.write(text);
-  if (!bin.empty()) {
-    const std::uint32_t chunk[2] = {static_cast<std::uint32_t>(bin.size()), kBinChunk};
-    out.write(chunk, sizeof chunk);
-    out.write(bin);
-  }
+  begin_glb(out, text, bin.size());
+  out.write(bin);
 }
 
 }  // namespace canopy

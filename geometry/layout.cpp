@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -75,6 +76,20 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
     }
   }
   return out;
+}
+
+std::vector<PlantPlacement> default_stand_layout(int plants) {
+  RowLayout l;
+  l.per_row = std::max(1, std::min(plants, 100));
+  l.rows = std::max(1, (plants + l.per_row - 1) / l.per_row);
+  l.row_spacing = 1.0;
+  l.plant_spacing = 0.4;
+  l.random_rotation = true;
+  l.jitter = 0.02;
+  l.seed = 1;
+  auto p = row_layout(l);
+  p.resize(static_cast<std::size_t>(std::max(0, plants)));
+  return p;
 }
 
 std::vector<PlantPlacement> read_positions(const std::string& path) {

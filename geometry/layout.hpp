@@ -29,6 +29,10 @@ struct RowLayout {
   std::uint64_t seed = 1;
 };
 
+/// DESIGN.md's default stand of n plants: rows of 100 (one row below 100), 1.0 m between rows,
+/// 0.4 m between plants, random rotation, 2 cm jitter, stand seed 1; exactly n placements.
+std::vector<PlantPlacement> default_stand_layout(int plants);
+
 /// Plant p's seed: a hash of the stand seed and p, so plants differ and the stand is reproducible.
 std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant);
 

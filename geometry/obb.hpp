@@ -16,9 +16,6 @@ struct Obb {
   float radius;     // of the bounding sphere about the centre: a quick rejection first
 };
 
-struct Obb;
-CANOPY_HD inline void set_radius(Obb& o);
-
 /// Relative and absolute slack added to every bound so that float rounding never lets a vertex
 /// of the organ's mesh (computed with the same transform) fall outside it. Bounds only: exact
 /// answers never use it.

@@ -43,21 +43,39 @@ void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit
         n, need / 1e9, first.turtle.organs.size(), static_cast<double>(limit) / 1e9));
 }
 
+/// The grammar file a placement names (relative to the positions file), or the stand's.
+std::string grammar_path(const GrowRequest& req, const std::string& name) {
+  if (name.empty()) return req.grammar;
+  if (!req.relative_to.empty() && std::filesystem::path(name).is_relative())
+    return (std::filesystem::path(req.relative_to) / name).string();
+  return name;
+}
+
+/// Derives, interprets and runs the turtle for plant `index` (its `steps` already chosen).
+void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& req, std::size_t index, GrownPlant& out) {
+  const ModuleString s = derive(g, DeriveRequest{out.steps, pl.seed, req.max_modules});
+  TurtleConfig tc;
+  tc.lod = req.lod;
+  tc.where = fmt::format("plant {} (seed {})", index, pl.seed);
+  if (g.interpretation.empty()) {  // no copy of the string when there is nothing to interpret
+    out.modules = s.size();
+    out.turtle = run_turtle(g, s, tc);
+  } else {
+    const ModuleString t = interpret(g, s, pl.seed, req.max_modules);
+    out.modules = t.size();
+    out.turtle = run_turtle(g, t, tc);
+  }
+}
+
 }  // namespace
 
 void check_stand_fits(const GrowRequest& req, std::size_t plants) {
   if (req.plants.empty()) return;
-  GrowRequest one = req;
-  one.plants.resize(1);
-  const Grammar g = load_grammar(req.plants[0].grammar.empty() ? req.grammar : req.plants[0].grammar, req.load);
-  GrownPlant first;
   const PlantPlacement& pl = req.plants[0];
-  const ModuleString s = interpret(g, derive(g, DeriveRequest{pl.steps.value_or(req.steps.value_or(g.steps)), pl.seed, req.max_modules}),
-                                   pl.seed, req.max_modules);
-  first.modules = s.size();
-  TurtleConfig tc;
-  tc.lod = req.lod;
-  first.turtle = run_turtle(g, s, tc);
+  const Grammar g = load_grammar(grammar_path(req, pl.grammar), req.load);
+  GrownPlant first;
+  first.steps = pl.steps.value_or(req.steps.value_or(g.steps));
+  grow_plant(g, pl, req, 0, first);
   check_fits(first, plants, req.memory_limit);
 }
 
@@ -77,9 +95,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   std::map<std::string, int> index;
   std::vector<std::unique_ptr<Grammar>> grammars;
   auto grammar_index = [&](const std::string& name) {
-    std::string path = name.empty() ? req.grammar : name;
-    if (!name.empty() && !req.relative_to.empty() && std::filesystem::path(path).is_relative())
-      path = (std::filesystem::path(req.relative_to) / path).string();
+    const std::string path = grammar_path(req, name);
     auto it = index.find(path);
     if (it != index.end()) return it->second;
     grammars.push_back(std::make_unique<Grammar>(load_grammar(path, req.load)));
@@ -96,20 +112,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
 
   std::vector<std::string> errors(n);
   auto grow_one = [&](std::size_t p) {
-    const Grammar& g = *grammars[static_cast<std::size_t>(grown[p].grammar)];
-    const PlantPlacement& pl = req.plants[p];
-    const ModuleString s = derive(g, DeriveRequest{grown[p].steps, pl.seed, req.max_modules});
-    TurtleConfig tc;
-    tc.lod = req.lod;
-    tc.where = fmt::format("plant {} (seed {})", p, pl.seed);
-    if (g.interpretation.empty()) {
-      grown[p].modules = s.size();
-      grown[p].turtle = run_turtle(g, s, tc);
-    } else {
-      const ModuleString t = interpret(g, s, pl.seed, req.max_modules);
-      grown[p].modules = t.size();
-      grown[p].turtle = run_turtle(g, t, tc);
-    }
+    grow_plant(*grammars[static_cast<std::size_t>(grown[p].grammar)], req.plants[p], req, p, grown[p]);
   };
 
   const double t0 = now();

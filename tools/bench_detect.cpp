@@ -40,13 +40,7 @@ double median_time(int repeats, F&& f) {
 Stand default_stand(int n) {
   GrowRequest req;
   req.grammar = "grammars/tomato.yaml";
-  RowLayout l;
-  l.per_row = std::min(n, 100);
-  l.rows = (n + l.per_row - 1) / l.per_row;
-  l.random_rotation = true;
-  l.jitter = 0.02;
-  req.plants = row_layout(l);
-  req.plants.resize(static_cast<std::size_t>(n));
+  req.plants = default_stand_layout(n);
   return grow_stand(req);
 }
 

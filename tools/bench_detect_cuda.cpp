@@ -51,12 +51,7 @@ int main(int argc, char** argv) {
   for (int n : sizes) {
     GrowRequest req;
     req.grammar = "grammars/tomato.yaml";
-    RowLayout l;
-    l.per_row = std::min(n, 100);
-    l.rows = (n + l.per_row - 1) / l.per_row;
-    l.random_rotation = true;
-    l.jitter = 0.02;
-    req.plants = row_layout(l);
+    req.plants = default_stand_layout(n);
     const Stand s = grow_stand(req);
     PrototypeLibrary lib;
     std::size_t tris = 0;

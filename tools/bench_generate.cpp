@@ -24,19 +24,6 @@ double since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-RowLayout default_layout(int n) {
-  // DESIGN.md's default stand: rows of 100 (one row below 100), 1.0 m x 0.4 m, rotation, 2 cm jitter.
-  RowLayout l;
-  l.per_row = std::min(n, 100);
-  l.rows = (n + l.per_row - 1) / l.per_row;
-  l.row_spacing = 1.0;
-  l.plant_spacing = 0.4;
-  l.random_rotation = true;
-  l.jitter = 0.02;
-  l.seed = 1;
-  return l;
-}
-
 /// Writes `bytes` to a file in 1 MiB blocks, buffered like the exports, optionally synced.
 double disk_write_mb_s(const std::string& dir, bool sync, std::size_t bytes = std::size_t(1) << 30) {
   std::vector<char> block(1 << 20, 'x');
@@ -94,7 +81,7 @@ int main(int argc, char** argv) {
       auto t = std::chrono::steady_clock::now();
       GrowRequest req;
       req.grammar = grammar;
-      req.plants = row_layout(default_layout(n));
+      req.plants = default_stand_layout(n);
       const double layout_s = since(t);
       req.threads = threads;
       t = std::chrono::steady_clock::now();

@@ -24,11 +24,8 @@ struct StandOptions {
   std::string formats = "glb";
   bool glb_instancing = false;
   std::size_t max_modules = kDefaultMaxModules;
-  // layout
-  std::optional<int> rows, per_row;
-  std::optional<double> row_spacing, plant_spacing, double_rows, jitter;
-  bool random_rotation = false;
-  std::optional<std::uint64_t> seed;
+  StandSpec rows;               // row options given on the command line
+  bool random_rotation = false;  // folded into `rows` once parsed
   std::string positions;
   DetectOptions detect;
 };
@@ -37,34 +34,22 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-/// The layout: command-line options when any is given (unset ones take DESIGN.md's defaults:
-/// 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1), else the
-/// grammar's `stand` entry, else one plant at the origin.
-RowLayout choose_layout(const StandOptions& o, const Grammar& g, bool& from_grammar) {
+bool any_row_option(const StandSpec& s) {
+  return s.rows || s.per_row || s.row_spacing || s.plant_spacing || s.double_rows || s.jitter || s.random_rotation || s.seed;
+}
+
+/// A row layout from a stand entry (the grammar's or the command line's); unset keys take
+/// DESIGN.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
+RowLayout to_row_layout(const StandSpec& s) {
   RowLayout l;
-  const bool any = o.rows || o.per_row || o.row_spacing || o.plant_spacing || o.double_rows || o.jitter ||
-                   o.random_rotation || o.seed;
-  from_grammar = !any && g.stand.has_value();
-  if (from_grammar) {
-    const StandSpec& s = *g.stand;
-    l.rows = s.rows.value_or(1);
-    l.per_row = s.per_row.value_or(1);
-    l.row_spacing = s.row_spacing.value_or(1.0);
-    l.plant_spacing = s.plant_spacing.value_or(0.4);
-    l.double_rows = s.double_rows;
-    l.jitter = s.jitter.value_or(0);
-    l.random_rotation = s.random_rotation.value_or(false);
-    l.seed = s.seed.value_or(1);
-    return l;
-  }
-  l.rows = o.rows.value_or(1);
-  l.per_row = o.per_row.value_or(1);
-  l.row_spacing = o.row_spacing.value_or(1.0);
-  l.plant_spacing = o.plant_spacing.value_or(0.4);
-  l.double_rows = o.double_rows;
-  l.jitter = o.jitter.value_or(0);
-  l.random_rotation = o.random_rotation;
-  l.seed = o.seed.value_or(1);
+  l.rows = s.rows.value_or(1);
+  l.per_row = s.per_row.value_or(1);
+  l.row_spacing = s.row_spacing.value_or(1.0);
+  l.plant_spacing = s.plant_spacing.value_or(0.4);
+  l.double_rows = s.double_rows;
+  l.jitter = s.jitter.value_or(0);
+  l.random_rotation = s.random_rotation.value_or(false);
+  l.seed = s.seed.value_or(1);
   return l;
 }
 
@@ -85,14 +70,14 @@ Command add_stand(CLI::App& root) {
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation")->check(CLI::PositiveNumber);
   o->detect.add_to(*app);
   auto* layout = app->add_option_group("layout", "Rows (any of these replaces the grammar's stand entry) or a positions file");
-  layout->add_option("--rows", o->rows, "Number of rows (along +X, spaced along +Y)")->check(CLI::PositiveNumber);
-  layout->add_option("--per-row", o->per_row, "Plants per row")->check(CLI::PositiveNumber);
-  layout->add_option("--row-spacing", o->row_spacing, "Metres between rows (default 1.0)")->check(CLI::NonNegativeNumber);
-  layout->add_option("--plant-spacing", o->plant_spacing, "Metres between plants in a row (default 0.4)")->check(CLI::NonNegativeNumber);
-  layout->add_option("--double-rows", o->double_rows, "Rows in pairs GAP metres apart; pairs --row-spacing apart")->check(CLI::NonNegativeNumber);
-  layout->add_option("--jitter", o->jitter, "Radius in metres of a uniform disc around each position")->check(CLI::NonNegativeNumber);
+  layout->add_option("--rows", o->rows.rows, "Number of rows (along +X, spaced along +Y)")->check(CLI::PositiveNumber);
+  layout->add_option("--per-row", o->rows.per_row, "Plants per row")->check(CLI::PositiveNumber);
+  layout->add_option("--row-spacing", o->rows.row_spacing, "Metres between rows (default 1.0)")->check(CLI::NonNegativeNumber);
+  layout->add_option("--plant-spacing", o->rows.plant_spacing, "Metres between plants in a row (default 0.4)")->check(CLI::NonNegativeNumber);
+  layout->add_option("--double-rows", o->rows.double_rows, "Rows in pairs GAP metres apart; pairs --row-spacing apart")->check(CLI::NonNegativeNumber);
+  layout->add_option("--jitter", o->rows.jitter, "Radius in metres of a uniform disc around each position")->check(CLI::NonNegativeNumber);
   layout->add_flag("--random-rotation", o->random_rotation, "Turn each plant by a random angle about Z");
-  layout->add_option("--seed", o->seed, "Stand seed: plant seeds, jitter and rotations derive from it (default 1)");
+  layout->add_option("--seed", o->rows.seed, "Stand seed: plant seeds, jitter and rotations derive from it (default 1)");
   layout->add_option("--positions", o->positions, "CSV with columns x,y,rotation,seed and optional grammar,steps");
   return {app, [o]() {
             const auto t_start = std::chrono::steady_clock::now();
@@ -106,8 +91,8 @@ Command add_stand(CLI::App& root) {
               formats.insert(f);
               i = j + 1;
             }
-            if (!o->positions.empty() && (o->rows || o->per_row || o->row_spacing || o->plant_spacing || o->double_rows ||
-                                          o->jitter || o->random_rotation || o->seed))
+            if (o->random_rotation) o->rows.random_rotation = true;
+            if (!o->positions.empty() && any_row_option(o->rows))
               throw std::invalid_argument("--positions cannot be combined with row options");
             const DetectRequest dreq = o->detect.request();  // bad options fail before any work
             std::string backend_note;
@@ -128,7 +113,9 @@ Command add_stand(CLI::App& root) {
               req.plants = read_positions(o->positions);
               req.relative_to = std::filesystem::path(o->positions).parent_path().string();
             } else {
-              layout = choose_layout(*o, g, from_grammar);
+              // Command-line row options replace the grammar's stand entry as a whole.
+              from_grammar = !any_row_option(o->rows) && g.stand.has_value();
+              layout = to_row_layout(from_grammar ? *g.stand : o->rows);
               // Say so before trying when the stand cannot fit: probe with its first plant.
               RowLayout first = layout;
               first.rows = first.per_row = 1;

@@ -31,12 +31,7 @@ void same_everywhere(const Stand& s, DetectRequest req, const char* what) {
 Stand default_stand(int n) {
   GrowRequest req;
   req.grammar = source("grammars/tomato.yaml");
-  RowLayout l;
-  l.per_row = std::min(n, 100);
-  l.rows = (n + l.per_row - 1) / l.per_row;
-  l.random_rotation = true;
-  l.jitter = 0.02;
-  req.plants = row_layout(l);
+  req.plants = default_stand_layout(n);
   return grow_stand(req);
 }
 

@@ -4,14 +4,7 @@
 set -u
 src=$1
 canopy=${CANOPY:?set CANOPY to the canopy binary}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-failures=0
-pass=0
-check() {  # check NAME EXPECTED ACTUAL
-  if [ "$2" == "$3" ]; then pass=$((pass + 1)); else
-    failures=$((failures + 1)); printf 'FAIL %s\n  expected: %s\n  actual:   %s\n' "$1" "$2" "$3"; fi
-}
+source "$(dirname "$0")/check.sh"
 
 check "1.24a two steps" "F[+F]F[-F]F[+F[+F]F[-F]F]F[+F]F[-F]F[-F[+F]F[-F]F]F[+F]F[-F]F" \
   "$("$canopy" derive "$src/grammars/classic/abop_1_24a.yaml" --steps 2)"
