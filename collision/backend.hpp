@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace canopy {
 
@@ -16,6 +17,9 @@ struct DetectRequest {
   float clearance = 0;  // metres; with one, every bound at every level is inflated by it
   KindMask collide = default_collide_kinds();
   int threads = 0;      // 0: all cores
+  /// When set (one flag per plant), only plant pairs with at least one flagged plant are looked
+  /// at: the re-detection of resolution rounds (plants whose organs moved, and their neighbours).
+  const std::vector<std::uint8_t>* active_plants = nullptr;
 };
 
 /// The bounding-volume settings a request implies (same on every backend).
@@ -33,6 +37,10 @@ class DetectionBackend {
   virtual std::string device() const = 0;
   /// Every contact at `request.level`, sorted, with the counts of every level up to it.
   virtual Contacts detect(const Stand& stand, const DetectRequest& request) = 0;
+  /// Resolution rounds: organs `moved` have new transforms in `stand`. Refits the bounding
+  /// volumes kept from the last detect() or redetect() on this stand (a transform per organ, not
+  /// a rebuild; on CUDA only the moved organs travel to the device) and detects again.
+  virtual Contacts redetect(const Stand& stand, const DetectRequest& request, const std::vector<std::uint32_t>& moved) = 0;
 };
 
 /// The CPU backend: MBVT, grid broad phase, parallel over plant pairs (OpenMP), results

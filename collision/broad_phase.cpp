@@ -69,14 +69,17 @@ bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint
   return false;
 }
 
-std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, const Mbvt& m, LevelCount& count) {
+std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, const Mbvt& m, LevelCount& count,
+                                                               const std::vector<std::uint8_t>* active) {
   auto work = plant_pairs(s, m);
+  const auto on = [&](std::int32_t p) { return !active || (*active)[static_cast<std::size_t>(p)]; };
+  if (active) std::erase_if(work, [&](const auto& w) { return !on(w.first) && !on(w.second); });
   count = {work.size(), 0};
   std::vector<std::uint8_t> self(s.plant_count(), 0);
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
     const PlantBound& pb = m.plants[p];
-    if (pb.cluster_count == 0) continue;
+    if (pb.cluster_count == 0 || !on(static_cast<std::int32_t>(p))) continue;
     // The plant's organs that take part are contiguous in cluster_organs.
     const Cluster& first = m.clusters[pb.first_cluster];
     const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];

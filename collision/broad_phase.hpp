@@ -23,7 +23,9 @@ bool has_free_pair(const Stand& stand, const Mbvt& m, std::uint32_t first, std::
 
 /// The plant level as both backends run it: the grid's plant pairs (p < q) and each plant with
 /// itself (p, p) where it holds a pair of organs that may meet, sorted; `count` gets the level's
-/// numbers between and within plants.
-std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& stand, const Mbvt& m, LevelCount& count);
+/// numbers between and within plants. With `active` (a flag per plant), only pairs with a
+/// flagged plant.
+std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& stand, const Mbvt& m, LevelCount& count,
+                                                               const std::vector<std::uint8_t>* active = nullptr);
 
 }  // namespace canopy

@@ -11,6 +11,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
+#include <optional>
+#include <stdexcept>
 #include <thread>
 
 namespace canopy {
@@ -81,19 +84,37 @@ class CpuBackend : public DetectionBackend {
   }
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {
+    const double t = now();
+    lib_ = std::make_unique<PrototypeLibrary>();
+    tree_ = build_mbvt(s, *lib_, mbvt_config(req));
+    return run(s, req, now() - t);
+  }
+
+  Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
+    if (!tree_ || tree_->obbs.size() != s.organ_count())
+      throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
+    const double t = now();
+    refit_mbvt(*tree_, s, *lib_, moved);
+    return run(s, req, now() - t);
+  }
+
+ private:
+  std::optional<Mbvt> tree_;
+  std::unique_ptr<PrototypeLibrary> lib_;
+
+  Contacts run(const Stand& s, const DetectRequest& req, double build_s) {
     Contacts out;
     out.level = req.level;
-    PrototypeLibrary lib;
+    out.build_s = build_s;
+    const Mbvt& m = *tree_;
+    PrototypeLibrary& lib = *lib_;
     double t = now();
-    const Mbvt m = build_mbvt(s, lib, mbvt_config(req));
-    out.build_s = now() - t;
     const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
 
     // Plant level: pairs of plants whose bounds meet, and each plant with itself.
-    t = now();
     LevelCount plant_count;
     std::vector<Work> work;
-    for (const auto& [p, q] : plant_level(s, m, plant_count)) work.push_back({p, q});
+    for (const auto& [p, q] : plant_level(s, m, plant_count, req.active_plants)) work.push_back({p, q});
     out.counts[0] = plant_count;
     out.seconds[0] = now() - t;
     if (req.level == ContactLevel::plant) {

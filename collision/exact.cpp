@@ -10,21 +10,31 @@ namespace canopy {
 
 void organ_vertices(const Stand& s, const PrototypeMesh& mesh, std::int32_t organ, std::int32_t frame_plant,
                     std::vector<Vec3f>& out) {
-  const Affine3f& m = s.transforms[static_cast<std::size_t>(organ)];
-  const std::int32_t plant = s.organs[static_cast<std::size_t>(organ)].plant;
+  organ_vertices(s, mesh, s.transforms[static_cast<std::size_t>(organ)], s.organs[static_cast<std::size_t>(organ)].plant,
+                 frame_plant, out);
+}
+
+void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m, std::int32_t plant, std::int32_t frame_plant,
+                    std::vector<Vec3f>& out) {
   const Vec3f d = plant == frame_plant ? Vec3f{0, 0, 0} : plant_offset(s, frame_plant, plant);
   out.resize(mesh.positions.size());
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) out[i] = apply(m, mesh.positions[i]) + d;
 }
 
 bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance, ExactScratch& x) {
+  return organs_touch_at(s, lib, a, s.transforms[static_cast<std::size_t>(a)], b, s.transforms[static_cast<std::size_t>(b)],
+                         clearance, x);
+}
+
+bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
+                     const Affine3f& pose_b, float clearance, ExactScratch& x) {
   assert(a < b);
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
   const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
   const PrototypeMesh& mb = lib.get(rb.prototype, rb.lod);
-  organ_vertices(s, ma, a, ra.plant, x.va);
-  organ_vertices(s, mb, b, ra.plant, x.vb);
+  organ_vertices(s, ma, pose_a, ra.plant, ra.plant, x.va);
+  organ_vertices(s, mb, pose_b, rb.plant, ra.plant, x.vb);
   const std::size_t ta = ma.triangle_count(), tb = mb.triangle_count();
   const double c = clearance;
   // Boxes of both organs' triangles; only triangles inside the other organ's (widened) box can

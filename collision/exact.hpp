@@ -20,10 +20,17 @@ struct ExactScratch {
 bool organs_touch(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance,
                   ExactScratch& scratch);
 
+/// The same test with the organs at the given plant-frame transforms instead of the stand's (the
+/// turn search of resolution tries poses before it keeps one).
+bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
+                     const Affine3f& tb, float clearance, ExactScratch& scratch);
+
 /// The organ's vertices in the plant frame of `frame_plant` (its own frame moved by the origin
 /// difference), as every exact test computes them.
 void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, std::int32_t organ, std::int32_t frame_plant,
                     std::vector<Vec3f>& out);
+void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, const Affine3f& transform, std::int32_t plant,
+                    std::int32_t frame_plant, std::vector<Vec3f>& out);
 
 /// Solids: closed cylinders and spheres contain what lies inside them.
 inline bool is_solid(PrototypeKind k) { return k == PrototypeKind::cylinder || k == PrototypeKind::sphere; }

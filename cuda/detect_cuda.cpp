@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
+#include <optional>
+#include <stdexcept>
 
 namespace canopy::cuda {
 namespace {
@@ -44,11 +47,9 @@ class CudaBackend : public DetectionBackend {
   std::string device() const override { return name_; }
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {
-    Contacts out;
-    out.level = req.level;
-    PrototypeLibrary lib;
-    double t = now();
-    const Mbvt m = build_mbvt(s, lib, mbvt_config(req));
+    const double t = now();
+    lib_ = std::make_unique<PrototypeLibrary>();
+    tree_ = build_mbvt(s, *lib_, mbvt_config(req));
     // Prototype meshes, stored once.
     std::vector<MeshRef> meshes(4 * (kMaxLod + 1));
     std::vector<Vec3f> positions;
@@ -56,20 +57,68 @@ class CudaBackend : public DetectionBackend {
     for (const OrganRecord& r : s.organs) {
       MeshRef& ref = meshes[static_cast<std::size_t>(r.prototype) * (kMaxLod + 1) + r.lod];
       if (ref.vertex_count) continue;
-      const PrototypeMesh& pm = lib.get(r.prototype, r.lod);
+      const PrototypeMesh& pm = lib_->get(r.prototype, r.lod);
       ref = {static_cast<std::uint32_t>(positions.size()), static_cast<std::uint32_t>(pm.positions.size()),
              static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(pm.triangle_count())};
       positions.insert(positions.end(), pm.positions.begin(), pm.positions.end());
       indices.insert(indices.end(), pm.indices.begin(), pm.indices.end());
     }
-    upload(s, m, meshes, positions, indices);
-    out.build_s = now() - t;
+    upload(s, *tree_, meshes, positions, indices);
+    return run(s, req, now() - t);
+  }
 
+  Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
+    if (!tree_ || tree_->obbs.size() != s.organ_count())
+      throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
+    const double t = now();
+    Mbvt& m = *tree_;
+    refit_mbvt(m, s, *lib_, moved);
+    // Only what changed travels: the moved organs' transforms and boxes, the LCD nodes of their
+    // plants, and the plant bounds.
+    std::vector<Affine3f> tr;
+    std::vector<Obb> ob;
+    for (std::uint32_t k : moved) tr.push_back(s.transforms[k]), ob.push_back(m.obbs[k]);
+    scatter(transforms_, moved, tr);
+    scatter(obbs_, moved, ob);
+    std::vector<std::uint8_t> dirty(s.plant_count(), 0);
+    for (std::uint32_t k : moved) dirty[static_cast<std::size_t>(s.organs[k].plant)] = 1;
+    std::vector<std::uint32_t> node_ids;
+    std::vector<LcdNode> nodes;
+    for (std::size_t p = 0; p < s.plant_count(); ++p) {
+      if (!dirty[p]) continue;
+      const PlantBound& pb = m.plants[p];
+      for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c)
+        for (std::uint32_t n = m.clusters[c].first_node; n < m.clusters[c].first_node + m.clusters[c].node_count; ++n)
+          node_ids.push_back(n), nodes.push_back(m.nodes[n]);
+    }
+    scatter(nodes_, node_ids, nodes);
+    plants_.upload(m.plants);
+    view_.plants = plants_.get();
+    return run(s, req, now() - t);
+  }
+
+ private:
+  template <typename T>
+  void scatter(DeviceBuffer<T>& dst, const std::vector<std::uint32_t>& ids, const std::vector<T>& values) {
+    static_assert(sizeof(T) % 4 == 0);
+    if (ids.empty()) return;
+    scatter_ids_.upload(ids);
+    DeviceBuffer<T> v;
+    v.upload(values);
+    launch_scatter(dst.get(), v.get(), scatter_ids_.get(), static_cast<std::uint32_t>(ids.size()), sizeof(T) / 4);
+    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+  }
+
+  Contacts run(const Stand& s, const DetectRequest& req, double build_s) {
+    Contacts out;
+    out.level = req.level;
+    out.build_s = build_s;
+    const Mbvt& m = *tree_;
     // Plant level on the host, exactly as the CPU backend: grid pairs and plants with themselves.
-    t = now();
+    double t = now();
     LevelCount plants;
     std::vector<WorkItem> work;
-    for (const auto& [p, q] : plant_level(s, m, plants))
+    for (const auto& [p, q] : plant_level(s, m, plants, req.active_plants))
       work.push_back({p, q, p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q)});
     out.counts[0] = plants;
     out.seconds[0] = now() - t;
@@ -123,7 +172,6 @@ class CudaBackend : public DetectionBackend {
     return out;
   }
 
- private:
   void upload(const Stand& s, const Mbvt& m, const std::vector<MeshRef>& meshes, const std::vector<Vec3f>& positions,
               const std::vector<std::uint32_t>& indices) {
     transforms_.upload(s.transforms);
@@ -143,6 +191,9 @@ class CudaBackend : public DetectionBackend {
 
   int device_;
   std::string name_;
+  std::optional<Mbvt> tree_;
+  std::unique_ptr<PrototypeLibrary> lib_;
+  DeviceBuffer<std::uint32_t> scatter_ids_;
   DeviceBuffer<Affine3f> transforms_;
   DeviceBuffer<OrganRecord> organs_;
   DeviceBuffer<Obb> obbs_;

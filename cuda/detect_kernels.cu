@@ -186,4 +186,22 @@ void launch_exact(const StandView& v, const WorkItem* work, const OrganPair* pai
   CANOPY_CUDA_CHECK_LAUNCH("exact_kernel");
 }
 
+namespace {
+__global__ void scatter_kernel(std::uint32_t* dst, const std::uint32_t* src, const std::uint32_t* index, std::uint32_t n,
+                               std::uint32_t words) {
+  const std::uint64_t k = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (k >= static_cast<std::uint64_t>(n) * words) return;
+  const std::uint64_t item = k / words, w = k % words;
+  dst[static_cast<std::uint64_t>(index[item]) * words + w] = src[k];
+}
+}  // namespace
+
+void launch_scatter(void* dst, const void* src, const std::uint32_t* index, std::uint32_t n, std::uint32_t words) {
+  const std::uint64_t total = static_cast<std::uint64_t>(n) * words;
+  if (total == 0) return;
+  scatter_kernel<<<static_cast<unsigned>((total + kThreads - 1) / kThreads), kThreads>>>(
+      static_cast<std::uint32_t*>(dst), static_cast<const std::uint32_t*>(src), index, n, words);
+  CANOPY_CUDA_CHECK_LAUNCH("scatter_kernel");
+}
+
 }  // namespace canopy::cuda

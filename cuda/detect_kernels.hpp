@@ -54,4 +54,8 @@ void launch_organ_pairs(const StandView& v, const WorkItem* work, const ClusterP
 void launch_exact(const StandView& v, const WorkItem* work, const OrganPair* pairs, std::uint32_t n_pairs, float clearance,
                   std::uint8_t* hit);
 
+/// dst[index[i]] = src[i] for i < n, items of `words` 32-bit words: moved organs' transforms and
+/// boxes travel to the device one by one, not as whole arrays.
+void launch_scatter(void* dst, const void* src, const std::uint32_t* index, std::uint32_t n, std::uint32_t words);
+
 }  // namespace canopy::cuda

@@ -5,6 +5,7 @@
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/report.hpp"
+#include "tools/resolve_options.hpp"
 
 #include <fmt/format.h>
 
@@ -28,6 +29,7 @@ struct StandOptions {
   bool random_rotation = false;  // folded into `rows` once parsed
   std::string positions;
   DetectOptions detect;
+  ResolveOptions resolve;
 };
 
 double seconds_since(std::chrono::steady_clock::time_point t) {
@@ -69,6 +71,7 @@ Command add_stand(CLI::App& root) {
                 "about 20 times smaller; organ ids become a per-instance _ORGAN attribute");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation")->check(CLI::PositiveNumber);
   o->detect.add_to(*app);
+  o->resolve.add_to(*app);
   auto* layout = app->add_option_group("layout", "Rows (any of these replaces the grammar's stand entry) or a positions file");
   layout->add_option("--rows", o->rows.rows, "Number of rows (along +X, spaced along +Y)")->check(CLI::PositiveNumber);
   layout->add_option("--per-row", o->rows.per_row, "Plants per row")->check(CLI::PositiveNumber);
@@ -125,17 +128,36 @@ Command add_stand(CLI::App& root) {
             }
             const auto t_grow = std::chrono::steady_clock::now();
             GrowTimings gt;
-            const Stand stand = grow_stand(req, &gt);
+            Stand stand = grow_stand(req, &gt);
             StandReport rep;
             rep.timings["generate"] = seconds_since(t_grow);
 
-            // Detection (resolution comes with a later issue: the stand is exported as grown).
+            // Detection at the level asked for; contacts.csv and contacts_before come from it.
             const auto t_detect = std::chrono::steady_clock::now();
             const Contacts contacts = backend->detect(stand, dreq);
             rep.timings["detect"] = seconds_since(t_detect);
             rep.backend = backend->name();
             rep.device = backend->device();
             rep.contacts_before = counts_json(contacts);
+
+            // Resolution, then detection from scratch at the same level for contacts_after.
+            Contacts after = contacts;
+            std::optional<ResolveResult> resolved;
+            if (!o->resolve.no_resolve) {
+              const auto t_resolve = std::chrono::steady_clock::now();
+              const ResolveConfig rc = o->resolve.config();
+              DetectRequest at = dreq;
+              at.level = rc.level;
+              // Resolution starts from its own level's contacts, on a tree the backend keeps.
+              const Contacts start = dreq.level == rc.level ? contacts : backend->detect(stand, at);
+              resolved = run_resolution(stand, *backend, dreq, o->resolve, start);
+              rep.timings["resolve"] = seconds_since(t_resolve);
+              const auto t_check = std::chrono::steady_clock::now();
+              after = backend->detect(stand, dreq);
+              rep.timings["detect_after"] = seconds_since(t_check);
+              rep.resolution = resolution_json(*resolved);
+            }
+            rep.contacts_after = counts_json(after);
 
             PrototypeLibrary lib;
             OutputSet files(o->out);
@@ -149,6 +171,7 @@ Command add_stand(CLI::App& root) {
             write_organs_csv(stand, lib, files.open("organs.csv"));
             write_plants_csv(stand, files.open("plants.csv"));
             files.open("contacts.csv").write(contacts_csv(contacts));
+            files.open("contacts_after.csv").write(contacts_csv(after));
             rep.timings["export"] = seconds_since(t_export);
 
             nlohmann::ordered_json config;
@@ -164,6 +187,7 @@ Command add_stand(CLI::App& root) {
             config["collide"] = o->detect.collide;
             config["backend"] = o->detect.backend;
             config["threads"] = o->detect.threads;
+            config["resolve"] = o->resolve.config_json();
             if (!o->positions.empty()) {
               config["layout"] = {{"positions", o->positions}};
             } else {
@@ -185,6 +209,7 @@ Command add_stand(CLI::App& root) {
             files.commit_all();
             print_summary(stand, lib, rep, o->out);
             print_contacts_table(contacts, backend_note);
+            if (resolved) print_resolution(*resolved);
             return 0;
           }};
 }

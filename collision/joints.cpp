@@ -1,0 +1,137 @@
+#include "collision/joints.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace canopy {
+
+Mat3d operator*(const Mat3d& a, const Mat3d& b) {
+  Mat3d c;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) c.m[3 * i + j] = a.m[3 * i] * b.m[j] + a.m[3 * i + 1] * b.m[3 + j] + a.m[3 * i + 2] * b.m[6 + j];
+  return c;
+}
+
+Vec3d operator*(const Mat3d& a, Vec3d v) {
+  return {a.m[0] * v.x + a.m[1] * v.y + a.m[2] * v.z, a.m[3] * v.x + a.m[4] * v.y + a.m[5] * v.z,
+          a.m[6] * v.x + a.m[7] * v.y + a.m[8] * v.z};
+}
+
+Mat3d transpose(const Mat3d& a) {
+  Mat3d t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) t.m[3 * i + j] = a.m[3 * j + i];
+  return t;
+}
+
+Mat3d axis_angle(Vec3d k, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle), v = 1 - c;
+  Mat3d r;
+  r.m[0] = c + k.x * k.x * v, r.m[1] = k.x * k.y * v - k.z * s, r.m[2] = k.x * k.z * v + k.y * s;
+  r.m[3] = k.y * k.x * v + k.z * s, r.m[4] = c + k.y * k.y * v, r.m[5] = k.y * k.z * v - k.x * s;
+  r.m[6] = k.z * k.x * v - k.y * s, r.m[7] = k.z * k.y * v + k.x * s, r.m[8] = c + k.z * k.z * v;
+  return r;
+}
+
+double rotation_angle_deg(const Mat3d& r) {
+  const double c = std::clamp((r.m[0] + r.m[4] + r.m[8] - 1) / 2, -1.0, 1.0);
+  return std::acos(c) * 180 / std::numbers::pi;
+}
+
+Motion compose(const Motion& a, const Motion& b) { return {a.r * b.r, a.r * b.t + a.t}; }
+
+Motion rotation_about(Vec3d p, const Mat3d& r) { return {r, p - r * p}; }
+
+Vec3d apply(const Motion& m, Vec3d p) { return m.r * p + m.t; }
+
+Affine3f apply(const Motion& m, const Affine3f& a) {
+  Affine3f o;
+  o.c0 = to_float(m.r * to_double(a.c0));
+  o.c1 = to_float(m.r * to_double(a.c1));
+  o.c2 = to_float(m.r * to_double(a.c2));
+  o.t = to_float(apply(m, to_double(a.t)));
+  return o;
+}
+
+Joints::Joints(const Stand& s)
+    : grown_(s.transforms), parent_(s.organ_count()), subtree_end_(s.organ_count()), slot_(s.organ_count(), -1) {
+  const std::size_t n = s.organ_count();
+  for (std::size_t i = 0; i < n; ++i) {
+    parent_[i] = s.organs[i].parent;  // a global id in the stand
+    subtree_end_[i] = static_cast<std::uint32_t>(i + 1);
+  }
+  for (std::size_t i = n; i-- > 0;)
+    if (parent_[i] >= 0) {
+      auto& e = subtree_end_[static_cast<std::size_t>(parent_[i])];
+      e = std::max(e, subtree_end_[i]);
+    }
+}
+
+double Joints::angle_deg(std::uint32_t k) const {
+  return slot_[k] < 0 ? 0.0 : rotation_angle_deg(local_[static_cast<std::size_t>(slot_[k])]);
+}
+
+Motion Joints::motion(std::uint32_t k) const {
+  // Turned joints on the path to the root, applied root first.
+  std::uint32_t chain[512];
+  int n = 0;
+  for (std::int32_t a = static_cast<std::int32_t>(k); a >= 0; a = parent_[static_cast<std::size_t>(a)])
+    if (slot_[static_cast<std::size_t>(a)] >= 0 && n < 512) chain[n++] = static_cast<std::uint32_t>(a);
+  Motion d;
+  while (n-- > 0) {
+    const std::uint32_t a = chain[n];
+    d = compose(d, rotation_about(to_double(grown_[a].t), local_[static_cast<std::size_t>(slot_[a])]));
+  }
+  return d;
+}
+
+Mat3d Joints::local_after(std::uint32_t k, const Mat3d& turn) const {
+  const std::int32_t p = parent_[k];
+  const Mat3d rp = p >= 0 ? motion(static_cast<std::uint32_t>(p)).r : Mat3d{};
+  const Mat3d q = slot_[k] >= 0 ? local_[static_cast<std::size_t>(slot_[k])] : Mat3d{};
+  return transpose(rp) * turn * rp * q;
+}
+
+void Joints::set_local(std::uint32_t k, const Mat3d& q) {
+  if (slot_[k] < 0) {
+    slot_[k] = static_cast<std::int32_t>(local_.size());
+    local_.push_back(q);
+    turned_ids_.push_back(k);
+  } else {
+    local_[static_cast<std::size_t>(slot_[k])] = q;
+  }
+}
+
+std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint32_t>& turned) const {
+  std::vector<std::uint32_t> roots = turned;
+  std::sort(roots.begin(), roots.end());
+  roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
+  // Keep the outermost turned organs: a subtree inside another one is rewritten with it.
+  std::vector<std::uint32_t> outer;
+  for (std::uint32_t k : roots)
+    if (outer.empty() || k >= subtree_end_[outer.back()]) outer.push_back(k);
+  std::vector<std::uint32_t> written;
+  std::vector<Motion> d;
+  for (std::uint32_t k : outer) {
+    const std::uint32_t end = subtree_end_[k];
+    d.assign(end - k, Motion{});
+    d[0] = motion(k);
+    for (std::uint32_t i = k; i < end; ++i) {
+      if (i > k) {
+        const Motion& up = d[static_cast<std::size_t>(parent_[i]) - k];
+        d[i - k] = slot_[i] >= 0 ? compose(up, rotation_about(to_double(grown_[i].t), local_[static_cast<std::size_t>(slot_[i])])) : up;
+      }
+      s.transforms[i] = apply(d[i - k], grown_[i]);
+      written.push_back(i);
+    }
+  }
+  return written;
+}
+
+std::size_t Joints::bytes() const {
+  return grown_.size() * sizeof(Affine3f) + parent_.size() * 4 + subtree_end_.size() * 4 + slot_.size() * 4 +
+         local_.size() * sizeof(Mat3d) + turned_ids_.size() * 4;
+}
+
+}  // namespace canopy

@@ -1,0 +1,74 @@
+#pragma once
+/// Joints for resolution: an organ turns about its joint (its attachment point, the translation
+/// of its grown transform) and carries its whole subtree of the structure tree with it. Each
+/// turned organ k holds a local rotation Q_k about its grown joint j_k, expressed in its parent's
+/// grown frame, so the rigid motion that takes grown poses to current ones is
+///   D_k = D_parent(k) o J_k,   J_k = rotation Q_k about j_k  (identity where k never turned),
+/// and the current transform is T_k = D_k o G_k (G the grown transform). The joint angle |Q_k|
+/// is what the joint limit bounds (DESIGN.md "Organs": at most joint_limit degrees from the
+/// grown orientation). Organs under no turned joint keep their grown transform bit for bit.
+#include "geometry/stand.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace canopy {
+
+/// Row-major 3x3 rotation in double.
+struct Mat3d {
+  double m[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+};
+Mat3d operator*(const Mat3d& a, const Mat3d& b);
+Vec3d operator*(const Mat3d& a, Vec3d v);
+Mat3d transpose(const Mat3d& a);
+/// Rodrigues' formula: rotation by `angle` radians about the unit `axis`.
+Mat3d axis_angle(Vec3d axis, double angle);
+/// The angle of a rotation, degrees, in [0, 180].
+double rotation_angle_deg(const Mat3d& r);
+
+/// A rigid motion x -> r x + t.
+struct Motion {
+  Mat3d r;
+  Vec3d t;
+};
+Motion compose(const Motion& a, const Motion& b);  // a o b
+Motion rotation_about(Vec3d point, const Mat3d& r);
+Vec3d apply(const Motion& m, Vec3d p);
+/// The motion applied to an organ transform (columns rotated, joint moved), rounded to float.
+Affine3f apply(const Motion& m, const Affine3f& t);
+
+/// The resolution state of a stand: grown transforms, subtrees, the turned joints.
+class Joints {
+ public:
+  explicit Joints(const Stand& stand);
+
+  /// Organs [k, subtree_end(k)) are k and everything distal to it (the structure tree is
+  /// depth-first in string order).
+  std::uint32_t subtree_end(std::uint32_t k) const { return subtree_end_[k]; }
+  const Affine3f& grown(std::uint32_t k) const { return grown_[k]; }
+  /// The current joint angle of organ k, degrees (0 where it never turned).
+  double angle_deg(std::uint32_t k) const;
+  /// D_k: grown pose -> current pose of organ k (plant frame).
+  Motion motion(std::uint32_t k) const;
+  /// The local rotation that turning organ k by `turn` (a rotation in the plant frame about its
+  /// current joint) would leave at its joint.
+  Mat3d local_after(std::uint32_t k, const Mat3d& turn) const;
+  /// Sets organ k's local rotation (as local_after gave it).
+  void set_local(std::uint32_t k, const Mat3d& q);
+  /// Writes current transforms into `stand` for the subtrees of `turned` organs, returns the ids
+  /// of every organ whose transform was rewritten (sorted).
+  std::vector<std::uint32_t> update(Stand& stand, const std::vector<std::uint32_t>& turned) const;
+  /// Turned joints: organ ids, and how many.
+  const std::vector<std::uint32_t>& turned() const { return turned_ids_; }
+  std::size_t bytes() const;
+
+ private:
+  std::vector<Affine3f> grown_;
+  std::vector<std::int32_t> parent_;
+  std::vector<std::uint32_t> subtree_end_;
+  std::vector<std::int32_t> slot_;   // per organ: index into local_, -1 never turned
+  std::vector<Mat3d> local_;
+  std::vector<std::uint32_t> turned_ids_;
+};
+
+}  // namespace canopy

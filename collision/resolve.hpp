@@ -1,0 +1,61 @@
+#pragma once
+/// Collision resolution (the paper's §3.5 feedback, taken to a fixed point): the contacts found
+/// are fed back into the stand by turning offending organs about their joints (never scaling,
+/// moving or removing them), rounds of refit + re-detection of the plants that moved and their
+/// neighbours, until detection finds no contact or the round cap is hit. Every round plans all
+/// its turns against the poses at the start of the round (in parallel, the same for any thread
+/// count), then applies them together; several contacts on one organ make one combined turn.
+#include "collision/backend.hpp"
+#include "collision/joints.hpp"
+#include "collision/resolve_policy.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace canopy {
+
+struct ResolveProgress {
+  int round = 0;
+  std::size_t contacts = 0;  // left at the start of the round
+  double seconds = 0;        // since resolution began
+};
+
+struct ResolveRequest {
+  DetectRequest detect;  // its level is replaced by config.level
+  ResolveConfig config;
+  std::function<void(const ResolveProgress&)> progress;  // called once per round when set
+};
+
+struct ResolveRound {
+  int round = 0;
+  std::size_t contacts = 0;   // at the start of the round
+  std::size_t turned = 0;     // joints turned in the round
+  std::size_t plants_redetected = 0;
+  double plan_s = 0, detect_s = 0;
+};
+
+struct UnresolvedContact {
+  Contact contact;
+  std::string reason;
+};
+
+struct ResolveResult {
+  std::size_t contacts_before = 0, contacts_after = 0;  // at config.level
+  int rounds = 0;                  // rounds that turned organs
+  bool converged = false;          // no contact left
+  std::string stop;                // why the loop ended
+  std::size_t organs_moved = 0;    // joints turned (organs carried along not counted)
+  std::size_t organs_carried = 0;  // organs whose transform changed
+  double mean_turn_deg = 0, max_turn_deg = 0;  // final joint angles of the turned joints
+  std::vector<ResolveRound> per_round;
+  std::vector<UnresolvedContact> unresolved;  // what is left, with why
+  std::size_t joint_bytes = 0;
+  double seconds = 0;
+};
+
+/// Resolves `stand` in place. `initial` holds the contacts at config.level that
+/// `backend.detect(stand, ...)` has just found (the backend keeps its tree for the rounds).
+ResolveResult resolve(Stand& stand, DetectionBackend& backend, const ResolveRequest& request, const Contacts& initial);
+
+}  // namespace canopy

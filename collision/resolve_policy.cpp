@@ -1,0 +1,71 @@
+#include "collision/resolve_policy.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace canopy {
+
+KindMask ResolveConfig::default_movable_kinds() {
+  KindMask k{};
+  for (OrganKind o : {OrganKind::leaflet, OrganKind::rachis, OrganKind::petiole, OrganKind::peduncle})
+    k[static_cast<std::size_t>(o)] = true;
+  return k;
+}
+
+std::array<int, 7> ResolveConfig::default_kind_rank() {
+  std::array<int, 7> r{};
+  r.fill(9);
+  r[static_cast<std::size_t>(OrganKind::leaflet)] = 0;
+  r[static_cast<std::size_t>(OrganKind::peduncle)] = 1;
+  r[static_cast<std::size_t>(OrganKind::rachis)] = 2;
+  r[static_cast<std::size_t>(OrganKind::petiole)] = 3;
+  return r;
+}
+
+namespace {
+
+bool carried(OrganKind k) { return k == OrganKind::fruit || k == OrganKind::flower; }
+
+/// The organ and its ancestors that may turn, nearest first.
+void chain(const Stand& s, std::int32_t organ, const ResolveConfig& cfg, std::vector<std::uint32_t>& out) {
+  for (std::int32_t k = organ; k >= 0; k = s.organs[static_cast<std::size_t>(k)].parent) {
+    const OrganKind kind = s.organs[static_cast<std::size_t>(k)].kind;
+    if (cfg.movable[static_cast<std::size_t>(kind)]) out.push_back(static_cast<std::uint32_t>(k));
+    else if (!carried(kind)) break;  // an internode (or any kind that may not turn) holds the rest
+  }
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> candidate_movers(const Stand& s, const Joints& j, const Contact& c, const ResolveConfig& cfg,
+                                            std::string& why) {
+  std::vector<std::uint32_t> all;
+  chain(s, c.organ_a, cfg, all);
+  chain(s, c.organ_b, cfg, all);
+  const auto holds = [&](std::uint32_t k, std::int32_t x) {
+    return static_cast<std::uint32_t>(x) >= k && static_cast<std::uint32_t>(x) < j.subtree_end(k);
+  };
+  const std::size_t before = all.size();
+  std::erase_if(all, [&](std::uint32_t k) { return holds(k, c.organ_a) && holds(k, c.organ_b); });
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  if (all.empty()) {
+    const OrganKind ka = s.organs[static_cast<std::size_t>(c.organ_a)].kind, kb = s.organs[static_cast<std::size_t>(c.organ_b)].kind;
+    why = before > 0 ? "the two organs turn only together (one subtree holds both)"
+                     : fmt::format("neither organ may turn ({} and {}, and no turnable organ carries them)", name_of(ka), name_of(kb));
+    return all;
+  }
+  const bool between = c.plant_a != c.plant_b;
+  const auto key = [&](std::uint32_t k) {
+    const Affine3f& t = s.transforms[k];
+    const float out = between && cfg.outer_first ? std::sqrt(t.t.x * t.t.x + t.t.y * t.t.y) : 0.0f;
+    return std::make_tuple(cfg.kind_rank[static_cast<std::size_t>(s.organs[k].kind)], -out, j.subtree_end(k) - k, ~k);
+  };
+  std::sort(all.begin(), all.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+  return all;
+}
+
+}  // namespace canopy

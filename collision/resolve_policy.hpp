@@ -1,0 +1,43 @@
+#pragma once
+/// Which organ turns for a contact (the resolution policy). Every contact gets an ordered list of
+/// candidate movers from both of its organs: the organ itself where its kind may turn, then its
+/// ancestors in the structure tree up to (not including) the first organ that may not turn, a
+/// fruit or flower handing over to the peduncle that carries it. A candidate whose subtree holds
+/// both organs is left out (the pair would turn together). The list is ordered by
+///   1. kind rank: leaflet, then peduncle, then rachis, then petiole (the cheapest, most local
+///      turn first: a leaflet before its rachis, a rachis segment before its petiole);
+///   2. between plants, the organ farther out from its plant's stem first (`outer_first`);
+///   3. the smaller subtree (fewer organs carried), then the higher id (the more distal organ).
+/// Internodes never turn (DESIGN.md "Organ kinds by role"). The first candidate that separates
+/// the pair within its joint limit is used; a contact none can separate is unresolvable.
+#include "collision/contacts.hpp"
+#include "collision/joints.hpp"
+#include "collision/mbvt.hpp"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace canopy {
+
+struct ResolveConfig {
+  bool enabled = true;
+  int max_rounds = 30;               // detection rounds before giving up
+  double clearance = 1e-4;           // metres left between a turned organ and what it met
+  double angle_tolerance_deg = 0.5;  // the smallest separating angle is found to within this
+  double scan_step_deg = 4;          // angles tried in steps of this before bisection
+  ContactLevel level = ContactLevel::exact;  // exact, or organ (OBBs: faster, turns more)
+  KindMask movable = default_movable_kinds();
+  std::array<int, 7> kind_rank = default_kind_rank();
+  bool outer_first = true;
+
+  static KindMask default_movable_kinds();
+  static std::array<int, 7> default_kind_rank();
+};
+
+/// The ordered candidate movers of contact c (may be empty); `why` says why when it is.
+std::vector<std::uint32_t> candidate_movers(const Stand& stand, const Joints& joints, const Contact& c,
+                                            const ResolveConfig& config, std::string& why);
+
+}  // namespace canopy

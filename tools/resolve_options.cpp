@@ -1,0 +1,108 @@
+#include "tools/resolve_options.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace canopy::cli {
+
+void ResolveOptions::add_to(CLI::App& app) {
+  app.add_flag("--no-resolve", no_resolve, "Export the stand as grown, without turning organs out of contact");
+  app.add_option("--max-rounds", max_rounds, "Resolution: detection rounds before giving up (default 30)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--resolve-clearance", clearance,
+                 "Resolution: metres left between a turned organ and what it met (default 0.0001)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--resolve-level", level,
+                 "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
+                 "turns organs that never touched)")
+      ->check(CLI::IsMember({"exact", "organ"}));
+}
+
+ResolveConfig ResolveOptions::config() const {
+  ResolveConfig c;
+  c.enabled = !no_resolve;
+  c.max_rounds = max_rounds;
+  c.clearance = clearance;
+  c.level = *parse_contact_level(level);
+  return c;
+}
+
+nlohmann::ordered_json ResolveOptions::config_json() const {
+  const ResolveConfig c = config();
+  nlohmann::ordered_json order;
+  for (std::size_t k = 0; k < 7; ++k)
+    if (c.movable[k]) order[std::string(kOrganKindNames[k])] = c.kind_rank[k];
+  return {{"enabled", c.enabled},          {"level", level},
+          {"max_rounds", c.max_rounds},    {"clearance", c.clearance},
+          {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
+          {"movable_rank", order},         {"outer_first", c.outer_first}};
+}
+
+ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
+                             const Contacts& initial) {
+  ResolveRequest req;
+  req.detect = detect;
+  req.config = o.config();
+  const bool tty = o.progress && isatty(fileno(stderr));
+  if (tty)
+    req.progress = [](const ResolveProgress& p) {
+      fmt::print(stderr, "\r  resolving: round {}, {} contacts left, {:.1f} s   ", p.round, p.contacts, p.seconds);
+      std::fflush(stderr);
+    };
+  ResolveResult r = resolve(stand, backend, req, initial);
+  if (tty) fmt::print(stderr, "\r{:60}\r", "");
+  return r;
+}
+
+nlohmann::ordered_json resolution_json(const ResolveResult& r) {
+  nlohmann::ordered_json rounds = nlohmann::ordered_json::array();
+  for (const ResolveRound& x : r.per_round)
+    rounds.push_back({{"round", x.round},
+                      {"contacts", x.contacts},
+                      {"turned", x.turned},
+                      {"plants_redetected", x.plants_redetected},
+                      {"plan_s", x.plan_s},
+                      {"detect_s", x.detect_s}});
+  nlohmann::ordered_json left = nlohmann::ordered_json::array();
+  for (const UnresolvedContact& u : r.unresolved)
+    left.push_back({{"organ_a", u.contact.organ_a},
+                    {"organ_b", u.contact.organ_b},
+                    {"plant_a", u.contact.plant_a},
+                    {"plant_b", u.contact.plant_b},
+                    {"reason", u.reason}});
+  return {{"iterations", r.rounds},
+          {"converged", r.converged},
+          {"stop", r.stop},
+          {"contacts_before", r.contacts_before},
+          {"contacts_after", r.contacts_after},
+          {"organs_moved", r.organs_moved},
+          {"organs_carried", r.organs_carried},
+          {"mean_turn_deg", r.mean_turn_deg},
+          {"max_turn_deg", r.max_turn_deg},
+          {"unresolvable", r.unresolved.size()},
+          {"remaining", left},
+          {"joint_bytes", r.joint_bytes},
+          {"rounds", rounds}};
+}
+
+void print_resolution(const ResolveResult& r) {
+  fmt::print("resolution: {} -> {} contacts in {} rounds, {:.3f} s; {} organs turned (mean {:.2f} deg, max {:.2f} deg), "
+             "{} organs moved with them; {}\n",
+             r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg,
+             r.organs_carried, r.stop);
+  fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s", "detect s");
+  for (const ResolveRound& x : r.per_round)
+    fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9.3f} {:>9.3f}\n", x.round, x.contacts, x.turned, x.plants_redetected, x.plan_s,
+               x.detect_s);
+  const std::size_t show = std::min<std::size_t>(r.unresolved.size(), 10);
+  for (std::size_t i = 0; i < show; ++i) {
+    const UnresolvedContact& u = r.unresolved[i];
+    fmt::print("  unresolved: organs {} and {} (plants {}, {}): {}\n", u.contact.organ_a, u.contact.organ_b, u.contact.plant_a,
+               u.contact.plant_b, u.reason);
+  }
+  if (r.unresolved.size() > show) fmt::print("  ... and {} more (report.json lists them all)\n", r.unresolved.size() - show);
+}
+
+}  // namespace canopy::cli

@@ -1,0 +1,33 @@
+#pragma once
+/// The resolution options of `canopy stand`, the run itself with its progress line, and its part
+/// of report.json and of the terminal summary.
+#include "collision/resolve.hpp"
+#include "tools/cli_common.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace canopy::cli {
+
+struct ResolveOptions {
+  bool no_resolve = false;
+  int max_rounds = ResolveConfig{}.max_rounds;
+  double clearance = ResolveConfig{}.clearance;
+  std::string level = "exact";
+  bool progress = true;
+
+  void add_to(CLI::App& app);
+  ResolveConfig config() const;
+  nlohmann::ordered_json config_json() const;
+};
+
+/// Runs resolution with a progress line on stderr when it is a terminal (quiet otherwise).
+ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
+                             const Contacts& initial);
+
+/// report.json's "resolution" object.
+nlohmann::ordered_json resolution_json(const ResolveResult& r);
+void print_resolution(const ResolveResult& r);
+
+}  // namespace canopy::cli
