@@ -1,5 +1,6 @@
 #include "collision/resolve.hpp"
 
+#include "collision/neighbourhood.hpp"
 #include "collision/turn_search.hpp"
 
 #include <fmt/format.h>
@@ -7,8 +8,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 namespace canopy {
@@ -21,67 +24,100 @@ struct Plan {
   std::map<std::size_t, std::string> why;    // contacts no turn took care of, by index
 };
 
-/// One round's turns, all planned against the poses at the start of the round. Each contact goes
-/// to its first candidate mover; a mover's contacts are separated together by one turn; where a
-/// mover cannot separate its contacts within its joint limit, they go on to their next candidate.
-Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const TurnSearch& search,
-                int threads) {
+/// Every contact of the round with exactly one organ in `mover`'s subtree: what a turn of that
+/// mover must separate (several contacts on one organ are combined into one turn).
+MetPairs contacts_of(const Joints& joints, const ContactGraph& g, std::uint32_t mover) {
+  MetPairs met;
+  const std::uint32_t end = joints.subtree_end(mover);
+  for (std::uint32_t x = mover; x < end; ++x)
+    for (std::uint32_t e = g.first[x]; e < g.first[x + 1]; ++e) {
+      const std::int32_t y = g.with[e];
+      if (static_cast<std::uint32_t>(y) < mover || static_cast<std::uint32_t>(y) >= end) met.emplace_back(static_cast<std::int32_t>(x), y);
+    }
+  return met;
+}
+
+/// One round's turns, all planned against the poses at the start of the round. Each contact
+/// takes the cheapest turn among its first candidate movers, each mover asked to separate every
+/// contact its subtree has (so a mover picked by several contacts makes one turn). Movers are
+/// scanned level by level of cost, in parallel, each mover once per level whichever contacts
+/// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
+Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
+                const TurnSearch& search, int threads) {
   const ResolveConfig& cfg = search.config;
   const std::size_t n = contacts.size();
   std::vector<std::vector<std::uint32_t>> cands(n);
-  std::vector<std::string> no_mover(n);
-  for (std::size_t i = 0; i < n; ++i) cands[i] = candidate_movers(s, joints, contacts[i], cfg, no_mover[i]);
-  std::vector<std::size_t> next(n, 0);
-  std::vector<std::uint8_t> done(n, 0);
-  std::map<std::uint32_t, Turn> locked;                 // movers with a turn
-  std::map<std::uint32_t, std::uint8_t> failed;         // movers that could not separate their contacts
-  Plan plan;
-  for (;;) {
-    // Each pending contact's current candidate: skip movers already decided.
-    std::map<std::uint32_t, std::vector<std::size_t>> groups;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (done[i]) continue;
-      while (next[i] < cands[i].size() && (locked.count(cands[i][next[i]]) || failed.count(cands[i][next[i]]))) ++next[i];
-      if (next[i] == cands[i].size()) {
-        done[i] = 1;
-        plan.why[i] = cands[i].empty() ? no_mover[i]
-                                        : fmt::format("no turn within the joint limits of the {} organ(s) that may carry them "
-                                                      "separates them",
-                                                      cands[i].size());
-        continue;
+  std::vector<std::string> why(n);
+  std::vector<std::uint32_t> movers;
+  for (std::size_t i = 0; i < n; ++i) {
+    cands[i] = candidate_movers(s, joints, contacts[i], cfg, why[i]);
+    if (cands[i].size() > static_cast<std::size_t>(cfg.candidates)) cands[i].resize(static_cast<std::size_t>(cfg.candidates));
+    movers.insert(movers.end(), cands[i].begin(), cands[i].end());
+  }
+  std::sort(movers.begin(), movers.end());
+  movers.erase(std::unique(movers.begin(), movers.end()), movers.end());
+  const auto slot = [&](std::uint32_t m) {
+    return static_cast<std::size_t>(std::lower_bound(movers.begin(), movers.end(), m) - movers.begin());
+  };
+  std::vector<std::vector<std::size_t>> cand_slots(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t m : cands[i]) cand_slots[i].push_back(slot(m));
+
+  std::vector<std::optional<Turn>> turn_of(movers.size());
+  std::vector<std::uint8_t> resolved(n, 0);
+  for (bool strict : {true, false}) {
+    std::vector<std::optional<TurnSearch::Candidate>> state(movers.size());
+    std::vector<std::size_t> pending;
+    for (std::size_t i = 0; i < n; ++i)
+      if (!resolved[i] && !cand_slots[i].empty()) pending.push_back(i);
+    std::vector<std::size_t> chosen;
+    for (int level = 1; !pending.empty(); ++level) {
+      std::vector<std::uint8_t> want(movers.size(), 0);
+      for (std::size_t i : pending)
+        for (std::size_t k : cand_slots[i])
+          if (!state[k] || (!state[k]->exhausted() && state[k]->found_axis < 0)) want[k] = 1;
+      std::vector<std::size_t> scan;
+      for (std::size_t k = 0; k < movers.size(); ++k)
+        if (want[k]) scan.push_back(k);
+      if (scan.empty()) break;
+#pragma omp parallel num_threads(threads)
+      {
+        ExactScratch scratch;
+#pragma omp for schedule(dynamic, 1)
+        for (std::size_t j = 0; j < scan.size(); ++j) {
+          const std::size_t k = scan[j];
+          if (!state[k]) state[k] = search.prepare(movers[k], contacts_of(joints, graph, movers[k]), strict, scratch);
+          search.scan_level(*state[k], level, scratch);
+        }
       }
-      groups[cands[i][next[i]]].push_back(i);
+      std::erase_if(pending, [&](std::size_t i) {
+        for (std::size_t k : cand_slots[i])
+          if (state[k] && state[k]->found_axis >= 0) {
+            resolved[i] = 1;
+            chosen.push_back(k);
+            return true;
+          }
+        return false;
+      });
     }
-    if (groups.empty()) break;
-    std::vector<std::pair<std::uint32_t, std::vector<std::size_t>>> work(groups.begin(), groups.end());
-    std::vector<std::optional<Turn>> found(work.size());
+    std::sort(chosen.begin(), chosen.end());
+    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
 #pragma omp parallel num_threads(threads)
     {
       ExactScratch scratch;
-      std::vector<std::pair<std::int32_t, std::int32_t>> met;
 #pragma omp for schedule(dynamic, 1)
-      for (std::size_t g = 0; g < work.size(); ++g) {
-        const std::uint32_t mover = work[g].first;
-        const std::uint32_t end = joints.subtree_end(mover);
-        met.clear();
-        for (std::size_t i : work[g].second) {
-          const Contact& c = contacts[i];
-          const bool a_moves = static_cast<std::uint32_t>(c.organ_a) >= mover && static_cast<std::uint32_t>(c.organ_a) < end;
-          met.emplace_back(a_moves ? c.organ_a : c.organ_b, a_moves ? c.organ_b : c.organ_a);
-        }
-        found[g] = search.find(mover, met, scratch);
-      }
-    }
-    for (std::size_t g = 0; g < work.size(); ++g) {
-      if (found[g]) {
-        locked.emplace(work[g].first, *found[g]);
-        for (std::size_t i : work[g].second) done[i] = 1;
-      } else {
-        failed.emplace(work[g].first, 1);
-      }
+      for (std::size_t j = 0; j < chosen.size(); ++j)
+        if (!turn_of[chosen[j]]) turn_of[chosen[j]] = search.refine(*state[chosen[j]], scratch);
     }
   }
-  for (const auto& [organ, turn] : locked) plan.turns.push_back(turn);
+  Plan plan;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!resolved[i])
+      plan.why[i] = cands[i].empty() ? why[i]
+                                     : fmt::format("no turn within the joint limits of the {} organ(s) tried separates them",
+                                                   cands[i].size());
+  for (const auto& t : turn_of)
+    if (t) plan.turns.push_back(*t);
   return plan;
 }
 
@@ -102,7 +138,17 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   DetectRequest dreq = req.detect;
   dreq.level = cfg.level;
   const int threads = dreq.threads > 0 ? dreq.threads : omp_get_max_threads();
-  const TurnSearch search{s, joints, lib, cfg, dreq.collide, static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance))};
+  Neighbourhood near(s, lib);
+  std::vector<Obb> boxes(s.organ_count());
+  const auto fit = [&](std::size_t k) {
+    const OrganRecord& r = s.organs[k];
+    boxes[k] = make_obb(s.transforms[k], lib.get(r.prototype, r.lod).box, 0);
+  };
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::size_t k = 0; k < s.organ_count(); ++k) fit(k);
+  ContactGraph touching;
+  const TurnSearch search{s, joints, lib, cfg, dreq.collide, near, boxes, touching,
+                          static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance};
 
   std::vector<Contact> contacts = initial.pairs;
   out.contacts_before = contacts.size();
@@ -123,7 +169,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     rr.round = round;
     rr.contacts = contacts.size();
     double t = now();
-    Plan plan = plan_round(s, joints, contacts, search, threads);
+    touching.build(s.organ_count(), contacts);
+    Plan plan = plan_round(s, joints, contacts, touching, search, threads);
     why = std::move(plan.why);
     rr.plan_s = now() - t;
     if (plan.turns.empty()) {
@@ -143,8 +190,10 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       for (float v : {m.c0.x, m.c0.y, m.c0.z, m.c1.x, m.c1.y, m.c1.z, m.c2.x, m.c2.y, m.c2.z, m.t.x, m.t.y, m.t.z})
         if (!std::isfinite(v)) throw std::logic_error(fmt::format("resolution made a non-finite transform for organ {}", k));
       carried[k] = 1;
+      fit(k);
       active[static_cast<std::size_t>(s.organs[k].plant)] = 1;
     }
+    near.update(s, lib, active);
     t = now();
     dreq.active_plants = &active;
     Contacts again = backend.redetect(s, dreq, moved);
@@ -175,6 +224,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     out.max_turn_deg = std::max(out.max_turn_deg, a);
   }
   if (out.organs_moved) out.mean_turn_deg /= static_cast<double>(out.organs_moved);
+  if (std::getenv("CANOPY_DEBUG_TURNS"))
+    for (std::uint32_t k : joints.turned()) fmt::print(stderr, "turn {} {} {:.2f}\n", k, name_of(s.organs[k].kind), joints.angle_deg(k));
   out.organs_carried = static_cast<std::size_t>(std::count(carried.begin(), carried.end(), 1));
   out.joint_bytes = joints.bytes();
   out.seconds = now() - t0;

@@ -25,6 +25,14 @@ std::array<int, 7> ResolveConfig::default_kind_rank() {
   return r;
 }
 
+std::array<double, 7> ResolveConfig::default_kind_weight() {
+  std::array<double, 7> w{};
+  w.fill(1);
+  w[static_cast<std::size_t>(OrganKind::rachis)] = 1.5;
+  w[static_cast<std::size_t>(OrganKind::petiole)] = 2;
+  return w;
+}
+
 namespace {
 
 bool carried(OrganKind k) { return k == OrganKind::fruit || k == OrganKind::flower; }

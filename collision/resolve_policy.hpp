@@ -27,13 +27,19 @@ struct ResolveConfig {
   double clearance = 1e-4;           // metres left between a turned organ and what it met
   double angle_tolerance_deg = 0.5;  // the smallest separating angle is found to within this
   double scan_step_deg = 4;          // angles tried in steps of this before bisection
+  int axis_fan = 8;                  // axes across the organ's width-normal plane tried besides the away axis
   ContactLevel level = ContactLevel::exact;  // exact, or organ (OBBs: faster, turns more)
   KindMask movable = default_movable_kinds();
   std::array<int, 7> kind_rank = default_kind_rank();
+  /// Cost of a turn = angle x weight: a petiole turn (which carries a whole leaf) must be this
+  /// many times smaller than a leaflet turn to be preferred.
+  std::array<double, 7> kind_weight = default_kind_weight();
+  int candidates = 10;                // movers per contact scanned together (policy order)
   bool outer_first = true;
 
   static KindMask default_movable_kinds();
   static std::array<int, 7> default_kind_rank();
+  static std::array<double, 7> default_kind_weight();
 };
 
 /// The ordered candidate movers of contact c (may be empty); `why` says why when it is.

@@ -1,7 +1,6 @@
 #include "collision/turn_search.hpp"
 
 #include "collision/contacts.hpp"
-#include "geometry/obb.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,15 +13,61 @@ constexpr double kRad = std::numbers::pi / 180;
 
 Vec3d unit(Vec3f v) { return normalized(to_double(v)); }
 
+/// The OBB `o` carried by the rigid motion `m` and grown by `inflate`; the rounding slack of the
+/// original box covers the float rounding of the carried one.
+Obb carried_box(const Obb& o, const Motion& m, float inflate) {
+  Obb r;
+  r.centre = to_float(apply(m, to_double(o.centre)));
+  for (int k = 0; k < 3; ++k) r.axis[k] = to_float(m.r * to_double(o.axis[k])), r.half[k] = o.half[k] + inflate;
+  set_radius(r);
+  return r;
+}
+
 }  // namespace
 
-std::optional<Turn> TurnSearch::find(std::uint32_t mover, const std::vector<std::pair<std::int32_t, std::int32_t>>& met,
-                                     ExactScratch& scratch) const {
+void ContactGraph::build(std::size_t organs, const std::vector<Contact>& contacts) {
+  first.assign(organs + 1, 0);
+  for (const Contact& c : contacts) ++first[static_cast<std::size_t>(c.organ_a) + 1], ++first[static_cast<std::size_t>(c.organ_b) + 1];
+  for (std::size_t i = 0; i < organs; ++i) first[i + 1] += first[i];
+  with.resize(first[organs]);
+  std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
+  for (const Contact& c : contacts) {
+    with[at[static_cast<std::size_t>(c.organ_a)]++] = c.organ_b;
+    with[at[static_cast<std::size_t>(c.organ_b)]++] = c.organ_a;
+  }
+}
+
+void TurnSearch::Candidate::link_pairs(const Stand& s, const std::vector<Obb>& boxes, float clearance) {
+  const std::int32_t plant = s.organs[mover].plant;
+  pair_first.assign(1, 0);
+  pair_y.clear();
+  for (std::int32_t x : moving) {
+    const Obb& ox = boxes[static_cast<std::size_t>(x)];
+    const double dx = length(to_double(ox.centre) - joint);
+    for (std::size_t i = 0; i < keep.size(); ++i) {
+      const std::int32_t y = keep[i];
+      if (adjacent(s.organs[static_cast<std::size_t>(x)], x, s.organs[static_cast<std::size_t>(y)], y)) continue;
+      const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
+      const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
+      const Obb& oy = boxes[static_cast<std::size_t>(y)];
+      const double dy = length(to_double(oy.centre + off) - joint);
+      const double gap = std::abs(dy - dx) - (ox.radius + oy.radius + 2.0 * clearance);
+      if (gap > 1e-6 * (1 + dx + dy)) continue;  // the shells never meet
+      pair_y.push_back(static_cast<std::uint32_t>(i));
+    }
+    pair_first.push_back(static_cast<std::uint32_t>(pair_y.size()));
+  }
+}
+
+TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict, ExactScratch& scratch) const {
   const Stand& s = stand;
+  Candidate c;
+  c.mover = mover;
   const std::int32_t plant = s.organs[mover].plant;
   const std::uint32_t end = joints.subtree_end(mover);
-  const Vec3d joint = to_double(s.transforms[mover].t);
-  const double limit = s.joint_limit_deg[mover];
+  c.joint = to_double(s.transforms[mover].t);
+  c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
+  c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + joints.angle_deg(mover));
   const auto box = [&](std::int32_t k) {
     const OrganRecord& r = s.organs[static_cast<std::size_t>(k)];
     return lib.get(r.prototype, r.lod).box;
@@ -31,79 +76,137 @@ std::optional<Turn> TurnSearch::find(std::uint32_t mover, const std::vector<std:
     const std::int32_t p = s.organs[static_cast<std::size_t>(k)].plant;
     return p == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, p);
   };
+  const auto in_subtree = [&](std::int32_t k) { return static_cast<std::uint32_t>(k) >= mover && static_cast<std::uint32_t>(k) < end; };
 
-  // The organs that move (those taking part in detection) and the ones they must clear.
-  std::vector<std::int32_t> moving, others;
   for (std::uint32_t k = mover; k < end; ++k)
-    if (collide[static_cast<std::size_t>(s.organs[k].kind)]) moving.push_back(static_cast<std::int32_t>(k));
-  for (const auto& [x, y] : met) others.push_back(y);
-  std::sort(others.begin(), others.end());
-  others.erase(std::unique(others.begin(), others.end()), others.end());
-  std::vector<Obb> other_box;
-  for (std::int32_t y : others) other_box.push_back(make_obb(s.transforms[static_cast<std::size_t>(y)], box(y), clearance));
-
-  // Axis that swings the contact organs straight away from what they met.
+    if (collide[static_cast<std::size_t>(s.organs[k].kind)]) c.moving.push_back(static_cast<std::int32_t>(k));
+  // The pairs this mover separates: those with exactly one organ in its subtree.
   Vec3d away{0, 0, 0};
-  for (const auto& [x, y] : met) {
-    const Obb ox = make_obb(s.transforms[static_cast<std::size_t>(x)], box(x), 0);
-    const Obb oy = make_obb(s.transforms[static_cast<std::size_t>(y)], box(y), 0);
+  for (auto [x, y] : met_all) {
+    if (in_subtree(y)) std::swap(x, y);
+    if (!in_subtree(x) || in_subtree(y)) continue;
+    c.keep.push_back(y);
+    // The axis that swings x straight away from y.
+    const Obb& ox = boxes[static_cast<std::size_t>(x)];
+    const Obb& oy = boxes[static_cast<std::size_t>(y)];
     const Vec3d p = to_double(ox.centre), q = to_double(oy.centre + offset_to(y));
-    const Vec3d a = cross(p - joint, p - q);
+    const Vec3d a = cross(p - c.joint, p - q);
     if (length(a) > 1e-12) away = away + normalized(a);
   }
-  const Affine3f& tm = s.transforms[mover];
-  std::vector<Vec3d> axes;
-  if (length(away) > 1e-9) axes.push_back(normalized(away));
-  const Vec3d l = unit(tm.c1), u = unit(tm.c2);
-  for (Vec3d a : {l, l * -1.0, u, u * -1.0})
-    if (length(a) > 0.5) axes.push_back(a);
+  std::sort(c.keep.begin(), c.keep.end());
+  c.keep.erase(std::unique(c.keep.begin(), c.keep.end()), c.keep.end());
+  const std::size_t met = c.keep.size();
+  c.met_count = met;
+  for (std::int32_t y : c.keep) c.keep_box.push_back(make_obb(s.transforms[static_cast<std::size_t>(y)], box(y), clearance));
 
-  // Whether the moving organs, turned by `r` about the joint, clear every organ met.
-  const auto separated = [&](const Motion& turn) {
-    for (std::int32_t x : moving) {
-      const Affine3f tx = apply(turn, s.transforms[static_cast<std::size_t>(x)]);
-      const Obb ox = make_obb(tx, box(x), clearance);
-      for (std::size_t i = 0; i < others.size(); ++i) {
-        const std::int32_t y = others[i];
-        if (adjacent(s.organs[static_cast<std::size_t>(x)], x, s.organs[static_cast<std::size_t>(y)], y)) continue;
-        if (!obb_overlap(ox, other_box[i], offset_to(y))) continue;
+  // Strict: also every organ within the subtree's reach about the joint that is clear now.
+  if (strict) {
+    double reach = 0;
+    for (std::int32_t x : c.moving) {
+      const Obb& ox = boxes[static_cast<std::size_t>(x)];
+      reach = std::max(reach, length(to_double(ox.centre) - c.joint) + ox.radius);
+    }
+    reach += clearance;
+    // Organs already touching the subtree are other contacts' business.
+    std::vector<std::int32_t> busy;
+    for (std::int32_t x : c.moving)
+      for (std::uint32_t e = touching.first[static_cast<std::size_t>(x)]; e < touching.first[static_cast<std::size_t>(x) + 1]; ++e)
+        busy.push_back(touching.with[e]);
+    std::sort(busy.begin(), busy.end());
+    const Vec3d origin = s.offset(static_cast<std::size_t>(plant));
+    for (std::int32_t q : near.plants_near(s, origin.x + c.joint.x, origin.y + c.joint.y, reach)) {
+      const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
+      const Vec3f off = offset_to(static_cast<std::int32_t>(pr.first_organ));
+      for (std::uint32_t k = pr.first_organ; k < pr.first_organ + pr.organ_count; ++k) {
+        const auto y = static_cast<std::int32_t>(k);
+        if (in_subtree(y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
+        const Obb& raw = boxes[k];
+        if (length(to_double(raw.centre + off) - c.joint) > reach + raw.radius + clearance) continue;
+        if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
+        if (std::binary_search(busy.begin(), busy.end(), y)) continue;
+        c.keep.push_back(y);
+        c.keep_box.push_back(make_obb(s.transforms[k], box(y), detect_clearance));
+      }
+    }
+  }
+
+  c.link_pairs(s, boxes, clearance);
+  const Affine3f& tm = s.transforms[mover];
+  if (length(away) > 1e-9) c.axes.push_back(normalized(away));
+  const Vec3d h = unit(tm.c0), l = unit(tm.c1), u = unit(tm.c2);
+  const int fan = std::max(4, config.axis_fan);
+  for (int i = 0; i < fan; ++i) {
+    const double phi = 2 * std::numbers::pi * i / fan;
+    const Vec3d a = l * std::cos(phi) + u * std::sin(phi);
+    if (length(a) > 0.5) c.axes.push_back(normalized(a));
+  }
+  for (Vec3d a : {h, h * -1.0})
+    if (length(a) > 0.5) c.axes.push_back(a);
+  return c;
+}
+
+bool TurnSearch::attempt(const Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
+  const Stand& s = stand;
+  const Mat3d r = axis_angle(a, deg * kRad);
+  local = joints.local_after(c.mover, r);
+  if (deg > 0 && rotation_angle_deg(local) > s.joint_limit_deg[c.mover]) return false;
+  const Motion turn = rotation_about(c.joint, r);
+  const std::int32_t plant = s.organs[c.mover].plant;
+  // The organs met first (the likeliest to fail), then the neighbours to keep clear.
+  for (int pass = 0; pass < 2; ++pass)
+    for (std::size_t i = 0; i < c.moving.size(); ++i) {
+      if (c.pair_first[i] == c.pair_first[i + 1]) continue;
+      const std::int32_t x = c.moving[i];
+      std::optional<Obb> ox;
+      std::optional<Affine3f> tx;
+      for (std::uint32_t p = c.pair_first[i]; p < c.pair_first[i + 1]; ++p) {
+        const std::uint32_t yi = c.pair_y[p];
+        if ((yi < c.met_count) != (pass == 0)) continue;
+        const std::int32_t y = c.keep[yi];
+        const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
+        const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
+        if (!ox) ox = carried_box(boxes[static_cast<std::size_t>(x)], turn, clearance);
+        if (!obb_overlap(*ox, c.keep_box[yi], off)) continue;
         if (config.level == ContactLevel::organ) return false;
+        if (!tx) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)];
         const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
-        const bool touch = x < y ? organs_touch_at(s, lib, x, tx, y, ty, clearance, scratch)
-                                 : organs_touch_at(s, lib, y, ty, x, tx, clearance, scratch);
+        const float gap = pass == 0 ? clearance : detect_clearance;
+        const bool touch = x < y ? organs_touch_at(s, lib, x, *tx, y, ty, gap, scratch)
+                                 : organs_touch_at(s, lib, y, ty, x, *tx, gap, scratch);
         if (touch) return false;
       }
     }
-    return true;
-  };
-  // A turn by `deg` about axis a: feasible when within the joint limit and separating.
-  const auto attempt = [&](const Vec3d& a, double deg, Mat3d& local) {
-    const Mat3d r = axis_angle(a, deg * kRad);
-    local = joints.local_after(mover, r);
-    if (rotation_angle_deg(local) > limit) return false;
-    return separated(rotation_about(joint, r));
-  };
+  return true;
+}
 
+bool TurnSearch::scan_level(Candidate& c, int level, ExactScratch& scratch) const {
+  if (c.found_axis >= 0 || c.exhausted()) return c.found_axis >= 0;
   const double step = std::max(config.scan_step_deg, config.angle_tolerance_deg);
-  const double reach = std::min(180.0, limit + joints.angle_deg(mover));  // no turn beyond this can stay in the limit
-  double lo = 0;
-  for (double hi = std::min(step, reach); lo < reach; lo = hi, hi = std::min(hi + step, reach)) {
-    for (const Vec3d& a : axes) {
-      Mat3d local;
-      if (!attempt(a, hi, local)) continue;
-      // Bisect (lo, hi] on this axis down to the tolerance; hi stays feasible.
-      double b_lo = lo, b_hi = hi;
-      Mat3d best = local;
-      while (b_hi - b_lo > config.angle_tolerance_deg) {
-        const double mid = 0.5 * (b_lo + b_hi);
-        Mat3d m;
-        if (attempt(a, mid, m)) b_hi = mid, best = m;
-        else b_lo = mid;
-      }
-      return Turn{mover, best, b_hi};
-    }
+  const double hi = std::min(level * step / c.weight, c.reach_deg);
+  for (std::size_t i = 0; i < c.axes.size(); ++i) {
+    Mat3d local;
+    if (!attempt(c, c.axes[i], hi, local, scratch)) continue;
+    c.found_axis = static_cast<int>(i);
+    c.hi = hi;
+    c.local = local;
+    return true;
   }
-  return std::nullopt;
+  c.lo = hi;
+  return false;
+}
+
+Turn TurnSearch::refine(const Candidate& c, ExactScratch& scratch) const {
+  // Bisect (lo, hi] on the axis found, down to the tolerance; b_hi stays feasible.
+  const Vec3d& a = c.axes[static_cast<std::size_t>(c.found_axis)];
+  double b_lo = c.lo, b_hi = c.hi;
+  Mat3d best = c.local;
+  while (b_hi - b_lo > config.angle_tolerance_deg) {
+    const double mid = 0.5 * (b_lo + b_hi);
+    Mat3d m;
+    if (attempt(c, a, mid, m, scratch)) b_hi = mid, best = m;
+    else b_lo = mid;
+  }
+  return Turn{c.mover, best, b_hi};
 }
 
 }  // namespace canopy

@@ -1,13 +1,24 @@
 #pragma once
-/// The turn of one organ (with everything distal to it) about its joint that separates it from
-/// the organs it met: the smallest angle, to within ResolveConfig::angle_tolerance_deg, on a few
-/// candidate axes tried together in increasing angle (the axis that swings the organ straight
-/// away from what it met first, then its pitch and in-plane axes both ways), within its joint
-/// limit. Separation means the exact test with the resolution clearance finds nothing (or, at
-/// the organ level, the OBBs grown by the clearance no longer overlap).
+/// The turn of an organ (with everything distal to it) about its joint that separates it from
+/// the organs it met. Candidates (several movers, each on several axes) are scanned together in
+/// order of cost, cost = angle x the mover's kind weight (ResolveConfig::kind_weight), so the
+/// cheapest separating turn is found first: a leaflet turns unless its rachis or petiole can do
+/// it for a fraction of the angle. Axes: the one that swings the contact organs straight away
+/// from what they met, then a fan across the mover's width-normal plane and its own long axis
+/// both ways. The angle found is refined by bisection to ResolveConfig::angle_tolerance_deg and
+/// never takes the joint past its limit.
+///
+/// Separation means the exact test with the resolution clearance finds nothing (or, at the
+/// organ level, the OBBs grown by the clearance no longer overlap). A strict search also keeps
+/// the turned organs clear of every organ within their reach that was clear before the turn, so
+/// a turn never trades one contact for another; where no strict turn exists, a relaxed search
+/// asks only for the organs met.
+#include "collision/contacts.hpp"
 #include "collision/exact.hpp"
 #include "collision/joints.hpp"
+#include "collision/neighbourhood.hpp"
 #include "collision/resolve_policy.hpp"
+#include "geometry/obb.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -17,8 +28,18 @@ namespace canopy {
 
 struct Turn {
   std::uint32_t organ = 0;
-  Mat3d local;          // the joint's local rotation after the turn (Joints::set_local)
-  double angle_deg = 0; // this round's turn
+  Mat3d local;           // the joint's local rotation after the turn (Joints::set_local)
+  double angle_deg = 0;  // this round's turn
+};
+
+/// Organ pairs (x, y) to separate: x the organ of the contact the mover carries, y the other.
+using MetPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
+
+/// Which organs touch at the start of the round (the round's contact list), organ by organ.
+struct ContactGraph {
+  std::vector<std::uint32_t> first;  // per organ + 1
+  std::vector<std::int32_t> with;
+  void build(std::size_t organs, const std::vector<Contact>& contacts);
 };
 
 struct TurnSearch {
@@ -27,12 +48,40 @@ struct TurnSearch {
   PrototypeLibrary& lib;
   const ResolveConfig& config;
   KindMask collide;
-  float clearance = 0;  // separation the search asks for (the larger of both clearances)
+  const Neighbourhood& near;
+  const std::vector<Obb>& boxes;  // every organ's current OBB (no clearance), kept up to date by the caller
+  const ContactGraph& touching;   // contacts at the start of the round
+  float clearance = 0;         // separation from the organs met (the larger of both clearances)
+  float detect_clearance = 0;  // what detection counts as a contact: neighbours must stay this far
 
-  /// The turn of `mover` that separates every pair (x, y) of `met` (x in the mover's subtree),
-  /// or nothing when no angle within the joint limit does.
-  std::optional<Turn> find(std::uint32_t mover, const std::vector<std::pair<std::int32_t, std::int32_t>>& met,
-                           ExactScratch& scratch) const;
+  /// One mover's search state: what moves, what it must clear, its axes and reach.
+  struct Candidate {
+    std::uint32_t mover = 0;
+    Vec3d joint;
+    double weight = 1, reach_deg = 0;
+    std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
+    std::size_t met_count = 0;
+    std::vector<Obb> keep_box;
+    std::vector<Vec3d> axes;
+    /// Pairs that some turn about the joint could bring together (the sphere of x sweeps a
+    /// shell about the joint): keep indices for moving[i] in pair_y[pair_first[i], pair_first[i+1]).
+    std::vector<std::uint32_t> pair_first, pair_y;
+    void link_pairs(const Stand& stand, const std::vector<Obb>& boxes, float clearance);
+    // Scan state: angles up to lo tried and failed; found_axis >= 0 when `hi` separates.
+    double lo = 0, hi = 0;
+    int found_axis = -1;
+    Mat3d local;
+    bool exhausted() const { return found_axis < 0 && lo >= reach_deg; }
+  };
+  Candidate prepare(std::uint32_t mover, const MetPairs& met, bool strict, ExactScratch& scratch) const;
+  /// Tries the candidate's axes at cost level `level` (angle = level x step / weight, capped at
+  /// its reach); true when one separates (then found_axis, hi and local are set).
+  bool scan_level(Candidate& c, int level, ExactScratch& scratch) const;
+  /// The found turn refined by bisection between the last failed and the found angle.
+  Turn refine(const Candidate& c, ExactScratch& scratch) const;
+  /// Whether turning by `deg` about axis `a` keeps the joint in its limit and clears the list;
+  /// `local` gets the joint's rotation.
+  bool attempt(const Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const;
 };
 
 }  // namespace canopy

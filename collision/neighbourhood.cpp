@@ -1,0 +1,60 @@
+#include "collision/neighbourhood.hpp"
+
+#include "geometry/obb.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace canopy {
+namespace {
+
+float plant_reach(const Stand& s, PrototypeLibrary& lib, std::size_t p) {
+  const PlantRecord& pr = s.plants[p];
+  float r = 0;
+  for (std::uint32_t k = pr.first_organ; k < pr.first_organ + pr.organ_count; ++k) {
+    const OrganRecord& o = s.organs[k];
+    const Obb b = make_obb(s.transforms[k], lib.get(o.prototype, o.lod).box, 0);
+    r = std::max(r, std::sqrt(b.centre.x * b.centre.x + b.centre.y * b.centre.y) + b.radius);
+  }
+  return r;
+}
+
+}  // namespace
+
+Neighbourhood::Neighbourhood(const Stand& s, PrototypeLibrary& lib) : reach_(s.plant_count(), 0) {
+  for (std::size_t p = 0; p < s.plant_count(); ++p) reach_[p] = plant_reach(s, lib, p);
+  for (float r : reach_) max_reach_ = std::max(max_reach_, r);
+  cell_ = std::max(0.05, 2.0 * max_reach_);
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    const Vec3d o = s.offset(p);
+    cells_[key(static_cast<std::int64_t>(std::floor(o.x / cell_)), static_cast<std::int64_t>(std::floor(o.y / cell_)))].push_back(
+        static_cast<std::int32_t>(p));
+  }
+}
+
+void Neighbourhood::update(const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint8_t>& plants) {
+  for (std::size_t p = 0; p < s.plant_count(); ++p)
+    if (plants[p]) reach_[p] = plant_reach(s, lib, p), max_reach_ = std::max(max_reach_, reach_[p]);
+}
+
+std::vector<std::int32_t> Neighbourhood::plants_near(const Stand& s, double x, double y, double r) const {
+  std::vector<std::int32_t> out;
+  const double d = r + max_reach_;
+  const auto i0 = static_cast<std::int64_t>(std::floor((x - d) / cell_)), i1 = static_cast<std::int64_t>(std::floor((x + d) / cell_));
+  const auto j0 = static_cast<std::int64_t>(std::floor((y - d) / cell_)), j1 = static_cast<std::int64_t>(std::floor((y + d) / cell_));
+  for (std::int64_t i = i0; i <= i1; ++i)
+    for (std::int64_t j = j0; j <= j1; ++j) {
+      const auto it = cells_.find(key(i, j));
+      if (it == cells_.end()) continue;
+      for (std::int32_t p : it->second) {
+        const Vec3d o = s.offset(static_cast<std::size_t>(p));
+        const double reach = r + reach_[static_cast<std::size_t>(p)];
+        if ((o.x - x) * (o.x - x) + (o.y - y) * (o.y - y) <= reach * reach) out.push_back(p);
+      }
+    }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());  // hashed cells may repeat
+  return out;
+}
+
+}  // namespace canopy
