@@ -27,16 +27,26 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
 }
 
 bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
-                     const Affine3f& pose_b, float clearance, ExactScratch& x) {
+                     const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness) {
   assert(a < b);
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
   const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
   const PrototypeMesh& mb = lib.get(rb.prototype, rb.lod);
-  organ_vertices(s, ma, pose_a, ra.plant, ra.plant, x.va);
-  organ_vertices(s, mb, pose_b, rb.plant, ra.plant, x.vb);
   const std::size_t ta = ma.triangle_count(), tb = mb.triangle_count();
   const double c = clearance;
+  const Vec3f d = rb.plant == ra.plant ? Vec3f{0, 0, 0} : plant_offset(s, ra.plant, rb.plant);
+  // The witness pair first, its six vertices made as organ_vertices makes them.
+  if (witness && witness->tri_a >= 0 && static_cast<std::size_t>(witness->tri_a) < ta && static_cast<std::size_t>(witness->tri_b) < tb) {
+    Vec3f p[3], q[3];
+    for (int k = 0; k < 3; ++k) {
+      p[k] = apply(pose_a, ma.positions[ma.indices[3 * static_cast<std::size_t>(witness->tri_a) + static_cast<std::size_t>(k)]]) + Vec3f{0, 0, 0};
+      q[k] = apply(pose_b, mb.positions[mb.indices[3 * static_cast<std::size_t>(witness->tri_b) + static_cast<std::size_t>(k)]]) + d;
+    }
+    if (c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q)) return true;
+  }
+  organ_vertices(s, ma, pose_a, ra.plant, ra.plant, x.va);
+  organ_vertices(s, mb, pose_b, rb.plant, ra.plant, x.vb);
   // Boxes of both organs' triangles; only triangles inside the other organ's (widened) box can
   // meet anything of it.
   const auto tri_box = [](const std::vector<Vec3f>& v, const std::vector<std::uint32_t>& idx, std::size_t t, float* bx) {
@@ -55,6 +65,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   const auto meets = [](const float* t, const double* o) {
     return !(t[0] > o[3] || t[1] > o[4] || t[2] > o[5] || t[3] < o[0] || t[4] < o[1] || t[5] < o[2]);
   };
+  const auto pair_touches = [&](const Vec3f* p, const Vec3f* q) { return c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q); };
   double box_a[6], box_b[6];
   organ_box(x.va, box_a, c);
   organ_box(x.vb, box_b, c);
@@ -79,7 +90,10 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
         if (b6[0] > hi[0] || b6[1] > hi[1] || b6[2] > hi[2] || b6[3] < lo[0] || b6[4] < lo[1] || b6[5] < lo[2]) continue;
         const std::uint32_t j = x.near_b[k];
         const Vec3f tri_b[3] = {x.vb[mb.indices[3 * j]], x.vb[mb.indices[3 * j + 1]], x.vb[mb.indices[3 * j + 2]]};
-        if (c > 0 ? triangles_within(tri_a, tri_b, c) : triangles_intersect(tri_a, tri_b)) return true;
+        if (pair_touches(tri_a, tri_b)) {
+          if (witness) witness->tri_a = static_cast<std::int32_t>(i), witness->tri_b = static_cast<std::int32_t>(j);
+          return true;
+        }
       }
     }
   }

@@ -20,10 +20,16 @@ struct ExactScratch {
 bool organs_touch(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance,
                   ExactScratch& scratch);
 
+/// A triangle pair that touched last time: tested first next time (a turn search asks about
+/// the same organ pair at nearby poses many times over). The answer never depends on it.
+struct Witness {
+  std::int32_t tri_a = -1, tri_b = -1;
+};
+
 /// The same test with the organs at the given plant-frame transforms instead of the stand's (the
 /// turn search of resolution tries poses before it keeps one).
 bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
-                     const Affine3f& tb, float clearance, ExactScratch& scratch);
+                     const Affine3f& tb, float clearance, ExactScratch& scratch, Witness* witness = nullptr);
 
 /// The organ's vertices in the plant frame of `frame_plant` (its own frame moved by the origin
 /// difference), as every exact test computes them.

@@ -57,6 +57,7 @@ void TurnSearch::Candidate::link_pairs(const Stand& s, const std::vector<Obb>& b
     }
     pair_first.push_back(static_cast<std::uint32_t>(pair_y.size()));
   }
+  witness.assign(pair_y.size(), Witness{});
 }
 
 TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict, ExactScratch& scratch) const {
@@ -171,8 +172,9 @@ bool TurnSearch::attempt(const Candidate& c, const Vec3d& a, double deg, Mat3d& 
         if (!tx) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)];
         const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
         const float gap = pass == 0 ? clearance : detect_clearance;
-        const bool touch = x < y ? organs_touch_at(s, lib, x, *tx, y, ty, gap, scratch)
-                                 : organs_touch_at(s, lib, y, ty, x, *tx, gap, scratch);
+        Witness* w = &c.witness[p];
+        const bool touch = x < y ? organs_touch_at(s, lib, x, *tx, y, ty, gap, scratch, w)
+                                 : organs_touch_at(s, lib, y, ty, x, *tx, gap, scratch, w);
         if (touch) return false;
       }
     }

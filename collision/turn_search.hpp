@@ -66,6 +66,7 @@ struct TurnSearch {
     /// Pairs that some turn about the joint could bring together (the sphere of x sweeps a
     /// shell about the joint): keep indices for moving[i] in pair_y[pair_first[i], pair_first[i+1]).
     std::vector<std::uint32_t> pair_first, pair_y;
+    mutable std::vector<Witness> witness;  // per pair: the triangles that touched last
     void link_pairs(const Stand& stand, const std::vector<Obb>& boxes, float clearance);
     // Scan state: angles up to lo tried and failed; found_axis >= 0 when `hi` separates.
     double lo = 0, hi = 0;
