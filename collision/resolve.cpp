@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -110,6 +109,42 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         if (!turn_of[chosen[j]]) turn_of[chosen[j]] = search.refine(*state[chosen[j]], scratch);
     }
   }
+  // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
+  // turning this round (the first contact to claim a mover keeps it).
+  std::vector<std::size_t> left;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!resolved[i] && !cand_slots[i].empty()) left.push_back(i);
+  std::vector<std::optional<Turn>> alone(left.size());
+#pragma omp parallel num_threads(threads)
+  {
+    ExactScratch scratch;
+#pragma omp for schedule(dynamic, 1)
+    for (std::size_t j = 0; j < left.size(); ++j) {
+      const Contact& c = contacts[left[j]];
+      const MetPairs met{{c.organ_a, c.organ_b}};
+      std::vector<TurnSearch::Candidate> cs;
+      for (std::size_t k : cand_slots[left[j]])
+        if (!turn_of[k]) cs.push_back(search.prepare(movers[k], met, false, scratch));
+      for (int level = 1; !alone[j]; ++level) {
+        bool live = false;
+        for (TurnSearch::Candidate& cand : cs) {
+          live |= !cand.exhausted();
+          if (search.scan_level(cand, level, scratch)) {
+            alone[j] = search.refine(cand, scratch);
+            break;
+          }
+        }
+        if (!live) break;
+      }
+    }
+  }
+  for (std::size_t j = 0; j < left.size(); ++j) {
+    if (!alone[j]) continue;
+    std::optional<Turn>& slot_turn = turn_of[slot(alone[j]->organ)];
+    if (!slot_turn) slot_turn = alone[j];
+    resolved[left[j]] = 1;  // taken care of this round, or left to the next one by a claimed mover
+  }
+
   Plan plan;
   for (std::size_t i = 0; i < n; ++i)
     if (!resolved[i])
@@ -154,6 +189,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   out.contacts_before = contacts.size();
   std::vector<std::uint8_t> carried(s.organ_count(), 0);
   std::map<std::size_t, std::string> why;
+  std::size_t best = contacts.size();
+  int best_round = 0;
   for (int round = 1;; ++round) {
     if (contacts.empty()) {
       out.converged = true;
@@ -162,6 +199,11 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     }
     if (round > cfg.max_rounds) {
       out.stop = fmt::format("round cap ({}) reached", cfg.max_rounds);
+      break;
+    }
+    if (contacts.size() < best) best = contacts.size(), best_round = round - 1;
+    if (round - 1 - best_round >= cfg.stall_rounds) {
+      out.stop = fmt::format("no progress in {} rounds (turns only trade contacts that cannot all be cleared)", cfg.stall_rounds);
       break;
     }
     if (req.progress) req.progress({round, contacts.size(), now() - t0});
@@ -214,7 +256,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const auto w = why.find(i);
     out.unresolved.push_back(
-        {contacts[i], w != why.end() ? w->second : "still in contact when the round cap was reached"});
+        {contacts[i], w != why.end() ? w->second : "still in contact when resolution stopped: " + out.stop});
   }
   for (std::uint32_t k : joints.turned()) {
     const double a = joints.angle_deg(k);
@@ -224,8 +266,6 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     out.max_turn_deg = std::max(out.max_turn_deg, a);
   }
   if (out.organs_moved) out.mean_turn_deg /= static_cast<double>(out.organs_moved);
-  if (std::getenv("CANOPY_DEBUG_TURNS"))
-    for (std::uint32_t k : joints.turned()) fmt::print(stderr, "turn {} {} {:.2f}\n", k, name_of(s.organs[k].kind), joints.angle_deg(k));
   out.organs_carried = static_cast<std::size_t>(std::count(carried.begin(), carried.end(), 1));
   out.joint_bytes = joints.bytes();
   out.seconds = now() - t0;

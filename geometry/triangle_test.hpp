@@ -241,12 +241,25 @@ CANOPY_HD inline double point_triangle_dist2(D3 p, const D3 t[3]) {
   return dot(w, w);
 }
 
+/// Whether every vertex of u lies farther than `clearance` from the plane of t, all on one side
+/// (then no point of u comes that close to t). A quick rejection with a relative margin, so it
+/// never decides a case the full test would answer otherwise beyond rounding.
+CANOPY_HD inline bool beyond_plane(const D3 t[3], const D3 u[3], double clearance) {
+  const D3 n = cross(t[1] - t[0], t[2] - t[0]);
+  const double nn = sqrt(dot(n, n));
+  if (!(nn > 0)) return false;
+  const double lim = clearance * nn * (1 + 1e-9) + 1e-12 * nn;
+  const double d0 = dot(n, u[0] - t[0]), d1 = dot(n, u[1] - t[0]), d2 = dot(n, u[2] - t[0]);
+  return (d0 > lim && d1 > lim && d2 > lim) || (d0 < -lim && d1 < -lim && d2 < -lim);
+}
+
 /// Whether two closed triangles come within `clearance` of each other (intersecting counts).
 CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance) {
-  if (triangles_intersect(pa, pb)) return true;
   D3 a[3], b[3];
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);
+  if (beyond_plane(t, u, clearance) || beyond_plane(u, t, clearance)) return false;
+  if (triangles_intersect(pa, pb)) return true;
   const double c2 = clearance * clearance;
   for (int i = 0; i < 3; ++i) {
     if (point_triangle_dist2(t[i], u) <= c2 || point_triangle_dist2(u[i], t) <= c2) return true;

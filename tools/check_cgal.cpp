@@ -2,7 +2,8 @@
 // triangles of an exported stand.obj, against the exact rows of contacts.csv. Organ pairs that
 // disagree are allowed only where the organs come within 1 um of each other (DESIGN.md: closer
 // than that either answer is allowed; the OBJ itself is rounded to 0.1 um).
-// Usage: check_cgal DIR [--collide KINDS] [--clearance D]
+// Usage: check_cgal DIR [--collide KINDS] [--contacts FILE]   (FILE in DIR, default contacts.csv;
+// contacts_after.csv checks a resolved stand: only what resolution reported left may meet)
 #include "collision/contacts.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/export.hpp"
@@ -97,8 +98,10 @@ int main(int argc, char** argv) {
   }
   const std::string dir = argv[1];
   KindMask collide = default_collide_kinds();
+  std::string contacts_file = "contacts.csv";
   for (int i = 2; i + 1 < argc; ++i)
     if (!std::strcmp(argv[i], "--collide")) collide = parse_collide_kinds(argv[++i]);
+    else if (!std::strcmp(argv[i], "--contacts")) contacts_file = argv[++i];
   const Stand s = read_stand(dir);
   std::vector<OrganGeometry> organs(s.organ_count());
   {
@@ -135,7 +138,7 @@ int main(int argc, char** argv) {
   }
   std::set<std::pair<int, int>> listed;
   {
-    std::ifstream in(dir + "/contacts.csv");
+    std::ifstream in(dir + "/" + contacts_file);
     std::string line;
     std::getline(in, line);
     while (std::getline(in, line)) {
@@ -176,7 +179,7 @@ int main(int argc, char** argv) {
       }
     }
   }
-  fmt::print("CGAL check of {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} disagree\n", dir,
-             tested, found, listed.size(), near, bad);
+  fmt::print("CGAL check of {} against {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} disagree\n", dir,
+             contacts_file, tested, found, listed.size(), near, bad);
   return bad == 0 ? 0 : 1;
 }
