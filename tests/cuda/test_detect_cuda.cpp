@@ -2,7 +2,10 @@
 // stands, crowded plants, twins on one spot, a stand far from the origin, with a clearance, and
 // on 1,000- and 10,000-plant default stands. (Skipped without a GPU: see test_device.cpp.)
 #include "../collision/helpers.hpp"
+#include "collision/resolve.hpp"
 #include "cuda/detect_cuda.hpp"
+
+#include <cstring>
 
 #include <chrono>
 
@@ -87,5 +90,29 @@ TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
               << std::chrono::duration<double>(t3 - t2).count() << " s on " << gpu->device());
     req.level = ContactLevel::organ;
     CHECK(cpu->detect(s, req).pairs == gpu->detect(s, req).pairs);
+  }
+}
+
+TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the CPU") {
+  for (int n : {20, 300}) {
+    GrowRequest g;
+    g.grammar = source("grammars/tomato.yaml");
+    g.plants = default_stand_layout(n);
+    for (PlantPlacement& p : g.plants) p.x *= 0.7;  // denser than the default: more to resolve
+    Stand a = grow_stand(g), b = a;
+    auto cpu = make_cpu_backend();
+    auto gpu = cuda::make_cuda_backend();
+    ResolveRequest req;
+    const Contacts ca = cpu->detect(a, req.detect), cb = gpu->detect(b, req.detect);
+    REQUIRE(ca.pairs == cb.pairs);
+    const ResolveResult ra = resolve(a, *cpu, req, ca), rb = resolve(b, *gpu, req, cb);
+    INFO(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after);
+    CHECK(ra.contacts_after == rb.contacts_after);
+    CHECK(ra.rounds == rb.rounds);
+    CHECK(ra.organs_moved == rb.organs_moved);
+    CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
+    // Re-detection after the rounds (refit kept on the device) equals a fresh CPU detection.
+    CHECK(gpu->detect(b, req.detect).pairs == cpu->detect(a, req.detect).pairs);
+    MESSAGE(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after << " contacts in " << ra.rounds << " rounds");
   }
 }

@@ -11,7 +11,7 @@ out=$tmp/s
 "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 \
   --steps 14 --formats glb,obj,ply -o "$out" >"$tmp/log" 2>&1
 check "stand exit" "0" "$?"
-check "files" "contacts.csv organs.csv plants.csv report.json stand.glb stand.mtl stand.obj stand.ply" "$(ls "$out" | tr '\n' ' ' | sed 's/ $//')"
+check "files" "contacts.csv contacts_after.csv organs.csv plants.csv report.json stand.glb stand.mtl stand.obj stand.ply" "$(ls "$out" | tr '\n' ' ' | sed 's/ $//')"
 check "plants.csv rows" "7" "$(wc -l < "$out/plants.csv" | tr -d ' ')"
 organs=$(($(wc -l < "$out/organs.csv") - 1))
 check "report organs" "$organs" "$(python3 -c "import json;print(json.load(open('$out/report.json'))['counts']['organs'])")"
@@ -46,7 +46,37 @@ check "contacts sorted" "$(tail -n +2 "$out/contacts.csv" | sort -t, -k1,1n -k2,
 check "report exact" "$(($(wc -l < "$out/contacts.csv") - 1))" \
   "$(python3 -c "import json;print(json.load(open('$out/report.json'))['contacts_before']['exact']['total'])")"
 "$canopy" detect "$out" --backend cpu --csv "$tmp/again.csv" >/dev/null 2>&1
-check "detect reads the stand back" "$(cat "$out/contacts.csv")" "$(cat "$tmp/again.csv")"
+check "detect reads the resolved stand back" "$(cat "$out/contacts_after.csv")" "$(cat "$tmp/again.csv")"
+
+# Resolution: on by default, the report's numbers, nothing left on this row stand; --no-resolve
+# exports the stand as grown (detection of the export gives contacts.csv back).
+report() { python3 -c "import json;r=json.load(open('$1/report.json'));print($2)"; }
+check "resolved: no contact left" "1" "$(wc -l < "$out/contacts_after.csv" | tr -d ' ')"
+check "resolved: report after" "0" "$(report "$out" "r['contacts_after']['exact']['total']")"
+check "resolved: report fields" "True" "$(report "$out" "all(k in r['resolution'] for k in ['iterations','organs_moved','mean_turn_deg','max_turn_deg','unresolvable'])")"
+check "resolved: turned" "True" "$(report "$out" "r['resolution']['organs_moved'] > 0 and 0 < r['resolution']['max_turn_deg'] <= 60")"
+grep -q "^resolution: " "$tmp/log"
+check "resolved: terminal summary" "0" "$?"
+check "resolved: no progress line off a terminal" "0" "$(grep -c 'resolving:' "$tmp/log")"
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 \
+  --steps 14 --no-resolve -o "$tmp/nr" >/dev/null 2>&1
+check "no-resolve: contacts.csv as resolved run" "$(cat "$out/contacts.csv")" "$(cat "$tmp/nr/contacts.csv")"
+check "no-resolve: contacts_after.csv = contacts.csv" "$(cat "$tmp/nr/contacts.csv")" "$(cat "$tmp/nr/contacts_after.csv")"
+check "no-resolve: resolution null" "None" "$(report "$tmp/nr" "r['resolution']")"
+"$canopy" detect "$tmp/nr" --backend cpu --csv "$tmp/again2.csv" >/dev/null 2>&1
+check "detect reads the grown stand back" "$(cat "$tmp/nr/contacts.csv")" "$(cat "$tmp/again2.csv")"
+
+# The same files, byte for byte, on any thread count (report.json aside: timings).
+for t in 1 2; do
+  "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 4 --plant-spacing 0.25 --row-spacing 0.3 --jitter 0.02 \
+    --random-rotation --seed 9 --steps 16 --formats glb,obj,ply --threads $t -o "$tmp/t$t" >/dev/null 2>&1
+done
+for f in stand.glb stand.obj stand.ply organs.csv plants.csv contacts.csv contacts_after.csv; do
+  cmp -s "$tmp/t1/$f" "$tmp/t2/$f"
+  check "threads 1 and 2: $f identical" "0" "$?"
+done
+check "threads 1 and 2: resolution identical" "$(report "$tmp/t1" "{k: v for k, v in r['resolution'].items() if k != 'rounds'}")" \
+  "$(report "$tmp/t2" "{k: v for k, v in r['resolution'].items() if k != 'rounds'}")"
 "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 --steps 14 \
   --level organ -o "$tmp/lv" >/dev/null 2>&1
 check "organ level rows" "1" "$(tail -n +2 "$tmp/lv/contacts.csv" | awk -F, '$5!="organ"' | wc -l | awk '{print ($1==0)}')"
@@ -100,7 +130,7 @@ check "mixed plants" "1,0.5,0,90,2,sunflower.yaml,6" "$(sed -n 3p "$tmp/m/plants
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
            --double-rows --jitter --random-rotation --seed --positions --max-modules --glb-instancing \
-           --level --clearance --collide --backend; do
+           --level --clearance --collide --backend --no-resolve --max-rounds --resolve-clearance --resolve-level; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
 done
 
