@@ -72,14 +72,20 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   x.boxes_b.clear();
   x.near_b.clear();
   float bx[6];
-  for (std::size_t j = 0; j < tb; ++j) {
+  // With a witness, start both loops at its triangles: a touching pair is likely near the one
+  // that touched last (the answer is the same in any order).
+  const std::size_t start_a = witness && witness->tri_a >= 0 ? static_cast<std::size_t>(witness->tri_a) % std::max<std::size_t>(ta, 1) : 0;
+  const std::size_t start_b = witness && witness->tri_b >= 0 ? static_cast<std::size_t>(witness->tri_b) % std::max<std::size_t>(tb, 1) : 0;
+  for (std::size_t jj = 0; jj < tb; ++jj) {
+    const std::size_t j = (jj + start_b) % tb;
     tri_box(x.vb, mb.indices, j, bx);
     if (!meets(bx, box_a)) continue;
     x.near_b.push_back(static_cast<std::uint32_t>(j));
     x.boxes_b.insert(x.boxes_b.end(), bx, bx + 6);
   }
   if (!x.near_b.empty()) {
-    for (std::size_t i = 0; i < ta; ++i) {
+    for (std::size_t ii = 0; ii < ta; ++ii) {
+      const std::size_t i = (ii + start_a) % ta;
       tri_box(x.va, ma.indices, i, bx);
       if (!meets(bx, box_b)) continue;
       const Vec3f tri_a[3] = {x.va[ma.indices[3 * i]], x.va[ma.indices[3 * i + 1]], x.va[ma.indices[3 * i + 2]]};

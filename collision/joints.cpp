@@ -86,12 +86,16 @@ Motion Joints::motion(std::uint32_t k) const {
   return d;
 }
 
-Mat3d Joints::local_after(std::uint32_t k, const Mat3d& turn) const {
+Joints::JointFrame Joints::joint_frame(std::uint32_t k) const {
   const std::int32_t p = parent_[k];
-  const Mat3d rp = p >= 0 ? motion(static_cast<std::uint32_t>(p)).r : Mat3d{};
-  const Mat3d q = slot_[k] >= 0 ? local_[static_cast<std::size_t>(slot_[k])] : Mat3d{};
-  return transpose(rp) * turn * rp * q;
+  JointFrame f;
+  f.parent = p >= 0 ? motion(static_cast<std::uint32_t>(p)).r : Mat3d{};
+  f.parent_t = transpose(f.parent);
+  f.local = slot_[k] >= 0 ? local_[static_cast<std::size_t>(slot_[k])] : Mat3d{};
+  return f;
 }
+
+Mat3d Joints::local_after(std::uint32_t k, const Mat3d& turn) const { return local_after(joint_frame(k), turn); }
 
 void Joints::set_local(std::uint32_t k, const Mat3d& q) {
   if (slot_[k] < 0) {

@@ -53,6 +53,12 @@ class Joints {
   /// The local rotation that turning organ k by `turn` (a rotation in the plant frame about its
   /// current joint) would leave at its joint.
   Mat3d local_after(std::uint32_t k, const Mat3d& turn) const;
+  /// The same in two steps for many turns of one organ: `frame` once, then `local_after(frame, turn)`.
+  struct JointFrame {
+    Mat3d parent, parent_t, local;  // the parent's rotation (D_parent), its transpose, Q_k
+  };
+  JointFrame joint_frame(std::uint32_t k) const;
+  static Mat3d local_after(const JointFrame& f, const Mat3d& turn) { return f.parent_t * turn * f.parent * f.local; }
   /// Sets organ k's local rotation (as local_after gave it).
   void set_local(std::uint32_t k, const Mat3d& q);
   /// Writes current transforms into `stand` for the subtrees of `turned` organs, returns the ids

@@ -67,6 +67,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   const std::int32_t plant = s.organs[mover].plant;
   const std::uint32_t end = joints.subtree_end(mover);
   c.joint = to_double(s.transforms[mover].t);
+  c.frame = joints.joint_frame(mover);
   c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
   c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + joints.angle_deg(mover));
   const auto box = [&](std::int32_t k) {
@@ -149,7 +150,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
 bool TurnSearch::attempt(const Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
   const Stand& s = stand;
   const Mat3d r = axis_angle(a, deg * kRad);
-  local = joints.local_after(c.mover, r);
+  local = Joints::local_after(c.frame, r);
   if (deg > 0 && rotation_angle_deg(local) > s.joint_limit_deg[c.mover]) return false;
   const Motion turn = rotation_about(c.joint, r);
   const std::int32_t plant = s.organs[c.mover].plant;

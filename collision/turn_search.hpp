@@ -58,6 +58,7 @@ struct TurnSearch {
   struct Candidate {
     std::uint32_t mover = 0;
     Vec3d joint;
+    Joints::JointFrame frame;
     double weight = 1, reach_deg = 0;
     std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;

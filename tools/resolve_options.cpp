@@ -18,6 +18,15 @@ void ResolveOptions::add_to(CLI::App& app) {
                  "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
                  "turns organs that never touched)")
       ->check(CLI::IsMember({"exact", "organ"}));
+  app.add_option("--resolve-candidates", candidates,
+                 fmt::format("Resolution: organs per contact that may turn, in policy order (default {})", candidates))
+      ->check(CLI::PositiveNumber);
+  app.add_option("--resolve-axes", axis_fan,
+                 fmt::format("Resolution: axes tried across an organ's width-normal plane besides the away axis (default {})", axis_fan))
+      ->check(CLI::Range(4, 64));
+  app.add_option("--resolve-step", scan_step,
+                 fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
+      ->check(CLI::Range(0.5, 30.0));
 }
 
 ResolveConfig ResolveOptions::config() const {
@@ -26,6 +35,9 @@ ResolveConfig ResolveOptions::config() const {
   c.max_rounds = max_rounds;
   c.clearance = clearance;
   c.level = *parse_contact_level(level);
+  c.candidates = candidates;
+  c.axis_fan = axis_fan;
+  c.scan_step_deg = scan_step;
   return c;
 }
 
@@ -37,6 +49,7 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
   return {{"enabled", c.enabled},          {"level", level},
           {"max_rounds", c.max_rounds},    {"clearance", c.clearance},
           {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
+          {"candidates", c.candidates},    {"axis_fan", c.axis_fan},
           {"movable_rank", order},         {"outer_first", c.outer_first}};
 }
 

@@ -15,6 +15,9 @@ struct ResolveOptions {
   int max_rounds = ResolveConfig{}.max_rounds;
   double clearance = ResolveConfig{}.clearance;
   std::string level = "exact";
+  int candidates = ResolveConfig{}.candidates;
+  int axis_fan = ResolveConfig{}.axis_fan;
+  double scan_step = ResolveConfig{}.scan_step_deg;
   bool progress = true;
 
   void add_to(CLI::App& app);
