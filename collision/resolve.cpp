@@ -66,6 +66,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   std::vector<std::uint8_t> resolved(n, 0);
   for (bool strict : {true, false}) {
     std::vector<std::optional<TurnSearch::Candidate>> state(movers.size());
+    std::vector<std::optional<Turn>> refined(movers.size());
     std::vector<std::size_t> pending;
     for (std::size_t i = 0; i < n; ++i)
       if (!resolved[i] && !cand_slots[i].empty()) pending.push_back(i);
@@ -89,25 +90,33 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           search.scan_level(*state[k], level, scratch);
         }
       }
+      // Candidates found at this level: each refined to its smallest turn, once.
+      std::vector<std::size_t> found;
+      for (std::size_t k : scan)
+        if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
+#pragma omp parallel num_threads(threads)
+      {
+        ExactScratch scratch;
+#pragma omp for schedule(dynamic, 1)
+        for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = search.refine(*state[found[j]], scratch);
+      }
+      // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
       std::erase_if(pending, [&](std::size_t i) {
-        for (std::size_t k : cand_slots[i])
-          if (state[k] && state[k]->found_axis >= 0) {
-            resolved[i] = 1;
-            chosen.push_back(k);
-            return true;
-          }
-        return false;
+        std::optional<std::size_t> pick;
+        double cost = 0;
+        for (std::size_t k : cand_slots[i]) {
+          if (!refined[k]) continue;
+          const double c = refined[k]->angle_deg * state[k]->weight;
+          if (!pick || c < cost) pick = k, cost = c;
+        }
+        if (!pick) return false;
+        resolved[i] = 1;
+        chosen.push_back(*pick);
+        return true;
       });
     }
-    std::sort(chosen.begin(), chosen.end());
-    chosen.erase(std::unique(chosen.begin(), chosen.end()), chosen.end());
-#pragma omp parallel num_threads(threads)
-    {
-      ExactScratch scratch;
-#pragma omp for schedule(dynamic, 1)
-      for (std::size_t j = 0; j < chosen.size(); ++j)
-        if (!turn_of[chosen[j]]) turn_of[chosen[j]] = search.refine(*state[chosen[j]], scratch);
-    }
+    for (std::size_t k : chosen)
+      if (!turn_of[k]) turn_of[k] = refined[k];
   }
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
   // turning this round (the first contact to claim a mover keeps it).
