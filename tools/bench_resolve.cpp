@@ -4,7 +4,8 @@
 // turns organs whose boxes met without touching: organs_moved shows how many more), on the CPU
 // and, in a CUDA build on a machine with a GPU, on the GPU. Prints a table, writes CSV.
 // Usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]
-//                      [--levels exact,organ] [--threads T] [--csv FILE]
+//                      [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG]
+//                      [--csv FILE] [--append]
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
 #ifdef CANOPY_HAVE_CUDA
@@ -44,6 +45,8 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;
+  bool append = false;
+  ResolveConfig base;
   std::string csv = "bench/results/resolve.csv";
   for (int i = 1; i < argc; ++i) {
     const auto ints = [&](std::vector<int>& v) {
@@ -56,11 +59,17 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--backends") && i + 1 < argc) backends = split(argv[++i]);
     else if (!std::strcmp(argv[i], "--levels") && i + 1 < argc) levels = split(argv[++i]);
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--candidates") && i + 1 < argc) base.candidates = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--axes") && i + 1 < argc) base.axis_fan = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) base.scan_step_deg = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--append")) append = true;
   }
-  std::FILE* out = std::fopen(csv.c_str(), "w");
+  std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
-  fmt::print(out,
-             "backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
+  const std::string config = fmt::format("candidates={} axes={} step={}", base.candidates, base.axis_fan, base.scan_step_deg);
+  if (!append)
+    fmt::print(out,
+             "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
              "contacts_before_level,rounds,organs_moved,organs_carried,mean_turn_deg,max_turn_deg,residual_exact,"
              "residual_level,detect_s,resolve_s,plan_s,redetect_s\n");
   fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7} {:>7} {:>9} {:>9} {:>9}\n", "back", "spacing", "plants", "level",
@@ -87,6 +96,7 @@ int main(int argc, char** argv) {
           Stand s = grow_stand(g);
           ResolveRequest req;
           req.detect.threads = threads;
+          req.config = base;
           req.config.level = *parse_contact_level(lname);
           auto fresh = make_cpu_backend();  // the independent counts before and after
           const std::size_t before_exact = fresh->detect(s, DetectRequest{}).pairs.size();
@@ -104,6 +114,7 @@ int main(int argc, char** argv) {
           fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7.2f} {:>7.2f} {:>9} {:>9.3f} {:>9.3f}\n", bname, sp.name, n,
                      lname, before_exact, r.rounds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, residual, detect_s,
                      resolve_s);
+          fmt::print(out, "{},{},", config, threads);
           fmt::print(out, "{},{},{},{},{},{},{:.1f},{},{},{},{},{},{},{:.4f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n", bname,
                      backend->device(), sp.name, sp.plant, sp.row, n, static_cast<double>(s.organ_count()) / n, lname,
                      before_exact, first.pairs.size(), r.rounds, r.organs_moved, r.organs_carried, r.mean_turn_deg,
