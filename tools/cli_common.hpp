@@ -17,5 +17,6 @@ Command add_derive(CLI::App& root);
 Command add_info(CLI::App& root);
 Command add_stand(CLI::App& root);
 Command add_detect(CLI::App& root);
+Command add_sweep(CLI::App& root);
 
 }  // namespace canopy::cli

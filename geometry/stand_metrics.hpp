@@ -1,0 +1,30 @@
+#pragma once
+/// Stand-level numbers crop modellers compare stands by.
+#include "geometry/prototype.hpp"
+#include "geometry/stand.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace canopy {
+
+struct LeafAreaIndex {
+  double lai = 0;             // one-sided leaflet area / ground area of the plants counted
+  double leaf_area = 0;       // m2, over the plants counted
+  double ground_area = 0;     // m2
+  std::size_t plants = 0;     // plants counted
+  bool inner_only = false;    // true when edge plants were left out
+};
+
+/// Leaf area index (one-sided leaflet blade area over ground area) of a row stand of `rows` x
+/// `per_row` plants (row-major, as row_layout places them), each plant owning
+/// plant_spacing x row_spacing of ground. Counted on the inner plants (neither in the first or
+/// last row nor first or last in its row), so the open edges of a small stand do not bias it;
+/// a stand with fewer than 3 rows or 3 plants a row has no inner plants and counts every plant.
+LeafAreaIndex leaf_area_index(const Stand& stand, PrototypeLibrary& lib, int rows, int per_row, double plant_spacing,
+                              double row_spacing);
+
+/// One-sided leaflet area of each plant, m2 (the exported meshes' areas).
+std::vector<double> leaflet_area_per_plant(const Stand& stand, PrototypeLibrary& lib);
+
+}  // namespace canopy

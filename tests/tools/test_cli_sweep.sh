@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# canopy sweep end to end: the rows of a tiny grid, the summary, resuming (nothing redone, a torn
+# line dropped), a failed run recorded as failed, bad specifications refused with clear errors.
+# Usage: CANOPY=path/to/canopy test_cli_sweep.sh SOURCE_DIR
+set -u
+src=$1
+canopy=${CANOPY:?set CANOPY to the canopy binary}
+source "$(dirname "$0")/check.sh"
+g="$src/grammars/tomato.yaml"
+sweep() { "$canopy" sweep "$g" --plant-spacing 0.3,0.45 --steps 10:12:2 --seeds 2 --rows 3 --per-row 3 --backend cpu "$@"; }
+
+sweep -o "$tmp/s" >"$tmp/log" 2>&1
+check "exit" "0" "$?"
+check "runs rows" "9" "$(wc -l < "$tmp/s/runs.csv" | tr -d ' ')"
+check "summary rows" "5" "$(wc -l < "$tmp/s/summary.csv" | tr -d ' ')"
+col() { python3 -c "
+import csv,sys; r=list(csv.DictReader(open('$1'))); print(' '.join(x['$2'] for x in r))"; }
+check "cells and seeds" "0.3|10|1 0.3|10|2 0.3|12|1 0.3|12|2 0.45|10|1 0.45|10|2 0.45|12|1 0.45|12|2" \
+  "$(python3 -c "
+import csv; print(' '.join(f\"{x['plant_spacing']}|{x['steps']}|{x['seed']}\" for x in csv.DictReader(open('$tmp/s/runs.csv'))))")"
+check "all ok" "ok ok ok ok ok ok ok ok" "$(col "$tmp/s/runs.csv" status)"
+check "plants" "9 9 9 9 9 9 9 9" "$(col "$tmp/s/runs.csv" plants)"
+check "lai on the one inner plant" "1 1 1 1 1 1 1 1" "$(col "$tmp/s/runs.csv" lai_plants)"
+check "density" "True" "$(python3 -c "
+import csv; print(all(abs(float(x['density']) - 1/(float(x['plant_spacing'])*float(x['row_spacing']))) < 1e-3 for x in csv.DictReader(open('$tmp/s/runs.csv'))))")"
+check "denser means more LAI" "True" "$(python3 -c "
+import csv; r={(x['plant_spacing'],x['steps']):float(x['lai_mean']) for x in csv.DictReader(open('$tmp/s/summary.csv'))}
+print(r[('0.3','12')] > r[('0.45','12')] and r[('0.3','10')] > r[('0.45','10')])")"
+check "resolved: nothing left" "0 0 0 0 0 0 0 0" "$(col "$tmp/s/runs.csv" residual_contacts)"
+check "summary runs" "2 2 2 2" "$(col "$tmp/s/summary.csv" runs)"
+
+# Resume: nothing redone, the file unchanged.
+cp "$tmp/s/runs.csv" "$tmp/runs.before"
+sweep -o "$tmp/s" >"$tmp/log2" 2>&1
+check "resume exit" "0" "$?"
+check "resume runs nothing" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/log2")"
+cmp -s "$tmp/runs.before" "$tmp/s/runs.csv"
+check "resume leaves runs.csv" "0" "$?"
+
+# An interrupted sweep: three runs done and a torn fourth line; resuming makes exactly five.
+head -4 "$tmp/runs.before" > "$tmp/s/runs.csv"
+printf '3,0.3,1,3.3333,12,2,ok,9,11' >> "$tmp/s/runs.csv"
+sweep -o "$tmp/s" >"$tmp/log3" 2>&1
+check "interrupted: resumed runs" "1" "$(grep -c '^sweep: 5 runs made now' "$tmp/log3")"
+check "interrupted: rows" "9" "$(wc -l < "$tmp/s/runs.csv" | tr -d ' ')"
+check "interrupted: same results" "$(cut -d, -f1-25 "$tmp/runs.before" | sort)" "$(cut -d, -f1-25 "$tmp/s/runs.csv" | sort)"
+
+# A failed run is recorded as failed, kept on resuming, run again with --retry-failed.
+printf 'axiom: A(1)\nsteps: 3\nproductions:\n  - A(x) -> I(0.1, 0.01) [ A(x) ] [ A(x) ]\norgans:\n  I: {prototype: cylinder, kind: internode}\n' > "$tmp/exp.yaml"
+"$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu -o "$tmp/f" >"$tmp/log4" 2>&1
+check "failed: exit 3" "3" "$?"
+check "failed: statuses" "ok failed" "$(col "$tmp/f/runs.csv" status)"
+check "failed: message" "1" "$(python3 -c "
+import csv; r=list(csv.DictReader(open('$tmp/f/runs.csv'))); print(int('module' in r[1]['message']))")"
+"$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu -o "$tmp/f" >"$tmp/log5" 2>&1
+check "failed: kept on resume" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/log5")"
+"$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu --retry-failed \
+  -o "$tmp/f" >"$tmp/log6" 2>&1
+check "failed: retried" "1" "$(grep -c '^sweep: 1 runs made now (1 failed)' "$tmp/log6")"
+
+# Bad specifications: a clear error, exit 2, no folder.
+bad() {  # bad NAME PATTERN ARGS...
+  local name=$1 pattern=$2; shift 2
+  rm -rf "$tmp/bad"
+  "$canopy" sweep "$g" "$@" -o "$tmp/bad" >"$tmp/o" 2>"$tmp/e"
+  check "$name exit" "2" "$?"
+  check "$name message" "1" "$(grep -c -- "$pattern" "$tmp/e")"
+  check "$name no folder" "0" "$([ -e "$tmp/bad" ] && echo 1 || echo 0)"
+}
+bad "empty range" "range '0.5:0.3:0.1' is empty" --plant-spacing 0.5:0.3:0.1
+bad "negative spacing" "\-\-plant-spacing: -0.3 must be greater than 0" --plant-spacing 0.3,-0.3
+bad "zero step" "step of '0.3:0.5:0' must be positive" --row-spacing 0.3:0.5:0
+bad "not a number" "'abc' is not a number" --density 2,abc
+bad "empty item" "empty item in '0.3,,0.4'" --plant-spacing 0.3,,0.4
+bad "fractional steps" "10.5 is not a whole number" --steps 10.5
+
+help=$("$canopy" sweep --help)
+for opt in --plant-spacing --row-spacing --density --steps --seeds --rows --per-row --jitter --retry-failed --no-resolve; do
+  check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
+done
+echo "$pass passed, $failures failed"
+[ "$failures" -eq 0 ]

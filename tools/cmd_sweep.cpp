@@ -1,0 +1,221 @@
+// canopy sweep: a spacing / density x age experiment, several seeds per cell, one CSV row per
+// run (resumable), and a summary per cell.
+#include "geometry/atomic_file.hpp"
+#include "geometry/layout.hpp"
+#include "geometry/stand_metrics.hpp"
+#include "lsystem/grow.hpp"
+#include "tools/cli_common.hpp"
+#include "tools/detect_options.hpp"
+#include "tools/resolve_options.hpp"
+#include "tools/sweep_spec.hpp"
+#include "tools/sweep_table.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <set>
+
+namespace canopy::cli {
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void on_interrupt(int) {
+  g_interrupted = true;
+  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C stops at once
+}
+
+struct SweepOptions {
+  std::string grammar, out = "sweep";
+  std::string plant_spacing = "0.4", row_spacing = "1.0", density, steps;
+  int seeds = 3, rows = 3, per_row = 5;
+  double jitter = 0.02;
+  int lod = kDefaultLod;
+  std::vector<std::string> set;
+  bool retry_failed = false;
+  std::size_t max_modules = kDefaultMaxModules;
+  DetectOptions detect;
+  ResolveOptions resolve;
+};
+
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::string num(double v) { return fmt::format("{}", v); }
+
+/// One run: grow, detect (every level up to the exact one), resolve; the row of runs.csv.
+RunRow run_one(const SweepOptions& o, const Grammar& g, const SweepCell& cell, int seed, DetectionBackend& backend, RunRow row) {
+  RowLayout layout;
+  layout.rows = o.rows;
+  layout.per_row = o.per_row;
+  layout.plant_spacing = cell.plant_spacing;
+  layout.row_spacing = cell.row_spacing;
+  layout.jitter = o.jitter;
+  layout.random_rotation = true;
+  layout.seed = static_cast<std::uint64_t>(seed);
+  GrowRequest req;
+  req.grammar = o.grammar;
+  for (const auto& s : o.set) req.load.overrides.push_back(parse_override(s));
+  req.steps = cell.steps;
+  req.lod = o.lod;
+  req.threads = o.detect.threads;
+  req.plants = row_layout(layout);
+  req.max_modules = o.max_modules;
+  auto t = std::chrono::steady_clock::now();
+  Stand stand = grow_stand(req);
+  row["generate_s"] = fmt::format("{:.4f}", since(t));
+  PrototypeLibrary lib;
+  const LeafAreaIndex lai = leaf_area_index(stand, lib, o.rows, o.per_row, cell.plant_spacing, cell.row_spacing);
+  const double n = static_cast<double>(stand.plant_count());
+  row["plants"] = std::to_string(stand.plant_count());
+  row["organs"] = std::to_string(stand.organ_count());
+  row["lai"] = fmt::format("{:.5f}", lai.lai);
+  row["lai_plants"] = std::to_string(lai.plants);
+  DetectRequest dreq = o.detect.request();
+  dreq.level = ContactLevel::exact;
+  t = std::chrono::steady_clock::now();
+  const Contacts c = backend.detect(stand, dreq);
+  row["detect_s"] = fmt::format("{:.4f}", since(t));
+  for (std::size_t l = 0; l < 4; ++l) {
+    const std::string level(kContactLevelNames[l]);
+    row[level + "_between_per_plant"] = fmt::format("{:.4f}", static_cast<double>(c.counts[l]->between) / n);
+    row[level + "_within_per_plant"] = fmt::format("{:.4f}", static_cast<double>(c.counts[l]->within) / n);
+  }
+  if (!o.resolve.no_resolve) {
+    ResolveOptions ro = o.resolve;
+    ro.progress = false;
+    const ResolveConfig rc = ro.config();
+    DetectRequest at = dreq;
+    at.level = rc.level;
+    const Contacts start = rc.level == ContactLevel::exact ? c : backend.detect(stand, at);
+    t = std::chrono::steady_clock::now();
+    const ResolveResult r = run_resolution(stand, backend, dreq, ro, start);
+    row["resolve_s"] = fmt::format("{:.4f}", since(t));
+    row["organs_turned"] = std::to_string(r.organs_moved);
+    row["organs_turned_per_plant"] = fmt::format("{:.4f}", static_cast<double>(r.organs_moved) / n);
+    row["mean_turn_deg"] = fmt::format("{:.4f}", r.mean_turn_deg);
+    row["max_turn_deg"] = fmt::format("{:.4f}", r.max_turn_deg);
+    row["rounds"] = std::to_string(r.rounds);
+    // What is left, at the exact level: resolution's own list when it resolved at that level,
+    // else a detection from scratch.
+    row["residual_contacts"] = std::to_string(rc.level == ContactLevel::exact ? r.contacts_after : backend.detect(stand, dreq).pairs.size());
+  }
+  row["status"] = "ok";
+  return row;
+}
+
+}  // namespace
+
+Command add_sweep(CLI::App& root) {
+  auto o = std::make_shared<SweepOptions>();
+  CLI::App* app = root.add_subcommand("sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
+  app->add_option("GRAMMAR", o->grammar, "Grammar file (YAML)")->required();
+  app->add_option("-o,--out", o->out, "Output folder: runs.csv, summary.csv (default sweep); an existing one is resumed");
+  app->add_option("--plant-spacing", o->plant_spacing, "Metres between plants in a row: a list a,b,c or a range start:stop:step (default 0.4)");
+  app->add_option("--row-spacing", o->row_spacing, "Metres between rows: list or range (default 1.0)");
+  app->add_option("--density", o->density, "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x row spacing)");
+  app->add_option("--steps", o->steps, "Plant ages in derivation steps: list or range (default: the grammar's)");
+  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->check(CLI::PositiveNumber);
+  app->add_option("--rows", o->rows, "Rows per stand (default 3)")->check(CLI::PositiveNumber);
+  app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->check(CLI::PositiveNumber);
+  app->add_option("--jitter", o->jitter, "Jitter radius in metres (default 0.02; plants are turned at random)")->check(CLI::NonNegativeNumber);
+  app->add_option("--lod", o->lod, "Level of detail (default 2)")->check(CLI::Range(1, kMaxLod));
+  app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
+  app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")
+      ->check(CLI::PositiveNumber);
+  app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
+  o->detect.add_to(*app);
+  o->resolve.add_to(*app);
+  return {app, [o]() {
+            // The specification first: bad lists fail before any work.
+            const auto rows_sp = parse_number_list("--row-spacing", o->row_spacing, 0, true);
+            std::vector<double> plant_sp, dens;
+            if (!o->density.empty()) dens = parse_number_list("--density", o->density, 0, true);
+            else plant_sp = parse_number_list("--plant-spacing", o->plant_spacing, 0, true);
+            std::vector<std::optional<int>> steps{std::nullopt};
+            if (!o->steps.empty()) {
+              steps.clear();
+              for (double s : parse_number_list("--steps", o->steps, 0, false)) {
+                if (s != std::floor(s)) throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
+                steps.push_back(static_cast<int>(s));
+              }
+            }
+            (void)o->detect.request();
+            const LoadOptions load = [&] {
+              LoadOptions l;
+              for (const auto& s : o->set) l.overrides.push_back(parse_override(s));
+              return l;
+            }();
+            const Grammar g = load_grammar(o->grammar, load);
+            const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
+            std::string note;
+            auto backend = make_backend(o->detect.backend, note);
+
+            std::filesystem::create_directories(o->out);
+            const std::string runs_path = o->out + "/runs.csv";
+            std::vector<RunRow> done = read_runs(runs_path);
+            if (o->retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
+            write_runs(runs_path, done);  // drops a torn last line
+            std::set<std::string> finished;
+            for (const RunRow& r : done) finished.insert(run_key(r));
+
+            const std::size_t total = cells.size() * static_cast<std::size_t>(o->seeds);
+            fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants, {} already done; backend {}\n", cells.size(), o->seeds,
+                       total, o->rows, o->per_row, finished.size(), note);
+            const bool tty = isatty(fileno(stderr));
+            g_interrupted = false;
+            std::signal(SIGINT, on_interrupt);
+            const auto t0 = std::chrono::steady_clock::now();
+            std::size_t index = 0, ran = 0, failed = 0;
+            for (const SweepCell& cell : cells)
+              for (int seed = 1; seed <= o->seeds; ++seed, ++index) {
+                if (g_interrupted) break;
+                RunRow row;
+                row["run"] = std::to_string(index);
+                row["plant_spacing"] = num(cell.plant_spacing);
+                row["row_spacing"] = num(cell.row_spacing);
+                row["density"] = fmt::format("{:.4f}", cell.density);
+                row["steps"] = std::to_string(cell.steps.value_or(g.steps));
+                row["seed"] = std::to_string(seed);
+                row["backend"] = backend->name();
+                if (finished.count(run_key(row))) continue;
+                if (tty)
+                  fmt::print(stderr, "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
+                             index + 1, total, row["plant_spacing"], row["row_spacing"], row["steps"], seed, since(t0));
+                try {
+                  row = run_one(*o, g, cell, seed, *backend, row);
+                } catch (const std::exception& e) {
+                  row["status"] = "failed";
+                  row["message"] = e.what();
+                  ++failed;
+                }
+                append_run(runs_path, row);
+                ++ran;
+                if (!tty)
+                  fmt::print("run {}/{}: plant spacing {} m, row spacing {} m, steps {}, seed {}: {}\n", index + 1, total,
+                             row["plant_spacing"], row["row_spacing"], row["steps"], seed,
+                             row["status"] == "ok" ? fmt::format("LAI {}, {} exact contacts between plants per plant", row["lai"],
+                                                                 row["exact_between_per_plant"])
+                                                   : "failed: " + row["message"]);
+              }
+            std::signal(SIGINT, SIG_DFL);
+            if (tty) fmt::print(stderr, "\r{:100}\r", "");
+            const std::vector<RunRow> all = read_runs(runs_path);
+            OutputSet files(o->out);
+            files.open("summary.csv").write(summary_csv(all));
+            files.commit_all();
+            fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,
+                       since(t0));
+            if (g_interrupted) {
+              fmt::print("interrupted: run the same command again to go on where it stopped\n");
+              return 130;
+            }
+            return failed ? 3 : 0;
+          }};
+}
+
+}  // namespace canopy::cli

@@ -1,0 +1,80 @@
+#include "tools/sweep_spec.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace canopy::cli {
+namespace {
+
+double number(const std::string& name, const std::string& s) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != s.size() || !std::isfinite(v))
+    throw std::invalid_argument(fmt::format("{}: '{}' is not a number", name, s));
+  return v;
+}
+
+}  // namespace
+
+std::vector<double> parse_number_list(const std::string& name, const std::string& text, double min, bool strict) {
+  std::vector<double> out;
+  if (text.find(':') != std::string::npos) {
+    std::vector<std::string> part;
+    std::size_t i = 0;
+    for (std::size_t j; (j = text.find(':', i)) != std::string::npos; i = j + 1) part.push_back(text.substr(i, j - i));
+    part.push_back(text.substr(i));
+    if (part.size() != 3) throw std::invalid_argument(fmt::format("{}: a range is start:stop:step, got '{}'", name, text));
+    const double a = number(name, part[0]), b = number(name, part[1]), step = number(name, part[2]);
+    if (!(step > 0)) throw std::invalid_argument(fmt::format("{}: the step of '{}' must be positive", name, text));
+    if (b < a) throw std::invalid_argument(fmt::format("{}: the range '{}' is empty (stop below start)", name, text));
+    const auto n = static_cast<long>(std::floor((b - a) / step + 1e-9));
+    if (n > 100000) throw std::invalid_argument(fmt::format("{}: the range '{}' has more than 100,000 values", name, text));
+    for (long k = 0; k <= n; ++k) out.push_back(a + static_cast<double>(k) * step);
+  } else if (!text.empty()) {
+    std::size_t i = 0;
+    for (;;) {
+      const std::size_t j = text.find(',', i);
+      const std::string item = text.substr(i, j == std::string::npos ? std::string::npos : j - i);
+      if (item.empty()) throw std::invalid_argument(fmt::format("{}: empty item in '{}'", name, text));
+      out.push_back(number(name, item));
+      if (j == std::string::npos) break;
+      i = j + 1;
+    }
+  }
+  if (out.empty()) throw std::invalid_argument(fmt::format("{}: no values given", name));
+  for (double v : out)
+    if (strict ? !(v > min) : !(v >= min))
+      throw std::invalid_argument(fmt::format("{}: {} must be {} {}", name, v, strict ? "greater than" : "at least", min));
+  return out;
+}
+
+std::vector<SweepCell> sweep_cells(const std::vector<double>& row_spacings, const std::vector<double>& plant_spacings,
+                                   const std::vector<double>& densities, const std::vector<std::optional<int>>& steps) {
+  std::vector<SweepCell> cells;
+  for (double row : row_spacings) {
+    std::vector<double> plant;
+    if (!densities.empty())
+      for (double d : densities) plant.push_back(1.0 / (d * row));
+    else
+      plant = plant_spacings;
+    for (double p : plant)
+      for (const auto& st : steps) {
+        SweepCell c;
+        c.plant_spacing = p;
+        c.row_spacing = row;
+        c.density = 1.0 / (p * row);
+        c.steps = st;
+        cells.push_back(c);
+      }
+  }
+  return cells;
+}
+
+}  // namespace canopy::cli

@@ -1,0 +1,35 @@
+#pragma once
+/// The sweep's files: runs.csv (one row per run, appended and flushed as each run ends, so an
+/// interrupted sweep loses at most the run in progress) and summary.csv (mean and standard
+/// deviation per cell over its finished runs).
+#include <map>
+#include <string>
+#include <vector>
+
+namespace canopy::cli {
+
+/// runs.csv columns, in order.
+const std::vector<std::string>& run_columns();
+
+/// One row: column name -> text (numbers already formatted).
+using RunRow = std::map<std::string, std::string>;
+
+/// The key of a run: its cell and seed, as written in runs.csv.
+std::string run_key(const RunRow& r);
+
+/// Rows of an existing runs.csv (a missing file gives none; a torn last line, from a run killed
+/// while writing, is dropped). Throws std::invalid_argument when the header is not ours.
+std::vector<RunRow> read_runs(const std::string& path);
+/// Rewrites runs.csv with `rows` (used once at start, to drop a torn line and replaced failures).
+void write_runs(const std::string& path, const std::vector<RunRow>& rows);
+/// Appends one row and flushes it to the disk.
+void append_run(const std::string& path, const RunRow& row);
+
+/// summary.csv from the rows: per cell (plant spacing, row spacing, steps) the number of runs,
+/// failures, and mean / standard deviation of every numeric column of finished runs.
+std::string summary_csv(const std::vector<RunRow>& rows);
+
+/// A CSV field: quoted when it holds a comma, quote or newline.
+std::string csv_field(const std::string& s);
+
+}  // namespace canopy::cli
