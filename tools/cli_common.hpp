@@ -1,5 +1,8 @@
 #pragma once
 /// Shared pieces of the canopy subcommands.
+#include "geometry/layout.hpp"
+#include "lsystem/grammar.hpp"
+
 #include <CLI/CLI.hpp>
 
 #include <string>
@@ -18,5 +21,12 @@ Command add_info(CLI::App& root);
 Command add_stand(CLI::App& root);
 Command add_detect(CLI::App& root);
 Command add_sweep(CLI::App& root);
+Command add_render(CLI::App& root);
+
+/// Whether any row option is set in a stand entry.
+bool any_row_option(const StandSpec& s);
+/// A row layout from a stand entry (the grammar's or the command line's); unset keys take
+/// DESIGN.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
+RowLayout to_row_layout(const StandSpec& s);
 
 }  // namespace canopy::cli

@@ -36,6 +36,8 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
+}  // namespace
+
 bool any_row_option(const StandSpec& s) {
   return s.rows || s.per_row || s.row_spacing || s.plant_spacing || s.double_rows || s.jitter || s.random_rotation || s.seed;
 }
@@ -54,8 +56,6 @@ RowLayout to_row_layout(const StandSpec& s) {
   l.seed = s.seed.value_or(1);
   return l;
 }
-
-}  // namespace
 
 Command add_stand(CLI::App& root) {
   auto o = std::make_shared<StandOptions>();
