@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Plots with gnuplot (Debian gnuplot-nox), each as PNG and SVG.
+#   tools/plot.sh sweep DIR            from DIR/summary.csv (canopy sweep): contacts per plant and
+#                                      mean turn against density, one curve per age; leaf area
+#                                      index against density
+#   tools/plot.sh bench [RESULTS] [OUT]  from bench/results: detection time against false
+#                                      positives per level (speed against error), and detection
+#                                      time against plant count per backend
+set -euo pipefail
+command -v gnuplot >/dev/null || { echo "plot.sh: gnuplot is missing (apt-get install gnuplot-nox)" >&2; exit 1; }
+
+# column FILE NAME: the 1-based index of a CSV column.
+column() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
+
+# render NAME SCRIPT: runs the gnuplot SCRIPT body twice, into NAME.png and NAME.svg.
+render() {
+  local name=$1 body=$2
+  gnuplot <<<"set terminal pngcairo size 900,600 font 'sans,11'; set output '$name.png'; $body"
+  gnuplot <<<"set terminal svg size 900,600 font 'sans,11'; set output '$name.svg'; $body"
+  echo "wrote $name.png $name.svg"
+}
+
+sweep() {
+  local dir=$1 sum=$1/summary.csv
+  [ -f "$sum" ] || { echo "plot.sh: no $sum (run canopy sweep first)" >&2; exit 1; }
+  local cd cs cb cw cbs cws ct cts cl cls
+  cd=$(column "$sum" density); cs=$(column "$sum" steps)
+  cb=$(column "$sum" exact_between_per_plant_mean); cbs=$(column "$sum" exact_between_per_plant_sd)
+  cw=$(column "$sum" exact_within_per_plant_mean); cws=$(column "$sum" exact_within_per_plant_sd)
+  ct=$(column "$sum" mean_turn_deg_mean); cts=$(column "$sum" mean_turn_deg_sd)
+  cl=$(column "$sum" lai_mean); cls=$(column "$sum" lai_sd)
+  local data=$dir/plot_data
+  mkdir -p "$data"
+  rm -f "$data"/age_*.dat
+  # One file per age: density, contacts per plant (between + within) and its spread, turn, LAI.
+  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v b="$cb" -v bs="$cbs" -v w="$cw" -v ws="$cws" \
+    -v t="$ct" -v ts="$cts" -v l="$cl" -v ls="$cls" -v out="$data" \
+    '{ f = out "/age_" $s ".dat"; print $d, $b + $w, sqrt($bs * $bs + $ws * $ws), $t, $ts, $l, $ls > f }'
+  local plots_c="" plots_t="" plots_l=""
+  for f in $(ls "$data"/age_*.dat | sort -t_ -k2n); do
+    local age; age=$(basename "$f" .dat); age=${age#age_}
+    plots_c+="'$f' using 1:2:3 with yerrorlines title 'age $age steps', "
+    plots_t+="'$f' using 1:4:5 with yerrorlines title 'age $age steps', "
+    plots_l+="'$f' using 1:6:7 with yerrorlines title 'age $age steps', "
+  done
+  local common="set key left top; set grid; set offsets graph 0.03, graph 0.03, graph 0.08, 0; set xlabel 'density (plants per m^2)';"
+  render "$dir/contacts_vs_density" "$common set ylabel 'organ contacts per plant before resolution (exact)'; plot ${plots_c%, }"
+  render "$dir/turn_vs_density" "$common set ylabel 'mean turn after resolution (degrees)'; plot ${plots_t%, }"
+  render "$dir/lai_vs_density" "$common set ylabel 'leaf area index (inner plants)'; plot ${plots_l%, }"
+}
+
+bench() {
+  local res=${1:-bench/results} out=${2:-bench/results}
+  local cpu=$res/detect_cpu.csv gpu=$res/detect_cuda.csv
+  [ -f "$cpu" ] || { echo "plot.sh: no $cpu" >&2; exit 1; }
+  mkdir -p "$out/plot_data"
+  # Speed against error: per level, seconds against false positives, two threads, largest stand.
+  local n; n=$(awk -F, 'NR>1 && $4==2 && $5=="mbvt" {print $1}' "$cpu" | sort -n | tail -1)
+  awk -F, -v n="$n" 'NR>1 && $1==n && $4==2 && $5=="mbvt" && $6 ~ /^to / {sub(/^to /, "", $6); print $7, ($9 < 1 ? 1 : $9), $6}' "$cpu" \
+    > "$out/plot_data/speed_error.dat"
+  render "$out/speed_vs_error" "set grid; set logscale y; set xlabel 'detection time to the level, s ($n plants, 2 CPU threads)';
+    set ylabel 'false positives against the exact level (organ pairs, log; 0 drawn at 1)'; set offsets 0.05, 0.05, 0, 0;
+    plot '$out/plot_data/speed_error.dat' using 1:2 with linespoints pt 7 notitle, '' using 1:2:3 with labels offset 2,1 notitle"
+  # Time against plant count per backend: CPU (2 threads, this machine) and the GPU file's rows.
+  awk -F, 'NR>1 && $4==2 && $5=="mbvt" && $6=="to exact" {print $1, $7}' "$cpu" | sort -n > "$out/plot_data/cpu_exact.dat"
+  local plots="'$out/plot_data/cpu_exact.dat' using 1:2 with linespoints pt 7 title 'CPU, 2 threads (this machine)'"
+  if [ -f "$gpu" ]; then
+    awk -F, 'NR>1 && $5=="exact" {print $2, $8, $9}' "$gpu" | sort -n > "$out/plot_data/gpu_exact.dat"
+    local dev; dev=$(awk -F, 'NR==2 {print $1}' "$gpu")
+    plots+=", '$out/plot_data/gpu_exact.dat' using 1:2 with linespoints pt 5 title 'CUDA, $dev', '' using 1:3 with linespoints pt 9 title 'CPU, 16 cores of the $dev host'"
+  fi
+  render "$out/time_vs_plants" "set grid; set logscale xy; set key left top; set xlabel 'plants (default stand)';
+    set ylabel 'detection time to the exact level, s'; plot $plots"
+}
+
+case "${1:-}" in
+  sweep) sweep "${2:?usage: plot.sh sweep DIR}" ;;
+  bench) bench "${2:-}" "${3:-}" ;;
+  *) echo "usage: tools/plot.sh sweep DIR | bench [RESULTS] [OUT]" >&2; exit 2 ;;
+esac
