@@ -29,6 +29,19 @@ print(r[('0.3','12')] > r[('0.45','12')] and r[('0.3','10')] > r[('0.45','10')])
 check "resolved: nothing left" "0 0 0 0 0 0 0 0" "$(col "$tmp/s/runs.csv" residual_contacts)"
 check "summary runs" "2 2 2 2" "$(col "$tmp/s/summary.csv" runs)"
 
+# Plots of the sweep (gnuplot): PNG and SVG of each curve.
+if command -v gnuplot >/dev/null; then
+  bash "$src/tools/plot.sh" sweep "$tmp/s" >/dev/null 2>&1
+  check "plot exit" "0" "$?"
+  for f in contacts_vs_density turn_vs_density lai_vs_density; do
+    check "plot $f.png" "PNG" "$(head -c 4 "$tmp/s/$f.png" 2>/dev/null | tail -c 3)"
+    check "plot $f.svg" "1" "$(grep -c '<svg' "$tmp/s/$f.svg" 2>/dev/null | sed 's/[2-9]/1/')"
+  done
+  rm -rf "$tmp/s"/*.png "$tmp/s"/*.svg "$tmp/s/plot_data"
+else
+  check "gnuplot installed (run scripts/setup.sh)" "yes" "no"
+fi
+
 # Resume: nothing redone, the file unchanged.
 cp "$tmp/s/runs.csv" "$tmp/runs.before"
 sweep -o "$tmp/s" >"$tmp/log2" 2>&1
