@@ -94,7 +94,7 @@ std::vector<PlantPlacement> default_stand_layout(int plants) {
 
 std::vector<PlantPlacement> read_positions(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw std::invalid_argument(fmt::format("{}: cannot open the positions file", path));
+  if (!in) throw FileNotFound(fmt::format("{}: cannot open the positions file", path));
   std::string line;
   int line_no = 0;
   std::map<std::string, int> col;

@@ -3,10 +3,17 @@
 /// the origin, or a positions file. Each plant gets its own seed from the stand seed.
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace canopy {
+
+/// A file named on the command line (or from Python) that cannot be opened.
+class FileNotFound : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
 
 struct PlantPlacement {
   double x = 0, y = 0;

@@ -34,6 +34,12 @@ class GrammarError : public std::runtime_error {
   std::string message_;
 };
 
+/// A grammar file that cannot be opened (Python sees FileNotFoundError).
+class GrammarFileError : public GrammarError {
+ public:
+  using GrammarError::GrammarError;
+};
+
 /// A derivation that would exceed its module cap (a clear stop instead of running out of memory).
 class ModuleCapError : public std::runtime_error {
  public:

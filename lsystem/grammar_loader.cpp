@@ -274,7 +274,7 @@ Grammar parse_grammar(const std::string& text, const std::string& file, const Lo
 
 Grammar load_grammar(const std::string& path, const LoadOptions& options) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw GrammarError({path, 0, 0}, "cannot open the grammar file");
+  if (!in) throw GrammarFileError({path, 0, 0}, "cannot open the grammar file");
   std::ostringstream ss;
   ss << in.rdbuf();
   return parse_grammar(ss.str(), path, options);

@@ -8,6 +8,7 @@
 #include "tools/detect_options.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/sweep_spec.hpp"
+#include "tools/sweep_run.hpp"
 #include "tools/sweep_table.hpp"
 
 #include <fmt/format.h>
@@ -28,18 +29,7 @@ extern "C" void on_interrupt(int) {
   std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C stops at once
 }
 
-struct SweepOptions {
-  std::string grammar, out = "sweep";
-  std::string plant_spacing = "0.4", row_spacing = "1.0", density, steps;
-  int seeds = 3, rows = 3, per_row = 5;
-  double jitter = 0.02;
-  int lod = kDefaultLod;
-  std::vector<std::string> set;
-  bool retry_failed = false;
-  std::size_t max_modules = kDefaultMaxModules;
-  DetectOptions detect;
-  ResolveOptions resolve;
-};
+
 
 double since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -110,6 +100,114 @@ RunRow run_one(const SweepOptions& o, const Grammar& g, const SweepCell& cell, i
 
 }  // namespace
 
+SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& after_run) {
+  std::string note;
+  // The specification first: bad lists fail before any work.
+  const auto rows_sp = parse_number_list("--row-spacing", o.row_spacing, 0, true);
+  std::vector<double> plant_sp, dens;
+  if (!o.density.empty()) dens = parse_number_list("--density", o.density, 0, true);
+  else plant_sp = parse_number_list("--plant-spacing", o.plant_spacing, 0, true);
+  std::vector<std::optional<int>> steps{std::nullopt};
+  if (!o.steps.empty()) {
+    steps.clear();
+    for (double s : parse_number_list("--steps", o.steps, 0, false)) {
+      if (s != std::floor(s)) throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
+      steps.push_back(static_cast<int>(s));
+    }
+  }
+  (void)o.detect.request();
+  const LoadOptions load = [&] {
+    LoadOptions l;
+    for (const auto& s : o.set) l.overrides.push_back(parse_override(s));
+    return l;
+  }();
+  const Grammar g = load_grammar(o.grammar, load);
+  const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
+  auto backend = make_backend(o.detect.backend, note);
+
+  std::filesystem::create_directories(o.out);
+  const std::string runs_path = o.out + "/runs.csv";
+  std::vector<RunRow> done = read_runs(runs_path);
+  if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
+  write_runs(runs_path, done);  // drops a torn last line
+  std::set<std::string> finished;
+  for (const RunRow& r : done) finished.insert(run_key(r));
+
+  const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
+  if (print)
+    fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants, {} already done; backend {}\n", cells.size(), o.seeds,
+               total, o.rows, o.per_row, finished.size(), note);
+  const bool tty = print && isatty(fileno(stderr));
+  g_interrupted = false;
+  // Ctrl-C ends the sweep after the run in progress (the command line only: a host program such
+  // as Python keeps its own handler).
+  if (print) std::signal(SIGINT, on_interrupt);
+  std::exception_ptr stopped;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::size_t index = 0, ran = 0, failed = 0;
+  for (const SweepCell& cell : cells) {
+    if (stopped) break;
+    for (int seed = 1; seed <= o.seeds; ++seed, ++index) {
+      if (g_interrupted) break;
+      RunRow row;
+      row["run"] = std::to_string(index);
+      row["plant_spacing"] = num(cell.plant_spacing);
+      row["row_spacing"] = num(cell.row_spacing);
+      row["density"] = fmt::format("{:.4f}", cell.density);
+      row["steps"] = std::to_string(cell.steps.value_or(g.steps));
+      row["seed"] = std::to_string(seed);
+      row["backend"] = backend->name();
+      if (finished.count(run_key(row))) continue;
+      if (tty)
+        fmt::print(stderr, "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
+                   index + 1, total, row["plant_spacing"], row["row_spacing"], row["steps"], seed, since(t0));
+      try {
+        row = run_one(o, g, cell, seed, *backend, row);
+      } catch (const std::exception& e) {
+        row["status"] = "failed";
+        row["message"] = e.what();
+        ++failed;
+      }
+      append_run(runs_path, row);
+      ++ran;
+      if (after_run) {
+        try {
+          after_run(index, total, row);
+        } catch (...) {
+          stopped = std::current_exception();
+        }
+      }
+      if (stopped) break;
+      if (print && !tty)
+        fmt::print("run {}/{}: plant spacing {} m, row spacing {} m, steps {}, seed {}: {}\n", index + 1, total,
+                   row["plant_spacing"], row["row_spacing"], row["steps"], seed,
+                   row["status"] == "ok" ? fmt::format("LAI {}, {} exact contacts between plants per plant", row["lai"],
+                                                       row["exact_between_per_plant"])
+                                         : "failed: " + row["message"]);
+    }
+  }
+  if (print) std::signal(SIGINT, SIG_DFL);
+  if (tty) fmt::print(stderr, "\r{:100}\r", "");
+  const std::vector<RunRow> all = read_runs(runs_path);
+  OutputSet files(o.out);
+  files.open("summary.csv").write(summary_csv(all));
+  files.commit_all();
+  if (print)
+    fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,
+               since(t0));
+  if (stopped) std::rethrow_exception(stopped);
+  SweepOutcome out;
+  out.total = total, out.ran = ran, out.failed = failed;
+  out.interrupted = g_interrupted;
+  if (g_interrupted) {
+    if (print) fmt::print("interrupted: run the same command again to go on where it stopped\n");
+    out.exit_code = 130;
+  } else {
+    out.exit_code = failed ? 3 : 0;
+  }
+  return out;
+}
+
 Command add_sweep(CLI::App& root) {
   auto o = std::make_shared<SweepOptions>();
   CLI::App* app = root.add_subcommand("sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
@@ -131,90 +229,7 @@ Command add_sweep(CLI::App& root) {
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() {
-            // The specification first: bad lists fail before any work.
-            const auto rows_sp = parse_number_list("--row-spacing", o->row_spacing, 0, true);
-            std::vector<double> plant_sp, dens;
-            if (!o->density.empty()) dens = parse_number_list("--density", o->density, 0, true);
-            else plant_sp = parse_number_list("--plant-spacing", o->plant_spacing, 0, true);
-            std::vector<std::optional<int>> steps{std::nullopt};
-            if (!o->steps.empty()) {
-              steps.clear();
-              for (double s : parse_number_list("--steps", o->steps, 0, false)) {
-                if (s != std::floor(s)) throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
-                steps.push_back(static_cast<int>(s));
-              }
-            }
-            (void)o->detect.request();
-            const LoadOptions load = [&] {
-              LoadOptions l;
-              for (const auto& s : o->set) l.overrides.push_back(parse_override(s));
-              return l;
-            }();
-            const Grammar g = load_grammar(o->grammar, load);
-            const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
-            std::string note;
-            auto backend = make_backend(o->detect.backend, note);
-
-            std::filesystem::create_directories(o->out);
-            const std::string runs_path = o->out + "/runs.csv";
-            std::vector<RunRow> done = read_runs(runs_path);
-            if (o->retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
-            write_runs(runs_path, done);  // drops a torn last line
-            std::set<std::string> finished;
-            for (const RunRow& r : done) finished.insert(run_key(r));
-
-            const std::size_t total = cells.size() * static_cast<std::size_t>(o->seeds);
-            fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants, {} already done; backend {}\n", cells.size(), o->seeds,
-                       total, o->rows, o->per_row, finished.size(), note);
-            const bool tty = isatty(fileno(stderr));
-            g_interrupted = false;
-            std::signal(SIGINT, on_interrupt);
-            const auto t0 = std::chrono::steady_clock::now();
-            std::size_t index = 0, ran = 0, failed = 0;
-            for (const SweepCell& cell : cells)
-              for (int seed = 1; seed <= o->seeds; ++seed, ++index) {
-                if (g_interrupted) break;
-                RunRow row;
-                row["run"] = std::to_string(index);
-                row["plant_spacing"] = num(cell.plant_spacing);
-                row["row_spacing"] = num(cell.row_spacing);
-                row["density"] = fmt::format("{:.4f}", cell.density);
-                row["steps"] = std::to_string(cell.steps.value_or(g.steps));
-                row["seed"] = std::to_string(seed);
-                row["backend"] = backend->name();
-                if (finished.count(run_key(row))) continue;
-                if (tty)
-                  fmt::print(stderr, "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
-                             index + 1, total, row["plant_spacing"], row["row_spacing"], row["steps"], seed, since(t0));
-                try {
-                  row = run_one(*o, g, cell, seed, *backend, row);
-                } catch (const std::exception& e) {
-                  row["status"] = "failed";
-                  row["message"] = e.what();
-                  ++failed;
-                }
-                append_run(runs_path, row);
-                ++ran;
-                if (!tty)
-                  fmt::print("run {}/{}: plant spacing {} m, row spacing {} m, steps {}, seed {}: {}\n", index + 1, total,
-                             row["plant_spacing"], row["row_spacing"], row["steps"], seed,
-                             row["status"] == "ok" ? fmt::format("LAI {}, {} exact contacts between plants per plant", row["lai"],
-                                                                 row["exact_between_per_plant"])
-                                                   : "failed: " + row["message"]);
-              }
-            std::signal(SIGINT, SIG_DFL);
-            if (tty) fmt::print(stderr, "\r{:100}\r", "");
-            const std::vector<RunRow> all = read_runs(runs_path);
-            OutputSet files(o->out);
-            files.open("summary.csv").write(summary_csv(all));
-            files.commit_all();
-            fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,
-                       since(t0));
-            if (g_interrupted) {
-              fmt::print("interrupted: run the same command again to go on where it stopped\n");
-              return 130;
-            }
-            return failed ? 3 : 0;
+            return run_sweep(*o).exit_code;
           }};
 }
 

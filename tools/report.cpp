@@ -13,6 +13,10 @@ std::vector<std::size_t> triangles_per_plant(const Stand& s, PrototypeLibrary& l
 }
 
 void write_report(const Stand& s, PrototypeLibrary& lib, const StandReport& r, AtomicFile& out) {
+  out.write(report_json(s, lib, r).dump(2) + "\n");
+}
+
+nlohmann::ordered_json report_json(const Stand& s, PrototypeLibrary& lib, const StandReport& r) {
   nlohmann::ordered_json j;
   j["canopy_version"] = CANOPY_VERSION;
   j["config"] = r.config;
@@ -35,7 +39,7 @@ void write_report(const Stand& s, PrototypeLibrary& lib, const StandReport& r, A
   j["contacts_before"] = r.contacts_before;
   j["contacts_after"] = r.contacts_after;
   j["resolution"] = r.resolution;
-  out.write(j.dump(2) + "\n");
+  return j;
 }
 
 void print_summary(const Stand& s, PrototypeLibrary& lib, const StandReport& r, const std::string& dir) {

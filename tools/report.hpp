@@ -24,6 +24,8 @@ struct StandReport {
 /// Triangles of each plant at its organs' levels of detail.
 std::vector<std::size_t> triangles_per_plant(const Stand& stand, PrototypeLibrary& lib);
 
+/// report.json's content.
+nlohmann::ordered_json report_json(const Stand& stand, PrototypeLibrary& lib, const StandReport& r);
 void write_report(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, AtomicFile& out);
 void print_summary(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, const std::string& dir);
 

@@ -54,12 +54,13 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
 }
 
 ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
-                             const Contacts& initial) {
+                             const Contacts& initial, std::function<void(const ResolveProgress&)> progress) {
   ResolveRequest req;
   req.detect = detect;
   req.config = o.config();
-  const bool tty = o.progress && isatty(fileno(stderr));
-  if (tty)
+  const bool tty = !progress && o.progress && isatty(fileno(stderr));
+  if (progress) req.progress = std::move(progress);
+  else if (tty)
     req.progress = [](const ResolveProgress& p) {
       fmt::print(stderr, "\r  resolving: round {}, {} contacts left, {:.1f} s   ", p.round, p.contacts, p.seconds);
       std::fflush(stderr);

@@ -1,0 +1,171 @@
+"""The canopy Python module against the command line on the same stands, its arrays, its
+errors and its callbacks. Run by ctest (suite `python`) with PYTHONPATH at build/python and
+CANOPY at the canopy program."""
+import filecmp
+import gc
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import canopy
+
+SRC = os.environ.get("CANOPY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+CLI = os.environ.get("CANOPY", os.path.join(SRC, "build", "tools", "canopy"))
+TOMATO = os.path.join(SRC, "grammars", "tomato.yaml")
+ROWS = dict(rows=2, per_row=3, steps=14, random_rotation=True, jitter=0.02, seed=4)
+ROW_ARGS = ["--rows", "2", "--per-row", "3", "--steps", "14", "--random-rotation", "--jitter", "0.02", "--seed", "4"]
+
+
+def cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True)
+
+
+def test_derive_equals_the_command_line():
+    algae = os.path.join(SRC, "grammars", "classic", "algae.yaml")
+    assert canopy.derive(algae, steps=7) == cli("derive", algae, "--steps", "7").stdout.strip()
+    want = cli("derive", TOMATO, "--steps", "9", "--seed", "5", "--set", "phyllotaxis=100").stdout.strip()
+    assert canopy.derive(TOMATO, steps=9, seed=5, set={"phyllotaxis": 100}) == want
+    stats = canopy.derive(TOMATO, steps=9, stats=True)
+    assert stats == json.loads(cli("derive", TOMATO, "--steps", "9", "--stats").stdout)
+
+
+@pytest.fixture(scope="module")
+def cli_stand(tmp_path_factory):
+    out = tmp_path_factory.mktemp("cli")
+    r = cli("stand", TOMATO, *ROW_ARGS, "--formats", "glb,obj,ply", "--backend", "cpu", "-o", str(out))
+    assert r.returncode == 0, r.stderr
+    return out
+
+
+FILES = ["stand.glb", "stand.obj", "stand.mtl", "stand.ply", "organs.csv", "plants.csv"]
+
+
+def test_stand_equals_the_command_line(cli_stand, tmp_path):
+    rep = canopy.stand(TOMATO, tmp_path, formats="glb,obj,ply", backend="cpu", **ROWS)
+    for f in FILES + ["contacts.csv", "contacts_after.csv"]:
+        assert filecmp.cmp(cli_stand / f, tmp_path / f, shallow=False), f
+    want = json.load(open(cli_stand / "report.json"))
+    for key in ["contacts_before", "contacts_after", "counts", "stand_origin"]:
+        assert rep[key] == want[key]
+    drop = lambda r: {k: v for k, v in r.items() if k != "rounds"}
+    assert drop(rep["resolution"]) == drop(want["resolution"])
+
+
+def test_step_by_step_equals_the_command_line(cli_stand, tmp_path):
+    s = canopy.Stand.grow(TOMATO, **ROWS)
+    found = s.detect(backend="cpu")
+    before = np.loadtxt(cli_stand / "contacts.csv", delimiter=",", skiprows=1, usecols=(0, 1, 2, 3), dtype=np.int32, ndmin=2)
+    got = np.stack([found["contacts"][k] for k in ("organ_a", "organ_b", "plant_a", "plant_b")], axis=1)
+    assert np.array_equal(got, before)
+    rep = s.resolve(backend="cpu")
+    want = json.load(open(cli_stand / "report.json"))["resolution"]
+    assert rep["organs_moved"] == want["organs_moved"]
+    assert rep["mean_turn_deg"] == want["mean_turn_deg"]
+    assert rep["max_turn_deg"] == want["max_turn_deg"]
+    s.export(tmp_path, formats=["glb", "obj", "ply"])
+    for f in FILES:
+        assert filecmp.cmp(cli_stand / f, tmp_path / f, shallow=False), f
+    assert filecmp.cmp(cli_stand / "contacts_after.csv", tmp_path / "contacts.csv", shallow=False)
+
+
+def test_arrays_shapes_dtypes_and_views(cli_stand):
+    s = canopy.Stand.read(str(cli_stand))
+    n = s.organ_count
+    assert s.organs.shape == (n,)
+    assert s.organs.dtype.names == ("plant", "parent", "leaf", "kind", "prototype", "lod", "reserved")
+    assert s.organs.dtype.itemsize == 16
+    assert s.transforms.shape == (n, 4, 3) and s.transforms.dtype == np.float32
+    assert s.base_points.shape == (n, 3) and s.base_points.dtype == np.float32
+    assert s.area.shape == (n,) and s.length.shape == (n,)
+    assert np.array_equal(s.base_points, s.transforms[:, 3, :])
+    # No copies: the arrays view the stand's memory.
+    assert not s.transforms.flags.owndata and not s.organs.flags.owndata
+    assert np.shares_memory(s.transforms, s.base_points)
+    # The same numbers as organs.csv.
+    table = np.genfromtxt(cli_stand / "organs.csv", delimiter=",", names=True, dtype=None, encoding=None)
+    assert np.array_equal(s.organs["plant"], table["plant"])
+    assert np.array_equal(s.organs["parent"], table["parent"])
+    assert np.array_equal(s.organs["leaf"], table["leaf"])
+    assert [canopy.KINDS[k] for k in s.organs["kind"]] == list(table["kind"])
+    assert np.allclose(s.area, table["area"], rtol=1e-9)
+    assert np.array_equal(s.transforms[:, 3, 0], table["tx"].astype(np.float32))
+    assert s.plants.shape == (s.plant_count,) and s.plants["organ_count"].sum() == n
+
+
+def test_a_view_keeps_its_stand_alive():
+    s = canopy.Stand.grow(TOMATO, rows=1, per_row=2, steps=12)
+    t, o = s.transforms, s.organs
+    want = t.copy()
+    del s
+    gc.collect()
+    _ = [canopy.Stand.grow(TOMATO, rows=1, per_row=3, steps=12) for _ in range(3)]  # reuse freed memory, if any
+    assert np.array_equal(t, want)
+    assert o["plant"].max() == 1
+
+
+def test_errors_carry_the_located_message(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("axiom: A(1\nproductions: []\n")
+    message = cli("derive", str(bad)).stderr.strip().removeprefix("canopy: error: ")
+    with pytest.raises(ValueError) as e:
+        canopy.derive(str(bad))
+    assert str(e.value) == message
+    assert ":1:" in message
+    with pytest.raises(FileNotFoundError, match="cannot open the grammar file"):
+        canopy.Stand.grow(str(tmp_path / "missing.yaml"))
+    with pytest.raises(FileNotFoundError, match="cannot open the positions file"):
+        canopy.stand(TOMATO, tmp_path / "o", positions=str(tmp_path / "missing.csv"))
+    s = canopy.Stand.grow(TOMATO, rows=1, per_row=2, steps=10)
+    with pytest.raises(ValueError, match="level"):
+        s.detect(level="twig")
+    with pytest.raises(ValueError, match="unknown organ kind 'root'"):
+        s.detect(collide="leaflet,root")
+    with pytest.raises(ValueError, match="N x 4"):
+        canopy.Stand.grow(TOMATO, positions=np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="unknown option 'rowz'"):
+        canopy.stand(TOMATO, tmp_path / "o", rowz=3)
+    with pytest.raises(ValueError, match="is empty"):
+        canopy.sweep(TOMATO, tmp_path / "w", plant_spacing="0.5:0.3:0.1")
+
+
+def test_positions_array_equals_a_positions_file(tmp_path):
+    pos = np.array([[0, 0, 30, 7], [0.35, 0.1, 200, 8], [0.7, 0, 90, 9]], dtype=float)
+    (tmp_path / "p.csv").write_text("x,y,rotation,seed\n" + "".join(f"{a},{b},{c},{int(d)}\n" for a, b, c, d in pos))
+    assert cli("stand", TOMATO, "--positions", str(tmp_path / "p.csv"), "--steps", "12", "--backend", "cpu", "--no-resolve",
+               "-o", str(tmp_path / "cli")).returncode == 0
+    s = canopy.Stand.grow(TOMATO, positions=pos, steps=12)
+    s.export(tmp_path / "py")
+    for f in ["stand.glb", "organs.csv", "plants.csv"]:
+        assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / "py" / f, shallow=False), f
+
+
+def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
+    s = canopy.Stand.grow(TOMATO, rows=1, per_row=4, plant_spacing=0.25, steps=16)
+    calls = []
+
+    def stop(round_, left, seconds):
+        calls.append(round_)
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        s.resolve(backend="cpu", progress=stop)
+    assert calls == [1]
+    assert np.isfinite(s.transforms).all()
+    s.detect(backend="cpu")  # still usable
+    # A sweep stopped by its callback after one run keeps that run and resumes after it.
+    seen = []
+
+    def once(index, total, row):
+        seen.append(row["status"])
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        canopy.sweep(TOMATO, tmp_path / "w", progress=once, plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=1, per_row=2, backend="cpu")
+    assert seen == ["ok"]
+    assert len(canopy.sweep_rows(tmp_path / "w")) == 1
+    left = canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=1, per_row=2, backend="cpu")
+    assert left["ran"] == 1 and len(canopy.sweep_rows(tmp_path / "w")) == 2
+    assert len(canopy.sweep_rows(tmp_path / "w", summary=True)) == 2

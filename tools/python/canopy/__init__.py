@@ -1,0 +1,61 @@
+"""canopy: penetration-free plant stands from parametric L-system grammars.
+
+The same operations as the ``canopy`` command line, on the same C++ library:
+
+>>> import canopy
+>>> canopy.derive("grammars/classic/algae.yaml", steps=4)
+'ABAABABA'
+>>> stand = canopy.Stand.grow("grammars/tomato.yaml", rows=1, per_row=5, steps=14)
+>>> stand.transforms.shape            # (organs, 4, 3) float32, a view of the stand's memory
+>>> found = stand.detect(level="exact")
+>>> report = stand.resolve(progress=lambda round, left, seconds: print(round, left))
+>>> stand.export("out", formats=["glb"])
+>>> canopy.stand("grammars/tomato.yaml", "out2", rows=2, per_row=5)   # canopy stand, returns report.json
+>>> canopy.sweep("grammars/tomato.yaml", "sweep", density=[2, 3], steps=[16, 22], seeds=2)
+
+Errors arrive as ValueError (bad grammar, option or list, with the command line's located
+message ``FILE:LINE:COL: ...``) or FileNotFoundError (a grammar or positions file that cannot be
+opened). Long calls release the GIL; a progress callback that raises stops the run and its
+exception propagates.
+"""
+from ._canopy import ModuleCapError, Stand, __version__, derive
+from ._canopy import stand as _stand
+from ._canopy import sweep as _sweep
+
+__all__ = ["Stand", "derive", "stand", "sweep", "sweep_rows", "ModuleCapError", "KINDS", "__version__"]
+
+#: Organ kinds in the order of the ``kind`` codes of ``Stand.organs``.
+KINDS = ("internode", "petiole", "rachis", "leaflet", "peduncle", "fruit", "flower")
+
+
+def stand(grammar, out, progress=None, **options):
+    """``canopy stand GRAMMAR -o OUT`` with the command line's options (``per_row=5`` for
+    ``--per-row 5``, ``set={"name": value}`` for ``--set``, ``no_resolve=True``...). Writes the
+    files and returns report.json as a dict. ``progress(round, contacts_left, seconds)`` is called
+    each resolution round."""
+    return _stand(str(grammar), str(out), options, progress)
+
+
+def sweep(grammar, out, progress=None, **options):
+    """``canopy sweep GRAMMAR -o OUT``: lists as Python lists (``density=[2, 3]``) or strings
+    (``steps="16:22:3"``). ``progress(index, total, row)`` is called after each run (its row
+    already in OUT/runs.csv); raising from it stops the sweep, which resumes where it stopped
+    when called again. Returns the counts; the rows are read by :func:`sweep_rows`."""
+    return _sweep(str(grammar), str(out), options, progress)
+
+
+def sweep_rows(out, summary=False):
+    """The rows of OUT/runs.csv (or OUT/summary.csv) as a list of dicts, numbers as floats."""
+    import csv
+    import os
+
+    rows = []
+    with open(os.path.join(str(out), "summary.csv" if summary else "runs.csv"), newline="") as f:
+        for r in csv.DictReader(f):
+            for k, v in r.items():
+                try:
+                    r[k] = float(v)
+                except (TypeError, ValueError):
+                    pass
+            rows.append(r)
+    return rows

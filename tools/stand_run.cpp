@@ -1,0 +1,173 @@
+// canopy stand's run: grow, detect, resolve, export, report.
+#include "geometry/export.hpp"
+#include "geometry/layout.hpp"
+#include "lsystem/grow.hpp"
+#include "tools/cli_common.hpp"
+#include "tools/detect_options.hpp"
+#include "tools/report.hpp"
+#include "tools/resolve_options.hpp"
+#include "tools/stand_run.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+#include <set>
+
+namespace canopy::cli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+std::set<std::string> parse_formats(const std::string& list) {
+  std::set<std::string> formats;
+  for (std::size_t i = 0; i <= list.size();) {
+    std::size_t j = list.find(',', i);
+    if (j == std::string::npos) j = list.size();
+    const std::string f = list.substr(i, j - i);
+    if (f != "glb" && f != "obj" && f != "ply")
+      throw std::invalid_argument(fmt::format("--formats: unknown format '{}' (expected glb, obj, ply)", f));
+    formats.insert(f);
+    i = j + 1;
+  }
+  return formats;
+}
+
+void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
+                       OutputSet& files) {
+  if (formats.count("glb")) {
+    if (glb_instancing) write_glb_instanced(stand, lib, files.open("stand.glb"));
+    else write_glb(stand, lib, files.open("stand.glb"));
+  }
+  if (formats.count("obj")) write_obj(stand, lib, files.open("stand.obj"), files.open("stand.mtl"), "stand.mtl");
+  if (formats.count("ply")) write_ply(stand, lib, files.open("stand.ply"));
+  write_organs_csv(stand, lib, files.open("organs.csv"));
+  write_plants_csv(stand, files.open("plants.csv"));
+}
+
+StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const std::set<std::string> formats = parse_formats(o.formats);
+  if (o.random_rotation) o.rows.random_rotation = true;
+  if (!o.positions.empty() && any_row_option(o.rows))
+    throw std::invalid_argument("--positions cannot be combined with row options");
+  const DetectRequest dreq = o.detect.request();  // bad options fail before any work
+  std::string backend_note;
+  auto backend = make_backend(o.detect.backend, backend_note);
+  prepare_output_dir(o.out);
+
+  GrowRequest req;
+  req.grammar = o.grammar;
+  for (const auto& s : o.set) req.load.overrides.push_back(parse_override(s));
+  req.steps = o.steps;
+  req.lod = o.lod;
+  req.threads = o.detect.threads;
+  req.max_modules = o.max_modules;
+  const Grammar g = load_grammar(o.grammar, req.load);
+  bool from_grammar = false;
+  RowLayout layout;
+  if (!o.positions.empty()) {
+    req.plants = read_positions(o.positions);
+    req.relative_to = std::filesystem::path(o.positions).parent_path().string();
+  } else {
+    // Command-line row options replace the grammar's stand entry as a whole.
+    from_grammar = !any_row_option(o.rows) && g.stand.has_value();
+    layout = to_row_layout(from_grammar ? *g.stand : o.rows);
+    // Say so before trying when the stand cannot fit: probe with its first plant.
+    RowLayout first = layout;
+    first.rows = first.per_row = 1;
+    req.plants = row_layout(first);
+    check_stand_fits(req, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
+    req.plants = row_layout(layout);
+  }
+  const auto t_grow = std::chrono::steady_clock::now();
+  GrowTimings gt;
+  Stand stand = grow_stand(req, &gt);
+  StandReport rep;
+  rep.timings["generate"] = seconds_since(t_grow);
+
+  // Detection at the level asked for; contacts.csv and contacts_before come from it.
+  const auto t_detect = std::chrono::steady_clock::now();
+  const Contacts contacts = backend->detect(stand, dreq);
+  rep.timings["detect"] = seconds_since(t_detect);
+  rep.backend = backend->name();
+  rep.device = backend->device();
+  rep.contacts_before = counts_json(contacts);
+
+  // Resolution, then detection from scratch at the same level for contacts_after.
+  Contacts after = contacts;
+  std::optional<ResolveResult> resolved;
+  if (!o.resolve.no_resolve) {
+    const auto t_resolve = std::chrono::steady_clock::now();
+    const ResolveConfig rc = o.resolve.config();
+    DetectRequest at = dreq;
+    at.level = rc.level;
+    // Resolution starts from its own level's contacts, on a tree the backend keeps.
+    const Contacts start = dreq.level == rc.level ? contacts : backend->detect(stand, at);
+    resolved = run_resolution(stand, *backend, dreq, o.resolve, start, progress);
+    rep.timings["resolve"] = seconds_since(t_resolve);
+    const auto t_check = std::chrono::steady_clock::now();
+    after = backend->detect(stand, dreq);
+    rep.timings["detect_after"] = seconds_since(t_check);
+    rep.resolution = resolution_json(*resolved);
+  }
+  rep.contacts_after = counts_json(after);
+
+  PrototypeLibrary lib;
+  OutputSet files(o.out);
+  const auto t_export = std::chrono::steady_clock::now();
+  write_stand_files(stand, lib, formats, o.glb_instancing, files);
+  files.open("contacts.csv").write(contacts_csv(contacts));
+  files.open("contacts_after.csv").write(contacts_csv(after));
+  rep.timings["export"] = seconds_since(t_export);
+
+  nlohmann::ordered_json config;
+  config["grammar"] = o.grammar;
+  config["steps"] = o.steps ? nlohmann::ordered_json(*o.steps) : nlohmann::ordered_json(nullptr);
+  config["set"] = o.set;
+  config["lod"] = o.lod;
+  config["formats"] = std::vector<std::string>(formats.begin(), formats.end());
+  config["glb_instancing"] = o.glb_instancing;
+  config["max_modules"] = o.max_modules;
+  config["level"] = o.detect.level;
+  config["clearance"] = o.detect.clearance;
+  config["collide"] = o.detect.collide;
+  config["backend"] = o.detect.backend;
+  config["threads"] = o.detect.threads;
+  config["resolve"] = o.resolve.config_json();
+  if (!o.positions.empty()) {
+    config["layout"] = {{"positions", o.positions}};
+  } else {
+    config["layout"] = {{"source", from_grammar ? "grammar" : "command line"},
+                        {"rows", layout.rows},
+                        {"per_row", layout.per_row},
+                        {"row_spacing", layout.row_spacing},
+                        {"plant_spacing", layout.plant_spacing},
+                        {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
+                        {"jitter", layout.jitter},
+                        {"random_rotation", layout.random_rotation},
+                        {"seed", layout.seed}};
+  }
+  rep.config = config;
+  rep.grammar = g.name.empty() ? o.grammar : g.name;
+  rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);
+  rep.timings["total"] = seconds_since(t_start);
+  write_report(stand, lib, rep, files.open("report.json"));
+  files.commit_all();
+  if (print) {
+    print_summary(stand, lib, rep, o.out);
+    print_contacts_table(contacts, backend_note);
+    if (resolved) print_resolution(*resolved);
+  }
+  StandOutcome out;
+  out.report = report_json(stand, lib, rep);
+  out.contacts_before = contacts.pairs.size();
+  out.contacts_after = after.pairs.size();
+  return out;
+}
+
+}  // namespace canopy::cli

@@ -1,0 +1,54 @@
+#pragma once
+/// `canopy stand` as a library call: grow, detect, resolve, export and report, shared by the
+/// command line and the Python module (same code, same files).
+#include "collision/resolve.hpp"
+#include "geometry/atomic_file.hpp"
+#include "geometry/prototype.hpp"
+#include "lsystem/grammar.hpp"
+#include "lsystem/grow.hpp"
+#include "tools/detect_options.hpp"
+#include "tools/report.hpp"
+#include "tools/resolve_options.hpp"
+
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace canopy::cli {
+
+/// Every option of `canopy stand` (the command line's names).
+struct StandOptions {
+  std::string grammar;
+  std::string out = "out";
+  std::optional<int> steps;
+  std::vector<std::string> set;
+  int lod = kDefaultLod;
+  std::string formats = "glb";
+  bool glb_instancing = false;
+  std::size_t max_modules = kDefaultMaxModules;
+  StandSpec rows;               // row options given on the command line
+  bool random_rotation = false;  // folded into `rows` once parsed
+  std::string positions;
+  DetectOptions detect;
+  ResolveOptions resolve;
+};
+
+struct StandOutcome {
+  nlohmann::ordered_json report;  // report.json as written
+  std::size_t contacts_before = 0, contacts_after = 0;
+};
+
+/// "glb,obj" -> {glb, obj}; throws std::invalid_argument on an unknown format.
+std::set<std::string> parse_formats(const std::string& list);
+/// The mesh and table files of a stand as `canopy stand` writes them (not the contacts or the
+/// report): stand.{glb,obj+mtl,ply} for `formats`, organs.csv, plants.csv.
+void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
+                       OutputSet& files);
+
+/// Runs `canopy stand` with `o`: writes the files into o.out, prints the summary when `print`.
+/// `progress`, when set, is called once per resolution round (instead of the terminal line).
+StandOutcome run_stand(StandOptions o, bool print = true, std::function<void(const ResolveProgress&)> progress = {});
+
+}  // namespace canopy::cli

@@ -1,0 +1,41 @@
+#pragma once
+/// `canopy sweep` as a library call, shared by the command line and the Python module.
+#include "geometry/prototype.hpp"
+#include "lsystem/grow.hpp"
+#include "tools/detect_options.hpp"
+#include "tools/resolve_options.hpp"
+#include "tools/sweep_table.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace canopy::cli {
+
+/// Every option of `canopy sweep` (the command line's names).
+struct SweepOptions {
+  std::string grammar, out = "sweep";
+  std::string plant_spacing = "0.4", row_spacing = "1.0", density, steps;
+  int seeds = 3, rows = 3, per_row = 5;
+  double jitter = 0.02;
+  int lod = kDefaultLod;
+  std::vector<std::string> set;
+  bool retry_failed = false;
+  std::size_t max_modules = kDefaultMaxModules;
+  DetectOptions detect;
+  ResolveOptions resolve;
+};
+
+struct SweepOutcome {
+  std::size_t total = 0, ran = 0, failed = 0;
+  bool interrupted = false;
+  int exit_code = 0;  // 0, 3 (some run failed) or 130 (interrupted)
+};
+
+/// Called after each run made (its row already in runs.csv): run index, total runs, the row.
+/// Throwing from it stops the sweep after that run; summary.csv is still written.
+using SweepCallback = std::function<void(std::size_t, std::size_t, const RunRow&)>;
+
+SweepOutcome run_sweep(const SweepOptions& o, bool print = true, const SweepCallback& after_run = {});
+
+}  // namespace canopy::cli
