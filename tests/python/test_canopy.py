@@ -80,6 +80,7 @@ def test_arrays_shapes_dtypes_and_views(cli_stand):
     assert s.transforms.shape == (n, 4, 3) and s.transforms.dtype == np.float32
     assert s.base_points.shape == (n, 3) and s.base_points.dtype == np.float32
     assert s.area.shape == (n,) and s.length.shape == (n,)
+    assert np.array_equal(s.ids, table_ids(cli_stand))
     assert np.array_equal(s.base_points, s.transforms[:, 3, :])
     # No copies: the arrays view the stand's memory.
     assert not s.transforms.flags.owndata and not s.organs.flags.owndata
@@ -93,6 +94,10 @@ def test_arrays_shapes_dtypes_and_views(cli_stand):
     assert np.allclose(s.area, table["area"], rtol=1e-9)
     assert np.array_equal(s.transforms[:, 3, 0], table["tx"].astype(np.float32))
     assert s.plants.shape == (s.plant_count,) and s.plants["organ_count"].sum() == n
+
+
+def table_ids(folder):
+    return np.genfromtxt(folder / "organs.csv", delimiter=",", names=True, dtype=None, encoding=None)["id"]
 
 
 def test_a_view_keeps_its_stand_alive():

@@ -222,6 +222,14 @@ PYBIND11_MODULE(_canopy, m) {
           },
           py::arg("dir"), "Reads a stand back from a folder written by canopy stand.")
       .def_property_readonly("plant_count", [](const PyStand& s) { return s.stand.plant_count(); })
+      .def_property_readonly("ids",
+                             [](const PyStand& s) {
+                               py::array_t<std::int64_t> a(static_cast<py::ssize_t>(s.stand.organ_count()));
+                               auto* p = a.mutable_data();
+                               for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = static_cast<std::int64_t>(i);
+                               return a;
+                             },
+                             "Organ ids (global, as in organs.csv and contacts): 0 .. organ_count - 1.")
       .def_property_readonly("organ_count", [](const PyStand& s) { return s.stand.organ_count(); })
       .def_property_readonly(
           "organs",
