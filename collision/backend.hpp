@@ -20,6 +20,9 @@ struct DetectRequest {
   /// When set (one flag per plant), only plant pairs with at least one flagged plant are looked
   /// at: the re-detection of resolution rounds (plants whose organs moved, and their neighbours).
   const std::vector<std::uint8_t>* active_plants = nullptr;
+  /// CUDA: device memory the detection may use, bytes (0: what the device has free). Stage
+  /// lists that would not fit are made in batches of plant pairs.
+  std::size_t max_device_bytes = 0;
 };
 
 /// The bounding-volume settings a request implies (same on every backend).

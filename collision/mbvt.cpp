@@ -1,4 +1,5 @@
 #include "collision/mbvt.hpp"
+#include "collision/mbvt_fit.hpp"
 
 #include <fmt/format.h>
 
@@ -9,43 +10,9 @@
 namespace canopy {
 namespace {
 
-/// Boxes of every node of cluster c, from its organs' OBBs, bottom-up.
-void fit_cluster(Mbvt& m, const Cluster& c) {
-  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n) {
-    LcdNode& node = m.nodes[n];
-    const float ax = node.box.ax, ay = node.box.ay;
-    node.box = Lcd{};
-    node.box.ax = ax, node.box.ay = ay;
-    if (node.left < 0) {
-      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) lcd_add(node.box, m.obbs[m.cluster_organs[k]]);
-      lcd_inflate(node.box, 0);  // rounding slack of the projection
-    } else {  // children come before parents, and share the axis: an exact merge
-      lcd_merge(node.box, m.nodes[static_cast<std::size_t>(node.left)].box);
-      lcd_merge(node.box, m.nodes[static_cast<std::size_t>(node.right)].box);
-    }
-  }
-}
+void fit_cluster(Mbvt& m, const Cluster& c) { fit_cluster_nodes(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), c); }
 
-void fit_plant(Mbvt& m, PlantBound& pb) {
-  float r2 = 0, zlo = 0, zhi = -1;
-  bool any = false;
-  for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) {
-    const Lcd& l = m.nodes[m.clusters[c].root].box;
-    if (lcd_empty(l)) continue;
-    for (int i = 0; i < 4; ++i) {
-      const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
-      const float x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
-      r2 = max_f(r2, x * x + y * y);
-    }
-    zlo = any ? min_f(zlo, l.lo[2]) : l.lo[2];
-    zhi = any ? max_f(zhi, l.hi[2]) : l.hi[2];
-    any = true;
-  }
-  const float r = sqrtf(r2);
-  pb.radius = any ? r + kBoundRelSlack * (r + fabsf(zlo) + fabsf(zhi)) + kBoundAbsSlack : 0;
-  pb.zlo = zlo;
-  pb.zhi = zhi;
-}
+void fit_plant(Mbvt& m, PlantBound& pb) { fit_plant_bound(m.nodes.data(), m.clusters.data(), pb); }
 
 }  // namespace
 

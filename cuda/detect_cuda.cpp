@@ -4,6 +4,8 @@
 #include "cuda/detect_kernels.hpp"
 #include "cuda/device.hpp"
 #include "cuda/device_buffer.hpp"
+#include "cuda/event_timer.hpp"
+#include "cuda/stand_on_device.hpp"
 
 #include <fmt/format.h>
 
@@ -18,19 +20,25 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-/// Runs `launch` into a buffer of `capacity` items; when more were found, grows the buffer to fit
-/// and runs again. Returns the item count.
+/// Runs `launch` into `out` with room for `capacity` items, at most `limit`; when more were
+/// found and they fit the limit, grows the buffer and runs again. Returns the items found, which
+/// exceed `limit` when they do not fit (then nothing usable is in `out`).
 template <typename T, typename Launch>
-std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t capacity, Launch&& launch) {
+std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t capacity, std::size_t limit,
+                    EventTimer& timer, Launch&& launch) {
+  capacity = std::max<std::size_t>(std::min(capacity, limit), 1);
   for (;;) {
-    out.resize(std::max<std::size_t>(capacity, 1));
+    out.resize(capacity);
     const Counters zero{};
     CANOPY_CUDA_CHECK(cudaMemcpy(counters.get(), &zero, sizeof zero, cudaMemcpyHostToDevice));
+    timer.start();
     launch(out.get(), static_cast<unsigned long long>(out.size()));
+    timer.stop();
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
     CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters.get(), sizeof host, cudaMemcpyDeviceToHost));
-    if (host.appended <= out.size()) return static_cast<std::size_t>(host.appended);
-    capacity = static_cast<std::size_t>(host.appended);
+    const auto found = static_cast<std::size_t>(host.appended);
+    if (found <= out.size() || found > limit) return found;
+    capacity = found;
   }
 }
 
@@ -50,20 +58,8 @@ class CudaBackend : public DetectionBackend {
     const double t = now();
     lib_ = std::make_unique<PrototypeLibrary>();
     tree_ = build_mbvt(s, *lib_, mbvt_config(req));
-    // Prototype meshes, stored once.
-    std::vector<MeshRef> meshes(4 * (kMaxLod + 1));
-    std::vector<Vec3f> positions;
-    std::vector<std::uint32_t> indices;
-    for (const OrganRecord& r : s.organs) {
-      MeshRef& ref = meshes[static_cast<std::size_t>(r.prototype) * (kMaxLod + 1) + r.lod];
-      if (ref.vertex_count) continue;
-      const PrototypeMesh& pm = lib_->get(r.prototype, r.lod);
-      ref = {static_cast<std::uint32_t>(positions.size()), static_cast<std::uint32_t>(pm.positions.size()),
-             static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(pm.triangle_count())};
-      positions.insert(positions.end(), pm.positions.begin(), pm.positions.end());
-      indices.insert(indices.end(), pm.indices.begin(), pm.indices.end());
-    }
-    upload(s, *tree_, meshes, positions, indices);
+    dev_.load(s, *tree_, *lib_);
+    counters_.resize(1);
     return run(s, req, now() - t);
   }
 
@@ -71,42 +67,27 @@ class CudaBackend : public DetectionBackend {
     if (!tree_ || tree_->obbs.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
     const double t = now();
-    Mbvt& m = *tree_;
-    refit_mbvt(m, s, *lib_, moved);
-    // Only what changed travels: the moved organs' transforms and boxes, the LCD nodes of their
-    // plants, and the plant bounds.
-    std::vector<Affine3f> tr;
-    std::vector<Obb> ob;
-    for (std::uint32_t k : moved) tr.push_back(s.transforms[k]), ob.push_back(m.obbs[k]);
-    scatter(transforms_, moved, tr);
-    scatter(obbs_, moved, ob);
-    std::vector<std::uint8_t> dirty(s.plant_count(), 0);
-    for (std::uint32_t k : moved) dirty[static_cast<std::size_t>(s.organs[k].plant)] = 1;
-    std::vector<std::uint32_t> node_ids;
-    std::vector<LcdNode> nodes;
-    for (std::size_t p = 0; p < s.plant_count(); ++p) {
-      if (!dirty[p]) continue;
-      const PlantBound& pb = m.plants[p];
-      for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c)
-        for (std::uint32_t n = m.clusters[c].first_node; n < m.clusters[c].first_node + m.clusters[c].node_count; ++n)
-          node_ids.push_back(n), nodes.push_back(m.nodes[n]);
-    }
-    scatter(nodes_, node_ids, nodes);
-    plants_.upload(m.plants);
-    view_.plants = plants_.get();
+    dev_.refit(s, *tree_, moved);  // on the device; the host keeps only the plant bounds current
     return run(s, req, now() - t);
   }
 
  private:
-  template <typename T>
-  void scatter(DeviceBuffer<T>& dst, const std::vector<std::uint32_t>& ids, const std::vector<T>& values) {
-    static_assert(sizeof(T) % 4 == 0);
-    if (ids.empty()) return;
-    scatter_ids_.upload(ids);
-    DeviceBuffer<T> v;
-    v.upload(values);
-    launch_scatter(dst.get(), v.get(), scatter_ids_.get(), static_cast<std::uint32_t>(ids.size()), sizeof(T) / 4);
-    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+  /// Device bytes the stage lists may use: the request's budget (or what is free now, with the
+  /// lists already held counted as free) less what the stand holds.
+  std::size_t stage_budget(const DetectRequest& req, std::size_t work_bytes) {
+    const std::size_t held = dev_.bytes() + work_bytes + sizeof(Counters);
+    std::size_t budget = req.max_device_bytes;
+    if (!budget) {
+      std::size_t free = 0, total = 0;
+      CANOPY_CUDA_CHECK(cudaMemGetInfo(&free, &total));
+      free += cluster_pairs_.size() * sizeof(ClusterPair) + organ_pairs_.size() * sizeof(OrganPair) + hit_.size();
+      budget = held + free / 10 * 9;
+    }
+    if (budget <= held + 4096)
+      throw CudaError(fmt::format("the stand needs {:.1f} MB on the device, more than the {:.1f} MB allowed{}",
+                                  static_cast<double>(held) / 1e6, static_cast<double>(budget) / 1e6,
+                                  req.max_device_bytes ? " (--max-device-memory)" : " (free device memory)"));
+    return budget - held;
   }
 
   Contacts run(const Stand& s, const DetectRequest& req, double build_s) {
@@ -127,30 +108,73 @@ class CudaBackend : public DetectionBackend {
       return out;
     }
 
+    // Leaf and organ levels, in batches of plant pairs whose lists fit the budget: a batch that
+    // does not fit is halved.
     t = now();
     work_.upload(work);
-    Counters host{};
-    const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * work.size(), [&](ClusterPair* o, unsigned long long cap) {
-      launch_cluster_pairs(view_, work_.get(), static_cast<std::uint32_t>(work.size()), o, cap, counters_.get());
-    });
-    out.counts[1] = LevelCount{static_cast<std::size_t>(host.between), static_cast<std::size_t>(host.within)};
-    out.seconds[1] = now() - t;
+    const std::size_t budget = stage_budget(req, work.size() * sizeof(WorkItem));
+    LevelCount leaves;
+    std::vector<OrganPair> organ;
+    EventTimer leaf_timer, organ_timer, exact_timer;
+    std::size_t batches = 0;
+    double t_leaf = 0;
+    for (std::size_t lo = 0, size = work.size(); lo < work.size();) {
+      const std::size_t hi = std::min(work.size(), lo + size);
+      const auto n = static_cast<std::uint32_t>(hi - lo);
+      const WorkItem* batch = work_.get() + lo;
+      cluster_pairs_.resize(0), organ_pairs_.resize(0), hit_.resize(0);  // the budget is for this batch alone
+      Counters host{};
+      const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * std::size_t{n}, budget / sizeof(ClusterPair), leaf_timer,
+                                     [&](ClusterPair* o, unsigned long long cap) {
+                                       launch_cluster_pairs(dev_.view(), batch, n, o, cap, counters_.get());
+                                     });
+      std::size_t no = 0;
+      bool fits = nc * sizeof(ClusterPair) <= budget;
+      const Counters leaf_counts = host;
+      if (fits && req.level != ContactLevel::leaf) {
+        const std::size_t room = (budget - nc * sizeof(ClusterPair)) / sizeof(OrganPair);
+        no = collect(organ_pairs_, counters_, host, 4 * nc + 1024, room, organ_timer, [&](OrganPair* o, unsigned long long cap) {
+          launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap, counters_.get());
+        });
+        fits = no <= room;
+      }
+      if (!fits) {
+        if (n == 1)
+          throw CudaError(fmt::format("plants {} and {} alone need more device memory than the {:.1f} MB allowed for lists",
+                                      work[lo].p, work[lo].q, static_cast<double>(budget) / 1e6));
+        size = std::max<std::size_t>(1, (hi - lo) / 2);
+        continue;
+      }
+      ++batches;
+      leaves.between += static_cast<std::size_t>(leaf_counts.between);
+      leaves.within += static_cast<std::size_t>(leaf_counts.within);
+      if (req.level == ContactLevel::leaf) {
+        for (const ClusterPair& c : cluster_pairs_.download(nc))
+          out.pairs.push_back({-1, -1, work[lo + c.work].p, work[lo + c.work].q, static_cast<std::int32_t>(c.a),
+                               static_cast<std::int32_t>(c.b)});
+      } else {
+        std::vector<OrganPair> part = organ_pairs_.download(no);
+        for (OrganPair& p : part) p.work += static_cast<std::uint32_t>(lo);  // into the whole work list
+        organ.insert(organ.end(), part.begin(), part.end());
+      }
+      lo = hi;
+    }
+    out.batches = std::max<std::size_t>(batches, 1);
+    out.counts[1] = leaves;
+    out.device_seconds[1] = leaf_timer.seconds();
+    out.device_seconds[2] = organ_timer.seconds();
+    t_leaf = now() - t;
+    out.seconds[1] = t_leaf;
     if (req.level == ContactLevel::leaf) {
-      for (const ClusterPair& c : cluster_pairs_.download(nc))
-        out.pairs.push_back({-1, -1, work[c.work].p, work[c.work].q, static_cast<std::int32_t>(c.a), static_cast<std::int32_t>(c.b)});
       std::sort(out.pairs.begin(), out.pairs.end());
       return out;
     }
-
     t = now();
-    const std::size_t no = collect(organ_pairs_, counters_, host, 4 * nc + 1024, [&](OrganPair* o, unsigned long long cap) {
-      launch_organ_pairs(view_, work_.get(), cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap, counters_.get());
-    });
-    std::vector<OrganPair> organ = organ_pairs_.download(no);
     std::sort(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a != b.a ? a.a < b.a : a.b < b.b; });
     organ.erase(std::unique(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a == b.a && a.b == b.b; }),
                 organ.end());
     std::vector<Contact> organ_contacts;
+    organ_contacts.reserve(organ.size());
     for (const OrganPair& p : organ)
       organ_contacts.push_back({p.a, p.b, s.organs[static_cast<std::size_t>(p.a)].plant, s.organs[static_cast<std::size_t>(p.b)].plant, -1, -1});
     out.counts[2] = count_pairs(organ_contacts);
@@ -160,56 +184,39 @@ class CudaBackend : public DetectionBackend {
       return out;
     }
 
+    // Exact level, in batches of organ pairs that fit (a pair and its flag each).
     t = now();
-    organ_pairs_.upload(organ);
-    hit_.resize(std::max<std::size_t>(organ.size(), 1));
-    launch_exact(view_, work_.get(), organ_pairs_.get(), static_cast<std::uint32_t>(organ.size()), req.clearance, hit_.get());
-    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
-    const std::vector<std::uint8_t> hit = hit_.download(organ.size());
+    cluster_pairs_.resize(0);
+    std::vector<std::uint8_t> hit(organ.size(), 0);
+    const std::size_t per = std::max<std::size_t>(1, budget / (sizeof(OrganPair) + 1));
+    for (std::size_t lo = 0; lo < organ.size(); lo += per) {
+      const std::size_t n = std::min(per, organ.size() - lo);
+      organ_pairs_.resize(n);
+      CANOPY_CUDA_CHECK(cudaMemcpy(organ_pairs_.get(), organ.data() + lo, n * sizeof(OrganPair), cudaMemcpyHostToDevice));
+      hit_.resize(n);
+      exact_timer.start();
+      launch_exact(dev_.view(), work_.get(), organ_pairs_.get(), static_cast<std::uint32_t>(n), req.clearance, hit_.get());
+      exact_timer.stop();
+      CANOPY_CUDA_CHECK(cudaMemcpy(hit.data() + lo, hit_.get(), n, cudaMemcpyDeviceToHost));
+      if (lo > 0) ++out.batches;
+    }
+    out.device_seconds[3] = exact_timer.seconds();
     out.pairs = keep_hits(organ_contacts, hit);
     out.counts[3] = count_pairs(out.pairs);
     out.seconds[3] = now() - t;
     return out;
   }
 
-  void upload(const Stand& s, const Mbvt& m, const std::vector<MeshRef>& meshes, const std::vector<Vec3f>& positions,
-              const std::vector<std::uint32_t>& indices) {
-    transforms_.upload(s.transforms);
-    organs_.upload(s.organs);
-    obbs_.upload(m.obbs);
-    cluster_organs_.upload(m.cluster_organs);
-    clusters_.upload(m.clusters);
-    nodes_.upload(m.nodes);
-    plants_.upload(m.plants);
-    positions_.upload(positions);
-    indices_.upload(indices);
-    meshes_.upload(meshes);
-    counters_.resize(1);
-    view_ = {transforms_.get(), organs_.get(), obbs_.get(), cluster_organs_.get(), clusters_.get(), nodes_.get(),
-             plants_.get(), positions_.get(), indices_.get(), meshes_.get()};
-  }
-
   int device_;
   std::string name_;
   std::optional<Mbvt> tree_;
   std::unique_ptr<PrototypeLibrary> lib_;
-  DeviceBuffer<std::uint32_t> scatter_ids_;
-  DeviceBuffer<Affine3f> transforms_;
-  DeviceBuffer<OrganRecord> organs_;
-  DeviceBuffer<Obb> obbs_;
-  DeviceBuffer<std::uint32_t> cluster_organs_;
-  DeviceBuffer<Cluster> clusters_;
-  DeviceBuffer<LcdNode> nodes_;
-  DeviceBuffer<PlantBound> plants_;
-  DeviceBuffer<Vec3f> positions_;
-  DeviceBuffer<std::uint32_t> indices_;
-  DeviceBuffer<MeshRef> meshes_;
+  StandOnDevice dev_;
   DeviceBuffer<WorkItem> work_;
   DeviceBuffer<ClusterPair> cluster_pairs_;
   DeviceBuffer<OrganPair> organ_pairs_;
   DeviceBuffer<std::uint8_t> hit_;
   DeviceBuffer<Counters> counters_;
-  StandView view_{};
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #ifdef CANOPY_HAVE_CUDA
+#include "cuda/check.hpp"
 #include "cuda/detect_cuda.hpp"
 #include "cuda/device.hpp"
 #endif
@@ -18,6 +19,9 @@ void DetectOptions::add_to(CLI::App& app) {
   app.add_option("--backend", backend, "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
   app.add_option("--threads", threads, "CPU threads (default: all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--max-device-memory", max_device_memory,
+                 "CUDA: device memory detection may use, e.g. 512M or 2G (default: what is free); lists that would not fit "
+                 "are made in batches");
 }
 
 DetectRequest DetectOptions::request() const {
@@ -26,8 +30,65 @@ DetectRequest DetectOptions::request() const {
   r.clearance = static_cast<float>(clearance);
   r.collide = parse_collide_kinds(collide);
   r.threads = threads;
+  if (!max_device_memory.empty()) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(max_device_memory, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    const std::string unit = used ? max_device_memory.substr(used) : "";
+    const double scale = unit.empty() ? 1 : unit == "K" ? 1e3 : unit == "M" ? 1e6 : unit == "G" ? 1e9 : -1;
+    if (!used || scale < 0 || !(v > 0))
+      throw std::invalid_argument(fmt::format("--max-device-memory: '{}' is not a size such as 512M or 2G", max_device_memory));
+    r.max_device_bytes = static_cast<std::size_t>(v * scale);
+  }
   return r;
 }
+
+#ifdef CANOPY_HAVE_CUDA
+namespace {
+
+/// `--backend auto` on a GPU: the CUDA backend, and the CPU backend from the first CUDA failure
+/// on (out of device memory, a lost device), said once on stderr. Contacts are the same either way.
+class AutoBackend : public DetectionBackend {
+ public:
+  explicit AutoBackend(std::unique_ptr<DetectionBackend> gpu) : gpu_(std::move(gpu)) {}
+  std::string name() const override { return cpu_ ? cpu_->name() : gpu_->name(); }
+  std::string device() const override { return cpu_ ? cpu_->device() : gpu_->device(); }
+  Contacts detect(const Stand& s, const DetectRequest& r) override {
+    if (!cpu_) {
+      try {
+        return gpu_->detect(s, r);
+      } catch (const cuda::CudaError& e) {
+        fall_back(e.what());
+      }
+    }
+    return cpu_->detect(s, r);
+  }
+  Contacts redetect(const Stand& s, const DetectRequest& r, const std::vector<std::uint32_t>& moved) override {
+    if (!cpu_) {
+      try {
+        return gpu_->redetect(s, r, moved);
+      } catch (const cuda::CudaError& e) {
+        fall_back(e.what());
+        return cpu_->detect(s, r);  // the CPU has no tree yet: build it
+      }
+    }
+    return cpu_->redetect(s, r, moved);
+  }
+
+ private:
+  void fall_back(const std::string& why) {
+    fmt::print(stderr, "canopy: note: the CUDA backend failed ({}); going on with the CPU backend\n", why);
+    cpu_ = make_cpu_backend();
+  }
+  std::unique_ptr<DetectionBackend> gpu_, cpu_;
+};
+
+}  // namespace
+#endif
 
 std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note) {
   if (name == "cpu") {
@@ -38,6 +99,7 @@ std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::str
   const auto report = cuda::query_devices();
   if (!report.devices.empty()) {
     note = fmt::format("cuda on {} ({})", report.devices[0].name, name == "cuda" ? "asked for" : "auto: a GPU is present");
+    if (name == "auto") return std::make_unique<AutoBackend>(cuda::make_cuda_backend(0));
     return cuda::make_cuda_backend(0);
   }
   const std::string why = report.unavailable_reason;

@@ -16,6 +16,7 @@ struct DetectOptions {
   std::string collide = "leaflet,petiole,rachis,internode,peduncle";
   std::string backend = "auto";
   int threads = 0;
+  std::string max_device_memory;  // "", bytes, or with K, M, G
 
   void add_to(CLI::App& app);
   DetectRequest request() const;

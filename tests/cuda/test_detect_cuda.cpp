@@ -3,6 +3,7 @@
 // on 1,000- and 10,000-plant default stands. (Skipped without a GPU: see test_device.cpp.)
 #include "../collision/helpers.hpp"
 #include "collision/resolve.hpp"
+#include "cuda/check.hpp"
 #include "cuda/detect_cuda.hpp"
 
 #include <cstring>
@@ -114,5 +115,41 @@ TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the
     // Re-detection after the rounds (refit kept on the device) equals a fresh CPU detection.
     CHECK(gpu->detect(b, req.detect).pairs == cpu->detect(a, req.detect).pairs);
     MESSAGE(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after << " contacts in " << ra.rounds << " rounds");
+  }
+}
+
+TEST_CASE("a stand that must be batched: the same contacts in batches under --max-device-memory") {
+  GrowRequest g;
+  g.grammar = source("grammars/tomato.yaml");
+  g.plants = default_stand_layout(400);
+  const Stand s = grow_stand(g);
+  auto cpu = make_cpu_backend();
+  auto gpu = cuda::make_cuda_backend();
+  for (ContactLevel level : {ContactLevel::leaf, ContactLevel::organ, ContactLevel::exact}) {
+    DetectRequest req;
+    req.level = level;
+    const Contacts want = cpu->detect(s, req);
+    const Contacts whole = gpu->detect(s, req);
+    CHECK(whole.batches == 1);
+    // What the stand itself needs, from the error for too small a budget; then 300 KB for lists.
+    req.max_device_bytes = 1;  // probe: the error names what the stand needs
+    std::string message;
+    try {
+      gpu->detect(s, req);
+    } catch (const cuda::CudaError& e) {
+      message = e.what();
+    }
+    INFO(message);
+    REQUIRE(message.find("the stand needs") != std::string::npos);
+    const double needs_mb = std::stod(message.substr(message.find("needs") + 6));
+    req.max_device_bytes = static_cast<std::size_t>(needs_mb * 1e6) + 300000;
+    const Contacts batched = gpu->detect(s, req);
+    MESSAGE(name_of(level) << ": " << batched.batches << " batches under " << req.max_device_bytes << " bytes");
+    CHECK(batched.batches > 1);
+    CHECK(batched.pairs == want.pairs);
+    for (std::size_t l = 0; l <= static_cast<std::size_t>(level); ++l) {
+      CHECK(batched.counts[l]->between == want.counts[l]->between);
+      CHECK(batched.counts[l]->within == want.counts[l]->within);
+    }
   }
 }

@@ -1,0 +1,53 @@
+// Device refit kernels: one thread per moved organ, per dirty cluster, per dirty plant.
+#include "collision/mbvt_fit.hpp"
+#include "cuda/check.hpp"
+#include "cuda/refit_kernels.hpp"
+#include "geometry/obb.hpp"
+
+namespace canopy::cuda {
+namespace {
+
+constexpr int kThreads = 128;
+unsigned blocks(std::uint32_t n) { return (n + kThreads - 1) / kThreads; }
+
+__global__ void refit_organs_kernel(TreeView v, const std::uint32_t* organs, std::uint32_t n, float clearance) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const std::uint32_t id = organs[k];
+  const OrganRecord r = v.organs[id];
+  v.obbs[id] = make_obb(v.transforms[id], v.boxes[static_cast<int>(r.prototype) * (kMaxLod + 1) + r.lod], clearance);
+}
+
+__global__ void refit_clusters_kernel(TreeView v, const std::uint32_t* clusters, std::uint32_t n) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  fit_cluster_nodes(v.nodes, v.obbs, v.cluster_organs, v.clusters[clusters[k]]);
+}
+
+__global__ void refit_plants_kernel(TreeView v, const std::uint32_t* plants, std::uint32_t n) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  fit_plant_bound(v.nodes, v.clusters, v.plants[plants[k]]);
+}
+
+}  // namespace
+
+void launch_refit_organs(const TreeView& v, const std::uint32_t* organs, std::uint32_t n, float clearance) {
+  if (!n) return;
+  refit_organs_kernel<<<blocks(n), kThreads>>>(v, organs, n, clearance);
+  CANOPY_CUDA_CHECK_LAUNCH("refit_organs_kernel");
+}
+
+void launch_refit_clusters(const TreeView& v, const std::uint32_t* clusters, std::uint32_t n) {
+  if (!n) return;
+  refit_clusters_kernel<<<blocks(n), kThreads>>>(v, clusters, n);
+  CANOPY_CUDA_CHECK_LAUNCH("refit_clusters_kernel");
+}
+
+void launch_refit_plants(const TreeView& v, const std::uint32_t* plants, std::uint32_t n) {
+  if (!n) return;
+  refit_plants_kernel<<<blocks(n), kThreads>>>(v, plants, n);
+  CANOPY_CUDA_CHECK_LAUNCH("refit_plants_kernel");
+}
+
+}  // namespace canopy::cuda
