@@ -130,7 +130,8 @@ check "mixed plants" "1,0.5,0,90,2,sunflower.yaml,6" "$(sed -n 3p "$tmp/m/plants
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
            --double-rows --jitter --random-rotation --seed --positions --max-modules --glb-instancing \
-           --level --clearance --collide --backend --no-resolve --max-rounds --resolve-clearance --resolve-level; do
+           --level --clearance --collide --backend --no-resolve --max-rounds --resolve-clearance --resolve-level \
+           --max-device-memory; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
 done
 
