@@ -2,6 +2,7 @@
 /// Shared pieces of the canopy subcommands.
 #include "geometry/layout.hpp"
 #include "lsystem/grammar.hpp"
+#include "lsystem/grow.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -28,5 +29,9 @@ bool any_row_option(const StandSpec& s);
 /// A row layout from a stand entry (the grammar's or the command line's); unset keys take
 /// DESIGN.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
 RowLayout to_row_layout(const StandSpec& s);
+/// A grow request for `grammar` with the command line's --set, --steps, --lod, --threads and
+/// --max-modules (plants still to be placed).
+GrowRequest grow_request(const std::string& grammar, const std::vector<std::string>& set, std::optional<int> steps, int lod,
+                         int threads, std::size_t max_modules);
 
 }  // namespace canopy::cli

@@ -109,12 +109,7 @@ Command add_render(CLI::App& root) {
               const render::Scene scene(stand, lib);
               picture = panel(scene, flags_from_csv(contacts, stand.organ_count()), w, h);
             } else {
-              GrowRequest req;
-              req.grammar = o->source;
-              for (const auto& s : o->set) req.load.overrides.push_back(parse_override(s));
-              req.steps = o->steps;
-              req.lod = o->lod;
-              req.threads = o->detect.threads;
+              GrowRequest req = grow_request(o->source, o->set, o->steps, o->lod, o->detect.threads, kDefaultMaxModules);
               if (o->random_rotation) o->rows.random_rotation = true;
               const Grammar g = load_grammar(o->source, req.load);
               req.plants = row_layout(to_row_layout(!any_row_option(o->rows) && g.stand ? *g.stand : o->rows));

@@ -47,14 +47,8 @@ RunRow run_one(const SweepOptions& o, const Grammar& g, const SweepCell& cell, i
   layout.jitter = o.jitter;
   layout.random_rotation = true;
   layout.seed = static_cast<std::uint64_t>(seed);
-  GrowRequest req;
-  req.grammar = o.grammar;
-  for (const auto& s : o.set) req.load.overrides.push_back(parse_override(s));
-  req.steps = cell.steps;
-  req.lod = o.lod;
-  req.threads = o.detect.threads;
+  GrowRequest req = grow_request(o.grammar, o.set, cell.steps, o.lod, o.detect.threads, o.max_modules);
   req.plants = row_layout(layout);
-  req.max_modules = o.max_modules;
   auto t = std::chrono::steady_clock::now();
   Stand stand = grow_stand(req);
   row["generate_s"] = fmt::format("{:.4f}", since(t));

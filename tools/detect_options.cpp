@@ -1,4 +1,5 @@
 #include "tools/detect_options.hpp"
+#include "tools/sweep_spec.hpp"
 
 #include <fmt/format.h>
 #ifdef CANOPY_HAVE_CUDA
@@ -32,12 +33,7 @@ DetectRequest DetectOptions::request() const {
   r.threads = threads;
   if (!max_device_memory.empty()) {
     std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(max_device_memory, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
+    const double v = leading_number(max_device_memory, used);
     const std::string unit = used ? max_device_memory.substr(used) : "";
     const double scale = unit.empty() ? 1 : unit == "K" ? 1e3 : unit == "M" ? 1e6 : unit == "G" ? 1e9 : -1;
     if (!used || scale < 0 || !(v > 0))

@@ -60,13 +60,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   auto backend = make_backend(o.detect.backend, backend_note);
   prepare_output_dir(o.out);
 
-  GrowRequest req;
-  req.grammar = o.grammar;
-  for (const auto& s : o.set) req.load.overrides.push_back(parse_override(s));
-  req.steps = o.steps;
-  req.lod = o.lod;
-  req.threads = o.detect.threads;
-  req.max_modules = o.max_modules;
+  GrowRequest req = grow_request(o.grammar, o.set, o.steps, o.lod, o.detect.threads, o.max_modules);
   const Grammar g = load_grammar(o.grammar, req.load);
   bool from_grammar = false;
   RowLayout layout;

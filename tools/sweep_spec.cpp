@@ -10,18 +10,23 @@ namespace {
 
 double number(const std::string& name, const std::string& s) {
   std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
+  const double v = leading_number(s, used);
   if (used == 0 || used != s.size() || !std::isfinite(v))
     throw std::invalid_argument(fmt::format("{}: '{}' is not a number", name, s));
   return v;
 }
 
 }  // namespace
+
+double leading_number(const std::string& s, std::size_t& used) {
+  used = 0;
+  try {
+    return std::stod(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+    return 0;
+  }
+}
 
 std::vector<double> parse_number_list(const std::string& name, const std::string& text, double min, bool strict) {
   std::vector<double> out;

@@ -7,6 +7,10 @@
 
 namespace canopy::cli {
 
+/// The number at the start of `s` (std::stod without exceptions): how many characters it took
+/// in `used` (0 when there is none).
+double leading_number(const std::string& s, std::size_t& used);
+
 /// Parses a list or range of numbers for option `name`; throws std::invalid_argument naming the
 /// option on an empty list, a bad number, a zero or backward step, or a value below `min`
 /// (strictly below when `strict`).

@@ -1,0 +1,108 @@
+#pragma once
+// Shared by the files of the canopy Python module: callbacks that carry Python exceptions through
+// C++ loops, the stand object arrays view, and small conversions.
+#include "collision/backend.hpp"
+#include "tools/detect_options.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+// Hidden, as pybind11's own types are: nothing here leaves the extension module.
+#pragma GCC visibility push(hidden)
+namespace canopy::python {
+
+namespace py = pybind11;
+
+
+/// Raised inside a long call when a Python callback raised: unwinds the C++ side, then the
+/// Python error is restored.
+struct CallbackRaised {};
+
+/// Wraps a Python callable for a C++ loop: takes the GIL to call it; a Python exception is kept
+/// (to be re-raised by `rethrow`) and the C++ work is stopped with CallbackRaised.
+class Callback {
+ public:
+  explicit Callback(py::object f) : f_(std::move(f)) {}
+  ~Callback() {
+    py::gil_scoped_acquire gil;
+    error_.reset();
+    f_ = py::object();
+  }
+  bool set() const { return !f_.is_none(); }
+  template <typename... A>
+  void operator()(A&&... args) {
+    py::gil_scoped_acquire gil;
+    try {
+      f_(std::forward<A>(args)...);
+    } catch (py::error_already_set& e) {
+      error_.emplace(std::move(e));
+      throw CallbackRaised{};
+    }
+  }
+  [[noreturn]] void rethrow() {
+    py::error_already_set e = std::move(*error_);
+    error_.reset();
+    throw e;
+  }
+
+ private:
+  py::object f_;
+  std::optional<py::error_already_set> error_;
+};
+
+inline py::object json_to_py(const nlohmann::ordered_json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+/// A stand owned by Python: arrays handed out view its memory and keep this object alive.
+struct PyStand {
+  Stand stand;
+  std::string grammar;
+  std::optional<Contacts> last;  // the last detection (for export)
+};
+
+/// A path from str or os.PathLike.
+inline std::string path_of(py::handle h) { return py::str(py::module_::import("os").attr("fspath")(h)); }
+
+inline std::vector<std::string> overrides(const std::map<std::string, double>& set) {
+  std::vector<std::string> v;
+  for (const auto& [k, x] : set) v.push_back(fmt::format("{}={}", k, x));
+  return v;
+}
+
+inline DetectRequest detect_request(const std::string& level, double clearance, const std::string& collide, int threads) {
+  cli::DetectOptions d;
+  d.level = level;
+  d.clearance = clearance;
+  d.collide = collide;
+  d.threads = threads;
+  if (!parse_contact_level(level)) throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", level));
+  if (clearance < 0) throw std::invalid_argument("clearance must not be negative");
+  return d.request();
+}
+
+inline py::array contacts_array(const std::vector<Contact>& pairs) {
+  py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("organ_a", "<i4"), py::make_tuple("organ_b", "<i4"),
+                                       py::make_tuple("plant_a", "<i4"), py::make_tuple("plant_b", "<i4"))));
+  py::array out(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(pairs.size())});
+  auto* p = static_cast<std::int32_t*>(out.mutable_data());
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    p[4 * i] = pairs[i].organ_a, p[4 * i + 1] = pairs[i].organ_b, p[4 * i + 2] = pairs[i].plant_a, p[4 * i + 3] = pairs[i].plant_b;
+  return out;
+}
+
+inline std::unique_ptr<DetectionBackend> backend_named(const std::string& name, std::string& note) {
+  return cli::make_backend(name, note);
+}
+
+
+/// Registers canopy.Stand.
+void bind_stand(py::module_& m);
+
+}  // namespace canopy::python
+#pragma GCC visibility pop

@@ -1,0 +1,235 @@
+// canopy.Stand: a stand owned by Python, NumPy views of its organs, detection, resolution, export.
+#include "geometry/export.hpp"
+#include "geometry/layout.hpp"
+#include "geometry/organ_mesh.hpp"
+#include "lsystem/grow.hpp"
+#include "tools/cli_common.hpp"
+#include "tools/python/common.hpp"
+#include "tools/resolve_options.hpp"
+#include "tools/stand_run.hpp"
+
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+
+namespace canopy::python {
+
+void bind_stand(py::module_& m) {
+  py::class_<PyStand, std::shared_ptr<PyStand>>(m, "Stand", "A stand of plants: organ arrays view its memory.")
+      .def_static(
+          "grow",
+          [](py::object grammar_arg, std::optional<int> rows, std::optional<int> per_row, std::optional<double> row_spacing,
+             std::optional<double> plant_spacing, std::optional<double> double_rows, std::optional<double> jitter,
+             std::optional<bool> random_rotation, std::optional<std::uint64_t> seed, std::optional<py::array_t<double>> positions,
+             std::optional<int> steps, const std::map<std::string, double>& set, int lod, int threads, std::size_t max_modules) {
+            const std::string grammar = path_of(grammar_arg);
+            GrowRequest req = cli::grow_request(grammar, overrides(set), steps, lod, threads, max_modules);
+            StandSpec spec;
+            spec.rows = rows, spec.per_row = per_row, spec.row_spacing = row_spacing, spec.plant_spacing = plant_spacing;
+            spec.double_rows = double_rows, spec.jitter = jitter, spec.random_rotation = random_rotation, spec.seed = seed;
+            if (positions) {
+              if (cli::any_row_option(spec)) throw std::invalid_argument("positions cannot be combined with row options");
+              const auto a = positions->unchecked<2>();
+              if (a.shape(1) != 4) throw std::invalid_argument("positions: an array of rows x, y, rotation, seed (N x 4)");
+              for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+                PlantPlacement p;
+                p.x = a(i, 0), p.y = a(i, 1), p.rotation_deg = a(i, 2);
+                if (!(a(i, 3) >= 0)) throw std::invalid_argument(fmt::format("positions: row {}: the seed must be a non-negative integer", i));
+                p.seed = static_cast<std::uint64_t>(a(i, 3));
+                req.plants.push_back(p);
+              }
+            } else {
+              const Grammar g = load_grammar(grammar, req.load);
+              req.plants = row_layout(cli::to_row_layout(!cli::any_row_option(spec) && g.stand ? *g.stand : spec));
+            }
+            auto out = std::make_shared<PyStand>();
+            out->grammar = grammar;
+            {
+              py::gil_scoped_release nogil;
+              out->stand = grow_stand(req);
+            }
+            return out;
+          },
+          py::arg("grammar"), py::kw_only(), py::arg("rows") = py::none(), py::arg("per_row") = py::none(),
+          py::arg("row_spacing") = py::none(), py::arg("plant_spacing") = py::none(), py::arg("double_rows") = py::none(),
+          py::arg("jitter") = py::none(), py::arg("random_rotation") = py::none(), py::arg("seed") = py::none(),
+          py::arg("positions") = py::none(), py::arg("steps") = py::none(), py::arg("set") = std::map<std::string, double>{},
+          py::arg("lod") = kDefaultLod, py::arg("threads") = 0, py::arg("max_modules") = kDefaultMaxModules,
+          "Grows a stand: rows (as canopy stand's layout options; none given: the grammar's stand entry) or an N x 4 array "
+          "of positions x, y, rotation (degrees), seed.")
+      .def_static(
+          "read",
+          [](py::object dir_arg) {
+            const std::string dir = path_of(dir_arg);
+            auto out = std::make_shared<PyStand>();
+            py::gil_scoped_release nogil;
+            out->stand = read_stand(dir);
+            return out;
+          },
+          py::arg("dir"), "Reads a stand back from a folder written by canopy stand.")
+      .def_property_readonly("plant_count", [](const PyStand& s) { return s.stand.plant_count(); })
+      .def_property_readonly("ids",
+                             [](const PyStand& s) {
+                               py::array_t<std::int64_t> a(static_cast<py::ssize_t>(s.stand.organ_count()));
+                               auto* p = a.mutable_data();
+                               for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = static_cast<std::int64_t>(i);
+                               return a;
+                             },
+                             "Organ ids (global, as in organs.csv and contacts): 0 .. organ_count - 1.")
+      .def_property_readonly("organ_count", [](const PyStand& s) { return s.stand.organ_count(); })
+      .def_property_readonly(
+          "organs",
+          [](py::object self) {
+            PyStand& s = self.cast<PyStand&>();
+            py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("plant", "<i4"), py::make_tuple("parent", "<i4"),
+                                                 py::make_tuple("leaf", "<i4"), py::make_tuple("kind", "u1"),
+                                                 py::make_tuple("prototype", "u1"), py::make_tuple("lod", "u1"),
+                                                 py::make_tuple("reserved", "u1"))));
+            return py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
+                             std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))}, s.stand.organs.data(), self);
+          },
+          "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records (no copy).")
+      .def_property_readonly(
+          "transforms",
+          [](py::object self) {
+            PyStand& s = self.cast<PyStand&>();
+            const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
+            return py::array_t<float>({n, py::ssize_t{4}, py::ssize_t{3}},
+                                      {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{12}, py::ssize_t{4}},
+                                      reinterpret_cast<const float*>(s.stand.transforms.data()), self);
+          },
+          "float32 array (organs, 4, 3) viewing the plant-frame transforms: rows H*size, L*size, U*size, joint.")
+      .def_property_readonly(
+          "base_points",
+          [](py::object self) {
+            PyStand& s = self.cast<PyStand&>();
+            const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
+            return py::array_t<float>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{4}},
+                                      reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self);
+          },
+          "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame.")
+      .def_property_readonly("area",
+                             [](PyStand& s) {
+                               PrototypeLibrary lib;
+                               py::array_t<double> a(static_cast<py::ssize_t>(s.stand.organ_count()));
+                               auto* p = a.mutable_data();
+                               for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = organ_area(s.stand, i, lib);
+                               return a;
+                             },
+                             "One-sided area of each organ, m2 (as organs.csv; computed).")
+      .def_property_readonly("length",
+                             [](PyStand& s) {
+                               PrototypeLibrary lib;
+                               py::array_t<double> a(static_cast<py::ssize_t>(s.stand.organ_count()));
+                               auto* p = a.mutable_data();
+                               for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = organ_length(s.stand, i);
+                               return a;
+                             },
+                             "Length of each organ, m (as organs.csv; computed).")
+      .def_property_readonly(
+          "plants",
+          [](PyStand& s) {
+            py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("x", "<f8"), py::make_tuple("y", "<f8"),
+                                                 py::make_tuple("rotation", "<f8"), py::make_tuple("seed", "<u8"),
+                                                 py::make_tuple("steps", "<i4"), py::make_tuple("organ_count", "<u4"))));
+            py::array out(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.plant_count())});
+            auto* b = static_cast<char*>(out.mutable_data());
+            for (std::size_t i = 0; i < s.stand.plant_count(); ++i) {
+              const PlantRecord& r = s.stand.plants[i];
+              char* row = b + i * static_cast<std::size_t>(dt.itemsize());
+              std::memcpy(row, &r.x, 8), std::memcpy(row + 8, &r.y, 8), std::memcpy(row + 16, &r.rotation_deg, 8);
+              std::memcpy(row + 24, &r.seed, 8);
+              const std::int32_t st = r.steps;
+              std::memcpy(row + 32, &st, 4), std::memcpy(row + 36, &r.organ_count, 4);
+            }
+            return out;
+          },
+          "Structured array of the plants (x, y, rotation, seed, steps, organ_count).")
+      .def(
+          "detect",
+          [](PyStand& s, const std::string& level, double clearance, const std::string& collide, const std::string& backend,
+             int threads) {
+            const DetectRequest req = detect_request(level, clearance, collide, threads);
+            std::string note;
+            Contacts c;
+            std::string name;
+            {
+              py::gil_scoped_release nogil;
+              auto b = backend_named(backend, note);
+              c = b->detect(s.stand, req);
+              name = b->name();
+            }
+            py::dict out;
+            out["contacts"] = contacts_array(c.pairs);
+            out["counts"] = json_to_py(cli::counts_json(c));
+            out["backend"] = name;
+            out["note"] = note;
+            s.last = std::move(c);
+            return out;
+          },
+          py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0,
+          py::arg("collide") = "leaflet,petiole,rachis,internode,peduncle", py::arg("backend") = "auto", py::arg("threads") = 0,
+          "Detects contacts: {'contacts': structured array, 'counts': per level, 'backend': name}.")
+      .def(
+          "resolve",
+          [](PyStand& s, const std::string& level, double clearance, double resolve_clearance, const std::string& collide,
+             int max_rounds, const std::string& backend, int threads, py::object progress) {
+            DetectRequest dreq = detect_request("exact", clearance, collide, threads);
+            cli::ResolveOptions ro;
+            ro.level = level;
+            ro.clearance = resolve_clearance;
+            ro.max_rounds = max_rounds;
+            ro.progress = false;
+            if (!parse_contact_level(level) || (level != "exact" && level != "organ"))
+              throw std::invalid_argument(fmt::format("level: '{}' is not exact or organ", level));
+            if (max_rounds < 1) throw std::invalid_argument("max_rounds must be at least 1");
+            Callback cb(std::move(progress));
+            ResolveResult r;
+            Contacts after;
+            try {
+              py::gil_scoped_release nogil;
+              std::string note;
+              auto b = backend_named(backend, note);
+              DetectRequest at = dreq;
+              at.level = ro.config().level;
+              const Contacts start = b->detect(s.stand, at);
+              std::function<void(const ResolveProgress&)> hook;
+              if (cb.set()) hook = [&](const ResolveProgress& p) { cb(p.round, p.contacts, p.seconds); };
+              r = cli::run_resolution(s.stand, *b, dreq, ro, start, hook);
+              after = b->detect(s.stand, dreq);
+            } catch (const CallbackRaised&) {
+              cb.rethrow();
+            }
+            py::dict out = json_to_py(cli::resolution_json(r));
+            out["contacts_after"] = contacts_array(after.pairs);
+            s.last = std::move(after);
+            return out;
+          },
+          py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0, py::arg("resolve_clearance") = 1e-4,
+          py::arg("collide") = "leaflet,petiole,rachis,internode,peduncle", py::arg("max_rounds") = 30,
+          py::arg("backend") = "auto", py::arg("threads") = 0, py::arg("progress") = py::none(),
+          "Turns organs out of contact (canopy stand's resolution); progress(round, contacts_left, seconds) is called each "
+          "round, and raising from it stops the run. Returns report.json's 'resolution' and 'contacts_after'.")
+      .def(
+          "export",
+          [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing) {
+            const std::string dir = path_of(dir_arg);
+            std::string list;
+            for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
+            const auto fs = cli::parse_formats(list);
+            py::gil_scoped_release nogil;
+            prepare_output_dir(dir);
+            PrototypeLibrary lib;
+            OutputSet files(dir);
+            cli::write_stand_files(s.stand, lib, fs, glb_instancing, files);
+            if (s.last) files.open("contacts.csv").write(contacts_csv(*s.last));
+            files.commit_all();
+          },
+          py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("glb_instancing") = false,
+          "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv of the last "
+          "detection or resolution).");
+
+}
+
+}  // namespace canopy::python
