@@ -41,18 +41,31 @@ void TurnSearch::Candidate::link_pairs(const Stand& s, const std::vector<Obb>& b
   const std::int32_t plant = s.organs[mover].plant;
   pair_first.assign(1, 0);
   pair_y.clear();
+  // Each organ kept clear, in the mover's plant frame: its centre and reach.
+  std::vector<Vec3d> cy(keep.size());
+  std::vector<double> dy(keep.size()), ry(keep.size());
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    const std::int32_t y = keep[i];
+    const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
+    const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
+    const Obb& oy = boxes[static_cast<std::size_t>(y)];
+    cy[i] = to_double(oy.centre + off);
+    dy[i] = length(cy[i] - joint);
+    ry[i] = oy.radius + 2.0 * clearance;
+  }
+  // A turn by at most reach_deg moves a point at distance d from the joint by at most the chord
+  // 2 d sin(reach / 2), and keeps it at distance d: pairs too far apart for either never meet.
+  const double half = std::min(reach_deg, 180.0) * kRad / 2;
   for (std::int32_t x : moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
-    const double dx = length(to_double(ox.centre) - joint);
+    const Vec3d cx = to_double(ox.centre);
+    const double dx = length(cx - joint), chord = 2 * dx * std::sin(half);
     for (std::size_t i = 0; i < keep.size(); ++i) {
+      const double reach = ox.radius + ry[i], slack = 1e-6 * (1 + dx + dy[i]);
+      if (std::abs(dy[i] - dx) - reach > slack) continue;               // the shells never meet
+      if (length(cy[i] - cx) - reach - chord > slack) continue;         // too far for the largest turn
       const std::int32_t y = keep[i];
       if (adjacent(s.organs[static_cast<std::size_t>(x)], x, s.organs[static_cast<std::size_t>(y)], y)) continue;
-      const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
-      const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
-      const Obb& oy = boxes[static_cast<std::size_t>(y)];
-      const double dy = length(to_double(oy.centre + off) - joint);
-      const double gap = std::abs(dy - dx) - (ox.radius + oy.radius + 2.0 * clearance);
-      if (gap > 1e-6 * (1 + dx + dy)) continue;  // the shells never meet
       pair_y.push_back(static_cast<std::uint32_t>(i));
     }
     pair_first.push_back(static_cast<std::uint32_t>(pair_y.size()));
