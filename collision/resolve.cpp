@@ -42,7 +42,7 @@ MetPairs contacts_of(const Joints& joints, const ContactGraph& g, std::uint32_t 
 /// scanned level by level of cost, in parallel, each mover once per level whichever contacts
 /// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
 Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
-                const TurnSearch& search, int threads) {
+                const TurnSearch& search, int threads, const std::function<void(std::size_t)>& planning) {
   const ResolveConfig& cfg = search.config;
   const std::size_t n = contacts.size();
   std::vector<std::vector<std::uint32_t>> cands(n);
@@ -72,6 +72,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       if (!resolved[i] && !cand_slots[i].empty()) pending.push_back(i);
     std::vector<std::size_t> chosen;
     for (int level = 1; !pending.empty(); ++level) {
+      if (planning) planning(pending.size());
       std::vector<std::uint8_t> want(movers.size(), 0);
       for (std::size_t i : pending)
         for (std::size_t k : cand_slots[i])
@@ -215,13 +216,16 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       out.stop = fmt::format("no progress in {} rounds (turns only trade contacts that cannot all be cleared)", cfg.stall_rounds);
       break;
     }
-    if (req.progress) req.progress({round, contacts.size(), now() - t0});
+    if (req.progress) req.progress({round, contacts.size(), now() - t0, contacts.size()});
     ResolveRound rr;
     rr.round = round;
     rr.contacts = contacts.size();
     double t = now();
     touching.build(s.organ_count(), contacts);
-    Plan plan = plan_round(s, joints, contacts, touching, search, threads);
+    std::function<void(std::size_t)> planning;
+    if (req.progress)
+      planning = [&](std::size_t pending) { req.progress({round, contacts.size(), now() - t0, pending}); };
+    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning);
     why = std::move(plan.why);
     rr.plan_s = now() - t;
     if (plan.turns.empty()) {

@@ -19,12 +19,14 @@ struct ResolveProgress {
   int round = 0;
   std::size_t contacts = 0;  // left at the start of the round
   double seconds = 0;        // since resolution began
+  std::size_t unplanned = 0; // contacts of the round still without a turn (planning goes on)
 };
 
 struct ResolveRequest {
   DetectRequest detect;  // its level is replaced by config.level
   ResolveConfig config;
-  std::function<void(const ResolveProgress&)> progress;  // called once per round when set
+  /// Called at the start of each round and as its planning goes on (by cost level), when set.
+  std::function<void(const ResolveProgress&)> progress;
 };
 
 struct ResolveRound {

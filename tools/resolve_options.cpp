@@ -62,11 +62,12 @@ ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const Dete
   if (progress) req.progress = std::move(progress);
   else if (tty)
     req.progress = [](const ResolveProgress& p) {
-      fmt::print(stderr, "\r  resolving: round {}, {} contacts left, {:.1f} s   ", p.round, p.contacts, p.seconds);
+      fmt::print(stderr, "\r  resolving: round {}, {} contacts left, {} still being planned, {:.1f} s   ", p.round, p.contacts,
+                 p.unplanned, p.seconds);
       std::fflush(stderr);
     };
   ResolveResult r = resolve(stand, backend, req, initial);
-  if (tty) fmt::print(stderr, "\r{:60}\r", "");
+  if (tty) fmt::print(stderr, "\r{:90}\r", "");
   return r;
 }
 
