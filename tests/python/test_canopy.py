@@ -28,6 +28,9 @@ def test_derive_equals_the_command_line():
     assert canopy.derive(algae, steps=7) == cli("derive", algae, "--steps", "7").stdout.strip()
     want = cli("derive", TOMATO, "--steps", "9", "--seed", "5", "--set", "phyllotaxis=100").stdout.strip()
     assert canopy.derive(TOMATO, steps=9, seed=5, set={"phyllotaxis": 100}) == want
+    assert canopy.derive(TOMATO, steps=9, seed=5, phyllotaxis=100) == want
+    with pytest.raises(ValueError, match="nosuchconstant"):
+        canopy.derive(TOMATO, steps=3, nosuchconstant=1)
     stats = canopy.derive(TOMATO, steps=9, stats=True)
     assert stats == json.loads(cli("derive", TOMATO, "--steps", "9", "--stats").stdout)
 

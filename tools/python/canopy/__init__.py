@@ -18,7 +18,8 @@ message ``FILE:LINE:COL: ...``) or FileNotFoundError (a grammar or positions fil
 opened). Long calls release the GIL; a progress callback that raises stops the run and its
 exception propagates.
 """
-from ._canopy import ModuleCapError, Stand, __version__, derive
+from ._canopy import ModuleCapError, Stand, __version__
+from ._canopy import derive as _derive
 from ._canopy import stand as _stand
 from ._canopy import sweep as _sweep
 
@@ -26,6 +27,17 @@ __all__ = ["Stand", "derive", "stand", "sweep", "sweep_rows", "ModuleCapError", 
 
 #: Organ kinds in the order of the ``kind`` codes of ``Stand.organs``.
 KINDS = ("internode", "petiole", "rachis", "leaflet", "peduncle", "fruit", "flower")
+
+
+def derive(grammar, *, steps=None, seed=None, stats=False, interpreted=False, max_modules=40_000_000, set=None,
+           **constants):
+    """The string a grammar derives (``canopy derive``), or with ``stats=True`` its module counts
+    as a dict. Constants are overridden as keyword arguments (``derive(g, phyllotaxis=100)``, like
+    ``--set phyllotaxis=100``) or as ``set={"phyllotaxis": 100}``."""
+    overrides = dict(set or {})
+    overrides.update(constants)
+    return _derive(grammar, steps=steps, seed=seed, set=overrides, stats=stats, interpreted=interpreted,
+                   max_modules=max_modules)
 
 
 def stand(grammar, out, progress=None, **options):
