@@ -1,4 +1,4 @@
-// canopy info: version and which detection backends this build and machine offer.
+// canopy info: version, the detection backends this build and machine offer, and the renderer.
 #include "tools/cli_common.hpp"
 
 #include <fmt/format.h>
@@ -27,6 +27,11 @@ Command add_info(CLI::App& root) {
             }
 #else
             fmt::print("backend cuda: not built\n");
+#endif
+#ifdef CANOPY_HAVE_EMBREE
+            fmt::print("render: Embree (canopy render)\n");
+#else
+            fmt::print("render: not built (Embree or libpng missing)\n");
 #endif
             return 0;
           }};
