@@ -5,6 +5,7 @@
 #include "collision/backend.hpp"
 #include "collision/broad_phase.hpp"
 #include "collision/exact.hpp"
+#include "collision/lcd_descent.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -45,35 +46,6 @@ void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, V
   c.organ_a = std::min(a, b), c.organ_b = std::max(a, b);
   c.plant_a = plant_a, c.plant_b = plant_b;
   out.organ.push_back(c);
-}
-
-/// Descends two clusters' LCD trees together down to organ pairs.
-void traverse(const Stand& s, const Mbvt& m, const Cluster& ca, const Cluster& cb, Vec3f offset, Collector& out) {
-  std::uint32_t stack[128][2];
-  int top = 0;
-  stack[top][0] = ca.root, stack[top][1] = cb.root, ++top;
-  while (top > 0) {
-    --top;
-    const LcdNode& na = m.nodes[stack[top][0]];
-    const LcdNode& nb = m.nodes[stack[top][1]];
-    if (!lcd_overlap(na.box, nb.box, offset)) continue;
-    const bool leaf_a = na.left < 0, leaf_b = nb.left < 0;
-    if (leaf_a && leaf_b) {
-      for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
-        for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
-          organ_pair(s, m, static_cast<std::int32_t>(m.cluster_organs[i]), static_cast<std::int32_t>(m.cluster_organs[j]), offset,
-                     out, ca.plant, cb.plant);
-      continue;
-    }
-    const std::uint32_t a = stack[top][0], b = stack[top][1];
-    if (!leaf_a && (leaf_b || na.count >= nb.count)) {
-      stack[top][0] = static_cast<std::uint32_t>(na.left), stack[top][1] = b, ++top;
-      stack[top][0] = static_cast<std::uint32_t>(na.right), stack[top][1] = b, ++top;
-    } else {
-      stack[top][0] = a, stack[top][1] = static_cast<std::uint32_t>(nb.left), ++top;
-      stack[top][0] = a, stack[top][1] = static_cast<std::uint32_t>(nb.right), ++top;
-    }
-  }
 }
 
 class CpuBackend : public DetectionBackend {
@@ -150,7 +122,9 @@ class CpuBackend : public DetectionBackend {
           }
           if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
           col.leaf_pair(p, q, i, j);
-          if (req.level != ContactLevel::leaf) traverse(s, m, ca, cb, offset, col);
+          if (req.level != ContactLevel::leaf)
+            descend_lcd_trees(m.nodes.data(), m.cluster_organs.data(), ca.root, cb.root, offset,
+                              [&](std::int32_t a, std::int32_t b) { organ_pair(s, m, a, b, offset, col, ca.plant, cb.plant); });
         }
       }
     }

@@ -1,6 +1,7 @@
 // The CUDA detection kernels. Same contact semantics as collision/detect_cpu.cpp: the same
 // LCD, OBB and triangle predicates (geometry/*.hpp, CANOPY_HD), compiled with --fmad=false.
 #include "collision/contacts.hpp"
+#include "collision/lcd_descent.hpp"
 #include "cuda/check.hpp"
 #include "cuda/detect_kernels.hpp"
 #include "geometry/lcd.hpp"
@@ -68,31 +69,8 @@ __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const Clus
                    out, capacity, c);
     return;
   }
-  std::uint32_t stack[64][2];
-  int top = 0;
-  stack[0][0] = ca.root, stack[0][1] = cb.root, top = 1;
-  while (top > 0) {
-    --top;
-    const std::uint32_t ia = stack[top][0], ib = stack[top][1];
-    const LcdNode na = v.nodes[ia], nb = v.nodes[ib];
-    if (!lcd_overlap(na.box, nb.box, it.offset)) continue;
-    const bool leaf_a = na.left < 0, leaf_b = nb.left < 0;
-    if (leaf_a && leaf_b) {
-      for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
-        for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
-          organ_pair(v, static_cast<std::int32_t>(v.cluster_organs[i]), static_cast<std::int32_t>(v.cluster_organs[j]), it, cp.work,
-                     out, capacity, c);
-      continue;
-    }
-    if (top + 2 > 64) continue;  // trees of this depth do not occur (2^32 organs per cluster)
-    if (!leaf_a && (leaf_b || na.count >= nb.count)) {
-      stack[top][0] = static_cast<std::uint32_t>(na.left), stack[top][1] = ib, ++top;
-      stack[top][0] = static_cast<std::uint32_t>(na.right), stack[top][1] = ib, ++top;
-    } else {
-      stack[top][0] = ia, stack[top][1] = static_cast<std::uint32_t>(nb.left), ++top;
-      stack[top][0] = ia, stack[top][1] = static_cast<std::uint32_t>(nb.right), ++top;
-    }
-  }
+  descend_lcd_trees(v.nodes, v.cluster_organs, ca.root, cb.root, it.offset,
+                    [&](std::int32_t a, std::int32_t b) { organ_pair(v, a, b, it, cp.work, out, capacity, c); });
 }
 
 /// Vertex k of organ o, in the frame of the lower organ's plant (moved by `offset`), exactly as
