@@ -22,7 +22,6 @@
 namespace canopy {
 
 struct ResolveConfig {
-  bool enabled = true;
   int max_rounds = 30;               // detection rounds before giving up
   int stall_rounds = 5;              // stop when the contact count has not improved for this many rounds
   double clearance = 1e-4;           // metres left between a turned organ and what it met

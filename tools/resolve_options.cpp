@@ -31,7 +31,6 @@ void ResolveOptions::add_to(CLI::App& app) {
 
 ResolveConfig ResolveOptions::config() const {
   ResolveConfig c;
-  c.enabled = !no_resolve;
   c.max_rounds = max_rounds;
   c.clearance = clearance;
   c.level = *parse_contact_level(level);
@@ -46,7 +45,7 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
   nlohmann::ordered_json order;
   for (std::size_t k = 0; k < 7; ++k)
     if (c.movable[k]) order[std::string(kOrganKindNames[k])] = c.kind_rank[k];
-  return {{"enabled", c.enabled},          {"level", level},
+  return {{"enabled", !no_resolve},        {"level", level},
           {"max_rounds", c.max_rounds},    {"clearance", c.clearance},
           {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
           {"candidates", c.candidates},    {"axis_fan", c.axis_fan},
