@@ -2,6 +2,7 @@
 /// Mesh and table exports of a stand (DESIGN.md "Exports"). Meshes are streamed organ by organ
 /// from prototypes and transforms, so a large stand never holds all its triangles in memory.
 #include "geometry/atomic_file.hpp"
+#include "geometry/chunked_output.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
 
@@ -26,6 +27,14 @@ void write_glb_instanced(const Stand& stand, PrototypeLibrary& lib, AtomicFile& 
 void write_organs_csv(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
 /// plants.csv: id,x,y,rotation,seed,grammar,steps.
 void write_plants_csv(const Stand& stand, AtomicFile& out);
+/// The same writers over an ExportScope (a tile's plants with global numbering) into
+/// ChunkWriters: the bytes of the whole stand's file that fall to those plants (DESIGN.md exports).
+void write_obj(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& obj, ChunkWriter& mtl, const std::string& mtl_name);
+void write_ply(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
+void write_glb(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
+void write_organs_csv(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
+void write_plants_csv(const ExportScope& scope, ChunkWriter& out);
+
 /// Reads a stand back from DIR/organs.csv and DIR/plants.csv (bit-exact transforms).
 Stand read_stand(const std::string& dir);
 

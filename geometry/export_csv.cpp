@@ -43,21 +43,23 @@ T parse(std::string_view cell, const std::string& file, int line, int column) {
 
 }  // namespace
 
-void write_organs_csv(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
-  out.write(std::string_view(kOrganHeader));
+void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
+  const Stand& s = e.stand;
+  out.fixed(kOrganHeader);
   for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // meshes made before threads share them
-  write_ordered(out, s.organ_count(), 4096, [&](std::size_t first, std::size_t last, std::string& t) {
-    for (std::size_t id = first; id < last; ++id) {
+  out.plants(e.plants.size(), 16, [&](std::size_t i, std::string& t) {
+    const PlantRecord& pr = s.plants[e.plants[i]];
+    for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
       const OrganRecord& r = s.organs[id];
-      append_number(t, id);
+      append_number(t, e.organ(static_cast<std::int64_t>(id)));
       t += ',';
-      append_number(t, r.plant);
+      append_number(t, e.plant(static_cast<std::size_t>(r.plant)));
       t += ',';
-      append_number(t, r.parent);
+      append_number(t, e.organ(r.parent));
       t += ',';
       t += name_of(r.kind);
       t += ',';
-      append_number(t, r.leaf);
+      append_number(t, e.leaf_of(id));
       t += ',';
       append_number(t, organ_area(s, id, lib));
       t += ',';
@@ -86,19 +88,30 @@ void write_organs_csv(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
   });
 }
 
-void write_plants_csv(const Stand& s, AtomicFile& out) {
-  std::string t = kPlantHeader;
-  for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    const PlantRecord& pr = s.plants[p];
-    t += fmt::format("{},", p);
+void write_plants_csv(const ExportScope& e, ChunkWriter& out) {
+  const Stand& s = e.stand;
+  out.fixed(kPlantHeader);
+  out.plants(e.plants.size(), 256, [&](std::size_t i, std::string& t) {
+    const PlantRecord& pr = s.plants[e.plants[i]];
+    append_number(t, e.plant(e.plants[i]));
+    t += ',';
     append_number(t, pr.x);
     t += ',';
     append_number(t, pr.y);
     t += ',';
     append_number(t, pr.rotation_deg);
     t += fmt::format(",{},{},{}\n", pr.seed, s.grammars[static_cast<std::size_t>(pr.grammar)], pr.steps);
-  }
-  out.write(t);
+  });
+}
+
+void write_organs_csv(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
+  ChunkFile f(out);
+  write_organs_csv(ExportScope::whole(s), lib, f);
+}
+
+void write_plants_csv(const Stand& s, AtomicFile& out) {
+  ChunkFile f(out);
+  write_plants_csv(ExportScope::whole(s), f);
 }
 
 Stand read_stand(const std::string& dir) {

@@ -77,7 +77,7 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
 
 /// The plant's binary block: positions, normals, UVs, organ ids, indices (each primitive in turn).
 void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLibrary& lib, bool float_ids,
-                std::string& out) {
+                std::int64_t organ_shift, std::string& out) {
   out.resize(L.bytes());
   char* pos = out.data();
   char* nrm = pos + L.pos_bytes;
@@ -90,6 +90,7 @@ void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLi
     std::uint32_t base = 0;
     for (std::uint32_t id : q.organs) {
       organ_mesh(s, id, lib, mesh);
+      const auto gid = static_cast<std::uint32_t>(id + organ_shift);
       const PrototypeMesh& pm = *mesh.prototype;
       for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
         const Vec3f w = glb_position(off, mesh.positions[i]);
@@ -98,10 +99,10 @@ void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLi
         std::memcpy(nrm, &n, 12), nrm += 12;
         if (q.uv) std::memcpy(uvp, pm.uvs[i].data(), 8), uvp += 8;
         if (float_ids) {
-          const float f = static_cast<float>(id);
+          const float f = static_cast<float>(gid);
           std::memcpy(ids, &f, 4), ids += 4;
         } else {
-          const std::uint16_t h[2] = {static_cast<std::uint16_t>(id & 0xffff), static_cast<std::uint16_t>(id >> 16)};
+          const std::uint16_t h[2] = {static_cast<std::uint16_t>(gid & 0xffff), static_cast<std::uint16_t>(gid >> 16)};
           std::memcpy(ids, h, 4), ids += 4;
         }
       }
@@ -114,106 +115,160 @@ void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLi
   }
 }
 
+/// A plant's entries in the JSON arrays, numbered after the plants before it (global order).
+struct PlantJson {
+  std::string child, node, mesh, accessors, views;
+};
+
+PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const std::uint64_t* before, bool float_ids,
+                     const std::array<int, 7>& material_of) {
+  PlantJson j;
+  std::size_t nview = before[0], nacc = before[1], offset = before[3];
+  const std::size_t nmesh = before[2];
+  j.child = fmt::format("{}{}", plant > 0 ? "," : "", plant + 1);
+  if (L.prims.empty()) {  // a plant without organs: a node without a mesh
+    j.node = fmt::format(",{{\"name\":\"plant_{}\"}}", plant);
+    return j;
+  }
+  j.node = fmt::format(",{{\"name\":\"plant_{}\",\"mesh\":{}}}", plant, nmesh);
+  const auto view = [&](std::size_t bytes, int stride, int target) {
+    if (nview > 0) j.views += ',';
+    j.views += fmt::format("{{\"buffer\":0,\"byteOffset\":{},\"byteLength\":{},\"target\":{}", offset, bytes, target);
+    if (stride) j.views += fmt::format(",\"byteStride\":{}", stride);
+    j.views += '}';
+    offset += bytes;
+    return nview++;
+  };
+  const std::size_t vpos = view(L.pos_bytes, 12, 34962), vnrm = view(L.pos_bytes, 12, 34962);
+  const std::size_t vuv = L.uv_bytes ? view(L.uv_bytes, 8, 34962) : 0;
+  const std::size_t vid = view(L.id_bytes, 4, 34962), vidx = view(L.index_bytes, 0, 34963);
+  std::size_t o_pos = 0, o_uv = 0, o_id = 0, o_idx = 0;
+  std::string prims;
+  for (const Primitive& q : L.prims) {
+    const auto accessor = [&](std::size_t v, std::size_t off, int comp, std::size_t count, const char* type,
+                              const std::string& extra = {}) {
+      if (nacc > 0) j.accessors += ',';
+      j.accessors += fmt::format("{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}", v,
+                                 off, comp, count, type, extra);
+      return nacc++;
+    };
+    std::string bounds = ",\"min\":[";
+    append_number(bounds, q.lo.x), bounds += ',', append_number(bounds, q.lo.y), bounds += ',', append_number(bounds, q.lo.z);
+    bounds += "],\"max\":[";
+    append_number(bounds, q.hi.x), bounds += ',', append_number(bounds, q.hi.y), bounds += ',', append_number(bounds, q.hi.z);
+    bounds += ']';
+    const std::size_t apos = accessor(vpos, o_pos, 5126, q.vertices, "VEC3", bounds);
+    const std::size_t anrm = accessor(vnrm, o_pos, 5126, q.vertices, "VEC3");
+    std::string attrs = fmt::format("\"POSITION\":{},\"NORMAL\":{}", apos, anrm);
+    if (q.uv) attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(vuv, o_uv, 5126, q.vertices, "VEC2"));
+    attrs += fmt::format(",\"_ORGAN\":{}", float_ids ? accessor(vid, o_id, 5126, q.vertices, "SCALAR")
+                                                       : accessor(vid, o_id, 5123, q.vertices, "VEC2"));
+    const std::size_t aidx = accessor(vidx, o_idx, 5125, q.indices, "SCALAR");
+    if (!prims.empty()) prims += ',';
+    prims += fmt::format("{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}", attrs, aidx,
+                         material_of[static_cast<std::size_t>(q.kind)]);
+    o_pos += 12 * q.vertices;
+    if (q.uv) o_uv += 8 * q.vertices;
+    o_id += 4 * q.vertices;
+    o_idx += 4 * q.indices;
+  }
+  j.mesh = fmt::format("{}{{\"name\":\"plant_{}\",\"primitives\":[{}]}}", nmesh > 0 ? "," : "", plant, prims);
+  return j;
+}
+
 }  // namespace
 
-void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
-  const bool float_ids = s.organ_count() <= kFloatIdLimit;
-  const std::size_t n = s.plant_count();
+void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
+  constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
+  const Stand& s = e.stand;
+  const bool float_ids = e.organs_total <= kFloatIdLimit;
+  const std::size_t n = e.plants.size();
   std::vector<PlantLayout> plan(n);
   for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // make meshes before threads share them
 #pragma omp parallel for schedule(dynamic, 8)
-  for (std::size_t p = 0; p < n; ++p) plan[p] = plan_plant(s, p, lib, 4);
+  for (std::size_t i = 0; i < n; ++i) plan[i] = plan_plant(s, e.plants[i], lib, 4);
 
-  // The JSON chunk, written directly (a document tree for a large stand costs more than the mesh).
+  // Per plant: bufferViews, accessors, meshes, BIN bytes and the kinds it has, summed over the
+  // plants before it (every process's), so each plant's JSON entries get their global numbers.
+  constexpr int K = 4 + 7;
+  std::vector<std::uint64_t> before(K * n, 0), totals;
+  for (std::size_t i = 0; i < n; ++i) {
+    const PlantLayout& L = plan[i];
+    std::uint64_t* b = &before[K * i];
+    if (!L.prims.empty()) b[0] = 4 + (L.uv_bytes ? 1 : 0), b[2] = 1, b[3] = L.bytes();
+    for (const Primitive& q : L.prims) {
+      b[1] += 4 + (q.uv ? 1 : 0);
+      b[4 + static_cast<std::size_t>(q.kind)] = 1;
+    }
+  }
+  e.exclusive(before, K, totals);
   std::array<int, 7> material_of{};
-  material_of.fill(-1);
-  for (const auto& L : plan)
-    for (const auto& q : L.prims) material_of[static_cast<std::size_t>(q.kind)] = 0;
   std::string materials;
   int nmat = 0;
   for (std::size_t k = 0; k < material_of.size(); ++k) {
+    material_of[k] = totals[4 + k] ? nmat++ : -1;
     if (material_of[k] < 0) continue;
-    material_of[k] = nmat++;
     if (nmat > 1) materials += ',';
     materials += material_json(static_cast<OrganKind>(k));
   }
-  std::string nodes, meshes, accessors, views;
-  std::string children;
-  std::size_t offset = 0, nview = 0, nacc = 0, nmesh = 0;
-  const auto sep = [](std::string& s) {
-    if (!s.empty()) s += ',';
+  std::vector<PlantJson> json(n);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::size_t i = 0; i < n; ++i)
+    json[i] = plant_json(e.plant(e.plants[i]), plan[i], &before[K * i], float_ids, material_of);
+  const auto section = [&](std::string PlantJson::*field) {
+    out.plants(n, 256, [&](std::size_t i, std::string& t) { t += json[i].*field; });
   };
-  for (std::size_t p = 0; p < n; ++p) {
-    const PlantLayout& L = plan[p];
-    sep(children);
-    children += std::to_string(p + 1);
-    sep(nodes);
-    if (L.prims.empty()) {  // a plant without organs: a node without a mesh
-      nodes += fmt::format("{{\"name\":\"plant_{}\"}}", p);
-      continue;
-    }
-    nodes += fmt::format("{{\"name\":\"plant_{}\",\"mesh\":{}}}", p, nmesh);
-    const auto view = [&](std::size_t bytes, int stride, int target) {
-      sep(views);
-      views += fmt::format("{{\"buffer\":0,\"byteOffset\":{},\"byteLength\":{},\"target\":{}", offset, bytes, target);
-      if (stride) views += fmt::format(",\"byteStride\":{}", stride);
-      views += '}';
-      offset += bytes;
-      return nview++;
-    };
-    const std::size_t vpos = view(L.pos_bytes, 12, 34962), vnrm = view(L.pos_bytes, 12, 34962);
-    const std::size_t vuv = L.uv_bytes ? view(L.uv_bytes, 8, 34962) : 0;
-    const std::size_t vid = view(L.id_bytes, 4, 34962), vidx = view(L.index_bytes, 0, 34963);
-    std::size_t o_pos = 0, o_uv = 0, o_id = 0, o_idx = 0;
-    std::string prims;
-    for (const Primitive& q : L.prims) {
-      const auto accessor = [&](std::size_t v, std::size_t off, int comp, std::size_t count, const char* type,
-                                const std::string& extra = {}) {
-        sep(accessors);
-        accessors += fmt::format("{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}",
-                                 v, off, comp, count, type, extra);
-        return nacc++;
-      };
-      std::string bounds = ",\"min\":[";
-      append_number(bounds, q.lo.x), bounds += ',', append_number(bounds, q.lo.y), bounds += ',', append_number(bounds, q.lo.z);
-      bounds += "],\"max\":[";
-      append_number(bounds, q.hi.x), bounds += ',', append_number(bounds, q.hi.y), bounds += ',', append_number(bounds, q.hi.z);
-      bounds += ']';
-      const std::size_t apos = accessor(vpos, o_pos, 5126, q.vertices, "VEC3", bounds);
-      const std::size_t anrm = accessor(vnrm, o_pos, 5126, q.vertices, "VEC3");
-      std::string attrs = fmt::format("\"POSITION\":{},\"NORMAL\":{}", apos, anrm);
-      if (q.uv) attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(vuv, o_uv, 5126, q.vertices, "VEC2"));
-      attrs += fmt::format(",\"_ORGAN\":{}", float_ids ? accessor(vid, o_id, 5126, q.vertices, "SCALAR")
-                                                         : accessor(vid, o_id, 5123, q.vertices, "VEC2"));
-      const std::size_t aidx = accessor(vidx, o_idx, 5125, q.indices, "SCALAR");
-      sep(prims);
-      prims += fmt::format("{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}", attrs, aidx,
-                           material_of[static_cast<std::size_t>(q.kind)]);
-      o_pos += 12 * q.vertices;
-      if (q.uv) o_uv += 8 * q.vertices;
-      o_id += 4 * q.vertices;
-      o_idx += 4 * q.indices;
-    }
-    sep(meshes);
-    meshes += fmt::format("{{\"name\":\"plant_{}\",\"primitives\":[{}]}}", p, prims);
-    ++nmesh;
-  }
+
+  // The JSON chunk, written directly (a document tree for a large stand costs more than the mesh);
+  // the GLB header and the JSON chunk's length are patched in once its length is known.
+  const std::uint64_t start = out.offset();
+  out.fixed(std::string(20, '\0'));
   std::string origin;
   append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z), origin += ',';
   append_number(origin, -s.stand_origin.y);
-  std::string text = fmt::format(
-      "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
-      "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[{}]}}{}{}]",
-      origin, children, nodes.empty() ? "" : ",", nodes);
-  if (nmesh > 0)
-    text += fmt::format(",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]",
-                        meshes, accessors, views, materials, offset);
-  if (!float_ids) text += ",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}";
-  text += '}';
-  begin_glb(out, text, offset);  // every block is a multiple of 4 bytes
-  if (offset) {
-    write_ordered(out, n, 1, [&](std::size_t p, std::size_t, std::string& buf) { fill_plant(s, p, plan[p], lib, float_ids, buf); });
+  out.fixed(fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
+                        "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
+                        origin));
+  section(&PlantJson::child);
+  out.fixed("]}");
+  section(&PlantJson::node);
+  out.fixed("]");
+  const std::uint64_t bin_bytes = totals[3];
+  if (totals[2] > 0) {
+    out.fixed(",\"meshes\":[");
+    section(&PlantJson::mesh);
+    out.fixed("],\"accessors\":[");
+    section(&PlantJson::accessors);
+    out.fixed("],\"bufferViews\":[");
+    section(&PlantJson::views);
+    out.fixed(fmt::format("],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]", materials, bin_bytes));
   }
+  if (!float_ids) out.fixed(",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}");
+  out.fixed("}");
+  std::uint64_t json_bytes = out.offset() - start - 20;
+  if (json_bytes % 4) {
+    out.fixed(std::string(4 - json_bytes % 4, ' '));
+    json_bytes = out.offset() - start - 20;
+  }
+  const std::uint64_t total = 12 + 8 + json_bytes + (bin_bytes ? 8 + bin_bytes : 0);
+  if (total > 0xffffffffULL)
+    throw std::runtime_error("stand.glb would exceed 4 GiB, the GLB limit; export fewer plants, use --glb-instancing, or obj/ply");
+  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(json_bytes), kJsonChunk};
+  out.patch(start, std::string_view(reinterpret_cast<const char*>(header), sizeof header));
+  if (bin_bytes) {  // every block is a multiple of 4 bytes
+    const std::uint32_t chunk[2] = {static_cast<std::uint32_t>(bin_bytes), kBinChunk};
+    out.fixed(std::string_view(reinterpret_cast<const char*>(chunk), sizeof chunk));
+    out.plants(n, 1, [&](std::size_t i, std::string& buf) {
+      std::string one;
+      fill_plant(s, e.plants[i], plan[i], lib, float_ids, e.organ_shift[e.plants[i]], one);
+      buf += one;
+    });
+  }
+}
+
+void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
+  ChunkFile f(out);
+  write_glb(ExportScope::whole(s), lib, f);
 }
 
 }  // namespace canopy
