@@ -3,6 +3,7 @@
 /// levels; plant pairs and cluster (compound-leaf) pairs, with organ ids -1, at the plant and
 /// leaf levels. Lists are sorted, so they are the same on every run, thread count and backend.
 #include "collision/contact_level.hpp"
+#include "geometry/chunked_output.hpp"
 #include "geometry/hd.hpp"
 #include "geometry/stand.hpp"
 
@@ -64,5 +65,8 @@ CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const Orga
 
 /// contacts.csv text: header `organ_a,organ_b,plant_a,plant_b,level`, rows sorted.
 std::string contacts_csv(const Contacts& c);
+/// contacts.csv over an ExportScope: the rows of the scope's plants (a row belongs to its first
+/// plant), ids mapped to the whole stand's (the same bytes as contacts_csv for a whole stand).
+void write_contacts_csv(const ExportScope& scope, const std::vector<Contact>& pairs, ContactLevel level, ChunkWriter& out);
 
 }  // namespace canopy

@@ -133,9 +133,5 @@ std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint3
   return written;
 }
 
-std::size_t Joints::bytes() const {
-  return grown_.size() * sizeof(Affine3f) + parent_.size() * 4 + subtree_end_.size() * 4 + slot_.size() * 4 +
-         local_.size() * sizeof(Mat3d) + turned_ids_.size() * 4;
-}
 
 }  // namespace canopy

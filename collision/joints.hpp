@@ -66,7 +66,11 @@ class Joints {
   std::vector<std::uint32_t> update(Stand& stand, const std::vector<std::uint32_t>& turned) const;
   /// Turned joints: organ ids, and how many.
   const std::vector<std::uint32_t>& turned() const { return turned_ids_; }
-  std::size_t bytes() const;
+  std::size_t bytes() const { return bytes_for(grown_.size(), turned_ids_.size()); }
+  /// The memory of the joints of `organs` organs of which `turned` have turned.
+  static std::size_t bytes_for(std::size_t organs, std::size_t turned) {
+    return organs * (sizeof(Affine3f) + 12) + turned * (sizeof(Mat3d) + 4);
+  }
 
  private:
   std::vector<Affine3f> grown_;

@@ -196,13 +196,21 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
                           static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance};
 
   std::vector<Contact> contacts = initial.pairs;
-  out.contacts_before = contacts.size();
+  const ResolvePartition* part = req.partition;
+  const auto mine = [&](std::int32_t plant) { return !part || part->owned[static_cast<std::size_t>(plant)] != 0; };
+  // Sums over every process (this one alone without a partition).
+  const auto total = [&](std::vector<std::int64_t> v) { return part ? part->sum(std::move(v)) : v; };
+  const auto owned_contacts = [&] {
+    return static_cast<std::int64_t>(std::count_if(contacts.begin(), contacts.end(), [&](const Contact& c) { return mine(c.plant_a); }));
+  };
+  std::size_t left = static_cast<std::size_t>(total({owned_contacts()})[0]);
+  out.contacts_before = left;
   std::vector<std::uint8_t> carried(s.organ_count(), 0);
   std::map<std::size_t, std::string> why;
-  std::size_t best = contacts.size();
+  std::size_t best = left;
   int best_round = 0;
   for (int round = 1;; ++round) {
-    if (contacts.empty()) {
+    if (left == 0) {
       out.converged = true;
       out.stop = "no contact left";
       break;
@@ -211,33 +219,41 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       out.stop = fmt::format("round cap ({}) reached", cfg.max_rounds);
       break;
     }
-    if (contacts.size() < best) best = contacts.size(), best_round = round - 1;
+    if (left < best) best = left, best_round = round - 1;
     if (round - 1 - best_round >= cfg.stall_rounds) {
       out.stop = fmt::format("no progress in {} rounds (turns only trade contacts that cannot all be cleared)", cfg.stall_rounds);
       break;
     }
-    if (req.progress) req.progress({round, contacts.size(), now() - t0, contacts.size()});
+    if (req.progress) req.progress({round, left, now() - t0, left});
     ResolveRound rr;
     rr.round = round;
-    rr.contacts = contacts.size();
+    rr.contacts = left;
     double t = now();
     touching.build(s.organ_count(), contacts);
     std::function<void(std::size_t)> planning;
     if (req.progress)
-      planning = [&](std::size_t pending) { req.progress({round, contacts.size(), now() - t0, pending}); };
+      planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
     Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning);
     why = std::move(plan.why);
+    if (part)  // each process turns its own organs; the halo's turns come from their owners
+      std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });
     rr.plan_s = now() - t;
-    if (plan.turns.empty()) {
+    const auto planned = static_cast<std::size_t>(total({static_cast<std::int64_t>(plan.turns.size())})[0]);
+    if (planned == 0) {
       out.stop = "no turn within the joint limits separates the contacts left";
       out.per_round.push_back(rr);
       break;
+    }
+    if (part) {
+      const std::vector<Turn> halo = part->exchange(plan.turns);
+      plan.turns.insert(plan.turns.end(), halo.begin(), halo.end());
     }
     std::vector<std::uint32_t> turned;
     for (const Turn& turn : plan.turns) {
       joints.set_local(turn.organ, turn.local);
       turned.push_back(turn.organ);
     }
+    std::sort(turned.begin(), turned.end());
     const std::vector<std::uint32_t> moved = joints.update(s, turned);
     std::vector<std::uint8_t> active(s.plant_count(), 0);
     for (std::uint32_t k : moved) {
@@ -259,28 +275,43 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     });
     contacts.insert(contacts.end(), again.pairs.begin(), again.pairs.end());
     std::sort(contacts.begin(), contacts.end());
-    rr.turned = turned.size();
-    rr.plants_redetected = static_cast<std::size_t>(std::count(active.begin(), active.end(), 1));
+    std::int64_t redetected = 0;
+    for (std::size_t p = 0; p < active.size(); ++p) redetected += active[p] && mine(static_cast<std::int32_t>(p));
+    const std::vector<std::int64_t> sums = total({owned_contacts(), redetected});
+    left = static_cast<std::size_t>(sums[0]);
+    rr.turned = planned;
+    rr.plants_redetected = static_cast<std::size_t>(sums[1]);
     out.per_round.push_back(rr);
     out.rounds = round;
     why.clear();  // reasons belong to the list they were found on
   }
-  out.contacts_after = contacts.size();
+  out.contacts_after = left;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (!mine(contacts[i].plant_a)) continue;
     const auto w = why.find(i);
     out.unresolved.push_back(
         {contacts[i], w != why.end() ? w->second : "still in contact when resolution stopped: " + out.stop});
   }
+  // The mean turn as an exact sum of angles in units of 2^-32 degrees, so that it does not depend
+  // on how the joints are split between processes.
+  std::int64_t moved_joints = 0, angle_units = 0, owned_organs = 0, carried_organs = 0, owned_turned = 0;
   for (std::uint32_t k : joints.turned()) {
+    if (!mine(s.organs[k].plant)) continue;
+    ++owned_turned;
     const double a = joints.angle_deg(k);
     if (a <= 0) continue;
-    ++out.organs_moved;
-    out.mean_turn_deg += a;
+    ++moved_joints;
+    angle_units += std::llround(std::ldexp(a, 32));
     out.max_turn_deg = std::max(out.max_turn_deg, a);
   }
-  if (out.organs_moved) out.mean_turn_deg /= static_cast<double>(out.organs_moved);
-  out.organs_carried = static_cast<std::size_t>(std::count(carried.begin(), carried.end(), 1));
-  out.joint_bytes = joints.bytes();
+  for (std::size_t k = 0; k < s.organ_count(); ++k)
+    if (mine(s.organs[k].plant)) ++owned_organs, carried_organs += carried[k];
+  const std::vector<std::int64_t> sums = total({moved_joints, angle_units, owned_organs, carried_organs, owned_turned});
+  if (part) out.max_turn_deg = part->max(out.max_turn_deg);
+  out.organs_moved = static_cast<std::size_t>(sums[0]);
+  if (out.organs_moved) out.mean_turn_deg = std::ldexp(static_cast<double>(sums[1]), -32) / static_cast<double>(out.organs_moved);
+  out.organs_carried = static_cast<std::size_t>(sums[3]);
+  out.joint_bytes = Joints::bytes_for(static_cast<std::size_t>(sums[2]), static_cast<std::size_t>(sums[4]));
   out.seconds = now() - t0;
   return out;
 }

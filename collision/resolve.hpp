@@ -8,6 +8,7 @@
 #include "collision/backend.hpp"
 #include "collision/joints.hpp"
 #include "collision/resolve_policy.hpp"
+#include "collision/turn_search.hpp"
 
 #include <functional>
 #include <string>
@@ -22,9 +23,26 @@ struct ResolveProgress {
   std::size_t unplanned = 0; // contacts of the round still without a turn (planning goes on)
 };
 
+/// Resolution over tiles (distributed/): this process holds the plants it owns plus a halo deep
+/// enough that every turn of an owned organ is planned exactly as in one process; the loop's
+/// decisions use the sums over every process, and each round the turns are traded so that halo
+/// plants move as their owners moved them.
+struct ResolvePartition {
+  std::vector<std::uint8_t> owned;  // per local plant
+  /// Element-wise sums over every process.
+  std::function<std::vector<std::int64_t>(std::vector<std::int64_t>)> sum;
+  std::function<double(double)> max;
+  /// Takes this process's turns of its own organs, returns the turns other processes made on
+  /// this process's halo organs (local organ ids both ways).
+  std::function<std::vector<Turn>(const std::vector<Turn>&)> exchange;
+};
+
 struct ResolveRequest {
   DetectRequest detect;  // its level is replaced by config.level
   ResolveConfig config;
+  /// Null: this process holds the whole stand. Otherwise every number in the result is the
+  /// whole stand's, except `unresolved`, which lists the contacts this process owns.
+  const ResolvePartition* partition = nullptr;
   /// Called at the start of each round and as its planning goes on (by cost level), when set.
   std::function<void(const ResolveProgress&)> progress;
 };

@@ -115,8 +115,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   OutputSet files(o.out);
   const auto t_export = std::chrono::steady_clock::now();
   write_stand_files(stand, lib, formats, o.glb_instancing, files);
-  files.open("contacts.csv").write(contacts_csv(contacts));
-  files.open("contacts_after.csv").write(contacts_csv(after));
+  const ExportScope scope = ExportScope::whole(stand);
+  ChunkFile before_csv(files.open("contacts.csv")), after_csv(files.open("contacts_after.csv"));
+  write_contacts_csv(scope, contacts.pairs, contacts.level, before_csv);
+  write_contacts_csv(scope, after.pairs, after.level, after_csv);
   rep.timings["export"] = seconds_since(t_export);
 
   nlohmann::ordered_json config;
