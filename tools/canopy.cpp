@@ -5,9 +5,18 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <optional>
+#ifdef CANOPY_WITH_MPI
+#include "distributed/mpi_comm.hpp"
+#endif
 #include <new>
 
 int main(int argc, char** argv) {
+#ifdef CANOPY_WITH_MPI
+  // Under mpirun every rank runs the same command; MPI is started only there.
+  std::optional<canopy::mpi::Session> mpi;
+  if (canopy::mpi::launched()) mpi.emplace();
+#endif
   CLI::App app{"canopy: penetration-free plant stands from parametric L-system grammars", "canopy"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(CANOPY_VERSION));

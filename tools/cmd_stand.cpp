@@ -2,6 +2,10 @@
 #include "geometry/prototype.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/stand_run.hpp"
+#ifdef CANOPY_WITH_MPI
+#include "distributed/mpi_comm.hpp"
+#include "tools/stand_tiled.hpp"
+#endif
 
 namespace canopy::cli {
 
@@ -31,6 +35,12 @@ Command add_stand(CLI::App& root) {
   layout->add_option("--seed", o->rows.seed, "Stand seed: plant seeds, jitter and rotations derive from it (default 1)");
   layout->add_option("--positions", o->positions, "CSV with columns x,y,rotation,seed and optional grammar,steps");
   return {app, [o]() {
+#ifdef CANOPY_WITH_MPI
+            if (mpi::launched()) {
+              run_stand_tiled(*o);
+              return 0;
+            }
+#endif
             run_stand(*o);
             return 0;
           }};

@@ -86,7 +86,7 @@ class AutoBackend : public DetectionBackend {
 }  // namespace
 #endif
 
-std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note) {
+std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note, int device_hint) {
   if (name == "cpu") {
     note = "cpu (asked for)";
     return make_cpu_backend();
@@ -94,9 +94,11 @@ std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::str
 #ifdef CANOPY_HAVE_CUDA
   const auto report = cuda::query_devices();
   if (!report.devices.empty()) {
-    note = fmt::format("cuda on {} ({})", report.devices[0].name, name == "cuda" ? "asked for" : "auto: a GPU is present");
-    if (name == "auto") return std::make_unique<AutoBackend>(cuda::make_cuda_backend(0));
-    return cuda::make_cuda_backend(0);
+    const int device = device_hint % static_cast<int>(report.devices.size());
+    note = fmt::format("cuda on {} ({})", report.devices[static_cast<std::size_t>(device)].name,
+                       name == "cuda" ? "asked for" : "auto: a GPU is present");
+    if (name == "auto") return std::make_unique<AutoBackend>(cuda::make_cuda_backend(device));
+    return cuda::make_cuda_backend(device);
   }
   const std::string why = report.unavailable_reason;
 #else

@@ -23,8 +23,9 @@ struct DetectOptions {
 };
 
 /// The backend `name` asks for: cpu, cuda, or auto (CUDA where a GPU is present, else the CPU);
-/// `note` says what auto picked and why.
-std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note);
+/// `note` says what auto picked and why. With several GPUs, `device_hint` modulo their count picks
+/// one (a rank's local rank: one GPU per rank).
+std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note, int device_hint = 0);
 
 /// Per-level counts as JSON: {"plant": {"between": n, "within": m, "total": t}, ...}, null for
 /// levels not computed.

@@ -16,21 +16,28 @@ void write_report(const Stand& s, PrototypeLibrary& lib, const StandReport& r, A
   out.write(report_json(s, lib, r).dump(2) + "\n");
 }
 
+StandCounts stand_counts(const Stand& s, PrototypeLibrary& lib) {
+  StandCounts c{s.stand_origin, std::vector<std::size_t>(s.plant_count()), triangles_per_plant(s, lib)};
+  for (std::size_t p = 0; p < s.plant_count(); ++p) c.organs[p] = s.plants[p].organ_count;
+  return c;
+}
+
 nlohmann::ordered_json report_json(const Stand& s, PrototypeLibrary& lib, const StandReport& r) {
+  return report_json(stand_counts(s, lib), r);
+}
+
+nlohmann::ordered_json report_json(const StandCounts& c, const StandReport& r) {
   nlohmann::ordered_json j;
   j["canopy_version"] = CANOPY_VERSION;
   j["config"] = r.config;
   j["grammar"] = r.grammar;
   j["seed"] = r.seed;
-  j["stand_origin"] = {s.stand_origin.x, s.stand_origin.y, s.stand_origin.z};
-  const auto tris = triangles_per_plant(s, lib);
-  std::vector<std::size_t> organs(s.plant_count());
-  for (std::size_t p = 0; p < s.plant_count(); ++p) organs[p] = s.plants[p].organ_count;
-  j["counts"] = {{"plants", s.plant_count()},
-                 {"organs", s.organ_count()},
-                 {"triangles", std::accumulate(tris.begin(), tris.end(), std::size_t{0})},
-                 {"organs_per_plant", organs},
-                 {"triangles_per_plant", tris}};
+  j["stand_origin"] = {c.stand_origin.x, c.stand_origin.y, c.stand_origin.z};
+  j["counts"] = {{"plants", c.organs.size()},
+                 {"organs", std::accumulate(c.organs.begin(), c.organs.end(), std::size_t{0})},
+                 {"triangles", std::accumulate(c.triangles.begin(), c.triangles.end(), std::size_t{0})},
+                 {"organs_per_plant", c.organs},
+                 {"triangles_per_plant", c.triangles}};
   nlohmann::ordered_json t;
   for (const auto& [k, v] : r.timings) t[k] = v;
   j["timings_s"] = t;
@@ -43,11 +50,15 @@ nlohmann::ordered_json report_json(const Stand& s, PrototypeLibrary& lib, const 
 }
 
 void print_summary(const Stand& s, PrototypeLibrary& lib, const StandReport& r, const std::string& dir) {
-  const auto tris = triangles_per_plant(s, lib);
-  const std::size_t total = std::accumulate(tris.begin(), tris.end(), std::size_t{0});
-  const double n = std::max<double>(1, static_cast<double>(s.plant_count()));
-  fmt::print("stand: {} plants, {} organs ({:.0f} per plant), {} triangles ({:.0f} per plant)\n", s.plant_count(),
-             s.organ_count(), static_cast<double>(s.organ_count()) / n, total, static_cast<double>(total) / n);
+  print_summary(stand_counts(s, lib), r, dir);
+}
+
+void print_summary(const StandCounts& c, const StandReport& r, const std::string& dir) {
+  const std::size_t organs = std::accumulate(c.organs.begin(), c.organs.end(), std::size_t{0});
+  const std::size_t total = std::accumulate(c.triangles.begin(), c.triangles.end(), std::size_t{0});
+  const double n = std::max<double>(1, static_cast<double>(c.organs.size()));
+  fmt::print("stand: {} plants, {} organs ({:.0f} per plant), {} triangles ({:.0f} per plant)\n", c.organs.size(), organs,
+             static_cast<double>(organs) / n, total, static_cast<double>(total) / n);
   for (const auto& [k, v] : r.timings) fmt::print("  {:<10} {:.3f} s\n", k, v);
   fmt::print("wrote {}\n", dir);
 }

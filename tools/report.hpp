@@ -24,9 +24,18 @@ struct StandReport {
 /// Triangles of each plant at its organs' levels of detail.
 std::vector<std::size_t> triangles_per_plant(const Stand& stand, PrototypeLibrary& lib);
 
+/// What report.json's "counts" and "stand_origin" say of a stand (held whole or in tiles).
+struct StandCounts {
+  Vec3d stand_origin;
+  std::vector<std::size_t> organs, triangles;  // per plant
+};
+StandCounts stand_counts(const Stand& stand, PrototypeLibrary& lib);
+
 /// report.json's content.
+nlohmann::ordered_json report_json(const StandCounts& counts, const StandReport& r);
 nlohmann::ordered_json report_json(const Stand& stand, PrototypeLibrary& lib, const StandReport& r);
 void write_report(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, AtomicFile& out);
 void print_summary(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, const std::string& dir);
+void print_summary(const StandCounts& counts, const StandReport& r, const std::string& dir);
 
 }  // namespace canopy::cli

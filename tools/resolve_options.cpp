@@ -53,8 +53,10 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
 }
 
 ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
-                             const Contacts& initial, std::function<void(const ResolveProgress&)> progress) {
+                             const Contacts& initial, std::function<void(const ResolveProgress&)> progress,
+                             const ResolvePartition* partition) {
   ResolveRequest req;
+  req.partition = partition;
   req.detect = detect;
   req.config = o.config();
   const bool tty = !progress && o.progress && isatty(fileno(stderr));

@@ -28,7 +28,8 @@ struct ResolveOptions {
 /// Runs resolution with a progress line on stderr when it is a terminal (quiet otherwise).
 /// `progress`, when set, replaces the terminal line.
 ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
-                             const Contacts& initial, std::function<void(const ResolveProgress&)> progress = {});
+                             const Contacts& initial, std::function<void(const ResolveProgress&)> progress = {},
+                             const ResolvePartition* partition = nullptr);
 
 /// report.json's "resolution" object.
 nlohmann::ordered_json resolution_json(const ResolveResult& r);

@@ -49,33 +49,82 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
   write_plants_csv(stand, files.open("plants.csv"));
 }
 
-StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
-  const auto t_start = std::chrono::steady_clock::now();
-  const std::set<std::string> formats = parse_formats(o.formats);
+StandPlan plan_stand(StandOptions& o) {
   if (o.random_rotation) o.rows.random_rotation = true;
   if (!o.positions.empty() && any_row_option(o.rows))
     throw std::invalid_argument("--positions cannot be combined with row options");
+  StandPlan plan;
+  plan.request = grow_request(o.grammar, o.set, o.steps, o.lod, o.detect.threads, o.max_modules);
+  plan.grammar = load_grammar(o.grammar, plan.request.load);
+  if (!o.positions.empty()) {
+    plan.request.plants = read_positions(o.positions);
+    plan.request.relative_to = std::filesystem::path(o.positions).parent_path().string();
+  } else {
+    // Command-line row options replace the grammar's stand entry as a whole.
+    plan.from_grammar = !any_row_option(o.rows) && plan.grammar.stand.has_value();
+    plan.layout = to_row_layout(plan.from_grammar ? *plan.grammar.stand : o.rows);
+  }
+  return plan;
+}
+
+void check_plan_fits(const StandPlan& plan, std::size_t plants) {
+  GrowRequest first = plan.request;
+  if (first.plants.empty()) {
+    RowLayout one = plan.layout;
+    one.rows = one.per_row = 1;
+    first.plants = row_layout(one);
+  }
+  first.plants.resize(std::min<std::size_t>(first.plants.size(), 1));
+  if (!first.plants.empty() && plants > 0) check_stand_fits(first, plants);
+}
+
+nlohmann::ordered_json stand_config_json(const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan) {
+  const RowLayout& layout = plan.layout;
+  const bool from_grammar = plan.from_grammar;
+  nlohmann::ordered_json config;
+  config["grammar"] = o.grammar;
+  config["steps"] = o.steps ? nlohmann::ordered_json(*o.steps) : nlohmann::ordered_json(nullptr);
+  config["set"] = o.set;
+  config["lod"] = o.lod;
+  config["formats"] = std::vector<std::string>(formats.begin(), formats.end());
+  config["glb_instancing"] = o.glb_instancing;
+  config["max_modules"] = o.max_modules;
+  config["level"] = o.detect.level;
+  config["clearance"] = o.detect.clearance;
+  config["collide"] = o.detect.collide;
+  config["backend"] = o.detect.backend;
+  config["threads"] = o.detect.threads;
+  config["resolve"] = o.resolve.config_json();
+  if (!o.positions.empty()) {
+    config["layout"] = {{"positions", o.positions}};
+  } else {
+    config["layout"] = {{"source", from_grammar ? "grammar" : "command line"},
+                        {"rows", layout.rows},
+                        {"per_row", layout.per_row},
+                        {"row_spacing", layout.row_spacing},
+                        {"plant_spacing", layout.plant_spacing},
+                        {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
+                        {"jitter", layout.jitter},
+                        {"random_rotation", layout.random_rotation},
+                        {"seed", layout.seed}};
+  }
+  return config;
+}
+
+StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const std::set<std::string> formats = parse_formats(o.formats);
+  StandPlan plan = plan_stand(o);
   const DetectRequest dreq = o.detect.request();  // bad options fail before any work
   std::string backend_note;
   auto backend = make_backend(o.detect.backend, backend_note);
   prepare_output_dir(o.out);
-
-  GrowRequest req = grow_request(o.grammar, o.set, o.steps, o.lod, o.detect.threads, o.max_modules);
-  const Grammar g = load_grammar(o.grammar, req.load);
-  bool from_grammar = false;
-  RowLayout layout;
-  if (!o.positions.empty()) {
-    req.plants = read_positions(o.positions);
-    req.relative_to = std::filesystem::path(o.positions).parent_path().string();
-  } else {
-    // Command-line row options replace the grammar's stand entry as a whole.
-    from_grammar = !any_row_option(o.rows) && g.stand.has_value();
-    layout = to_row_layout(from_grammar ? *g.stand : o.rows);
+  GrowRequest& req = plan.request;
+  const Grammar& g = plan.grammar;
+  const RowLayout& layout = plan.layout;
+  if (o.positions.empty()) {
     // Say so before trying when the stand cannot fit: probe with its first plant.
-    RowLayout first = layout;
-    first.rows = first.per_row = 1;
-    req.plants = row_layout(first);
-    check_stand_fits(req, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
+    check_plan_fits(plan, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
     req.plants = row_layout(layout);
   }
   const auto t_grow = std::chrono::steady_clock::now();
@@ -121,33 +170,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   write_contacts_csv(scope, after.pairs, after.level, after_csv);
   rep.timings["export"] = seconds_since(t_export);
 
-  nlohmann::ordered_json config;
-  config["grammar"] = o.grammar;
-  config["steps"] = o.steps ? nlohmann::ordered_json(*o.steps) : nlohmann::ordered_json(nullptr);
-  config["set"] = o.set;
-  config["lod"] = o.lod;
-  config["formats"] = std::vector<std::string>(formats.begin(), formats.end());
-  config["glb_instancing"] = o.glb_instancing;
-  config["max_modules"] = o.max_modules;
-  config["level"] = o.detect.level;
-  config["clearance"] = o.detect.clearance;
-  config["collide"] = o.detect.collide;
-  config["backend"] = o.detect.backend;
-  config["threads"] = o.detect.threads;
-  config["resolve"] = o.resolve.config_json();
-  if (!o.positions.empty()) {
-    config["layout"] = {{"positions", o.positions}};
-  } else {
-    config["layout"] = {{"source", from_grammar ? "grammar" : "command line"},
-                        {"rows", layout.rows},
-                        {"per_row", layout.per_row},
-                        {"row_spacing", layout.row_spacing},
-                        {"plant_spacing", layout.plant_spacing},
-                        {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
-                        {"jitter", layout.jitter},
-                        {"random_rotation", layout.random_rotation},
-                        {"seed", layout.seed}};
-  }
+  const nlohmann::ordered_json config = stand_config_json(o, formats, plan);
   rep.config = config;
   rep.grammar = g.name.empty() ? o.grammar : g.name;
   rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);

@@ -40,6 +40,20 @@ struct StandOutcome {
   std::size_t contacts_before = 0, contacts_after = 0;
 };
 
+/// What a stand is grown from: the grammar, the grow request (placements filled in for a
+/// positions file; row layouts are placed by the caller with row_layout(layout)), the layout.
+struct StandPlan {
+  GrowRequest request;
+  Grammar grammar;
+  RowLayout layout;
+  bool from_grammar = false;  // the layout is the grammar's stand entry
+};
+StandPlan plan_stand(StandOptions& o);
+/// Throws before growing when `plants` plants like the plan's first would not fit in memory.
+void check_plan_fits(const StandPlan& plan, std::size_t plants);
+/// report.json's "config": every option echoed.
+nlohmann::ordered_json stand_config_json(const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan);
+
 /// "glb,obj" -> {glb, obj}; throws std::invalid_argument on an unknown format.
 std::set<std::string> parse_formats(const std::string& list);
 /// The mesh and table files of a stand as `canopy stand` writes them (not the contacts or the

@@ -1,0 +1,175 @@
+#include "distributed/mpi_files.hpp"
+
+#include "distributed/mpi_comm.hpp"
+
+#include <fmt/format.h>
+#include <mpi.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+namespace canopy::mpi {
+namespace {
+
+std::string temp_name(const std::string& path) { return path + ".tmp-mpi"; }
+
+/// Every rank's (id, k values) pairs laid out by global id: the whole stand's table.
+std::vector<std::uint64_t> by_global_id(const std::vector<std::int64_t>& ids, const std::vector<std::uint64_t>& values, int k,
+                                        std::uint64_t plants_total) {
+  std::vector<std::uint64_t> rows;
+  rows.reserve(ids.size() * static_cast<std::size_t>(k + 1));
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    rows.push_back(static_cast<std::uint64_t>(ids[i]));
+    for (int j = 0; j < k; ++j) rows.push_back(values[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(j)]);
+  }
+  const std::vector<std::uint64_t> all = allgather(rows);
+  std::vector<std::uint64_t> table(plants_total * static_cast<std::uint64_t>(k), 0);
+  for (std::size_t r = 0; r < all.size(); r += static_cast<std::size_t>(k + 1))
+    for (int j = 0; j < k; ++j) table[all[r] * static_cast<std::uint64_t>(k) + static_cast<std::uint64_t>(j)] = all[r + 1 + static_cast<std::size_t>(j)];
+  return table;
+}
+
+}  // namespace
+
+void RankScan::exclusive(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) const {
+  std::vector<std::uint64_t> table = by_global_id(ids_, values, k, total_);
+  totals.assign(static_cast<std::size_t>(k), 0);
+  for (std::size_t p = 0; p < total_; ++p)
+    for (std::size_t j = 0; j < static_cast<std::size_t>(k); ++j) {
+      std::uint64_t& v = table[p * static_cast<std::size_t>(k) + j];
+      const std::uint64_t own = v;
+      v = totals[j];
+      totals[j] += own;
+    }
+  for (std::size_t i = 0; i < ids_.size(); ++i)
+    for (std::size_t j = 0; j < static_cast<std::size_t>(k); ++j)
+      values[i * static_cast<std::size_t>(k) + j] = table[static_cast<std::size_t>(ids_[i]) * static_cast<std::size_t>(k) + j];
+}
+
+SharedFile::SharedFile(const std::string& path, const std::vector<std::int64_t>& ids, std::uint64_t plants_total)
+    : path_(path), ids_(ids), plants_total_(plants_total) {
+  MPI_File fh;
+  const std::string tmp = temp_name(path_);
+  const int rc = MPI_File_open(MPI_COMM_WORLD, tmp.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
+  if (rc != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot write {} (MPI_File_open failed)", tmp));
+  if (MPI_File_set_size(fh, 0) != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot truncate {}", tmp));
+  handle_ = fh;
+}
+
+SharedFile::~SharedFile() {
+  if (handle_) {
+    MPI_File fh = static_cast<MPI_File>(handle_);
+    MPI_File_close(&fh);
+  }
+}
+
+void SharedFile::close() {
+  if (!handle_) return;
+  MPI_File fh = static_cast<MPI_File>(handle_);
+  handle_ = nullptr;
+  if (MPI_File_close(&fh) != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot close {}", temp_name(path_)));
+}
+
+void SharedFile::write_at(std::uint64_t at, const char* data, std::size_t n) {
+  MPI_File fh = static_cast<MPI_File>(handle_);
+  while (n > 0) {
+    const std::size_t piece = std::min<std::size_t>(n, std::size_t(1) << 30);
+    MPI_Status status;
+    if (MPI_File_write_at(fh, static_cast<MPI_Offset>(at), data, static_cast<int>(piece), MPI_BYTE, &status) != MPI_SUCCESS)
+      throw std::runtime_error(fmt::format("cannot write {} bytes at offset {} of {}", piece, at, temp_name(path_)));
+    at += piece, data += piece, n -= piece;
+  }
+}
+
+void SharedFile::fixed(std::string_view text) {
+  if (rank() == 0) write_at(offset_, text.data(), text.size());
+  offset_ += text.size();
+}
+
+void SharedFile::root_text(std::string_view text) {
+  if (rank() == 0) write_at(offset_, text.data(), text.size());
+}
+
+void SharedFile::patch(std::uint64_t at, std::string_view bytes) {
+  if (rank() == 0) write_at(at, bytes.data(), bytes.size());
+}
+
+void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<void(std::size_t, std::string&)>& make) {
+  // This rank's chunks, formatted on all threads, then placed after every earlier plant's chunk.
+  batch = std::max<std::size_t>(1, batch);
+  const std::size_t batches = (n + batch - 1) / batch;
+  std::vector<std::string> text(batches);
+  std::vector<std::uint64_t> sizes(n, 0);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t b = 0; b < batches; ++b)
+    for (std::size_t i = b * batch; i < std::min(n, (b + 1) * batch); ++i) {
+      const std::size_t before = text[b].size();
+      make(i, text[b]);
+      sizes[i] = text[b].size() - before;
+    }
+  RankScan scan(ids_, plants_total_);
+  std::vector<std::uint64_t> at = sizes, totals;
+  scan.exclusive(at, 1, totals);
+  // Consecutive plants of this rank that are consecutive in the file go out in one write.
+  std::size_t i = 0;
+  for (std::size_t b = 0; b < batches; ++b) {
+    std::size_t pos = 0;
+    const std::size_t end = std::min(n, (b + 1) * batch);
+    while (i < end) {
+      std::size_t j = i + 1, bytes = sizes[i];
+      while (j < end && at[j] == at[i] + bytes) bytes += sizes[j++];
+      if (bytes) write_at(offset_ + at[i], text[b].data() + pos, bytes);
+      pos += bytes;
+      i = j;
+    }
+  }
+  offset_ += totals[0];
+}
+
+SharedOutputSet::SharedOutputSet(std::string dir, std::vector<std::int64_t> ids, std::uint64_t plants_total)
+    : dir_(std::move(dir)), ids_(std::move(ids)), plants_total_(plants_total) {}
+
+SharedOutputSet::~SharedOutputSet() {
+  if (committed_) return;
+  std::vector<std::string> names;
+  for (const auto& f : files_) names.push_back(temp_name(f.first));
+  files_.clear();
+  if (rank() == 0)
+    for (const std::string& t : names) std::remove(t.c_str());
+}
+
+void SharedOutputSet::remove_temporaries() const {
+  for (const auto& f : files_) std::remove(temp_name(f.first).c_str());
+}
+
+SharedFile& SharedOutputSet::open(const std::string& name) {
+  const std::string path = (std::filesystem::path(dir_) / name).string();
+  files_.emplace_back(path, std::make_unique<SharedFile>(path, ids_, plants_total_));
+  return *files_.back().second;
+}
+
+void SharedOutputSet::commit_all(const std::string& local_error) {
+  std::string error = local_error;
+  for (auto& f : files_) {
+    try {
+      f.second->close();
+    } catch (const std::exception& e) {
+      if (error.empty()) error = e.what();
+    }
+  }
+  agree(error);
+  std::string rename_error;
+  if (rank() == 0)
+    for (const auto& f : files_) {
+      std::error_code ec;
+      std::filesystem::rename(temp_name(f.first), f.first, ec);
+      if (ec && rename_error.empty()) rename_error = fmt::format("cannot rename {}: {}", temp_name(f.first), ec.message());
+    }
+  agree(rename_error);
+  committed_ = true;
+}
+
+}  // namespace canopy::mpi

@@ -1,0 +1,332 @@
+// canopy stand under mpirun: the field in tiles with halos (distributed/tiles), detection of the
+// contacts each rank owns, resolution in lockstep with turns traded across tile borders, and one
+// set of files written by every rank (distributed/mpi_files), byte-identical to one process.
+//
+// Why the halo is three hops deep: a turn of an owned organ is planned from the contacts of its
+// plant and of the plants it touches (one hop), from their candidate movers' contacts and
+// surroundings (two hops) and, for the last-resort pass, from whether those movers were already
+// claimed, which the contacts of plants two hops out decide (three hops). A hop is the farthest
+// two plant bounds can reach to meet: 2 sqrt(2) x the largest swept reach (plant bounds are
+// vertical-axis boxes around the swept disc) plus both clearances.
+#include "collision/swept_reach.hpp"
+#include "distributed/mpi_comm.hpp"
+#include "distributed/mpi_files.hpp"
+#include "distributed/tiles.hpp"
+#include "geometry/export.hpp"
+#include "tools/cli_common.hpp"
+#include "tools/stand_run.hpp"
+#include "tools/stand_tiled.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+namespace canopy::cli {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// Runs `work` on every rank; when it throws on any, every rank throws the first failure.
+template <typename F>
+void on_every_rank(F&& work) {
+  std::string error;
+  try {
+    work();
+  } catch (const std::exception& e) {
+    error = e.what();
+    if (error.empty()) error = "unknown error";
+  }
+  mpi::agree(error);
+}
+
+/// A rank's part of the stand: the plants it holds (its own and its halo), their global ids and
+/// the shifts from local to global organ and leaf ids.
+struct Tile {
+  std::vector<std::uint32_t> region;           // global plant ids, ascending
+  std::vector<std::uint8_t> owned;             // per local plant
+  std::vector<std::int64_t> first_organ;       // per global plant (size N + 1)
+  std::vector<std::int64_t> first_leaf;
+  std::vector<std::vector<int>> holders;       // per local plant: the other ranks holding it
+  Stand stand;
+
+  std::size_t local_of(std::int64_t global_plant) const {
+    return static_cast<std::size_t>(std::lower_bound(region.begin(), region.end(), static_cast<std::uint32_t>(global_plant)) -
+                                    region.begin());
+  }
+};
+
+ExportScope owned_scope(const Tile& t, const PlantScan& scan) {
+  ExportScope e{t.stand, {}, {}, {}, {}, t.first_organ.size() - 1, static_cast<std::uint64_t>(t.first_organ.back()), &scan};
+  for (std::size_t p = 0; p < t.region.size(); ++p) {
+    const std::uint32_t g = t.region[p];
+    if (t.owned[p]) e.plants.push_back(static_cast<std::uint32_t>(p));
+    e.plant_id.push_back(g);
+    e.organ_shift.push_back(t.first_organ[g] - static_cast<std::int64_t>(t.stand.plants[p].first_organ));
+    e.leaf_shift.push_back(t.first_leaf[g] - static_cast<std::int64_t>(t.stand.plants[p].first_leaf));
+  }
+  return e;
+}
+
+/// Detection at `level` and every level below it, each counted over the contacts this rank
+/// owns (a contact belongs to the owner of its first plant) and summed over the ranks. Returns
+/// the counts with this rank's own pairs at `level`; `all` gets every pair at `level` it found.
+Contacts detect_owned(DetectionBackend& backend, const Tile& t, DetectRequest req, ContactLevel level, Contacts* all = nullptr) {
+  Contacts out;
+  out.level = level;
+  std::vector<std::int64_t> counts;
+  for (int l = 0; l <= static_cast<int>(level); ++l) {
+    req.level = static_cast<ContactLevel>(l);
+    Contacts c = backend.detect(t.stand, req);
+    if (all && l == static_cast<int>(level)) *all = c;  // the full list; the backend's tree is left at this level
+    std::erase_if(c.pairs, [&](const Contact& k) { return !t.owned[static_cast<std::size_t>(k.plant_a)]; });
+    const LevelCount n = count_pairs(c.pairs);
+    counts.push_back(static_cast<std::int64_t>(n.between));
+    counts.push_back(static_cast<std::int64_t>(n.within));
+    out.seconds[static_cast<std::size_t>(l)] = c.seconds[static_cast<std::size_t>(l)];
+    out.build_s += c.build_s;
+    if (l == static_cast<int>(level)) out.pairs = std::move(c.pairs);
+  }
+  counts = mpi::sum(counts);
+  for (std::size_t l = 0; l * 2 < counts.size(); ++l)
+    out.counts[l] = LevelCount{static_cast<std::size_t>(counts[2 * l]), static_cast<std::size_t>(counts[2 * l + 1])};
+  return out;
+}
+
+/// One turn on the wire: the global organ id, the joint's local rotation and the angle.
+struct WireTurn {
+  std::int64_t organ;
+  double local[9];
+  double angle_deg;
+};
+
+std::vector<Turn> exchange_turns(const Tile& t, const std::vector<Turn>& mine) {
+  std::vector<std::vector<char>> out(static_cast<std::size_t>(mpi::size()));
+  for (const Turn& turn : mine) {
+    const auto p = static_cast<std::size_t>(t.stand.organs[turn.organ].plant);
+    WireTurn w{static_cast<std::int64_t>(turn.organ) - t.stand.plants[p].first_organ + t.first_organ[t.region[p]], {}, turn.angle_deg};
+    std::memcpy(w.local, turn.local.m, sizeof w.local);
+    for (int r : t.holders[p]) {
+      auto& b = out[static_cast<std::size_t>(r)];
+      b.insert(b.end(), reinterpret_cast<const char*>(&w), reinterpret_cast<const char*>(&w) + sizeof w);
+    }
+  }
+  std::vector<Turn> in;
+  for (const std::vector<char>& b : mpi::alltoall_bytes(out))
+    for (std::size_t at = 0; at + sizeof(WireTurn) <= b.size(); at += sizeof(WireTurn)) {
+      WireTurn w;
+      std::memcpy(&w, b.data() + at, sizeof w);
+      const auto g = static_cast<std::size_t>(std::upper_bound(t.first_organ.begin(), t.first_organ.end(), w.organ) - t.first_organ.begin()) - 1;
+      const std::size_t p = t.local_of(static_cast<std::int64_t>(g));
+      Turn turn;
+      turn.organ = static_cast<std::uint32_t>(w.organ - t.first_organ[g] + t.stand.plants[p].first_organ);
+      std::memcpy(turn.local.m, w.local, sizeof w.local);
+      turn.angle_deg = w.angle_deg;
+      in.push_back(turn);
+    }
+  return in;
+}
+
+/// The unresolved contacts of every rank on rank 0, in global ids and order.
+std::vector<UnresolvedContact> gather_unresolved(const ExportScope& e, const std::vector<UnresolvedContact>& mine) {
+  std::vector<char> blob;
+  const auto put = [&](std::int64_t v) { blob.insert(blob.end(), reinterpret_cast<const char*>(&v), reinterpret_cast<const char*>(&v) + 8); };
+  for (const UnresolvedContact& u : mine) {
+    put(e.organ(u.contact.organ_a)), put(e.organ(u.contact.organ_b));
+    put(e.plant(static_cast<std::size_t>(u.contact.plant_a))), put(e.plant(static_cast<std::size_t>(u.contact.plant_b)));
+    put(static_cast<std::int64_t>(u.reason.size()));
+    blob.insert(blob.end(), u.reason.begin(), u.reason.end());
+  }
+  const std::vector<char> all = mpi::allgather_bytes(blob.data(), blob.size());
+  std::vector<UnresolvedContact> out;
+  std::size_t at = 0;
+  const auto get = [&] {
+    std::int64_t v;
+    std::memcpy(&v, all.data() + at, 8);
+    at += 8;
+    return v;
+  };
+  while (at < all.size()) {
+    UnresolvedContact u;
+    u.contact.organ_a = static_cast<std::int32_t>(get()), u.contact.organ_b = static_cast<std::int32_t>(get());
+    u.contact.plant_a = static_cast<std::int32_t>(get()), u.contact.plant_b = static_cast<std::int32_t>(get());
+    const auto n = static_cast<std::size_t>(get());
+    u.reason.assign(all.data() + at, n);
+    at += n;
+    out.push_back(std::move(u));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.contact < b.contact; });
+  return out;
+}
+
+}  // namespace
+
+void run_stand_tiled(StandOptions o) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const int rank = mpi::rank(), ranks = mpi::size();
+  std::set<std::string> formats;
+  StandPlan plan;
+  DetectRequest dreq;
+  std::unique_ptr<DetectionBackend> backend;
+  std::string backend_note;
+  std::vector<PlantPlacement> placements;
+  on_every_rank([&] {
+    formats = parse_formats(o.formats);
+    if (o.glb_instancing)
+      throw std::invalid_argument("--glb-instancing is written by one process only; run it without mpirun");
+    plan = plan_stand(o);
+    dreq = o.detect.request();
+    backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());
+    if (rank == 0) prepare_output_dir(o.out);
+    placements = o.positions.empty() ? row_layout(plan.layout) : plan.request.plants;
+  });
+  const std::size_t n = placements.size();
+  const Tiling tiling = make_tiling(placements, ranks);
+  const ResolveConfig rc = o.resolve.config();
+  StandReport rep;
+  Tile t;
+
+  // Own plants first: their swept reach sizes every rank's halo, their organ and leaf counts
+  // number the whole stand.
+  const auto t_grow = std::chrono::steady_clock::now();
+  double reach = 0;
+  std::vector<std::int64_t> own_counts;  // global id, organs, leaves per own plant
+  on_every_rank([&] {
+    GrowRequest req = plan.request;
+    req.plants.clear();
+    std::vector<std::uint32_t> own;
+    for (std::size_t p = 0; p < n; ++p)
+      if (tiling.owner[p] == rank) own.push_back(static_cast<std::uint32_t>(p)), req.plants.push_back(placements[p]);
+    if (!req.plants.empty()) check_plan_fits(plan, 3 * own.size());
+    const Stand mine = grow_stand(req);
+    PrototypeLibrary lib;
+    for (std::size_t p = 0; p < mine.plant_count(); ++p) {
+      reach = std::max(reach, swept_reach(mine, lib, p, rc.movable));
+      own_counts.insert(own_counts.end(), {static_cast<std::int64_t>(own[p]), static_cast<std::int64_t>(mine.plants[p].organ_count),
+                                           static_cast<std::int64_t>(mine.plants[p].leaf_count)});
+    }
+  });
+  reach = mpi::max(reach);
+  {
+    const std::vector<std::int64_t> all = mpi::allgather(own_counts);
+    t.first_organ.assign(n + 1, 0);
+    t.first_leaf.assign(n + 1, 0);
+    for (std::size_t i = 0; i < all.size(); i += 3) {
+      t.first_organ[static_cast<std::size_t>(all[i]) + 1] = all[i + 1];
+      t.first_leaf[static_cast<std::size_t>(all[i]) + 1] = all[i + 2];
+    }
+    for (std::size_t p = 0; p < n; ++p) t.first_organ[p + 1] += t.first_organ[p], t.first_leaf[p + 1] += t.first_leaf[p];
+  }
+  const double clearance = std::max(o.detect.clearance, rc.clearance);
+  const double hop = 2 * std::sqrt(2.0) * reach + 2 * clearance + 1e-3 * (1 + reach);
+  const double halo = 3 * hop;
+  t.region = tile_region(tiling, placements, rank, halo);
+  on_every_rank([&] {
+    GrowRequest req = plan.request;
+    req.plants.clear();
+    for (std::uint32_t g : t.region) req.plants.push_back(placements[g]);
+    t.stand = grow_stand(req);
+    if (n > 0) t.stand.stand_origin = {placements[0].x, placements[0].y, 0};  // the whole stand's, not the tile's
+    for (std::uint32_t g : t.region) {
+      t.owned.push_back(tiling.owner[g] == rank ? 1 : 0);
+      t.holders.push_back(t.owned.back() ? tiles_holding(tiling, placements, g, halo) : std::vector<int>{});
+    }
+  });
+  rep.timings["generate"] = seconds_since(t_grow);
+
+  std::vector<std::int64_t> ids;
+  for (std::size_t p = 0; p < t.region.size(); ++p)
+    if (t.owned[p]) ids.push_back(t.region[p]);
+  const mpi::RankScan scan(ids, n);
+  const ExportScope scope = owned_scope(t, scan);
+
+  // Detection and resolution: collective throughout, so a failure here ends every rank.
+  Contacts before, after;
+  std::optional<ResolveResult> resolved;
+  try {
+    const auto t_detect = std::chrono::steady_clock::now();
+    Contacts full;
+    before = detect_owned(*backend, t, dreq, dreq.level, &full);
+    rep.timings["detect"] = seconds_since(t_detect);
+    rep.backend = backend->name();
+    rep.device = backend->device();
+    rep.contacts_before = counts_json(before);
+    after = before;
+    if (!o.resolve.no_resolve) {
+      const auto t_resolve = std::chrono::steady_clock::now();
+      DetectRequest at = dreq;
+      at.level = rc.level;
+      if (dreq.level != rc.level) full = backend->detect(t.stand, at);
+      ResolvePartition part;
+      part.owned = t.owned;
+      part.sum = [](std::vector<std::int64_t> v) { return mpi::sum(std::move(v)); };
+      part.max = [](double v) { return mpi::max(v); };
+      part.exchange = [&t](const std::vector<Turn>& mine) { return exchange_turns(t, mine); };
+      ResolveOptions ro = o.resolve;
+      ro.progress = ro.progress && rank == 0;
+      resolved = run_resolution(t.stand, *backend, dreq, ro, full, {}, &part);
+      resolved->unresolved = gather_unresolved(scope, resolved->unresolved);
+      rep.timings["resolve"] = seconds_since(t_resolve);
+      const auto t_check = std::chrono::steady_clock::now();
+      after = detect_owned(*backend, t, dreq, dreq.level);
+      rep.timings["detect_after"] = seconds_since(t_check);
+      rep.resolution = resolution_json(*resolved);
+    }
+    rep.contacts_after = counts_json(after);
+  } catch (const std::exception& e) {
+    mpi::abort(e.what());
+  }
+
+  // The files: every rank its own plants' chunks, rank 0 the fixed text and the report.
+  const auto t_export = std::chrono::steady_clock::now();
+  PrototypeLibrary lib;
+  StandCounts counts;
+  counts.stand_origin = t.stand.stand_origin;
+  {
+    std::vector<std::int64_t> tris;
+    const std::vector<std::size_t> local = triangles_per_plant(t.stand, lib);
+    for (std::uint32_t p : scope.plants) tris.insert(tris.end(), {static_cast<std::int64_t>(t.region[p]), static_cast<std::int64_t>(local[p])});
+    const std::vector<std::int64_t> all = mpi::allgather(tris);
+    counts.triangles.assign(n, 0);
+    counts.organs.assign(n, 0);
+    for (std::size_t i = 0; i < all.size(); i += 2) counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
+    for (std::size_t p = 0; p < n; ++p) counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
+  }
+  mpi::SharedOutputSet files(o.out, ids, n);
+  try {
+    if (formats.count("glb")) write_glb(scope, lib, files.open("stand.glb"));
+    if (formats.count("obj")) {
+      mpi::SharedFile& obj = files.open("stand.obj");
+      write_obj(scope, lib, obj, files.open("stand.mtl"), "stand.mtl");
+    }
+    if (formats.count("ply")) write_ply(scope, lib, files.open("stand.ply"));
+    write_organs_csv(scope, lib, files.open("organs.csv"));
+    write_plants_csv(scope, files.open("plants.csv"));
+    write_contacts_csv(scope, before.pairs, before.level, files.open("contacts.csv"));
+    write_contacts_csv(scope, after.pairs, after.level, files.open("contacts_after.csv"));
+    rep.timings["export"] = seconds_since(t_export);
+    rep.config = stand_config_json(o, formats, plan);
+    rep.grammar = plan.grammar.name.empty() ? o.grammar : plan.grammar.name;
+    rep.seed = o.positions.empty() ? nlohmann::ordered_json(plan.layout.seed) : nlohmann::ordered_json(nullptr);
+    rep.timings["total"] = seconds_since(t_start);
+    files.open("report.json").root_text(report_json(counts, rep).dump(2) + "\n");
+  } catch (const std::exception& e) {
+    // The files are written collectively: a rank that fails part way cannot wait for the others.
+    files.remove_temporaries();
+    mpi::abort(e.what());
+  }
+  files.commit_all();
+  if (rank == 0) {
+    print_summary(counts, rep, o.out);
+    fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,
+               tiling.axis == 0 ? "x" : "y", halo, reach, t.region.size());
+    print_contacts_table(before, backend_note);
+    if (resolved) print_resolution(*resolved);
+  }
+}
+
+}  // namespace canopy::cli
