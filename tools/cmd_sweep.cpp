@@ -11,7 +11,12 @@
 #include "tools/sweep_run.hpp"
 #include "tools/sweep_table.hpp"
 
+#ifdef CANOPY_WITH_MPI
+#include "distributed/mpi_comm.hpp"
+#endif
+
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <atomic>
@@ -94,7 +99,9 @@ RunRow run_one(const SweepOptions& o, const Grammar& g, const SweepCell& cell, i
 
 }  // namespace
 
-SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& after_run) {
+SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& after_run, const SweepRanks* ranks) {
+  const int me = ranks ? ranks->rank : 0, team = ranks ? ranks->size : 1;
+  print = print && me == 0;
   std::string note;
   // The specification first: bad lists fail before any work.
   const auto rows_sp = parse_number_list("--row-spacing", o.row_spacing, 0, true);
@@ -117,15 +124,20 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
   }();
   const Grammar g = load_grammar(o.grammar, load);
   const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
-  auto backend = make_backend(o.detect.backend, note);
+  auto backend = make_backend(o.detect.backend, note, ranks ? ranks->local_rank : 0);
 
-  std::filesystem::create_directories(o.out);
   const std::string runs_path = o.out + "/runs.csv";
-  std::vector<RunRow> done = read_runs(runs_path);
-  if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
-  write_runs(runs_path, done);  // drops a torn last line
   std::set<std::string> finished;
-  for (const RunRow& r : done) finished.insert(run_key(r));
+  std::string finished_list;  // rank 0 reads runs.csv and tells the others what is done
+  if (me == 0) {
+    std::filesystem::create_directories(o.out);
+    std::vector<RunRow> done = read_runs(runs_path);
+    if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
+    write_runs(runs_path, done);  // drops a torn last line
+    for (const RunRow& r : done) finished.insert(run_key(r));
+    finished_list = nlohmann::json(finished).dump();
+  }
+  if (ranks) finished = nlohmann::json::parse(ranks->gather(finished_list)[0]).get<std::set<std::string>>();
 
   const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
   if (print)
@@ -138,11 +150,18 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
   if (print) std::signal(SIGINT, on_interrupt);
   std::exception_ptr stopped;
   const auto t0 = std::chrono::steady_clock::now();
-  std::size_t index = 0, ran = 0, failed = 0;
-  for (const SweepCell& cell : cells) {
-    if (stopped) break;
+  std::size_t ran = 0, failed = 0;
+  // The runs still to make, in run order.
+  struct Pending {
+    std::size_t index;
+    const SweepCell* cell;
+    int seed;
+    RunRow row;
+  };
+  std::vector<Pending> pending;
+  std::size_t index = 0;
+  for (const SweepCell& cell : cells)
     for (int seed = 1; seed <= o.seeds; ++seed, ++index) {
-      if (g_interrupted) break;
       RunRow row;
       row["run"] = std::to_string(index);
       row["plant_spacing"] = num(cell.plant_spacing);
@@ -151,41 +170,60 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
       row["steps"] = std::to_string(cell.steps.value_or(g.steps));
       row["seed"] = std::to_string(seed);
       row["backend"] = backend->name();
-      if (finished.count(run_key(row))) continue;
+      if (!finished.count(run_key(row))) pending.push_back({index, &cell, seed, std::move(row)});
+    }
+  // Waves of one run per rank; the rows of a wave are appended in run order by rank 0.
+  for (std::size_t wave = 0; wave < pending.size() && !stopped; wave += static_cast<std::size_t>(team)) {
+    if (ranks) {
+      const auto flags = ranks->gather(g_interrupted ? "1" : "0");
+      g_interrupted = std::find(flags.begin(), flags.end(), "1") != flags.end();
+    }
+    if (g_interrupted) break;
+    std::string mine;
+    if (wave + static_cast<std::size_t>(me) < pending.size()) {
+      Pending& p = pending[wave + static_cast<std::size_t>(me)];
       if (tty)
         fmt::print(stderr, "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
-                   index + 1, total, row["plant_spacing"], row["row_spacing"], row["steps"], seed, since(t0));
+                   p.index + 1, total, p.row["plant_spacing"], p.row["row_spacing"], p.row["steps"], p.seed, since(t0));
       try {
-        row = run_one(o, g, cell, seed, *backend, row);
+        p.row = run_one(o, g, *p.cell, p.seed, *backend, p.row);
       } catch (const std::exception& e) {
-        row["status"] = "failed";
-        row["message"] = e.what();
-        ++failed;
+        p.row["status"] = "failed";
+        p.row["message"] = e.what();
       }
-      append_run(runs_path, row);
+      mine = nlohmann::json(p.row).dump();
+    }
+    const std::vector<std::string> rows = ranks ? ranks->gather(mine) : std::vector<std::string>{mine};
+    for (std::size_t k = 0; k < rows.size() && wave + k < pending.size(); ++k) {
+      const Pending& p = pending[wave + k];
+      const RunRow row = nlohmann::json::parse(rows[k]).get<RunRow>();
+      if (me == 0) append_run(runs_path, row);
       ++ran;
-      if (after_run) {
+      if (row.at("status") != "ok") ++failed;
+      if (after_run && !stopped) {
         try {
-          after_run(index, total, row);
+          after_run(p.index, total, row);
         } catch (...) {
           stopped = std::current_exception();
         }
       }
-      if (stopped) break;
       if (print && !tty)
-        fmt::print("run {}/{}: plant spacing {} m, row spacing {} m, steps {}, seed {}: {}\n", index + 1, total,
-                   row["plant_spacing"], row["row_spacing"], row["steps"], seed,
-                   row["status"] == "ok" ? fmt::format("LAI {}, {} exact contacts between plants per plant", row["lai"],
-                                                       row["exact_between_per_plant"])
-                                         : "failed: " + row["message"]);
+        fmt::print("run {}/{}: plant spacing {} m, row spacing {} m, steps {}, seed {}: {}\n", p.index + 1, total,
+                   row.at("plant_spacing"), row.at("row_spacing"), row.at("steps"), p.seed,
+                   row.at("status") == "ok" ? fmt::format("LAI {}, {} exact contacts between plants per plant", row.at("lai"),
+                                                          row.at("exact_between_per_plant"))
+                                            : "failed: " + row.at("message"));
     }
   }
   if (print) std::signal(SIGINT, SIG_DFL);
   if (tty) fmt::print(stderr, "\r{:100}\r", "");
-  const std::vector<RunRow> all = read_runs(runs_path);
-  OutputSet files(o.out);
-  files.open("summary.csv").write(summary_csv(all));
-  files.commit_all();
+  if (ranks) ranks->gather("");  // every row is in runs.csv before rank 0 reads it back
+  const std::vector<RunRow> all = me == 0 ? read_runs(runs_path) : std::vector<RunRow>{};
+  if (me == 0) {
+    OutputSet files(o.out);
+    files.open("summary.csv").write(summary_csv(all));
+    files.commit_all();
+  }
   if (print)
     fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,
                since(t0));
@@ -223,6 +261,19 @@ Command add_sweep(CLI::App& root) {
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() {
+#ifdef CANOPY_WITH_MPI
+            if (mpi::launched()) {
+              SweepRanks ranks{mpi::rank(), mpi::size(), mpi::local_rank(), [](const std::string& mine) {
+                                 std::vector<std::size_t> starts;
+                                 const std::vector<char> all = mpi::allgather_bytes(mine.data(), mine.size(), &starts);
+                                 std::vector<std::string> out;
+                                 for (std::size_t r = 0; r + 1 < starts.size(); ++r)
+                                   out.emplace_back(all.data() + starts[r], starts[r + 1] - starts[r]);
+                                 return out;
+                               }};
+              return run_sweep(*o, true, {}, &ranks).exit_code;
+            }
+#endif
             return run_sweep(*o).exit_code;
           }};
 }

@@ -36,6 +36,15 @@ struct SweepOutcome {
 /// Throwing from it stops the sweep after that run; summary.csv is still written.
 using SweepCallback = std::function<void(std::size_t, std::size_t, const RunRow&)>;
 
-SweepOutcome run_sweep(const SweepOptions& o, bool print = true, const SweepCallback& after_run = {});
+/// Several processes sharing one sweep (canopy sweep under mpirun): each runs every size-th
+/// pending run; rank 0 appends the rows to runs.csv in run order after each wave.
+struct SweepRanks {
+  int rank = 0, size = 1, local_rank = 0;
+  /// Collective: every rank's string, in rank order.
+  std::function<std::vector<std::string>(const std::string&)> gather;
+};
+
+SweepOutcome run_sweep(const SweepOptions& o, bool print = true, const SweepCallback& after_run = {},
+                       const SweepRanks* ranks = nullptr);
 
 }  // namespace canopy::cli

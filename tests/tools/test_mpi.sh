@@ -99,5 +99,22 @@ check "failing rank: exit code" "nonzero" "$([ $? -ne 0 ] && echo nonzero || ech
 check "failing rank: every rank reports it" "2" "$(grep -c 'rank 1 of 2 failed: .*bad.yaml:4:1' "$tmp/failed.log")"
 check "failing rank: no files" "" "$(ls -A "$tmp/failed" 2>/dev/null)"
 
+# Sweeps: runs spread over the ranks give the rows one process gives (times aside), and a sweep
+# resumed under mpirun with more seeds makes only the new runs.
+untimed() { python3 -c "
+import csv, sys
+for r in csv.DictReader(open(sys.argv[1])):
+    print(','.join(v for k, v in r.items() if not k.endswith('_s') and k != 'run'))" "$1"; }
+sweep=(sweep "$g" --plant-spacing 0.3,0.5 --steps 14 --rows 2 --per-row 3)
+"$canopy" "${sweep[@]}" --seeds 3 -o "$tmp/sweep-1p" >/dev/null 2>&1
+check "sweep: one process" "0" "$?"
+mpi 3 "${sweep[@]}" --seeds 2 -o "$tmp/sweep-3" >"$tmp/sweep-3.log" 2>&1
+check "sweep: 3 ranks exit" "0" "$?"
+mpi 2 "${sweep[@]}" --seeds 3 -o "$tmp/sweep-3" >"$tmp/sweep-3b.log" 2>&1
+check "sweep: resumed on 2 ranks exit" "0" "$?"
+check "sweep: resumed makes only the new runs" "1" "$(grep -c '^sweep: 2 runs made now (0 failed), 6 in' "$tmp/sweep-3b.log")"
+check "sweep: rows as one process" "$(untimed "$tmp/sweep-1p/runs.csv" | sort)" "$(untimed "$tmp/sweep-3/runs.csv" | sort)"
+check "sweep: summary written" "yes" "$([ -s "$tmp/sweep-3/summary.csv" ] && echo yes || echo no)"
+
 echo "mpi: $pass passed, $failures failed"
 [ "$failures" -eq 0 ]
