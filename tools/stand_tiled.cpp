@@ -44,22 +44,6 @@ void on_every_rank(F&& work) {
   mpi::agree(error);
 }
 
-/// A rank's part of the stand: the plants it holds (its own and its halo), their global ids and
-/// the shifts from local to global organ and leaf ids.
-struct Tile {
-  std::vector<std::uint32_t> region;           // global plant ids, ascending
-  std::vector<std::uint8_t> owned;             // per local plant
-  std::vector<std::int64_t> first_organ;       // per global plant (size N + 1)
-  std::vector<std::int64_t> first_leaf;
-  std::vector<std::vector<int>> holders;       // per local plant: the other ranks holding it
-  Stand stand;
-
-  std::size_t local_of(std::int64_t global_plant) const {
-    return static_cast<std::size_t>(std::lower_bound(region.begin(), region.end(), static_cast<std::uint32_t>(global_plant)) -
-                                    region.begin());
-  }
-};
-
 ExportScope owned_scope(const Tile& t, const PlantScan& scan) {
   ExportScope e{t.stand, {}, {}, {}, {}, t.first_organ.size() - 1, static_cast<std::uint64_t>(t.first_organ.back()), &scan};
   for (std::size_t p = 0; p < t.region.size(); ++p) {
@@ -165,15 +149,16 @@ std::vector<UnresolvedContact> gather_unresolved(const ExportScope& e, const std
 
 }  // namespace
 
-void run_stand_tiled(StandOptions o) {
+TiledStand grow_detect_resolve_tiled(StandOptions& o) {
+  TiledStand ts;
   const auto t_start = std::chrono::steady_clock::now();
   const int rank = mpi::rank(), ranks = mpi::size();
-  std::set<std::string> formats;
-  StandPlan plan;
+  std::set<std::string>& formats = ts.formats;
+  StandPlan& plan = ts.plan;
   DetectRequest dreq;
-  std::unique_ptr<DetectionBackend> backend;
-  std::string backend_note;
-  std::vector<PlantPlacement> placements;
+  std::unique_ptr<DetectionBackend>& backend = ts.backend;
+  std::string& backend_note = ts.backend_note;
+  std::vector<PlantPlacement>& placements = ts.placements;
   on_every_rank([&] {
     formats = parse_formats(o.formats);
     if (o.glb_instancing)
@@ -185,15 +170,16 @@ void run_stand_tiled(StandOptions o) {
     placements = o.positions.empty() ? row_layout(plan.layout) : plan.request.plants;
   });
   const std::size_t n = placements.size();
-  const Tiling tiling = make_tiling(placements, ranks);
+  ts.tiling = make_tiling(placements, ranks);
+  const Tiling& tiling = ts.tiling;
   const ResolveConfig rc = o.resolve.config();
-  StandReport rep;
-  Tile t;
+  StandReport& rep = ts.rep;
+  Tile& t = ts.tile;
 
   // Own plants first: their swept reach sizes every rank's halo, their organ and leaf counts
   // number the whole stand.
   const auto t_grow = std::chrono::steady_clock::now();
-  double reach = 0;
+  double& reach = ts.reach;
   std::vector<std::int64_t> own_counts;  // global id, organs, leaves per own plant
   on_every_rank([&] {
     GrowRequest req = plan.request;
@@ -223,7 +209,8 @@ void run_stand_tiled(StandOptions o) {
   }
   const double clearance = std::max(o.detect.clearance, rc.clearance);
   const double hop = 2 * std::sqrt(2.0) * reach + 2 * clearance + 1e-3 * (1 + reach);
-  const double halo = 3 * hop;
+  ts.halo = 3 * hop;
+  const double halo = ts.halo;
   t.region = tile_region(tiling, placements, rank, halo);
   on_every_rank([&] {
     GrowRequest req = plan.request;
@@ -238,15 +225,17 @@ void run_stand_tiled(StandOptions o) {
   });
   rep.timings["generate"] = seconds_since(t_grow);
 
-  std::vector<std::int64_t> ids;
+  std::vector<std::int64_t>& ids = ts.ids;
   for (std::size_t p = 0; p < t.region.size(); ++p)
     if (t.owned[p]) ids.push_back(t.region[p]);
-  const mpi::RankScan scan(ids, n);
-  const ExportScope scope = owned_scope(t, scan);
+  ts.scan = std::make_unique<mpi::RankScan>(ids, n);
+  ts.scope = std::make_unique<ExportScope>(owned_scope(t, *ts.scan));
+  const ExportScope& scope = *ts.scope;
 
   // Detection and resolution: collective throughout, so a failure here ends every rank.
-  Contacts before, after;
-  std::optional<ResolveResult> resolved;
+  Contacts& before = ts.before;
+  Contacts& after = ts.after;
+  std::optional<ResolveResult>& resolved = ts.resolved;
   try {
     const auto t_detect = std::chrono::steady_clock::now();
     Contacts full;
@@ -263,9 +252,16 @@ void run_stand_tiled(StandOptions o) {
       if (dreq.level != rc.level) full = backend->detect(t.stand, at);
       ResolvePartition part;
       part.owned = t.owned;
-      part.sum = [](std::vector<std::int64_t> v) { return mpi::sum(std::move(v)); };
-      part.max = [](double v) { return mpi::max(v); };
-      part.exchange = [&t](const std::vector<Turn>& mine) { return exchange_turns(t, mine); };
+      // Time in the collectives (waiting for the slowest rank included).
+      const auto timed = [&ts](auto&& f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        auto r = f();
+        ts.comm_s += seconds_since(t0);
+        return r;
+      };
+      part.sum = [timed](std::vector<std::int64_t> v) { return timed([&] { return mpi::sum(std::move(v)); }); };
+      part.max = [timed](double v) { return timed([&] { return mpi::max(v); }); };
+      part.exchange = [timed, &t](const std::vector<Turn>& mine) { return timed([&] { return exchange_turns(t, mine); }); };
       ResolveOptions ro = o.resolve;
       ro.progress = ro.progress && rank == 0;
       resolved = run_resolution(t.stand, *backend, dreq, ro, full, {}, &part);
@@ -280,7 +276,17 @@ void run_stand_tiled(StandOptions o) {
   } catch (const std::exception& e) {
     mpi::abort(e.what());
   }
+  ts.start = t_start;
+  return ts;
+}
 
+void run_stand_tiled(StandOptions o) {
+  TiledStand ts = grow_detect_resolve_tiled(o);
+  const int rank = mpi::rank(), ranks = mpi::size();
+  const std::size_t n = ts.placements.size();
+  const Tile& t = ts.tile;
+  const ExportScope& scope = *ts.scope;
+  StandReport& rep = ts.rep;
   // The files: every rank its own plants' chunks, rank 0 the fixed text and the report.
   const auto t_export = std::chrono::steady_clock::now();
   PrototypeLibrary lib;
@@ -296,23 +302,23 @@ void run_stand_tiled(StandOptions o) {
     for (std::size_t i = 0; i < all.size(); i += 2) counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
     for (std::size_t p = 0; p < n; ++p) counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
   }
-  mpi::SharedOutputSet files(o.out, ids, n);
+  mpi::SharedOutputSet files(o.out, ts.ids, n);
   try {
-    if (formats.count("glb")) write_glb(scope, lib, files.open("stand.glb"));
-    if (formats.count("obj")) {
+    if (ts.formats.count("glb")) write_glb(scope, lib, files.open("stand.glb"));
+    if (ts.formats.count("obj")) {
       mpi::SharedFile& obj = files.open("stand.obj");
       write_obj(scope, lib, obj, files.open("stand.mtl"), "stand.mtl");
     }
-    if (formats.count("ply")) write_ply(scope, lib, files.open("stand.ply"));
+    if (ts.formats.count("ply")) write_ply(scope, lib, files.open("stand.ply"));
     write_organs_csv(scope, lib, files.open("organs.csv"));
     write_plants_csv(scope, files.open("plants.csv"));
-    write_contacts_csv(scope, before.pairs, before.level, files.open("contacts.csv"));
-    write_contacts_csv(scope, after.pairs, after.level, files.open("contacts_after.csv"));
+    write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
+    write_contacts_csv(scope, ts.after.pairs, ts.after.level, files.open("contacts_after.csv"));
     rep.timings["export"] = seconds_since(t_export);
-    rep.config = stand_config_json(o, formats, plan);
-    rep.grammar = plan.grammar.name.empty() ? o.grammar : plan.grammar.name;
-    rep.seed = o.positions.empty() ? nlohmann::ordered_json(plan.layout.seed) : nlohmann::ordered_json(nullptr);
-    rep.timings["total"] = seconds_since(t_start);
+    rep.config = stand_config_json(o, ts.formats, ts.plan);
+    rep.grammar = ts.plan.grammar.name.empty() ? o.grammar : ts.plan.grammar.name;
+    rep.seed = o.positions.empty() ? nlohmann::ordered_json(ts.plan.layout.seed) : nlohmann::ordered_json(nullptr);
+    rep.timings["total"] = seconds_since(ts.start);
     files.open("report.json").root_text(report_json(counts, rep).dump(2) + "\n");
   } catch (const std::exception& e) {
     // The files are written collectively: a rank that fails part way cannot wait for the others.
@@ -323,9 +329,9 @@ void run_stand_tiled(StandOptions o) {
   if (rank == 0) {
     print_summary(counts, rep, o.out);
     fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,
-               tiling.axis == 0 ? "x" : "y", halo, reach, t.region.size());
-    print_contacts_table(before, backend_note);
-    if (resolved) print_resolution(*resolved);
+               ts.tiling.axis == 0 ? "x" : "y", ts.halo, ts.reach, t.region.size());
+    print_contacts_table(ts.before, ts.backend_note);
+    if (ts.resolved) print_resolution(*ts.resolved);
   }
 }
 
