@@ -64,60 +64,80 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
 
   std::vector<std::optional<Turn>> turn_of(movers.size());
   std::vector<std::uint8_t> resolved(n, 0);
+  // Contacts are planned in batches: a contact's pick depends only on its own candidates' scans
+  // (each candidate is scanned at every level while any contact wanting it is pending), so a
+  // batch gives the same turns as the whole list, and the search state held at once stays
+  // bounded whatever the stand's size.
+  constexpr std::size_t kBatch = 8192;
   for (bool strict : {true, false}) {
-    std::vector<std::optional<TurnSearch::Candidate>> state(movers.size());
-    std::vector<std::optional<Turn>> refined(movers.size());
-    std::vector<std::size_t> pending;
+    std::vector<std::size_t> waiting;
     for (std::size_t i = 0; i < n; ++i)
-      if (!resolved[i] && !cand_slots[i].empty()) pending.push_back(i);
-    std::vector<std::size_t> chosen;
-    for (int level = 1; !pending.empty(); ++level) {
-      if (planning) planning(pending.size());
-      std::vector<std::uint8_t> want(movers.size(), 0);
-      for (std::size_t i : pending)
-        for (std::size_t k : cand_slots[i])
-          if (!state[k] || (!state[k]->exhausted() && state[k]->found_axis < 0)) want[k] = 1;
-      std::vector<std::size_t> scan;
-      for (std::size_t k = 0; k < movers.size(); ++k)
-        if (want[k]) scan.push_back(k);
-      if (scan.empty()) break;
+      if (!resolved[i] && !cand_slots[i].empty()) waiting.push_back(i);
+    for (std::size_t b0 = 0; b0 < waiting.size(); b0 += kBatch) {
+      std::vector<std::size_t> pending(waiting.begin() + static_cast<std::ptrdiff_t>(b0),
+                                       waiting.begin() + static_cast<std::ptrdiff_t>(std::min(waiting.size(), b0 + kBatch)));
+      std::vector<std::size_t> slots;  // the batch's movers (slots into `movers`)
+      for (std::size_t i : pending) slots.insert(slots.end(), cand_slots[i].begin(), cand_slots[i].end());
+      std::sort(slots.begin(), slots.end());
+      slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+      const auto local = [&](std::size_t k) {
+        return static_cast<std::size_t>(std::lower_bound(slots.begin(), slots.end(), k) - slots.begin());
+      };
+      std::vector<std::optional<TurnSearch::Candidate>> state(slots.size());
+      std::vector<std::optional<Turn>> refined(slots.size());
+      std::vector<std::size_t> chosen;
+      for (int level = 1; !pending.empty(); ++level) {
+        if (planning) planning(waiting.size() - b0 - (std::min(waiting.size(), b0 + kBatch) - b0 - pending.size()));
+        std::vector<std::uint8_t> want(slots.size(), 0);
+        for (std::size_t i : pending)
+          for (std::size_t g : cand_slots[i]) {
+            const std::size_t k = local(g);
+            if (!state[k] || (!state[k]->exhausted() && state[k]->found_axis < 0)) want[k] = 1;
+          }
+        std::vector<std::size_t> scan;
+        for (std::size_t k = 0; k < slots.size(); ++k)
+          if (want[k]) scan.push_back(k);
+        if (scan.empty()) break;
 #pragma omp parallel num_threads(threads)
-      {
-        ExactScratch scratch;
+        {
+          ExactScratch scratch;
 #pragma omp for schedule(dynamic, 1)
-        for (std::size_t j = 0; j < scan.size(); ++j) {
-          const std::size_t k = scan[j];
-          if (!state[k]) state[k] = search.prepare(movers[k], contacts_of(joints, graph, movers[k]), strict, scratch);
-          search.scan_level(*state[k], level, scratch);
+          for (std::size_t j = 0; j < scan.size(); ++j) {
+            const std::size_t k = scan[j];
+            const std::uint32_t m = movers[slots[k]];
+            if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict, scratch);
+            search.scan_level(*state[k], level, scratch);
+          }
         }
-      }
-      // Candidates found at this level: each refined to its smallest turn, once.
-      std::vector<std::size_t> found;
-      for (std::size_t k : scan)
-        if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
+        // Candidates found at this level: each refined to its smallest turn, once.
+        std::vector<std::size_t> found;
+        for (std::size_t k : scan)
+          if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
 #pragma omp parallel num_threads(threads)
-      {
-        ExactScratch scratch;
+        {
+          ExactScratch scratch;
 #pragma omp for schedule(dynamic, 1)
-        for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = search.refine(*state[found[j]], scratch);
-      }
-      // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
-      std::erase_if(pending, [&](std::size_t i) {
-        std::optional<std::size_t> pick;
-        double cost = 0;
-        for (std::size_t k : cand_slots[i]) {
-          if (!refined[k]) continue;
-          const double c = refined[k]->angle_deg * state[k]->weight;
-          if (!pick || c < cost) pick = k, cost = c;
+          for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = search.refine(*state[found[j]], scratch);
         }
-        if (!pick) return false;
-        resolved[i] = 1;
-        chosen.push_back(*pick);
-        return true;
-      });
+        // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
+        std::erase_if(pending, [&](std::size_t i) {
+          std::optional<std::size_t> pick;
+          double cost = 0;
+          for (std::size_t g : cand_slots[i]) {
+            const std::size_t k = local(g);
+            if (!refined[k]) continue;
+            const double c = refined[k]->angle_deg * state[k]->weight;
+            if (!pick || c < cost) pick = k, cost = c;
+          }
+          if (!pick) return false;
+          resolved[i] = 1;
+          chosen.push_back(*pick);
+          return true;
+        });
+      }
+      for (std::size_t k : chosen)
+        if (!turn_of[slots[k]]) turn_of[slots[k]] = refined[k];
     }
-    for (std::size_t k : chosen)
-      if (!turn_of[k]) turn_of[k] = refined[k];
   }
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
   // turning this round (the first contact to claim a mover keeps it).

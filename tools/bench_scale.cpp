@@ -6,7 +6,9 @@
 // during resolution (the slowest rank's, waits for other ranks included), and plants per second
 // per rank. Weak scaling: compare P ranks on P x N plants with 1 rank on N; strong: the same N.
 // Usage: mpirun -np P bench_scale [--sizes 10000,20000] [--backend cpu|cuda|auto] [--threads T]
-//                                 [--grammar FILE] [--csv FILE] [--no-resolve]
+//                                 [--grammar FILE] [--csv FILE] [--no-resolve] [--all-levels]
+// Detection runs at the exact level only unless --all-levels (canopy stand's report counts every
+// level up to the one asked for, one detection each).
 #include "distributed/mpi_comm.hpp"
 #include "tools/stand_tiled.hpp"
 
@@ -47,6 +49,7 @@ int main(int argc, char** argv) {
   std::string backend = "auto", grammar = "grammars/tomato.yaml", csv = "bench/results/scale.csv";
   int threads = 0;
   bool resolve = true;
+  bool all_levels = false;  // detect the exact level only (canopy stand also counts the levels below it)
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
@@ -56,6 +59,7 @@ int main(int argc, char** argv) {
     else if (a == "--grammar") grammar = next();
     else if (a == "--csv") csv = next();
     else if (a == "--no-resolve") resolve = false;
+    else if (a == "--all-levels") all_levels = true;
     else {
       if (mpi::rank() == 0) fmt::print(stderr, "bench_scale: unknown argument {}\n", a);
       return 2;
@@ -92,7 +96,7 @@ int main(int argc, char** argv) {
     o.detect.threads = threads;
     o.resolve.no_resolve = !resolve;
     o.resolve.progress = false;
-    TiledStand ts = grow_detect_resolve_tiled(o);
+    TiledStand ts = grow_detect_resolve_tiled(o, all_levels);
     const double comm = mpi::max(ts.comm_s);
     const auto largest = static_cast<std::size_t>(mpi::max(static_cast<double>(ts.tile.region.size())));
     std::int64_t own_organs = 0;

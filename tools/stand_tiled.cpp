@@ -59,11 +59,12 @@ ExportScope owned_scope(const Tile& t, const PlantScan& scan) {
 /// Detection at `level` and every level below it, each counted over the contacts this rank
 /// owns (a contact belongs to the owner of its first plant) and summed over the ranks. Returns
 /// the counts with this rank's own pairs at `level`; `all` gets every pair at `level` it found.
-Contacts detect_owned(DetectionBackend& backend, const Tile& t, DetectRequest req, ContactLevel level, Contacts* all = nullptr) {
+Contacts detect_owned(DetectionBackend& backend, const Tile& t, DetectRequest req, ContactLevel level, bool lower_levels,
+                      Contacts* all = nullptr) {
   Contacts out;
   out.level = level;
   std::vector<std::int64_t> counts;
-  for (int l = 0; l <= static_cast<int>(level); ++l) {
+  for (int l = lower_levels ? 0 : static_cast<int>(level); l <= static_cast<int>(level); ++l) {
     req.level = static_cast<ContactLevel>(l);
     Contacts c = backend.detect(t.stand, req);
     if (all && l == static_cast<int>(level)) *all = c;  // the full list; the backend's tree is left at this level
@@ -76,8 +77,9 @@ Contacts detect_owned(DetectionBackend& backend, const Tile& t, DetectRequest re
     if (l == static_cast<int>(level)) out.pairs = std::move(c.pairs);
   }
   counts = mpi::sum(counts);
+  const std::size_t first = static_cast<std::size_t>(level) + 1 - counts.size() / 2;
   for (std::size_t l = 0; l * 2 < counts.size(); ++l)
-    out.counts[l] = LevelCount{static_cast<std::size_t>(counts[2 * l]), static_cast<std::size_t>(counts[2 * l + 1])};
+    out.counts[first + l] = LevelCount{static_cast<std::size_t>(counts[2 * l]), static_cast<std::size_t>(counts[2 * l + 1])};
   return out;
 }
 
@@ -149,7 +151,7 @@ std::vector<UnresolvedContact> gather_unresolved(const ExportScope& e, const std
 
 }  // namespace
 
-TiledStand grow_detect_resolve_tiled(StandOptions& o) {
+TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
   TiledStand ts;
   const auto t_start = std::chrono::steady_clock::now();
   const int rank = mpi::rank(), ranks = mpi::size();
@@ -239,7 +241,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o) {
   try {
     const auto t_detect = std::chrono::steady_clock::now();
     Contacts full;
-    before = detect_owned(*backend, t, dreq, dreq.level, &full);
+    before = detect_owned(*backend, t, dreq, dreq.level, lower_levels, &full);
     rep.timings["detect"] = seconds_since(t_detect);
     rep.backend = backend->name();
     rep.device = backend->device();
@@ -268,7 +270,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o) {
       resolved->unresolved = gather_unresolved(scope, resolved->unresolved);
       rep.timings["resolve"] = seconds_since(t_resolve);
       const auto t_check = std::chrono::steady_clock::now();
-      after = detect_owned(*backend, t, dreq, dreq.level);
+      after = detect_owned(*backend, t, dreq, dreq.level, lower_levels);
       rep.timings["detect_after"] = seconds_since(t_check);
       rep.resolution = resolution_json(*resolved);
     }

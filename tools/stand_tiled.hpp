@@ -47,8 +47,9 @@ struct TiledStand {
   std::chrono::steady_clock::time_point start;
 };
 
-/// Collective: everything of `canopy stand` under mpirun but the files.
-TiledStand grow_detect_resolve_tiled(StandOptions& o);
+/// Collective: everything of `canopy stand` under mpirun but the files. `lower_levels` false
+/// detects the asked level only (its counts alone; report.json counts every level up to it).
+TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels = true);
 
 /// Every rank calls it with the same options; rank 0 prints the summary.
 void run_stand_tiled(StandOptions o);
