@@ -36,14 +36,7 @@ std::vector<std::uint64_t> by_global_id(const std::vector<std::int64_t>& ids, co
 
 void RankScan::exclusive(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) const {
   std::vector<std::uint64_t> table = by_global_id(ids_, values, k, total_);
-  totals.assign(static_cast<std::size_t>(k), 0);
-  for (std::size_t p = 0; p < total_; ++p)
-    for (std::size_t j = 0; j < static_cast<std::size_t>(k); ++j) {
-      std::uint64_t& v = table[p * static_cast<std::size_t>(k) + j];
-      const std::uint64_t own = v;
-      v = totals[j];
-      totals[j] += own;
-    }
+  exclusive_sums(table, k, totals);
   for (std::size_t i = 0; i < ids_.size(); ++i)
     for (std::size_t j = 0; j < static_cast<std::size_t>(k); ++j)
       values[i * static_cast<std::size_t>(k) + j] = table[static_cast<std::size_t>(ids_[i]) * static_cast<std::size_t>(k) + j];

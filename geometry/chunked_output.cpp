@@ -28,6 +28,10 @@ void ExportScope::exclusive(std::vector<std::uint64_t>& values, int k, std::vect
     scan->exclusive(values, k, totals);
     return;
   }
+  exclusive_sums(values, k, totals);
+}
+
+void exclusive_sums(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) {
   totals.assign(static_cast<std::size_t>(k), 0);
   const std::size_t n = values.size() / static_cast<std::size_t>(k);
   for (std::size_t i = 0; i < n; ++i)

@@ -24,6 +24,10 @@ class PlantScan {
   virtual void exclusive(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) const = 0;
 };
 
+/// In place: each of the k columns of `values` (rows of k) replaced by the sum of the rows
+/// before it; `totals` gets the column sums.
+void exclusive_sums(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals);
+
 /// Which plants of a (possibly partial) stand a writer writes, and their global numbering.
 struct ExportScope {
   const Stand& stand;
