@@ -91,33 +91,52 @@ void SharedFile::patch(std::uint64_t at, std::string_view bytes) {
 }
 
 void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<void(std::size_t, std::string&)>& make) {
-  // This rank's chunks, formatted on all threads, then placed after every earlier plant's chunk.
+  // This rank's chunks, formatted on all threads a wave at a time and spilled in order to a file
+  // of its own beside the output (so memory stays bounded whatever the section's size), then
+  // copied to their places after every earlier plant's chunk once all sizes are known.
   batch = std::max<std::size_t>(1, batch);
   const std::size_t batches = (n + batch - 1) / batch;
-  std::vector<std::string> text(batches);
+  const std::size_t wave = 4 * static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   std::vector<std::uint64_t> sizes(n, 0);
+  const std::string spill_path = fmt::format("{}.rank{}", temp_name(path_), rank());
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> spill(std::fopen(spill_path.c_str(), "w+b"), &std::fclose);
+  if (!spill) throw std::runtime_error(fmt::format("cannot write {}", spill_path));
+  struct Remove {
+    const std::string& path;
+    ~Remove() { std::remove(path.c_str()); }
+  } remove_spill{spill_path};
+  for (std::size_t w0 = 0; w0 < batches; w0 += wave) {
+    std::vector<std::string> text(std::min(wave, batches - w0));
 #pragma omp parallel for schedule(dynamic, 1)
-  for (std::size_t b = 0; b < batches; ++b)
-    for (std::size_t i = b * batch; i < std::min(n, (b + 1) * batch); ++i) {
-      const std::size_t before = text[b].size();
-      make(i, text[b]);
-      sizes[i] = text[b].size() - before;
-    }
+    for (std::size_t b = 0; b < text.size(); ++b)
+      for (std::size_t i = (w0 + b) * batch; i < std::min(n, (w0 + b + 1) * batch); ++i) {
+        const std::size_t before = text[b].size();
+        make(i, text[b]);
+        sizes[i] = text[b].size() - before;
+      }
+    for (const std::string& t : text)
+      if (std::fwrite(t.data(), 1, t.size(), spill.get()) != t.size())
+        throw std::runtime_error(fmt::format("cannot write {} bytes to {}", t.size(), spill_path));
+  }
   RankScan scan(ids_, plants_total_);
   std::vector<std::uint64_t> at = sizes, totals;
   scan.exclusive(at, 1, totals);
-  // Consecutive plants of this rank that are consecutive in the file go out in one write.
-  std::size_t i = 0;
-  for (std::size_t b = 0; b < batches; ++b) {
-    std::size_t pos = 0;
-    const std::size_t end = std::min(n, (b + 1) * batch);
-    while (i < end) {
-      std::size_t j = i + 1, bytes = sizes[i];
-      while (j < end && at[j] == at[i] + bytes) bytes += sizes[j++];
-      if (bytes) write_at(offset_ + at[i], text[b].data() + pos, bytes);
-      pos += bytes;
-      i = j;
+  // Consecutive plants of this rank that are consecutive in the file go out together.
+  std::rewind(spill.get());
+  std::string buf;
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i + 1;
+    std::uint64_t bytes = sizes[i];
+    while (j < n && at[j] == at[i] + bytes) bytes += sizes[j++];
+    for (std::uint64_t done = 0; done < bytes;) {
+      const std::size_t piece = static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, std::uint64_t(1) << 28));
+      buf.resize(piece);
+      if (std::fread(buf.data(), 1, piece, spill.get()) != piece)
+        throw std::runtime_error(fmt::format("cannot read back {} bytes from {}", piece, spill_path));
+      write_at(offset_ + at[i] + done, buf.data(), piece);
+      done += piece;
     }
+    i = j;
   }
   offset_ += totals[0];
 }
