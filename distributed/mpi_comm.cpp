@@ -44,6 +44,14 @@ Session::~Session() {
   if (!finalized) MPI_Finalize();
 }
 
+std::string library_version() {
+  char text[MPI_MAX_LIBRARY_VERSION_STRING];
+  int len = 0;
+  MPI_Get_library_version(text, &len);
+  std::string v(text, static_cast<std::size_t>(len));
+  return v.substr(0, v.find_first_of(",\n"));
+}
+
 int rank() {
   int r = 0;
   check(MPI_Comm_rank(MPI_COMM_WORLD, &r), "MPI_Comm_rank");

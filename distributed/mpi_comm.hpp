@@ -20,6 +20,8 @@ class Session {
   Session& operator=(const Session&) = delete;
 };
 
+/// The MPI library's name and version (first line of MPI_Get_library_version).
+std::string library_version();
 int rank();
 int size();
 /// The rank among the processes of this node (for one GPU per rank).

@@ -5,6 +5,9 @@
 #ifdef CANOPY_HAVE_CUDA
 #include "cuda/device.hpp"
 #endif
+#ifdef CANOPY_WITH_MPI
+#include "distributed/mpi_comm.hpp"
+#endif
 
 namespace canopy::cli {
 
@@ -32,6 +35,12 @@ Command add_info(CLI::App& root) {
             fmt::print("render: Embree (canopy render)\n");
 #else
             fmt::print("render: not built (Embree or libpng missing)\n");
+#endif
+#ifdef CANOPY_WITH_MPI
+            fmt::print("mpi: {} (tiled runs: mpirun -np P canopy stand|sweep ...){}\n", mpi::library_version(),
+                       mpi::launched() ? fmt::format("; this is rank {} of {}", mpi::rank(), mpi::size()) : "");
+#else
+            fmt::print("mpi: not built (tiled runs need OpenMPI: libopenmpi-dev)\n");
 #endif
             return 0;
           }};
