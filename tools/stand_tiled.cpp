@@ -11,6 +11,7 @@
 #include "collision/swept_reach.hpp"
 #include "distributed/mpi_comm.hpp"
 #include "distributed/mpi_files.hpp"
+#include "distributed/region.hpp"
 #include "distributed/tiles.hpp"
 #include "geometry/export.hpp"
 #include "tools/cli_common.hpp"
@@ -183,14 +184,15 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
   const auto t_grow = std::chrono::steady_clock::now();
   double& reach = ts.reach;
   std::vector<std::int64_t> own_counts;  // global id, organs, leaves per own plant
+  std::vector<std::uint32_t> own;
+  Stand mine;
   on_every_rank([&] {
     GrowRequest req = plan.request;
     req.plants.clear();
-    std::vector<std::uint32_t> own;
     for (std::size_t p = 0; p < n; ++p)
       if (tiling.owner[p] == rank) own.push_back(static_cast<std::uint32_t>(p)), req.plants.push_back(placements[p]);
     if (!req.plants.empty()) check_plan_fits(plan, 3 * own.size());
-    const Stand mine = grow_stand(req);
+    mine = grow_stand(req);
     PrototypeLibrary lib;
     for (std::size_t p = 0; p < mine.plant_count(); ++p) {
       reach = std::max(reach, swept_reach(mine, lib, p, rc.movable));
@@ -215,10 +217,15 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
   const double halo = ts.halo;
   t.region = tile_region(tiling, placements, rank, halo);
   on_every_rank([&] {
+    // The halo plants, grown now, joined to the own plants grown above.
     GrowRequest req = plan.request;
     req.plants.clear();
-    for (std::uint32_t g : t.region) req.plants.push_back(placements[g]);
-    t.stand = grow_stand(req);
+    std::vector<std::uint32_t> halo_ids;
+    for (std::uint32_t g : t.region)
+      if (tiling.owner[g] != rank) halo_ids.push_back(g), req.plants.push_back(placements[g]);
+    const Stand halo_stand = grow_stand(req);
+    t.stand = merge_region(mine, own, halo_stand, halo_ids);
+    mine = Stand{};
     if (n > 0) t.stand.stand_origin = {placements[0].x, placements[0].y, 0};  // the whole stand's, not the tile's
     for (std::uint32_t g : t.region) {
       t.owned.push_back(tiling.owner[g] == rank ? 1 : 0);
