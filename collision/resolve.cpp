@@ -42,13 +42,17 @@ MetPairs contacts_of(const Joints& joints, const ContactGraph& g, std::uint32_t 
 /// scanned level by level of cost, in parallel, each mover once per level whichever contacts
 /// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
 Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
-                const TurnSearch& search, int threads, const std::function<void(std::size_t)>& planning) {
+                const TurnSearch& search, int threads, const std::function<void(std::size_t)>& planning,
+                const std::vector<std::uint8_t>* plan_plants) {
   const ResolveConfig& cfg = search.config;
   const std::size_t n = contacts.size();
   std::vector<std::vector<std::uint32_t>> cands(n);
   std::vector<std::string> why(n);
   std::vector<std::uint32_t> movers;
   for (std::size_t i = 0; i < n; ++i) {
+    if (plan_plants && !(*plan_plants)[static_cast<std::size_t>(contacts[i].plant_a)] &&
+        !(*plan_plants)[static_cast<std::size_t>(contacts[i].plant_b)])
+      continue;  // known (its organs' neighbours need it) but decides no turn this process keeps
     cands[i] = candidate_movers(s, joints, contacts[i], cfg, why[i]);
     if (cands[i].size() > static_cast<std::size_t>(cfg.candidates)) cands[i].resize(static_cast<std::size_t>(cfg.candidates));
     movers.insert(movers.end(), cands[i].begin(), cands[i].end());
@@ -253,7 +257,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     std::function<void(std::size_t)> planning;
     if (req.progress)
       planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
-    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning);
+    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning, part ? &part->plan : nullptr);
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
       std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });

@@ -29,6 +29,10 @@ struct ResolveProgress {
 /// plants move as their owners moved them.
 struct ResolvePartition {
   std::vector<std::uint8_t> owned;  // per local plant
+  /// Per local plant: whether its contacts are planned here. A process's own turns are decided by
+  /// the contacts of the plants within one hop of its own (the picks among their candidates, the
+  /// movers they claim); contacts farther out only need to be known.
+  std::vector<std::uint8_t> plan;
   /// Element-wise sums over every process.
   std::function<std::vector<std::int64_t>(std::vector<std::int64_t>)> sum;
   std::function<double(double)> max;

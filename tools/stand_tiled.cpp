@@ -7,7 +7,9 @@
 // surroundings (two hops) and, for the last-resort pass, from whether those movers were already
 // claimed, which the contacts of plants two hops out decide (three hops). A hop is the farthest
 // two plant bounds can reach to meet: 2 sqrt(2) x the largest swept reach (plant bounds are
-// vertical-axis boxes around the swept disc) plus both clearances.
+// vertical-axis boxes around the swept disc) plus both clearances. Only the contacts of plants
+// within one hop are planned (they make every decision an own turn depends on); the rest of the
+// halo supplies their candidates' contacts and surroundings.
 #include "collision/swept_reach.hpp"
 #include "distributed/mpi_comm.hpp"
 #include "distributed/mpi_files.hpp"
@@ -212,8 +214,8 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     for (std::size_t p = 0; p < n; ++p) t.first_organ[p + 1] += t.first_organ[p], t.first_leaf[p + 1] += t.first_leaf[p];
   }
   const double clearance = std::max(o.detect.clearance, rc.clearance);
-  const double hop = 2 * std::sqrt(2.0) * reach + 2 * clearance + 1e-3 * (1 + reach);
-  ts.halo = 3 * hop;
+  ts.hop = 2 * std::sqrt(2.0) * reach + 2 * clearance + 1e-3 * (1 + reach);
+  ts.halo = 3 * ts.hop;
   const double halo = ts.halo;
   t.region = tile_region(tiling, placements, rank, halo);
   on_every_rank([&] {
@@ -261,6 +263,10 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
       if (dreq.level != rc.level) full = backend->detect(t.stand, at);
       ResolvePartition part;
       part.owned = t.owned;
+      for (std::uint32_t g : t.region)  // the plants within one hop of this strip
+        part.plan.push_back(std::abs(ts.tiling.coordinate(ts.placements[g]) -
+                                     std::clamp(ts.tiling.coordinate(ts.placements[g]), ts.tiling.lo[static_cast<std::size_t>(rank)],
+                                                ts.tiling.hi[static_cast<std::size_t>(rank)])) <= ts.hop);
       // Time in the collectives (waiting for the slowest rank included).
       const auto timed = [&ts](auto&& f) {
         const auto t0 = std::chrono::steady_clock::now();

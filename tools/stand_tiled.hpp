@@ -36,7 +36,7 @@ struct TiledStand {
   std::vector<PlantPlacement> placements;  // the whole stand's
   Tiling tiling;
   Tile tile;
-  double reach = 0, halo = 0;              // swept reach, halo depth (metres)
+  double reach = 0, hop = 0, halo = 0;     // swept reach, farthest meeting distance, halo depth (metres)
   std::vector<std::int64_t> ids;           // global ids of this rank's own plants
   std::unique_ptr<mpi::RankScan> scan;
   std::unique_ptr<ExportScope> scope;      // this rank's own plants
