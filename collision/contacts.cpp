@@ -4,11 +4,9 @@
 
 namespace canopy {
 
-std::string contacts_csv(const Contacts& c) {
-  std::string out = "organ_a,organ_b,plant_a,plant_b,level\n";
-  const std::string_view level = name_of(c.level);
-  for (const Contact& k : c.pairs) out += fmt::format("{},{},{},{},{}\n", k.organ_a, k.organ_b, k.plant_a, k.plant_b, level);
-  return out;
+void write_contacts_csv(const Stand& stand, const Contacts& c, AtomicFile& out) {
+  ChunkFile f(out);
+  write_contacts_csv(ExportScope::whole(stand), c.pairs, c.level, f);
 }
 
 void write_contacts_csv(const ExportScope& e, const std::vector<Contact>& pairs, ContactLevel level, ChunkWriter& out) {

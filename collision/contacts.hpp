@@ -63,10 +63,10 @@ CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const Orga
   return a.plant == b.plant && (a.parent == ib || b.parent == ia || a.parent == b.parent);
 }
 
-/// contacts.csv text: header `organ_a,organ_b,plant_a,plant_b,level`, rows sorted.
-std::string contacts_csv(const Contacts& c);
+/// contacts.csv of a whole stand: header `organ_a,organ_b,plant_a,plant_b,level`, rows sorted.
+void write_contacts_csv(const Stand& stand, const Contacts& c, AtomicFile& out);
 /// contacts.csv over an ExportScope: the rows of the scope's plants (a row belongs to its first
-/// plant), ids mapped to the whole stand's (the same bytes as contacts_csv for a whole stand).
+/// plant), ids mapped to the whole stand's (the same bytes as for the whole stand).
 void write_contacts_csv(const ExportScope& scope, const std::vector<Contact>& pairs, ContactLevel level, ChunkWriter& out);
 
 }  // namespace canopy

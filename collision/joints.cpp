@@ -133,5 +133,4 @@ std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint3
   return written;
 }
 
-
 }  // namespace canopy

@@ -91,7 +91,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       std::vector<std::optional<Turn>> refined(slots.size());
       std::vector<std::size_t> chosen;
       for (int level = 1; !pending.empty(); ++level) {
-        if (planning) planning(waiting.size() - b0 - (std::min(waiting.size(), b0 + kBatch) - b0 - pending.size()));
+        if (planning) planning(pending.size() + (waiting.size() - std::min(waiting.size(), b0 + kBatch)));  // this batch's + later ones
         std::vector<std::uint8_t> want(slots.size(), 0);
         for (std::size_t i : pending)
           for (std::size_t g : cand_slots[i]) {
@@ -109,7 +109,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           for (std::size_t j = 0; j < scan.size(); ++j) {
             const std::size_t k = scan[j];
             const std::uint32_t m = movers[slots[k]];
-            if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict, scratch);
+            if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict);
             search.scan_level(*state[k], level, scratch);
           }
         }
@@ -158,7 +158,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       const MetPairs met{{c.organ_a, c.organ_b}};
       std::vector<TurnSearch::Candidate> cs;
       for (std::size_t k : cand_slots[left[j]])
-        if (!turn_of[k]) cs.push_back(search.prepare(movers[k], met, false, scratch));
+        if (!turn_of[k]) cs.push_back(search.prepare(movers[k], met, false));
       for (int level = 1; !alone[j]; ++level) {
         bool live = false;
         for (TurnSearch::Candidate& cand : cs) {

@@ -73,7 +73,7 @@ void TurnSearch::Candidate::link_pairs(const Stand& s, const std::vector<Obb>& b
   witness.assign(pair_y.size(), Witness{});
 }
 
-TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict, ExactScratch& scratch) const {
+TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict) const {
   const Stand& s = stand;
   Candidate c;
   c.mover = mover;

@@ -75,7 +75,7 @@ struct TurnSearch {
     Mat3d local;
     bool exhausted() const { return found_axis < 0 && lo >= reach_deg; }
   };
-  Candidate prepare(std::uint32_t mover, const MetPairs& met, bool strict, ExactScratch& scratch) const;
+  Candidate prepare(std::uint32_t mover, const MetPairs& met, bool strict) const;
   /// Tries the candidate's axes at cost level `level` (angle = level x step / weight, capped at
   /// its reach); true when one separates (then found_axis, hi and local are set).
   bool scan_level(Candidate& c, int level, ExactScratch& scratch) const;

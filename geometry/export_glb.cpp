@@ -179,7 +179,6 @@ PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const std::uint64
 }  // namespace
 
 void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
-  constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A, kBinChunk = 0x004E4942;
   const Stand& s = e.stand;
   const bool float_ids = e.organs_total <= kFloatIdLimit;
   const std::size_t n = e.plants.size();
@@ -250,14 +249,9 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
     out.fixed(std::string(4 - json_bytes % 4, ' '));
     json_bytes = out.offset() - start - 20;
   }
-  const std::uint64_t total = 12 + 8 + json_bytes + (bin_bytes ? 8 + bin_bytes : 0);
-  if (total > 0xffffffffULL)
-    throw std::runtime_error("stand.glb would exceed 4 GiB, the GLB limit; export fewer plants, use --glb-instancing, or obj/ply");
-  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(json_bytes), kJsonChunk};
-  out.patch(start, std::string_view(reinterpret_cast<const char*>(header), sizeof header));
+  out.patch(start, glb_header(json_bytes, bin_bytes));
   if (bin_bytes) {  // every block is a multiple of 4 bytes
-    const std::uint32_t chunk[2] = {static_cast<std::uint32_t>(bin_bytes), kBinChunk};
-    out.fixed(std::string_view(reinterpret_cast<const char*>(chunk), sizeof chunk));
+    out.fixed(glb_bin_header(bin_bytes));
     out.plants(n, 1, [&](std::size_t i, std::string& buf) {
       std::string one;
       fill_plant(s, e.plants[i], plan[i], lib, float_ids, e.organ_shift[e.plants[i]], one);

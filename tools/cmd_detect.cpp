@@ -32,7 +32,7 @@ Command add_detect(CLI::App& root) {
             print_contacts_table(c, note);
             if (!o->csv.empty()) {
               AtomicFile f(o->csv);
-              f.write(contacts_csv(c));
+              write_contacts_csv(stand, c, f);
               f.commit();
               fmt::print("wrote {}\n", o->csv);
             }

@@ -43,7 +43,7 @@ double since(std::chrono::steady_clock::time_point t) {
 std::string num(double v) { return fmt::format("{}", v); }
 
 /// One run: grow, detect (every level up to the exact one), resolve; the row of runs.csv.
-RunRow run_one(const SweepOptions& o, const Grammar& g, const SweepCell& cell, int seed, DetectionBackend& backend, RunRow row) {
+RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, DetectionBackend& backend, RunRow row) {
   RowLayout layout;
   layout.rows = o.rows;
   layout.per_row = o.per_row;
@@ -186,7 +186,7 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
         fmt::print(stderr, "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
                    p.index + 1, total, p.row["plant_spacing"], p.row["row_spacing"], p.row["steps"], p.seed, since(t0));
       try {
-        p.row = run_one(o, g, *p.cell, p.seed, *backend, p.row);
+        p.row = run_one(o, *p.cell, p.seed, *backend, p.row);
       } catch (const std::exception& e) {
         p.row["status"] = "failed";
         p.row["message"] = e.what();

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <deque>
 #include <filesystem>
 #include <set>
 
@@ -37,16 +38,25 @@ std::set<std::string> parse_formats(const std::string& list) {
   return formats;
 }
 
+void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
+                       const OpenChunks& open) {
+  if (formats.count("glb")) write_glb(scope, lib, open("stand.glb"));
+  if (formats.count("obj")) {
+    ChunkWriter& obj = open("stand.obj");
+    write_obj(scope, lib, obj, open("stand.mtl"), "stand.mtl");
+  }
+  if (formats.count("ply")) write_ply(scope, lib, open("stand.ply"));
+  write_organs_csv(scope, lib, open("organs.csv"));
+  write_plants_csv(scope, open("plants.csv"));
+}
+
 void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
                        OutputSet& files) {
-  if (formats.count("glb")) {
-    if (glb_instancing) write_glb_instanced(stand, lib, files.open("stand.glb"));
-    else write_glb(stand, lib, files.open("stand.glb"));
-  }
-  if (formats.count("obj")) write_obj(stand, lib, files.open("stand.obj"), files.open("stand.mtl"), "stand.mtl");
-  if (formats.count("ply")) write_ply(stand, lib, files.open("stand.ply"));
-  write_organs_csv(stand, lib, files.open("organs.csv"));
-  write_plants_csv(stand, files.open("plants.csv"));
+  std::set<std::string> chunked = formats;
+  if (glb_instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open("stand.glb"));
+  std::deque<ChunkFile> opened;
+  write_stand_files(ExportScope::whole(stand), lib, chunked,
+                    [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); });
 }
 
 StandPlan plan_stand(StandOptions& o) {
@@ -78,7 +88,7 @@ void check_plan_fits(const StandPlan& plan, std::size_t plants) {
   if (!first.plants.empty() && plants > 0) check_stand_fits(first, plants);
 }
 
-nlohmann::ordered_json stand_config_json(const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan) {
+void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan) {
   const RowLayout& layout = plan.layout;
   const bool from_grammar = plan.from_grammar;
   nlohmann::ordered_json config;
@@ -108,7 +118,9 @@ nlohmann::ordered_json stand_config_json(const StandOptions& o, const std::set<s
                         {"random_rotation", layout.random_rotation},
                         {"seed", layout.seed}};
   }
-  return config;
+  rep.config = config;
+  rep.grammar = plan.grammar.name.empty() ? o.grammar : plan.grammar.name;
+  rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);
 }
 
 StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
@@ -120,7 +132,6 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   auto backend = make_backend(o.detect.backend, backend_note);
   prepare_output_dir(o.out);
   GrowRequest& req = plan.request;
-  const Grammar& g = plan.grammar;
   const RowLayout& layout = plan.layout;
   if (o.positions.empty()) {
     // Say so before trying when the stand cannot fit: probe with its first plant.
@@ -164,16 +175,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   OutputSet files(o.out);
   const auto t_export = std::chrono::steady_clock::now();
   write_stand_files(stand, lib, formats, o.glb_instancing, files);
-  const ExportScope scope = ExportScope::whole(stand);
-  ChunkFile before_csv(files.open("contacts.csv")), after_csv(files.open("contacts_after.csv"));
-  write_contacts_csv(scope, contacts.pairs, contacts.level, before_csv);
-  write_contacts_csv(scope, after.pairs, after.level, after_csv);
+  write_contacts_csv(stand, contacts, files.open("contacts.csv"));
+  write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   rep.timings["export"] = seconds_since(t_export);
-
-  const nlohmann::ordered_json config = stand_config_json(o, formats, plan);
-  rep.config = config;
-  rep.grammar = g.name.empty() ? o.grammar : g.name;
-  rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);
+  describe_run(rep, o, formats, plan);
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
   files.commit_all();

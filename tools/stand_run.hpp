@@ -51,13 +51,19 @@ struct StandPlan {
 StandPlan plan_stand(StandOptions& o);
 /// Throws before growing when `plants` plants like the plan's first would not fit in memory.
 void check_plan_fits(const StandPlan& plan, std::size_t plants);
-/// report.json's "config": every option echoed.
-nlohmann::ordered_json stand_config_json(const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan);
+/// report.json's "config" (every option echoed), "grammar" and "seed".
+void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan);
 
 /// "glb,obj" -> {glb, obj}; throws std::invalid_argument on an unknown format.
 std::set<std::string> parse_formats(const std::string& list);
-/// The mesh and table files of a stand as `canopy stand` writes them (not the contacts or the
-/// report): stand.{glb,obj+mtl,ply} for `formats`, organs.csv, plants.csv.
+/// Opens a file of the stand folder by name as a ChunkWriter (one process: over an OutputSet's
+/// AtomicFile; tiles: a file every rank writes with MPI-IO).
+using OpenChunks = std::function<ChunkWriter&(const std::string& name)>;
+/// The mesh and table files of the scope's plants as `canopy stand` writes them (not the
+/// contacts or the report): stand.{glb,obj+mtl,ply} for `formats`, organs.csv, plants.csv.
+void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
+                       const OpenChunks& open);
+/// The same for a whole stand in one process, stand.glb instanced when `glb_instancing`.
 void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
                        OutputSet& files);
 

@@ -214,20 +214,11 @@ void run_stand_tiled(StandOptions o) {
   }
   mpi::SharedOutputSet files(o.out, ts.ids, n);
   try {
-    if (ts.formats.count("glb")) write_glb(scope, lib, files.open("stand.glb"));
-    if (ts.formats.count("obj")) {
-      mpi::SharedFile& obj = files.open("stand.obj");
-      write_obj(scope, lib, obj, files.open("stand.mtl"), "stand.mtl");
-    }
-    if (ts.formats.count("ply")) write_ply(scope, lib, files.open("stand.ply"));
-    write_organs_csv(scope, lib, files.open("organs.csv"));
-    write_plants_csv(scope, files.open("plants.csv"));
+    write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); });
     write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
     write_contacts_csv(scope, ts.after.pairs, ts.after.level, files.open("contacts_after.csv"));
     rep.timings["export"] = seconds_since(t_export);
-    rep.config = stand_config_json(o, ts.formats, ts.plan);
-    rep.grammar = ts.plan.grammar.name.empty() ? o.grammar : ts.plan.grammar.name;
-    rep.seed = o.positions.empty() ? nlohmann::ordered_json(ts.plan.layout.seed) : nlohmann::ordered_json(nullptr);
+    describe_run(rep, o, ts.formats, ts.plan);
     rep.timings["total"] = seconds_since(ts.start);
     files.open("report.json").root_text(report_json(counts, rep).dump(2) + "\n");
   } catch (const std::exception& e) {

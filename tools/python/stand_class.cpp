@@ -223,7 +223,7 @@ void bind_stand(py::module_& m) {
             PrototypeLibrary lib;
             OutputSet files(dir);
             cli::write_stand_files(s.stand, lib, fs, glb_instancing, files);
-            if (s.last) files.open("contacts.csv").write(contacts_csv(*s.last));
+            if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
             files.commit_all();
           },
           py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("glb_instancing") = false,
