@@ -36,12 +36,15 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   const std::size_t ta = ma.triangle_count(), tb = mb.triangle_count();
   const double c = clearance;
   const Vec3f d = rb.plant == ra.plant ? Vec3f{0, 0, 0} : plant_offset(s, ra.plant, rb.plant);
-  // The witness pair first, its six vertices made as organ_vertices makes them.
-  if (witness && witness->tri_a >= 0 && static_cast<std::size_t>(witness->tri_a) < ta && static_cast<std::size_t>(witness->tri_b) < tb) {
+  // The witness pairs first, newest first, their six vertices made as organ_vertices makes them.
+  for (int n = 0; witness && n < Witness::kSlots; ++n) {
+    const int slot = (witness->latest - n + Witness::kSlots) % Witness::kSlots;
+    const std::size_t wa = witness->tri_a[slot], wb = witness->tri_b[slot];
+    if (wa >= ta || wb >= tb) continue;
     Vec3f p[3], q[3];
     for (int k = 0; k < 3; ++k) {
-      p[k] = apply(pose_a, ma.positions[ma.indices[3 * static_cast<std::size_t>(witness->tri_a) + static_cast<std::size_t>(k)]]) + Vec3f{0, 0, 0};
-      q[k] = apply(pose_b, mb.positions[mb.indices[3 * static_cast<std::size_t>(witness->tri_b) + static_cast<std::size_t>(k)]]) + d;
+      p[k] = apply(pose_a, ma.positions[ma.indices[3 * wa + static_cast<std::size_t>(k)]]) + Vec3f{0, 0, 0};
+      q[k] = apply(pose_b, mb.positions[mb.indices[3 * wb + static_cast<std::size_t>(k)]]) + d;
     }
     if (c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q)) return true;
   }
@@ -74,8 +77,9 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   float bx[6];
   // With a witness, start both loops at its triangles: a touching pair is likely near the one
   // that touched last (the answer is the same in any order).
-  const std::size_t start_a = witness && witness->tri_a >= 0 ? static_cast<std::size_t>(witness->tri_a) % std::max<std::size_t>(ta, 1) : 0;
-  const std::size_t start_b = witness && witness->tri_b >= 0 ? static_cast<std::size_t>(witness->tri_b) % std::max<std::size_t>(tb, 1) : 0;
+  const bool seen = witness && witness->latest >= 0 && witness->tri_a[witness->latest] < ta && witness->tri_b[witness->latest] < tb;
+  const std::size_t start_a = seen ? static_cast<std::size_t>(witness->tri_a[witness->latest]) : 0;
+  const std::size_t start_b = seen ? static_cast<std::size_t>(witness->tri_b[witness->latest]) : 0;
   for (std::size_t jj = 0; jj < tb; ++jj) {
     const std::size_t j = (jj + start_b) % tb;
     tri_box(x.vb, mb.indices, j, bx);
@@ -97,7 +101,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
         const std::uint32_t j = x.near_b[k];
         const Vec3f tri_b[3] = {x.vb[mb.indices[3 * j]], x.vb[mb.indices[3 * j + 1]], x.vb[mb.indices[3 * j + 2]]};
         if (pair_touches(tri_a, tri_b)) {
-          if (witness) witness->tri_a = static_cast<std::int32_t>(i), witness->tri_b = static_cast<std::int32_t>(j);
+          if (witness) witness->remember(i, j);
           return true;
         }
       }

@@ -20,10 +20,19 @@ struct ExactScratch {
 bool organs_touch(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance,
                   ExactScratch& scratch);
 
-/// A triangle pair that touched last time: tested first next time (a turn search asks about
-/// the same organ pair at nearby poses many times over). The answer never depends on it.
+/// The triangle pairs that touched the last few times: tested first next time (a turn search
+/// asks about the same organ pair at nearby poses many times over, and as the poses swing about
+/// different axes the touching pair moves between a few places). The answer never depends on it.
 struct Witness {
-  std::int32_t tri_a = -1, tri_b = -1;
+  static constexpr int kSlots = 4;
+  static constexpr std::uint16_t kNone = 0xffff;  // also: a triangle index too large to keep
+  std::uint16_t tri_a[kSlots] = {kNone, kNone, kNone, kNone}, tri_b[kSlots] = {kNone, kNone, kNone, kNone};
+  std::int8_t latest = -1;  // the slot written last
+  void remember(std::size_t a, std::size_t b) {
+    if (a >= kNone || b >= kNone) return;
+    latest = static_cast<std::int8_t>((latest + 1) % kSlots);
+    tri_a[latest] = static_cast<std::uint16_t>(a), tri_b[latest] = static_cast<std::uint16_t>(b);
+  }
 };
 
 /// The same test with the organs at the given plant-frame transforms instead of the stand's (the

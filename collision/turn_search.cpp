@@ -83,10 +83,6 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   c.frame = joints.joint_frame(mover);
   c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
   c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + joints.angle_deg(mover));
-  const auto box = [&](std::int32_t k) {
-    const OrganRecord& r = s.organs[static_cast<std::size_t>(k)];
-    return lib.get(r.prototype, r.lod).box;
-  };
   const auto offset_to = [&](std::int32_t k) {  // carries organ k's plant frame into the mover's
     const std::int32_t p = s.organs[static_cast<std::size_t>(k)].plant;
     return p == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, p);
@@ -112,7 +108,6 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   c.keep.erase(std::unique(c.keep.begin(), c.keep.end()), c.keep.end());
   const std::size_t met = c.keep.size();
   c.met_count = met;
-  for (std::int32_t y : c.keep) c.keep_box.push_back(make_obb(s.transforms[static_cast<std::size_t>(y)], box(y), clearance));
 
   // Strict: also every organ within the subtree's reach about the joint that is clear now.
   if (strict) {
@@ -140,7 +135,6 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
         if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
         if (std::binary_search(busy.begin(), busy.end(), y)) continue;
         c.keep.push_back(y);
-        c.keep_box.push_back(make_obb(s.transforms[k], box(y), detect_clearance));
       }
     }
   }
@@ -167,31 +161,48 @@ bool TurnSearch::attempt(const Candidate& c, const Vec3d& a, double deg, Mat3d& 
   if (deg > 0 && rotation_angle_deg(local) > s.joint_limit_deg[c.mover]) return false;
   const Motion turn = rotation_about(c.joint, r);
   const std::int32_t plant = s.organs[c.mover].plant;
-  // The organs met first (the likeliest to fail), then the neighbours to keep clear.
+  // Organ i of `moving` at this pose, made once per attempt when first needed.
+  std::int32_t box_of = -1, pose_of = -1;
+  Obb ox;
+  Affine3f tx;
+  // Whether pair p (moving[i], keep[pair_y[p]]) meets at this pose.
+  const auto meets = [&](std::size_t i, std::uint32_t p) {
+    const std::uint32_t yi = c.pair_y[p];
+    const std::int32_t x = c.moving[i], y = c.keep[yi];
+    const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
+    const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
+    if (box_of != x) ox = carried_box(boxes[static_cast<std::size_t>(x)], turn, clearance), box_of = x;
+    const bool met = yi < c.met_count;
+    if (!obb_overlap(ox, grown(boxes[static_cast<std::size_t>(y)], met ? clearance : detect_clearance), off)) return false;
+    if (config.level == ContactLevel::organ) return true;
+    if (pose_of != x) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)], pose_of = x;
+    const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
+    const float gap = met ? clearance : detect_clearance;
+    Witness* w = &c.witness[p];
+    return x < y ? organs_touch_at(s, lib, x, tx, y, ty, gap, scratch, w) : organs_touch_at(s, lib, y, ty, x, tx, gap, scratch, w);
+  };
+  // The pair that blocked the last attempt first (nearby poses are blocked by the same pair);
+  // the answer, a conjunction over the pairs, does not depend on the order.
+  const auto blocked_before = [&](std::uint32_t p) {
+    for (const Candidate::Blocker& b : c.blocker)
+      if (b.pair == p) return true;
+    return false;
+  };
+  for (int n = 0; n < Candidate::kBlockers; ++n) {
+    const Candidate::Blocker& b = c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
+    if (b.pair != kNoPair && meets(b.organ, b.pair)) return false;
+  }
+  // Then the organs met first (the likeliest to fail), then the neighbours to keep clear.
   for (int pass = 0; pass < 2; ++pass)
-    for (std::size_t i = 0; i < c.moving.size(); ++i) {
-      if (c.pair_first[i] == c.pair_first[i + 1]) continue;
-      const std::int32_t x = c.moving[i];
-      std::optional<Obb> ox;
-      std::optional<Affine3f> tx;
+    for (std::size_t i = 0; i < c.moving.size(); ++i)
       for (std::uint32_t p = c.pair_first[i]; p < c.pair_first[i + 1]; ++p) {
-        const std::uint32_t yi = c.pair_y[p];
-        if ((yi < c.met_count) != (pass == 0)) continue;
-        const std::int32_t y = c.keep[yi];
-        const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
-        const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
-        if (!ox) ox = carried_box(boxes[static_cast<std::size_t>(x)], turn, clearance);
-        if (!obb_overlap(*ox, c.keep_box[yi], off)) continue;
-        if (config.level == ContactLevel::organ) return false;
-        if (!tx) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)];
-        const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
-        const float gap = pass == 0 ? clearance : detect_clearance;
-        Witness* w = &c.witness[p];
-        const bool touch = x < y ? organs_touch_at(s, lib, x, *tx, y, ty, gap, scratch, w)
-                                 : organs_touch_at(s, lib, y, ty, x, *tx, gap, scratch, w);
-        if (touch) return false;
+        if ((c.pair_y[p] < c.met_count) != (pass == 0) || blocked_before(p)) continue;
+        if (meets(i, p)) {
+          c.latest_blocker = (c.latest_blocker + 1) % Candidate::kBlockers;
+          c.blocker[c.latest_blocker] = {static_cast<std::uint32_t>(i), p};
+          return false;
+        }
       }
-    }
   return true;
 }
 

@@ -26,6 +26,8 @@
 
 namespace canopy {
 
+inline constexpr std::uint32_t kNoPair = ~0u;
+
 struct Turn {
   std::uint32_t organ = 0;
   Mat3d local;           // the joint's local rotation after the turn (Joints::set_local)
@@ -62,12 +64,19 @@ struct TurnSearch {
     double weight = 1, reach_deg = 0;
     std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;
-    std::vector<Obb> keep_box;
     std::vector<Vec3d> axes;
     /// Pairs that some turn about the joint could bring together (the sphere of x sweeps a
     /// shell about the joint): keep indices for moving[i] in pair_y[pair_first[i], pair_first[i+1]).
     std::vector<std::uint32_t> pair_first, pair_y;
     mutable std::vector<Witness> witness;  // per pair: the triangles that touched last
+    /// The pairs (index into `moving`, pair index) that blocked the last few failed attempts,
+    /// tested first: the scan swings about several axes, each blocked by a pair of its own.
+    struct Blocker {
+      std::uint32_t organ = 0, pair = kNoPair;
+    };
+    static constexpr int kBlockers = 4;
+    mutable Blocker blocker[kBlockers];
+    mutable int latest_blocker = 0;
     void link_pairs(const Stand& stand, const std::vector<Obb>& boxes, float clearance);
     // Scan state: angles up to lo tried and failed; found_axis >= 0 when `hi` separates.
     double lo = 0, hi = 0;

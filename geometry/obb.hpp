@@ -63,6 +63,13 @@ CANOPY_HD inline Obb make_obb(const Affine3f& m, const Box3f& local, float infla
   return o;
 }
 
+/// The OBB grown by `by` on every side; its radius grows by at most by x sqrt(3) (rounded up).
+CANOPY_HD inline Obb grown(Obb o, float by) {
+  for (int k = 0; k < 3; ++k) o.half[k] += by;
+  o.radius += 1.7320509f * by * (1 + 4 * kBoundRelSlack);
+  return o;
+}
+
 /// The 8 corners of an OBB.
 CANOPY_HD inline void obb_corners(const Obb& o, Vec3f out[8]) {
   for (int i = 0; i < 8; ++i) {

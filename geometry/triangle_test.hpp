@@ -13,6 +13,10 @@ namespace canopy {
 struct D3 {
   double x, y, z;
 };
+/// min and max of finite doubles, inline on every compiler (libm's fmin/fmax are calls on the
+/// host, for NaN semantics the finite inputs here never need).
+CANOPY_HD inline double min_d(double a, double b) { return a < b ? a : b; }
+CANOPY_HD inline double max_d(double a, double b) { return a > b ? a : b; }
 CANOPY_HD inline D3 d3(Vec3f v) { return {v.x, v.y, v.z}; }
 CANOPY_HD inline D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 CANOPY_HD inline D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
@@ -48,7 +52,7 @@ CANOPY_HD inline int dominant_axis(D3 n) {
 
 /// p on closed segment [a, b], given that the three are collinear.
 CANOPY_HD inline bool on_segment_2d(P2 a, P2 b, P2 p) {
-  return fmin(a.u, b.u) <= p.u && p.u <= fmax(a.u, b.u) && fmin(a.v, b.v) <= p.v && p.v <= fmax(a.v, b.v);
+  return min_d(a.u, b.u) <= p.u && p.u <= max_d(a.u, b.u) && min_d(a.v, b.v) <= p.v && p.v <= max_d(a.v, b.v);
 }
 
 /// Closed segments [a, b] and [c, d] in the plane meet.
@@ -94,14 +98,14 @@ CANOPY_HD inline bool segments_3d(D3 a, D3 b, D3 c, D3 d) {
     D3 lo = a, hi = a;
     const D3 ps[3] = {b, c, d};
     for (const D3& p : ps) {
-      lo = {fmin(lo.x, p.x), fmin(lo.y, p.y), fmin(lo.z, p.z)};
-      hi = {fmax(hi.x, p.x), fmax(hi.y, p.y), fmax(hi.z, p.z)};
+      lo = {min_d(lo.x, p.x), min_d(lo.y, p.y), min_d(lo.z, p.z)};
+      hi = {max_d(hi.x, p.x), max_d(hi.y, p.y), max_d(hi.z, p.z)};
     }
     const D3 ext = hi - lo;
     const int k = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
     const double ak = k == 0 ? a.x : k == 1 ? a.y : a.z, bk = k == 0 ? b.x : k == 1 ? b.y : b.z;
     const double ck = k == 0 ? c.x : k == 1 ? c.y : c.z, dk = k == 0 ? d.x : k == 1 ? d.y : d.z;
-    return fmax(fmin(ak, bk), fmin(ck, dk)) <= fmin(fmax(ak, bk), fmax(ck, dk));
+    return max_d(min_d(ak, bk), min_d(ck, dk)) <= min_d(max_d(ak, bk), max_d(ck, dk));
   }
   const int axis = dominant_axis(n);
   return segments_2d(project(a, axis), project(b, axis), project(c, axis), project(d, axis));
@@ -187,22 +191,22 @@ CANOPY_HD inline double segment_segment_dist2(D3 p1, D3 q1, D3 p2, D3 q2) {
     s = t = 0;
   } else if (a == 0) {
     s = 0;
-    t = fmin(fmax(f / e, 0.0), 1.0);
+    t = min_d(max_d(f / e, 0.0), 1.0);
   } else {
     const double c = dot(d1, r);
     if (e == 0) {
       t = 0;
-      s = fmin(fmax(-c / a, 0.0), 1.0);
+      s = min_d(max_d(-c / a, 0.0), 1.0);
     } else {
       const double b = dot(d1, d2), denom = a * e - b * b;
-      s = denom != 0 ? fmin(fmax((b * f - c * e) / denom, 0.0), 1.0) : 0.0;
+      s = denom != 0 ? min_d(max_d((b * f - c * e) / denom, 0.0), 1.0) : 0.0;
       t = (b * s + f) / e;
       if (t < 0) {
         t = 0;
-        s = fmin(fmax(-c / a, 0.0), 1.0);
+        s = min_d(max_d(-c / a, 0.0), 1.0);
       } else if (t > 1) {
         t = 1;
-        s = fmin(fmax((b - c) / a, 0.0), 1.0);
+        s = min_d(max_d((b - c) / a, 0.0), 1.0);
       }
     }
   }
@@ -216,7 +220,7 @@ CANOPY_HD inline double point_triangle_dist2(D3 p, const D3 t[3]) {
   const D3 a = t[0], b = t[1], c = t[2];
   const D3 n = cross(b - a, c - a);
   if (n.x == 0 && n.y == 0 && n.z == 0)
-    return fmin(segment_segment_dist2(p, p, a, b), fmin(segment_segment_dist2(p, p, b, c), segment_segment_dist2(p, p, c, a)));
+    return min_d(segment_segment_dist2(p, p, a, b), min_d(segment_segment_dist2(p, p, b, c), segment_segment_dist2(p, p, c, a)));
   const D3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   D3 q;
@@ -253,12 +257,39 @@ CANOPY_HD inline bool beyond_plane(const D3 t[3], const D3 u[3], double clearanc
   return (d0 > lim && d1 > lim && d2 > lim) || (d0 < -lim && d1 < -lim && d2 < -lim);
 }
 
+/// Whether, on some axis across an edge of t and an edge of u (their cross product), the two
+/// triangles' projections lie more than `clearance` apart; then so do the triangles (the
+/// separating-axis theorem: the distance is at least the gap along any unit axis). Together with
+/// beyond_plane these are the 11 axes on which two separated triangles' closest features show
+/// their gap (face-vertex on a normal, edge-edge on a cross product), so most pairs that do not
+/// come near are rejected here before the distance routines; the same margin as beyond_plane, so
+/// it never rejects a pair the full test would accept beyond rounding.
+CANOPY_HD inline bool apart_on_edge_axes(const D3 t[3], const D3 u[3], double clearance) {
+  const double k = clearance * (1 + 1e-9) + 1e-12;
+  for (int i = 0; i < 3; ++i) {
+    const D3 et = t[(i + 1) % 3] - t[i];
+    for (int j = 0; j < 3; ++j) {
+      const D3 n = cross(et, u[(j + 1) % 3] - u[j]);
+      const double nn = dot(n, n);
+      if (!(nn > 0)) continue;
+      // Projections relative to t[0] (t's own edge i projects to one value).
+      const double t1 = dot(n, t[1] - t[0]), t2 = dot(n, t[2] - t[0]);
+      const double u0 = dot(n, u[0] - t[0]), u1 = dot(n, u[1] - t[0]), u2 = dot(n, u[2] - t[0]);
+      const double t_lo = min_d(0.0, min_d(t1, t2)), t_hi = max_d(0.0, max_d(t1, t2));
+      const double u_lo = min_d(u0, min_d(u1, u2)), u_hi = max_d(u0, max_d(u1, u2));
+      const double gap = max_d(u_lo - t_hi, t_lo - u_hi);
+      if (gap > 0 && gap * gap > nn * k * k) return true;
+    }
+  }
+  return false;
+}
+
 /// Whether two closed triangles come within `clearance` of each other (intersecting counts).
 CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance) {
   D3 a[3], b[3];
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);
-  if (beyond_plane(t, u, clearance) || beyond_plane(u, t, clearance)) return false;
+  if (beyond_plane(t, u, clearance) || beyond_plane(u, t, clearance) || apart_on_edge_axes(t, u, clearance)) return false;
   if (triangles_intersect(pa, pb)) return true;
   const double c2 = clearance * clearance;
   for (int i = 0; i < 3; ++i) {
