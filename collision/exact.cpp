@@ -7,6 +7,17 @@
 #include <cassert>
 
 namespace canopy {
+namespace {
+
+/// The n-th index of 0..count-1 in the order start, start+1, start-1, start+2, ... (wrapping):
+/// triangles of neighbouring indices lie side by side on a prototype mesh, so a search that
+/// starts at the triangle that touched last meets its neighbours on both sides first.
+std::size_t spiral(std::size_t start, std::size_t n, std::size_t count) {
+  const std::size_t step = (n + 1) / 2;
+  return n % 2 ? (start + step) % count : (start + count - step % count) % count;
+}
+
+}  // namespace
 
 void organ_vertices(const Stand& s, const PrototypeMesh& mesh, std::int32_t organ, std::int32_t frame_plant,
                     std::vector<Vec3f>& out) {
@@ -81,7 +92,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   const std::size_t start_a = seen ? static_cast<std::size_t>(witness->tri_a[witness->latest]) : 0;
   const std::size_t start_b = seen ? static_cast<std::size_t>(witness->tri_b[witness->latest]) : 0;
   for (std::size_t jj = 0; jj < tb; ++jj) {
-    const std::size_t j = (jj + start_b) % tb;
+    const std::size_t j = spiral(start_b, jj, tb);
     tri_box(x.vb, mb.indices, j, bx);
     if (!meets(bx, box_a)) continue;
     x.near_b.push_back(static_cast<std::uint32_t>(j));
@@ -89,7 +100,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   }
   if (!x.near_b.empty()) {
     for (std::size_t ii = 0; ii < ta; ++ii) {
-      const std::size_t i = (ii + start_a) % ta;
+      const std::size_t i = spiral(start_a, ii, ta);
       tri_box(x.va, ma.indices, i, bx);
       if (!meets(bx, box_b)) continue;
       const Vec3f tri_a[3] = {x.va[ma.indices[3 * i]], x.va[ma.indices[3 * i + 1]], x.va[ma.indices[3 * i + 2]]};

@@ -63,7 +63,8 @@ void TurnSearch::Candidate::link_pairs(const Stand& s, const std::vector<Obb>& b
     for (std::size_t i = 0; i < keep.size(); ++i) {
       const double reach = ox.radius + ry[i], slack = 1e-6 * (1 + dx + dy[i]);
       if (std::abs(dy[i] - dx) - reach > slack) continue;               // the shells never meet
-      if (length(cy[i] - cx) - reach - chord > slack) continue;         // too far for the largest turn
+      const double far = reach + chord + slack;
+      if (dot(cy[i] - cx, cy[i] - cx) > far * far) continue;            // too far for the largest turn
       const std::int32_t y = keep[i];
       if (adjacent(s.organs[static_cast<std::size_t>(x)], x, s.organs[static_cast<std::size_t>(y)], y)) continue;
       pair_y.push_back(static_cast<std::uint32_t>(i));
@@ -124,10 +125,16 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
         busy.push_back(touching.with[e]);
     std::sort(busy.begin(), busy.end());
     const Vec3d origin = s.offset(static_cast<std::size_t>(plant));
+    const double joint_norm = length(c.joint);
     for (std::int32_t q : near.plants_near(s, origin.x + c.joint.x, origin.y + c.joint.y, reach)) {
       const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
       const Vec3f off = offset_to(static_cast<std::int32_t>(pr.first_organ));
-      for (std::uint32_t k = pr.first_organ; k < pr.first_organ + pr.organ_count; ++k) {
+      for (const OrganRun& run : near.runs(q)) {
+        // A run whose sphere lies beyond the reach holds no organ that passes the test below
+        // (the slack covers the float sums of centre and offset).
+        const double gap = length(to_double(run.centre) + to_double(off) - c.joint);
+        if (gap - 1e-6 * (1 + gap + joint_norm + run.radius) > reach + run.radius + clearance) continue;
+      for (std::uint32_t k = run.first; k < run.end; ++k) {
         const auto y = static_cast<std::int32_t>(k);
         if (in_subtree(y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
         const Obb& raw = boxes[k];
@@ -135,6 +142,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
         if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
         if (std::binary_search(busy.begin(), busy.end(), y)) continue;
         c.keep.push_back(y);
+      }
       }
     }
   }
