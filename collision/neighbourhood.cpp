@@ -6,34 +6,19 @@
 #include <cmath>
 
 namespace canopy {
-namespace {
 
-float plant_reach(const Stand& s, PrototypeLibrary& lib, std::size_t p) {
+void Neighbourhood::fit_plant(const Stand& s, const std::vector<Obb>& boxes, std::size_t p) {
   const PlantRecord& pr = s.plants[p];
-  float r = 0;
-  for (std::uint32_t k = pr.first_organ; k < pr.first_organ + pr.organ_count; ++k) {
-    const OrganRecord& o = s.organs[k];
-    const Obb b = make_obb(s.transforms[k], lib.get(o.prototype, o.lod).box, 0);
-    r = std::max(r, std::sqrt(b.centre.x * b.centre.x + b.centre.y * b.centre.y) + b.radius);
-  }
-  return r;
-}
-
-}  // namespace
-
-void Neighbourhood::fit_runs(const Stand& s, PrototypeLibrary& lib, std::size_t p) {
-  const PlantRecord& pr = s.plants[p];
+  float reach = 0;
   std::uint32_t k = pr.first_organ;
   for (std::uint32_t ri = run_first_[p]; ri < run_first_[p + 1]; ++ri) {
     OrganRun& run = runs_[ri];
     run.first = k;
     run.end = std::min(k + kRunLength, pr.first_organ + pr.organ_count);
-    Obb b[kRunLength];
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (std::uint32_t i = run.first; i < run.end; ++i) {
-      const OrganRecord& o = s.organs[i];
-      Obb& bi = b[i - run.first];
-      bi = make_obb(s.transforms[i], lib.get(o.prototype, o.lod).box, 0);
+      const Obb& bi = boxes[i];
+      reach = std::max(reach, std::sqrt(bi.centre.x * bi.centre.x + bi.centre.y * bi.centre.y) + bi.radius);
       const double c[3] = {bi.centre.x, bi.centre.y, bi.centre.z};
       for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
     }
@@ -41,23 +26,22 @@ void Neighbourhood::fit_runs(const Stand& s, PrototypeLibrary& lib, std::size_t 
                        static_cast<float>(0.5 * (lo[2] + hi[2]))};
     double r = 0;
     for (std::uint32_t i = run.first; i < run.end; ++i) {
-      const Obb& bi = b[i - run.first];
+      const Obb& bi = boxes[i];
       const double dx = double(bi.centre.x) - run.centre.x, dy = double(bi.centre.y) - run.centre.y, dz = double(bi.centre.z) - run.centre.z;
       r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz) + bi.radius);
     }
     run.radius = static_cast<float>(r * (1 + 1e-6) + 1e-7);  // rounded up
     k = run.end;
   }
+  reach_[p] = reach;  // the largest horizontal distance of an organ bound from the plant's origin
 }
 
-Neighbourhood::Neighbourhood(const Stand& s, PrototypeLibrary& lib) : reach_(s.plant_count(), 0) {
-  for (std::size_t p = 0; p < s.plant_count(); ++p) reach_[p] = plant_reach(s, lib, p);
+Neighbourhood::Neighbourhood(const Stand& s, const std::vector<Obb>& boxes, int threads) : reach_(s.plant_count(), 0) {
   run_first_.assign(s.plant_count() + 1, 0);
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     run_first_[p + 1] = run_first_[p] + (s.plants[p].organ_count + kRunLength - 1) / kRunLength;
   runs_.resize(run_first_.back());
-  for (std::size_t p = 0; p < s.plant_count(); ++p) fit_runs(s, lib, p);
-  for (float r : reach_) max_reach_ = std::max(max_reach_, r);
+  update(s, boxes, std::vector<std::uint8_t>(s.plant_count(), 1), threads);
   cell_ = std::max(0.05, 2.0 * max_reach_);
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
     const Vec3d o = s.offset(p);
@@ -66,9 +50,12 @@ Neighbourhood::Neighbourhood(const Stand& s, PrototypeLibrary& lib) : reach_(s.p
   }
 }
 
-void Neighbourhood::update(const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint8_t>& plants) {
+void Neighbourhood::update(const Stand& s, const std::vector<Obb>& boxes, const std::vector<std::uint8_t>& plants, int threads) {
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
   for (std::size_t p = 0; p < s.plant_count(); ++p)
-    if (plants[p]) reach_[p] = plant_reach(s, lib, p), max_reach_ = std::max(max_reach_, reach_[p]), fit_runs(s, lib, p);
+    if (plants[p]) fit_plant(s, boxes, p);
+  for (std::size_t p = 0; p < s.plant_count(); ++p)
+    if (plants[p]) max_reach_ = std::max(max_reach_, reach_[p]);
 }
 
 std::vector<std::int32_t> Neighbourhood::plants_near(const Stand& s, double x, double y, double r) const {

@@ -3,7 +3,7 @@
 /// each plant's current horizontal reach, so the organs that a turn about a joint could sweep
 /// into are found without a pass over the stand. Reaches are updated for the plants whose organs
 /// moved after every resolution round.
-#include "geometry/prototype.hpp"
+#include "geometry/obb.hpp"
 #include "geometry/stand.hpp"
 
 #include <cstdint>
@@ -24,9 +24,10 @@ struct OrganRun {
 class Neighbourhood {
  public:
   static constexpr std::uint32_t kRunLength = 16;
-  Neighbourhood(const Stand& stand, PrototypeLibrary& lib);
-  /// New reaches for the plants flagged in `plants`.
-  void update(const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint8_t>& plants);
+  /// From every organ's current OBB (`boxes`, no clearance, in its plant's frame).
+  Neighbourhood(const Stand& stand, const std::vector<Obb>& boxes, int threads);
+  /// New reaches and runs for the plants flagged in `plants` (their boxes refitted first).
+  void update(const Stand& stand, const std::vector<Obb>& boxes, const std::vector<std::uint8_t>& plants, int threads);
   /// Plants whose organs may come within `r` metres of point (x, y) (relative to stand_origin).
   std::vector<std::int32_t> plants_near(const Stand& stand, double x, double y, double r) const;
   /// The organ runs of a plant, in organ order.
@@ -42,7 +43,7 @@ class Neighbourhood {
   float max_reach_ = 0;
   std::vector<OrganRun> runs_;
   std::vector<std::uint32_t> run_first_;  // per plant + 1
-  void fit_runs(const Stand& stand, PrototypeLibrary& lib, std::size_t plant);
+  void fit_plant(const Stand& stand, const std::vector<Obb>& boxes, std::size_t plant);
   std::int64_t key(std::int64_t i, std::int64_t j) const { return i * 73856093LL ^ j * 19349663LL; }
 };
 

@@ -207,7 +207,6 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   DetectRequest dreq = req.detect;
   dreq.level = cfg.level;
   const int threads = dreq.threads > 0 ? dreq.threads : omp_get_max_threads();
-  Neighbourhood near(s, lib);
   std::vector<Obb> boxes(s.organ_count());
   const auto fit = [&](std::size_t k) {
     const OrganRecord& r = s.organs[k];
@@ -215,6 +214,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   };
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t k = 0; k < s.organ_count(); ++k) fit(k);
+  Neighbourhood near(s, boxes, threads);
   ContactGraph touching;
   const TurnSearch search{s, joints, lib, cfg, dreq.collide, near, boxes, touching,
                           static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance};
@@ -288,7 +288,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       fit(k);
       active[static_cast<std::size_t>(s.organs[k].plant)] = 1;
     }
-    near.update(s, lib, active);
+    near.update(s, boxes, active, threads);
     t = now();
     dreq.active_plants = &active;
     Contacts again = backend.redetect(s, dreq, moved);
