@@ -37,41 +37,44 @@ void ContactGraph::build(std::size_t organs, const std::vector<Contact>& contact
   }
 }
 
-void TurnSearch::Candidate::link_pairs(const Stand& s, const std::vector<Obb>& boxes, float clearance) {
-  const std::int32_t plant = s.organs[mover].plant;
-  pair_first.assign(1, 0);
-  pair_y.clear();
+TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to) const {
+  const Stand& s = stand;
+  const std::int32_t plant = s.organs[c.mover].plant;
+  PairSet out;
+  out.first.assign(1, 0);
   // Each organ kept clear, in the mover's plant frame: its centre and reach.
-  std::vector<Vec3d> cy(keep.size());
-  std::vector<double> dy(keep.size()), ry(keep.size());
-  for (std::size_t i = 0; i < keep.size(); ++i) {
-    const std::int32_t y = keep[i];
+  const std::size_t n = to - from;
+  std::vector<Vec3d> cy(n);
+  std::vector<double> dy(n), ry(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t y = c.keep[from + i];
     const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
     const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
     const Obb& oy = boxes[static_cast<std::size_t>(y)];
     cy[i] = to_double(oy.centre + off);
-    dy[i] = length(cy[i] - joint);
+    dy[i] = length(cy[i] - c.joint);
     ry[i] = oy.radius + 2.0 * clearance;
   }
   // A turn by at most reach_deg moves a point at distance d from the joint by at most the chord
   // 2 d sin(reach / 2), and keeps it at distance d: pairs too far apart for either never meet.
-  const double half = std::min(reach_deg, 180.0) * kRad / 2;
-  for (std::int32_t x : moving) {
+  const double half = std::min(c.reach_deg, 180.0) * kRad / 2;
+  for (std::int32_t x : c.moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
     const Vec3d cx = to_double(ox.centre);
-    const double dx = length(cx - joint), chord = 2 * dx * std::sin(half);
-    for (std::size_t i = 0; i < keep.size(); ++i) {
+    const double dx = length(cx - c.joint), chord = 2 * dx * std::sin(half);
+    for (std::size_t i = 0; i < n; ++i) {
       const double reach = ox.radius + ry[i], slack = 1e-6 * (1 + dx + dy[i]);
       if (std::abs(dy[i] - dx) - reach > slack) continue;               // the shells never meet
       const double far = reach + chord + slack;
       if (dot(cy[i] - cx, cy[i] - cx) > far * far) continue;            // too far for the largest turn
-      const std::int32_t y = keep[i];
+      const std::int32_t y = c.keep[from + i];
       if (adjacent(s.organs[static_cast<std::size_t>(x)], x, s.organs[static_cast<std::size_t>(y)], y)) continue;
-      pair_y.push_back(static_cast<std::uint32_t>(i));
+      out.y.push_back(static_cast<std::uint32_t>(from + i));
     }
-    pair_first.push_back(static_cast<std::uint32_t>(pair_y.size()));
+    out.first.push_back(static_cast<std::uint32_t>(out.y.size()));
   }
-  witness.assign(pair_y.size(), Witness{});
+  out.witness.assign(out.y.size(), Witness{});
+  return out;
 }
 
 TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict) const {
@@ -83,7 +86,8 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   c.joint = to_double(s.transforms[mover].t);
   c.frame = joints.joint_frame(mover);
   c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
-  c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + joints.angle_deg(mover));
+  c.angle_now_deg = joints.angle_deg(mover);
+  c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + c.angle_now_deg);
   const auto offset_to = [&](std::int32_t k) {  // carries organ k's plant frame into the mover's
     const std::int32_t p = s.organs[static_cast<std::size_t>(k)].plant;
     return p == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, p);
@@ -110,44 +114,8 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   const std::size_t met = c.keep.size();
   c.met_count = met;
 
-  // Strict: also every organ within the subtree's reach about the joint that is clear now.
-  if (strict) {
-    double reach = 0;
-    for (std::int32_t x : c.moving) {
-      const Obb& ox = boxes[static_cast<std::size_t>(x)];
-      reach = std::max(reach, length(to_double(ox.centre) - c.joint) + ox.radius);
-    }
-    reach += clearance;
-    // Organs already touching the subtree are other contacts' business.
-    std::vector<std::int32_t> busy;
-    for (std::int32_t x : c.moving)
-      for (std::uint32_t e = touching.first[static_cast<std::size_t>(x)]; e < touching.first[static_cast<std::size_t>(x) + 1]; ++e)
-        busy.push_back(touching.with[e]);
-    std::sort(busy.begin(), busy.end());
-    const Vec3d origin = s.offset(static_cast<std::size_t>(plant));
-    const double joint_norm = length(c.joint);
-    for (std::int32_t q : near.plants_near(s, origin.x + c.joint.x, origin.y + c.joint.y, reach)) {
-      const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
-      const Vec3f off = offset_to(static_cast<std::int32_t>(pr.first_organ));
-      for (const OrganRun& run : near.runs(q)) {
-        // A run whose sphere lies beyond the reach holds no organ that passes the test below
-        // (the slack covers the float sums of centre and offset).
-        const double gap = length(to_double(run.centre) + to_double(off) - c.joint);
-        if (gap - 1e-6 * (1 + gap + joint_norm + run.radius) > reach + run.radius + clearance) continue;
-      for (std::uint32_t k = run.first; k < run.end; ++k) {
-        const auto y = static_cast<std::int32_t>(k);
-        if (in_subtree(y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
-        const Obb& raw = boxes[k];
-        if (length(to_double(raw.centre + off) - c.joint) > reach + raw.radius + clearance) continue;
-        if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
-        if (std::binary_search(busy.begin(), busy.end(), y)) continue;
-        c.keep.push_back(y);
-      }
-      }
-    }
-  }
-
-  c.link_pairs(s, boxes, clearance);
+  c.strict = strict;
+  c.met_pairs = link_pairs(c, 0, met);
   const Affine3f& tm = s.transforms[mover];
   if (length(away) > 1e-9) c.axes.push_back(normalized(away));
   const Vec3d h = unit(tm.c0), l = unit(tm.c1), u = unit(tm.c2);
@@ -162,55 +130,115 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   return c;
 }
 
-bool TurnSearch::attempt(const Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
+void TurnSearch::gather_neighbours(Candidate& c) const {
+  const Stand& s = stand;
+  c.near_gathered = true;
+  const std::uint32_t mover = c.mover, end = joints.subtree_end(mover);
+  const std::int32_t plant = s.organs[mover].plant;
+  const std::size_t met = c.met_count;
+  const auto offset_to = [&](std::int32_t k) {  // carries organ k's plant frame into the mover's
+    const std::int32_t p = s.organs[static_cast<std::size_t>(k)].plant;
+    return p == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, p);
+  };
+  const auto in_subtree = [&](std::int32_t k) { return static_cast<std::uint32_t>(k) >= mover && static_cast<std::uint32_t>(k) < end; };
+  double reach = 0;
+  for (std::int32_t x : c.moving) {
+    const Obb& ox = boxes[static_cast<std::size_t>(x)];
+    reach = std::max(reach, length(to_double(ox.centre) - c.joint) + ox.radius);
+  }
+  reach += clearance;
+  // Organs already touching the subtree are other contacts' business.
+  std::vector<std::int32_t> busy;
+  for (std::int32_t x : c.moving)
+    for (std::uint32_t e = touching.first[static_cast<std::size_t>(x)]; e < touching.first[static_cast<std::size_t>(x) + 1]; ++e)
+      busy.push_back(touching.with[e]);
+  std::sort(busy.begin(), busy.end());
+  const Vec3d origin = s.offset(static_cast<std::size_t>(plant));
+  const double joint_norm = length(c.joint);
+  for (std::int32_t q : near.plants_near(s, origin.x + c.joint.x, origin.y + c.joint.y, reach)) {
+    const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
+    const Vec3f off = offset_to(static_cast<std::int32_t>(pr.first_organ));
+    for (const OrganRun& run : near.runs(q)) {
+      // A run whose sphere lies beyond the reach holds no organ that passes the test below
+      // (the slack covers the float sums of centre and offset).
+      const double gap = length(to_double(run.centre) + to_double(off) - c.joint);
+      if (gap - 1e-6 * (1 + gap + joint_norm + run.radius) > reach + run.radius + clearance) continue;
+      for (std::uint32_t k = run.first; k < run.end; ++k) {
+        const auto y = static_cast<std::int32_t>(k);
+        if (in_subtree(y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
+        const Obb& raw = boxes[k];
+        if (length(to_double(raw.centre + off) - c.joint) > reach + raw.radius + clearance) continue;
+        if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
+        if (std::binary_search(busy.begin(), busy.end(), y)) continue;
+        c.keep.push_back(y);
+      }
+    }
+  }
+  c.near_pairs = link_pairs(c, met, c.keep.size());
+}
+
+bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
   const Stand& s = stand;
   const Mat3d r = axis_angle(a, deg * kRad);
-  local = Joints::local_after(c.frame, r);
-  if (deg > 0 && rotation_angle_deg(local) > s.joint_limit_deg[c.mover]) return false;
+  // The joint's angle after the turn is at most deg + its angle now (rotation angles obey the
+  // triangle inequality), so the limit needs checking only near it; the rotation itself is made
+  // when the attempt succeeds.
+  const double limit = s.joint_limit_deg[c.mover];
+  const bool near_limit = deg > 0 && deg + c.angle_now_deg > limit - 1e-4;
+  if (near_limit) {
+    local = Joints::local_after(c.frame, r);
+    if (rotation_angle_deg(local) > limit) return false;
+  }
   const Motion turn = rotation_about(c.joint, r);
   const std::int32_t plant = s.organs[c.mover].plant;
   // Organ i of `moving` at this pose, made once per attempt when first needed.
   std::int32_t box_of = -1, pose_of = -1;
   Obb ox;
   Affine3f tx;
-  // Whether pair p (moving[i], keep[pair_y[p]]) meets at this pose.
-  const auto meets = [&](std::size_t i, std::uint32_t p) {
-    const std::uint32_t yi = c.pair_y[p];
+  // Whether pair p of `set` (moving[i], keep[y[p]]) meets at this pose.
+  const auto meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p) {
+    PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
+    const std::uint32_t yi = pairs.y[p];
     const std::int32_t x = c.moving[i], y = c.keep[yi];
     const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
     const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
     if (box_of != x) ox = carried_box(boxes[static_cast<std::size_t>(x)], turn, clearance), box_of = x;
-    const bool met = yi < c.met_count;
+    const bool met = set == 0;
     if (!obb_overlap(ox, grown(boxes[static_cast<std::size_t>(y)], met ? clearance : detect_clearance), off)) return false;
     if (config.level == ContactLevel::organ) return true;
     if (pose_of != x) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)], pose_of = x;
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
     const float gap = met ? clearance : detect_clearance;
-    Witness* w = &c.witness[p];
+    Witness* w = &pairs.witness[p];
     return x < y ? organs_touch_at(s, lib, x, tx, y, ty, gap, scratch, w) : organs_touch_at(s, lib, y, ty, x, tx, gap, scratch, w);
   };
-  // The pair that blocked the last attempt first (nearby poses are blocked by the same pair);
+  // The pairs that blocked the last attempts first (nearby poses are blocked by the same pairs);
   // the answer, a conjunction over the pairs, does not depend on the order.
-  const auto blocked_before = [&](std::uint32_t p) {
+  const auto blocked_before = [&](std::uint32_t set, std::uint32_t p) {
     for (const Candidate::Blocker& b : c.blocker)
-      if (b.pair == p) return true;
+      if (b.pair == p && b.set == set) return true;
     return false;
   };
   for (int n = 0; n < Candidate::kBlockers; ++n) {
     const Candidate::Blocker& b = c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
-    if (b.pair != kNoPair && meets(b.organ, b.pair)) return false;
+    if (b.pair != kNoPair && meets(b.set, b.organ, b.pair)) return false;
   }
-  // Then the organs met first (the likeliest to fail), then the neighbours to keep clear.
-  for (int pass = 0; pass < 2; ++pass)
+  // Then the organs met (the likeliest to fail), then the neighbours to keep clear.
+  for (std::uint32_t set = 0; set < 2; ++set) {
+    if (set == 1) {
+      if (!c.strict) break;
+      if (!c.near_gathered) gather_neighbours(c);
+    }
+    const PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     for (std::size_t i = 0; i < c.moving.size(); ++i)
-      for (std::uint32_t p = c.pair_first[i]; p < c.pair_first[i + 1]; ++p) {
-        if ((c.pair_y[p] < c.met_count) != (pass == 0) || blocked_before(p)) continue;
-        if (meets(i, p)) {
-          c.latest_blocker = (c.latest_blocker + 1) % Candidate::kBlockers;
-          c.blocker[c.latest_blocker] = {static_cast<std::uint32_t>(i), p};
-          return false;
-        }
+      for (std::uint32_t p = pairs.first[i]; p < pairs.first[i + 1]; ++p) {
+        if (blocked_before(set, p) || !meets(set, i, p)) continue;
+        c.latest_blocker = (c.latest_blocker + 1) % Candidate::kBlockers;
+        c.blocker[c.latest_blocker] = {set, static_cast<std::uint32_t>(i), p};
+        return false;
       }
+  }
+  if (!near_limit) local = Joints::local_after(c.frame, r);
   return true;
 }
 
@@ -230,7 +258,7 @@ bool TurnSearch::scan_level(Candidate& c, int level, ExactScratch& scratch) cons
   return false;
 }
 
-Turn TurnSearch::refine(const Candidate& c, ExactScratch& scratch) const {
+Turn TurnSearch::refine(Candidate& c, ExactScratch& scratch) const {
   // Bisect (lo, hi] on the axis found, down to the tolerance; b_hi stays feasible.
   const Vec3d& a = c.axes[static_cast<std::size_t>(c.found_axis)];
   double b_lo = c.lo, b_hi = c.hi;

@@ -56,28 +56,36 @@ struct TurnSearch {
   float clearance = 0;         // separation from the organs met (the larger of both clearances)
   float detect_clearance = 0;  // what detection counts as a contact: neighbours must stay this far
 
+  /// Organ pairs (moving organ, kept organ) that some turn about the joint could bring together
+  /// (the sphere of x sweeps a shell about the joint): keep indices for moving[i] in
+  /// y[first[i], first[i+1]).
+  struct PairSet {
+    std::vector<std::uint32_t> first, y;
+    std::vector<Witness> witness;  // per pair: the triangles that touched last
+  };
   /// One mover's search state: what moves, what it must clear, its axes and reach.
   struct Candidate {
     std::uint32_t mover = 0;
     Vec3d joint;
     Joints::JointFrame frame;
-    double weight = 1, reach_deg = 0;
+    double weight = 1, reach_deg = 0, angle_now_deg = 0;
     std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;
     std::vector<Vec3d> axes;
-    /// Pairs that some turn about the joint could bring together (the sphere of x sweeps a
-    /// shell about the joint): keep indices for moving[i] in pair_y[pair_first[i], pair_first[i+1]).
-    std::vector<std::uint32_t> pair_first, pair_y;
-    mutable std::vector<Witness> witness;  // per pair: the triangles that touched last
-    /// The pairs (index into `moving`, pair index) that blocked the last few failed attempts,
-    /// tested first: the scan swings about several axes, each blocked by a pair of its own.
+    /// Pairs with the organs met, and (a strict search) with the neighbours to keep clear. The
+    /// neighbours are gathered when an attempt first clears every organ met: most candidates
+    /// never get that far before another candidate of their contacts wins.
+    PairSet met_pairs, near_pairs;
+    bool strict = false, near_gathered = false;
+    /// The pairs (set: 0 met, 1 near; index into `moving`; pair index) that blocked the last few
+    /// failed attempts, tested first: the scan swings about several axes, each blocked by a pair
+    /// of its own.
     struct Blocker {
-      std::uint32_t organ = 0, pair = kNoPair;
+      std::uint32_t set = 0, organ = 0, pair = kNoPair;
     };
     static constexpr int kBlockers = 4;
-    mutable Blocker blocker[kBlockers];
-    mutable int latest_blocker = 0;
-    void link_pairs(const Stand& stand, const std::vector<Obb>& boxes, float clearance);
+    Blocker blocker[kBlockers];
+    int latest_blocker = 0;
     // Scan state: angles up to lo tried and failed; found_axis >= 0 when `hi` separates.
     double lo = 0, hi = 0;
     int found_axis = -1;
@@ -89,10 +97,17 @@ struct TurnSearch {
   /// its reach); true when one separates (then found_axis, hi and local are set).
   bool scan_level(Candidate& c, int level, ExactScratch& scratch) const;
   /// The found turn refined by bisection between the last failed and the found angle.
-  Turn refine(const Candidate& c, ExactScratch& scratch) const;
+  Turn refine(Candidate& c, ExactScratch& scratch) const;
   /// Whether turning by `deg` about axis `a` keeps the joint in its limit and clears the list;
   /// `local` gets the joint's rotation.
-  bool attempt(const Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const;
+  bool attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const;
+
+ private:
+  /// A strict search's neighbours: every organ within the subtree's reach about the joint that
+  /// is clear now (appended to keep), and their pairs.
+  void gather_neighbours(Candidate& c) const;
+  /// The pairs of moving organs with keep[from, to).
+  PairSet link_pairs(const Candidate& c, std::size_t from, std::size_t to) const;
 };
 
 }  // namespace canopy

@@ -159,10 +159,16 @@ CANOPY_HD inline void canonical_pair(const Vec3f* pa, const Vec3f* pb, D3 a[3], 
 }
 
 /// Whether two closed triangles meet (touching counts). Any vertex order, either argument order.
+CANOPY_HD inline bool triangles_intersect_canonical(const D3* t, const D3* u);
 CANOPY_HD inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
   D3 a[3], b[3];
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);
+  return triangles_intersect_canonical(t, u);
+}
+
+/// The same on a pair already in canonical order (canonical_pair's t and u).
+CANOPY_HD inline bool triangles_intersect_canonical(const D3* t, const D3* u) {
   const D3 nt = cross(t[1] - t[0], t[2] - t[0]), nu = cross(u[1] - u[0], u[2] - u[0]);
   const bool dt = nt.x == 0 && nt.y == 0 && nt.z == 0, du = nu.x == 0 && nu.y == 0 && nu.z == 0;
   if (!dt) {  // quick rejection: u wholly on one side of t's plane
@@ -250,11 +256,13 @@ CANOPY_HD inline double point_triangle_dist2(D3 p, const D3 t[3]) {
 /// never decides a case the full test would answer otherwise beyond rounding.
 CANOPY_HD inline bool beyond_plane(const D3 t[3], const D3 u[3], double clearance) {
   const D3 n = cross(t[1] - t[0], t[2] - t[0]);
-  const double nn = sqrt(dot(n, n));
+  const double nn = dot(n, n);
   if (!(nn > 0)) return false;
-  const double lim = clearance * nn * (1 + 1e-9) + 1e-12 * nn;
+  // d > |n| k for all three (or < -|n| k), compared squared: no square root.
+  const double k = clearance * (1 + 1e-9) + 1e-12, lim2 = nn * k * k;
   const double d0 = dot(n, u[0] - t[0]), d1 = dot(n, u[1] - t[0]), d2 = dot(n, u[2] - t[0]);
-  return (d0 > lim && d1 > lim && d2 > lim) || (d0 < -lim && d1 < -lim && d2 < -lim);
+  const bool above = d0 > 0 && d1 > 0 && d2 > 0, below = d0 < 0 && d1 < 0 && d2 < 0;
+  return (above || below) && d0 * d0 > lim2 && d1 * d1 > lim2 && d2 * d2 > lim2;
 }
 
 /// Whether, on some axis across an edge of t and an edge of u (their cross product), the two
@@ -290,7 +298,7 @@ CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double 
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);
   if (beyond_plane(t, u, clearance) || beyond_plane(u, t, clearance) || apart_on_edge_axes(t, u, clearance)) return false;
-  if (triangles_intersect(pa, pb)) return true;
+  if (triangles_intersect_canonical(t, u)) return true;
   const double c2 = clearance * clearance;
   for (int i = 0; i < 3; ++i) {
     if (point_triangle_dist2(t[i], u) <= c2 || point_triangle_dist2(u[i], t) <= c2) return true;
