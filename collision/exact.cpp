@@ -57,7 +57,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
       p[k] = apply(pose_a, ma.positions[ma.indices[3 * wa + static_cast<std::size_t>(k)]]) + Vec3f{0, 0, 0};
       q[k] = apply(pose_b, mb.positions[mb.indices[3 * wb + static_cast<std::size_t>(k)]]) + d;
     }
-    if (c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q)) return true;
+    if (c > 0 ? triangles_within(p, q, c, true) : triangles_intersect(p, q)) return true;
   }
   organ_vertices(s, ma, pose_a, ra.plant, ra.plant, x.va);
   organ_vertices(s, mb, pose_b, rb.plant, ra.plant, x.vb);

@@ -293,12 +293,15 @@ CANOPY_HD inline bool apart_on_edge_axes(const D3 t[3], const D3 u[3], double cl
 }
 
 /// Whether two closed triangles come within `clearance` of each other (intersecting counts).
-CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance) {
+/// `likely_touching` (a pair that touched at a nearby pose) only changes the order of the work:
+/// the intersection test first, the quick rejections after; the answer is the same.
+CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance, bool likely_touching = false) {
   D3 a[3], b[3];
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);
+  if (likely_touching && triangles_intersect_canonical(t, u)) return true;
   if (beyond_plane(t, u, clearance) || beyond_plane(u, t, clearance) || apart_on_edge_axes(t, u, clearance)) return false;
-  if (triangles_intersect_canonical(t, u)) return true;
+  if (!likely_touching && triangles_intersect_canonical(t, u)) return true;
   const double c2 = clearance * clearance;
   for (int i = 0; i < 3; ++i) {
     if (point_triangle_dist2(t[i], u) <= c2 || point_triangle_dist2(u[i], t) <= c2) return true;

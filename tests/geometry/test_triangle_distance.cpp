@@ -44,6 +44,7 @@ TEST_CASE("triangles_within agrees with the plain distance on random pairs near 
     const double d = reference_distance(p, q);
     if (d == 0) {
       CHECK(triangles_within(p, q, 1e-4));
+      CHECK(triangles_within(p, q, 1e-4, true));
       continue;
     }
     ++near;
@@ -51,6 +52,7 @@ TEST_CASE("triangles_within agrees with the plain distance on random pairs near 
     for (double f : {0.5, 1 - 1e-6, 1 + 1e-6, 2.0}) {
       const double c = d * f;
       CHECK_MESSAGE(triangles_within(p, q, c) == (f > 1), "trial ", trial, " distance ", d, " clearance ", c);
+      CHECK(triangles_within(p, q, c, true) == (f > 1));  // the other order of work
     }
     D3 a[3], b[3];
     for (int i = 0; i < 3; ++i) a[i] = d3(p[i]), b[i] = d3(q[i]);
