@@ -13,6 +13,12 @@ constexpr double kRad = std::numbers::pi / 180;
 
 Vec3d unit(Vec3f v) { return normalized(to_double(v)); }
 
+/// The offset that carries organ k's plant frame into the frame of plant `into`.
+Vec3f offset_into(const Stand& s, std::int32_t into, std::int32_t k) {
+  const std::int32_t p = s.organs[static_cast<std::size_t>(k)].plant;
+  return p == into ? Vec3f{0, 0, 0} : plant_offset(s, into, p);
+}
+
 /// The OBB `o` carried by the rigid motion `m` and grown by `inflate`; the rounding slack of the
 /// original box covers the float rounding of the carried one.
 Obb carried_box(const Obb& o, const Motion& m, float inflate) {
@@ -48,8 +54,7 @@ TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from,
   std::vector<double> dy(n), ry(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::int32_t y = c.keep[from + i];
-    const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
-    const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
+    const Vec3f off = offset_into(s, plant, y);
     const Obb& oy = boxes[static_cast<std::size_t>(y)];
     cy[i] = to_double(oy.centre + off);
     dy[i] = length(cy[i] - c.joint);
@@ -88,10 +93,6 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
   c.angle_now_deg = joints.angle_deg(mover);
   c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + c.angle_now_deg);
-  const auto offset_to = [&](std::int32_t k) {  // carries organ k's plant frame into the mover's
-    const std::int32_t p = s.organs[static_cast<std::size_t>(k)].plant;
-    return p == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, p);
-  };
   const auto in_subtree = [&](std::int32_t k) { return static_cast<std::uint32_t>(k) >= mover && static_cast<std::uint32_t>(k) < end; };
 
   for (std::uint32_t k = mover; k < end; ++k)
@@ -105,7 +106,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
     // The axis that swings x straight away from y.
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
     const Obb& oy = boxes[static_cast<std::size_t>(y)];
-    const Vec3d p = to_double(ox.centre), q = to_double(oy.centre + offset_to(y));
+    const Vec3d p = to_double(ox.centre), q = to_double(oy.centre + offset_into(s, plant, y));
     const Vec3d a = cross(p - c.joint, p - q);
     if (length(a) > 1e-12) away = away + normalized(a);
   }
@@ -136,10 +137,6 @@ void TurnSearch::gather_neighbours(Candidate& c) const {
   const std::uint32_t mover = c.mover, end = joints.subtree_end(mover);
   const std::int32_t plant = s.organs[mover].plant;
   const std::size_t met = c.met_count;
-  const auto offset_to = [&](std::int32_t k) {  // carries organ k's plant frame into the mover's
-    const std::int32_t p = s.organs[static_cast<std::size_t>(k)].plant;
-    return p == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, p);
-  };
   const auto in_subtree = [&](std::int32_t k) { return static_cast<std::uint32_t>(k) >= mover && static_cast<std::uint32_t>(k) < end; };
   double reach = 0;
   for (std::int32_t x : c.moving) {
@@ -157,7 +154,7 @@ void TurnSearch::gather_neighbours(Candidate& c) const {
   const double joint_norm = length(c.joint);
   for (std::int32_t q : near.plants_near(s, origin.x + c.joint.x, origin.y + c.joint.y, reach)) {
     const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
-    const Vec3f off = offset_to(static_cast<std::int32_t>(pr.first_organ));
+    const Vec3f off = offset_into(s, plant, static_cast<std::int32_t>(pr.first_organ));
     for (const OrganRun& run : near.runs(q)) {
       // A run whose sphere lies beyond the reach holds no organ that passes the test below
       // (the slack covers the float sums of centre and offset).
@@ -200,8 +197,7 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     const std::uint32_t yi = pairs.y[p];
     const std::int32_t x = c.moving[i], y = c.keep[yi];
-    const std::int32_t py = s.organs[static_cast<std::size_t>(y)].plant;
-    const Vec3f off = py == plant ? Vec3f{0, 0, 0} : plant_offset(s, plant, py);
+    const Vec3f off = offset_into(s, plant, y);
     if (box_of != x) ox = carried_box(boxes[static_cast<std::size_t>(x)], turn, clearance), box_of = x;
     const bool met = set == 0;
     if (!obb_overlap(ox, grown(boxes[static_cast<std::size_t>(y)], met ? clearance : detect_clearance), off)) return false;

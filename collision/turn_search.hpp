@@ -13,6 +13,13 @@
 /// the turned organs clear of every organ within their reach that was clear before the turn, so
 /// a turn never trades one contact for another; where no strict turn exists, a relaxed search
 /// asks only for the organs met.
+///
+/// Speed without changing an answer (each attempt's answer is a conjunction over its pairs, so
+/// only the order of work changes): an attempt first retests the pairs that blocked the last few
+/// attempts, and in each organ pair the triangle pairs that touched last (Witness); a strict
+/// candidate's neighbours are gathered only when an attempt first clears every organ met (most
+/// candidates of a contact are never picked and fail before that); the joint's rotation is made
+/// only near its limit (rotation angles obey the triangle inequality) or for a separating turn.
 #include "collision/contacts.hpp"
 #include "collision/exact.hpp"
 #include "collision/joints.hpp"
