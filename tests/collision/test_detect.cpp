@@ -10,11 +10,6 @@ using namespace canopy::test;
 
 namespace {
 
-std::vector<Contact> organ_pairs_only(std::vector<Contact> v) {
-  for (Contact& c : v) c.cluster_a = c.cluster_b = -1;
-  return v;
-}
-
 std::string describe(const std::vector<Contact>& want, const std::vector<Contact>& got) {
   std::vector<Contact> missed, extra;
   std::set_difference(want.begin(), want.end(), got.begin(), got.end(), std::back_inserter(missed));
