@@ -9,6 +9,9 @@
 namespace canopy {
 namespace {
 
+/// 10 µm: far above the float rounding of a plane test on plant-frame coordinates (about 1e-7 m).
+constexpr float kPlaneSlack = 1e-5f;
+
 /// The n-th index of 0..count-1 in the order start, start+1, start-1, start+2, ... (wrapping):
 /// triangles of neighbouring indices lie side by side on a prototype mesh, so a search that
 /// starts at the triangle that touched last meets its neighbours on both sides first.
@@ -79,12 +82,15 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   const auto meets = [](const float* t, const double* o) {
     return !(t[0] > o[3] || t[1] > o[4] || t[2] > o[5] || t[3] < o[0] || t[4] < o[1] || t[5] < o[2]);
   };
+  // The float plane pre-test below rejects only pairs more than this beyond the clearance.
+  const float margin = static_cast<float>(c) + kPlaneSlack;
   const auto pair_touches = [&](const Vec3f* p, const Vec3f* q) { return c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q); };
   double box_a[6], box_b[6];
   organ_box(x.va, box_a, c);
   organ_box(x.vb, box_b, c);
   x.boxes_b.clear();
   x.near_b.clear();
+  x.planes_b.clear();
   float bx[6];
   // With a witness, start both loops at its triangles: a touching pair is likely near the one
   // that touched last (the answer is the same in any order).
@@ -97,6 +103,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
     if (!meets(bx, box_a)) continue;
     x.near_b.push_back(static_cast<std::uint32_t>(j));
     x.boxes_b.insert(x.boxes_b.end(), bx, bx + 6);
+    x.planes_b.push_back(TrianglePlane::of(x.vb[mb.indices[3 * j]], x.vb[mb.indices[3 * j + 1]], x.vb[mb.indices[3 * j + 2]], margin));
   }
   if (!x.near_b.empty()) {
     for (std::size_t ii = 0; ii < ta; ++ii) {
@@ -104,6 +111,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
       tri_box(x.va, ma.indices, i, bx);
       if (!meets(bx, box_b)) continue;
       const Vec3f tri_a[3] = {x.va[ma.indices[3 * i]], x.va[ma.indices[3 * i + 1]], x.va[ma.indices[3 * i + 2]]};
+      const TrianglePlane plane_a = TrianglePlane::of(tri_a[0], tri_a[1], tri_a[2], margin);
       // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
       const double lo[3] = {bx[0] - c, bx[1] - c, bx[2] - c}, hi[3] = {bx[3] + c, bx[4] + c, bx[5] + c};
       for (std::size_t k = 0; k < x.near_b.size(); ++k) {
@@ -111,6 +119,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
         if (b6[0] > hi[0] || b6[1] > hi[1] || b6[2] > hi[2] || b6[3] < lo[0] || b6[4] < lo[1] || b6[5] < lo[2]) continue;
         const std::uint32_t j = x.near_b[k];
         const Vec3f tri_b[3] = {x.vb[mb.indices[3 * j]], x.vb[mb.indices[3 * j + 1]], x.vb[mb.indices[3 * j + 2]]};
+        if (x.planes_b[k].beyond(tri_a) || plane_a.beyond(tri_b)) continue;
         if (pair_touches(tri_a, tri_b)) {
           if (witness) witness->remember(i, j);
           return true;

@@ -6,14 +6,41 @@
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace canopy {
+
+/// A quick, conservative rejection before the exact triangle test, on the vertices that test
+/// receives: a separating-axis test in float along a triangle's (unnormalised) normal n. The
+/// triangle's own projections n . p_k span [lo, hi] (a point when n is exact, an interval when
+/// a sliver's normal is not), the other's must lie wholly beyond it by more than `margin` x |n|.
+/// Any axis separating the two by that much keeps them more than `margin` apart, and the float
+/// rounding (about 1e-7 m at plant scale) is far below the margin's slack over the clearance, so
+/// the exact test would have rejected them too.
+struct TrianglePlane {
+  Vec3f n;
+  float lo = 0, hi = 0, lim = 0;
+  static TrianglePlane of(Vec3f p0, Vec3f p1, Vec3f p2, float margin) {
+    TrianglePlane t;
+    t.n = cross(p1 - p0, p2 - p0);
+    const float d0 = dot(t.n, p0), d1 = dot(t.n, p1), d2 = dot(t.n, p2);
+    t.lo = std::min({d0, d1, d2}), t.hi = std::max({d0, d1, d2});
+    t.lim = margin * std::sqrt(dot(t.n, t.n));
+    return t;
+  }
+  bool beyond(const Vec3f* q) const {
+    const float d0 = dot(n, q[0]), d1 = dot(n, q[1]), d2 = dot(n, q[2]);
+    return std::min({d0, d1, d2}) > hi + lim || std::max({d0, d1, d2}) < lo - lim;
+  }
+};
 
 struct ExactScratch {
   std::vector<Vec3f> va, vb;
   std::vector<float> boxes_b;        // 6 per triangle of b near a
   std::vector<std::uint32_t> near_b;  // those triangles
+  std::vector<TrianglePlane> planes_b;
 };
 
 /// Whether organs a < b touch (or come within `clearance`). Same answer on both backends.
