@@ -53,7 +53,8 @@ bool organs_touch(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, std
 struct Witness {
   static constexpr int kSlots = 8;
   static constexpr std::uint16_t kNone = 0xffff;  // also: a triangle index too large to keep
-  std::uint16_t tri_a[kSlots] = {kNone, kNone, kNone, kNone, kNone, kNone, kNone, kNone}, tri_b[kSlots] = {kNone, kNone, kNone, kNone, kNone, kNone, kNone, kNone};
+  std::uint16_t tri_a[kSlots] = {kNone, kNone, kNone, kNone, kNone, kNone, kNone, kNone};
+  std::uint16_t tri_b[kSlots] = {kNone, kNone, kNone, kNone, kNone, kNone, kNone, kNone};
   std::int8_t latest = -1;  // the slot written last
   void remember(std::size_t a, std::size_t b) {
     if (a >= kNone || b >= kNone) return;
