@@ -45,6 +45,10 @@ class Joints {
   /// Organs [k, subtree_end(k)) are k and everything distal to it (the structure tree is
   /// depth-first in string order).
   std::uint32_t subtree_end(std::uint32_t k) const { return subtree_end_[k]; }
+  /// Whether organ x is k or distal to it (turns with k).
+  bool holds(std::uint32_t k, std::int32_t x) const {
+    return x >= 0 && static_cast<std::uint32_t>(x) >= k && static_cast<std::uint32_t>(x) < subtree_end_[k];
+  }
   const Affine3f& grown(std::uint32_t k) const { return grown_[k]; }
   /// The current joint angle of organ k, degrees (0 where it never turned).
   double angle_deg(std::uint32_t k) const;

@@ -31,7 +31,7 @@ MetPairs contacts_of(const Joints& joints, const ContactGraph& g, std::uint32_t 
   for (std::uint32_t x = mover; x < end; ++x)
     for (std::uint32_t e = g.first[x]; e < g.first[x + 1]; ++e) {
       const std::int32_t y = g.with[e];
-      if (static_cast<std::uint32_t>(y) < mover || static_cast<std::uint32_t>(y) >= end) met.emplace_back(static_cast<std::int32_t>(x), y);
+      if (!joints.holds(mover, y)) met.emplace_back(static_cast<std::int32_t>(x), y);
     }
   return met;
 }

@@ -53,11 +53,8 @@ std::vector<std::uint32_t> candidate_movers(const Stand& s, const Joints& j, con
   std::vector<std::uint32_t> all;
   chain(s, c.organ_a, cfg, all);
   chain(s, c.organ_b, cfg, all);
-  const auto holds = [&](std::uint32_t k, std::int32_t x) {
-    return static_cast<std::uint32_t>(x) >= k && static_cast<std::uint32_t>(x) < j.subtree_end(k);
-  };
   const std::size_t before = all.size();
-  std::erase_if(all, [&](std::uint32_t k) { return holds(k, c.organ_a) && holds(k, c.organ_b); });
+  std::erase_if(all, [&](std::uint32_t k) { return j.holds(k, c.organ_a) && j.holds(k, c.organ_b); });
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   if (all.empty()) {

@@ -93,15 +93,14 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
   c.angle_now_deg = joints.angle_deg(mover);
   c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + c.angle_now_deg);
-  const auto in_subtree = [&](std::int32_t k) { return static_cast<std::uint32_t>(k) >= mover && static_cast<std::uint32_t>(k) < end; };
 
   for (std::uint32_t k = mover; k < end; ++k)
     if (collide[static_cast<std::size_t>(s.organs[k].kind)]) c.moving.push_back(static_cast<std::int32_t>(k));
   // The pairs this mover separates: those with exactly one organ in its subtree.
   Vec3d away{0, 0, 0};
   for (auto [x, y] : met_all) {
-    if (in_subtree(y)) std::swap(x, y);
-    if (!in_subtree(x) || in_subtree(y)) continue;
+    if (joints.holds(mover, y)) std::swap(x, y);
+    if (!joints.holds(mover, x) || joints.holds(mover, y)) continue;
     c.keep.push_back(y);
     // The axis that swings x straight away from y.
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
@@ -134,10 +133,9 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
 void TurnSearch::gather_neighbours(Candidate& c) const {
   const Stand& s = stand;
   c.near_gathered = true;
-  const std::uint32_t mover = c.mover, end = joints.subtree_end(mover);
+  const std::uint32_t mover = c.mover;
   const std::int32_t plant = s.organs[mover].plant;
   const std::size_t met = c.met_count;
-  const auto in_subtree = [&](std::int32_t k) { return static_cast<std::uint32_t>(k) >= mover && static_cast<std::uint32_t>(k) < end; };
   double reach = 0;
   for (std::int32_t x : c.moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
@@ -162,7 +160,7 @@ void TurnSearch::gather_neighbours(Candidate& c) const {
       if (gap - 1e-6 * (1 + gap + joint_norm + run.radius) > reach + run.radius + clearance) continue;
       for (std::uint32_t k = run.first; k < run.end; ++k) {
         const auto y = static_cast<std::int32_t>(k);
-        if (in_subtree(y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
+        if (joints.holds(mover, y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
         const Obb& raw = boxes[k];
         if (length(to_double(raw.centre + off) - c.joint) > reach + raw.radius + clearance) continue;
         if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;

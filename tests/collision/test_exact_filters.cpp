@@ -4,30 +4,15 @@
 // and clearances around the distance.
 #include "collision/exact.hpp"
 #include "geometry/triangle_test.hpp"
+#include "tests/geometry/reference_distance.hpp"
 
 #include <doctest/doctest.h>
 
-#include <algorithm>
-#include <cmath>
 #include <random>
 
 using namespace canopy;
 
-namespace {
-
-double distance(const Vec3f* p, const Vec3f* q) {
-  if (triangles_intersect(p, q)) return 0;
-  D3 a[3], b[3];
-  for (int i = 0; i < 3; ++i) a[i] = d3(p[i]), b[i] = d3(q[i]);
-  double d2 = 1e300;
-  for (int i = 0; i < 3; ++i) {
-    d2 = std::min(d2, std::min(point_triangle_dist2(a[i], b), point_triangle_dist2(b[i], a)));
-    for (int j = 0; j < 3; ++j) d2 = std::min(d2, segment_segment_dist2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]));
-  }
-  return std::sqrt(d2);
-}
-
-}  // namespace
+using canopy::test::reference_distance;
 
 TEST_CASE("the float plane pre-test rejects only pairs farther apart than the clearance") {
   std::mt19937 rng(7);
@@ -43,7 +28,7 @@ TEST_CASE("the float plane pre-test rejects only pairs farther apart than the cl
       q[i] = base + shift + Vec3f{u(rng), u(rng), u(rng)} * size;
     }
     if (trial % 5 == 0) q[2] = q[0] + (q[1] - q[0]) * 0.5f + Vec3f{0, 0, 1e-7f};  // a sliver
-    const double d = distance(p, q);
+    const double d = reference_distance(p, q);
     for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
       const float margin = c + 1e-5f;
       const TrianglePlane pp = TrianglePlane::of(p[0], p[1], p[2], margin), pq = TrianglePlane::of(q[0], q[1], q[2], margin);

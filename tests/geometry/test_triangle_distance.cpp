@@ -1,32 +1,16 @@
-// The clearance test (triangles_within) against a plain reference: the distance of two triangles
-// as 0 where they meet, otherwise the least of the six vertex-triangle and nine edge-edge
-// distances, with none of the quick rejections (plane and edge-axis separations) that the shared
-// predicate tries first. The rejections must never change an answer.
+// The clearance test (triangles_within) against a plain reference distance (reference_distance.hpp):
+// the quick rejections (plane and edge-axis separations) that the shared predicate tries first
+// must never change an answer.
 #include "geometry/triangle_test.hpp"
+#include "tests/geometry/reference_distance.hpp"
 
 #include <doctest/doctest.h>
 
-#include <cmath>
-#include <algorithm>
 #include <random>
 
 using namespace canopy;
 
-namespace {
-
-double reference_distance(const Vec3f* p, const Vec3f* q) {
-  if (triangles_intersect(p, q)) return 0;
-  D3 a[3], b[3];
-  for (int i = 0; i < 3; ++i) a[i] = d3(p[i]), b[i] = d3(q[i]);
-  double d2 = 1e300;
-  for (int i = 0; i < 3; ++i) {
-    d2 = std::min({d2, point_triangle_dist2(a[i], b), point_triangle_dist2(b[i], a)});
-    for (int j = 0; j < 3; ++j) d2 = std::min(d2, segment_segment_dist2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]));
-  }
-  return std::sqrt(d2);
-}
-
-}  // namespace
+using canopy::test::reference_distance;
 
 TEST_CASE("triangles_within agrees with the plain distance on random pairs near and far") {
   std::mt19937 rng(20261122);
