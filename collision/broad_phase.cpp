@@ -1,4 +1,5 @@
 #include "collision/broad_phase.hpp"
+#include "collision/mbvt_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,13 +8,7 @@
 namespace canopy {
 
 bool plant_bounds_overlap(const Stand& s, const Mbvt& m, std::size_t p, std::size_t q) {
-  const PlantBound& a = m.plants[p];
-  const PlantBound& b = m.plants[q];
-  if (a.zlo > a.zhi || b.zlo > b.zhi) return false;
-  if (a.zlo > b.zhi || b.zlo > a.zhi) return false;
-  const double dx = s.plants[q].x - s.plants[p].x, dy = s.plants[q].y - s.plants[p].y;
-  const double r = static_cast<double>(a.radius) + static_cast<double>(b.radius);
-  return dx * dx + dy * dy <= r * r;
+  return plant_bounds_meet(m.plants[p], m.plants[q], s.plants[q].x - s.plants[p].x, s.plants[q].y - s.plants[p].y);
 }
 
 std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, const Mbvt& m) {
@@ -69,22 +64,27 @@ bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint
   return false;
 }
 
+std::vector<std::uint8_t> plants_with_free_pairs(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>* only) {
+  std::vector<std::uint8_t> self(s.plant_count(), 0);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    const PlantBound& pb = m.plants[p];
+    if (pb.cluster_count == 0 || (only && !(*only)[p])) continue;
+    // The plant's organs that take part are contiguous in cluster_organs.
+    const Cluster& first = m.clusters[pb.first_cluster];
+    const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
+    self[p] = has_free_pair(s, m, first.first, last.first + last.count - first.first) ? 1 : 0;
+  }
+  return self;
+}
+
 std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, const Mbvt& m, LevelCount& count,
                                                                const std::vector<std::uint8_t>* active) {
   auto work = plant_pairs(s, m);
   const auto on = [&](std::int32_t p) { return !active || (*active)[static_cast<std::size_t>(p)]; };
   if (active) std::erase_if(work, [&](const auto& w) { return !on(w.first) && !on(w.second); });
   count = {work.size(), 0};
-  std::vector<std::uint8_t> self(s.plant_count(), 0);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    const PlantBound& pb = m.plants[p];
-    if (pb.cluster_count == 0 || !on(static_cast<std::int32_t>(p))) continue;
-    // The plant's organs that take part are contiguous in cluster_organs.
-    const Cluster& first = m.clusters[pb.first_cluster];
-    const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-    self[p] = has_free_pair(s, m, first.first, last.first + last.count - first.first) ? 1 : 0;
-  }
+  const std::vector<std::uint8_t> self = plants_with_free_pairs(s, m, active);
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     if (self[p]) work.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(p)), ++count.within;
   std::sort(work.begin(), work.end());

@@ -47,7 +47,7 @@ KindMask parse_collide_kinds(const std::string& list) {
 Vec3f plant_offset(const Stand& s, std::int32_t a, std::int32_t b) {
   const PlantRecord& pa = s.plants[static_cast<std::size_t>(a)];
   const PlantRecord& pb = s.plants[static_cast<std::size_t>(b)];
-  return {static_cast<float>(pb.x - pa.x), static_cast<float>(pb.y - pa.y), 0.0f};
+  return origin_offset(pa.x, pa.y, pb.x, pb.y);
 }
 
 namespace {
@@ -97,19 +97,11 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
     c.first = static_cast<std::uint32_t>(part.organs.size());
     c.count = static_cast<std::uint32_t>(groups[g].size());
     part.organs.insert(part.organs.end(), groups[g].begin(), groups[g].end());
-    // The cluster's horizontal axis: from its first organ towards the mean of its organs.
-    float mx = 0, my = 0;
-    for (std::uint32_t id : groups[g]) mx += m.obbs[id].centre.x, my += m.obbs[id].centre.y;
-    mx = mx / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.x;
-    my = my / static_cast<float>(c.count) - m.obbs[groups[g][0]].centre.y;
-    const float len = sqrtf(mx * mx + my * my);
-    const float ax = len > 1e-6f ? mx / len : 1.0f, ay = len > 1e-6f ? my / len : 0.0f;
-    // Tree leaves over chunks in string order, then parents pairing neighbours level by level.
+    // Tree leaves over chunks in string order (the axis comes with the boxes: fit_cluster_axis), then parents pairing neighbours level by level.
     c.first_node = static_cast<std::uint32_t>(part.nodes.size());
     std::vector<std::uint32_t> level;
     for (std::uint32_t k = 0; k < c.count; k += static_cast<std::uint32_t>(config.leaf_chunk)) {
       LcdNode node;
-      node.box.ax = ax, node.box.ay = ay;
       node.first = c.first + k;
       node.count = std::min<std::uint32_t>(static_cast<std::uint32_t>(config.leaf_chunk), c.count - k);
       level.push_back(static_cast<std::uint32_t>(part.nodes.size()));
@@ -123,8 +115,7 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
           continue;
         }
         LcdNode node;
-        node.box.ax = ax, node.box.ay = ay;
-        node.left = static_cast<std::int32_t>(level[i]);
+          node.left = static_cast<std::int32_t>(level[i]);
         node.right = static_cast<std::int32_t>(level[i + 1]);
         node.first = part.nodes[level[i]].first;
         node.count = part.nodes[level[i]].count + part.nodes[level[i + 1]].count;
@@ -142,23 +133,13 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
 
 }  // namespace
 
-Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config) {
+Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
   Mbvt m;
   m.config = config;
   const std::size_t n = s.organ_count();
-  m.obbs.resize(n);
   m.takes_part.resize(n);
-  const PrototypeMesh* meshes[4][kMaxLod + 1] = {};
-  for (const OrganRecord& r : s.organs) {
-    const PrototypeMesh*& slot = meshes[static_cast<int>(r.prototype)][r.lod];
-    if (!slot) slot = &lib.get(r.prototype, r.lod);
-  }
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const OrganRecord& r = s.organs[i];
-    m.obbs[i] = make_obb(s.transforms[i], meshes[static_cast<int>(r.prototype)][r.lod]->box, config.clearance);
-    m.takes_part[i] = config.collide[static_cast<std::size_t>(r.kind)] ? 1 : 0;
-  }
+  for (std::size_t i = 0; i < n; ++i) m.takes_part[i] = config.collide[static_cast<std::size_t>(s.organs[i].kind)] ? 1 : 0;
   // Plants in parallel, then placed one after another (local indices moved to global ones).
   const std::size_t np = s.plant_count();
   std::vector<PlantPart> parts(np);
@@ -189,14 +170,44 @@ Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config)
       Cluster c = part.clusters[k];
       c.first += oo, c.first_node += no, c.root += no;
       m.clusters[c0[p] + k] = c;
-      fit_cluster(m, c);
     }
     PlantBound& pb = m.plants[p];
     pb.first_cluster = static_cast<std::uint32_t>(c0[p]);
     pb.cluster_count = static_cast<std::uint32_t>(part.clusters.size());
+  }
+  return m;
+}
+
+void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
+  const std::size_t n = s.organ_count();
+  m.obbs.resize(n);
+  const PrototypeMesh* meshes[4][kMaxLod + 1] = {};
+  for (const OrganRecord& r : s.organs) {
+    const PrototypeMesh*& slot = meshes[static_cast<int>(r.prototype)][r.lod];
+    if (!slot) slot = &lib.get(r.prototype, r.lod);
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const OrganRecord& r = s.organs[i];
+    m.obbs[i] = make_obb(s.transforms[i], meshes[static_cast<int>(r.prototype)][r.lod]->box, m.config.clearance);
+  }
+  const std::size_t np = m.plants.size();
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t p = 0; p < np; ++p) {
+    PlantBound& pb = m.plants[p];
+    for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) {
+      fit_cluster_axis(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), m.clusters[c]);
+      fit_cluster(m, m.clusters[c]);
+    }
     fit_plant(m, pb);
   }
+  m.max_radius = 0;
   for (const PlantBound& pb : m.plants) m.max_radius = std::max(m.max_radius, pb.radius);
+}
+
+Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config) {
+  Mbvt m = build_mbvt_topology(s, config);
+  fit_mbvt(m, s, lib);
   return m;
 }
 

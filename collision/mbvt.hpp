@@ -62,8 +62,15 @@ struct Mbvt {
   float max_radius = 0;
 };
 
-/// Builds the tree from the stand (never from meshes).
+/// Builds the tree from the stand (never from meshes): its shape, then its boxes.
 Mbvt build_mbvt(const Stand& stand, PrototypeLibrary& lib, const MbvtConfig& config);
+/// The tree's shape alone, which depends on the stand's structure and not on organ poses:
+/// which organs take part, clusters, their organs and node topology, plants' cluster ranges
+/// (boxes, axes and bounds left empty). The CUDA backend fits the boxes on the device.
+Mbvt build_mbvt_topology(const Stand& stand, const MbvtConfig& config);
+/// The boxes of a tree from its shape: every organ's OBB, every cluster's LCD axis (from its
+/// first organ towards the mean of its organs) and node boxes, every plant's bound.
+void fit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib);
 /// After organs turned: new OBBs for `organs` (ids) and new boxes for their clusters and plants,
 /// with the tree's shape and axes kept: a transform per organ, not a rebuild.
 void refit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs);

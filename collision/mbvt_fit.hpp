@@ -6,6 +6,32 @@
 
 namespace canopy {
 
+/// The LCD axis of cluster c (horizontal, from its first organ towards the mean of its organs'
+/// centres), written into every node of the cluster; fixed from then on (refits keep it).
+CANOPY_HD inline void fit_cluster_axis(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs, const Cluster& c) {
+  float mx = 0, my = 0;
+  for (std::uint32_t k = c.first; k < c.first + c.count; ++k) mx += obbs[cluster_organs[k]].centre.x, my += obbs[cluster_organs[k]].centre.y;
+  mx = mx / static_cast<float>(c.count) - obbs[cluster_organs[c.first]].centre.x;
+  my = my / static_cast<float>(c.count) - obbs[cluster_organs[c.first]].centre.y;
+  const float len = sqrtf(mx * mx + my * my);
+  const float ax = len > 1e-6f ? mx / len : 1.0f, ay = len > 1e-6f ? my / len : 0.0f;
+  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n) nodes[n].box.ax = ax, nodes[n].box.ay = ay;
+}
+
+/// The offset that carries plant b's frame into plant a's, from their origins (double, as the
+/// stand keeps them), rounded once to float: the same bits on both backends.
+CANOPY_HD inline Vec3f origin_offset(double ax, double ay, double bx, double by) {
+  return {static_cast<float>(bx - ax), static_cast<float>(by - ay), 0.0f};
+}
+
+/// Whether two plants' bounds (vertical cylinders about origins dx, dy apart) overlap.
+CANOPY_HD inline bool plant_bounds_meet(const PlantBound& a, const PlantBound& b, double dx, double dy) {
+  if (a.zlo > a.zhi || b.zlo > b.zhi) return false;
+  if (a.zlo > b.zhi || b.zlo > a.zhi) return false;
+  const double r = static_cast<double>(a.radius) + static_cast<double>(b.radius);
+  return dx * dx + dy * dy <= r * r;
+}
+
 /// Boxes of every node of cluster c from its organs' OBBs, bottom-up (children before parents).
 CANOPY_HD inline void fit_cluster_nodes(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs, const Cluster& c) {
   for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n) {

@@ -5,12 +5,15 @@
 #include "cuda/device.hpp"
 #include "cuda/device_buffer.hpp"
 #include "cuda/event_timer.hpp"
+#include "cuda/grid_kernels.hpp"
+#include "cuda/keys.hpp"
 #include "cuda/stand_on_device.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -20,26 +23,41 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-/// Runs `launch` into `out` with room for `capacity` items, at most `limit`; when more were
-/// found and they fit the limit, grows the buffer and runs again. Returns the items found, which
-/// exceed `limit` when they do not fit (then nothing usable is in `out`).
+/// Items one launch may list (counts and indices are 32-bit in the kernels).
+constexpr std::size_t kMaxItems = 0x7fffffff;
+/// Device bytes per organ pair in a batch: its key, the sorted copy, its hit flag, its record.
+constexpr std::size_t kOrganPairBytes = 2 * sizeof(std::uint64_t) + 1 + sizeof(Contact);
+/// Device bytes per cluster pair when the leaf level is the last: the pair, its key and work
+/// item twice (two sorts), its record.
+constexpr std::size_t kLeafPairBytes = sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t)) + sizeof(Contact);
+
+/// Runs `launch` into `out` with room for `guess` items (at least what `out` holds unless
+/// `tight`), at most `limit`; when more were found and they fit the limit, grows the buffer and
+/// runs again. Returns the items found, which exceed `limit` when they do not fit (then nothing
+/// usable is in `out`).
 template <typename T, typename Launch>
-std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t capacity, std::size_t limit,
-                    EventTimer& timer, Launch&& launch) {
-  capacity = std::max<std::size_t>(std::min(capacity, limit), 1);
+std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t guess, std::size_t limit,
+                    bool tight, EventTimer& timer, Launch&& launch) {
+  std::size_t capacity = std::max<std::size_t>(std::min(tight ? guess : std::max(guess, out.size()), limit), 1);
   for (;;) {
-    out.resize(capacity);
-    const Counters zero{};
-    CANOPY_CUDA_CHECK(cudaMemcpy(counters.get(), &zero, sizeof zero, cudaMemcpyHostToDevice));
+    out.fit(capacity, tight);
+    CANOPY_CUDA_CHECK(cudaMemset(counters.get(), 0, sizeof(Counters)));
     timer.start();
-    launch(out.get(), static_cast<unsigned long long>(out.size()));
+    launch(out.get(), static_cast<unsigned long long>(capacity));
     timer.stop();
-    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
     CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters.get(), sizeof host, cudaMemcpyDeviceToHost));
     const auto found = static_cast<std::size_t>(host.appended);
-    if (found <= out.size() || found > limit) return found;
+    if (found <= capacity || found > limit) return found;
     capacity = found;
   }
+}
+
+/// Appends the first n items of a device list to a host vector.
+template <typename T>
+void append_download(std::vector<T>& to, const T* from, std::size_t n) {
+  const std::size_t at = to.size();
+  to.resize(at + n);
+  if (n) CANOPY_CUDA_CHECK(cudaMemcpy(to.data() + at, from, n * sizeof(T), cudaMemcpyDeviceToHost));
 }
 
 class CudaBackend : public DetectionBackend {
@@ -50,38 +68,53 @@ class CudaBackend : public DetectionBackend {
       throw CudaError(fmt::format("no CUDA device {} ({})", device, r.devices.empty() ? r.unavailable_reason : "out of range"));
     name_ = r.devices[static_cast<std::size_t>(device)].name;
     CANOPY_CUDA_CHECK(cudaSetDevice(device));
+    counters_.resize(1);
   }
   std::string name() const override { return "cuda"; }
   std::string device() const override { return name_; }
 
+  /// The tree's shape on the host (the stand's structure alone), stand and shape uploaded
+  /// (`load_s`); then every box fitted on the device (`build_s`) and the stages.
   Contacts detect(const Stand& s, const DetectRequest& req) override {
-    const double t = now();
+    double t = now();
     lib_ = std::make_unique<PrototypeLibrary>();
-    tree_ = build_mbvt(s, *lib_, mbvt_config(req));
-    dev_.load(s, *tree_, *lib_);
-    counters_.resize(1);
-    return run(s, req, now() - t);
+    tree_ = build_mbvt_topology(s, mbvt_config(req));
+    dev_.load(s, *tree_, *lib_, plants_with_free_pairs(s, *tree_));
+    const double load_s = now() - t;
+    t = now();
+    dev_.fit(req.clearance);
+    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+    Contacts out = run(req, now() - t);
+    out.load_s = load_s;
+    return out;
   }
 
   Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
-    if (!tree_ || tree_->obbs.size() != s.organ_count())
+    if (!tree_ || tree_->takes_part.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
     const double t = now();
-    dev_.refit(s, *tree_, moved);  // on the device; the host keeps only the plant bounds current
-    return run(s, req, now() - t);
+    dev_.refit(s, *tree_, moved);  // on the device: only the moved organs' transforms travel
+    CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+    return run(req, now() - t);
   }
 
  private:
+  /// Bytes of the stage lists held now (free for the next batch's lists).
+  std::size_t list_bytes() const {
+    return cluster_pairs_.size() * sizeof(ClusterPair) + (organ_keys_.size() + organ_sorted_.size()) * sizeof(std::uint64_t) +
+           (leaf_work_.size() + leaf_work_sorted_.size()) * sizeof(std::uint32_t) + hits_.size() + contacts_.size() * sizeof(Contact) +
+           keys_.bytes();
+  }
+
   /// Device bytes the stage lists may use: the request's budget (or what is free now, with the
-  /// lists already held counted as free) less what the stand holds.
+  /// lists already held counted as free) less what the stand and the work list hold.
   std::size_t stage_budget(const DetectRequest& req, std::size_t work_bytes) {
     const std::size_t held = dev_.bytes() + work_bytes + sizeof(Counters);
     std::size_t budget = req.max_device_bytes;
     if (!budget) {
       std::size_t free = 0, total = 0;
       CANOPY_CUDA_CHECK(cudaMemGetInfo(&free, &total));
-      free += cluster_pairs_.size() * sizeof(ClusterPair) + organ_pairs_.size() * sizeof(OrganPair) + hit_.size();
-      budget = held + free / 10 * 9;
+      budget = held + (free + list_bytes()) / 10 * 9;
     }
     if (budget <= held + 4096)
       throw CudaError(fmt::format("the stand needs {:.1f} MB on the device, more than the {:.1f} MB allowed{}",
@@ -90,58 +123,116 @@ class CudaBackend : public DetectionBackend {
     return budget - held;
   }
 
-  Contacts run(const Stand& s, const DetectRequest& req, double build_s) {
+  /// The plant level on the device: plant-pair keys sorted as the CPU sorts them, made into the
+  /// work list; returns the keys (on the host too, for the lists that name plants).
+  std::vector<std::uint64_t> plant_level(const DetectRequest& req, bool tight, Contacts& out, EventTimer& timer) {
+    const std::uint32_t np = dev_.plants();
+    // Cells at least twice the largest radius, and few enough that coordinates fit 31 bits.
+    const double cell = std::max({2.0 * static_cast<double>(dev_.max_radius()), 1e-3, dev_.span() / 1e9});
+    cells_.fit(np, tight), members_.fit(np, tight), sorted_cells_.fit(np, tight), sorted_members_.fit(np, tight);
+    timer.start();
+    launch_plant_cells(dev_.view().origins, np, dev_.x0(), dev_.y0(), cell, cells_.get(), members_.get());
+    keys_.sort_pairs(cells_.get(), sorted_cells_.get(), members_.get(), sorted_members_.get(), np);
+    timer.stop();
+    const std::uint8_t* active = nullptr;
+    if (req.active_plants) {
+      if (req.active_plants->size() != np) throw std::invalid_argument("detect: active_plants needs one flag per plant");
+      active_.upload(*req.active_plants);
+      active = active_.get();
+    }
+    const GridView g{dev_.view().plants, dev_.view().origins, sorted_cells_.get(), sorted_members_.get(), np, dev_.x0(), dev_.y0(),
+                     cell, dev_.self(), active};
+    Counters host{};
+    const std::size_t nw = collect(pair_keys_, counters_, host, 8 * std::size_t{np} + 64, kMaxItems, tight, timer,
+                                   [&](std::uint64_t* o, unsigned long long cap) { launch_plant_pairs(g, o, cap, counters_.get()); });
+    if (nw > kMaxItems) throw CudaError(fmt::format("{} plant pairs: more than one launch can list", nw));
+    out.counts[0] = LevelCount{static_cast<std::size_t>(host.between), static_cast<std::size_t>(host.within)};
+    work_keys_.fit(nw, tight), work_.fit(nw, tight);
+    timer.start();
+    keys_.sort(pair_keys_.get(), work_keys_.get(), nw);
+    launch_work_items(dev_.view(), work_keys_.get(), static_cast<std::uint32_t>(nw), work_.get());
+    timer.stop();
+    std::vector<std::uint64_t> work;
+    append_download(work, work_keys_.get(), nw);
+    if (tight)  // under a budget, only the work list stays for the stages
+      for (auto* b : {&cells_, &sorted_cells_, &pair_keys_, &work_keys_}) b->resize(0);
+    if (tight) members_.resize(0), sorted_members_.resize(0), keys_.release();
+    return work;
+  }
+
+  /// The contact records of n organ-pair keys, made on the device and appended to `to`.
+  void download_contacts(const std::uint64_t* keys, std::size_t n, bool tight, std::vector<Contact>& to) {
+    contacts_.fit(n, tight);
+    launch_contacts(dev_.view(), keys, static_cast<std::uint32_t>(n), contacts_.get());
+    append_download(to, contacts_.get(), n);
+  }
+
+  /// The leaf level's records of a batch's nc cluster pairs, sorted as the CPU sorts them (plant
+  /// pair, then clusters): by cluster pair, then stably by work item (work items are sorted).
+  void download_cluster_contacts(const WorkItem* batch, std::size_t nc, bool tight, std::vector<Contact>& to) {
+    organ_keys_.fit(nc, tight), organ_sorted_.fit(nc, tight), leaf_work_.fit(nc, tight), leaf_work_sorted_.fit(nc, tight);
+    launch_cluster_keys(cluster_pairs_.get(), static_cast<std::uint32_t>(nc), organ_keys_.get(), leaf_work_.get());
+    keys_.sort_pairs(organ_keys_.get(), organ_sorted_.get(), leaf_work_.get(), leaf_work_sorted_.get(), nc);
+    keys_.sort_pairs(leaf_work_sorted_.get(), leaf_work_.get(), organ_sorted_.get(), organ_keys_.get(), nc);
+    contacts_.fit(nc, tight);
+    launch_cluster_contacts(batch, leaf_work_.get(), organ_keys_.get(), static_cast<std::uint32_t>(nc), contacts_.get());
+    append_download(to, contacts_.get(), nc);
+  }
+
+  Contacts run(const DetectRequest& req, double build_s) {
     Contacts out;
     out.level = req.level;
     out.build_s = build_s;
-    const Mbvt& m = *tree_;
-    // Plant level on the host, exactly as the CPU backend: grid pairs and plants with themselves.
+    const bool tight = req.max_device_bytes != 0;
+    EventTimer plant_timer, leaf_timer, organ_timer, exact_timer;
     double t = now();
-    LevelCount plants;
-    std::vector<WorkItem> work;
-    for (const auto& [p, q] : plant_level(s, m, plants, req.active_plants))
-      work.push_back({p, q, p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q)});
-    out.counts[0] = plants;
+    const std::vector<std::uint64_t> work = plant_level(req, tight, out, plant_timer);
     out.seconds[0] = now() - t;
+    out.device_seconds[0] = plant_timer.seconds();
     if (req.level == ContactLevel::plant) {
-      for (const WorkItem& w : work) out.pairs.push_back({-1, -1, w.p, w.q, -1, -1});
+      for (std::uint64_t k : work) out.pairs.push_back({-1, -1, static_cast<std::int32_t>(key_hi(k)), static_cast<std::int32_t>(key_lo(k)), -1, -1});
       return out;
     }
 
-    // Leaf and organ levels, in batches of plant pairs whose lists fit the budget: a batch that
-    // does not fit is halved.
-    t = now();
-    work_.upload(work);
-    const std::size_t budget = stage_budget(req, work.size() * sizeof(WorkItem));
-    LevelCount leaves;
-    std::vector<OrganPair> organ;
-    EventTimer leaf_timer, organ_timer, exact_timer;
+    // Leaf, organ and exact stages, in batches of plant pairs whose lists fit the budget: a
+    // batch that does not fit is halved. An organ pair belongs to one plant pair, so to one batch.
+    const std::size_t budget = stage_budget(req, work.size() * sizeof(WorkItem) + active_.size());
+    LevelCount leaves, organs;
     std::size_t batches = 0;
-    double t_leaf = 0;
+    double t_leaf = 0, t_organ = 0, t_exact = 0;
     for (std::size_t lo = 0, size = work.size(); lo < work.size();) {
       const std::size_t hi = std::min(work.size(), lo + size);
       const auto n = static_cast<std::uint32_t>(hi - lo);
       const WorkItem* batch = work_.get() + lo;
-      cluster_pairs_.resize(0), organ_pairs_.resize(0), hit_.resize(0);  // the budget is for this batch alone
+      if (tight) {
+        cluster_pairs_.resize(0), organ_keys_.resize(0), organ_sorted_.resize(0), hits_.resize(0), contacts_.resize(0);
+        leaf_work_.resize(0), leaf_work_sorted_.resize(0), keys_.release();
+      }
+      t = now();
       Counters host{};
-      const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * std::size_t{n}, budget / sizeof(ClusterPair), leaf_timer,
-                                     [&](ClusterPair* o, unsigned long long cap) {
+      const std::size_t pair_bytes = req.level == ContactLevel::leaf ? kLeafPairBytes : sizeof(ClusterPair);
+      const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * std::size_t{n}, std::min(kMaxItems, budget / pair_bytes),
+                                     tight, leaf_timer, [&](ClusterPair* o, unsigned long long cap) {
                                        launch_cluster_pairs(dev_.view(), batch, n, o, cap, counters_.get());
                                      });
-      std::size_t no = 0;
-      bool fits = nc * sizeof(ClusterPair) <= budget;
+      bool fits = nc * pair_bytes <= budget && (req.level != ContactLevel::leaf || nc * pair_bytes + KeyOps::scratch_bytes(nc) <= budget);
       const Counters leaf_counts = host;
+      t_leaf += now() - t;
+      std::size_t no = 0;
       if (fits && req.level != ContactLevel::leaf) {
-        const std::size_t room = (budget - nc * sizeof(ClusterPair)) / sizeof(OrganPair);
-        no = collect(organ_pairs_, counters_, host, 4 * nc + 1024, room, organ_timer, [&](OrganPair* o, unsigned long long cap) {
-          launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap, counters_.get());
-        });
-        fits = no <= room;
+        t = now();
+        const std::size_t room = (budget - nc * sizeof(ClusterPair)) / kOrganPairBytes;
+        no = collect(organ_keys_, counters_, host, 4 * nc + 1024, std::min(kMaxItems, room), tight, organ_timer,
+                     [&](std::uint64_t* o, unsigned long long cap) {
+                       launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap, counters_.get());
+                     });
+        fits = no <= room && nc * sizeof(ClusterPair) + no * kOrganPairBytes + KeyOps::scratch_bytes(no) <= budget;
+        t_organ += now() - t;
       }
       if (!fits) {
         if (n == 1)
           throw CudaError(fmt::format("plants {} and {} alone need more device memory than the {:.1f} MB allowed for lists",
-                                      work[lo].p, work[lo].q, static_cast<double>(budget) / 1e6));
+                                      key_hi(work[lo]), key_lo(work[lo]), static_cast<double>(budget) / 1e6));
         size = std::max<std::size_t>(1, (hi - lo) / 2);
         continue;
       }
@@ -149,61 +240,57 @@ class CudaBackend : public DetectionBackend {
       leaves.between += static_cast<std::size_t>(leaf_counts.between);
       leaves.within += static_cast<std::size_t>(leaf_counts.within);
       if (req.level == ContactLevel::leaf) {
-        for (const ClusterPair& c : cluster_pairs_.download(nc))
-          out.pairs.push_back({-1, -1, work[lo + c.work].p, work[lo + c.work].q, static_cast<std::int32_t>(c.a),
-                               static_cast<std::int32_t>(c.b)});
+        t = now();
+        leaf_timer.start();
+        download_cluster_contacts(batch, nc, tight, out.pairs);
+        leaf_timer.stop();
+        t_leaf += now() - t;
       } else {
-        std::vector<OrganPair> part = organ_pairs_.download(no);
-        for (OrganPair& p : part) p.work += static_cast<std::uint32_t>(lo);  // into the whole work list
-        organ.insert(organ.end(), part.begin(), part.end());
+        t = now();
+        // Sorted, without repeats (one organ pair can be reached through several node pairs).
+        organ_sorted_.fit(no, tight);
+        organ_timer.start();
+        keys_.sort(organ_keys_.get(), organ_sorted_.get(), no);
+        const std::size_t nu = keys_.unique(organ_sorted_.get(), organ_keys_.get(), no);
+        CANOPY_CUDA_CHECK(cudaMemset(counters_.get(), 0, sizeof(Counters)));
+        launch_count_pairs(dev_.view(), organ_keys_.get(), static_cast<std::uint32_t>(nu), counters_.get());
+        organ_timer.stop();
+        CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters_.get(), sizeof host, cudaMemcpyDeviceToHost));
+        organs.between += static_cast<std::size_t>(host.between);
+        organs.within += static_cast<std::size_t>(host.within);
+        if (req.level == ContactLevel::organ) download_contacts(organ_keys_.get(), nu, tight, out.pairs);
+        t_organ += now() - t;
+        if (req.level == ContactLevel::exact) {
+          t = now();
+          hits_.fit(nu, tight);
+          exact_timer.start();
+          launch_exact(dev_.view(), organ_keys_.get(), static_cast<std::uint32_t>(nu), req.clearance, hits_.get());
+          const std::size_t nh = keys_.select(organ_keys_.get(), hits_.get(), organ_sorted_.get(), nu);
+          exact_timer.stop();
+          download_contacts(organ_sorted_.get(), nh, tight, out.pairs);
+          t_exact += now() - t;
+        }
       }
       lo = hi;
     }
     out.batches = std::max<std::size_t>(batches, 1);
     out.counts[1] = leaves;
-    out.device_seconds[1] = leaf_timer.seconds();
-    out.device_seconds[2] = organ_timer.seconds();
-    t_leaf = now() - t;
     out.seconds[1] = t_leaf;
-    if (req.level == ContactLevel::leaf) {
-      std::sort(out.pairs.begin(), out.pairs.end());
-      return out;
-    }
+    out.device_seconds[1] = leaf_timer.seconds();
+    if (req.level == ContactLevel::leaf) return out;  // batches follow the sorted work list
+    out.counts[2] = organs;
+    out.seconds[2] = t_organ;
+    out.device_seconds[2] = organ_timer.seconds();
+    // Each batch's pairs come sorted; batches of later plant pairs may hold lower organ ids.
     t = now();
-    std::sort(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a != b.a ? a.a < b.a : a.b < b.b; });
-    organ.erase(std::unique(organ.begin(), organ.end(), [](const OrganPair& a, const OrganPair& b) { return a.a == b.a && a.b == b.b; }),
-                organ.end());
-    std::vector<Contact> organ_contacts;
-    organ_contacts.reserve(organ.size());
-    for (const OrganPair& p : organ)
-      organ_contacts.push_back({p.a, p.b, s.organs[static_cast<std::size_t>(p.a)].plant, s.organs[static_cast<std::size_t>(p.b)].plant, -1, -1});
-    out.counts[2] = count_pairs(organ_contacts);
-    out.seconds[2] = now() - t;
+    if (batches > 1) std::sort(out.pairs.begin(), out.pairs.end());
     if (req.level == ContactLevel::organ) {
-      out.pairs = std::move(organ_contacts);
+      out.seconds[2] += now() - t;
       return out;
     }
-
-    // Exact level, in batches of organ pairs that fit (a pair and its flag each).
-    t = now();
-    cluster_pairs_.resize(0);
-    std::vector<std::uint8_t> hit(organ.size(), 0);
-    const std::size_t per = std::max<std::size_t>(1, budget / (sizeof(OrganPair) + 1));
-    for (std::size_t lo = 0; lo < organ.size(); lo += per) {
-      const std::size_t n = std::min(per, organ.size() - lo);
-      organ_pairs_.resize(n);
-      CANOPY_CUDA_CHECK(cudaMemcpy(organ_pairs_.get(), organ.data() + lo, n * sizeof(OrganPair), cudaMemcpyHostToDevice));
-      hit_.resize(n);
-      exact_timer.start();
-      launch_exact(dev_.view(), work_.get(), organ_pairs_.get(), static_cast<std::uint32_t>(n), req.clearance, hit_.get());
-      exact_timer.stop();
-      CANOPY_CUDA_CHECK(cudaMemcpy(hit.data() + lo, hit_.get(), n, cudaMemcpyDeviceToHost));
-      if (lo > 0) ++out.batches;
-    }
-    out.device_seconds[3] = exact_timer.seconds();
-    out.pairs = keep_hits(organ_contacts, hit);
     out.counts[3] = count_pairs(out.pairs);
-    out.seconds[3] = now() - t;
+    out.seconds[3] = t_exact + (now() - t);
+    out.device_seconds[3] = exact_timer.seconds();
     return out;
   }
 
@@ -212,10 +299,16 @@ class CudaBackend : public DetectionBackend {
   std::optional<Mbvt> tree_;
   std::unique_ptr<PrototypeLibrary> lib_;
   StandOnDevice dev_;
+  KeyOps keys_;
+  DeviceBuffer<std::uint64_t> cells_, sorted_cells_, pair_keys_, work_keys_;
+  DeviceBuffer<std::uint32_t> members_, sorted_members_;
+  DeviceBuffer<std::uint8_t> active_;
   DeviceBuffer<WorkItem> work_;
   DeviceBuffer<ClusterPair> cluster_pairs_;
-  DeviceBuffer<OrganPair> organ_pairs_;
-  DeviceBuffer<std::uint8_t> hit_;
+  DeviceBuffer<std::uint64_t> organ_keys_, organ_sorted_;
+  DeviceBuffer<std::uint32_t> leaf_work_, leaf_work_sorted_;
+  DeviceBuffer<std::uint8_t> hits_;
+  DeviceBuffer<Contact> contacts_;
   DeviceBuffer<Counters> counters_;
 };
 

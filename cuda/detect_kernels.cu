@@ -2,8 +2,11 @@
 // LCD, OBB and triangle predicates (geometry/*.hpp, CANOPY_HD), compiled with --fmad=false.
 #include "collision/contacts.hpp"
 #include "collision/lcd_descent.hpp"
+#include "collision/mbvt_fit.hpp"
+#include "cuda/append.cuh"
 #include "cuda/check.hpp"
 #include "cuda/detect_kernels.hpp"
+#include "cuda/keys.hpp"
 #include "geometry/lcd.hpp"
 #include "geometry/obb.hpp"
 #include "geometry/triangle_test.hpp"
@@ -22,12 +25,22 @@ __device__ bool free_pair(const StandView& v, std::uint32_t first, std::uint32_t
   return false;
 }
 
-template <typename T>
-__device__ void append(T* out, unsigned long long capacity, Counters* c, const T& item) {
-  const unsigned long long at = atomicAdd(&c->appended, 1ull);
-  if (at < capacity) out[at] = item;
+__device__ Vec3f offset_between(const StandView& v, std::int32_t p, std::int32_t q) {
+  if (p == q) return {0, 0, 0};
+  const PlantOrigin a = v.origins[p], b = v.origins[q];
+  return origin_offset(a.x, a.y, b.x, b.y);
 }
 
+__global__ void work_items_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, WorkItem* out) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const auto p = static_cast<std::int32_t>(key_hi(keys[k])), q = static_cast<std::int32_t>(key_lo(keys[k]));
+  out[k] = WorkItem{p, q, offset_between(v, p, q)};
+}
+
+/// A thread per plant pair, over the cluster pairs of its two plants. (A warp per plant pair,
+/// lanes over the clusters of p, measured slower on the H200: 1.09 ms against 0.85 ms at 10,000
+/// plants.)
 __global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uint32_t n_work, ClusterPair* out,
                                      unsigned long long capacity, Counters* c) {
   const std::uint32_t w = blockIdx.x * blockDim.x + threadIdx.x;
@@ -48,15 +61,15 @@ __global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uin
   if (found) atomicAdd(it.p == it.q ? &c->within : &c->between, found);
 }
 
-__device__ void organ_pair(const StandView& v, std::int32_t a, std::int32_t b, const WorkItem& it, std::uint32_t w,
-                           OrganPair* out, unsigned long long capacity, Counters* c) {
+__device__ void organ_pair(const StandView& v, std::int32_t a, std::int32_t b, const WorkItem& it, std::uint64_t* out,
+                           unsigned long long capacity, Counters* c) {
   if (adjacent(v.organs[a], a, v.organs[b], b)) return;
   if (!obb_overlap(v.obbs[a], v.obbs[b], it.offset)) return;
-  append(out, capacity, c, OrganPair{a < b ? a : b, a < b ? b : a, w});
+  append(out, capacity, c, pair_key(static_cast<std::uint32_t>(a < b ? a : b), static_cast<std::uint32_t>(a < b ? b : a)));
 }
 
 __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n,
-                                   OrganPair* out, unsigned long long capacity, Counters* c) {
+                                   std::uint64_t* out, unsigned long long capacity, Counters* c) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const ClusterPair cp = pairs[k];
@@ -65,12 +78,11 @@ __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const Clus
   if (cp.a == cp.b) {
     for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
       for (std::uint32_t y = x + 1; y < ca.first + ca.count; ++y)
-        organ_pair(v, static_cast<std::int32_t>(v.cluster_organs[x]), static_cast<std::int32_t>(v.cluster_organs[y]), it, cp.work,
-                   out, capacity, c);
+        organ_pair(v, static_cast<std::int32_t>(v.cluster_organs[x]), static_cast<std::int32_t>(v.cluster_organs[y]), it, out, capacity, c);
     return;
   }
   descend_lcd_trees(v.nodes, v.cluster_organs, ca.root, cb.root, it.offset,
-                    [&](std::int32_t a, std::int32_t b) { organ_pair(v, a, b, it, cp.work, out, capacity, c); });
+                    [&](std::int32_t a, std::int32_t b) { organ_pair(v, a, b, it, out, capacity, c); });
 }
 
 /// Vertex k of organ o, in the frame of the lower organ's plant (moved by `offset`), exactly as
@@ -79,17 +91,45 @@ __device__ Vec3f vertex(const StandView& v, const MeshRef& m, const Affine3f& t,
   return apply(t, v.mesh_positions[m.first_vertex + k]) + offset;
 }
 
-__global__ void exact_kernel(StandView v, const WorkItem* work, const OrganPair* pairs, std::uint32_t n, float clearance,
-                             std::uint8_t* hit) {
+__global__ void count_pairs_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, Counters* c) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  const OrganPair op = pairs[k];
-  const OrganRecord ra = v.organs[op.a], rb = v.organs[op.b];
+  const bool within = v.organs[key_hi(keys[k])].plant == v.organs[key_lo(keys[k])].plant;
+  atomicAdd(within ? &c->within : &c->between, 1ull);
+}
+
+__global__ void cluster_keys_kernel(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys, std::uint32_t* work) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  keys[k] = pair_key(pairs[k].a, pairs[k].b);
+  work[k] = pairs[k].work;
+}
+
+__global__ void cluster_contacts_kernel(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,
+                                        Contact* out) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const WorkItem w = work[work_of[k]];
+  out[k] = Contact{-1, -1, w.p, w.q, static_cast<std::int32_t>(key_hi(keys[k])), static_cast<std::int32_t>(key_lo(keys[k]))};
+}
+
+__global__ void contacts_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, Contact* out) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const auto a = static_cast<std::int32_t>(key_hi(keys[k])), b = static_cast<std::int32_t>(key_lo(keys[k]));
+  out[k] = Contact{a, b, v.organs[a].plant, v.organs[b].plant, -1, -1};
+}
+
+__global__ void exact_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, float clearance, std::uint8_t* hit) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k >= n) return;
+  const std::uint32_t a = key_hi(keys[k]), b = key_lo(keys[k]);
+  const OrganRecord ra = v.organs[a], rb = v.organs[b];
   const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
   const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
-  const Affine3f ta = v.transforms[op.a], tb = v.transforms[op.b];
+  const Affine3f ta = v.transforms[a], tb = v.transforms[b];
   const Vec3f zero{0, 0, 0};
-  const Vec3f db = ra.plant == rb.plant ? zero : work[op.work].offset;
+  const Vec3f db = offset_between(v, ra.plant, rb.plant);
   // b's box, widened by the clearance: only a's triangles inside it need the full test.
   float lo[3] = {3e38f, 3e38f, 3e38f}, hi[3] = {-3e38f, -3e38f, -3e38f};
   for (std::uint32_t i = 0; i < mb.vertex_count; ++i) {
@@ -143,6 +183,12 @@ unsigned blocks(std::uint64_t n) { return static_cast<unsigned>((n + kThreads - 
 
 }  // namespace
 
+void launch_work_items(const StandView& v, const std::uint64_t* keys, std::uint32_t n, WorkItem* out) {
+  if (!n) return;
+  work_items_kernel<<<blocks(n), kThreads>>>(v, keys, n, out);
+  CANOPY_CUDA_CHECK_LAUNCH("work_items_kernel");
+}
+
 void launch_cluster_pairs(const StandView& v, const WorkItem* work, std::uint32_t n_work, ClusterPair* out,
                           unsigned long long capacity, Counters* counters) {
   if (!n_work) return;
@@ -151,16 +197,40 @@ void launch_cluster_pairs(const StandView& v, const WorkItem* work, std::uint32_
 }
 
 void launch_organ_pairs(const StandView& v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n_pairs,
-                        OrganPair* out, unsigned long long capacity, Counters* counters) {
+                        std::uint64_t* out, unsigned long long capacity, Counters* counters) {
   if (!n_pairs) return;
   organ_pairs_kernel<<<blocks(n_pairs), kThreads>>>(v, work, pairs, n_pairs, out, capacity, counters);
   CANOPY_CUDA_CHECK_LAUNCH("organ_pairs_kernel");
 }
 
-void launch_exact(const StandView& v, const WorkItem* work, const OrganPair* pairs, std::uint32_t n_pairs, float clearance,
-                  std::uint8_t* hit) {
+void launch_count_pairs(const StandView& v, const std::uint64_t* keys, std::uint32_t n, Counters* counters) {
+  if (!n) return;
+  count_pairs_kernel<<<blocks(n), kThreads>>>(v, keys, n, counters);
+  CANOPY_CUDA_CHECK_LAUNCH("count_pairs_kernel");
+}
+
+void launch_cluster_keys(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys, std::uint32_t* work) {
+  if (!n) return;
+  cluster_keys_kernel<<<blocks(n), kThreads>>>(pairs, n, keys, work);
+  CANOPY_CUDA_CHECK_LAUNCH("cluster_keys_kernel");
+}
+
+void launch_cluster_contacts(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,
+                             Contact* out) {
+  if (!n) return;
+  cluster_contacts_kernel<<<blocks(n), kThreads>>>(work, work_of, keys, n, out);
+  CANOPY_CUDA_CHECK_LAUNCH("cluster_contacts_kernel");
+}
+
+void launch_contacts(const StandView& v, const std::uint64_t* keys, std::uint32_t n, Contact* out) {
+  if (!n) return;
+  contacts_kernel<<<blocks(n), kThreads>>>(v, keys, n, out);
+  CANOPY_CUDA_CHECK_LAUNCH("contacts_kernel");
+}
+
+void launch_exact(const StandView& v, const std::uint64_t* keys, std::uint32_t n_pairs, float clearance, std::uint8_t* hit) {
   if (!n_pairs) return;
-  exact_kernel<<<blocks(n_pairs), kThreads>>>(v, work, pairs, n_pairs, clearance, hit);
+  exact_kernel<<<blocks(n_pairs), kThreads>>>(v, keys, n_pairs, clearance, hit);
   CANOPY_CUDA_CHECK_LAUNCH("exact_kernel");
 }
 

@@ -31,6 +31,12 @@ class DeviceBuffer {
     n_ = n;
     if (n) CANOPY_CUDA_CHECK(cudaMalloc(&p_, n * sizeof(T)));
   }
+  /// Room for at least n items: reallocates only to grow (the contents are then lost).
+  void grow(std::size_t n) {
+    if (n > n_) resize(n);
+  }
+  /// Room for n items, exactly when `tight` (a device memory budget is in force), else at least.
+  void fit(std::size_t n, bool tight) { tight ? resize(n) : grow(n); }
   void upload(const std::vector<T>& v) {
     resize(v.size());
     if (!v.empty()) CANOPY_CUDA_CHECK(cudaMemcpy(p_, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));

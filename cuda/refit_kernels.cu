@@ -13,21 +13,26 @@ unsigned blocks(std::uint32_t n) { return (n + kThreads - 1) / kThreads; }
 __global__ void refit_organs_kernel(TreeView v, const std::uint32_t* organs, std::uint32_t n, float clearance) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  const std::uint32_t id = organs[k];
+  const std::uint32_t id = organs ? organs[k] : k;
   const OrganRecord r = v.organs[id];
   v.obbs[id] = make_obb(v.transforms[id], v.boxes[static_cast<int>(r.prototype) * (kMaxLod + 1) + r.lod], clearance);
 }
 
-__global__ void refit_clusters_kernel(TreeView v, const std::uint32_t* clusters, std::uint32_t n) {
+__global__ void refit_clusters_kernel(TreeView v, const std::uint32_t* clusters, std::uint32_t n, bool fit_axes) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  fit_cluster_nodes(v.nodes, v.obbs, v.cluster_organs, v.clusters[clusters[k]]);
+  const Cluster c = v.clusters[clusters ? clusters[k] : k];
+  if (fit_axes) fit_cluster_axis(v.nodes, v.obbs, v.cluster_organs, c);
+  fit_cluster_nodes(v.nodes, v.obbs, v.cluster_organs, c);
 }
 
 __global__ void refit_plants_kernel(TreeView v, const std::uint32_t* plants, std::uint32_t n) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
-  fit_plant_bound(v.nodes, v.clusters, v.plants[plants[k]]);
+  PlantBound& pb = v.plants[plants ? plants[k] : k];
+  fit_plant_bound(v.nodes, v.clusters, pb);
+  // Radii are not negative, so their bits order as integers do.
+  atomicMax(reinterpret_cast<int*>(v.max_radius), __float_as_int(pb.radius));
 }
 
 }  // namespace
@@ -38,9 +43,9 @@ void launch_refit_organs(const TreeView& v, const std::uint32_t* organs, std::ui
   CANOPY_CUDA_CHECK_LAUNCH("refit_organs_kernel");
 }
 
-void launch_refit_clusters(const TreeView& v, const std::uint32_t* clusters, std::uint32_t n) {
+void launch_refit_clusters(const TreeView& v, const std::uint32_t* clusters, std::uint32_t n, bool fit_axes) {
   if (!n) return;
-  refit_clusters_kernel<<<blocks(n), kThreads>>>(v, clusters, n);
+  refit_clusters_kernel<<<blocks(n), kThreads>>>(v, clusters, n, fit_axes);
   CANOPY_CUDA_CHECK_LAUNCH("refit_clusters_kernel");
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-/// Refit on the device after organs turn (resolution rounds): the moved organs' OBBs from their
-/// transforms, then the LCD boxes of the clusters of their plants, then those plants' bounds. The
-/// same CANOPY_HD functions as the host's refit_mbvt (geometry/obb.hpp, collision/mbvt_fit.hpp).
+/// Fitting the tree's boxes on the device: every box at a build (the tree's shape comes from the
+/// host), and after organs turn (resolution rounds) the moved organs' OBBs from their
+/// transforms, then the LCD boxes of the clusters of their plants (axes kept), then those
+/// plants' bounds. The same CANOPY_HD functions as the host's fit_mbvt and refit_mbvt
+/// (geometry/obb.hpp, collision/mbvt_fit.hpp), so the same bits.
 #include "collision/mbvt.hpp"
 
 #include <cstdint>
@@ -18,10 +20,14 @@ struct TreeView {
   Obb* obbs;
   LcdNode* nodes;
   PlantBound* plants;
+  float* max_radius;  // the largest plant radius fitted so far (never lowered by a refit)
 };
 
+/// OBBs of organs[0, n), or of organs 0 to n - 1 when `organs` is null.
 void launch_refit_organs(const TreeView& v, const std::uint32_t* organs, std::uint32_t n, float clearance);
-void launch_refit_clusters(const TreeView& v, const std::uint32_t* clusters, std::uint32_t n);
+/// LCD node boxes of clusters[0, n) (or 0 to n - 1); with `fit_axes`, their axes first (a build).
+void launch_refit_clusters(const TreeView& v, const std::uint32_t* clusters, std::uint32_t n, bool fit_axes = false);
+/// Bounds of plants[0, n) (or 0 to n - 1), raising *max_radius to the largest.
 void launch_refit_plants(const TreeView& v, const std::uint32_t* plants, std::uint32_t n);
 
 }  // namespace canopy::cuda

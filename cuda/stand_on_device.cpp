@@ -4,7 +4,7 @@
 
 namespace canopy::cuda {
 
-void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib) {
+void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, const std::vector<std::uint8_t>& self) {
   std::vector<MeshRef> meshes(4 * (kMaxLod + 1));
   std::vector<Box3f> boxes(4 * (kMaxLod + 1));
   std::vector<Vec3f> positions;
@@ -20,28 +20,52 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib) {
     positions.insert(positions.end(), pm.positions.begin(), pm.positions.end());
     indices.insert(indices.end(), pm.indices.begin(), pm.indices.end());
   }
+  std::vector<PlantOrigin> origins(s.plant_count());
+  double x1 = 0, y1 = 0;
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    origins[p] = {s.plants[p].x, s.plants[p].y};
+    x0_ = p ? std::min(x0_, s.plants[p].x) : s.plants[p].x, x1 = p ? std::max(x1, s.plants[p].x) : s.plants[p].x;
+    y0_ = p ? std::min(y0_, s.plants[p].y) : s.plants[p].y, y1 = p ? std::max(y1, s.plants[p].y) : s.plants[p].y;
+  }
+  span_ = std::max(x1 - x0_, y1 - y0_);
   transforms_.upload(s.transforms);
   organs_.upload(s.organs);
-  obbs_.upload(m.obbs);
+  obbs_.resize(s.organ_count());
   cluster_organs_.upload(m.cluster_organs);
   clusters_.upload(m.clusters);
   nodes_.upload(m.nodes);
   plants_.upload(m.plants);
+  origins_.upload(origins);
+  self_.upload(self);
+  max_radius_.resize(1);
   positions_.upload(positions);
   indices_.upload(indices);
   meshes_.upload(meshes);
   boxes_.upload(boxes);
   view_ = {transforms_.get(), organs_.get(), obbs_.get(), cluster_organs_.get(), clusters_.get(), nodes_.get(),
-           plants_.get(), positions_.get(), indices_.get(), meshes_.get()};
+           plants_.get(), positions_.get(), indices_.get(), meshes_.get(), origins_.get()};
   tree_ = {transforms_.get(), organs_.get(), boxes_.get(), cluster_organs_.get(), clusters_.get(), obbs_.get(), nodes_.get(),
-           plants_.get()};
-  bytes_ = s.transforms.size() * sizeof(Affine3f) + s.organs.size() * sizeof(OrganRecord) + m.obbs.size() * sizeof(Obb) +
+           plants_.get(), max_radius_.get()};
+  bytes_ = s.transforms.size() * sizeof(Affine3f) + s.organs.size() * sizeof(OrganRecord) + s.organ_count() * sizeof(Obb) +
            m.cluster_organs.size() * 4 + m.clusters.size() * sizeof(Cluster) + m.nodes.size() * sizeof(LcdNode) +
-           m.plants.size() * sizeof(PlantBound) + positions.size() * sizeof(Vec3f) + indices.size() * 4 +
-           meshes.size() * sizeof(MeshRef) + boxes.size() * sizeof(Box3f);
+           m.plants.size() * (sizeof(PlantBound) + sizeof(PlantOrigin) + 1) + positions.size() * sizeof(Vec3f) +
+           indices.size() * 4 + meshes.size() * sizeof(MeshRef) + boxes.size() * sizeof(Box3f) + sizeof(float);
 }
 
-void StandOnDevice::refit(const Stand& s, Mbvt& m, const std::vector<std::uint32_t>& moved) {
+void StandOnDevice::fit(float clearance) {
+  CANOPY_CUDA_CHECK(cudaMemset(max_radius_.get(), 0, sizeof(float)));
+  launch_refit_organs(tree_, nullptr, static_cast<std::uint32_t>(obbs_.size()), clearance);
+  launch_refit_clusters(tree_, nullptr, static_cast<std::uint32_t>(clusters_.size()), true);
+  launch_refit_plants(tree_, nullptr, static_cast<std::uint32_t>(plants_.size()));
+}
+
+float StandOnDevice::max_radius() const {
+  float r = 0;
+  CANOPY_CUDA_CHECK(cudaMemcpy(&r, max_radius_.get(), sizeof r, cudaMemcpyDeviceToHost));
+  return r;
+}
+
+void StandOnDevice::refit(const Stand& s, const Mbvt& m, const std::vector<std::uint32_t>& moved) {
   if (moved.empty()) return;
   // The moved organs' transforms, scattered into place.
   std::vector<Affine3f> t;
@@ -52,8 +76,8 @@ void StandOnDevice::refit(const Stand& s, Mbvt& m, const std::vector<std::uint32
   launch_scatter(transforms_.get(), moved_transforms_.get(), ids_.get(), static_cast<std::uint32_t>(moved.size()),
                  sizeof(Affine3f) / 4);
   launch_refit_organs(tree_, ids_.get(), static_cast<std::uint32_t>(moved.size()), m.config.clearance);
-  // Every cluster of the plants that moved (their LCD boxes share axes fixed at build), then the
-  // plants' bounds.
+  // Every cluster of the plants that moved (their LCD boxes keep the axes fixed at the build),
+  // then the plants' bounds.
   std::vector<std::uint32_t> plants;
   for (std::uint32_t k : moved) plants.push_back(static_cast<std::uint32_t>(s.organs[k].plant));
   std::sort(plants.begin(), plants.end());
@@ -62,18 +86,10 @@ void StandOnDevice::refit(const Stand& s, Mbvt& m, const std::vector<std::uint32
   for (std::uint32_t p : plants)
     for (std::uint32_t c = m.plants[p].first_cluster; c < m.plants[p].first_cluster + m.plants[p].cluster_count; ++c)
       clusters.push_back(c);
-  DeviceBuffer<std::uint32_t> cl, pl;
-  cl.upload(clusters);
-  pl.upload(plants);
-  launch_refit_clusters(tree_, cl.get(), static_cast<std::uint32_t>(clusters.size()));
-  launch_refit_plants(tree_, pl.get(), static_cast<std::uint32_t>(plants.size()));
-  CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
-  // The bounds back to the host for the grid (a few bytes per plant).
-  const std::vector<PlantBound> all = plants_.download(m.plants.size());
-  for (std::uint32_t p : plants) {
-    m.plants[p] = all[p];
-    m.max_radius = std::max(m.max_radius, all[p].radius);
-  }
+  dirty_clusters_.upload(clusters);
+  dirty_plants_.upload(plants);
+  launch_refit_clusters(tree_, dirty_clusters_.get(), static_cast<std::uint32_t>(clusters.size()));
+  launch_refit_plants(tree_, dirty_plants_.get(), static_cast<std::uint32_t>(plants.size()));
 }
 
 }  // namespace canopy::cuda

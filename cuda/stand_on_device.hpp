@@ -1,7 +1,9 @@
 #pragma once
-/// The stand and its MBVT on the device, kept between detection rounds: uploaded once by
-/// `load`, refit on the device by `refit` after organs turned (only the moved organs' transforms
-/// travel), with the plant bounds brought back for the host's grid broad phase.
+/// The stand and its MBVT on the device, kept between detection rounds: `load` uploads the
+/// stand, the tree's shape (built on the host from the stand's structure alone) and the
+/// prototype meshes (stored once); `fit` makes every box on the device; `refit` redoes the boxes
+/// of organs that turned (only their transforms travel). The plant bounds stay on the device:
+/// the plant grid runs there too.
 #include "collision/mbvt.hpp"
 #include "cuda/detect_kernels.hpp"
 #include "cuda/device_buffer.hpp"
@@ -15,12 +17,23 @@ namespace canopy::cuda {
 
 class StandOnDevice {
  public:
-  /// Uploads the stand, its tree and the prototype meshes (stored once).
-  void load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib);
+  /// Uploads the stand, the shape of its tree `m` (boxes not needed), the flags of plants that
+  /// meet themselves, and the prototype meshes.
+  void load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, const std::vector<std::uint8_t>& self);
+  /// Every OBB, cluster axis, LCD box and plant bound, on the device (no copy).
+  void fit(float clearance);
   /// After organs `moved` turned: their transforms up, their OBBs, their plants' cluster boxes
-  /// and plant bounds refit on the device; the new bounds of those plants written into m.plants.
-  void refit(const Stand& s, Mbvt& m, const std::vector<std::uint32_t>& moved);
+  /// and plant bounds refit on the device.
+  void refit(const Stand& s, const Mbvt& m, const std::vector<std::uint32_t>& moved);
+  /// The largest plant radius fitted (one float down).
+  float max_radius() const;
   const StandView& view() const { return view_; }
+  const std::uint8_t* self() const { return self_.get(); }
+  std::uint32_t plants() const { return static_cast<std::uint32_t>(plants_.size()); }
+  /// The least origin coordinates (the grid's corner) and their spans.
+  double x0() const { return x0_; }
+  double y0() const { return y0_; }
+  double span() const { return span_; }
   /// Bytes held on the device by the stand and its tree.
   std::size_t bytes() const { return bytes_; }
 
@@ -32,14 +45,18 @@ class StandOnDevice {
   DeviceBuffer<Cluster> clusters_;
   DeviceBuffer<LcdNode> nodes_;
   DeviceBuffer<PlantBound> plants_;
+  DeviceBuffer<PlantOrigin> origins_;
+  DeviceBuffer<std::uint8_t> self_;
+  DeviceBuffer<float> max_radius_;
   DeviceBuffer<Vec3f> positions_;
   DeviceBuffer<std::uint32_t> indices_;
   DeviceBuffer<MeshRef> meshes_;
   DeviceBuffer<Box3f> boxes_;
-  DeviceBuffer<std::uint32_t> ids_;
+  DeviceBuffer<std::uint32_t> ids_, dirty_clusters_, dirty_plants_;
   DeviceBuffer<Affine3f> moved_transforms_;
   StandView view_{};
   TreeView tree_{};
+  double x0_ = 0, y0_ = 0, span_ = 0;
   std::size_t bytes_ = 0;
 };
 

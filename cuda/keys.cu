@@ -1,0 +1,90 @@
+// KeyOps: CUB radix sort, unique and flagged selection on 64-bit keys.
+#include "cuda/check.hpp"
+#include "cuda/keys.hpp"
+
+#include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_select.cuh>
+
+#include <algorithm>
+
+namespace canopy::cuda {
+
+std::size_t KeyOps::scratch_bytes(std::size_t n) {
+  const auto items = static_cast<long long>(n);
+  std::size_t a = 0, b = 0, c = 0, d = 0;
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, a, static_cast<const std::uint64_t*>(nullptr),
+                                                   static_cast<std::uint64_t*>(nullptr), items));
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, b, static_cast<const std::uint64_t*>(nullptr),
+                                                    static_cast<std::uint64_t*>(nullptr), static_cast<const std::uint32_t*>(nullptr),
+                                                    static_cast<std::uint32_t*>(nullptr), items));
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(nullptr, c, static_cast<const std::uint64_t*>(nullptr), static_cast<std::uint64_t*>(nullptr),
+                                              static_cast<long long*>(nullptr), items));
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, d, static_cast<const std::uint64_t*>(nullptr),
+                                               static_cast<const std::uint8_t*>(nullptr), static_cast<std::uint64_t*>(nullptr),
+                                               static_cast<long long*>(nullptr), items));
+  std::size_t e = 0;
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, e, static_cast<const std::uint32_t*>(nullptr),
+                                                    static_cast<std::uint32_t*>(nullptr), static_cast<const std::uint64_t*>(nullptr),
+                                                    static_cast<std::uint64_t*>(nullptr), items));
+  return std::max({a, b, c, d, e}) + sizeof(long long);
+}
+
+void* KeyOps::scratch(std::size_t bytes) {
+  if (scratch_.size() < bytes) scratch_.resize(bytes);
+  if (count_.size() == 0) count_.resize(1);
+  return scratch_.get();
+}
+
+std::size_t KeyOps::selected() {
+  long long n = 0;
+  CANOPY_CUDA_CHECK(cudaMemcpy(&n, count_.get(), sizeof n, cudaMemcpyDeviceToHost));
+  return static_cast<std::size_t>(n);
+}
+
+void KeyOps::sort(const std::uint64_t* in, std::uint64_t* out, std::size_t n) {
+  if (!n) return;
+  std::size_t bytes = 0;
+  const auto items = static_cast<long long>(n);
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, bytes, in, out, items));
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(scratch(bytes), bytes, in, out, items));
+}
+
+void KeyOps::sort_pairs(const std::uint64_t* keys_in, std::uint64_t* keys_out, const std::uint32_t* values_in,
+                        std::uint32_t* values_out, std::size_t n) {
+  if (!n) return;
+  std::size_t bytes = 0;
+  const auto items = static_cast<long long>(n);
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys_in, keys_out, values_in, values_out, items));
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch(bytes), bytes, keys_in, keys_out, values_in, values_out, items));
+}
+
+void KeyOps::sort_pairs(const std::uint32_t* keys_in, std::uint32_t* keys_out, const std::uint64_t* values_in,
+                        std::uint64_t* values_out, std::size_t n) {
+  if (!n) return;
+  std::size_t bytes = 0;
+  const auto items = static_cast<long long>(n);
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys_in, keys_out, values_in, values_out, items));
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch(bytes), bytes, keys_in, keys_out, values_in, values_out, items));
+}
+
+std::size_t KeyOps::unique(const std::uint64_t* in, std::uint64_t* out, std::size_t n) {
+  if (!n) return 0;
+  std::size_t bytes = 0;
+  const auto items = static_cast<long long>(n);
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(nullptr, bytes, in, out, count_.get(), items));
+  void* s = scratch(bytes);
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(s, bytes, in, out, count_.get(), items));
+  return selected();
+}
+
+std::size_t KeyOps::select(const std::uint64_t* in, const std::uint8_t* flags, std::uint64_t* out, std::size_t n) {
+  if (!n) return 0;
+  std::size_t bytes = 0;
+  const auto items = static_cast<long long>(n);
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, bytes, in, flags, out, count_.get(), items));
+  void* s = scratch(bytes);
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(s, bytes, in, flags, out, count_.get(), items));
+  return selected();
+}
+
+}  // namespace canopy::cuda
