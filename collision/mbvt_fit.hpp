@@ -32,21 +32,37 @@ CANOPY_HD inline bool plant_bounds_meet(const PlantBound& a, const PlantBound& b
   return dx * dx + dy * dy <= r * r;
 }
 
+/// The box of a leaf node of a cluster's tree (its axis already set) from its organs' OBBs.
+CANOPY_HD inline void fit_leaf_node(LcdNode& node, const Obb* obbs, const std::uint32_t* cluster_organs) {
+  const float ax = node.box.ax, ay = node.box.ay;
+  node.box = Lcd{};
+  node.box.ax = ax, node.box.ay = ay;
+  for (std::uint32_t k = node.first; k < node.first + node.count; ++k) lcd_add(node.box, obbs[cluster_organs[k]]);
+  lcd_inflate(node.box, 0);  // rounding slack of the projection
+}
+
+/// The box of inner node n from its children's (children come before parents, and share the
+/// axis: an exact merge).
+CANOPY_HD inline void fit_inner_node(LcdNode* nodes, std::uint32_t n) {
+  LcdNode& node = nodes[n];
+  const float ax = node.box.ax, ay = node.box.ay;
+  node.box = Lcd{};
+  node.box.ax = ax, node.box.ay = ay;
+  lcd_merge(node.box, nodes[node.left].box);
+  lcd_merge(node.box, nodes[node.right].box);
+}
+
+/// The inner nodes of cluster c, bottom-up, once its leaf nodes are fitted.
+CANOPY_HD inline void fit_inner_nodes(LcdNode* nodes, const Cluster& c) {
+  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n)
+    if (nodes[n].left >= 0) fit_inner_node(nodes, n);
+}
+
 /// Boxes of every node of cluster c from its organs' OBBs, bottom-up (children before parents).
 CANOPY_HD inline void fit_cluster_nodes(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs, const Cluster& c) {
-  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n) {
-    LcdNode& node = nodes[n];
-    const float ax = node.box.ax, ay = node.box.ay;
-    node.box = Lcd{};
-    node.box.ax = ax, node.box.ay = ay;
-    if (node.left < 0) {
-      for (std::uint32_t k = node.first; k < node.first + node.count; ++k) lcd_add(node.box, obbs[cluster_organs[k]]);
-      lcd_inflate(node.box, 0);  // rounding slack of the projection
-    } else {  // children come before parents, and share the axis: an exact merge
-      lcd_merge(node.box, nodes[node.left].box);
-      lcd_merge(node.box, nodes[node.right].box);
-    }
-  }
+  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n)
+    if (nodes[n].left < 0) fit_leaf_node(nodes[n], obbs, cluster_organs);
+  fit_inner_nodes(nodes, c);
 }
 
 /// A plant's bound (horizontal radius about its origin, vertical extent) from its clusters' roots.

@@ -52,12 +52,22 @@ std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Coun
   }
 }
 
-/// Appends the first n items of a device list to a host vector.
+/// Appends the first n items of a device list to a host vector, through page-locked memory and
+/// a copy on all cores.
 template <typename T>
-void append_download(std::vector<T>& to, const T* from, std::size_t n) {
+void append_download(std::vector<T>& to, const T* from, std::size_t n, PinnedBuffer<T>& staging) {
+  if (!n) return;
+  staging.grow(n);
+  CANOPY_CUDA_CHECK(cudaMemcpy(staging.get(), from, n * sizeof(T), cudaMemcpyDeviceToHost));
   const std::size_t at = to.size();
   to.resize(at + n);
-  if (n) CANOPY_CUDA_CHECK(cudaMemcpy(to.data() + at, from, n * sizeof(T), cudaMemcpyDeviceToHost));
+  constexpr std::size_t kChunk = 16384;
+  const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const std::size_t lo = static_cast<std::size_t>(c) * kChunk, hi = std::min(n, lo + kChunk);
+    std::copy(staging.get() + lo, staging.get() + hi, to.begin() + static_cast<std::ptrdiff_t>(at + lo));
+  }
 }
 
 class CudaBackend : public DetectionBackend {
@@ -80,6 +90,7 @@ class CudaBackend : public DetectionBackend {
     lib_ = std::make_unique<PrototypeLibrary>();
     tree_ = build_mbvt_topology(s, mbvt_config(req));
     dev_.load(s, *tree_, *lib_, plants_with_free_pairs(s, *tree_));
+    sorted_cell_ = 0;
     const double load_s = now() - t;
     t = now();
     dev_.fit(req.clearance);
@@ -129,11 +140,14 @@ class CudaBackend : public DetectionBackend {
     const std::uint32_t np = dev_.plants();
     // Cells at least twice the largest radius, and few enough that coordinates fit 31 bits.
     const double cell = std::max({2.0 * static_cast<double>(dev_.max_radius()), 1e-3, dev_.span() / 1e9});
-    cells_.fit(np, tight), members_.fit(np, tight), sorted_cells_.fit(np, tight), sorted_members_.fit(np, tight);
-    timer.start();
-    launch_plant_cells(dev_.view().origins, np, dev_.x0(), dev_.y0(), cell, cells_.get(), members_.get());
-    keys_.sort_pairs(cells_.get(), sorted_cells_.get(), members_.get(), sorted_members_.get(), np);
-    timer.stop();
+    if (cell != sorted_cell_) {  // origins never move: plants are sorted again only for a new cell size
+      cells_.fit(np, tight), members_.fit(np, tight), sorted_cells_.fit(np, tight), sorted_members_.fit(np, tight);
+      timer.start();
+      launch_plant_cells(dev_.view().origins, np, dev_.x0(), dev_.y0(), cell, cells_.get(), members_.get());
+      keys_.sort_pairs(cells_.get(), sorted_cells_.get(), members_.get(), sorted_members_.get(), np);
+      timer.stop();
+      sorted_cell_ = cell;
+    }
     const std::uint8_t* active = nullptr;
     if (req.active_plants) {
       if (req.active_plants->size() != np) throw std::invalid_argument("detect: active_plants needs one flag per plant");
@@ -153,10 +167,10 @@ class CudaBackend : public DetectionBackend {
     launch_work_items(dev_.view(), work_keys_.get(), static_cast<std::uint32_t>(nw), work_.get());
     timer.stop();
     std::vector<std::uint64_t> work;
-    append_download(work, work_keys_.get(), nw);
+    append_download(work, work_keys_.get(), nw, staged_keys_);
     if (tight)  // under a budget, only the work list stays for the stages
       for (auto* b : {&cells_, &sorted_cells_, &pair_keys_, &work_keys_}) b->resize(0);
-    if (tight) members_.resize(0), sorted_members_.resize(0), keys_.release();
+    if (tight) members_.resize(0), sorted_members_.resize(0), keys_.release(), sorted_cell_ = 0;
     return work;
   }
 
@@ -164,7 +178,7 @@ class CudaBackend : public DetectionBackend {
   void download_contacts(const std::uint64_t* keys, std::size_t n, bool tight, std::vector<Contact>& to) {
     contacts_.fit(n, tight);
     launch_contacts(dev_.view(), keys, static_cast<std::uint32_t>(n), contacts_.get());
-    append_download(to, contacts_.get(), n);
+    append_download(to, contacts_.get(), n, staged_contacts_);
   }
 
   /// The leaf level's records of a batch's nc cluster pairs, sorted as the CPU sorts them (plant
@@ -176,7 +190,7 @@ class CudaBackend : public DetectionBackend {
     keys_.sort_pairs(leaf_work_sorted_.get(), leaf_work_.get(), organ_sorted_.get(), organ_keys_.get(), nc);
     contacts_.fit(nc, tight);
     launch_cluster_contacts(batch, leaf_work_.get(), organ_keys_.get(), static_cast<std::uint32_t>(nc), contacts_.get());
-    append_download(to, contacts_.get(), nc);
+    append_download(to, contacts_.get(), nc, staged_contacts_);
   }
 
   Contacts run(const DetectRequest& req, double build_s) {
@@ -310,6 +324,9 @@ class CudaBackend : public DetectionBackend {
   DeviceBuffer<std::uint8_t> hits_;
   DeviceBuffer<Contact> contacts_;
   DeviceBuffer<Counters> counters_;
+  PinnedBuffer<std::uint64_t> staged_keys_;
+  PinnedBuffer<Contact> staged_contacts_;
+  double sorted_cell_ = 0;  // the cell size the plants in sorted_cells_ were sorted for (0: none)
 };
 
 }  // namespace

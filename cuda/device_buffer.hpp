@@ -54,4 +54,29 @@ class DeviceBuffer {
   std::size_t n_ = 0;
 };
 
+/// Page-locked host memory (RAII), which the device copies into at full speed; grows only.
+template <typename T>
+class PinnedBuffer {
+ public:
+  PinnedBuffer() = default;
+  PinnedBuffer(const PinnedBuffer&) = delete;
+  PinnedBuffer& operator=(const PinnedBuffer&) = delete;
+  ~PinnedBuffer() {
+    if (p_) cudaFreeHost(p_);
+  }
+  void grow(std::size_t n) {
+    if (n <= n_) return;
+    if (p_) CANOPY_CUDA_CHECK(cudaFreeHost(p_));
+    p_ = nullptr;
+    n_ = 0;
+    CANOPY_CUDA_CHECK(cudaMallocHost(&p_, n * sizeof(T)));
+    n_ = n;
+  }
+  T* get() const { return p_; }
+
+ private:
+  T* p_ = nullptr;
+  std::size_t n_ = 0;
+};
+
 }  // namespace canopy::cuda

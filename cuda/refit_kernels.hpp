@@ -25,8 +25,10 @@ struct TreeView {
 
 /// OBBs of organs[0, n), or of organs 0 to n - 1 when `organs` is null.
 void launch_refit_organs(const TreeView& v, const std::uint32_t* organs, std::uint32_t n, float clearance);
-/// LCD node boxes of clusters[0, n) (or 0 to n - 1); with `fit_axes`, their axes first (a build).
-void launch_refit_clusters(const TreeView& v, const std::uint32_t* clusters, std::uint32_t n, bool fit_axes = false);
+/// LCD node boxes of clusters[0, n), axes kept (a refit).
+void launch_refit_clusters(const TreeView& v, const std::uint32_t* clusters, std::uint32_t n);
+/// Every cluster's axis and node boxes (a build): `clusters` clusters, `nodes` nodes.
+void launch_fit_clusters(const TreeView& v, std::uint32_t clusters, std::uint32_t nodes);
 /// Bounds of plants[0, n) (or 0 to n - 1), raising *max_radius to the largest.
 void launch_refit_plants(const TreeView& v, const std::uint32_t* plants, std::uint32_t n);
 

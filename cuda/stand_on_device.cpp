@@ -55,7 +55,7 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, c
 void StandOnDevice::fit(float clearance) {
   CANOPY_CUDA_CHECK(cudaMemset(max_radius_.get(), 0, sizeof(float)));
   launch_refit_organs(tree_, nullptr, static_cast<std::uint32_t>(obbs_.size()), clearance);
-  launch_refit_clusters(tree_, nullptr, static_cast<std::uint32_t>(clusters_.size()), true);
+  launch_fit_clusters(tree_, static_cast<std::uint32_t>(clusters_.size()), static_cast<std::uint32_t>(nodes_.size()));
   launch_refit_plants(tree_, nullptr, static_cast<std::uint32_t>(plants_.size()));
 }
 
