@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 
 using namespace canopy;
@@ -45,6 +46,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+    } else {
+      std::fprintf(stderr, "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
+      return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
   auto gpu = cuda::make_cuda_backend();

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -63,6 +64,12 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--axes") && i + 1 < argc) base.axis_fan = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) base.scan_step_deg = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--append")) append = true;
+    else {
+      std::fprintf(stderr,
+                   "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
+                   "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n");
+      return std::strcmp(argv[i], "--help") ? 2 : 0;
+    }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;

@@ -65,10 +65,10 @@ bench() {
   awk -F, 'NR>1 && $4==2 && $5=="mbvt" && $6=="to exact" {print $1, $7}' "$cpu" | sort -n > "$out/plot_data/cpu_exact.dat"
   local plots="'$out/plot_data/cpu_exact.dat' using 1:2 with linespoints pt 7 title 'CPU, 2 threads (this machine)'"
   if [ -f "$gpu" ]; then
-    local cp cl ct cc; cp=$(column "$gpu" plants); cl=$(column "$gpu" level); ct=$(column "$gpu" gpu_total_s); cc=$(column "$gpu" cpu_total_s)
+    local cp cl ct cc; cp=$(column "$gpu" plants); cl=$(column "$gpu" level); ct=$(column "$gpu" gpu_detect_s); cc=$(column "$gpu" cpu_total_s)
     awk -F, -v p="$cp" -v l="$cl" -v t="$ct" -v c="$cc" 'NR>1 && $l=="exact" {print $p, $t, $c}' "$gpu" | sort -n > "$out/plot_data/gpu_exact.dat"
     local dev; dev=$(awk -F, 'NR==2 {print $1}' "$gpu")
-    plots+=", '$out/plot_data/gpu_exact.dat' using 1:2 with linespoints pt 5 title 'CUDA, $dev', '' using 1:3 with linespoints pt 9 title 'CPU, 16 cores of the $dev host'"
+    plots+=", '$out/plot_data/gpu_exact.dat' using 1:2 with linespoints pt 5 title 'CUDA, $dev (stand on the device: box fit + stages)', '' using 1:3 with linespoints pt 9 title 'CPU, 16 cores of the $dev host'"
   fi
   render "$out/time_vs_plants" "set grid; set logscale xy; set key left top; set xlabel 'plants (default stand)';
     set ylabel 'detection time to the exact level, s'; plot $plots"
