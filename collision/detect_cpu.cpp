@@ -6,6 +6,7 @@
 #include "collision/broad_phase.hpp"
 #include "collision/exact.hpp"
 #include "collision/lcd_descent.hpp"
+#include "collision/mbvt_fit.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -108,8 +109,12 @@ class CpuBackend : public DetectionBackend {
       col.keep_leaves = req.level == ContactLevel::leaf;
       for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
         const Cluster& ca = m.clusters[i];
+        // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the
+        // other plant's box, then each cluster's.
+        if (p != q && !boxes_meet(ca.box, pb.box, offset)) continue;
         for (std::uint32_t j = p == q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
           const Cluster& cb = m.clusters[j];
+          if (i != j && !boxes_meet(ca.box, cb.box, offset)) continue;
           if (i == j) {  // within one cluster: all its pairs
             if (!has_free_pair(s, m, ca.first, ca.count)) continue;
             col.leaf_pair(p, q, i, j);

@@ -12,7 +12,7 @@ namespace {
 
 void fit_cluster(Mbvt& m, const Cluster& c) { fit_cluster_nodes(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), c); }
 
-void fit_plant(Mbvt& m, PlantBound& pb) { fit_plant_bound(m.nodes.data(), m.clusters.data(), pb); }
+void fit_plant(Mbvt& m, PlantBound& pb) { fit_plant_bound(m.nodes.data(), m.clusters.data(), pb); }  // and cluster boxes
 
 }  // namespace
 

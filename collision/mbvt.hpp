@@ -43,12 +43,14 @@ struct Cluster {
   std::uint32_t first = 0, count = 0;   // organs in cluster_organs
   std::uint32_t root = 0;               // root node
   std::uint32_t first_node = 0, node_count = 0;
+  Box3f box;                            // axis-aligned, around the root's LCD box (lcd_aabb): a pre-test
 };
 
 struct PlantBound {
   float radius = 0;          // horizontal, around the plant origin
   float zlo = 0, zhi = -1;   // empty when zlo > zhi
   std::uint32_t first_cluster = 0, cluster_count = 0;
+  Box3f box;                 // axis-aligned, around its clusters' boxes (plant frame)
 };
 
 struct Mbvt {

@@ -65,13 +65,44 @@ CANOPY_HD inline void fit_cluster_nodes(LcdNode* nodes, const Obb* obbs, const s
   fit_inner_nodes(nodes, c);
 }
 
-/// A plant's bound (horizontal radius about its origin, vertical extent) from its clusters' roots.
-CANOPY_HD inline void fit_plant_bound(const LcdNode* nodes, const Cluster* clusters, PlantBound& pb) {
+/// An axis-aligned box around LCD box l (its four horizontal corners, its vertical extent),
+/// widened by 16 times the bounds' relative slack: far above the rounding of the corners and of
+/// lcd_overlap's projections, so a pre-test on these boxes never rejects a pair of LCD boxes that
+/// lcd_overlap accepts (tests/collision/test_bounds.cpp). Empty (lo > hi) for an empty l.
+CANOPY_HD inline Box3f lcd_aabb(const Lcd& l) {
+  Box3f b{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}};
+  if (lcd_empty(l)) return b;
+  for (int i = 0; i < 4; ++i) {
+    const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
+    const float x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
+    b.lo.x = min_f(b.lo.x, x), b.hi.x = max_f(b.hi.x, x);
+    b.lo.y = min_f(b.lo.y, y), b.hi.y = max_f(b.hi.y, y);
+  }
+  const float size = fabsf(b.lo.x) + fabsf(b.hi.x) + fabsf(b.lo.y) + fabsf(b.hi.y) + fabsf(l.lo[2]) + fabsf(l.hi[2]);
+  const float s = 16 * kBoundRelSlack * size + kBoundAbsSlack;
+  b.lo = {b.lo.x - s, b.lo.y - s, l.lo[2] - s};
+  b.hi = {b.hi.x + s, b.hi.y + s, l.hi[2] + s};
+  return b;
+}
+
+/// Whether axis-aligned boxes a and b (b moved by `offset`) meet (closed; empty boxes never do).
+CANOPY_HD inline bool boxes_meet(const Box3f& a, const Box3f& b, Vec3f offset) {
+  return a.lo.x <= b.hi.x + offset.x && b.lo.x + offset.x <= a.hi.x && a.lo.y <= b.hi.y + offset.y &&
+         b.lo.y + offset.y <= a.hi.y && a.lo.z <= b.hi.z + offset.z && b.lo.z + offset.z <= a.hi.z;
+}
+
+/// A plant's bound (horizontal radius about its origin, vertical extent, axis-aligned box) from
+/// its clusters' roots; each cluster's axis-aligned box on the way.
+CANOPY_HD inline void fit_plant_bound(const LcdNode* nodes, Cluster* clusters, PlantBound& pb) {
   float r2 = 0, zlo = 0, zhi = -1;
   bool any = false;
+  Box3f box{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}};
   for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) {
     const Lcd& l = nodes[clusters[c].root].box;
+    const Box3f cb = clusters[c].box = lcd_aabb(l);
     if (lcd_empty(l)) continue;
+    box.lo = {min_f(box.lo.x, cb.lo.x), min_f(box.lo.y, cb.lo.y), min_f(box.lo.z, cb.lo.z)};
+    box.hi = {max_f(box.hi.x, cb.hi.x), max_f(box.hi.y, cb.hi.y), max_f(box.hi.z, cb.hi.z)};
     for (int i = 0; i < 4; ++i) {
       const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
       const float x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
@@ -85,6 +116,7 @@ CANOPY_HD inline void fit_plant_bound(const LcdNode* nodes, const Cluster* clust
   pb.radius = any ? r + kBoundRelSlack * (r + fabsf(zlo) + fabsf(zhi)) + kBoundAbsSlack : 0;
   pb.zlo = zlo;
   pb.zhi = zhi;
+  pb.box = box;
 }
 
 }  // namespace canopy

@@ -50,8 +50,10 @@ __global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uin
   unsigned long long found = 0;
   for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
     const Cluster ca = v.clusters[i];
+    if (it.p != it.q && !boxes_meet(ca.box, pb.box, it.offset)) continue;  // pre-tests as on the CPU
     for (std::uint32_t j = it.p == it.q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
-      const Cluster cb = v.clusters[j];
+      const Cluster& cb = v.clusters[j];
+      if (i != j && !boxes_meet(ca.box, cb.box, it.offset)) continue;
       const bool meet = i == j ? free_pair(v, ca.first, ca.count) : lcd_overlap(v.nodes[ca.root].box, v.nodes[cb.root].box, it.offset);
       if (!meet) continue;
       ++found;

@@ -16,7 +16,7 @@ struct TreeView {
   const OrganRecord* organs;
   const Box3f* boxes;  // prototype boxes, by prototype * (kMaxLod + 1) + lod
   const std::uint32_t* cluster_organs;
-  const Cluster* clusters;
+  Cluster* clusters;  // their axis-aligned boxes are refitted with the plant bounds
   Obb* obbs;
   LcdNode* nodes;
   PlantBound* plants;

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <numeric>
 
@@ -85,6 +86,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+    } else {
+      std::fprintf(stderr, "usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--repeats R] [--csv FILE]\n");
+      return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), "w");

@@ -1,6 +1,7 @@
 // Bounding volumes: every vertex inside its organ's OBB and its cluster's LCD boxes and plant
 // bound; OBB and LCD overlap against a brute-force separating-axis test over all 15 axes; refit.
 #include "collision/mbvt.hpp"
+#include "collision/mbvt_fit.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "helpers.hpp"
 
@@ -100,7 +101,7 @@ TEST_CASE("LCD overlap agrees with the brute-force test of the same boxes as OBB
   CHECK(overlaps > 2000);
 }
 
-TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD boxes and its plant's bound") {
+TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-aligned boxes and its plant's bounds") {
   const Stand s = random_stand(7);
   PrototypeLibrary lib;
   MbvtConfig cfg;
@@ -123,6 +124,17 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD boxes and its
           }
         }
       }
+  const auto inside = [](Vec3f v, const Box3f& b) {
+    return v.x >= b.lo.x && v.x <= b.hi.x && v.y >= b.lo.y && v.y <= b.hi.y && v.z >= b.lo.z && v.z <= b.hi.z;
+  };
+  for (const Cluster& c : m.clusters)
+    for (std::uint32_t k = c.first; k < c.first + c.count; ++k) {
+      organ_mesh(s, m.cluster_organs[k], lib, mesh, true);
+      for (const Vec3f& v : mesh.positions) {
+        CHECK(inside(v, c.box));
+        CHECK(inside(v, m.plants[static_cast<std::size_t>(c.plant)].box));
+      }
+    }
   for (std::size_t id = 0; id < s.organ_count(); ++id) {
     organ_mesh(s, id, lib, mesh, true);
     const Obb& o = m.obbs[id];
@@ -135,6 +147,46 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD boxes and its
       CHECK(v.z <= pb.zhi);
     }
   }
+}
+
+TEST_CASE("the axis-aligned pre-test never rejects LCD boxes that lcd_overlap accepts, touching ones included") {
+  std::mt19937 g(11);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int overlapping = 0, apart = 0, rejected = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Lcd l[2];
+    for (int k = 0; k < 2; ++k) {
+      // Every fourth pair parallel, every fourth axis-aligned (where the boxes are tightest).
+      const float ang = i % 4 == 0 ? 0.3f : i % 4 == 1 ? 0.0f : u(g) * 3.14159f;
+      l[k].ax = std::cos(ang), l[k].ay = std::sin(ang);
+      for (int d = 0; d < 3; ++d) {
+        const float c = 0.3f * u(g), e = 0.01f + 0.3f * std::fabs(u(g));
+        l[k].lo[d] = c - e, l[k].hi[d] = c + e;
+      }
+    }
+    // An offset along a random direction, scaled to where lcd_overlap flips (bisection), then
+    // a hair either side of it, and a random scale.
+    const Vec3f dir{u(g), u(g), i % 3 == 0 ? 0.0f : 0.5f * u(g)};
+    float lo = 0, hi = 8;
+    for (int it = 0; it < 60; ++it) {
+      const float mid = 0.5f * (lo + hi);
+      (lcd_overlap(l[0], l[1], dir * mid) ? lo : hi) = mid;
+    }
+    const Box3f a = lcd_aabb(l[0]), b = lcd_aabb(l[1]);
+    for (float t : {lo, hi, lo * (1 - 1e-6f), hi * (1 + 1e-6f), 0.5f * lo, 1.5f * hi, 4 * std::fabs(u(g))}) {
+      const Vec3f off = dir * t;
+      const bool meet = lcd_overlap(l[0], l[1], off), pre = boxes_meet(a, b, off);
+      INFO("pair " << i << " scale " << t);
+      if (meet) CHECK(pre);
+      overlapping += meet;
+      apart += !meet;
+      rejected += !pre;
+    }
+  }
+  CHECK(overlapping > 20000);
+  CHECK(rejected > apart / 4);  // the pre-test does reject: not a test that cannot fail
+  Lcd empty;
+  CHECK_FALSE(boxes_meet(lcd_aabb(empty), lcd_aabb(empty), {0, 0, 0}));
 }
 
 TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
