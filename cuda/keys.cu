@@ -41,49 +41,49 @@ std::size_t KeyOps::selected() {
   return static_cast<std::size_t>(n);
 }
 
+template <typename CubCall>
+void KeyOps::call(CubCall&& cub_call) {
+  std::size_t bytes = 0;
+  CANOPY_CUDA_CHECK(cub_call(nullptr, bytes));  // the scratch it needs, then the work
+  void* s = scratch(bytes);
+  CANOPY_CUDA_CHECK(cub_call(s, bytes));
+}
+
 void KeyOps::sort(const std::uint64_t* in, std::uint64_t* out, std::size_t n) {
   if (!n) return;
-  std::size_t bytes = 0;
   const auto items = static_cast<long long>(n);
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, bytes, in, out, items));
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(scratch(bytes), bytes, in, out, items));
+  call([&](void* s, std::size_t& bytes) { return cub::DeviceRadixSort::SortKeys(s, bytes, in, out, items); });
 }
 
 void KeyOps::sort_pairs(const std::uint64_t* keys_in, std::uint64_t* keys_out, const std::uint32_t* values_in,
                         std::uint32_t* values_out, std::size_t n) {
   if (!n) return;
-  std::size_t bytes = 0;
   const auto items = static_cast<long long>(n);
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys_in, keys_out, values_in, values_out, items));
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch(bytes), bytes, keys_in, keys_out, values_in, values_out, items));
+  call([&](void* s, std::size_t& bytes) {
+    return cub::DeviceRadixSort::SortPairs(s, bytes, keys_in, keys_out, values_in, values_out, items);
+  });
 }
 
 void KeyOps::sort_pairs(const std::uint32_t* keys_in, std::uint32_t* keys_out, const std::uint64_t* values_in,
                         std::uint64_t* values_out, std::size_t n) {
   if (!n) return;
-  std::size_t bytes = 0;
   const auto items = static_cast<long long>(n);
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, keys_in, keys_out, values_in, values_out, items));
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(scratch(bytes), bytes, keys_in, keys_out, values_in, values_out, items));
+  call([&](void* s, std::size_t& bytes) {
+    return cub::DeviceRadixSort::SortPairs(s, bytes, keys_in, keys_out, values_in, values_out, items);
+  });
 }
 
 std::size_t KeyOps::unique(const std::uint64_t* in, std::uint64_t* out, std::size_t n) {
   if (!n) return 0;
-  std::size_t bytes = 0;
   const auto items = static_cast<long long>(n);
-  CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(nullptr, bytes, in, out, count_.get(), items));
-  void* s = scratch(bytes);
-  CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(s, bytes, in, out, count_.get(), items));
+  call([&](void* s, std::size_t& bytes) { return cub::DeviceSelect::Unique(s, bytes, in, out, count_.get(), items); });
   return selected();
 }
 
 std::size_t KeyOps::select(const std::uint64_t* in, const std::uint8_t* flags, std::uint64_t* out, std::size_t n) {
   if (!n) return 0;
-  std::size_t bytes = 0;
   const auto items = static_cast<long long>(n);
-  CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, bytes, in, flags, out, count_.get(), items));
-  void* s = scratch(bytes);
-  CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(s, bytes, in, flags, out, count_.get(), items));
+  call([&](void* s, std::size_t& bytes) { return cub::DeviceSelect::Flagged(s, bytes, in, flags, out, count_.get(), items); });
   return selected();
 }
 

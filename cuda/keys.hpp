@@ -40,6 +40,9 @@ class KeyOps {
 
  private:
   void* scratch(std::size_t bytes);
+  /// A CUB call (scratch pointer, scratch bytes) made twice: for the scratch size, then to work.
+  template <typename CubCall>
+  void call(CubCall&& cub_call);
   std::size_t selected();
   DeviceBuffer<std::uint8_t> scratch_;
   DeviceBuffer<long long> count_;

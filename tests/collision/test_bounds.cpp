@@ -70,6 +70,19 @@ TEST_CASE("OBB overlap agrees with the brute-force 15-axis test, parallel boxes 
   CHECK(overlaps > 2000);
 }
 
+/// An LCD box at angle `ang` whose extents along each axis are centred within +-spread and
+/// half-sized min_half + up to half_range.
+Lcd random_lcd(std::mt19937& g, float ang, float spread, float min_half, float half_range) {
+  std::uniform_real_distribution<float> u(-1, 1);
+  Lcd l;
+  l.ax = std::cos(ang), l.ay = std::sin(ang);
+  for (int d = 0; d < 3; ++d) {
+    const float c = spread * u(g), e = min_half + half_range * std::fabs(u(g));
+    l.lo[d] = c - e, l.hi[d] = c + e;
+  }
+  return l;
+}
+
 TEST_CASE("LCD overlap agrees with the brute-force test of the same boxes as OBBs") {
   std::mt19937 g(5);
   std::uniform_real_distribution<float> u(-1, 1);
@@ -78,12 +91,7 @@ TEST_CASE("LCD overlap agrees with the brute-force test of the same boxes as OBB
     Lcd l[2];
     Vec3f axes[2][3], corners[2][8];
     for (int k = 0; k < 2; ++k) {
-      const float ang = i % 4 == 0 ? 0.3f : u(g) * 3.14159f;  // every fourth pair parallel
-      l[k].ax = std::cos(ang), l[k].ay = std::sin(ang);
-      for (int d = 0; d < 3; ++d) {
-        const float c = u(g), e = 0.05f + 0.5f * std::fabs(u(g));
-        l[k].lo[d] = c - e, l[k].hi[d] = c + e;
-      }
+      l[k] = random_lcd(g, i % 4 == 0 ? 0.3f : u(g) * 3.14159f, 1.0f, 0.05f, 0.5f);  // every fourth pair parallel
       axes[k][0] = {l[k].ax, l[k].ay, 0}, axes[k][1] = {-l[k].ay, l[k].ax, 0}, axes[k][2] = {0, 0, 1};
       for (int c = 0; c < 8; ++c) {
         const float su = (c & 1) ? l[k].hi[0] : l[k].lo[0], sv = (c & 2) ? l[k].hi[1] : l[k].lo[1], sz = (c & 4) ? l[k].hi[2] : l[k].lo[2];
@@ -155,15 +163,8 @@ TEST_CASE("the axis-aligned pre-test never rejects LCD boxes that lcd_overlap ac
   int overlapping = 0, apart = 0, rejected = 0;
   for (int i = 0; i < 20000; ++i) {
     Lcd l[2];
-    for (int k = 0; k < 2; ++k) {
-      // Every fourth pair parallel, every fourth axis-aligned (where the boxes are tightest).
-      const float ang = i % 4 == 0 ? 0.3f : i % 4 == 1 ? 0.0f : u(g) * 3.14159f;
-      l[k].ax = std::cos(ang), l[k].ay = std::sin(ang);
-      for (int d = 0; d < 3; ++d) {
-        const float c = 0.3f * u(g), e = 0.01f + 0.3f * std::fabs(u(g));
-        l[k].lo[d] = c - e, l[k].hi[d] = c + e;
-      }
-    }
+    // Every fourth pair parallel, every fourth axis-aligned (where the boxes are tightest).
+    for (int k = 0; k < 2; ++k) l[k] = random_lcd(g, i % 4 == 0 ? 0.3f : i % 4 == 1 ? 0.0f : u(g) * 3.14159f, 0.3f, 0.01f, 0.3f);
     // An offset along a random direction, scaled to where lcd_overlap flips (bisection), then
     // a hair either side of it, and a random scale.
     const Vec3f dir{u(g), u(g), i % 3 == 0 ? 0.0f : 0.5f * u(g)};
