@@ -71,6 +71,39 @@ TEST_CASE("CUDA equals CPU with a clearance, on crowded plants, twins and far fr
   same_everywhere(grow_stand(g), DetectRequest{}, "far from the origin");
 }
 
+TEST_CASE("CUDA equals CPU on one plant, with no organ taking part, on plants kilometres apart, and for active plants") {
+  GrowRequest g;
+  g.grammar = source("grammars/tomato.yaml");
+  g.steps = 14;
+  PlantPlacement p;
+  g.plants = {p};
+  same_everywhere(grow_stand(g), DetectRequest{}, "one plant");
+  DetectRequest none;
+  none.collide = KindMask{};  // no kind takes part
+  same_everywhere(grow_stand(g), none, "no organ taking part");
+  // A close group, and plants 300 km and 200 km away (a sparse grid of few, far cells).
+  for (double x : {0.3, 0.6}) p.x = x, p.seed += 1, g.plants.push_back(p);
+  p.x = 3e5, p.y = 0, g.plants.push_back(p);
+  p.x = 0, p.y = -2e5, g.plants.push_back(p);
+  const Stand far = grow_stand(g);
+  same_everywhere(far, DetectRequest{}, "kilometres apart");
+  // Re-detection limited to active plants (as resolution rounds ask): the device grid's filter.
+  auto cpu = make_cpu_backend();
+  auto gpu = cuda::make_cuda_backend();
+  DetectRequest req;
+  cpu->detect(far, req), gpu->detect(far, req);
+  const std::vector<std::uint8_t> active{0, 1, 0, 1, 0};
+  req.active_plants = &active;
+  for (ContactLevel level : {ContactLevel::plant, ContactLevel::leaf, ContactLevel::exact}) {
+    req.level = level;
+    INFO(name_of(level));
+    const Contacts a = cpu->redetect(far, req, {}), b = gpu->redetect(far, req, {});
+    CHECK(a.pairs == b.pairs);
+    CHECK(a.counts[0]->between == b.counts[0]->between);
+    CHECK(a.counts[0]->within == b.counts[0]->within);
+  }
+}
+
 TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
   for (int n : {1000, 10000}) {
     const Stand s = default_stand(n);
