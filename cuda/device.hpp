@@ -1,5 +1,10 @@
 #pragma once
-/// Which CUDA devices this process can use, without throwing when there are none.
+/// Which CUDA devices this process can use, without throwing when there are none; a self test;
+/// the shared triangle predicates run on the device for the tests.
+#include "geometry/vec.hpp"
+
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,5 +29,10 @@ DeviceReport query_devices();
 /// Runs a small kernel built from this project's code on `device` and checks its result, proving
 /// the binary's sm_90 / PTX code loads and runs there. Throws CudaError on failure.
 void self_test(int device);
+
+/// The shared triangle predicates (geometry/triangle_test.hpp) run on the current device: for
+/// each pair (a's three vertices, then b's), whether the triangles meet, or with a positive
+/// `clearance` whether they lie within it. Lets the tests hold the device's answers to the host's.
+std::vector<std::uint8_t> device_triangle_tests(const std::vector<std::array<Vec3f, 6>>& pairs, float clearance);
 
 }  // namespace canopy::cuda

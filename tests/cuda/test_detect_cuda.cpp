@@ -1,11 +1,14 @@
 // The CUDA backend gives exactly the CPU backend's contacts, at every level, on the oracle
 // stands, crowded plants, twins on one spot, a stand far from the origin, with a clearance, and
 // on 1,000- and 10,000-plant default stands. (Skipped without a GPU: see test_device.cpp.)
+#include "../collision/hard_cases.hpp"
 #include "../collision/helpers.hpp"
 #include "collision/resolve.hpp"
 #include "cuda/check.hpp"
 #include "cuda/detect_cuda.hpp"
+#include "cuda/device.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include <chrono>
@@ -102,6 +105,38 @@ TEST_CASE("CUDA equals CPU on one plant, with no organ taking part, on plants ki
     CHECK(a.counts[0]->between == b.counts[0]->between);
     CHECK(a.counts[0]->within == b.counts[0]->within);
   }
+}
+
+TEST_CASE("the hard cases on the device: the triangle tests and detection give the host's answers") {
+  // Every triangle pair in every vertex order and both argument orders, with and without a
+  // clearance: the device's answer is the host's (and, without clearance, the one worked out by hand).
+  std::vector<std::array<Vec3f, 6>> pairs;
+  std::vector<int> want;
+  for (const TrianglePairCase& c : hard_triangle_pairs()) {
+    std::array<int, 3> pa{0, 1, 2};
+    do {
+      std::array<int, 3> pb{0, 1, 2};
+      do {
+        pairs.push_back({c.a[pa[0]], c.a[pa[1]], c.a[pa[2]], c.b[pb[0]], c.b[pb[1]], c.b[pb[2]]});
+        pairs.push_back({c.b[pb[0]], c.b[pb[1]], c.b[pb[2]], c.a[pa[0]], c.a[pa[1]], c.a[pa[2]]});
+        want.push_back(c.meet), want.push_back(c.meet);
+      } while (std::next_permutation(pb.begin(), pb.end()));
+    } while (std::next_permutation(pa.begin(), pa.end()));
+  }
+  for (float clearance : {0.0f, 1e-4f, 0.05f}) {
+    const std::vector<std::uint8_t> got = cuda::device_triangle_tests(pairs, clearance);
+    REQUIRE(got.size() == pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const Vec3f* p = pairs[k].data();
+      const bool host = clearance > 0 ? triangles_within(p, p + 3, clearance) : triangles_intersect(p, p + 3);
+      INFO("pair " << k << ", clearance " << clearance);
+      CHECK(static_cast<bool>(got[k]) == host);
+      if (clearance == 0) CHECK(host == static_cast<bool>(want[k]));
+    }
+  }
+  DetectRequest req;
+  req.collide = parse_collide_kinds("all");
+  for (const BuiltCase& c : hard_built_stands()) same_everywhere(c.built.stand, req, c.what.c_str());
 }
 
 TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
