@@ -235,6 +235,14 @@ class CudaBackend : public DetectionBackend {
       std::size_t no = 0;
       if (fits && req.level != ContactLevel::leaf) {
         t = now();
+        if (!tight) {  // cluster pairs in key order, so that neighbouring threads descend the same trees
+          organ_keys_.grow(nc), organ_sorted_.grow(nc), leaf_work_.grow(nc), leaf_work_sorted_.grow(nc);
+          organ_timer.start();
+          launch_cluster_keys(cluster_pairs_.get(), static_cast<std::uint32_t>(nc), organ_keys_.get(), leaf_work_.get());
+          keys_.sort_pairs(organ_keys_.get(), organ_sorted_.get(), leaf_work_.get(), leaf_work_sorted_.get(), nc);
+          launch_cluster_pairs_from_keys(organ_sorted_.get(), leaf_work_sorted_.get(), static_cast<std::uint32_t>(nc), cluster_pairs_.get());
+          organ_timer.stop();
+        }
         const std::size_t room = (budget - nc * sizeof(ClusterPair)) / kOrganPairBytes;
         no = collect(organ_keys_, counters_, host, 4 * nc + 1024, std::min(kMaxItems, room), tight, organ_timer,
                      [&](std::uint64_t* o, unsigned long long cap) {

@@ -112,6 +112,11 @@ __global__ void cluster_keys_kernel(const ClusterPair* pairs, std::uint32_t n, s
   work[k] = pairs[k].work;
 }
 
+__global__ void cluster_pairs_from_keys_kernel(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n, ClusterPair* out) {
+  const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
+  if (k < n) out[k] = ClusterPair{work[k], key_hi(keys[k]), key_lo(keys[k])};
+}
+
 __global__ void cluster_contacts_kernel(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,
                                         Contact* out) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
@@ -246,6 +251,12 @@ void launch_cluster_keys(const ClusterPair* pairs, std::uint32_t n, std::uint64_
   if (!n) return;
   cluster_keys_kernel<<<blocks(n), kThreads>>>(pairs, n, keys, work);
   CANOPY_CUDA_CHECK_LAUNCH("cluster_keys_kernel");
+}
+
+void launch_cluster_pairs_from_keys(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n, ClusterPair* out) {
+  if (!n) return;
+  cluster_pairs_from_keys_kernel<<<blocks(n), kThreads>>>(keys, work, n, out);
+  CANOPY_CUDA_CHECK_LAUNCH("cluster_pairs_from_keys_kernel");
 }
 
 void launch_cluster_contacts(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,

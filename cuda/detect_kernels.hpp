@@ -56,6 +56,8 @@ void launch_cluster_pairs(const StandView& v, const WorkItem* work, std::uint32_
                           unsigned long long capacity, Counters* counters);
 /// Cluster pairs as keys pair_key(a, b) with their work items (batch-local).
 void launch_cluster_keys(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys, std::uint32_t* work);
+/// Cluster pairs back from keys and their work items (after a sort).
+void launch_cluster_pairs_from_keys(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n, ClusterPair* out);
 /// Leaf-level contact records (plants of the work item, the two clusters) of cluster-pair keys.
 void launch_cluster_contacts(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,
                              Contact* out);
