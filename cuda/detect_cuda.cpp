@@ -5,8 +5,9 @@
 #include "cuda/device.hpp"
 #include "cuda/device_buffer.hpp"
 #include "cuda/event_timer.hpp"
-#include "cuda/grid_kernels.hpp"
+#include "cuda/device_lists.hpp"
 #include "cuda/keys.hpp"
+#include "cuda/plant_level.hpp"
 #include "cuda/stand_on_device.hpp"
 
 #include <fmt/format.h>
@@ -23,52 +24,11 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-/// Items one launch may list (counts and indices are 32-bit in the kernels).
-constexpr std::size_t kMaxItems = 0x7fffffff;
 /// Device bytes per organ pair in a batch: its key, the sorted copy, its hit flag, its record.
 constexpr std::size_t kOrganPairBytes = 2 * sizeof(std::uint64_t) + 1 + sizeof(Contact);
 /// Device bytes per cluster pair when the leaf level is the last: the pair, its key and work
 /// item twice (two sorts), its record.
 constexpr std::size_t kLeafPairBytes = sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t)) + sizeof(Contact);
-
-/// Runs `launch` into `out` with room for `guess` items (at least what `out` holds unless
-/// `tight`), at most `limit`; when more were found and they fit the limit, grows the buffer and
-/// runs again. Returns the items found, which exceed `limit` when they do not fit (then nothing
-/// usable is in `out`).
-template <typename T, typename Launch>
-std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t guess, std::size_t limit,
-                    bool tight, EventTimer& timer, Launch&& launch) {
-  std::size_t capacity = std::max<std::size_t>(std::min(tight ? guess : std::max(guess, out.size()), limit), 1);
-  for (;;) {
-    out.fit(capacity, tight);
-    CANOPY_CUDA_CHECK(cudaMemset(counters.get(), 0, sizeof(Counters)));
-    timer.start();
-    launch(out.get(), static_cast<unsigned long long>(capacity));
-    timer.stop();
-    CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters.get(), sizeof host, cudaMemcpyDeviceToHost));
-    const auto found = static_cast<std::size_t>(host.appended);
-    if (found <= capacity || found > limit) return found;
-    capacity = found;
-  }
-}
-
-/// Appends the first n items of a device list to a host vector, through page-locked memory and
-/// a copy on all cores.
-template <typename T>
-void append_download(std::vector<T>& to, const T* from, std::size_t n, PinnedBuffer<T>& staging) {
-  if (!n) return;
-  staging.grow(n);
-  CANOPY_CUDA_CHECK(cudaMemcpy(staging.get(), from, n * sizeof(T), cudaMemcpyDeviceToHost));
-  const std::size_t at = to.size();
-  to.resize(at + n);
-  constexpr std::size_t kChunk = 16384;
-  const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t c = 0; c < chunks; ++c) {
-    const std::size_t lo = static_cast<std::size_t>(c) * kChunk, hi = std::min(n, lo + kChunk);
-    std::copy(staging.get() + lo, staging.get() + hi, to.begin() + static_cast<std::ptrdiff_t>(at + lo));
-  }
-}
 
 class CudaBackend : public DetectionBackend {
  public:
@@ -90,7 +50,7 @@ class CudaBackend : public DetectionBackend {
     lib_ = std::make_unique<PrototypeLibrary>();
     tree_ = build_mbvt_topology(s, mbvt_config(req));
     dev_.load(s, *tree_, *lib_, plants_with_free_pairs(s, *tree_));
-    sorted_cell_ = 0;
+    plants_.reset();
     const double load_s = now() - t;
     t = now();
     dev_.fit(req.clearance);
@@ -134,46 +94,6 @@ class CudaBackend : public DetectionBackend {
     return budget - held;
   }
 
-  /// The plant level on the device: plant-pair keys sorted as the CPU sorts them, made into the
-  /// work list; returns the keys (on the host too, for the lists that name plants).
-  std::vector<std::uint64_t> plant_level(const DetectRequest& req, bool tight, Contacts& out, EventTimer& timer) {
-    const std::uint32_t np = dev_.plants();
-    // Cells at least twice the largest radius, and few enough that coordinates fit 31 bits.
-    const double cell = std::max({2.0 * static_cast<double>(dev_.max_radius()), 1e-3, dev_.span() / 1e9});
-    if (cell != sorted_cell_) {  // origins never move: plants are sorted again only for a new cell size
-      cells_.fit(np, tight), members_.fit(np, tight), sorted_cells_.fit(np, tight), sorted_members_.fit(np, tight);
-      timer.start();
-      launch_plant_cells(dev_.view().origins, np, dev_.x0(), dev_.y0(), cell, cells_.get(), members_.get());
-      keys_.sort_pairs(cells_.get(), sorted_cells_.get(), members_.get(), sorted_members_.get(), np);
-      timer.stop();
-      sorted_cell_ = cell;
-    }
-    const std::uint8_t* active = nullptr;
-    if (req.active_plants) {
-      if (req.active_plants->size() != np) throw std::invalid_argument("detect: active_plants needs one flag per plant");
-      active_.upload(*req.active_plants);
-      active = active_.get();
-    }
-    const GridView g{dev_.view().plants, dev_.view().origins, sorted_cells_.get(), sorted_members_.get(), np, dev_.x0(), dev_.y0(),
-                     cell, dev_.self(), active};
-    Counters host{};
-    const std::size_t nw = collect(pair_keys_, counters_, host, 8 * std::size_t{np} + 64, kMaxItems, tight, timer,
-                                   [&](std::uint64_t* o, unsigned long long cap) { launch_plant_pairs(g, o, cap, counters_.get()); });
-    if (nw > kMaxItems) throw CudaError(fmt::format("{} plant pairs: more than one launch can list", nw));
-    out.counts[0] = LevelCount{static_cast<std::size_t>(host.between), static_cast<std::size_t>(host.within)};
-    work_keys_.fit(nw, tight), work_.fit(nw, tight);
-    timer.start();
-    keys_.sort(pair_keys_.get(), work_keys_.get(), nw);
-    launch_work_items(dev_.view(), work_keys_.get(), static_cast<std::uint32_t>(nw), work_.get());
-    timer.stop();
-    std::vector<std::uint64_t> work;
-    append_download(work, work_keys_.get(), nw, staged_keys_);
-    if (tight)  // under a budget, only the work list stays for the stages
-      for (auto* b : {&cells_, &sorted_cells_, &pair_keys_, &work_keys_}) b->resize(0);
-    if (tight) members_.resize(0), sorted_members_.resize(0), keys_.release(), sorted_cell_ = 0;
-    return work;
-  }
-
   /// The contact records of n organ-pair keys, made on the device and appended to `to`.
   void download_contacts(const std::uint64_t* keys, std::size_t n, bool tight, std::vector<Contact>& to) {
     contacts_.fit(n, tight);
@@ -200,7 +120,7 @@ class CudaBackend : public DetectionBackend {
     const bool tight = req.max_device_bytes != 0;
     EventTimer plant_timer, leaf_timer, organ_timer, exact_timer;
     double t = now();
-    const std::vector<std::uint64_t> work = plant_level(req, tight, out, plant_timer);
+    const std::vector<std::uint64_t> work = plants_.work(dev_, req, tight, keys_, counters_, plant_timer, out.counts[0], work_);
     out.seconds[0] = now() - t;
     out.device_seconds[0] = plant_timer.seconds();
     if (req.level == ContactLevel::plant) {
@@ -210,7 +130,7 @@ class CudaBackend : public DetectionBackend {
 
     // Leaf, organ and exact stages, in batches of plant pairs whose lists fit the budget: a
     // batch that does not fit is halved. An organ pair belongs to one plant pair, so to one batch.
-    const std::size_t budget = stage_budget(req, work.size() * sizeof(WorkItem) + active_.size());
+    const std::size_t budget = stage_budget(req, work.size() * sizeof(WorkItem) + plants_.bytes());
     LevelCount leaves, organs;
     std::size_t batches = 0;
     double t_leaf = 0, t_organ = 0, t_exact = 0;
@@ -322,9 +242,7 @@ class CudaBackend : public DetectionBackend {
   std::unique_ptr<PrototypeLibrary> lib_;
   StandOnDevice dev_;
   KeyOps keys_;
-  DeviceBuffer<std::uint64_t> cells_, sorted_cells_, pair_keys_, work_keys_;
-  DeviceBuffer<std::uint32_t> members_, sorted_members_;
-  DeviceBuffer<std::uint8_t> active_;
+  PlantLevel plants_;
   DeviceBuffer<WorkItem> work_;
   DeviceBuffer<ClusterPair> cluster_pairs_;
   DeviceBuffer<std::uint64_t> organ_keys_, organ_sorted_;
@@ -332,9 +250,7 @@ class CudaBackend : public DetectionBackend {
   DeviceBuffer<std::uint8_t> hits_;
   DeviceBuffer<Contact> contacts_;
   DeviceBuffer<Counters> counters_;
-  PinnedBuffer<std::uint64_t> staged_keys_;
   PinnedBuffer<Contact> staged_contacts_;
-  double sorted_cell_ = 0;  // the cell size the plants in sorted_cells_ were sorted for (0: none)
 };
 
 }  // namespace
