@@ -155,7 +155,7 @@ TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
     INFO(n << " plants");
     CHECK(a.pairs == b.pairs);
     MESSAGE(n << " plants: " << b.pairs.size() << " exact contacts; cpu "
-              << std::chrono::duration<double>(t1 - t0).count() << " s, cuda (host build included) "
+              << std::chrono::duration<double>(t1 - t0).count() << " s, cuda (stand load included) "
               << std::chrono::duration<double>(t3 - t2).count() << " s on " << gpu->device());
     // A second detection of the resident stand with nothing moved gives the same list.
     CHECK(gpu->redetect(s, req, {}).pairs == b.pairs);
