@@ -155,7 +155,10 @@ class CudaBackend : public DetectionBackend {
       std::size_t no = 0;
       if (fits && req.level != ContactLevel::leaf) {
         t = now();
-        if (!tight) {  // cluster pairs in key order, so that neighbouring threads descend the same trees
+        // Cluster pairs in key order, so that neighbouring threads descend the same trees: an
+        // optional step, left out under a memory budget or when its lists would not fit.
+        const std::size_t sort_bytes = nc * (sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t))) + KeyOps::scratch_bytes(nc);
+        if (!tight && sort_bytes <= budget) {
           organ_keys_.grow(nc), organ_sorted_.grow(nc), leaf_work_.grow(nc), leaf_work_sorted_.grow(nc);
           organ_timer.start();
           launch_cluster_keys(cluster_pairs_.get(), static_cast<std::uint32_t>(nc), organ_keys_.get(), leaf_work_.get());
