@@ -56,12 +56,7 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, c
 }
 
 bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint32_t count) {
-  for (std::uint32_t i = first; i < first + count; ++i)
-    for (std::uint32_t j = i + 1; j < first + count; ++j) {
-      const auto a = static_cast<std::int32_t>(m.cluster_organs[i]), b = static_cast<std::int32_t>(m.cluster_organs[j]);
-      if (!adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return true;
-    }
-  return false;
+  return organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), first, count);
 }
 
 std::vector<std::uint8_t> plants_with_free_pairs(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>* only) {

@@ -12,7 +12,8 @@ namespace {
 
 void fit_cluster(Mbvt& m, const Cluster& c) { fit_cluster_nodes(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), c); }
 
-void fit_plant(Mbvt& m, PlantBound& pb) { fit_plant_bound(m.nodes.data(), m.clusters.data(), pb); }  // and cluster boxes
+/// The plant's bound, and its clusters' axis-aligned boxes on the way.
+void fit_plant(Mbvt& m, PlantBound& pb) { fit_plant_bound(m.nodes.data(), m.clusters.data(), pb); }
 
 }  // namespace
 
@@ -97,7 +98,8 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
     c.first = static_cast<std::uint32_t>(part.organs.size());
     c.count = static_cast<std::uint32_t>(groups[g].size());
     part.organs.insert(part.organs.end(), groups[g].begin(), groups[g].end());
-    // Tree leaves over chunks in string order (the axis comes with the boxes: fit_cluster_axis), then parents pairing neighbours level by level.
+    // Tree leaves over chunks in string order, then parents pairing neighbours level by level
+    // (the axis comes with the boxes: fit_cluster_axis).
     c.first_node = static_cast<std::uint32_t>(part.nodes.size());
     std::vector<std::uint32_t> level;
     for (std::uint32_t k = 0; k < c.count; k += static_cast<std::uint32_t>(config.leaf_chunk)) {
@@ -115,7 +117,7 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
           continue;
         }
         LcdNode node;
-          node.left = static_cast<std::int32_t>(level[i]);
+        node.left = static_cast<std::int32_t>(level[i]);
         node.right = static_cast<std::int32_t>(level[i + 1]);
         node.first = part.nodes[level[i]].first;
         node.count = part.nodes[level[i]].count + part.nodes[level[i + 1]].count;

@@ -1,6 +1,7 @@
 #pragma once
 /// Refitting the MBVT's boxes from organ OBBs, shared by the host (build_mbvt, refit_mbvt) and
 /// the CUDA backend's refit kernels (CANOPY_HD): one implementation, the same bits on both.
+#include "collision/contacts.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/hd.hpp"
 
@@ -16,6 +17,18 @@ CANOPY_HD inline void fit_cluster_axis(LcdNode* nodes, const Obb* obbs, const st
   const float len = sqrtf(mx * mx + my * my);
   const float ax = len > 1e-6f ? mx / len : 1.0f, ay = len > 1e-6f ? my / len : 0.0f;
   for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n) nodes[n].box.ax = ax, nodes[n].box.ay = ay;
+}
+
+/// Whether organs cluster_organs[first, first + count) hold a pair that is not adjacent (so a
+/// contact among them is possible): the host's has_free_pair and the CUDA cluster-pairs kernel.
+CANOPY_HD inline bool organs_hold_free_pair(const OrganRecord* organs, const std::uint32_t* cluster_organs, std::uint32_t first,
+                                            std::uint32_t count) {
+  for (std::uint32_t i = first; i < first + count; ++i)
+    for (std::uint32_t j = i + 1; j < first + count; ++j) {
+      const auto a = static_cast<std::int32_t>(cluster_organs[i]), b = static_cast<std::int32_t>(cluster_organs[j]);
+      if (!adjacent(organs[a], a, organs[b], b)) return true;
+    }
+  return false;
 }
 
 /// The offset that carries plant b's frame into plant a's, from their origins (double, as the
@@ -73,8 +86,8 @@ CANOPY_HD inline Box3f lcd_aabb(const Lcd& l) {
   Box3f b{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}};
   if (lcd_empty(l)) return b;
   for (int i = 0; i < 4; ++i) {
-    const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
-    const float x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
+    float x, y;
+    lcd_corner(l, i, x, y);
     b.lo.x = min_f(b.lo.x, x), b.hi.x = max_f(b.hi.x, x);
     b.lo.y = min_f(b.lo.y, y), b.hi.y = max_f(b.hi.y, y);
   }
@@ -104,8 +117,8 @@ CANOPY_HD inline void fit_plant_bound(const LcdNode* nodes, Cluster* clusters, P
     box.lo = {min_f(box.lo.x, cb.lo.x), min_f(box.lo.y, cb.lo.y), min_f(box.lo.z, cb.lo.z)};
     box.hi = {max_f(box.hi.x, cb.hi.x), max_f(box.hi.y, cb.hi.y), max_f(box.hi.z, cb.hi.z)};
     for (int i = 0; i < 4; ++i) {
-      const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
-      const float x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
+      float x, y;
+      lcd_corner(l, i, x, y);
       r2 = max_f(r2, x * x + y * y);
     }
     zlo = any ? min_f(zlo, l.lo[2]) : l.lo[2];

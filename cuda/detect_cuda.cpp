@@ -101,12 +101,18 @@ class CudaBackend : public DetectionBackend {
     append_download(to, contacts_.get(), n, staged_contacts_);
   }
 
-  /// The leaf level's records of a batch's nc cluster pairs, sorted as the CPU sorts them (plant
-  /// pair, then clusters): by cluster pair, then stably by work item (work items are sorted).
-  void download_cluster_contacts(const WorkItem* batch, std::size_t nc, bool tight, std::vector<Contact>& to) {
+  /// A batch's nc cluster pairs as keys pair_key(a, b) sorted into organ_sorted_, their work
+  /// items alongside in leaf_work_sorted_.
+  void sort_cluster_pairs(std::size_t nc, bool tight) {
     organ_keys_.fit(nc, tight), organ_sorted_.fit(nc, tight), leaf_work_.fit(nc, tight), leaf_work_sorted_.fit(nc, tight);
     launch_cluster_keys(cluster_pairs_.get(), static_cast<std::uint32_t>(nc), organ_keys_.get(), leaf_work_.get());
     keys_.sort_pairs(organ_keys_.get(), organ_sorted_.get(), leaf_work_.get(), leaf_work_sorted_.get(), nc);
+  }
+
+  /// The leaf level's records of a batch's nc cluster pairs, sorted as the CPU sorts them (plant
+  /// pair, then clusters): by cluster pair, then stably by work item (work items are sorted).
+  void download_cluster_contacts(const WorkItem* batch, std::size_t nc, bool tight, std::vector<Contact>& to) {
+    sort_cluster_pairs(nc, tight);
     keys_.sort_pairs(leaf_work_sorted_.get(), leaf_work_.get(), organ_sorted_.get(), organ_keys_.get(), nc);
     contacts_.fit(nc, tight);
     launch_cluster_contacts(batch, leaf_work_.get(), organ_keys_.get(), static_cast<std::uint32_t>(nc), contacts_.get());
@@ -159,10 +165,8 @@ class CudaBackend : public DetectionBackend {
         // optional step, left out under a memory budget or when its lists would not fit.
         const std::size_t sort_bytes = nc * (sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t))) + KeyOps::scratch_bytes(nc);
         if (!tight && sort_bytes <= budget) {
-          organ_keys_.grow(nc), organ_sorted_.grow(nc), leaf_work_.grow(nc), leaf_work_sorted_.grow(nc);
           organ_timer.start();
-          launch_cluster_keys(cluster_pairs_.get(), static_cast<std::uint32_t>(nc), organ_keys_.get(), leaf_work_.get());
-          keys_.sort_pairs(organ_keys_.get(), organ_sorted_.get(), leaf_work_.get(), leaf_work_sorted_.get(), nc);
+          sort_cluster_pairs(nc, false);
           launch_cluster_pairs_from_keys(organ_sorted_.get(), leaf_work_sorted_.get(), static_cast<std::uint32_t>(nc), cluster_pairs_.get());
           organ_timer.stop();
         }

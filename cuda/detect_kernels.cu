@@ -16,15 +16,6 @@ namespace {
 
 constexpr int kThreads = 128;
 
-__device__ bool free_pair(const StandView& v, std::uint32_t first, std::uint32_t count) {
-  for (std::uint32_t i = first; i < first + count; ++i)
-    for (std::uint32_t j = i + 1; j < first + count; ++j) {
-      const auto a = static_cast<std::int32_t>(v.cluster_organs[i]), b = static_cast<std::int32_t>(v.cluster_organs[j]);
-      if (!adjacent(v.organs[a], a, v.organs[b], b)) return true;
-    }
-  return false;
-}
-
 __device__ Vec3f offset_between(const StandView& v, std::int32_t p, std::int32_t q) {
   if (p == q) return {0, 0, 0};
   const PlantOrigin a = v.origins[p], b = v.origins[q];
@@ -59,7 +50,7 @@ __global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uin
     for (std::uint32_t j = it.p == it.q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
       const Cluster& cb = v.clusters[j];
       if (i != j && !boxes_meet(ca.box, cb.box, it.offset)) continue;
-      const bool meet = i == j ? free_pair(v, ca.first, ca.count) : lcd_overlap(v.nodes[ca.root].box, v.nodes[cb.root].box, it.offset);
+      const bool meet = i == j ? organs_hold_free_pair(v.organs, v.cluster_organs, ca.first, ca.count) : lcd_overlap(v.nodes[ca.root].box, v.nodes[cb.root].box, it.offset);
       if (!meet) continue;
       ++found;
       append(out, capacity, c, ClusterPair{w, i, j});

@@ -55,22 +55,24 @@ void KeyOps::sort(const std::uint64_t* in, std::uint64_t* out, std::size_t n) {
   call([&](void* s, std::size_t& bytes) { return cub::DeviceRadixSort::SortKeys(s, bytes, in, out, items); });
 }
 
+namespace {
+/// CUB's key-value radix sort, for both key/value type pairs KeyOps offers.
+template <typename K, typename V>
+auto sort_by_key(const K* keys_in, K* keys_out, const V* values_in, V* values_out, long long items) {
+  return [=](void* s, std::size_t& bytes) {
+    return cub::DeviceRadixSort::SortPairs(s, bytes, keys_in, keys_out, values_in, values_out, items);
+  };
+}
+}  // namespace
+
 void KeyOps::sort_pairs(const std::uint64_t* keys_in, std::uint64_t* keys_out, const std::uint32_t* values_in,
                         std::uint32_t* values_out, std::size_t n) {
-  if (!n) return;
-  const auto items = static_cast<long long>(n);
-  call([&](void* s, std::size_t& bytes) {
-    return cub::DeviceRadixSort::SortPairs(s, bytes, keys_in, keys_out, values_in, values_out, items);
-  });
+  if (n) call(sort_by_key(keys_in, keys_out, values_in, values_out, static_cast<long long>(n)));
 }
 
 void KeyOps::sort_pairs(const std::uint32_t* keys_in, std::uint32_t* keys_out, const std::uint64_t* values_in,
                         std::uint64_t* values_out, std::size_t n) {
-  if (!n) return;
-  const auto items = static_cast<long long>(n);
-  call([&](void* s, std::size_t& bytes) {
-    return cub::DeviceRadixSort::SortPairs(s, bytes, keys_in, keys_out, values_in, values_out, items);
-  });
+  if (n) call(sort_by_key(keys_in, keys_out, values_in, values_out, static_cast<long long>(n)));
 }
 
 std::size_t KeyOps::unique(const std::uint64_t* in, std::uint64_t* out, std::size_t n) {

@@ -17,6 +17,12 @@ struct Lcd {
 
 CANOPY_HD inline bool lcd_empty(const Lcd& l) { return l.lo[0] > l.hi[0]; }
 
+/// Horizontal corner i (0-3) of box `l`, in its plant's frame.
+CANOPY_HD inline void lcd_corner(const Lcd& l, int i, float& x, float& y) {
+  const float u = (i & 1) ? l.hi[0] : l.lo[0], v = (i & 2) ? l.hi[1] : l.lo[1];
+  x = l.ax * u - l.ay * v, y = l.ay * u + l.ax * v;
+}
+
 /// Grows `l` (in its own frame) to contain point p.
 CANOPY_HD inline void lcd_add(Lcd& l, Vec3f p) {
   const float u = l.ax * p.x + l.ay * p.y, v = -l.ay * p.x + l.ax * p.y;
