@@ -30,17 +30,59 @@ struct TrianglePlane {
     t.lim = margin * std::sqrt(dot(t.n, t.n));
     return t;
   }
-  bool beyond(const Vec3f* q) const {
+  /// Whether q lies beyond the plane by more than lim (the margin applied by `of`).
+  bool beyond(const Vec3f* q) const { return beyond(q, lim); }
+  /// The same for a plane made with margin 1 and the margin given here: lim = margin x |n|,
+  /// the product `of` makes.
+  bool beyond(const Vec3f* q, float lim_now) const {
     const float d0 = dot(n, q[0]), d1 = dot(n, q[1]), d2 = dot(n, q[2]);
-    return std::min({d0, d1, d2}) > hi + lim || std::max({d0, d1, d2}) < lo - lim;
+    return std::min({d0, d1, d2}) > hi + lim_now || std::max({d0, d1, d2}) < lo - lim_now;
   }
 };
 
+/// One organ's triangles at one pose in one plant's frame, with what the exact test derives from
+/// them: the organ's box, each triangle's box and plane. Made once and tested against many organs
+/// (a turn search tries one pose of a moving organ against all it must clear, and a kept organ at
+/// its fixed pose against every pose tried); the numbers are those organs_touch_at makes, so the
+/// answers do not depend on whether a pose was made for one test or kept for many.
+struct PosedOrgan {
+  std::int32_t organ = -1, frame = -1;  // which organ, in which plant's frame (-1: not posed)
+  const PrototypeMesh* mesh = nullptr;
+  bool solid = false;
+  std::vector<Vec3f> v;                // vertices
+  std::vector<float> tri_box;          // 6 per triangle: lo xyz, hi xyz
+  std::vector<TrianglePlane> plane;    // per triangle, margin not applied (lim = |n|)
+  double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened)
+  /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
+  /// plant `frame_plant`.
+  void pose(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
+            std::int32_t frame_plant);
+};
+
+/// Poses made lately, found again by organ, frame and transform (bit for bit): an organ meets
+/// several others in a row, and a turn search tries the organs it keeps clear against pose after
+/// pose of the moving ones. Two-way set-associative, least recently used out.
+class PoseCache {
+ public:
+  /// `organ` at transform `t` in the frame of plant `frame`, made now or found; `keep` (a pose
+  /// returned before) is never evicted by this call.
+  const PosedOrgan& get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t, std::int32_t frame,
+                        const PosedOrgan* keep = nullptr);
+
+ private:
+  static constexpr std::size_t kSets = 64;
+  struct Entry {
+    PosedOrgan pose;
+    Affine3f at{};
+    std::uint64_t used = 0;
+  };
+  std::vector<Entry> entries_ = std::vector<Entry>(2 * kSets);
+  std::uint64_t clock_ = 0;
+};
+
 struct ExactScratch {
-  std::vector<Vec3f> va, vb;
-  std::vector<float> boxes_b;        // 6 per triangle of b near a
-  std::vector<std::uint32_t> near_b;  // those triangles
-  std::vector<TrianglePlane> planes_b;
+  PoseCache poses;
+  std::vector<std::uint32_t> near_b;  // triangles of b near a
 };
 
 /// Whether organs a < b touch (or come within `clearance`). Same answer on both backends.
@@ -65,6 +107,14 @@ struct Witness {
 
 /// The same test with the organs at the given plant-frame transforms instead of the stand's (the
 /// turn search of resolution tries poses before it keeps one).
+/// Whether witness triangle pairs of organs a < b touch at the given transforms (a's plant frame):
+/// the quick first check of organs_touch_at, making only the six vertices of each pair.
+bool witness_touches(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
+                     const Affine3f& tb, float clearance, const Witness& witness);
+/// The full test of two posed organs (a < b; b posed in a's plant's frame), remembering the
+/// touching triangles in `witness` when given.
+bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
+
 bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
                      const Affine3f& tb, float clearance, ExactScratch& scratch, Witness* witness = nullptr);
 
