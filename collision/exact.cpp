@@ -168,7 +168,8 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
         if (b6[0] > hi[0] || b6[1] > hi[1] || b6[2] > hi[2] || b6[3] < lo[0] || b6[4] < lo[1] || b6[5] < lo[2]) continue;
         const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
         const TrianglePlane& plane_b = pb.plane[j];
-        if (plane_b.beyond(tri_a, margin * plane_b.lim) || plane_a.beyond(tri_b, lim_a)) continue;
+        if (plane_b.beyond(tri_a, margin * plane_b.lim) || plane_a.beyond(tri_b, lim_a) || apart_on_edges(tri_a, tri_b, margin))
+          continue;
         if (pair_touches(tri_a, tri_b)) {
           if (witness) witness->remember(i, j);
           return true;

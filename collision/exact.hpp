@@ -40,6 +40,27 @@ struct TrianglePlane {
   }
 };
 
+/// The same kind of float rejection on the nine axes across an edge of t and an edge of u (their
+/// cross products; any axis separates by the separating-axis theorem): true when the two
+/// triangles' projections lie more than `margin` x |axis| apart on one of them. The float rounding
+/// of a projection (a few 1e-7 |axis| at plant-frame coordinates of metres) is far below the
+/// margin's slack, so a pair rejected here is farther apart than the exact test's clearance.
+inline bool apart_on_edges(const Vec3f* t, const Vec3f* u, float margin) {
+  for (int i = 0; i < 3; ++i) {
+    const Vec3f et = t[i == 2 ? 0 : i + 1] - t[i];
+    for (int j = 0; j < 3; ++j) {
+      const Vec3f n = cross(et, u[j == 2 ? 0 : j + 1] - u[j]);
+      const float t0 = dot(n, t[0]), t1 = dot(n, t[1]), t2 = dot(n, t[2]);
+      const float u0 = dot(n, u[0]), u1 = dot(n, u[1]), u2 = dot(n, u[2]);
+      const float t_lo = std::min({t0, t1, t2}), t_hi = std::max({t0, t1, t2});
+      const float u_lo = std::min({u0, u1, u2}), u_hi = std::max({u0, u1, u2});
+      const float gap = std::max(u_lo - t_hi, t_lo - u_hi);
+      if (gap > 0 && gap > margin * std::sqrt(dot(n, n))) return true;
+    }
+  }
+  return false;
+}
+
 /// One organ's triangles at one pose in one plant's frame, with what the exact test derives from
 /// them: the organ's box, each triangle's box and plane. Made once and tested against many organs
 /// (a turn search tries one pose of a moving organ against all it must clear, and a kept organ at
