@@ -82,6 +82,15 @@ TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from,
   return out;
 }
 
+void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
+  const std::int32_t plant = stand.organs[c.mover].plant;
+  for (std::size_t i = from; i < c.keep.size(); ++i) {
+    const std::int32_t y = c.keep[i];
+    c.keep_off.push_back(offset_into(stand, plant, y));
+    c.keep_box.push_back(grown(boxes[static_cast<std::size_t>(y)], i < c.met_count ? clearance : detect_clearance));
+  }
+}
+
 TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict) const {
   const Stand& s = stand;
   Candidate c;
@@ -115,6 +124,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   c.met_count = met;
 
   c.strict = strict;
+  keep_boxes(c, 0);
   c.met_pairs = link_pairs(c, 0, met);
   const Affine3f& tm = s.transforms[mover];
   if (length(away) > 1e-9) c.axes.push_back(normalized(away));
@@ -169,6 +179,7 @@ void TurnSearch::gather_neighbours(Candidate& c) const {
       }
     }
   }
+  keep_boxes(c, met);
   c.near_pairs = link_pairs(c, met, c.keep.size());
 }
 
@@ -185,7 +196,6 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     if (rotation_angle_deg(local) > limit) return false;
   }
   const Motion turn = rotation_about(c.joint, r);
-  const std::int32_t plant = s.organs[c.mover].plant;
   // Organ i of `moving` at this pose, made once per attempt when first needed.
   std::int32_t box_of = -1, pose_of = -1;
   Obb ox;
@@ -195,10 +205,9 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     const std::uint32_t yi = pairs.y[p];
     const std::int32_t x = c.moving[i], y = c.keep[yi];
-    const Vec3f off = offset_into(s, plant, y);
     if (box_of != x) ox = carried_box(boxes[static_cast<std::size_t>(x)], turn, clearance), box_of = x;
     const bool met = set == 0;
-    if (!obb_overlap(ox, grown(boxes[static_cast<std::size_t>(y)], met ? clearance : detect_clearance), off)) return false;
+    if (!obb_overlap(ox, c.keep_box[yi], c.keep_off[yi])) return false;
     if (config.level == ContactLevel::organ) return true;
     if (pose_of != x) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)], pose_of = x;
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];

@@ -78,6 +78,8 @@ struct TurnSearch {
     double weight = 1, reach_deg = 0, angle_now_deg = 0;
     std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;
+    std::vector<Obb> keep_box;     // per keep organ: its OBB grown by the clearance it must keep
+    std::vector<Vec3f> keep_off;   // and the offset into the mover's plant frame
     std::vector<Vec3d> axes;
     /// Pairs with the organs met, and (a strict search) with the neighbours to keep clear. The
     /// neighbours are gathered when an attempt first clears every organ met: most candidates
@@ -113,6 +115,8 @@ struct TurnSearch {
   /// A strict search's neighbours: every organ within the subtree's reach about the joint that
   /// is clear now (appended to keep), and their pairs.
   void gather_neighbours(Candidate& c) const;
+  /// keep_box and keep_off for keep[from, end).
+  void keep_boxes(Candidate& c, std::size_t from) const;
   /// The pairs of moving organs with keep[from, to).
   PairSet link_pairs(const Candidate& c, std::size_t from, std::size_t to) const;
 };

@@ -111,12 +111,10 @@ CANOPY_HD inline bool segments_3d(D3 a, D3 b, D3 c, D3 d) {
   return segments_2d(project(a, axis), project(b, axis), project(c, axis), project(d, axis));
 }
 
-/// Closed segment [a, b] meets the closed triangle t (which may be degenerate).
-CANOPY_HD inline bool segment_triangle(D3 a, D3 b, const D3 t[3]) {
-  const D3 n = cross(t[1] - t[0], t[2] - t[0]);
-  if (n.x == 0 && n.y == 0 && n.z == 0)  // degenerate triangle: its edges
-    return segments_3d(a, b, t[0], t[1]) || segments_3d(a, b, t[1], t[2]) || segments_3d(a, b, t[2], t[0]);
-  const double sa = orient3d(t[0], t[1], t[2], a), sb = orient3d(t[0], t[1], t[2], b);
+/// Closed segment [a, b] meets the closed triangle t, given t's normal n = (t1 - t0) x (t2 - t0)
+/// when not zero and the orientations sa, sb of a and b against t's plane (orient3d(t0, t1, t2, .)):
+/// the values segment_triangle computes, passed in where the caller has them already.
+CANOPY_HD inline bool segment_triangle_sided(D3 a, D3 b, const D3 t[3], D3 n, double sa, double sb) {
   if ((sa > 0 && sb > 0) || (sa < 0 && sb < 0)) return false;
   if (sa == 0 && sb == 0) {  // in the triangle's plane
     const int axis = dominant_axis(n);
@@ -132,6 +130,14 @@ CANOPY_HD inline bool segment_triangle(D3 a, D3 b, const D3 t[3]) {
   const int s1 = sign(orient3d(a, b, t[0], t[1])), s2 = sign(orient3d(a, b, t[1], t[2])),
             s3 = sign(orient3d(a, b, t[2], t[0]));
   return !((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0));
+}
+
+/// Closed segment [a, b] meets the closed triangle t (which may be degenerate).
+CANOPY_HD inline bool segment_triangle(D3 a, D3 b, const D3 t[3]) {
+  const D3 n = cross(t[1] - t[0], t[2] - t[0]);
+  if (n.x == 0 && n.y == 0 && n.z == 0)  // degenerate triangle: its edges
+    return segments_3d(a, b, t[0], t[1]) || segments_3d(a, b, t[1], t[2]) || segments_3d(a, b, t[2], t[0]);
+  return segment_triangle_sided(a, b, t, n, orient3d(t[0], t[1], t[2], a), orient3d(t[0], t[1], t[2], b));
 }
 
 /// Sorts a triangle's vertices (lexicographically): the canonical order.
@@ -171,20 +177,26 @@ CANOPY_HD inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
 CANOPY_HD inline bool triangles_intersect_canonical(const D3* t, const D3* u) {
   const D3 nt = cross(t[1] - t[0], t[2] - t[0]), nu = cross(u[1] - u[0], u[2] - u[0]);
   const bool dt = nt.x == 0 && nt.y == 0 && nt.z == 0, du = nu.x == 0 && nu.y == 0 && nu.z == 0;
+  // su: u's vertices against t's plane; st: t's against u's (what segment_triangle computes).
+  double su[3] = {0, 0, 0}, st[3] = {0, 0, 0};
   if (!dt) {  // quick rejection: u wholly on one side of t's plane
-    const double d0 = orient3d(t[0], t[1], t[2], u[0]), d1 = orient3d(t[0], t[1], t[2], u[1]), d2 = orient3d(t[0], t[1], t[2], u[2]);
-    if ((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0)) return false;
-    if (!du && d0 == 0 && d1 == 0 && d2 == 0) return triangles_2d(t, u, dominant_axis(nt));
+    for (int i = 0; i < 3; ++i) su[i] = orient3d(t[0], t[1], t[2], u[i]);
+    if ((su[0] > 0 && su[1] > 0 && su[2] > 0) || (su[0] < 0 && su[1] < 0 && su[2] < 0)) return false;
+    if (!du && su[0] == 0 && su[1] == 0 && su[2] == 0) return triangles_2d(t, u, dominant_axis(nt));
   }
   if (!du) {
-    const double d0 = orient3d(u[0], u[1], u[2], t[0]), d1 = orient3d(u[0], u[1], u[2], t[1]), d2 = orient3d(u[0], u[1], u[2], t[2]);
-    if ((d0 > 0 && d1 > 0 && d2 > 0) || (d0 < 0 && d1 < 0 && d2 < 0)) return false;
+    for (int i = 0; i < 3; ++i) st[i] = orient3d(u[0], u[1], u[2], t[i]);
+    if ((st[0] > 0 && st[1] > 0 && st[2] > 0) || (st[0] < 0 && st[1] < 0 && st[2] < 0)) return false;
   }
   // Not coplanar (or degenerate): they meet exactly when an edge of one meets the other.
-  for (int i = 0; i < 3; ++i)
-    if (segment_triangle(t[i], t[(i + 1) % 3], u)) return true;
-  for (int i = 0; i < 3; ++i)
-    if (segment_triangle(u[i], u[(i + 1) % 3], t)) return true;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (du ? segment_triangle(t[i], t[j], u) : segment_triangle_sided(t[i], t[j], u, nu, st[i], st[j])) return true;
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3;
+    if (dt ? segment_triangle(u[i], u[j], t) : segment_triangle_sided(u[i], u[j], t, nt, su[i], su[j])) return true;
+  }
   return false;
 }
 
