@@ -179,8 +179,16 @@ void TurnSearch::gather_neighbours(Candidate& c) const {
       }
     }
   }
-  keep_boxes(c, met);
   c.near_pairs = link_pairs(c, met, c.keep.size());
+  // Only the neighbours some pair names stay (in their order; the pairs renumbered).
+  std::vector<std::uint32_t> renumber(c.keep.size(), kNoPair);
+  for (std::uint32_t k : c.near_pairs.y) renumber[k] = 0;
+  std::size_t kept = met;
+  for (std::size_t k = met; k < c.keep.size(); ++k)
+    if (renumber[k] == 0) renumber[k] = static_cast<std::uint32_t>(kept), c.keep[kept++] = c.keep[k];
+  c.keep.resize(kept);
+  for (std::uint32_t& k : c.near_pairs.y) k = renumber[k];
+  keep_boxes(c, met);
 }
 
 bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
