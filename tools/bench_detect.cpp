@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <numeric>
+#include "tools/process_memory.hpp"
 
 using namespace canopy;
 
@@ -76,6 +77,7 @@ std::size_t implied_pairs(const Stand& s, const Mbvt& m, const std::vector<Conta
 }  // namespace
 
 int main(int argc, char** argv) {
+  canopy::keep_freed_memory();
   std::vector<int> sizes{200, 400, 600, 800, 1000, 2000, 10000};
   int fcl_max = 1000, repeats = 3;
   std::string csv = "bench/results/detect_cpu.csv";

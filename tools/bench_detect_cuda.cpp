@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include "tools/process_memory.hpp"
 
 using namespace canopy;
 
@@ -37,6 +38,7 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  canopy::keep_freed_memory();
   std::vector<int> sizes{2000, 4000, 6000, 8000, 10000, 100000};
   int repeats = 5;
   std::string csv = "bench/results/detect_cuda.csv";

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <string>
 #include <vector>
+#include "tools/process_memory.hpp"
 
 using namespace canopy;
 
@@ -43,6 +44,7 @@ struct Spacing {
 }  // namespace
 
 int main(int argc, char** argv) {
+  canopy::keep_freed_memory();
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;

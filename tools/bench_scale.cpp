@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <string>
 #include <vector>
+#include "tools/process_memory.hpp"
 
 using namespace canopy;
 using namespace canopy::cli;
@@ -44,6 +45,7 @@ double timing(const StandReport& r, const char* key) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  canopy::keep_freed_memory();
   mpi::Session session;
   std::vector<std::string> sizes{"10000"};
   std::string backend = "auto", grammar = "grammars/tomato.yaml", csv = "bench/results/scale.csv";

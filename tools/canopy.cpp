@@ -10,8 +10,10 @@
 #include "distributed/mpi_comm.hpp"
 #endif
 #include <new>
+#include "tools/process_memory.hpp"
 
 int main(int argc, char** argv) {
+  canopy::keep_freed_memory();
 #ifdef CANOPY_WITH_MPI
   // Under mpirun every rank runs the same command; MPI is started only there.
   std::optional<canopy::mpi::Session> mpi;
