@@ -108,7 +108,8 @@ const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int
   Entry* way = &entries_[2 * set];
   ++clock_;
   for (int w = 0; w < 2; ++w)
-    if (way[w].pose.organ == organ && way[w].pose.frame == frame && std::memcmp(&way[w].at, &t, sizeof t) == 0) {
+    if (way[w].pose.organ == organ && way[w].pose.frame == frame && way[w].stand == &s &&
+        std::memcmp(&way[w].at, &t, sizeof t) == 0) {
       way[w].used = clock_;
       return way[w].pose;
     }
@@ -118,6 +119,7 @@ const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int
   Entry& e = way[w];
   const OrganRecord& r = s.organs[static_cast<std::size_t>(organ)];
   e.pose.pose(s, lib.get(r.prototype, r.lod), organ, t, r.plant, frame);
+  e.stand = &s;
   e.at = t;
   e.used = clock_;
   return e.pose;

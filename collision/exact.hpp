@@ -80,9 +80,11 @@ struct PosedOrgan {
             std::int32_t frame_plant);
 };
 
-/// Poses made lately, found again by organ, frame and transform (bit for bit): an organ meets
-/// several others in a row, and a turn search tries the organs it keeps clear against pose after
-/// pose of the moving ones. Two-way set-associative, least recently used out.
+/// Poses made lately, found again by stand, organ, frame and transform (bit for bit): an organ
+/// meets several others in a row, and a turn search tries the organs it keeps clear against pose
+/// after pose of the moving ones. Two-way set-associative, least recently used out. A pose also
+/// depends on the stand's plant origins and prototypes, which stay fixed while a scratch lives
+/// (one detection or one resolution round's planning).
 class PoseCache {
  public:
   /// `organ` at transform `t` in the frame of plant `frame`, made now or found; `keep` (a pose
@@ -94,6 +96,7 @@ class PoseCache {
   static constexpr std::size_t kSets = 64;
   struct Entry {
     PosedOrgan pose;
+    const Stand* stand = nullptr;
     Affine3f at{};
     std::uint64_t used = 0;
   };
@@ -126,8 +129,6 @@ struct Witness {
   }
 };
 
-/// The same test with the organs at the given plant-frame transforms instead of the stand's (the
-/// turn search of resolution tries poses before it keeps one).
 /// Whether witness triangle pairs of organs a < b touch at the given transforms (a's plant frame):
 /// the quick first check of organs_touch_at, making only the six vertices of each pair.
 bool witness_touches(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
@@ -136,6 +137,8 @@ bool witness_touches(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, 
 /// touching triangles in `witness` when given.
 bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
 
+/// The same test as organs_touch with the organs at the given plant-frame transforms instead of
+/// the stand's (the turn search of resolution tries poses before it keeps one).
 bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
                      const Affine3f& tb, float clearance, ExactScratch& scratch, Witness* witness = nullptr);
 

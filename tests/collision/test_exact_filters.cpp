@@ -1,9 +1,11 @@
 // The quick rejections of the host exact test never reject a pair the full test accepts: the
-// float plane pre-test (TrianglePlane) against the plain triangle distance on random pairs at
-// plant scale, including coordinates a couple of metres from the plant origin, thin slivers,
-// and clearances around the distance.
+// float plane pre-test (TrianglePlane) and the float edge-axis test (apart_on_edges) against the
+// plain triangle distance on random pairs at plant scale, including coordinates a couple of
+// metres from the plant origin, thin slivers, and clearances around the distance. And the pose
+// cache never answers with a stale pose.
 #include "collision/exact.hpp"
 #include "geometry/triangle_test.hpp"
+#include "tests/collision/helpers.hpp"
 #include "tests/geometry/reference_distance.hpp"
 
 #include <doctest/doctest.h>
@@ -32,7 +34,7 @@ TEST_CASE("the float plane pre-test rejects only pairs farther apart than the cl
     for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
       const float margin = c + 1e-5f;
       const TrianglePlane pp = TrianglePlane::of(p[0], p[1], p[2], margin), pq = TrianglePlane::of(q[0], q[1], q[2], margin);
-      const bool reject = pp.beyond(q) || pq.beyond(p);
+      const bool reject = pp.beyond(q) || pq.beyond(p) || apart_on_edges(p, q, margin) || apart_on_edges(q, p, margin);
       if (reject) {
         ++rejected;
         CHECK_MESSAGE(d > c, "trial ", trial, " distance ", d, " clearance ", c);
@@ -42,4 +44,49 @@ TEST_CASE("the float plane pre-test rejects only pairs farther apart than the cl
     }
   }
   CHECK(rejected > 1000);  // it does reject
+}
+
+TEST_CASE("the float edge-axis test rejects pairs the plane test lets through") {
+  // Two crossing-plane triangles side by side: separated along an edge-cross-edge axis only.
+  const Vec3f p[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const Vec3f q[3] = {{0.6f, 0.6f, -1}, {0.6f, 0.6f, 1}, {2, 2, 0}};
+  const float margin = 1e-4f + 1e-5f;
+  CHECK_FALSE(TrianglePlane::of(p[0], p[1], p[2], margin).beyond(q));
+  CHECK_FALSE(TrianglePlane::of(q[0], q[1], q[2], margin).beyond(p));
+  CHECK(apart_on_edges(p, q, margin));
+  CHECK(reference_distance(p, q) > 0.1);
+  // Touching ones are never rejected.
+  const Vec3f r[3] = {{0.4f, 0.4f, -1}, {0.4f, 0.4f, 1}, {2, 2, 0}};
+  CHECK_FALSE(apart_on_edges(p, r, margin));
+  CHECK(triangles_intersect(p, r));
+}
+
+TEST_CASE("a long-lived exact scratch answers as a fresh one for poses that change") {
+  // One scratch (and its pose cache) over many organ pairs at many poses, some repeated, some
+  // differing in one transform bit; each answer against a fresh scratch's.
+  const Stand s = test::random_stand(11, 6);
+  PrototypeLibrary lib;
+  std::mt19937 rng(3);
+  ExactScratch kept;
+  Witness witness;
+  const auto n = static_cast<std::int32_t>(s.organ_count());
+  int touching = 0, apart = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const std::int32_t a = static_cast<std::int32_t>(rng() % static_cast<unsigned>(n - 1));
+    const std::int32_t b = a + 1 + static_cast<std::int32_t>(rng() % static_cast<unsigned>(std::min(n - a - 1, 40)));
+    Affine3f ta = s.transforms[static_cast<std::size_t>(a)], tb = s.transforms[static_cast<std::size_t>(b)];
+    // Move b onto a (so some pairs touch), then nudge it: by a few mm, or by one float step.
+    const Vec3f to_a = ta.t - tb.t;
+    const float f = static_cast<float>(rng() % 5) / 4.0f;
+    tb.t = tb.t + to_a * f;
+    if (rng() % 3 == 0) tb.t.x = std::nextafter(tb.t.x, 1e9f);
+    else if (rng() % 2 == 0) tb.t.z += 0.003f;
+    ExactScratch fresh;
+    const float c = rng() % 2 ? 0.0f : 1e-4f;
+    const bool want = organs_touch_at(s, lib, a, ta, b, tb, c, fresh);
+    CHECK_MESSAGE(organs_touch_at(s, lib, a, ta, b, tb, c, kept, &witness) == want, "trial ", trial);
+    (want ? touching : apart) += 1;
+  }
+  CHECK(touching > 100);
+  CHECK(apart > 100);
 }
