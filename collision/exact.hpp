@@ -21,22 +21,20 @@ namespace canopy {
 /// the exact test would have rejected them too.
 struct TrianglePlane {
   Vec3f n;
-  float lo = 0, hi = 0, lim = 0;
-  static TrianglePlane of(Vec3f p0, Vec3f p1, Vec3f p2, float margin) {
+  float lo = 0, hi = 0, length = 0;  // length: |n|
+  static TrianglePlane of(Vec3f p0, Vec3f p1, Vec3f p2) {
     TrianglePlane t;
     t.n = cross(p1 - p0, p2 - p0);
     const float d0 = dot(t.n, p0), d1 = dot(t.n, p1), d2 = dot(t.n, p2);
     t.lo = std::min({d0, d1, d2}), t.hi = std::max({d0, d1, d2});
-    t.lim = margin * std::sqrt(dot(t.n, t.n));
+    t.length = std::sqrt(dot(t.n, t.n));
     return t;
   }
-  /// Whether q lies beyond the plane by more than lim (the margin applied by `of`).
-  bool beyond(const Vec3f* q) const { return beyond(q, lim); }
-  /// The same for a plane made with margin 1 and the margin given here: lim = margin x |n|,
-  /// the product `of` makes.
-  bool beyond(const Vec3f* q, float lim_now) const {
+  /// Whether q lies beyond the plane by more than `margin` (margin x |n| along n).
+  bool beyond(const Vec3f* q, float margin) const {
+    const float lim = margin * length;
     const float d0 = dot(n, q[0]), d1 = dot(n, q[1]), d2 = dot(n, q[2]);
-    return std::min({d0, d1, d2}) > hi + lim_now || std::max({d0, d1, d2}) < lo - lim_now;
+    return std::min({d0, d1, d2}) > hi + lim || std::max({d0, d1, d2}) < lo - lim;
   }
 };
 
@@ -72,7 +70,7 @@ struct PosedOrgan {
   bool solid = false;
   std::vector<Vec3f> v;                // vertices
   std::vector<float> tri_box;          // 6 per triangle: lo xyz, hi xyz
-  std::vector<TrianglePlane> plane;    // per triangle, margin not applied (lim = |n|)
+  std::vector<TrianglePlane> plane;    // per triangle
   double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened)
   /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
   /// plant `frame_plant`.

@@ -33,8 +33,8 @@ TEST_CASE("the float plane pre-test rejects only pairs farther apart than the cl
     const double d = reference_distance(p, q);
     for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
       const float margin = c + 1e-5f;
-      const TrianglePlane pp = TrianglePlane::of(p[0], p[1], p[2], margin), pq = TrianglePlane::of(q[0], q[1], q[2], margin);
-      const bool reject = pp.beyond(q) || pq.beyond(p) || apart_on_edges(p, q, margin) || apart_on_edges(q, p, margin);
+      const TrianglePlane pp = TrianglePlane::of(p[0], p[1], p[2]), pq = TrianglePlane::of(q[0], q[1], q[2]);
+      const bool reject = pp.beyond(q, margin) || pq.beyond(p, margin) || apart_on_edges(p, q, margin) || apart_on_edges(q, p, margin);
       if (reject) {
         ++rejected;
         CHECK_MESSAGE(d > c, "trial ", trial, " distance ", d, " clearance ", c);
@@ -51,8 +51,8 @@ TEST_CASE("the float edge-axis test rejects pairs the plane test lets through") 
   const Vec3f p[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   const Vec3f q[3] = {{0.6f, 0.6f, -1}, {0.6f, 0.6f, 1}, {2, 2, 0}};
   const float margin = 1e-4f + 1e-5f;
-  CHECK_FALSE(TrianglePlane::of(p[0], p[1], p[2], margin).beyond(q));
-  CHECK_FALSE(TrianglePlane::of(q[0], q[1], q[2], margin).beyond(p));
+  CHECK_FALSE(TrianglePlane::of(p[0], p[1], p[2]).beyond(q, margin));
+  CHECK_FALSE(TrianglePlane::of(q[0], q[1], q[2]).beyond(p, margin));
   CHECK(apart_on_edges(p, q, margin));
   CHECK(reference_distance(p, q) > 0.1);
   // Touching ones are never rejected.
