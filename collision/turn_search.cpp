@@ -43,7 +43,7 @@ void ContactGraph::build(std::size_t organs, const std::vector<Contact>& contact
   }
 }
 
-TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to) const {
+TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg) const {
   const Stand& s = stand;
   const std::int32_t plant = s.organs[c.mover].plant;
   PairSet out;
@@ -60,9 +60,9 @@ TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from,
     dy[i] = length(cy[i] - c.joint);
     ry[i] = oy.radius + 2.0 * clearance;
   }
-  // A turn by at most reach_deg moves a point at distance d from the joint by at most the chord
-  // 2 d sin(reach / 2), and keeps it at distance d: pairs too far apart for either never meet.
-  const double half = std::min(c.reach_deg, 180.0) * kRad / 2;
+  // A turn by at most max_deg moves a point at distance d from the joint by at most the chord
+  // 2 d sin(max_deg / 2), and keeps it at distance d: pairs too far apart for either never meet.
+  const double half = std::min(max_deg, 180.0) * kRad / 2;
   for (std::int32_t x : c.moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
     const Vec3d cx = to_double(ox.centre);
@@ -125,7 +125,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
 
   c.strict = strict;
   keep_boxes(c, 0);
-  c.met_pairs = link_pairs(c, 0, met);
+  c.met_pairs = link_pairs(c, 0, met, c.reach_deg);
   const Affine3f& tm = s.transforms[mover];
   if (length(away) > 1e-9) c.axes.push_back(normalized(away));
   const Vec3d h = unit(tm.c0), l = unit(tm.c1), u = unit(tm.c2);
@@ -140,18 +140,39 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   return c;
 }
 
-void TurnSearch::gather_neighbours(Candidate& c) const {
+void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   const Stand& s = stand;
-  c.near_gathered = true;
   const std::uint32_t mover = c.mover;
   const std::int32_t plant = s.organs[mover].plant;
   const std::size_t met = c.met_count;
-  double reach = 0;
+  // Cover two scan levels beyond this turn, or twice what was covered before (a search that
+  // keeps failing gathers O(log) times), never beyond the reach.
+  const double level_deg = std::max(config.scan_step_deg, config.angle_tolerance_deg) / c.weight;
+  const double cover = std::min(c.reach_deg, std::max(deg + 2 * level_deg, 2 * c.near_deg));
+  c.near_deg = cover;
+  c.keep.resize(met), c.keep_box.resize(met), c.keep_off.resize(met);
+  for (Candidate::Blocker& b : c.blocker)
+    if (b.set == 1) b = Candidate::Blocker{};
+  // The region the subtree can sweep: per moving organ the ball about its centre grown by its
+  // chord, its radius and both clearances (link_pairs' test below, with room for its rounding
+  // slack), and one box around them all; a neighbour's sphere must reach into that box.
+  const double half = std::min(cover, 180.0) * kRad / 2;
+  double reach = 0, lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (std::int32_t x : c.moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
-    reach = std::max(reach, length(to_double(ox.centre) - c.joint) + ox.radius);
+    const Vec3d cx = to_double(ox.centre);
+    const double dx = length(cx - c.joint);
+    reach = std::max(reach, dx + ox.radius);
+    const double swept = ox.radius + 2 * dx * std::sin(half) + 2.0 * clearance;
+    const double r = swept + 1e-4 + 2e-6 * (1 + dx + swept);
+    const double p[3] = {cx.x, cx.y, cx.z};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a] - r), hi[a] = std::max(hi[a], p[a] + r);
   }
   reach += clearance;
+  // Whether a sphere (centre q, radius r) misses the swept box.
+  const auto misses = [&](const Vec3d& q, double r) {
+    return q.x + r < lo[0] || q.x - r > hi[0] || q.y + r < lo[1] || q.y - r > hi[1] || q.z + r < lo[2] || q.z - r > hi[2];
+  };
   // Organs already touching the subtree are other contacts' business.
   std::vector<std::int32_t> busy;
   for (std::int32_t x : c.moving)
@@ -160,26 +181,33 @@ void TurnSearch::gather_neighbours(Candidate& c) const {
   std::sort(busy.begin(), busy.end());
   const Vec3d origin = s.offset(static_cast<std::size_t>(plant));
   const double joint_norm = length(c.joint);
-  for (std::int32_t q : near.plants_near(s, origin.x + c.joint.x, origin.y + c.joint.y, reach)) {
+  // Plants near the swept box's horizontal centre (or the joint's reach, if smaller).
+  double qx = 0.5 * (lo[0] + hi[0]), qy = 0.5 * (lo[1] + hi[1]);
+  double qr = 0.5 * std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+  if (qr > reach) qx = c.joint.x, qy = c.joint.y, qr = reach;
+  for (std::int32_t q : near.plants_near(s, origin.x + qx, origin.y + qy, qr)) {
     const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
     const Vec3f off = offset_into(s, plant, static_cast<std::int32_t>(pr.first_organ));
     for (const OrganRun& run : near.runs(q)) {
-      // A run whose sphere lies beyond the reach holds no organ that passes the test below
-      // (the slack covers the float sums of centre and offset).
-      const double gap = length(to_double(run.centre) + to_double(off) - c.joint);
+      // A run whose sphere lies beyond the reach, or misses the swept box, holds no organ that
+      // passes the tests below (the slack covers the float sums of centre and offset).
+      const Vec3d rc = to_double(run.centre) + to_double(off);
+      const double gap = length(rc - c.joint);
       if (gap - 1e-6 * (1 + gap + joint_norm + run.radius) > reach + run.radius + clearance) continue;
+      if (misses(rc, run.radius + 1e-5 * (1 + gap + joint_norm))) continue;
       for (std::uint32_t k = run.first; k < run.end; ++k) {
         const auto y = static_cast<std::int32_t>(k);
         if (joints.holds(mover, y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
         const Obb& raw = boxes[k];
-        if (length(to_double(raw.centre + off) - c.joint) > reach + raw.radius + clearance) continue;
+        const Vec3d cy = to_double(raw.centre + off);
+        if (length(cy - c.joint) > reach + raw.radius + clearance || misses(cy, raw.radius)) continue;
         if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
         if (std::binary_search(busy.begin(), busy.end(), y)) continue;
         c.keep.push_back(y);
       }
     }
   }
-  c.near_pairs = link_pairs(c, met, c.keep.size());
+  c.near_pairs = link_pairs(c, met, c.keep.size(), cover);
   // Only the neighbours some pair names stay (in their order; the pairs renumbered).
   std::vector<std::uint32_t> renumber(c.keep.size(), kNoPair);
   for (std::uint32_t k : c.near_pairs.y) renumber[k] = 0;
@@ -238,7 +266,7 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   for (std::uint32_t set = 0; set < 2; ++set) {
     if (set == 1) {
       if (!c.strict) break;
-      if (!c.near_gathered) gather_neighbours(c);
+      if (c.near_deg < deg) gather_neighbours(c, deg);
     }
     const PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     for (std::size_t i = 0; i < c.moving.size(); ++i)

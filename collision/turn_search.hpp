@@ -85,7 +85,12 @@ struct TurnSearch {
     /// neighbours are gathered when an attempt first clears every organ met: most candidates
     /// never get that far before another candidate of their contacts wins.
     PairSet met_pairs, near_pairs;
-    bool strict = false, near_gathered = false;
+    bool strict = false;
+    /// The largest turn (degrees) the neighbours gathered cover (-1: none gathered yet). They
+    /// are gathered for a few levels beyond the attempt that first needs them, not for the whole
+    /// reach: a small turn sweeps the subtree through a small region (the chord bound), and most
+    /// searches end within a level or two; a larger attempt gathers again for twice the turn.
+    double near_deg = -1;
     /// The pairs (set: 0 met, 1 near; index into `moving`; pair index) that blocked the last few
     /// failed attempts, tested first: the scan swings about several axes, each blocked by a pair
     /// of its own.
@@ -112,13 +117,15 @@ struct TurnSearch {
   bool attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const;
 
  private:
-  /// A strict search's neighbours: every organ within the subtree's reach about the joint that
-  /// is clear now (appended to keep), and their pairs.
-  void gather_neighbours(Candidate& c) const;
+  /// A strict search's neighbours for turns up to at least `deg`: every organ that a turn of
+  /// the subtree about the joint by that much could bring within the clearance and that is
+  /// clear now (appended to keep, replacing those gathered before), and their pairs.
+  void gather_neighbours(Candidate& c, double deg) const;
   /// keep_box and keep_off for keep[from, end).
   void keep_boxes(Candidate& c, std::size_t from) const;
-  /// The pairs of moving organs with keep[from, to).
-  PairSet link_pairs(const Candidate& c, std::size_t from, std::size_t to) const;
+  /// The pairs of moving organs with keep[from, to) that a turn by at most `max_deg` could bring
+  /// together.
+  PairSet link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg) const;
 };
 
 }  // namespace canopy
