@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <span>
 #include <stdexcept>
 
 namespace canopy {
@@ -67,6 +68,9 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     for (std::uint32_t m : cands[i]) cand_slots[i].push_back(slot(m));
 
   std::vector<std::optional<Turn>> turn_of(movers.size());
+  // One scratch per thread for the whole round: the poses it keeps stay valid while the stand
+  // does not change, so they carry over from level to level.
+  std::vector<ExactScratch> scratches(static_cast<std::size_t>(threads));
   std::vector<std::uint8_t> resolved(n, 0);
   // Contacts are planned in batches: a contact's pick depends only on its own candidates' scans
   // (each candidate is scanned at every level while any contact wanting it is pending), so a
@@ -78,57 +82,57 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     for (std::size_t i = 0; i < n; ++i)
       if (!resolved[i] && !cand_slots[i].empty()) waiting.push_back(i);
     for (std::size_t b0 = 0; b0 < waiting.size(); b0 += kBatch) {
-      std::vector<std::size_t> pending(waiting.begin() + static_cast<std::ptrdiff_t>(b0),
-                                       waiting.begin() + static_cast<std::ptrdiff_t>(std::min(waiting.size(), b0 + kBatch)));
+      const std::size_t b1 = std::min(waiting.size(), b0 + kBatch);
       std::vector<std::size_t> slots;  // the batch's movers (slots into `movers`)
-      for (std::size_t i : pending) slots.insert(slots.end(), cand_slots[i].begin(), cand_slots[i].end());
+      for (std::size_t q = b0; q < b1; ++q) slots.insert(slots.end(), cand_slots[waiting[q]].begin(), cand_slots[waiting[q]].end());
       std::sort(slots.begin(), slots.end());
       slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
-      const auto local = [&](std::size_t k) {
-        return static_cast<std::size_t>(std::lower_bound(slots.begin(), slots.end(), k) - slots.begin());
+      // Each contact's candidates as indices into the batch's movers, found once: those of
+      // waiting[b0 + q] are cand_local[local_first[q], local_first[q + 1]). Pending: values of q.
+      std::vector<std::uint32_t> local_first{0}, cand_local, pending;
+      for (std::size_t q = b0; q < b1; ++q) {
+        pending.push_back(static_cast<std::uint32_t>(q - b0));
+        for (std::size_t g : cand_slots[waiting[q]])
+          cand_local.push_back(static_cast<std::uint32_t>(std::lower_bound(slots.begin(), slots.end(), g) - slots.begin()));
+        local_first.push_back(static_cast<std::uint32_t>(cand_local.size()));
+      }
+      const auto candidates_of = [&](std::uint32_t q) {
+        return std::span<const std::uint32_t>(cand_local.data() + local_first[q], local_first[q + 1] - local_first[q]);
       };
       std::vector<std::optional<TurnSearch::Candidate>> state(slots.size());
       std::vector<std::optional<Turn>> refined(slots.size());
       std::vector<std::size_t> chosen;
+      std::vector<std::uint8_t> want(slots.size(), 0);
       for (int level = 1; !pending.empty(); ++level) {
-        if (planning) planning(pending.size() + (waiting.size() - std::min(waiting.size(), b0 + kBatch)));  // this batch's + later ones
-        std::vector<std::uint8_t> want(slots.size(), 0);
-        for (std::size_t i : pending)
-          for (std::size_t g : cand_slots[i]) {
-            const std::size_t k = local(g);
+        if (planning) planning(pending.size() + (waiting.size() - b1));  // this batch's + later ones
+        std::fill(want.begin(), want.end(), 0);
+        for (std::uint32_t q : pending)
+          for (std::uint32_t k : candidates_of(q))
             if (!state[k] || (!state[k]->exhausted() && state[k]->found_axis < 0)) want[k] = 1;
-          }
         std::vector<std::size_t> scan;
         for (std::size_t k = 0; k < slots.size(); ++k)
           if (want[k]) scan.push_back(k);
         if (scan.empty()) break;
-#pragma omp parallel num_threads(threads)
-        {
-          ExactScratch scratch;
-#pragma omp for schedule(dynamic, 1)
-          for (std::size_t j = 0; j < scan.size(); ++j) {
-            const std::size_t k = scan[j];
-            const std::uint32_t m = movers[slots[k]];
-            if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict);
-            search.scan_level(*state[k], level, scratch);
-          }
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+        for (std::size_t j = 0; j < scan.size(); ++j) {
+          const std::size_t k = scan[j];
+          const std::uint32_t m = movers[slots[k]];
+          if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict);
+          search.scan_level(*state[k], level, scratches[static_cast<std::size_t>(omp_get_thread_num())]);
         }
         // Candidates found at this level: each refined to its smallest turn, once.
         std::vector<std::size_t> found;
         for (std::size_t k : scan)
           if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
-#pragma omp parallel num_threads(threads)
-        {
-          ExactScratch scratch;
-#pragma omp for schedule(dynamic, 1)
-          for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = search.refine(*state[found[j]], scratch);
-        }
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+        for (std::size_t j = 0; j < found.size(); ++j)
+          refined[found[j]] = search.refine(*state[found[j]], scratches[static_cast<std::size_t>(omp_get_thread_num())]);
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
-        std::erase_if(pending, [&](std::size_t i) {
+        std::erase_if(pending, [&](std::uint32_t q) {
+          const std::size_t i = waiting[b0 + q];
           std::optional<std::size_t> pick;
           double cost = 0;
-          for (std::size_t g : cand_slots[i]) {
-            const std::size_t k = local(g);
+          for (std::uint32_t k : candidates_of(q)) {
             if (!refined[k]) continue;
             const double c = refined[k]->angle_deg * state[k]->weight;
             if (!pick || c < cost) pick = k, cost = c;
@@ -141,6 +145,9 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       }
       for (std::size_t k : chosen)
         if (!turn_of[slots[k]]) turn_of[slots[k]] = refined[k];
+      // The batch's search state let go on all threads (tens of thousands of candidates).
+#pragma omp parallel for schedule(static, 256) num_threads(threads)
+      for (std::size_t k = 0; k < state.size(); ++k) state[k].reset();
     }
   }
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
@@ -151,7 +158,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   std::vector<std::optional<Turn>> alone(left.size());
 #pragma omp parallel num_threads(threads)
   {
-    ExactScratch scratch;
+    ExactScratch& scratch = scratches[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1)
     for (std::size_t j = 0; j < left.size(); ++j) {
       const Contact& c = contacts[left[j]];
