@@ -93,9 +93,9 @@ bool witness_touches(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
 }
 
 bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
-                     const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness) {
+                     const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried) {
   assert(a < b);
-  if (witness && witness_touches(s, lib, a, pose_a, b, pose_b, clearance, *witness)) return true;
+  if (witness && !witness_tried && witness_touches(s, lib, a, pose_a, b, pose_b, clearance, *witness)) return true;
   const std::int32_t frame = s.organs[static_cast<std::size_t>(a)].plant;
   const PosedOrgan& pa = x.poses.get(s, lib, a, pose_a, frame);
   const PosedOrgan& pb = x.poses.get(s, lib, b, pose_b, frame, &pa);

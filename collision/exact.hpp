@@ -136,9 +136,11 @@ bool witness_touches(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, 
 bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
 
 /// The same test as organs_touch with the organs at the given plant-frame transforms instead of
-/// the stand's (the turn search of resolution tries poses before it keeps one).
+/// the stand's (the turn search of resolution tries poses before it keeps one). With a witness,
+/// its triangle pairs are tried first unless the caller has just done so (`witness_tried`).
 bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
-                     const Affine3f& tb, float clearance, ExactScratch& scratch, Witness* witness = nullptr);
+                     const Affine3f& tb, float clearance, ExactScratch& scratch, Witness* witness = nullptr,
+                     bool witness_tried = false);
 
 /// The organ's vertices in the plant frame of `frame_plant` (its own frame moved by the origin
 /// difference), as every exact test computes them.

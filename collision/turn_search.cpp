@@ -236,8 +236,13 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   std::int32_t box_of = -1, pose_of = -1;
   Obb ox;
   Affine3f tx;
-  // Whether pair p of `set` (moving[i], keep[y[p]]) meets at this pose.
-  const auto meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p) {
+  const auto pose = [&](std::int32_t x) -> const Affine3f& {
+    if (pose_of != x) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)], pose_of = x;
+    return tx;
+  };
+  // Whether pair p of `set` (moving[i], keep[y[p]]) meets at this pose; `witness_tried`: its
+  // witness triangles are known not to touch at this pose.
+  const auto meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p, bool witness_tried = false) {
     PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     const std::uint32_t yi = pairs.y[p];
     const std::int32_t x = c.moving[i], y = c.keep[yi];
@@ -245,22 +250,42 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     const bool met = set == 0;
     if (!obb_overlap(ox, c.keep_box[yi], c.keep_off[yi])) return false;
     if (config.level == ContactLevel::organ) return true;
-    if (pose_of != x) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)], pose_of = x;
+    const Affine3f& tx_now = pose(x);
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
     const float gap = met ? clearance : detect_clearance;
     Witness* w = &pairs.witness[p];
-    return x < y ? organs_touch_at(s, lib, x, tx, y, ty, gap, scratch, w) : organs_touch_at(s, lib, y, ty, x, tx, gap, scratch, w);
+    return x < y ? organs_touch_at(s, lib, x, tx_now, y, ty, gap, scratch, w, witness_tried)
+                 : organs_touch_at(s, lib, y, ty, x, tx_now, gap, scratch, w, witness_tried);
   };
-  // The pairs that blocked the last attempts first (nearby poses are blocked by the same pairs);
-  // the answer, a conjunction over the pairs, does not depend on the order.
+  // Whether the triangles that touched last in pair p of `set` touch at this pose: a touch there
+  // is a touch of the organs (their boxes overlap then too), found for the price of a few
+  // triangle tests.
+  const auto witness_meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p) {
+    const PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
+    const Witness& w = pairs.witness[p];
+    if (w.latest < 0) return false;
+    const std::int32_t x = c.moving[i], y = c.keep[pairs.y[p]];
+    const Affine3f& tx_now = pose(x);
+    const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
+    const float gap = set == 0 ? clearance : detect_clearance;
+    return x < y ? witness_touches(s, lib, x, tx_now, y, ty, gap, w) : witness_touches(s, lib, y, ty, x, tx_now, gap, w);
+  };
+  // The pairs that blocked the last attempts first (nearby poses are blocked by the same pairs),
+  // their witness triangles before any full test; the answer, a conjunction over the pairs, does
+  // not depend on the order.
   const auto blocked_before = [&](std::uint32_t set, std::uint32_t p) {
     for (const Candidate::Blocker& b : c.blocker)
       if (b.pair == p && b.set == set) return true;
     return false;
   };
+  const bool exact = config.level != ContactLevel::organ;
+  for (int n = 0; exact && n < Candidate::kBlockers; ++n) {
+    const Candidate::Blocker& b = c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
+    if (b.pair != kNoPair && witness_meets(b.set, b.organ, b.pair)) return false;
+  }
   for (int n = 0; n < Candidate::kBlockers; ++n) {
     const Candidate::Blocker& b = c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
-    if (b.pair != kNoPair && meets(b.set, b.organ, b.pair)) return false;
+    if (b.pair != kNoPair && meets(b.set, b.organ, b.pair, exact)) return false;
   }
   // Then the organs met (the likeliest to fail), then the neighbours to keep clear.
   for (std::uint32_t set = 0; set < 2; ++set) {
