@@ -59,13 +59,13 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   }
   const std::size_t tris = m.triangle_count();
   tri_box.resize(6 * tris);
-  plane.resize(tris);
+  plane_.resize(tris);
+  plane_made_.assign(tris, 0);
   for (std::size_t i = 0; i < tris; ++i) {
     const Vec3f p = v[m.indices[3 * i]], q = v[m.indices[3 * i + 1]], r = v[m.indices[3 * i + 2]];
     float* bx = &tri_box[6 * i];
     bx[0] = min_f(p.x, min_f(q.x, r.x)), bx[1] = min_f(p.y, min_f(q.y, r.y)), bx[2] = min_f(p.z, min_f(q.z, r.z));
     bx[3] = max_f(p.x, max_f(q.x, r.x)), bx[4] = max_f(p.y, max_f(q.y, r.y)), bx[5] = max_f(p.z, max_f(q.z, r.z));
-    plane[i] = TrianglePlane::of(p, q, r);
   }
 }
 
@@ -161,14 +161,14 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
       const float* bx = &pa.tri_box[6 * i];
       if (!meets(bx, box_b)) continue;
       const Vec3f tri_a[3] = {pa.v[ma.indices[3 * i]], pa.v[ma.indices[3 * i + 1]], pa.v[ma.indices[3 * i + 2]]};
-      const TrianglePlane& plane_a = pa.plane[i];
+
       // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
       const double lo[3] = {bx[0] - c, bx[1] - c, bx[2] - c}, hi[3] = {bx[3] + c, bx[4] + c, bx[5] + c};
       for (const std::uint32_t j : x.near_b) {
         const float* b6 = &pb.tri_box[6 * j];
         if (b6[0] > hi[0] || b6[1] > hi[1] || b6[2] > hi[2] || b6[3] < lo[0] || b6[4] < lo[1] || b6[5] < lo[2]) continue;
         const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
-        if (pb.plane[j].beyond(tri_a, margin) || plane_a.beyond(tri_b, margin) || apart_on_edges(tri_a, tri_b, margin))
+        if (pb.plane(j).beyond(tri_a, margin) || pa.plane(i).beyond(tri_b, margin) || apart_on_edges(tri_a, tri_b, margin))
           continue;
         if (pair_touches(tri_a, tri_b)) {
           if (witness) witness->remember(i, j);

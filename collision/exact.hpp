@@ -70,12 +70,25 @@ struct PosedOrgan {
   bool solid = false;
   std::vector<Vec3f> v;                // vertices
   std::vector<float> tri_box;          // 6 per triangle: lo xyz, hi xyz
-  std::vector<TrianglePlane> plane;    // per triangle
   double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened)
+  /// Triangle i's plane, made when first asked for: most triangles of a pose never pass the
+  /// box tests that come before it.
+  const TrianglePlane& plane(std::size_t i) const {
+    if (!plane_made_[i]) {
+      const unsigned* t = &mesh->indices[3 * i];
+      plane_[i] = TrianglePlane::of(v[t[0]], v[t[1]], v[t[2]]);
+      plane_made_[i] = 1;
+    }
+    return plane_[i];
+  }
   /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
   /// plant `frame_plant`.
   void pose(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
             std::int32_t frame_plant);
+
+ private:
+  mutable std::vector<TrianglePlane> plane_;
+  mutable std::vector<std::uint8_t> plane_made_;
 };
 
 /// Poses made lately, found again by stand, organ, frame and transform (bit for bit): an organ

@@ -6,25 +6,6 @@
 
 namespace canopy {
 
-Mat3d operator*(const Mat3d& a, const Mat3d& b) {
-  Mat3d c;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) c.m[3 * i + j] = a.m[3 * i] * b.m[j] + a.m[3 * i + 1] * b.m[3 + j] + a.m[3 * i + 2] * b.m[6 + j];
-  return c;
-}
-
-Vec3d operator*(const Mat3d& a, Vec3d v) {
-  return {a.m[0] * v.x + a.m[1] * v.y + a.m[2] * v.z, a.m[3] * v.x + a.m[4] * v.y + a.m[5] * v.z,
-          a.m[6] * v.x + a.m[7] * v.y + a.m[8] * v.z};
-}
-
-Mat3d transpose(const Mat3d& a) {
-  Mat3d t;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) t.m[3 * i + j] = a.m[3 * j + i];
-  return t;
-}
-
 Mat3d axis_angle(Vec3d k, double angle) {
   const double c = std::cos(angle), s = std::sin(angle), v = 1 - c;
   Mat3d r;
@@ -37,21 +18,6 @@ Mat3d axis_angle(Vec3d k, double angle) {
 double rotation_angle_deg(const Mat3d& r) {
   const double c = std::clamp((r.m[0] + r.m[4] + r.m[8] - 1) / 2, -1.0, 1.0);
   return std::acos(c) * 180 / std::numbers::pi;
-}
-
-Motion compose(const Motion& a, const Motion& b) { return {a.r * b.r, a.r * b.t + a.t}; }
-
-Motion rotation_about(Vec3d p, const Mat3d& r) { return {r, p - r * p}; }
-
-Vec3d apply(const Motion& m, Vec3d p) { return m.r * p + m.t; }
-
-Affine3f apply(const Motion& m, const Affine3f& a) {
-  Affine3f o;
-  o.c0 = to_float(m.r * to_double(a.c0));
-  o.c1 = to_float(m.r * to_double(a.c1));
-  o.c2 = to_float(m.r * to_double(a.c2));
-  o.t = to_float(apply(m, to_double(a.t)));
-  return o;
 }
 
 Joints::Joints(const Stand& s)
