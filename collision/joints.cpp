@@ -6,14 +6,7 @@
 
 namespace canopy {
 
-Mat3d axis_angle(Vec3d k, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle), v = 1 - c;
-  Mat3d r;
-  r.m[0] = c + k.x * k.x * v, r.m[1] = k.x * k.y * v - k.z * s, r.m[2] = k.x * k.z * v + k.y * s;
-  r.m[3] = k.y * k.x * v + k.z * s, r.m[4] = c + k.y * k.y * v, r.m[5] = k.y * k.z * v - k.x * s;
-  r.m[6] = k.z * k.x * v - k.y * s, r.m[7] = k.z * k.y * v + k.x * s, r.m[8] = c + k.z * k.z * v;
-  return r;
-}
+Mat3d axis_angle(Vec3d k, double angle) { return axis_angle(k, std::cos(angle), std::sin(angle)); }
 
 double rotation_angle_deg(const Mat3d& r) {
   const double c = std::clamp((r.m[0] + r.m[4] + r.m[8] - 1) / 2, -1.0, 1.0);

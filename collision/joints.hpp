@@ -37,6 +37,15 @@ inline Mat3d transpose(const Mat3d& a) {
 }
 /// Rodrigues' formula: rotation by `angle` radians about the unit `axis`.
 Mat3d axis_angle(Vec3d axis, double angle);
+/// The same with the angle's cosine and sine given (many axes turned by one angle).
+inline Mat3d axis_angle(Vec3d k, double c, double s) {
+  const double v = 1 - c;
+  Mat3d r;
+  r.m[0] = c + k.x * k.x * v, r.m[1] = k.x * k.y * v - k.z * s, r.m[2] = k.x * k.z * v + k.y * s;
+  r.m[3] = k.y * k.x * v + k.z * s, r.m[4] = c + k.y * k.y * v, r.m[5] = k.y * k.z * v - k.x * s;
+  r.m[6] = k.z * k.x * v - k.y * s, r.m[7] = k.z * k.y * v + k.x * s, r.m[8] = c + k.z * k.z * v;
+  return r;
+}
 /// The angle of a rotation, degrees, in [0, 180].
 double rotation_angle_deg(const Mat3d& r);
 

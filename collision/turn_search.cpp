@@ -221,7 +221,8 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
 
 bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
   const Stand& s = stand;
-  const Mat3d r = axis_angle(a, deg * kRad);
+  if (deg != c.trig_deg) c.trig_deg = deg, c.trig_cos = std::cos(deg * kRad), c.trig_sin = std::sin(deg * kRad);
+  const Mat3d r = axis_angle(a, c.trig_cos, c.trig_sin);
   // The joint's angle after the turn is at most deg + its angle now (rotation angles obey the
   // triangle inequality), so the limit needs checking only near it; the rotation itself is made
   // when the attempt succeeds.

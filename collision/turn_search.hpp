@@ -104,6 +104,7 @@ struct TurnSearch {
     double lo = 0, hi = 0;
     int found_axis = -1;
     Mat3d local;
+    double trig_deg = -1, trig_cos = 1, trig_sin = 0;  // the last angle turned by, its cosine and sine
     bool exhausted() const { return found_axis < 0 && lo >= reach_deg; }
   };
   Candidate prepare(std::uint32_t mover, const MetPairs& met, bool strict) const;
