@@ -261,6 +261,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     rr.contacts = left;
     double t = now();
     touching.build(s.organ_count(), contacts);
+    if (cfg.level == ContactLevel::exact) touching.find_witnesses(s, lib, search.clearance, threads);
     std::function<void(std::size_t)> planning;
     if (req.progress)
       planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };

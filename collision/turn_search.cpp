@@ -43,6 +43,34 @@ void ContactGraph::build(std::size_t organs, const std::vector<Contact>& contact
   }
 }
 
+void ContactGraph::find_witnesses(const Stand& s, PrototypeLibrary& lib, float clearance, int threads) {
+  witness.assign(with.size(), Witness{});
+  const std::size_t organs = first.size() - 1;
+#pragma omp parallel num_threads(threads)
+  {
+    ExactScratch scratch;
+#pragma omp for schedule(dynamic, 256)
+    for (std::size_t x = 0; x < organs; ++x)
+      for (std::uint32_t e = first[x]; e < first[x + 1]; ++e) {
+        const std::int32_t y = with[e];
+        if (static_cast<std::int32_t>(x) > y) continue;  // each pair once, by its lower organ
+        Witness w;
+        organs_touch_at(s, lib, static_cast<std::int32_t>(x), s.transforms[x], y, s.transforms[static_cast<std::size_t>(y)],
+                        clearance, scratch, &w);
+        witness[e] = w;
+        for (std::uint32_t f = first[static_cast<std::size_t>(y)]; f < first[static_cast<std::size_t>(y) + 1]; ++f)
+          if (with[f] == static_cast<std::int32_t>(x)) witness[f] = w;
+      }
+  }
+}
+
+const Witness* ContactGraph::witness_of(std::int32_t x, std::int32_t y) const {
+  if (witness.empty()) return nullptr;
+  for (std::uint32_t e = first[static_cast<std::size_t>(x)]; e < first[static_cast<std::size_t>(x) + 1]; ++e)
+    if (with[e] == y) return &witness[e];
+  return nullptr;
+}
+
 TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg) const {
   const Stand& s = stand;
   const std::int32_t plant = s.organs[c.mover].plant;
@@ -126,6 +154,9 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   c.strict = strict;
   keep_boxes(c, 0);
   c.met_pairs = link_pairs(c, 0, met, c.reach_deg);
+  for (std::size_t i = 0; i < c.moving.size(); ++i)
+    for (std::uint32_t p = c.met_pairs.first[i]; p < c.met_pairs.first[i + 1]; ++p)
+      if (const Witness* w = touching.witness_of(c.moving[i], c.keep[c.met_pairs.y[p]])) c.met_pairs.witness[p] = *w;
   const Affine3f& tm = s.transforms[mover];
   if (length(away) > 1e-9) c.axes.push_back(normalized(away));
   const Vec3d h = unit(tm.c0), l = unit(tm.c1), u = unit(tm.c2);

@@ -165,10 +165,9 @@ PrototypeMesh make_prototype(PrototypeKind kind, int lod) {
   return m;
 }
 
-const PrototypeMesh& PrototypeLibrary::get(PrototypeKind kind, int lod) {
+const PrototypeMesh& PrototypeLibrary::make(PrototypeKind kind, int lod) {
   if (lod < 1 || lod > kMaxLod) throw std::invalid_argument("level of detail must lie in 1..16");
   auto& slot = made_[static_cast<std::size_t>(kind)][static_cast<std::size_t>(lod)];
-  if (const PrototypeMesh* m = slot.load(std::memory_order_acquire)) return *m;
   std::lock_guard<std::mutex> lock(mutex_);
   if (const PrototypeMesh* m = slot.load(std::memory_order_relaxed)) return *m;
   owned_.push_back(std::make_unique<PrototypeMesh>(make_prototype(kind, lod)));

@@ -53,9 +53,16 @@ double leaflet_outline_area();
 /// between threads (reads of a made mesh take no lock).
 class PrototypeLibrary {
  public:
-  const PrototypeMesh& get(PrototypeKind kind, int lod);
+  /// Inline for a mesh made before (the exact tests ask millions of times).
+  const PrototypeMesh& get(PrototypeKind kind, int lod) {
+    if (lod >= 1 && lod <= kMaxLod)
+      if (const PrototypeMesh* m = made_[static_cast<std::size_t>(kind)][static_cast<std::size_t>(lod)].load(std::memory_order_acquire))
+        return *m;
+    return make(kind, lod);
+  }
 
  private:
+  const PrototypeMesh& make(PrototypeKind kind, int lod);
   std::mutex mutex_;
   std::array<std::array<std::atomic<const PrototypeMesh*>, kMaxLod + 1>, 4> made_{};
   std::vector<std::unique_ptr<PrototypeMesh>> owned_;
