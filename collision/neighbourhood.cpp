@@ -7,7 +7,7 @@
 
 namespace canopy {
 
-void Neighbourhood::fit_plant(const Stand& s, const std::vector<Obb>& boxes, std::size_t p) {
+void Neighbourhood::fit_plant(const Stand& s, std::span<const Obb> boxes, std::size_t p) {
   const PlantRecord& pr = s.plants[p];
   float reach = 0;
   std::uint32_t k = pr.first_organ;
@@ -36,7 +36,7 @@ void Neighbourhood::fit_plant(const Stand& s, const std::vector<Obb>& boxes, std
   reach_[p] = reach;  // the largest horizontal distance of an organ bound from the plant's origin
 }
 
-Neighbourhood::Neighbourhood(const Stand& s, const std::vector<Obb>& boxes, int threads) : reach_(s.plant_count(), 0) {
+Neighbourhood::Neighbourhood(const Stand& s, std::span<const Obb> boxes, int threads) : reach_(s.plant_count(), 0) {
   run_first_.assign(s.plant_count() + 1, 0);
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     run_first_[p + 1] = run_first_[p] + (s.plants[p].organ_count + kRunLength - 1) / kRunLength;
@@ -50,7 +50,7 @@ Neighbourhood::Neighbourhood(const Stand& s, const std::vector<Obb>& boxes, int 
   }
 }
 
-void Neighbourhood::update(const Stand& s, const std::vector<Obb>& boxes, const std::vector<std::uint8_t>& plants, int threads) {
+void Neighbourhood::update(const Stand& s, std::span<const Obb> boxes, const std::vector<std::uint8_t>& plants, int threads) {
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     if (plants[p]) fit_plant(s, boxes, p);

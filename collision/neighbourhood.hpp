@@ -25,9 +25,9 @@ class Neighbourhood {
  public:
   static constexpr std::uint32_t kRunLength = 16;
   /// From every organ's current OBB (`boxes`, no clearance, in its plant's frame).
-  Neighbourhood(const Stand& stand, const std::vector<Obb>& boxes, int threads);
+  Neighbourhood(const Stand& stand, std::span<const Obb> boxes, int threads);
   /// New reaches and runs for the plants flagged in `plants` (their boxes refitted first).
-  void update(const Stand& stand, const std::vector<Obb>& boxes, const std::vector<std::uint8_t>& plants, int threads);
+  void update(const Stand& stand, std::span<const Obb> boxes, const std::vector<std::uint8_t>& plants, int threads);
   /// Plants whose organs may come within `r` metres of point (x, y) (relative to stand_origin).
   std::vector<std::int32_t> plants_near(const Stand& stand, double x, double y, double r) const;
   /// The organ runs of a plant, in organ order.
@@ -43,7 +43,7 @@ class Neighbourhood {
   float max_reach_ = 0;
   std::vector<OrganRun> runs_;
   std::vector<std::uint32_t> run_first_;  // per plant + 1
-  void fit_plant(const Stand& stand, const std::vector<Obb>& boxes, std::size_t plant);
+  void fit_plant(const Stand& stand, std::span<const Obb> boxes, std::size_t plant);
   std::int64_t key(std::int64_t i, std::int64_t j) const { return i * 73856093LL ^ j * 19349663LL; }
 };
 

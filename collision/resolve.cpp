@@ -2,6 +2,7 @@
 
 #include "collision/neighbourhood.hpp"
 #include "collision/turn_search.hpp"
+#include "geometry/first_touch.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -214,7 +215,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   DetectRequest dreq = req.detect;
   dreq.level = cfg.level;
   const int threads = dreq.threads > 0 ? dreq.threads : omp_get_max_threads();
-  std::vector<Obb> boxes(s.organ_count());
+  // Written in full by the parallel fit below, which also faults its pages in.
+  std::vector<Obb, FirstTouchAllocator<Obb>> boxes(s.organ_count());
   const auto fit = [&](std::size_t k) {
     const OrganRecord& r = s.organs[k];
     boxes[k] = make_obb(s.transforms[k], lib.get(r.prototype, r.lod).box, 0);

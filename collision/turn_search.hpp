@@ -29,6 +29,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace canopy {
@@ -66,7 +67,7 @@ struct TurnSearch {
   const ResolveConfig& config;
   KindMask collide;
   const Neighbourhood& near;
-  const std::vector<Obb>& boxes;  // every organ's current OBB (no clearance), kept up to date by the caller
+  std::span<const Obb> boxes;  // every organ's current OBB (no clearance), kept up to date by the caller
   const ContactGraph& touching;   // contacts at the start of the round
   float clearance = 0;         // separation from the organs met (the larger of both clearances)
   float detect_clearance = 0;  // what detection counts as a contact: neighbours must stay this far
