@@ -90,11 +90,11 @@ TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from,
   }
   // A turn by at most max_deg moves a point at distance d from the joint by at most the chord
   // 2 d sin(max_deg / 2), and keeps it at distance d: pairs too far apart for either never meet.
-  const double half = std::min(max_deg, 180.0) * kRad / 2;
+  const double sin_half = std::sin(std::min(max_deg, 180.0) * kRad / 2);
   for (std::int32_t x : c.moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
     const Vec3d cx = to_double(ox.centre);
-    const double dx = length(cx - c.joint), chord = 2 * dx * std::sin(half);
+    const double dx = length(cx - c.joint), chord = 2 * dx * sin_half;
     for (std::size_t i = 0; i < n; ++i) {
       const double reach = ox.radius + ry[i], slack = 1e-6 * (1 + dx + dy[i]);
       if (std::abs(dy[i] - dx) - reach > slack) continue;               // the shells never meet
@@ -112,9 +112,15 @@ TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from,
 
 void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
   const std::int32_t plant = stand.organs[c.mover].plant;
+  c.keep_off.reserve(c.keep.size());
+  c.keep_box.reserve(c.keep.size());
+  std::int32_t last_plant = -1;
+  Vec3f off;
   for (std::size_t i = from; i < c.keep.size(); ++i) {
     const std::int32_t y = c.keep[i];
-    c.keep_off.push_back(offset_into(stand, plant, y));
+    const std::int32_t p = stand.organs[static_cast<std::size_t>(y)].plant;
+    if (p != last_plant) off = offset_into(stand, plant, y), last_plant = p;  // neighbours come plant by plant
+    c.keep_off.push_back(off);
     c.keep_box.push_back(grown(boxes[static_cast<std::size_t>(y)], i < c.met_count ? clearance : detect_clearance));
   }
 }
@@ -187,14 +193,14 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   // The region the subtree can sweep: per moving organ the ball about its centre grown by its
   // chord, its radius and both clearances (link_pairs' test below, with room for its rounding
   // slack), and one box around them all; a neighbour's sphere must reach into that box.
-  const double half = std::min(cover, 180.0) * kRad / 2;
+  const double sin_half = std::sin(std::min(cover, 180.0) * kRad / 2);
   double reach = 0, lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (std::int32_t x : c.moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
     const Vec3d cx = to_double(ox.centre);
     const double dx = length(cx - c.joint);
     reach = std::max(reach, dx + ox.radius);
-    const double swept = ox.radius + 2 * dx * std::sin(half) + 2.0 * clearance;
+    const double swept = ox.radius + 2 * dx * sin_half + 2.0 * clearance;
     const double r = swept + 1e-4 + 2e-6 * (1 + dx + swept);
     const double p[3] = {cx.x, cx.y, cx.z};
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a] - r), hi[a] = std::max(hi[a], p[a] + r);
@@ -228,10 +234,11 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
       if (misses(rc, run.radius + 1e-5 * (1 + gap + joint_norm))) continue;
       for (std::uint32_t k = run.first; k < run.end; ++k) {
         const auto y = static_cast<std::int32_t>(k);
-        if (joints.holds(mover, y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
         const Obb& raw = boxes[k];
         const Vec3d cy = to_double(raw.centre + off);
-        if (length(cy - c.joint) > reach + raw.radius + clearance || misses(cy, raw.radius)) continue;
+        // The swept box first: it turns most organs of a run away for a few comparisons.
+        if (misses(cy, raw.radius) || joints.holds(mover, y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
+        if (length(cy - c.joint) > reach + raw.radius + clearance) continue;
         if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
         if (std::binary_search(busy.begin(), busy.end(), y)) continue;
         c.keep.push_back(y);
