@@ -154,6 +154,12 @@ class CpuBackend : public DetectionBackend {
     }
     std::sort(organ.begin(), organ.end());
     organ.erase(std::unique(organ.begin(), organ.end()), organ.end());
+    if (req.moved_organs) {  // pairs of unmoved organs keep the answer the caller has
+      const std::vector<std::uint8_t>& moved = *req.moved_organs;
+      std::erase_if(organ, [&](const Contact& c) {
+        return !moved[static_cast<std::size_t>(c.organ_a)] && !moved[static_cast<std::size_t>(c.organ_b)];
+      });
+    }
     out.counts[2] = count_pairs(organ);
     out.seconds[2] = 0;  // organ pairs come out of the same pass as the leaf level
     if (req.level == ContactLevel::organ) {

@@ -238,7 +238,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   };
   std::size_t left = static_cast<std::size_t>(total({owned_contacts()})[0]);
   out.contacts_before = left;
-  std::vector<std::uint8_t> carried(s.organ_count(), 0);
+  std::vector<std::uint8_t> carried(s.organ_count(), 0), moved_now(s.organ_count(), 0);
   std::map<std::size_t, std::string> why;
   std::size_t best = left;
   int best_round = 0;
@@ -295,20 +295,27 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       for (float v : {m.c0.x, m.c0.y, m.c0.z, m.c1.x, m.c1.y, m.c1.z, m.c2.x, m.c2.y, m.c2.z, m.t.x, m.t.y, m.t.z})
         if (!std::isfinite(v)) throw std::logic_error(fmt::format("resolution made a non-finite transform for organ {}", k));
       carried[k] = 1;
+      moved_now[k] = 1;
       fit(k);
       active[static_cast<std::size_t>(s.organs[k].plant)] = 1;
     }
     near.update(s, boxes, active, threads);
     t = now();
     dreq.active_plants = &active;
+    dreq.moved_organs = &moved_now;
     Contacts again = backend.redetect(s, dreq, moved);
     dreq.active_plants = nullptr;
+    dreq.moved_organs = nullptr;
     rr.detect_s = now() - t;
+    // Pairs with a moved organ take the new answer; the others keep theirs (a backend may report
+    // them again: the same pair twice is one contact).
     std::erase_if(contacts, [&](const Contact& c) {
-      return active[static_cast<std::size_t>(c.plant_a)] || active[static_cast<std::size_t>(c.plant_b)];
+      return moved_now[static_cast<std::size_t>(c.organ_a)] || moved_now[static_cast<std::size_t>(c.organ_b)];
     });
     contacts.insert(contacts.end(), again.pairs.begin(), again.pairs.end());
     std::sort(contacts.begin(), contacts.end());
+    contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
+    for (std::uint32_t k : moved) moved_now[k] = 0;
     std::int64_t redetected = 0;
     for (std::size_t p = 0; p < active.size(); ++p) redetected += active[p] && mine(static_cast<std::int32_t>(p));
     const std::vector<std::int64_t> sums = total({owned_contacts(), redetected});
