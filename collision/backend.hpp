@@ -21,8 +21,9 @@ struct DetectRequest {
   /// at: the re-detection of resolution rounds (plants whose organs moved, and their neighbours).
   const std::vector<std::uint8_t>* active_plants = nullptr;
   /// When set (one flag per organ): the organs that moved since the contacts the caller holds.
-  /// A backend may then leave out organ pairs of which neither moved (their answer cannot have
-  /// changed); it may also report them, so the caller merges by organ pair.
+  /// A backend may then leave out pairs (organ pairs, and at the leaf level cluster pairs) in
+  /// which nothing moved (their answer cannot have changed); it may also report them, so the
+  /// caller merges by pair.
   const std::vector<std::uint8_t>* moved_organs = nullptr;
   /// CUDA: device memory the detection may use, bytes (0: what the device has free). Stage
   /// lists that would not fit are made in batches of plant pairs.

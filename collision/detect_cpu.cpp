@@ -96,8 +96,23 @@ class CpuBackend : public DetectionBackend {
       return out;
     }
 
-    // Leaf and organ levels, plant pair by plant pair.
+    // Leaf and organ levels, plant pair by plant pair. Told which organs moved, cluster pairs of
+    // which neither cluster holds one are passed over (their organ pairs would be left out below).
     t = now();
+    std::vector<std::uint8_t> cluster_moved;
+    if (req.moved_organs) {
+      cluster_moved.assign(m.clusters.size(), 0);
+#pragma omp parallel for schedule(static, 1024) num_threads(threads)
+      for (std::size_t i = 0; i < m.clusters.size(); ++i)
+        for (std::uint32_t k = m.clusters[i].first; k < m.clusters[i].first + m.clusters[i].count; ++k)
+          if ((*req.moved_organs)[m.cluster_organs[k]]) {
+            cluster_moved[i] = 1;
+            break;
+          }
+    }
+    const auto passed_over = [&](std::uint32_t i, std::uint32_t j) {
+      return !cluster_moved.empty() && !cluster_moved[i] && !cluster_moved[j];
+    };
     std::vector<Collector> per(work.size());
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (std::size_t w = 0; w < work.size(); ++w) {
@@ -114,7 +129,7 @@ class CpuBackend : public DetectionBackend {
         if (p != q && !boxes_meet(ca.box, pb.box, offset)) continue;
         for (std::uint32_t j = p == q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
           const Cluster& cb = m.clusters[j];
-          if (i != j && !boxes_meet(ca.box, cb.box, offset)) continue;
+          if (passed_over(i, j) || (i != j && !boxes_meet(ca.box, cb.box, offset))) continue;
           if (i == j) {  // within one cluster: all its pairs
             if (!has_free_pair(s, m, ca.first, ca.count)) continue;
             col.leaf_pair(p, q, i, j);
