@@ -24,13 +24,19 @@ void Neighbourhood::fit_plant(const Stand& s, std::span<const Obb> boxes, std::s
     }
     run.centre = Vec3f{static_cast<float>(0.5 * (lo[0] + hi[0])), static_cast<float>(0.5 * (lo[1] + hi[1])),
                        static_cast<float>(0.5 * (lo[2] + hi[2]))};
-    double r = 0;
+    double r = 0, slo[3] = {1e300, 1e300, 1e300}, shi[3] = {-1e300, -1e300, -1e300};
     for (std::uint32_t i = run.first; i < run.end; ++i) {
       const Obb& bi = boxes[i];
       const double dx = double(bi.centre.x) - run.centre.x, dy = double(bi.centre.y) - run.centre.y, dz = double(bi.centre.z) - run.centre.z;
       r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz) + bi.radius);
+      const double c[3] = {bi.centre.x, bi.centre.y, bi.centre.z};
+      for (int a = 0; a < 3; ++a) slo[a] = std::min(slo[a], c[a] - bi.radius), shi[a] = std::max(shi[a], c[a] + bi.radius);
     }
     run.radius = static_cast<float>(r * (1 + 1e-6) + 1e-7);  // rounded up
+    const auto down = [](double v) { return static_cast<float>(v - 1e-6 * (1 + std::abs(v))); };
+    const auto up = [](double v) { return static_cast<float>(v + 1e-6 * (1 + std::abs(v))); };
+    run.lo = Vec3f{down(slo[0]), down(slo[1]), down(slo[2])};
+    run.hi = Vec3f{up(shi[0]), up(shi[1]), up(shi[2])};
     k = run.end;
   }
   reach_[p] = reach;  // the largest horizontal distance of an organ bound from the plant's origin

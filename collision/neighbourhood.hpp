@@ -18,6 +18,7 @@ namespace canopy {
 struct OrganRun {
   Vec3f centre;
   float radius = 0;  // every organ bound's sphere (OBB centre, radius) lies inside
+  Vec3f lo, hi;      // and inside this box (tighter for a run stretched along a leaf)
   std::uint32_t first = 0, end = 0;
 };
 

@@ -232,6 +232,12 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
       const double gap = length(rc - c.joint);
       if (gap - 1e-6 * (1 + gap + joint_norm + run.radius) > reach + run.radius + clearance) continue;
       if (misses(rc, run.radius + 1e-5 * (1 + gap + joint_norm))) continue;
+      // The run's box, carried by the offset (the slack covers the float sums of the organ loop).
+      const double box_slack = 1e-5 * (1 + gap + joint_norm);
+      const Vec3d rlo = to_double(run.lo) + to_double(off), rhi = to_double(run.hi) + to_double(off);
+      if (rlo.x - box_slack > hi[0] || rlo.y - box_slack > hi[1] || rlo.z - box_slack > hi[2] || rhi.x + box_slack < lo[0] ||
+          rhi.y + box_slack < lo[1] || rhi.z + box_slack < lo[2])
+        continue;
       for (std::uint32_t k = run.first; k < run.end; ++k) {
         const auto y = static_cast<std::int32_t>(k);
         const Obb& raw = boxes[k];
