@@ -75,7 +75,7 @@ struct PosedOrgan {
   /// box tests that come before it.
   const TrianglePlane& plane(std::size_t i) const {
     if (!plane_made_[i]) {
-      const unsigned* t = &mesh->indices[3 * i];
+      const std::uint32_t* t = &mesh->indices[3 * i];
       plane_[i] = TrianglePlane::of(v[t[0]], v[t[1]], v[t[2]]);
       plane_made_[i] = 1;
     }

@@ -206,10 +206,11 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a] - r), hi[a] = std::max(hi[a], p[a] + r);
   }
   reach += clearance;
-  // Whether a sphere (centre q, radius r) misses the swept box.
-  const auto misses = [&](const Vec3d& q, double r) {
-    return q.x + r < lo[0] || q.x - r > hi[0] || q.y + r < lo[1] || q.y - r > hi[1] || q.z + r < lo[2] || q.z - r > hi[2];
+  // Whether a box (corners a, b), or a sphere (centre q, radius r), misses the swept box.
+  const auto box_misses = [&](const Vec3d& a, const Vec3d& b) {
+    return b.x < lo[0] || a.x > hi[0] || b.y < lo[1] || a.y > hi[1] || b.z < lo[2] || a.z > hi[2];
   };
+  const auto misses = [&](const Vec3d& q, double r) { return box_misses(q - Vec3d{r, r, r}, q + Vec3d{r, r, r}); };
   // Organs already touching the subtree are other contacts' business.
   std::vector<std::int32_t> busy;
   for (std::int32_t x : c.moving)
@@ -226,17 +227,15 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
     const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
     const Vec3f off = offset_into(s, plant, static_cast<std::int32_t>(pr.first_organ));
     for (const OrganRun& run : near.runs(q)) {
-      // A run whose sphere lies beyond the reach, or misses the swept box, holds no organ that
-      // passes the tests below (the slack covers the float sums of centre and offset).
+      // A run whose sphere lies beyond the reach, or whose box (carried by the offset) misses the
+      // swept box, holds no organ that passes the tests below (the slack covers the float sums
+      // of centre and offset).
       const Vec3d rc = to_double(run.centre) + to_double(off);
       const double gap = length(rc - c.joint);
       if (gap - 1e-6 * (1 + gap + joint_norm + run.radius) > reach + run.radius + clearance) continue;
-      if (misses(rc, run.radius + 1e-5 * (1 + gap + joint_norm))) continue;
-      // The run's box, carried by the offset (the slack covers the float sums of the organ loop).
-      const double box_slack = 1e-5 * (1 + gap + joint_norm);
-      const Vec3d rlo = to_double(run.lo) + to_double(off), rhi = to_double(run.hi) + to_double(off);
-      if (rlo.x - box_slack > hi[0] || rlo.y - box_slack > hi[1] || rlo.z - box_slack > hi[2] || rhi.x + box_slack < lo[0] ||
-          rhi.y + box_slack < lo[1] || rhi.z + box_slack < lo[2])
+      const double slack = 1e-5 * (1 + gap + joint_norm);
+      if (box_misses(to_double(run.lo) + to_double(off) - Vec3d{slack, slack, slack},
+                     to_double(run.hi) + to_double(off) + Vec3d{slack, slack, slack}))
         continue;
       for (std::uint32_t k = run.first; k < run.end; ++k) {
         const auto y = static_cast<std::int32_t>(k);
@@ -323,13 +322,16 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
       if (b.pair == p && b.set == set) return true;
     return false;
   };
+  const auto recent_blocker = [&](int n) -> const Candidate::Blocker& {  // n = 0: the latest
+    return c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
+  };
   const bool exact = config.level != ContactLevel::organ;
   for (int n = 0; exact && n < Candidate::kBlockers; ++n) {
-    const Candidate::Blocker& b = c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
+    const Candidate::Blocker& b = recent_blocker(n);
     if (b.pair != kNoPair && witness_meets(b.set, b.organ, b.pair)) return false;
   }
   for (int n = 0; n < Candidate::kBlockers; ++n) {
-    const Candidate::Blocker& b = c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
+    const Candidate::Blocker& b = recent_blocker(n);
     if (b.pair != kNoPair && meets(b.set, b.organ, b.pair, exact)) return false;
   }
   // Then the organs met (the likeliest to fail), then the neighbours to keep clear.

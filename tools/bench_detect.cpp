@@ -8,6 +8,7 @@
 #include "collision/backend.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/fcl/fcl_reference.hpp"
+#include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -17,7 +18,6 @@
 #include <cstdio>
 #include <cstring>
 #include <numeric>
-#include "tools/process_memory.hpp"
 
 using namespace canopy;
 

@@ -12,6 +12,7 @@
 #include "collision/backend.hpp"
 #include "cuda/detect_cuda.hpp"
 #include "lsystem/grow.hpp"
+#include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
 
@@ -20,7 +21,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include "tools/process_memory.hpp"
 
 using namespace canopy;
 

@@ -8,6 +8,7 @@
 //                      [--csv FILE] [--append]
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
+#include "tools/process_memory.hpp"
 #ifdef CANOPY_HAVE_CUDA
 #include "cuda/detect_cuda.hpp"
 #include "cuda/device.hpp"
@@ -20,7 +21,6 @@
 #include <cstring>
 #include <string>
 #include <vector>
-#include "tools/process_memory.hpp"
 
 using namespace canopy;
 

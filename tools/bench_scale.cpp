@@ -10,6 +10,7 @@
 // Detection runs at the exact level only unless --all-levels (canopy stand's report counts every
 // level up to the one asked for, one detection each).
 #include "distributed/mpi_comm.hpp"
+#include "tools/process_memory.hpp"
 #include "tools/stand_tiled.hpp"
 
 #include <fmt/format.h>
@@ -19,7 +20,6 @@
 #include <filesystem>
 #include <string>
 #include <vector>
-#include "tools/process_memory.hpp"
 
 using namespace canopy;
 using namespace canopy::cli;

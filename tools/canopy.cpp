@@ -1,6 +1,7 @@
 // canopy: grow tomato stands from L-system grammars, find and remove organ interpenetration.
 #include "lsystem/error.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
 
@@ -10,7 +11,6 @@
 #include "distributed/mpi_comm.hpp"
 #endif
 #include <new>
-#include "tools/process_memory.hpp"
 
 int main(int argc, char** argv) {
   canopy::keep_freed_memory();
