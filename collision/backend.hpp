@@ -2,6 +2,7 @@
 /// The detection backend interface: `detect(stand, DetectRequest) -> Contacts`. The CPU
 /// implementation lives here; the CUDA one in cuda/ implements the same interface, and the
 /// command line (or a small factory) picks one, so collision/ never includes cuda/.
+#include "collision/attempt_batch.hpp"
 #include "collision/contacts.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/stand.hpp"
@@ -49,6 +50,12 @@ class DetectionBackend {
   /// volumes kept from the last detect() or redetect() on this stand (a transform per organ, not
   /// a rebuild; on CUDA only the moved organs travel to the device) and detects again.
   virtual Contacts redetect(const Stand& stand, const DetectRequest& request, const std::vector<std::uint32_t>& moved) = 0;
+  /// Resolution's turn-search attempts in bulk on this backend's hardware, for `stand` as the
+  /// last detect() or redetect() saw it; null where the host's own search is the better choice.
+  virtual AttemptRunner* attempt_runner(const Stand& stand) {
+    (void)stand;
+    return nullptr;
+  }
 };
 
 /// The CPU backend: MBVT, grid broad phase, parallel over plant pairs (OpenMP), results

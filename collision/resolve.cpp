@@ -1,5 +1,6 @@
 #include "collision/resolve.hpp"
 
+#include "collision/batched_scan.hpp"
 #include "collision/neighbourhood.hpp"
 #include "collision/turn_search.hpp"
 #include "geometry/first_touch.hpp"
@@ -45,7 +46,7 @@ MetPairs contacts_of(const Joints& joints, const ContactGraph& g, std::uint32_t 
 /// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
 Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
                 const TurnSearch& search, int threads, const std::function<void(std::size_t)>& planning,
-                const std::vector<std::uint8_t>* plan_plants) {
+                const std::vector<std::uint8_t>* plan_plants, AttemptRunner* runner) {
   const ResolveConfig& cfg = search.config;
   const std::size_t n = contacts.size();
   std::vector<std::vector<std::uint32_t>> cands(n);
@@ -73,6 +74,8 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   // does not change, so they carry over from level to level.
   std::vector<ExactScratch> scratches(static_cast<std::size_t>(threads));
   std::vector<std::uint8_t> resolved(n, 0);
+  std::optional<BatchedScan> bulk;
+  if (runner) bulk.emplace(search, *runner, threads);
   // Contacts are planned in batches: a contact's pick depends only on its own candidates' scans
   // (each candidate is scanned at every level while any contact wanting it is pending), so a
   // batch gives the same turns as the whole list, and the search state held at once stays
@@ -101,6 +104,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         return std::span<const std::uint32_t>(cand_local.data() + local_first[q], local_first[q + 1] - local_first[q]);
       };
       std::vector<std::optional<TurnSearch::Candidate>> state(slots.size());
+      if (bulk) bulk->clear();
       std::vector<std::optional<Turn>> refined(slots.size());
       std::vector<std::size_t> chosen;
       std::vector<std::uint8_t> want(slots.size(), 0);
@@ -119,15 +123,26 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           const std::size_t k = scan[j];
           const std::uint32_t m = movers[slots[k]];
           if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict);
-          search.scan_level(*state[k], level, scratches[static_cast<std::size_t>(omp_get_thread_num())]);
+          if (!bulk) search.scan_level(*state[k], level, scratches[static_cast<std::size_t>(omp_get_thread_num())]);
         }
+        const auto candidates = [&](const std::vector<std::size_t>& ks) {
+          std::vector<TurnSearch::Candidate*> out;
+          for (std::size_t k : ks) out.push_back(&*state[k]);
+          return out;
+        };
+        if (bulk) bulk->scan(candidates(scan), level);
         // Candidates found at this level: each refined to its smallest turn, once.
         std::vector<std::size_t> found;
         for (std::size_t k : scan)
           if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
+        if (bulk) {
+          const std::vector<Turn> turns = bulk->refine(candidates(found));
+          for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = turns[j];
+        } else {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-        for (std::size_t j = 0; j < found.size(); ++j)
-          refined[found[j]] = search.refine(*state[found[j]], scratches[static_cast<std::size_t>(omp_get_thread_num())]);
+          for (std::size_t j = 0; j < found.size(); ++j)
+            refined[found[j]] = search.refine(*state[found[j]], scratches[static_cast<std::size_t>(omp_get_thread_num())]);
+        }
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
         std::erase_if(pending, [&](std::uint32_t q) {
           const std::size_t i = waiting[b0 + q];
@@ -263,11 +278,14 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     rr.contacts = left;
     double t = now();
     touching.build(s.organ_count(), contacts);
-    if (cfg.level == ContactLevel::exact) touching.find_witnesses(s, lib, search.clearance, threads);
+    // The runner of bulk attempts, if any (asked each round: it holds the stand as detected last).
+    AttemptRunner* runner = req.attempts ? req.attempts : req.bulk_attempts ? backend.attempt_runner(s) : nullptr;
+    // The witnesses serve the host's attempts (a bulk scan tests every pair in full).
+    if (cfg.level == ContactLevel::exact && !runner) touching.find_witnesses(s, lib, search.clearance, threads);
     std::function<void(std::size_t)> planning;
     if (req.progress)
       planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
-    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning, part ? &part->plan : nullptr);
+    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning, part ? &part->plan : nullptr, runner);
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
       std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });

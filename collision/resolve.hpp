@@ -5,6 +5,7 @@
 /// neighbours, until detection finds no contact or the round cap is hit. Every round plans all
 /// its turns against the poses at the start of the round (in parallel, the same for any thread
 /// count), then applies them together; several contacts on one organ make one combined turn.
+#include "collision/attempt_batch.hpp"
 #include "collision/backend.hpp"
 #include "collision/joints.hpp"
 #include "collision/resolve_policy.hpp"
@@ -49,6 +50,12 @@ struct ResolveRequest {
   const ResolvePartition* partition = nullptr;
   /// Called at the start of each round and as its planning goes on (by cost level), when set.
   std::function<void(const ResolveProgress&)> progress;
+  /// Runs each level's turn-search attempts in bulk (collision/batched_scan.hpp) when set; null:
+  /// the backend's runner where it has one (CUDA: on the device), else the host searches
+  /// candidate by candidate. The turns are the same either way.
+  AttemptRunner* attempts = nullptr;
+  /// False: the host searches candidate by candidate even where the backend has a runner.
+  bool bulk_attempts = true;
 };
 
 struct ResolveRound {

@@ -19,20 +19,11 @@ Vec3f offset_into(const Stand& s, std::int32_t into, std::int32_t k) {
   return p == into ? Vec3f{0, 0, 0} : plant_offset(s, into, p);
 }
 
-/// The OBB `o` carried by the rigid motion `m` and grown by `inflate`; the rounding slack of the
-/// original box covers the float rounding of the carried one.
-Obb carried_box(const Obb& o, const Motion& m, float inflate) {
-  Obb r;
-  r.centre = to_float(apply(m, to_double(o.centre)));
-  for (int k = 0; k < 3; ++k) r.axis[k] = to_float(m.r * to_double(o.axis[k])), r.half[k] = o.half[k] + inflate;
-  set_radius(r);
-  return r;
-}
-
 }  // namespace
 
 void ContactGraph::build(std::size_t organs, const std::vector<Contact>& contacts) {
   first.assign(organs + 1, 0);
+  witness.clear();  // found again for this list by find_witnesses, if asked
   for (const Contact& c : contacts) ++first[static_cast<std::size_t>(c.organ_a) + 1], ++first[static_cast<std::size_t>(c.organ_b) + 1];
   for (std::size_t i = 0; i < organs; ++i) first[i + 1] += first[i];
   with.resize(first[organs]);
@@ -264,16 +255,12 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
 
 bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
   const Stand& s = stand;
-  if (deg != c.trig_deg) c.trig_deg = deg, c.trig_cos = std::cos(deg * kRad), c.trig_sin = std::sin(deg * kRad);
-  const Mat3d r = axis_angle(a, c.trig_cos, c.trig_sin);
-  // The joint's angle after the turn is at most deg + its angle now (rotation angles obey the
-  // triangle inequality), so the limit needs checking only near it; the rotation itself is made
-  // when the attempt succeeds.
-  const double limit = s.joint_limit_deg[c.mover];
-  const bool near_limit = deg > 0 && deg + c.angle_now_deg > limit - 1e-4;
-  if (near_limit) {
+  const Mat3d r = rotation(c, a, deg);
+  // The joint's rotation is made only near its limit, or when the attempt succeeds.
+  const bool limit_near = near_limit(c, deg);
+  if (limit_near) {
     local = Joints::local_after(c.frame, r);
-    if (rotation_angle_deg(local) > limit) return false;
+    if (rotation_angle_deg(local) > s.joint_limit_deg[c.mover]) return false;
   }
   const Motion turn = rotation_about(c.joint, r);
   // Organ i of `moving` at this pose, made once per attempt when first needed.
@@ -349,8 +336,27 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
         return false;
       }
   }
-  if (!near_limit) local = Joints::local_after(c.frame, r);
+  if (!limit_near) local = Joints::local_after(c.frame, r);
   return true;
+}
+
+Mat3d TurnSearch::rotation(Candidate& c, const Vec3d& a, double deg) const {
+  if (deg != c.trig_deg) c.trig_deg = deg, c.trig_cos = std::cos(deg * kRad), c.trig_sin = std::sin(deg * kRad);
+  return axis_angle(a, c.trig_cos, c.trig_sin);
+}
+
+bool TurnSearch::near_limit(const Candidate& c, double deg) const {
+  // The joint's angle after the turn is at most deg + its angle now (rotation angles obey the
+  // triangle inequality), so the limit needs checking only near it.
+  return deg > 0 && deg + c.angle_now_deg > stand.joint_limit_deg[c.mover] - 1e-4;
+}
+
+bool TurnSearch::within_limit(Candidate& c, const Vec3d& a, double deg) const {
+  return !near_limit(c, deg) || rotation_angle_deg(local_after(c, a, deg)) <= stand.joint_limit_deg[c.mover];
+}
+
+Mat3d TurnSearch::local_after(Candidate& c, const Vec3d& a, double deg) const {
+  return Joints::local_after(c.frame, rotation(c, a, deg));
 }
 
 bool TurnSearch::scan_level(Candidate& c, int level, ExactScratch& scratch) const {

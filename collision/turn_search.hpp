@@ -113,6 +113,13 @@ struct TurnSearch {
     double lo = 0, hi = 0;
     int found_axis = -1;
     Mat3d local;
+    /// Where a batched scan (collision/batched_scan.hpp) put this candidate in its tables:
+    /// slots of its moving organs and axes, its pairs with the organs met and with the
+    /// neighbours gathered for `near_deg` (kNoPair: not there yet).
+    struct Tables {
+      std::uint32_t moving = kNoPair, axes = 0, met_first = 0, met_end = 0, near_first = 0, near_end = 0;
+      double near_deg = -1;
+    } tables;
     double trig_deg = -1, trig_cos = 1, trig_sin = 0;  // the last angle turned by, its cosine and sine
     bool exhausted() const { return found_axis < 0 && lo >= reach_deg; }
   };
@@ -125,12 +132,20 @@ struct TurnSearch {
   /// Whether turning by `deg` about axis `a` keeps the joint in its limit and clears the list;
   /// `local` gets the joint's rotation.
   bool attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const;
-
- private:
+  /// Whether turning by `deg` about `a` keeps the joint within its limit (attempt's check).
+  bool within_limit(Candidate& c, const Vec3d& a, double deg) const;
+  /// The joint's local rotation after turning by `deg` about `a` (what attempt gives `local`).
+  Mat3d local_after(Candidate& c, const Vec3d& a, double deg) const;
   /// A strict search's neighbours for turns up to at least `deg`: every organ that a turn of
   /// the subtree about the joint by that much could bring within the clearance and that is
   /// clear now (appended to keep, replacing those gathered before), and their pairs.
   void gather_neighbours(Candidate& c, double deg) const;
+
+ private:
+  /// The turn by `deg` about `a` (its cosine and sine kept for the next attempt at that angle).
+  Mat3d rotation(Candidate& c, const Vec3d& a, double deg) const;
+  /// Whether a turn by `deg` may take the joint past its limit (only then is it checked).
+  bool near_limit(const Candidate& c, double deg) const;
   /// keep_box and keep_off for keep[from, end).
   void keep_boxes(Candidate& c, std::size_t from) const;
   /// The pairs of moving organs with keep[from, to) that a turn by at most `max_deg` could bring

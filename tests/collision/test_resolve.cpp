@@ -52,28 +52,6 @@ Vec3d local_point(const Affine3f& t, Vec3d p) {
 
 Vec3d apply_d(const Affine3f& t, Vec3d x) { return to_double(t.c0) * x.x + to_double(t.c1) * x.y + to_double(t.c2) * x.z + to_double(t.t); }
 
-/// A seeded random stand in rows at the default spacing (1.0 m x 0.4 m) or dense (0.25 m x
-/// 0.25 m), jittered and rotated, 4-12 plants at a random age: no two plants on one spot.
-Stand row_stand(std::uint64_t seed) {
-  std::mt19937_64 g(seed * 7919);
-  std::uniform_real_distribution<double> u(0, 1);
-  GrowRequest req;
-  req.grammar = source("grammars/tomato.yaml");
-  const bool dense = seed % 2 == 0;
-  const int n = 4 + static_cast<int>(g() % 9), per_row = 2 + static_cast<int>(g() % 3);
-  for (int i = 0; i < n; ++i) {
-    PlantPlacement p;
-    p.x = (i % per_row) * (dense ? 0.25 : 0.4) + 0.02 * u(g);
-    p.y = (i / per_row) * (dense ? 0.25 : 1.0) + 0.02 * u(g);
-    p.rotation_deg = 360 * u(g);
-    p.seed = g() % 1000;
-    req.plants.push_back(p);
-  }
-  req.steps = 12 + static_cast<int>(g() % 8);
-  req.lod = 1 + static_cast<int>(g() % 2);
-  return grow_stand(req);
-}
-
 }  // namespace
 
 TEST_CASE("joints: a turn carries the subtree rigidly and leaves everything else bit-identical") {

@@ -1,0 +1,90 @@
+#pragma once
+/// Turn-search attempts in bulk (resolution's planning, collision/batched_scan.hpp): a level's
+/// attempts of many candidates, each about several axes, handed over at once to a runner that
+/// answers, per attempt, whether some pair it must clear touches. The records are plain (both
+/// backends read them) and the per-pair predicate is one CANOPY_HD function plus the exact organ
+/// test, so a runner on the device gives the host's answers bit for bit.
+///
+/// Tables grow append-only through a batch of contacts: a candidate's moving organs, the organs
+/// it keeps clear (the met ones once, its neighbours again each time it gathers them) and its
+/// pairs go in once, and every level's groups point into them.
+#include "geometry/hd.hpp"
+#include "geometry/motion.hpp"
+#include "geometry/obb.hpp"
+#include "geometry/vec.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace canopy {
+
+/// An organ that turns with a candidate: its transform and OBB (no clearance) now.
+struct MovingEntry {
+  std::int32_t organ = 0;
+  Affine3f transform;
+  Obb box;
+};
+
+/// An organ a candidate must keep clear: its transform now, its OBB grown by `gap` (the
+/// clearance it must keep) and the offset into the mover's plant frame.
+struct KeepEntry {
+  std::int32_t organ = 0;
+  float gap = 0;
+  Vec3f offset;
+  Affine3f transform;
+  Obb box;
+};
+
+/// A pair to clear: slots into the moving and keep tables.
+struct PairEntry {
+  std::uint32_t moving = 0, keep = 0;
+};
+
+/// One candidate at one angle about up to 32 of its axes: pairs [pair_first, pair_end) checked
+/// for the axes in `axis_mask` (bit i: axes[axis_first + i]).
+struct AttemptGroup {
+  Vec3d joint;
+  double cos = 1, sin = 0;  // of the angle (the host's std::cos and std::sin)
+  std::uint32_t axis_first = 0, pair_first = 0, pair_end = 0, axis_mask = 0;
+};
+
+/// Whether the boxes of a pair meet when the moving organ turns by `turn`: its box carried and
+/// grown by the search clearance against the kept organ's grown box (TurnSearch::attempt's
+/// first test).
+CANOPY_HD inline bool turned_boxes_meet(const MovingEntry& x, const KeepEntry& y, const Motion& turn, float clearance) {
+  return obb_overlap(carried_box(x.box, turn, clearance), y.box, y.offset);
+}
+
+/// The rotation of group g about its axis `a` as the host's attempt makes it.
+CANOPY_HD inline Motion group_turn(const AttemptGroup& g, Vec3d axis) {
+  return rotation_about(g.joint, axis_angle(axis, g.cos, g.sin));
+}
+
+/// A batch's tables on the host; a runner copies what was appended since it last looked.
+struct AttemptTables {
+  std::vector<MovingEntry> moving;
+  std::vector<KeepEntry> keep;
+  std::vector<PairEntry> pairs;
+  std::vector<Vec3d> axes;
+  void clear() { moving.clear(), keep.clear(), pairs.clear(), axes.clear(); }
+};
+
+/// What a runner needs besides the tables.
+struct AttemptSettings {
+  float clearance = 0;  // the search clearance the moving boxes grow by
+  bool exact = true;    // false: the organ level (overlapping boxes touch)
+};
+
+class AttemptRunner {
+ public:
+  virtual ~AttemptRunner() = default;
+  /// A new batch: the tables start empty.
+  virtual void clear() = 0;
+  /// Per group, bit i set where a pair touches when turned about axis i of the group's mask
+  /// (tables as they stand now; entries appended since the last call are new).
+  virtual std::vector<std::uint32_t> touching(const AttemptTables& tables, std::span<const AttemptGroup> groups,
+                                              const AttemptSettings& settings) = 0;
+};
+
+}  // namespace canopy

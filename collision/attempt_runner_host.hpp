@@ -1,0 +1,25 @@
+#pragma once
+/// The attempts of a batched turn search answered on the host, group by group on all threads:
+/// the reference the device runner must equal, and what lets the batched scan be tested where
+/// there is no GPU. (The CPU backend's own planning keeps the candidate-by-candidate search,
+/// which stops at the first touching pair and is faster on the host.)
+#include "collision/attempt_batch.hpp"
+#include "geometry/prototype.hpp"
+#include "geometry/stand.hpp"
+
+namespace canopy {
+
+class HostAttemptRunner : public AttemptRunner {
+ public:
+  HostAttemptRunner(const Stand& stand, PrototypeLibrary& lib, int threads) : stand_(stand), lib_(lib), threads_(threads) {}
+  void clear() override {}
+  std::vector<std::uint32_t> touching(const AttemptTables& tables, std::span<const AttemptGroup> groups,
+                                      const AttemptSettings& settings) override;
+
+ private:
+  const Stand& stand_;
+  PrototypeLibrary& lib_;
+  int threads_;
+};
+
+}  // namespace canopy

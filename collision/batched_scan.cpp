@@ -1,0 +1,203 @@
+#include "collision/batched_scan.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+
+namespace canopy {
+namespace {
+
+constexpr double kRad = std::numbers::pi / 180;
+/// Axes per group (the width of AttemptGroup::axis_mask).
+constexpr std::size_t kGroupAxes = 32;
+
+using Candidate = TurnSearch::Candidate;
+
+}  // namespace
+
+void BatchedScan::clear() {
+  tables_.clear();
+  runner_.clear();
+}
+
+void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
+  // Sizes first, then every candidate's entries written in parallel into its own ranges.
+  std::vector<Candidate*> add;
+  for (Candidate* c : cands)
+    if (near ? c->strict && c->near_deg >= 0 && c->tables.near_deg != c->near_deg : c->tables.moving == kNoPair) add.push_back(c);
+  if (add.empty()) return;
+  std::size_t n_moving = tables_.moving.size(), n_keep = tables_.keep.size(), n_pairs = tables_.pairs.size(),
+              n_axes = tables_.axes.size();
+  for (Candidate* c : add) {
+    Candidate::Tables& t = c->tables;
+    if (!near) {
+      t.moving = static_cast<std::uint32_t>(n_moving), t.axes = static_cast<std::uint32_t>(n_axes);
+      t.met_first = static_cast<std::uint32_t>(n_pairs);
+      n_moving += c->moving.size(), n_axes += c->axes.size(), n_keep += c->met_count, n_pairs += c->met_pairs.y.size();
+      t.met_end = static_cast<std::uint32_t>(n_pairs);
+    } else {
+      t.near_first = static_cast<std::uint32_t>(n_pairs), t.near_deg = c->near_deg;
+      n_keep += c->keep.size() - c->met_count, n_pairs += c->near_pairs.y.size();
+      t.near_end = static_cast<std::uint32_t>(n_pairs);
+    }
+  }
+  // Keep slots: where each candidate's first new keep entry goes.
+  std::vector<std::uint32_t> keep_at(add.size());
+  {
+    std::size_t k = tables_.keep.size();
+    for (std::size_t j = 0; j < add.size(); ++j)
+      keep_at[j] = static_cast<std::uint32_t>(k), k += near ? add[j]->keep.size() - add[j]->met_count : add[j]->met_count;
+  }
+  tables_.moving.resize(n_moving), tables_.keep.resize(n_keep), tables_.pairs.resize(n_pairs), tables_.axes.resize(n_axes);
+  const Stand& s = search_.stand;
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
+  for (std::size_t j = 0; j < add.size(); ++j) {
+    const Candidate& c = *add[j];
+    const Candidate::Tables& t = c.tables;
+    const std::size_t keep_from = near ? c.met_count : 0, keep_to = near ? c.keep.size() : c.met_count;
+    for (std::size_t i = keep_from; i < keep_to; ++i) {
+      const std::int32_t y = c.keep[i];
+      tables_.keep[keep_at[j] + (i - keep_from)] =
+          KeepEntry{y, i < c.met_count ? search_.clearance : search_.detect_clearance, c.keep_off[i],
+                    s.transforms[static_cast<std::size_t>(y)], c.keep_box[i]};
+    }
+    const TurnSearch::PairSet& pairs = near ? c.near_pairs : c.met_pairs;
+    std::uint32_t at = near ? t.near_first : t.met_first;
+    for (std::size_t i = 0; i < c.moving.size(); ++i)
+      for (std::uint32_t p = pairs.first[i]; p < pairs.first[i + 1]; ++p)
+        tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),
+                                        keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
+    if (near) continue;
+    for (std::size_t i = 0; i < c.moving.size(); ++i) {
+      const auto x = static_cast<std::size_t>(c.moving[i]);
+      tables_.moving[t.moving + i] = MovingEntry{c.moving[i], s.transforms[x], search_.boxes[x]};
+    }
+    std::copy(c.axes.begin(), c.axes.end(), tables_.axes.begin() + t.axes);
+  }
+}
+
+std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> cands, std::span<const double> deg,
+                                                   std::span<const std::uint64_t> want_first) {
+  // want_first packs the first axis (high 32 bits) and the axes wanted (low 32 bits).
+  const AttemptSettings settings{search_.clearance, search_.config.level != ContactLevel::organ};
+  std::vector<std::uint64_t> ok(cands.size(), 0);
+  const auto group_of = [&](std::size_t j, bool near) {
+    const Candidate& c = *cands[j];
+    AttemptGroup g;
+    g.joint = c.joint;
+    g.cos = std::cos(deg[j] * kRad), g.sin = std::sin(deg[j] * kRad);
+    g.axis_first = c.tables.axes + static_cast<std::uint32_t>(want_first[j] >> 32);
+    g.pair_first = near ? c.tables.near_first : c.tables.met_first;
+    g.pair_end = near ? c.tables.near_end : c.tables.met_end;
+    return g;
+  };
+  // The organs met, for every axis wanted.
+  add_tables(cands, false);
+  std::vector<AttemptGroup> groups;
+  std::vector<std::size_t> of;
+  for (std::size_t j = 0; j < cands.size(); ++j) {
+    const auto want = static_cast<std::uint32_t>(want_first[j]);
+    if (!want) continue;
+    AttemptGroup g = group_of(j, false);
+    g.axis_mask = want;
+    groups.push_back(g), of.push_back(j);
+  }
+  std::vector<std::uint32_t> touch = runner_.touching(tables_, groups, settings);
+  for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] = groups[q].axis_mask & ~touch[q];
+  // A strict search's neighbours, for the axes that cleared the organs met (gathered, as the
+  // host search gathers them, when a turn first clears those and the gathered ones do not cover it).
+  std::vector<Candidate*> strict;
+  std::vector<std::size_t> strict_of;
+  for (std::size_t j = 0; j < cands.size(); ++j)
+    if (ok[j] && cands[j]->strict) strict.push_back(cands[j]), strict_of.push_back(j);
+  if (strict.empty()) return ok;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
+  for (std::size_t q = 0; q < strict.size(); ++q)
+    if (strict[q]->near_deg < deg[strict_of[q]]) search_.gather_neighbours(*strict[q], deg[strict_of[q]]);
+  add_tables(strict, true);
+  groups.clear(), of.clear();
+  for (std::size_t j : strict_of) {
+    AttemptGroup g = group_of(j, true);
+    g.axis_mask = static_cast<std::uint32_t>(ok[j]);
+    if (g.pair_first == g.pair_end) continue;  // no neighbour within reach: nothing to clear
+    groups.push_back(g), of.push_back(j);
+  }
+  touch = runner_.touching(tables_, groups, settings);
+  for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] &= ~std::uint64_t{touch[q]};
+  return ok;
+}
+
+void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
+  const ResolveConfig& cfg = search_.config;
+  const double step = std::max(cfg.scan_step_deg, cfg.angle_tolerance_deg);
+  std::vector<Candidate*> live;
+  std::vector<double> hi;
+  for (Candidate* c : cands)
+    if (c->found_axis < 0 && !c->exhausted()) live.push_back(c), hi.push_back(std::min(level * step / c->weight, c->reach_deg));
+  // Axes in chunks of a group's width; each candidate takes the first axis that clears.
+  for (std::size_t first = 0;; first += kGroupAxes) {
+    std::vector<Candidate*> act;
+    std::vector<double> deg;
+    for (std::size_t j = 0; j < live.size(); ++j)
+      if (live[j]->found_axis < 0 && live[j]->axes.size() > first) act.push_back(live[j]), deg.push_back(hi[j]);
+    if (act.empty()) break;
+    std::vector<std::uint64_t> want(act.size(), 0);
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
+    for (std::size_t j = 0; j < act.size(); ++j) {
+      Candidate& c = *act[j];
+      std::uint64_t w = 0;
+      const std::size_t end = std::min(c.axes.size(), first + kGroupAxes);
+      for (std::size_t i = first; i < end; ++i)
+        if (search_.within_limit(c, c.axes[i], deg[j])) w |= std::uint64_t{1} << (i - first);
+      want[j] = std::uint64_t{first} << 32 | w;
+    }
+    const std::vector<std::uint64_t> ok = clear_axes(act, deg, want);
+    for (std::size_t j = 0; j < act.size(); ++j) {
+      if (!ok[j]) continue;
+      Candidate& c = *act[j];
+      c.found_axis = static_cast<int>(first) + std::countr_zero(ok[j]);
+      c.hi = deg[j];
+      c.local = search_.local_after(c, c.axes[static_cast<std::size_t>(c.found_axis)], deg[j]);
+    }
+  }
+  for (std::size_t j = 0; j < live.size(); ++j)
+    if (live[j]->found_axis < 0) live[j]->lo = hi[j];
+}
+
+std::vector<Turn> BatchedScan::refine(std::span<Candidate* const> cands) {
+  const double tol = search_.config.angle_tolerance_deg;
+  std::vector<double> lo(cands.size()), hi(cands.size());
+  std::vector<Mat3d> best(cands.size());
+  for (std::size_t j = 0; j < cands.size(); ++j) lo[j] = cands[j]->lo, hi[j] = cands[j]->hi, best[j] = cands[j]->local;
+  // Bisection steps over every candidate still wider than the tolerance; hi stays feasible.
+  for (;;) {
+    std::vector<Candidate*> act;
+    std::vector<std::size_t> of;
+    std::vector<double> mid;
+    for (std::size_t j = 0; j < cands.size(); ++j)
+      if (hi[j] - lo[j] > tol) act.push_back(cands[j]), of.push_back(j), mid.push_back(0.5 * (lo[j] + hi[j]));
+    if (act.empty()) break;
+    std::vector<std::uint64_t> want(act.size());
+    for (std::size_t j = 0; j < act.size(); ++j) {
+      Candidate& c = *act[j];
+      const auto a = static_cast<std::size_t>(c.found_axis);
+      want[j] = std::uint64_t{a} << 32 | (search_.within_limit(c, c.axes[a], mid[j]) ? 1u : 0u);
+    }
+    const std::vector<std::uint64_t> ok = clear_axes(act, mid, want);
+    for (std::size_t j = 0; j < act.size(); ++j) {
+      const std::size_t k = of[j];
+      if (!ok[j]) {
+        lo[k] = mid[j];
+        continue;
+      }
+      hi[k] = mid[j];
+      best[k] = search_.local_after(*act[j], act[j]->axes[static_cast<std::size_t>(act[j]->found_axis)], mid[j]);
+    }
+  }
+  std::vector<Turn> out;
+  for (std::size_t j = 0; j < cands.size(); ++j) out.push_back(Turn{cands[j]->mover, best[j], hi[j]});
+  return out;
+}
+
+}  // namespace canopy

@@ -1,0 +1,46 @@
+#pragma once
+/// Resolution's level-by-level scan with each level's attempts run together by an
+/// AttemptRunner (the device's, on CUDA): for every candidate of a level, all its axes at the
+/// level's angle at once against the organs it met, then (a strict search) the axes that cleared
+/// them against its neighbours; the first axis in order that clears both is the one
+/// TurnSearch::scan_level finds, and the bisection of TurnSearch::refine runs as steps over all
+/// found candidates. An attempt's answer is a conjunction over its pairs, the same whoever tests
+/// them in whatever order, so the turns are the candidate-by-candidate search's.
+///
+/// The host keeps what is cheap or branchy: the joint-limit checks, the neighbour gathering (for
+/// the candidates whose axes cleared the organs met, as the host search gathers them) and the
+/// picks; the runner does the box and triangle tests, which are nearly all the work.
+#include "collision/attempt_batch.hpp"
+#include "collision/turn_search.hpp"
+
+#include <span>
+#include <vector>
+
+namespace canopy {
+
+class BatchedScan {
+ public:
+  BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads) : search_(search), runner_(runner), threads_(threads) {}
+  /// A new batch of contacts: the tables start empty (candidates of the last batch are gone).
+  void clear();
+  /// TurnSearch::scan_level(c, level) for each candidate.
+  void scan(std::span<TurnSearch::Candidate* const> cands, int level);
+  /// TurnSearch::refine(c) for each candidate (each has found an axis).
+  std::vector<Turn> refine(std::span<TurnSearch::Candidate* const> cands);
+
+ private:
+  /// Puts each candidate's moving organs, axes and pairs with the organs met in the tables
+  /// (those not there yet), and for `near` its neighbours' pairs where they were gathered anew.
+  void add_tables(std::span<TurnSearch::Candidate* const> cands, bool near);
+  /// Per candidate, a mask of axes (bit i: axis i) that clear every pair at angle deg[j]
+  /// among the axes in want[j]; `local[j]` gets the joint rotations of the axes tried.
+  std::vector<std::uint64_t> clear_axes(std::span<TurnSearch::Candidate* const> cands, std::span<const double> deg,
+                                        std::span<const std::uint64_t> want);
+
+  const TurnSearch& search_;
+  AttemptRunner& runner_;
+  int threads_;
+  AttemptTables tables_;
+};
+
+}  // namespace canopy
