@@ -11,6 +11,7 @@
 #include "geometry/hd.hpp"
 #include "geometry/motion.hpp"
 #include "geometry/obb.hpp"
+#include "geometry/stand.hpp"
 #include "geometry/vec.hpp"
 
 #include <cstdint>
@@ -19,24 +20,15 @@
 
 namespace canopy {
 
-/// An organ that turns with a candidate: its transform and OBB (no clearance) now.
-struct MovingEntry {
-  std::int32_t organ = 0;
-  Affine3f transform;
-  Obb box;
-};
-
-/// An organ a candidate must keep clear: its transform now, its OBB grown by `gap` (the
-/// clearance it must keep) and the offset into the mover's plant frame.
+/// An organ a candidate must keep clear: the clearance it must keep and the offset of its plant
+/// frame in the mover's. Its transform and OBB are the stand's (AttemptRunner::update_organs).
 struct KeepEntry {
   std::int32_t organ = 0;
   float gap = 0;
   Vec3f offset;
-  Affine3f transform;
-  Obb box;
 };
 
-/// A pair to clear: slots into the moving and keep tables.
+/// A pair to clear: slots into the moving table (organ ids) and the keep table.
 struct PairEntry {
   std::uint32_t moving = 0, keep = 0;
 };
@@ -49,11 +41,11 @@ struct AttemptGroup {
   std::uint32_t axis_first = 0, pair_first = 0, pair_end = 0, axis_mask = 0;
 };
 
-/// Whether the boxes of a pair meet when the moving organ turns by `turn`: its box carried and
-/// grown by the search clearance against the kept organ's grown box (TurnSearch::attempt's
-/// first test).
-CANOPY_HD inline bool turned_boxes_meet(const MovingEntry& x, const KeepEntry& y, const Motion& turn, float clearance) {
-  return obb_overlap(carried_box(x.box, turn, clearance), y.box, y.offset);
+/// Whether the boxes of a pair meet when the moving organ (OBB `x`, no clearance) turns by
+/// `turn`: its box carried and grown by the search clearance against the kept organ's box `y`
+/// grown by its gap (TurnSearch::attempt's first test, with keep_box made the same way).
+CANOPY_HD inline bool turned_boxes_meet(const Obb& x, const Obb& y, const KeepEntry& keep, const Motion& turn, float clearance) {
+  return obb_overlap(carried_box(x, turn, clearance), grown(y, keep.gap), keep.offset);
 }
 
 /// The rotation of group g about its axis `a` as the host's attempt makes it.
@@ -63,7 +55,7 @@ CANOPY_HD inline Motion group_turn(const AttemptGroup& g, Vec3d axis) {
 
 /// A batch's tables on the host; a runner copies what was appended since it last looked.
 struct AttemptTables {
-  std::vector<MovingEntry> moving;
+  std::vector<std::int32_t> moving;
   std::vector<KeepEntry> keep;
   std::vector<PairEntry> pairs;
   std::vector<Vec3d> axes;
@@ -79,6 +71,12 @@ struct AttemptSettings {
 class AttemptRunner {
  public:
   virtual ~AttemptRunner() = default;
+  /// The organs' transforms and OBBs (no clearance) as they stand before a round's planning:
+  /// `changed` lists the organs whose pose changed since the last call (ignored with `all`,
+  /// which the first call of a resolution sets). `boxes` stays alive and unchanged until the
+  /// next call.
+  virtual void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
+                             bool all) = 0;
   /// A new batch: the tables start empty.
   virtual void clear() = 0;
   /// Per group, bit i set where a pair touches when turned about axis i of the group's mask

@@ -19,14 +19,16 @@ std::vector<std::uint32_t> HostAttemptRunner::touching(const AttemptTables& t, s
         if (!(group.axis_mask >> i & 1u)) continue;
         const Motion turn = group_turn(group, t.axes[group.axis_first + i]);
         for (std::uint32_t p = group.pair_first; p < group.pair_end; ++p) {
-          const MovingEntry& x = t.moving[t.pairs[p].moving];
+          const std::int32_t x = t.moving[t.pairs[p].moving];
           const KeepEntry& y = t.keep[t.pairs[p].keep];
-          if (!turned_boxes_meet(x, y, turn, settings.clearance)) continue;
+          const auto xi = static_cast<std::size_t>(x), yi = static_cast<std::size_t>(y.organ);
+          if (!turned_boxes_meet(boxes_[xi], boxes_[yi], y, turn, settings.clearance)) continue;
           bool touches = !settings.exact;
           if (!touches) {
-            const Affine3f tx = apply(turn, x.transform);
-            touches = x.organ < y.organ ? organs_touch_at(stand_, lib_, x.organ, tx, y.organ, y.transform, y.gap, scratch)
-                                        : organs_touch_at(stand_, lib_, y.organ, y.transform, x.organ, tx, y.gap, scratch);
+            const Stand& s = *stand_;
+            const Affine3f tx = apply(turn, s.transforms[xi]);
+            touches = x < y.organ ? organs_touch_at(s, lib_, x, tx, y.organ, s.transforms[yi], y.gap, scratch)
+                                  : organs_touch_at(s, lib_, y.organ, s.transforms[yi], x, tx, y.gap, scratch);
           }
           if (touches) {
             out[g] |= 1u << i;

@@ -11,13 +11,17 @@ namespace canopy {
 
 class HostAttemptRunner : public AttemptRunner {
  public:
-  HostAttemptRunner(const Stand& stand, PrototypeLibrary& lib, int threads) : stand_(stand), lib_(lib), threads_(threads) {}
+  HostAttemptRunner(PrototypeLibrary& lib, int threads) : lib_(lib), threads_(threads) {}
+  void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t>, bool) override {
+    stand_ = &stand, boxes_ = boxes;
+  }
   void clear() override {}
   std::vector<std::uint32_t> touching(const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
 
  private:
-  const Stand& stand_;
+  const Stand* stand_ = nullptr;
+  std::span<const Obb> boxes_;
   PrototypeLibrary& lib_;
   int threads_;
 };

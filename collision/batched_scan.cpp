@@ -1,6 +1,10 @@
 #include "collision/batched_scan.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <chrono>
+#include <cstdlib>
 #include <bit>
 #include <cmath>
 #include <numbers>
@@ -14,7 +18,15 @@ constexpr std::size_t kGroupAxes = 32;
 
 using Candidate = TurnSearch::Candidate;
 
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
 }  // namespace
+
+BatchedScan::~BatchedScan() {
+  if (std::getenv("CANOPY_BULK_STATS"))
+    fmt::print(stderr, "batched scan (host): limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n", times_.limits,
+               times_.tables, times_.gathers, times_.gather, times_.runner);
+}
 
 void BatchedScan::clear() {
   tables_.clear();
@@ -22,6 +34,12 @@ void BatchedScan::clear() {
 }
 
 void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
+  const double t0 = now();
+  struct Done {
+    double t0;
+    double& sum;
+    ~Done() { sum += now() - t0; }
+  } done{t0, times_.tables};
   // Sizes first, then every candidate's entries written in parallel into its own ranges.
   std::vector<Candidate*> add;
   for (Candidate* c : cands)
@@ -50,7 +68,6 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
       keep_at[j] = static_cast<std::uint32_t>(k), k += near ? add[j]->keep.size() - add[j]->met_count : add[j]->met_count;
   }
   tables_.moving.resize(n_moving), tables_.keep.resize(n_keep), tables_.pairs.resize(n_pairs), tables_.axes.resize(n_axes);
-  const Stand& s = search_.stand;
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (std::size_t j = 0; j < add.size(); ++j) {
     const Candidate& c = *add[j];
@@ -59,8 +76,7 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
     for (std::size_t i = keep_from; i < keep_to; ++i) {
       const std::int32_t y = c.keep[i];
       tables_.keep[keep_at[j] + (i - keep_from)] =
-          KeepEntry{y, i < c.met_count ? search_.clearance : search_.detect_clearance, c.keep_off[i],
-                    s.transforms[static_cast<std::size_t>(y)], c.keep_box[i]};
+          KeepEntry{y, i < c.met_count ? search_.clearance : search_.detect_clearance, c.keep_off[i]};
     }
     const TurnSearch::PairSet& pairs = near ? c.near_pairs : c.met_pairs;
     std::uint32_t at = near ? t.near_first : t.met_first;
@@ -69,10 +85,7 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
         tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),
                                         keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
     if (near) continue;
-    for (std::size_t i = 0; i < c.moving.size(); ++i) {
-      const auto x = static_cast<std::size_t>(c.moving[i]);
-      tables_.moving[t.moving + i] = MovingEntry{c.moving[i], s.transforms[x], search_.boxes[x]};
-    }
+    std::copy(c.moving.begin(), c.moving.end(), tables_.moving.begin() + t.moving);
     std::copy(c.axes.begin(), c.axes.end(), tables_.axes.begin() + t.axes);
   }
 }
@@ -103,7 +116,9 @@ std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> c
     g.axis_mask = want;
     groups.push_back(g), of.push_back(j);
   }
+  double t = now();
   std::vector<std::uint32_t> touch = runner_.touching(tables_, groups, settings);
+  times_.runner += now() - t;
   for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] = groups[q].axis_mask & ~touch[q];
   // A strict search's neighbours, for the axes that cleared the organs met (gathered, as the
   // host search gathers them, when a turn first clears those and the gathered ones do not cover it).
@@ -112,9 +127,12 @@ std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   for (std::size_t j = 0; j < cands.size(); ++j)
     if (ok[j] && cands[j]->strict) strict.push_back(cands[j]), strict_of.push_back(j);
   if (strict.empty()) return ok;
+  t = now();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
   for (std::size_t q = 0; q < strict.size(); ++q)
     if (strict[q]->near_deg < deg[strict_of[q]]) search_.gather_neighbours(*strict[q], deg[strict_of[q]]);
+  times_.gather += now() - t;
+  times_.gathers += strict.size();
   add_tables(strict, true);
   groups.clear(), of.clear();
   for (std::size_t j : strict_of) {
@@ -123,7 +141,9 @@ std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> c
     if (g.pair_first == g.pair_end) continue;  // no neighbour within reach: nothing to clear
     groups.push_back(g), of.push_back(j);
   }
+  t = now();
   touch = runner_.touching(tables_, groups, settings);
+  times_.runner += now() - t;
   for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] &= ~std::uint64_t{touch[q]};
   return ok;
 }
@@ -143,6 +163,7 @@ void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
       if (live[j]->found_axis < 0 && live[j]->axes.size() > first) act.push_back(live[j]), deg.push_back(hi[j]);
     if (act.empty()) break;
     std::vector<std::uint64_t> want(act.size(), 0);
+    const double t0 = now();
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
     for (std::size_t j = 0; j < act.size(); ++j) {
       Candidate& c = *act[j];
@@ -152,6 +173,7 @@ void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
         if (search_.within_limit(c, c.axes[i], deg[j])) w |= std::uint64_t{1} << (i - first);
       want[j] = std::uint64_t{first} << 32 | w;
     }
+    times_.limits += now() - t0;
     const std::vector<std::uint64_t> ok = clear_axes(act, deg, want);
     for (std::size_t j = 0; j < act.size(); ++j) {
       if (!ok[j]) continue;

@@ -21,6 +21,8 @@ namespace canopy {
 class BatchedScan {
  public:
   BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads) : search_(search), runner_(runner), threads_(threads) {}
+  /// With CANOPY_BULK_STATS set in the environment, prints where the host's time went.
+  ~BatchedScan();
   /// A new batch of contacts: the tables start empty (candidates of the last batch are gone).
   void clear();
   /// TurnSearch::scan_level(c, level) for each candidate.
@@ -41,6 +43,10 @@ class BatchedScan {
   AttemptRunner& runner_;
   int threads_;
   AttemptTables tables_;
+  struct Times {
+    double limits = 0, tables = 0, gather = 0, runner = 0;
+    std::size_t gathers = 0;
+  } times_;
 };
 
 }  // namespace canopy

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <span>
@@ -74,6 +75,8 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   // does not change, so they carry over from level to level.
   std::vector<ExactScratch> scratches(static_cast<std::size_t>(threads));
   std::vector<std::uint8_t> resolved(n, 0);
+  double prof[6] = {0, 0, 0, 0, 0, 0};
+  const double t_start = now();
   std::optional<BatchedScan> bulk;
   if (runner) bulk.emplace(search, *runner, threads);
   // Contacts are planned in batches: a contact's pick depends only on its own candidates' scans
@@ -118,6 +121,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         for (std::size_t k = 0; k < slots.size(); ++k)
           if (want[k]) scan.push_back(k);
         if (scan.empty()) break;
+        double tp = now();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
         for (std::size_t j = 0; j < scan.size(); ++j) {
           const std::size_t k = scan[j];
@@ -130,7 +134,9 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           for (std::size_t k : ks) out.push_back(&*state[k]);
           return out;
         };
+        prof[0] += now() - tp, tp = now();
         if (bulk) bulk->scan(candidates(scan), level);
+        prof[1] += now() - tp, tp = now();
         // Candidates found at this level: each refined to its smallest turn, once.
         std::vector<std::size_t> found;
         for (std::size_t k : scan)
@@ -143,6 +149,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           for (std::size_t j = 0; j < found.size(); ++j)
             refined[found[j]] = search.refine(*state[found[j]], scratches[static_cast<std::size_t>(omp_get_thread_num())]);
         }
+        prof[2] += now() - tp, tp = now();
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
         std::erase_if(pending, [&](std::uint32_t q) {
           const std::size_t i = waiting[b0 + q];
@@ -158,6 +165,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           chosen.push_back(*pick);
           return true;
         });
+        prof[3] += now() - tp;
       }
       for (std::size_t k : chosen)
         if (!turn_of[slots[k]]) turn_of[slots[k]] = refined[k];
@@ -166,6 +174,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       for (std::size_t k = 0; k < state.size(); ++k) state[k].reset();
     }
   }
+  prof[4] = now() - t_start;
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
   // turning this round (the first contact to claim a mover keeps it).
   std::vector<std::size_t> left;
@@ -202,6 +211,9 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     resolved[left[j]] = 1;  // taken care of this round, or left to the next one by a claimed mover
   }
 
+  prof[5] = now() - t_start;
+  if (std::getenv("CANOPY_BULK_STATS"))
+    fmt::print(stderr, "plan_round: prepare {:.3f} scan {:.3f} refine {:.3f} picks {:.3f}; passes {:.3f}, with last resort {:.3f} s\n", prof[0], prof[1], prof[2], prof[3], prof[4], prof[5]);
   Plan plan;
   for (std::size_t i = 0; i < n; ++i)
     if (!resolved[i])
@@ -255,6 +267,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   out.contacts_before = left;
   std::vector<std::uint8_t> carried(s.organ_count(), 0), moved_now(s.organ_count(), 0);
   std::map<std::size_t, std::string> why;
+  std::vector<std::uint32_t> changed;  // organs moved by the last round
+  const AttemptRunner* told = nullptr;  // the runner that has seen every organ
   std::size_t best = left;
   int best_round = 0;
   for (int round = 1;; ++round) {
@@ -278,8 +292,10 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     rr.contacts = left;
     double t = now();
     touching.build(s.organ_count(), contacts);
-    // The runner of bulk attempts, if any (asked each round: it holds the stand as detected last).
+    // The runner of bulk attempts, if any (asked each round: it holds the stand as detected last),
+    // told which organs moved since it last looked.
     AttemptRunner* runner = req.attempts ? req.attempts : req.bulk_attempts ? backend.attempt_runner(s) : nullptr;
+    if (runner) runner->update_organs(s, boxes, changed, runner != told), told = runner;
     // The witnesses serve the host's attempts (a bulk scan tests every pair in full).
     if (cfg.level == ContactLevel::exact && !runner) touching.find_witnesses(s, lib, search.clearance, threads);
     std::function<void(std::size_t)> planning;
@@ -307,6 +323,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     }
     std::sort(turned.begin(), turned.end());
     const std::vector<std::uint32_t> moved = joints.update(s, turned);
+    changed = moved;
     std::vector<std::uint8_t> active(s.plant_count(), 0);
     for (std::uint32_t k : moved) {
       const Affine3f& m = s.transforms[k];

@@ -1,6 +1,7 @@
 #include "cuda/detect_cuda.hpp"
 
 #include "collision/broad_phase.hpp"
+#include "cuda/attempt_runner_cuda.hpp"
 #include "cuda/detect_kernels.hpp"
 #include "cuda/device.hpp"
 #include "cuda/device_buffer.hpp"
@@ -48,6 +49,7 @@ class CudaBackend : public DetectionBackend {
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     double t = now();
     lib_ = std::make_unique<PrototypeLibrary>();
+    attempts_.reset();  // its tables belong to the stand held before
     tree_ = build_mbvt_topology(s, mbvt_config(req));
     dev_.load(s, *tree_, *lib_, plants_with_free_pairs(s, *tree_));
     plants_.reset();
@@ -58,6 +60,15 @@ class CudaBackend : public DetectionBackend {
     Contacts out = run(req, now() - t);
     out.load_s = load_s;
     return out;
+  }
+
+  /// The device runs resolution's bulk attempts against the stand it holds (the one detected or
+  /// re-detected last: its meshes, organ records and origins; the transforms travel with the
+  /// attempts).
+  AttemptRunner* attempt_runner(const Stand& s) override {
+    if (!tree_ || tree_->takes_part.size() != s.organ_count()) return nullptr;
+    if (!attempts_) attempts_ = std::make_unique<CudaAttemptRunner>(dev_);
+    return attempts_.get();
   }
 
   Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
@@ -258,6 +269,7 @@ class CudaBackend : public DetectionBackend {
   DeviceBuffer<Contact> contacts_;
   DeviceBuffer<Counters> counters_;
   PinnedBuffer<Contact> staged_contacts_;
+  std::unique_ptr<CudaAttemptRunner> attempts_;
 };
 
 }  // namespace

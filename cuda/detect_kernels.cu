@@ -7,6 +7,7 @@
 #include "cuda/check.hpp"
 #include "cuda/detect_kernels.hpp"
 #include "cuda/keys.hpp"
+#include "cuda/organ_pair_test.cuh"
 #include "geometry/lcd.hpp"
 #include "geometry/obb.hpp"
 #include "geometry/triangle_test.hpp"
@@ -15,12 +16,6 @@ namespace canopy::cuda {
 namespace {
 
 constexpr int kThreads = 128;
-
-__device__ Vec3f offset_between(const StandView& v, std::int32_t p, std::int32_t q) {
-  if (p == q) return {0, 0, 0};
-  const PlantOrigin a = v.origins[p], b = v.origins[q];
-  return origin_offset(a.x, a.y, b.x, b.y);
-}
 
 __global__ void work_items_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, WorkItem* out) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
@@ -83,12 +78,6 @@ __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const Clus
                     [&](std::int32_t a, std::int32_t b) { organ_pair(v, a, b, it, out, capacity, c); });
 }
 
-/// Vertex k of organ o, in the frame of the lower organ's plant (moved by `offset`), exactly as
-/// the host computes it: apply(m, p) + d.
-__device__ Vec3f vertex(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset, std::uint32_t k) {
-  return apply(t, v.mesh_positions[m.first_vertex + k]) + offset;
-}
-
 __global__ void count_pairs_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, Counters* c) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
@@ -123,89 +112,17 @@ __global__ void contacts_kernel(StandView v, const std::uint64_t* keys, std::uin
   out[k] = Contact{a, b, v.organs[a].plant, v.organs[b].plant, -1, -1};
 }
 
-constexpr unsigned kFullWarp = 0xffffffffu;
-
-__device__ float warp_min(float x) {
-  for (int o = 16; o > 0; o /= 2) x = min_f(x, __shfl_xor_sync(kFullWarp, x, o));
-  return x;
-}
-
-__device__ float warp_max(float x) {
-  for (int o = 16; o > 0; o /= 2) x = max_f(x, __shfl_xor_sync(kFullWarp, x, o));
-  return x;
-}
-
-/// A warp per organ pair: the lanes share a's triangles (each lane its own against all of b's)
-/// and stop together once any lane finds a touching pair, since the answer is an "any" (the
-/// same answer as one thread walking every pair: min and max are exact in any order, and the
-/// containment test's votes are the serial loop's conjunction and disjunction).
+/// A warp per organ pair (cuda/organ_pair_test.cuh) at the stand's transforms.
 __global__ void exact_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, float clearance, std::uint8_t* hit) {
   __shared__ volatile int done[kThreads / 32];
+  __shared__ WarpStage stage[kThreads / 32];
   const std::uint64_t t = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
   const auto k = static_cast<std::uint32_t>(t / 32);
-  const unsigned lane = threadIdx.x % 32, warp = threadIdx.x / 32;
   if (k >= n) return;  // whole warps: n x 32 threads in blocks of whole warps
   const std::uint32_t a = key_hi(keys[k]), b = key_lo(keys[k]);
-  const OrganRecord ra = v.organs[a], rb = v.organs[b];
-  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
-  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
-  const Affine3f ta = v.transforms[a], tb = v.transforms[b];
-  const Vec3f zero{0, 0, 0};
-  const Vec3f db = offset_between(v, ra.plant, rb.plant);
-  // b's box, widened by the clearance: only a's triangles inside it need the full test.
-  float lo[3] = {3e38f, 3e38f, 3e38f}, hi[3] = {-3e38f, -3e38f, -3e38f};
-  for (std::uint32_t i = lane; i < mb.vertex_count; i += 32) {
-    const Vec3f p = vertex(v, mb, tb, db, i);
-    lo[0] = min_f(lo[0], p.x), lo[1] = min_f(lo[1], p.y), lo[2] = min_f(lo[2], p.z);
-    hi[0] = max_f(hi[0], p.x), hi[1] = max_f(hi[1], p.y), hi[2] = max_f(hi[2], p.z);
-  }
-  for (int d = 0; d < 3; ++d) lo[d] = warp_min(lo[d]), hi[d] = warp_max(hi[d]);
-  if (lane == 0) done[warp] = 0;
-  __syncwarp();
-  const double c = clearance;
-  for (std::uint32_t i0 = 0; i0 < ma.triangle_count; i0 += 32) {
-    const std::uint32_t i = i0 + lane;
-    if (i < ma.triangle_count) {
-      Vec3f a3[3];
-      for (int q = 0; q < 3; ++q) a3[q] = vertex(v, ma, ta, zero, v.mesh_indices[ma.first_index + 3 * i + q]);
-      const float alo[3] = {min_f(a3[0].x, min_f(a3[1].x, a3[2].x)), min_f(a3[0].y, min_f(a3[1].y, a3[2].y)), min_f(a3[0].z, min_f(a3[1].z, a3[2].z))};
-      const float ahi[3] = {max_f(a3[0].x, max_f(a3[1].x, a3[2].x)), max_f(a3[0].y, max_f(a3[1].y, a3[2].y)), max_f(a3[0].z, max_f(a3[1].z, a3[2].z))};
-      bool near = true;
-      for (int d = 0; d < 3; ++d) near = near && alo[d] - c <= hi[d] && ahi[d] + c >= lo[d];
-      for (std::uint32_t j = 0; near && j < mb.triangle_count && !done[warp]; ++j) {
-        Vec3f b3[3];
-        for (int q = 0; q < 3; ++q) b3[q] = vertex(v, mb, tb, db, v.mesh_indices[mb.first_index + 3 * j + q]);
-        bool box = true;
-        for (int d = 0; d < 3; ++d) {
-          const float bl = d == 0 ? min_f(b3[0].x, min_f(b3[1].x, b3[2].x)) : d == 1 ? min_f(b3[0].y, min_f(b3[1].y, b3[2].y)) : min_f(b3[0].z, min_f(b3[1].z, b3[2].z));
-          const float bh = d == 0 ? max_f(b3[0].x, max_f(b3[1].x, b3[2].x)) : d == 1 ? max_f(b3[0].y, max_f(b3[1].y, b3[2].y)) : max_f(b3[0].z, max_f(b3[1].z, b3[2].z));
-          box = box && bl <= ahi[d] + c && bh >= alo[d] - c;
-        }
-        if (box && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3))) done[warp] = 1;
-      }
-    }
-    __syncwarp();
-    if (done[warp]) break;  // the same value in every lane after the sync
-  }
-  bool found = done[warp];
-  // Containment: a point of one organ inside the other's convex solid (faces made on the fly,
-  // shared by the lanes): no face sees it outside, and one sees it strictly inside.
-  const auto solid = [](PrototypeKind p) { return p == PrototypeKind::cylinder || p == PrototypeKind::sphere; };
-  const auto inside = [&](Vec3f p, const MeshRef& m, const Affine3f& tr, Vec3f d) {
-    bool outer = false, inner = false;
-    for (std::uint32_t f = lane; f < m.triangle_count; f += 32) {
-      const D3 x = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f]));
-      const D3 y = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f + 1]));
-      const D3 z = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f + 2]));
-      const double o = orient3d(x, y, z, d3(p));
-      outer = outer || o > 0;
-      inner = inner || o < 0;
-    }
-    return !__any_sync(kFullWarp, outer) && __any_sync(kFullWarp, inner);
-  };
-  if (!found && solid(rb.prototype) && ma.vertex_count) found = inside(vertex(v, ma, ta, zero, 0), mb, tb, db);
-  if (!found && solid(ra.prototype) && mb.vertex_count) found = inside(vertex(v, mb, tb, db, 0), ma, ta, zero);
-  if (lane == 0) hit[k] = found ? 1 : 0;
+  const bool found =
+      warp_organs_touch(v, a, v.transforms[a], b, v.transforms[b], clearance, done[threadIdx.x / 32], &stage[threadIdx.x / 32]);
+  if (threadIdx.x % 32 == 0) hit[k] = found ? 1 : 0;
 }
 
 unsigned blocks(std::uint64_t n) { return static_cast<unsigned>((n + kThreads - 1) / kThreads); }

@@ -2,6 +2,7 @@
 /// The owner of a device array (RAII) and the views kernels take by value.
 #include "cuda/check.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -34,6 +35,18 @@ class DeviceBuffer {
   /// Room for at least n items: reallocates only to grow (the contents are then lost).
   void grow(std::size_t n) {
     if (n > n_) resize(n);
+  }
+  /// Room for at least n items keeping the first `keep` (an append-only table): grows to at
+  /// least half again its size, so appends cost amortised constant copies.
+  void grow_keeping(std::size_t n, std::size_t keep) {
+    if (n <= n_) return;
+    DeviceBuffer bigger(std::max(n, n_ + n_ / 2));
+    if (keep) CANOPY_CUDA_CHECK(cudaMemcpy(bigger.p_, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice));
+    *this = std::move(bigger);
+  }
+  /// Copies n items from the host to items [at, at + n).
+  void upload_at(std::size_t at, const T* src, std::size_t n) {
+    if (n) CANOPY_CUDA_CHECK(cudaMemcpy(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice));
   }
   /// Room for n items, exactly when `tight` (a device memory budget is in force), else at least.
   void fit(std::size_t n, bool tight) { tight ? resize(n) : grow(n); }

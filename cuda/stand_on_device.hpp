@@ -30,6 +30,7 @@ class StandOnDevice {
   const StandView& view() const { return view_; }
   const std::uint8_t* self() const { return self_.get(); }
   std::uint32_t plants() const { return static_cast<std::uint32_t>(plants_.size()); }
+  std::size_t organs() const { return organs_.size(); }
   /// The least origin coordinates (the grid's corner) and their spans.
   double x0() const { return x0_; }
   double y0() const { return y0_; }

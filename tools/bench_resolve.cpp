@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;
-  bool append = false;
+  bool append = false, host_search = false;
   ResolveConfig base;
   std::string csv = "bench/results/resolve.csv";
   for (int i = 1; i < argc; ++i) {
@@ -66,23 +66,26 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--axes") && i + 1 < argc) base.axis_fan = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) base.scan_step_deg = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--append")) append = true;
+    else if (!std::strcmp(argv[i], "--host-search")) host_search = true;
     else {
       std::fprintf(stderr,
                    "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
-                   "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n");
+                   "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
+                   "       [--host-search]   (CUDA: search turns on the host, not each level's attempts on the device)\n");
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
-  const std::string config = fmt::format("candidates={} axes={} step={}", base.candidates, base.axis_fan, base.scan_step_deg);
+  const std::string config = fmt::format("candidates={} axes={} step={}{}", base.candidates, base.axis_fan, base.scan_step_deg,
+                                         host_search ? " host-search" : "");
   if (!append)
     fmt::print(out,
              "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
              "contacts_before_level,rounds,organs_moved,organs_carried,mean_turn_deg,max_turn_deg,residual_exact,"
              "residual_level,detect_s,resolve_s,plan_s,redetect_s\n");
-  fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7} {:>7} {:>9} {:>9} {:>9}\n", "back", "spacing", "plants", "level",
-             "before", "rounds", "turned", "mean°", "max°", "residual", "detect s", "resolve s");
+  fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7} {:>7} {:>9} {:>9} {:>9} {:>7}\n", "back", "spacing", "plants", "level",
+             "before", "rounds", "turned", "mean°", "max°", "residual", "detect s", "resolve s", "plan s");
   const std::vector<Spacing> spacings{{"default", 0.4, 1.0}, {"dense", 0.25, 0.6}};
   for (const std::string& bname : backends) {
     std::unique_ptr<DetectionBackend> backend;
@@ -106,6 +109,7 @@ int main(int argc, char** argv) {
           ResolveRequest req;
           req.detect.threads = threads;
           req.config = base;
+          req.bulk_attempts = !host_search;
           req.config.level = *parse_contact_level(lname);
           auto fresh = make_cpu_backend();  // the independent counts before and after
           const std::size_t before_exact = fresh->detect(s, DetectRequest{}).pairs.size();
@@ -120,9 +124,9 @@ int main(int argc, char** argv) {
           double plan = 0, redetect = 0;
           for (const ResolveRound& x : r.per_round) plan += x.plan_s, redetect += x.detect_s;
           const std::size_t residual = fresh->detect(s, DetectRequest{}).pairs.size();
-          fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7.2f} {:>7.2f} {:>9} {:>9.3f} {:>9.3f}\n", bname, sp.name, n,
-                     lname, before_exact, r.rounds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, residual, detect_s,
-                     resolve_s);
+          fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7.2f} {:>7.2f} {:>9} {:>9.3f} {:>9.3f} {:>7.3f}\n", bname, sp.name,
+                     n, lname, before_exact, r.rounds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, residual, detect_s,
+                     resolve_s, plan);
           fmt::print(out, "{},{},", config, threads);
           fmt::print(out, "{},{},{},{},{},{},{:.1f},{},{},{},{},{},{},{:.4f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n", bname,
                      backend->device(), sp.name, sp.plant, sp.row, n, static_cast<double>(s.organ_count()) / n, lname,

@@ -19,6 +19,7 @@ struct ResolveOptions {
   int axis_fan = ResolveConfig{}.axis_fan;
   double scan_step = ResolveConfig{}.scan_step_deg;
   bool progress = true;
+  bool host_search = false;  // plan every attempt on the host even where the backend runs them (CUDA)
 
   void add_to(CLI::App& app);
   ResolveConfig config() const;

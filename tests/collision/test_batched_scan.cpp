@@ -25,7 +25,7 @@ Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk) {
   req.detect.clearance = clearance;
   req.detect.level = cfg.level;
   PrototypeLibrary lib;
-  HostAttemptRunner runner(s, lib, 2);
+  HostAttemptRunner runner(lib, 2);
   if (bulk) req.attempts = &runner;
   const Contacts first = cpu->detect(s, req.detect);
   ResolveResult r = resolve(s, *cpu, req, first);

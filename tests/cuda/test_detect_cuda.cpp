@@ -196,6 +196,45 @@ TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the
   }
 }
 
+TEST_CASE("resolution's attempts on the device: the host search's turns at the organ level, with clearances, crowded") {
+  // The CUDA backend runs each level's attempts on the device (BatchedScan + CudaAttemptRunner);
+  // the CPU backend searches candidate by candidate on the host.
+  struct Case {
+    const char* name;
+    ContactLevel level;
+    float detect_clearance;
+    double clearance;
+    bool crowded;
+  };
+  for (const Case& k : {Case{"organ level", ContactLevel::organ, 0, 1e-4, false}, Case{"clearances", ContactLevel::exact, 0.001f, 0.002, false},
+                        Case{"crowded", ContactLevel::exact, 0, 1e-4, true}}) {
+    GrowRequest g;
+    g.grammar = source("grammars/tomato.yaml");
+    g.plants = default_stand_layout(k.crowded ? 12 : 40);
+    for (PlantPlacement& p : g.plants) p.x *= k.crowded ? 0.3 : 0.7, p.y *= k.crowded ? 0.3 : 1.0;
+    Stand a = grow_stand(g), b = a;
+    auto cpu = make_cpu_backend();
+    auto gpu = cuda::make_cuda_backend();
+    ResolveRequest req;
+    req.config.level = k.level;
+    req.config.clearance = k.clearance;
+    req.config.max_rounds = k.crowded ? 5 : req.config.max_rounds;
+    req.detect.level = k.level;
+    req.detect.clearance = k.detect_clearance;
+    const Contacts ca = cpu->detect(a, req.detect), cb = gpu->detect(b, req.detect);
+    REQUIRE(ca.pairs == cb.pairs);
+    const ResolveResult ra = resolve(a, *cpu, req, ca), rb = resolve(b, *gpu, req, cb);
+    INFO(std::string(k.name) << ": " << ra.contacts_before << " -> " << ra.contacts_after);
+    CHECK(ra.organs_moved > 0);
+    CHECK(ra.contacts_after == rb.contacts_after);
+    CHECK(ra.rounds == rb.rounds);
+    CHECK(ra.organs_moved == rb.organs_moved);
+    CHECK(ra.mean_turn_deg == rb.mean_turn_deg);
+    CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
+    MESSAGE(std::string(k.name) << ": " << ra.contacts_before << " -> " << ra.contacts_after << " contacts, " << ra.organs_moved << " turned");
+  }
+}
+
 TEST_CASE("a stand that must be batched: the same contacts in batches under --max-device-memory") {
   GrowRequest g;
   g.grammar = source("grammars/tomato.yaml");

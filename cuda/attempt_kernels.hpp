@@ -1,0 +1,35 @@
+#pragma once
+/// The kernels of resolution's bulk attempts (collision/attempt_batch.hpp): the boxes of every
+/// (group, pair) at every axis of the group's mask, then a warp per pair whose boxes meet for
+/// the exact test at the turned pose. Each group's answer is a mask of axes with a touching pair.
+#include "collision/attempt_batch.hpp"
+#include "cuda/detect_kernels.hpp"
+
+#include <cstdint>
+
+namespace canopy::cuda {
+
+struct AttemptTablesView {
+  const std::int32_t* moving;
+  const KeepEntry* keep;
+  const PairEntry* pairs;
+  const Vec3d* axes;
+  const Obb* boxes;  // per organ of the stand: resolution's OBBs (no clearance)
+};
+
+/// A pair of a group whose boxes meet at one axis: the exact test decides.
+struct ExactAttempt {
+  std::uint32_t group, pair, axis;
+};
+
+/// Tasks t < n_tasks are (group g, its pair t - task_first[g]) with task_first ascending
+/// (n_groups + 1 entries). Touching boxes set the axis bit in touch[g] at the organ level and
+/// append an ExactAttempt otherwise (past `capacity` only counted).
+void launch_attempt_boxes(AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
+                          std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
+                          ExactAttempt* out, unsigned long long capacity, Counters* counters);
+/// The exact test of each ExactAttempt (skipped where its axis already touches).
+void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
+                          std::uint32_t n, std::uint32_t* touch);
+
+}  // namespace canopy::cuda

@@ -1,0 +1,214 @@
+#pragma once
+// The exact test of one organ pair by one warp, at given transforms: the detection's exact stage
+// (the stand's transforms) and resolution's bulk attempts (a turned pose of one organ) share it.
+// Same answer as collision/exact.cpp's organs_touch_at: the same vertices, the same closed
+// triangle predicates (geometry/triangle_test.hpp), the same containment test of solids.
+#include "collision/mbvt_fit.hpp"
+#include "cuda/detect_kernels.hpp"
+#include "geometry/triangle_test.hpp"
+
+namespace canopy::cuda {
+
+/// The offset of plant q's frame in plant p's, made on the device exactly as the host makes it.
+__device__ inline Vec3f offset_between(const StandView& v, std::int32_t p, std::int32_t q) {
+  if (p == q) return {0, 0, 0};
+  const PlantOrigin a = v.origins[p], b = v.origins[q];
+  return origin_offset(a.x, a.y, b.x, b.y);
+}
+
+/// Vertex k of a mesh at transform t, in the frame of the lower organ's plant (moved by
+/// `offset`), exactly as the host computes it: apply(m, p) + d.
+__device__ inline Vec3f vertex(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset, std::uint32_t k) {
+  return apply(t, v.mesh_positions[m.first_vertex + k]) + offset;
+}
+
+constexpr unsigned kFullWarp = 0xffffffffu;
+
+__device__ inline float warp_min(float x) {
+  for (int o = 16; o > 0; o /= 2) x = min_f(x, __shfl_xor_sync(kFullWarp, x, o));
+  return x;
+}
+
+__device__ inline float warp_max(float x) {
+  for (int o = 16; o > 0; o /= 2) x = max_f(x, __shfl_xor_sync(kFullWarp, x, o));
+  return x;
+}
+
+/// A warp's shared room for the staged test of two small meshes: their posed vertices, their
+/// triangles' boxes, and the triangles of each that reach the other organ's box.
+struct WarpStage {
+  static constexpr std::uint32_t kVertices = 64, kTriangles = 64;
+  Vec3f va[kVertices], vb[kVertices];
+  float ba[kTriangles][6], bb[kTriangles][6];
+  std::uint8_t la[kTriangles], lb[kTriangles];
+};
+
+namespace detail {
+
+/// The lanes' share of a mesh posed into shared memory: vertices, then triangle boxes (lo, hi).
+__device__ inline void stage_mesh(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset, Vec3f* vert,
+                                  float (*box)[6]) {
+  const unsigned lane = threadIdx.x % 32;
+  for (std::uint32_t i = lane; i < m.vertex_count; i += 32) vert[i] = vertex(v, m, t, offset, i);
+  __syncwarp();
+  for (std::uint32_t i = lane; i < m.triangle_count; i += 32) {
+    const std::uint32_t* idx = v.mesh_indices + m.first_index + 3 * i;
+    const Vec3f p = vert[idx[0]], q = vert[idx[1]], r = vert[idx[2]];
+    box[i][0] = min_f(p.x, min_f(q.x, r.x)), box[i][1] = min_f(p.y, min_f(q.y, r.y)), box[i][2] = min_f(p.z, min_f(q.z, r.z));
+    box[i][3] = max_f(p.x, max_f(q.x, r.x)), box[i][4] = max_f(p.y, max_f(q.y, r.y)), box[i][5] = max_f(p.z, max_f(q.z, r.z));
+  }
+  __syncwarp();
+}
+
+/// The box of a staged mesh's vertices, in every lane.
+__device__ inline void staged_box(const Vec3f* vert, std::uint32_t n, float lo[3], float hi[3]) {
+  lo[0] = lo[1] = lo[2] = 3e38f, hi[0] = hi[1] = hi[2] = -3e38f;
+  for (std::uint32_t i = threadIdx.x % 32; i < n; i += 32) {
+    const Vec3f p = vert[i];
+    lo[0] = min_f(lo[0], p.x), lo[1] = min_f(lo[1], p.y), lo[2] = min_f(lo[2], p.z);
+    hi[0] = max_f(hi[0], p.x), hi[1] = max_f(hi[1], p.y), hi[2] = max_f(hi[2], p.z);
+  }
+  for (int d = 0; d < 3; ++d) lo[d] = warp_min(lo[d]), hi[d] = warp_max(hi[d]);
+}
+
+/// The triangles of a staged mesh whose box meets the box [lo, hi] with c between them (a
+/// triangle that does not cannot pass the pair test against any triangle inside it): their
+/// indices in `out`, their count back. `widen_own`: c is added to the triangle's box, else to
+/// [lo, hi], as the pair test adds it (c on a's side), so rounding cannot drop a pair it passes.
+__device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n, const float lo[3], const float hi[3], double c,
+                                         bool widen_own, std::uint8_t* out) {
+  const unsigned lane = threadIdx.x % 32;
+  std::uint32_t count = 0;
+  for (std::uint32_t i0 = 0; i0 < n; i0 += 32) {
+    const std::uint32_t i = i0 + lane;
+    bool in = i < n;
+    for (int d = 0; in && d < 3; ++d)
+      in = widen_own ? box[i][d] - c <= hi[d] && box[i][3 + d] + c >= lo[d] : box[i][d] <= hi[d] + c && box[i][3 + d] >= lo[d] - c;
+    const unsigned votes = __ballot_sync(kFullWarp, in);
+    if (in) out[count + __popc(votes & ((1u << lane) - 1))] = static_cast<std::uint8_t>(i);
+    count += __popc(votes);
+  }
+  __syncwarp();
+  return count;
+}
+
+}  // namespace detail
+
+/// Whether organs a < b touch (within `clearance` when it is positive) at transforms ta and tb
+/// (each in its own plant's frame); called by all 32 lanes of a warp, answer in every lane;
+/// `done` is the warp's own shared flag. The lanes share a's triangles (each lane its own
+/// against all of b's) and stop together once any lane finds a touching pair, since the answer
+/// is an "any" (the same answer as one thread walking every pair: min and max are exact in any
+/// order, and the containment test's votes are the serial loop's conjunction and disjunction).
+///
+/// With `stage` and meshes small enough for it, the meshes are posed once into shared memory,
+/// each keeps only its triangles that reach the other's box, and the lanes share the pairs of
+/// those (the same pairs pass the same box test as below, so the answer is the same).
+__device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
+                                         const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr) {
+  const unsigned lane = threadIdx.x % 32;
+  const OrganRecord ra = v.organs[a], rb = v.organs[b];
+  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
+  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
+  const Vec3f zero{0, 0, 0};
+  const Vec3f db = offset_between(v, ra.plant, rb.plant);
+  const auto solid = [](PrototypeKind p) { return p == PrototypeKind::cylinder || p == PrototypeKind::sphere; };
+  if (stage && ma.vertex_count <= WarpStage::kVertices && mb.vertex_count <= WarpStage::kVertices &&
+      ma.triangle_count <= WarpStage::kTriangles && mb.triangle_count <= WarpStage::kTriangles) {
+    WarpStage& w = *stage;
+    detail::stage_mesh(v, ma, ta, zero, w.va, w.ba);
+    detail::stage_mesh(v, mb, tb, db, w.vb, w.bb);
+    const double c = clearance;
+    float alo[3], ahi[3], blo[3], bhi[3];
+    detail::staged_box(w.va, ma.vertex_count, alo, ahi);
+    detail::staged_box(w.vb, mb.vertex_count, blo, bhi);
+    const std::uint32_t na = detail::reaching(w.ba, ma.triangle_count, blo, bhi, c, true, w.la);
+    const std::uint32_t nb = na ? detail::reaching(w.bb, mb.triangle_count, alo, ahi, c, false, w.lb) : 0;
+    bool hit = false;
+    for (std::uint32_t k0 = 0; k0 < na * nb; k0 += 32) {
+      const std::uint32_t k = k0 + lane;
+      if (k < na * nb) {
+        const std::uint32_t i = w.la[k / nb], j = w.lb[k % nb];
+        bool box = true;
+        for (int d = 0; d < 3; ++d) box = box && w.bb[j][d] <= w.ba[i][3 + d] + c && w.bb[j][3 + d] >= w.ba[i][d] - c;
+        if (box) {
+          const std::uint32_t* ia = v.mesh_indices + ma.first_index + 3 * i;
+          const std::uint32_t* ib = v.mesh_indices + mb.first_index + 3 * j;
+          const Vec3f a3[3] = {w.va[ia[0]], w.va[ia[1]], w.va[ia[2]]};
+          const Vec3f b3[3] = {w.vb[ib[0]], w.vb[ib[1]], w.vb[ib[2]]};
+          hit = c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3);
+        }
+      }
+      if (__any_sync(kFullWarp, hit)) return true;
+    }
+    // Containment, on the staged vertices (the same values as below).
+    const auto inside = [&](Vec3f p, const MeshRef& m, const Vec3f* vert) {
+      bool outer = false, inner = false;
+      for (std::uint32_t f = lane; f < m.triangle_count; f += 32) {
+        const std::uint32_t* idx = v.mesh_indices + m.first_index + 3 * f;
+        const double o = orient3d(d3(vert[idx[0]]), d3(vert[idx[1]]), d3(vert[idx[2]]), d3(p));
+        outer = outer || o > 0;
+        inner = inner || o < 0;
+      }
+      return !__any_sync(kFullWarp, outer) && __any_sync(kFullWarp, inner);
+    };
+    if (solid(rb.prototype) && ma.vertex_count && inside(w.va[0], mb, w.vb)) return true;
+    if (solid(ra.prototype) && mb.vertex_count && inside(w.vb[0], ma, w.va)) return true;
+    return false;
+  }
+  // b's box, widened by the clearance: only a's triangles inside it need the full test.
+  float lo[3] = {3e38f, 3e38f, 3e38f}, hi[3] = {-3e38f, -3e38f, -3e38f};
+  for (std::uint32_t i = lane; i < mb.vertex_count; i += 32) {
+    const Vec3f p = vertex(v, mb, tb, db, i);
+    lo[0] = min_f(lo[0], p.x), lo[1] = min_f(lo[1], p.y), lo[2] = min_f(lo[2], p.z);
+    hi[0] = max_f(hi[0], p.x), hi[1] = max_f(hi[1], p.y), hi[2] = max_f(hi[2], p.z);
+  }
+  for (int d = 0; d < 3; ++d) lo[d] = warp_min(lo[d]), hi[d] = warp_max(hi[d]);
+  if (lane == 0) done = 0;
+  __syncwarp();
+  const double c = clearance;
+  for (std::uint32_t i0 = 0; i0 < ma.triangle_count; i0 += 32) {
+    const std::uint32_t i = i0 + lane;
+    if (i < ma.triangle_count) {
+      Vec3f a3[3];
+      for (int q = 0; q < 3; ++q) a3[q] = vertex(v, ma, ta, zero, v.mesh_indices[ma.first_index + 3 * i + q]);
+      const float alo[3] = {min_f(a3[0].x, min_f(a3[1].x, a3[2].x)), min_f(a3[0].y, min_f(a3[1].y, a3[2].y)), min_f(a3[0].z, min_f(a3[1].z, a3[2].z))};
+      const float ahi[3] = {max_f(a3[0].x, max_f(a3[1].x, a3[2].x)), max_f(a3[0].y, max_f(a3[1].y, a3[2].y)), max_f(a3[0].z, max_f(a3[1].z, a3[2].z))};
+      bool near = true;
+      for (int d = 0; d < 3; ++d) near = near && alo[d] - c <= hi[d] && ahi[d] + c >= lo[d];
+      for (std::uint32_t j = 0; near && j < mb.triangle_count && !done; ++j) {
+        Vec3f b3[3];
+        for (int q = 0; q < 3; ++q) b3[q] = vertex(v, mb, tb, db, v.mesh_indices[mb.first_index + 3 * j + q]);
+        bool box = true;
+        for (int d = 0; d < 3; ++d) {
+          const float bl = d == 0 ? min_f(b3[0].x, min_f(b3[1].x, b3[2].x)) : d == 1 ? min_f(b3[0].y, min_f(b3[1].y, b3[2].y)) : min_f(b3[0].z, min_f(b3[1].z, b3[2].z));
+          const float bh = d == 0 ? max_f(b3[0].x, max_f(b3[1].x, b3[2].x)) : d == 1 ? max_f(b3[0].y, max_f(b3[1].y, b3[2].y)) : max_f(b3[0].z, max_f(b3[1].z, b3[2].z));
+          box = box && bl <= ahi[d] + c && bh >= alo[d] - c;
+        }
+        if (box && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3))) done = 1;
+      }
+    }
+    __syncwarp();
+    if (done) break;  // the same value in every lane after the sync
+  }
+  bool found = done;
+  // Containment: a point of one organ inside the other's convex solid (faces made on the fly,
+  // shared by the lanes): no face sees it outside, and one sees it strictly inside.
+  const auto inside = [&](Vec3f p, const MeshRef& m, const Affine3f& tr, Vec3f d) {
+    bool outer = false, inner = false;
+    for (std::uint32_t f = lane; f < m.triangle_count; f += 32) {
+      const D3 x = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f]));
+      const D3 y = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f + 1]));
+      const D3 z = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f + 2]));
+      const double o = orient3d(x, y, z, d3(p));
+      outer = outer || o > 0;
+      inner = inner || o < 0;
+    }
+    return !__any_sync(kFullWarp, outer) && __any_sync(kFullWarp, inner);
+  };
+  if (!found && solid(rb.prototype) && ma.vertex_count) found = inside(vertex(v, ma, ta, zero, 0), mb, tb, db);
+  if (!found && solid(ra.prototype) && mb.vertex_count) found = inside(vertex(v, mb, tb, db, 0), ma, ta, zero);
+  return found;
+}
+
+}  // namespace canopy::cuda
