@@ -10,9 +10,6 @@
 namespace canopy {
 namespace {
 
-/// 10 µm: far above the float rounding of a plane test on plant-frame coordinates (about 1e-7 m).
-constexpr float kPlaneSlack = 1e-5f;
-
 /// Indices 0..count-1 in the order start, start+1, start-1, start+2, ... (wrapping): triangles
 /// of neighbouring indices lie side by side on a prototype mesh, so a search that starts at the
 /// triangle that touched last meets its neighbours on both sides first.
@@ -141,7 +138,7 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
     return !(t[0] > o[3] || t[1] > o[4] || t[2] > o[5] || t[3] < o[0] || t[4] < o[1] || t[5] < o[2]);
   };
   // The float plane pre-test below rejects only pairs more than this beyond the clearance.
-  const float margin = static_cast<float>(c) + kPlaneSlack;
+  const float margin = static_cast<float>(c) + kRejectSlack;
   const auto pair_touches = [&](const Vec3f* p, const Vec3f* q) { return c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q); };
   // With a witness, start both loops at its triangles: a touching pair is likely near the one
   // that touched last (the answer is the same in any order).
@@ -168,8 +165,7 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
         const float* b6 = &pb.tri_box[6 * j];
         if (b6[0] > hi[0] || b6[1] > hi[1] || b6[2] > hi[2] || b6[3] < lo[0] || b6[4] < lo[1] || b6[5] < lo[2]) continue;
         const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
-        if (pb.plane(j).beyond(tri_a, margin) || pa.plane(i).beyond(tri_b, margin) || apart_on_edges(tri_a, tri_b, margin))
-          continue;
+        if (triangles_rejected(pa.plane(i), tri_a, pb.plane(j), tri_b, margin)) continue;
         if (pair_touches(tri_a, tri_b)) {
           if (witness) witness->remember(i, j);
           return true;

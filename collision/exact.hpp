@@ -4,6 +4,7 @@
 /// origin difference), a triangle-box filter, then the shared closed triangle test; capped
 /// cylinders and spheres are solids, so an organ wholly inside one counts too.
 #include "geometry/prototype.hpp"
+#include "geometry/triangle_reject.hpp"
 #include "geometry/stand.hpp"
 
 #include <algorithm>
@@ -11,53 +12,6 @@
 #include <vector>
 
 namespace canopy {
-
-/// A quick, conservative rejection before the exact triangle test, on the vertices that test
-/// receives: a separating-axis test in float along a triangle's (unnormalised) normal n. The
-/// triangle's own projections n . p_k span [lo, hi] (a point when n is exact, an interval when
-/// a sliver's normal is not), the other's must lie wholly beyond it by more than `margin` x |n|.
-/// Any axis separating the two by that much keeps them more than `margin` apart, and the float
-/// rounding (about 1e-7 m at plant scale) is far below the margin's slack over the clearance, so
-/// the exact test would have rejected them too.
-struct TrianglePlane {
-  Vec3f n;
-  float lo = 0, hi = 0, length = 0;  // length: |n|
-  static TrianglePlane of(Vec3f p0, Vec3f p1, Vec3f p2) {
-    TrianglePlane t;
-    t.n = cross(p1 - p0, p2 - p0);
-    const float d0 = dot(t.n, p0), d1 = dot(t.n, p1), d2 = dot(t.n, p2);
-    t.lo = std::min({d0, d1, d2}), t.hi = std::max({d0, d1, d2});
-    t.length = std::sqrt(dot(t.n, t.n));
-    return t;
-  }
-  /// Whether q lies beyond the plane by more than `margin` (margin x |n| along n).
-  bool beyond(const Vec3f* q, float margin) const {
-    const float lim = margin * length;
-    const float d0 = dot(n, q[0]), d1 = dot(n, q[1]), d2 = dot(n, q[2]);
-    return std::min({d0, d1, d2}) > hi + lim || std::max({d0, d1, d2}) < lo - lim;
-  }
-};
-
-/// The same kind of float rejection on the nine axes across an edge of t and an edge of u (their
-/// cross products; any axis separates by the separating-axis theorem): true when the two
-/// triangles' projections lie more than `margin` x |axis| apart on one of them. The float rounding
-/// of a projection (a few 1e-7 |axis| at plant-frame coordinates of metres) is far below the
-/// margin's slack, so a pair rejected here is farther apart than the exact test's clearance.
-inline bool apart_on_edges(const Vec3f* t, const Vec3f* u, float margin) {
-  for (int i = 0; i < 3; ++i) {
-    const Vec3f et = t[i == 2 ? 0 : i + 1] - t[i];
-    for (int j = 0; j < 3; ++j) {
-      const Vec3f n = cross(et, u[j == 2 ? 0 : j + 1] - u[j]);
-      const float t0 = dot(n, t[0]), t1 = dot(n, t[1]), t2 = dot(n, t[2]);
-      const float u0 = dot(n, u[0]), u1 = dot(n, u[1]), u2 = dot(n, u[2]);
-      const float t_lo = std::min({t0, t1, t2}), t_hi = std::max({t0, t1, t2});
-      const float u_lo = std::min({u0, u1, u2}), u_hi = std::max({u0, u1, u2});
-      const float gap = std::max(u_lo - t_hi, t_lo - u_hi);
-      if (gap > 0 && gap > margin * std::sqrt(dot(n, n))) return true;
-    }
-  }
-  return false;
-}
 
 /// One organ's triangles at one pose in one plant's frame, with what the exact test derives from
 /// them: the organ's box, each triangle's box and plane. Made once and tested against many organs

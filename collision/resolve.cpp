@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <optional>
 #include <span>
@@ -75,8 +74,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   // does not change, so they carry over from level to level.
   std::vector<ExactScratch> scratches(static_cast<std::size_t>(threads));
   std::vector<std::uint8_t> resolved(n, 0);
-  double prof[6] = {0, 0, 0, 0, 0, 0};
-  const double t_start = now();
   std::optional<BatchedScan> bulk;
   if (runner) bulk.emplace(search, *runner, threads);
   // Contacts are planned in batches: a contact's pick depends only on its own candidates' scans
@@ -121,7 +118,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         for (std::size_t k = 0; k < slots.size(); ++k)
           if (want[k]) scan.push_back(k);
         if (scan.empty()) break;
-        double tp = now();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
         for (std::size_t j = 0; j < scan.size(); ++j) {
           const std::size_t k = scan[j];
@@ -134,9 +130,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           for (std::size_t k : ks) out.push_back(&*state[k]);
           return out;
         };
-        prof[0] += now() - tp, tp = now();
         if (bulk) bulk->scan(candidates(scan), level);
-        prof[1] += now() - tp, tp = now();
         // Candidates found at this level: each refined to its smallest turn, once.
         std::vector<std::size_t> found;
         for (std::size_t k : scan)
@@ -149,7 +143,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           for (std::size_t j = 0; j < found.size(); ++j)
             refined[found[j]] = search.refine(*state[found[j]], scratches[static_cast<std::size_t>(omp_get_thread_num())]);
         }
-        prof[2] += now() - tp, tp = now();
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
         std::erase_if(pending, [&](std::uint32_t q) {
           const std::size_t i = waiting[b0 + q];
@@ -165,7 +158,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           chosen.push_back(*pick);
           return true;
         });
-        prof[3] += now() - tp;
       }
       for (std::size_t k : chosen)
         if (!turn_of[slots[k]]) turn_of[slots[k]] = refined[k];
@@ -174,7 +166,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       for (std::size_t k = 0; k < state.size(); ++k) state[k].reset();
     }
   }
-  prof[4] = now() - t_start;
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
   // turning this round (the first contact to claim a mover keeps it).
   std::vector<std::size_t> left;
@@ -211,9 +202,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     resolved[left[j]] = 1;  // taken care of this round, or left to the next one by a claimed mover
   }
 
-  prof[5] = now() - t_start;
-  if (std::getenv("CANOPY_BULK_STATS"))
-    fmt::print(stderr, "plan_round: prepare {:.3f} scan {:.3f} refine {:.3f} picks {:.3f}; passes {:.3f}, with last resort {:.3f} s\n", prof[0], prof[1], prof[2], prof[3], prof[4], prof[5]);
   Plan plan;
   for (std::size_t i = 0; i < n; ++i)
     if (!resolved[i])

@@ -50,12 +50,13 @@ struct ResolveRequest {
   const ResolvePartition* partition = nullptr;
   /// Called at the start of each round and as its planning goes on (by cost level), when set.
   std::function<void(const ResolveProgress&)> progress;
-  /// Runs each level's turn-search attempts in bulk (collision/batched_scan.hpp) when set; null:
-  /// the backend's runner where it has one (CUDA: on the device), else the host searches
-  /// candidate by candidate. The turns are the same either way.
+  /// Runs each level's turn-search attempts in bulk (collision/batched_scan.hpp) through this
+  /// runner when set. The turns are the same either way.
   AttemptRunner* attempts = nullptr;
-  /// False: the host searches candidate by candidate even where the backend has a runner.
-  bool bulk_attempts = true;
+  /// True (and `attempts` null): through the backend's runner where it has one (CUDA: on the
+  /// device). Off by default: on the 16-core H200 machine the host's candidate-by-candidate
+  /// search, which stops at the first blocking pair, plans faster (bench/results/README.md).
+  bool bulk_attempts = false;
 };
 
 struct ResolveRound {

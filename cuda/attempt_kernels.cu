@@ -43,7 +43,9 @@ __global__ void attempt_boxes_kernel(AttemptTablesView t, const AttemptGroup* gr
   }
 }
 
-__global__ void attempt_exact_kernel(StandView v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
+/// At most 128 registers a thread (4 blocks an SM): the exact test needs many, and more warps
+/// hide its latencies better than spilling costs.
+__global__ void __launch_bounds__(kThreads, 4) attempt_exact_kernel(StandView v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
                                      std::uint32_t n, std::uint32_t* touch) {
   __shared__ volatile int done[kThreads / 32];
   __shared__ WarpStage stage[kThreads / 32];

@@ -5,6 +5,7 @@
 // triangle predicates (geometry/triangle_test.hpp), the same containment test of solids.
 #include "collision/mbvt_fit.hpp"
 #include "cuda/detect_kernels.hpp"
+#include "geometry/triangle_reject.hpp"
 #include "geometry/triangle_test.hpp"
 
 namespace canopy::cuda {
@@ -119,6 +120,7 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
     detail::stage_mesh(v, ma, ta, zero, w.va, w.ba);
     detail::stage_mesh(v, mb, tb, db, w.vb, w.bb);
     const double c = clearance;
+    const float margin = clearance + kRejectSlack;
     float alo[3], ahi[3], blo[3], bhi[3];
     detail::staged_box(w.va, ma.vertex_count, alo, ahi);
     detail::staged_box(w.vb, mb.vertex_count, blo, bhi);
@@ -136,7 +138,10 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
           const std::uint32_t* ib = v.mesh_indices + mb.first_index + 3 * j;
           const Vec3f a3[3] = {w.va[ia[0]], w.va[ia[1]], w.va[ia[2]]};
           const Vec3f b3[3] = {w.vb[ib[0]], w.vb[ib[1]], w.vb[ib[2]]};
-          hit = c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3);
+          // The host's float rejections first (collision/exact.cpp posed_touch): most pairs near
+          // a contact are settled there, not in the double-precision test.
+          const TrianglePlane pa = TrianglePlane::of(a3[0], a3[1], a3[2]), pb = TrianglePlane::of(b3[0], b3[1], b3[2]);
+          hit = !triangles_rejected(pa, a3, pb, b3, margin) && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3));
         }
       }
       if (__any_sync(kFullWarp, hit)) return true;

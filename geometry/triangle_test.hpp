@@ -166,7 +166,7 @@ CANOPY_HD inline void canonical_pair(const Vec3f* pa, const Vec3f* pb, D3 a[3], 
 
 /// Whether two closed triangles meet (touching counts). Any vertex order, either argument order.
 CANOPY_HD inline bool triangles_intersect_canonical(const D3* t, const D3* u);
-CANOPY_HD inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
+CANOPY_HD_OUTLINE inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
   D3 a[3], b[3];
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);
@@ -307,7 +307,7 @@ CANOPY_HD inline bool apart_on_edge_axes(const D3 t[3], const D3 u[3], double cl
 /// Whether two closed triangles come within `clearance` of each other (intersecting counts).
 /// `likely_touching` (a pair that touched at a nearby pose) only changes the order of the work:
 /// the intersection test first, the quick rejections after; the answer is the same.
-CANOPY_HD inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance, bool likely_touching = false) {
+CANOPY_HD_OUTLINE inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance, bool likely_touching = false) {
   D3 a[3], b[3];
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);

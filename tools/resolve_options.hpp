@@ -19,7 +19,7 @@ struct ResolveOptions {
   int axis_fan = ResolveConfig{}.axis_fan;
   double scan_step = ResolveConfig{}.scan_step_deg;
   bool progress = true;
-  bool host_search = false;  // plan every attempt on the host even where the backend runs them (CUDA)
+  bool device_search = false;  // run each level's attempts through the backend's runner (CUDA: on the device)
 
   void add_to(CLI::App& app);
   ResolveConfig config() const;

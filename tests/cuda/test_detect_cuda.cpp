@@ -197,8 +197,8 @@ TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the
 }
 
 TEST_CASE("resolution's attempts on the device: the host search's turns at the organ level, with clearances, crowded") {
-  // The CUDA backend runs each level's attempts on the device (BatchedScan + CudaAttemptRunner);
-  // the CPU backend searches candidate by candidate on the host.
+  // Asked for bulk attempts, the CUDA backend runs each level's attempts on the device
+  // (BatchedScan + CudaAttemptRunner); the CPU backend searches candidate by candidate on the host.
   struct Case {
     const char* name;
     ContactLevel level;
@@ -217,6 +217,7 @@ TEST_CASE("resolution's attempts on the device: the host search's turns at the o
     auto gpu = cuda::make_cuda_backend();
     ResolveRequest req;
     req.config.level = k.level;
+    req.bulk_attempts = true;  // the CPU backend has no runner: it searches on the host
     req.config.clearance = k.clearance;
     req.config.max_rounds = k.crowded ? 5 : req.config.max_rounds;
     req.detect.level = k.level;
