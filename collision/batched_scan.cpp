@@ -91,8 +91,7 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
 }
 
 std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> cands, std::span<const double> deg,
-                                                   std::span<const std::uint64_t> want_first) {
-  // want_first packs the first axis (high 32 bits) and the axes wanted (low 32 bits).
+                                                   std::span<const std::uint64_t> want) {
   const AttemptSettings settings{search_.clearance, search_.config.level != ContactLevel::organ};
   std::vector<std::uint64_t> ok(cands.size(), 0);
   const auto group_of = [&](std::size_t j, bool near) {
@@ -100,7 +99,7 @@ std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> c
     AttemptGroup g;
     g.joint = c.joint;
     g.cos = std::cos(deg[j] * kRad), g.sin = std::sin(deg[j] * kRad);
-    g.axis_first = c.tables.axes + static_cast<std::uint32_t>(want_first[j] >> 32);
+    g.axis_first = c.tables.axes + static_cast<std::uint32_t>(want[j] >> 32);
     g.pair_first = near ? c.tables.near_first : c.tables.met_first;
     g.pair_end = near ? c.tables.near_end : c.tables.met_end;
     return g;
@@ -110,10 +109,10 @@ std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   std::vector<AttemptGroup> groups;
   std::vector<std::size_t> of;
   for (std::size_t j = 0; j < cands.size(); ++j) {
-    const auto want = static_cast<std::uint32_t>(want_first[j]);
-    if (!want) continue;
+    const auto axes = static_cast<std::uint32_t>(want[j]);
+    if (!axes) continue;
     AttemptGroup g = group_of(j, false);
-    g.axis_mask = want;
+    g.axis_mask = axes;
     groups.push_back(g), of.push_back(j);
   }
   double t = now();

@@ -7,6 +7,7 @@
 #include "helpers.hpp"
 
 #include <cstring>
+#include <vector>
 
 using namespace canopy;
 using namespace canopy::test;
@@ -63,35 +64,30 @@ TEST_CASE("batched turn search: the same turns as the host's search, bit for bit
 }
 
 TEST_CASE("batched turn search: organ level, clearances, crowded stands and many axes") {
-  SUBCASE("organ level") {
-    for (std::uint64_t seed : {2u, 3u}) {
+  struct Case {
+    const char* name;
+    std::vector<std::uint64_t> seeds;
+    bool crowded = false;
+    ContactLevel level = ContactLevel::exact;
+    double clearance = ResolveConfig{}.clearance;
+    float detect_clearance = 0;
+    int axis_fan = ResolveConfig{}.axis_fan;
+  };
+  const Case cases[] = {
+      {"organ level", {2, 3}, false, ContactLevel::organ},
+      {"detection and resolution clearances", {4, 5}, false, ContactLevel::exact, 0.002, 0.001f},
+      {"crowded: relaxed pass, last resort, unresolvable pairs", {11, 12}, true},
+      {"more axes than one group of 32", {3}, false, ContactLevel::exact, ResolveConfig{}.clearance, 0, 40},
+  };
+  for (const Case& k : cases)
+    for (std::uint64_t seed : k.seeds) {
+      INFO(k.name << ", seed " << seed);
       ResolveConfig cfg;
-      cfg.level = ContactLevel::organ;
-      const Stand s = row_stand(seed);
-      same(run(s, cfg, 0, false), run(s, cfg, 0, true));
+      cfg.level = k.level;
+      cfg.clearance = k.clearance;
+      cfg.axis_fan = k.axis_fan;
+      if (k.crowded) cfg.max_rounds = 4;
+      const Stand s = k.crowded ? random_stand(seed, 12) : row_stand(seed);
+      same(run(s, cfg, k.detect_clearance, false), run(s, cfg, k.detect_clearance, true));
     }
-  }
-  SUBCASE("detection and resolution clearances") {
-    for (std::uint64_t seed : {4u, 5u}) {
-      ResolveConfig cfg;
-      cfg.clearance = 0.002;
-      const Stand s = row_stand(seed);
-      same(run(s, cfg, 0.001f, false), run(s, cfg, 0.001f, true));
-    }
-  }
-  SUBCASE("crowded: relaxed pass, last resort, unresolvable pairs") {
-    for (std::uint64_t seed : {11u, 12u}) {
-      ResolveConfig cfg;
-      cfg.max_rounds = 4;
-      const Stand s = random_stand(seed, 12);
-      const Outcome host = run(s, cfg, 0, false);
-      same(host, run(s, cfg, 0, true));
-    }
-  }
-  SUBCASE("more axes than one group of 32") {
-    ResolveConfig cfg;
-    cfg.axis_fan = 40;
-    const Stand s = row_stand(3);
-    same(run(s, cfg, 0, false), run(s, cfg, 0, true));
-  }
 }
