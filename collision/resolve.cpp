@@ -52,20 +52,23 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   std::vector<std::vector<std::uint32_t>> cands(n);
   std::vector<std::string> why(n);
   std::vector<std::uint32_t> movers;
+  // Each contact's candidates on all threads (tens of thousands of contacts), then gathered.
+#pragma omp parallel for schedule(dynamic, 512) num_threads(threads)
   for (std::size_t i = 0; i < n; ++i) {
     if (plan_plants && !(*plan_plants)[static_cast<std::size_t>(contacts[i].plant_a)] &&
         !(*plan_plants)[static_cast<std::size_t>(contacts[i].plant_b)])
       continue;  // known (its organs' neighbours need it) but decides no turn this process keeps
     cands[i] = candidate_movers(s, joints, contacts[i], cfg, why[i]);
     if (cands[i].size() > static_cast<std::size_t>(cfg.candidates)) cands[i].resize(static_cast<std::size_t>(cfg.candidates));
-    movers.insert(movers.end(), cands[i].begin(), cands[i].end());
   }
+  for (std::size_t i = 0; i < n; ++i) movers.insert(movers.end(), cands[i].begin(), cands[i].end());
   std::sort(movers.begin(), movers.end());
   movers.erase(std::unique(movers.begin(), movers.end()), movers.end());
   const auto slot = [&](std::uint32_t m) {
     return static_cast<std::size_t>(std::lower_bound(movers.begin(), movers.end(), m) - movers.begin());
   };
   std::vector<std::vector<std::size_t>> cand_slots(n);
+#pragma omp parallel for schedule(static, 512) num_threads(threads)
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint32_t m : cands[i]) cand_slots[i].push_back(slot(m));
 
@@ -310,7 +313,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       turned.push_back(turn.organ);
     }
     std::sort(turned.begin(), turned.end());
-    const std::vector<std::uint32_t> moved = joints.update(s, turned);
+    const std::vector<std::uint32_t> moved = joints.update(s, turned, threads);
     changed = moved;
     std::vector<std::uint8_t> active(s.plant_count(), 0);
     for (std::uint32_t k : moved) {
@@ -319,9 +322,10 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
         if (!std::isfinite(v)) throw std::logic_error(fmt::format("resolution made a non-finite transform for organ {}", k));
       carried[k] = 1;
       moved_now[k] = 1;
-      fit(k);
       active[static_cast<std::size_t>(s.organs[k].plant)] = 1;
     }
+#pragma omp parallel for schedule(static, 1024) num_threads(threads)
+    for (std::size_t i = 0; i < moved.size(); ++i) fit(moved[i]);
     near.update(s, boxes, active, threads);
     t = now();
     dreq.active_plants = &active;
