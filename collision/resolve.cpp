@@ -107,6 +107,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         return std::span<const std::uint32_t>(cand_local.data() + local_first[q], local_first[q + 1] - local_first[q]);
       };
       std::vector<std::optional<TurnSearch::Candidate>> state(slots.size());
+      std::vector<std::int32_t> prepared_by(slots.size(), 0);  // the thread that made each candidate
       if (bulk) bulk->clear();
       std::vector<std::optional<Turn>> refined(slots.size());
       std::vector<std::size_t> chosen;
@@ -125,7 +126,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         for (std::size_t j = 0; j < scan.size(); ++j) {
           const std::size_t k = scan[j];
           const std::uint32_t m = movers[slots[k]];
-          if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict);
+          if (!state[k]) state[k] = search.prepare(m, contacts_of(joints, graph, m), strict), prepared_by[k] = omp_get_thread_num();
           if (!bulk) search.scan_level(*state[k], level, scratches[static_cast<std::size_t>(omp_get_thread_num())]);
         }
         const auto candidates = [&](const std::vector<std::size_t>& ks) {
@@ -164,9 +165,16 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       }
       for (std::size_t k : chosen)
         if (!turn_of[slots[k]]) turn_of[slots[k]] = refined[k];
-      // The batch's search state let go on all threads (tens of thousands of candidates).
-#pragma omp parallel for schedule(static, 256) num_threads(threads)
-      for (std::size_t k = 0; k < state.size(); ++k) state[k].reset();
+      // The batch's search state let go on all threads (tens of thousands of candidates), each
+      // candidate by the thread that made it: the allocator then returns most of its memory to
+      // that thread's own arena instead of every thread queueing on every other's (H200 machine,
+      // 16 threads, 10,000 plants: 0.20 -> 0.155 s of about 2 s of planning).
+#pragma omp parallel num_threads(threads)
+      {
+        const int me = omp_get_thread_num();
+        for (std::size_t k = 0; k < state.size(); ++k)
+          if (prepared_by[k] == me) state[k].reset();
+      }
     }
   }
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
