@@ -23,14 +23,10 @@ std::vector<std::uint32_t> HostAttemptRunner::touching(const AttemptTables& t, s
           const KeepEntry& y = t.keep[t.pairs[p].keep];
           const auto xi = static_cast<std::size_t>(x), yi = static_cast<std::size_t>(y.organ);
           if (!turned_boxes_meet(boxes_[xi], boxes_[yi], y, turn, settings.clearance)) continue;
-          bool touches = !settings.exact;
-          if (!touches) {
-            const Stand& s = *stand_;
-            const Affine3f tx = apply(turn, s.transforms[xi]);
-            touches = x < y.organ ? organs_touch_at(s, lib_, x, tx, y.organ, s.transforms[yi], y.gap, scratch)
-                                  : organs_touch_at(s, lib_, y.organ, s.transforms[yi], x, tx, y.gap, scratch);
-          }
-          if (touches) {
+          // At the organ level the boxes decide; otherwise the exact test at the turned pose.
+          if (!settings.exact ||
+              organs_touch_either(*stand_, lib_, x, apply(turn, stand_->transforms[xi]), y.organ, stand_->transforms[yi], y.gap,
+                                  scratch)) {
             out[g] |= 1u << i;
             break;
           }

@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
-#include <cstdlib>
 #include <bit>
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 
 namespace canopy {
@@ -19,6 +19,13 @@ constexpr std::size_t kGroupAxes = 32;
 using Candidate = TurnSearch::Candidate;
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+/// Adds the seconds of its scope to `sum` (CANOPY_BULK_STATS).
+struct Timed {
+  double& sum;
+  double start = now();
+  ~Timed() { sum += now() - start; }
+};
 
 }  // namespace
 
@@ -34,12 +41,7 @@ void BatchedScan::clear() {
 }
 
 void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
-  const double t0 = now();
-  struct Done {
-    double t0;
-    double& sum;
-    ~Done() { sum += now() - t0; }
-  } done{t0, times_.tables};
+  const Timed timed{times_.tables};
   // Sizes first, then every candidate's entries written in parallel into its own ranges.
   std::vector<Candidate*> add;
   for (Candidate* c : cands)
@@ -90,34 +92,35 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
   }
 }
 
-std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> cands, std::span<const double> deg,
-                                                   std::span<const std::uint64_t> want) {
+std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> cands, std::span<const double> deg,
+                                                   std::span<const AxisSet> want) {
   const AttemptSettings settings{search_.clearance, search_.config.level != ContactLevel::organ};
-  std::vector<std::uint64_t> ok(cands.size(), 0);
-  const auto group_of = [&](std::size_t j, bool near) {
-    const Candidate& c = *cands[j];
+  std::vector<std::uint32_t> ok(cands.size(), 0);
+  // The turn's cosine and sine, once per candidate (the met and the near groups share them).
+  std::vector<double> cos(cands.size()), sin(cands.size());
+  for (std::size_t j = 0; j < cands.size(); ++j) cos[j] = std::cos(deg[j] * kRad), sin[j] = std::sin(deg[j] * kRad);
+  const auto group_of = [&](std::size_t j, bool near, std::uint32_t mask) {
+    const Candidate::Tables& t = cands[j]->tables;
     AttemptGroup g;
-    g.joint = c.joint;
-    g.cos = std::cos(deg[j] * kRad), g.sin = std::sin(deg[j] * kRad);
-    g.axis_first = c.tables.axes + static_cast<std::uint32_t>(want[j] >> 32);
-    g.pair_first = near ? c.tables.near_first : c.tables.met_first;
-    g.pair_end = near ? c.tables.near_end : c.tables.met_end;
+    g.joint = cands[j]->joint;
+    g.cos = cos[j], g.sin = sin[j];
+    g.axis_first = t.axes + want[j].first;
+    g.pair_first = near ? t.near_first : t.met_first;
+    g.pair_end = near ? t.near_end : t.met_end;
+    g.axis_mask = mask;
     return g;
+  };
+  const auto touching = [&](const std::vector<AttemptGroup>& groups) {
+    const Timed timed{times_.runner};
+    return runner_.touching(tables_, groups, settings);
   };
   // The organs met, for every axis wanted.
   add_tables(cands, false);
   std::vector<AttemptGroup> groups;
   std::vector<std::size_t> of;
-  for (std::size_t j = 0; j < cands.size(); ++j) {
-    const auto axes = static_cast<std::uint32_t>(want[j]);
-    if (!axes) continue;
-    AttemptGroup g = group_of(j, false);
-    g.axis_mask = axes;
-    groups.push_back(g), of.push_back(j);
-  }
-  double t = now();
-  std::vector<std::uint32_t> touch = runner_.touching(tables_, groups, settings);
-  times_.runner += now() - t;
+  for (std::size_t j = 0; j < cands.size(); ++j)
+    if (want[j].mask) groups.push_back(group_of(j, false, want[j].mask)), of.push_back(j);
+  std::vector<std::uint32_t> touch = touching(groups);
   for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] = groups[q].axis_mask & ~touch[q];
   // A strict search's neighbours, for the axes that cleared the organs met (gathered, as the
   // host search gathers them, when a turn first clears those and the gathered ones do not cover it).
@@ -126,24 +129,22 @@ std::vector<std::uint64_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   for (std::size_t j = 0; j < cands.size(); ++j)
     if (ok[j] && cands[j]->strict) strict.push_back(cands[j]), strict_of.push_back(j);
   if (strict.empty()) return ok;
-  t = now();
+  {
+    const Timed timed{times_.gather};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
-  for (std::size_t q = 0; q < strict.size(); ++q)
-    if (strict[q]->near_deg < deg[strict_of[q]]) search_.gather_neighbours(*strict[q], deg[strict_of[q]]);
-  times_.gather += now() - t;
+    for (std::size_t q = 0; q < strict.size(); ++q)
+      if (strict[q]->near_deg < deg[strict_of[q]]) search_.gather_neighbours(*strict[q], deg[strict_of[q]]);
+  }
   times_.gathers += strict.size();
   add_tables(strict, true);
   groups.clear(), of.clear();
   for (std::size_t j : strict_of) {
-    AttemptGroup g = group_of(j, true);
-    g.axis_mask = static_cast<std::uint32_t>(ok[j]);
+    const AttemptGroup g = group_of(j, true, ok[j]);
     if (g.pair_first == g.pair_end) continue;  // no neighbour within reach: nothing to clear
     groups.push_back(g), of.push_back(j);
   }
-  t = now();
-  touch = runner_.touching(tables_, groups, settings);
-  times_.runner += now() - t;
-  for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] &= ~std::uint64_t{touch[q]};
+  touch = touching(groups);
+  for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] &= ~touch[q];
   return ok;
 }
 
@@ -161,19 +162,19 @@ void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
     for (std::size_t j = 0; j < live.size(); ++j)
       if (live[j]->found_axis < 0 && live[j]->axes.size() > first) act.push_back(live[j]), deg.push_back(hi[j]);
     if (act.empty()) break;
-    std::vector<std::uint64_t> want(act.size(), 0);
-    const double t0 = now();
+    std::vector<AxisSet> want(act.size());
+    {
+      const Timed timed{times_.limits};
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
-    for (std::size_t j = 0; j < act.size(); ++j) {
-      Candidate& c = *act[j];
-      std::uint64_t w = 0;
-      const std::size_t end = std::min(c.axes.size(), first + kGroupAxes);
-      for (std::size_t i = first; i < end; ++i)
-        if (search_.within_limit(c, c.axes[i], deg[j])) w |= std::uint64_t{1} << (i - first);
-      want[j] = std::uint64_t{first} << 32 | w;
+      for (std::size_t j = 0; j < act.size(); ++j) {
+        Candidate& c = *act[j];
+        want[j].first = static_cast<std::uint32_t>(first);
+        const std::size_t end = std::min(c.axes.size(), first + kGroupAxes);
+        for (std::size_t i = first; i < end; ++i)
+          if (search_.within_limit(c, c.axes[i], deg[j])) want[j].mask |= 1u << (i - first);
+      }
     }
-    times_.limits += now() - t0;
-    const std::vector<std::uint64_t> ok = clear_axes(act, deg, want);
+    const std::vector<std::uint32_t> ok = clear_axes(act, deg, want);
     for (std::size_t j = 0; j < act.size(); ++j) {
       if (!ok[j]) continue;
       Candidate& c = *act[j];
@@ -199,13 +200,13 @@ std::vector<Turn> BatchedScan::refine(std::span<Candidate* const> cands) {
     for (std::size_t j = 0; j < cands.size(); ++j)
       if (hi[j] - lo[j] > tol) act.push_back(cands[j]), of.push_back(j), mid.push_back(0.5 * (lo[j] + hi[j]));
     if (act.empty()) break;
-    std::vector<std::uint64_t> want(act.size());
+    std::vector<AxisSet> want(act.size());
     for (std::size_t j = 0; j < act.size(); ++j) {
       Candidate& c = *act[j];
       const auto a = static_cast<std::size_t>(c.found_axis);
-      want[j] = std::uint64_t{a} << 32 | (search_.within_limit(c, c.axes[a], mid[j]) ? 1u : 0u);
+      want[j] = AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], mid[j]) ? 1u : 0u};
     }
-    const std::vector<std::uint64_t> ok = clear_axes(act, mid, want);
+    const std::vector<std::uint32_t> ok = clear_axes(act, mid, want);
     for (std::size_t j = 0; j < act.size(); ++j) {
       const std::size_t k = of[j];
       if (!ok[j]) {

@@ -34,12 +34,15 @@ class BatchedScan {
   /// Puts each candidate's moving organs, axes and pairs with the organs met in the tables
   /// (those not there yet), and for `near` its neighbours' pairs where they were gathered anew.
   void add_tables(std::span<TurnSearch::Candidate* const> cands, bool near);
-  /// Per candidate j, the axes that clear every pair it must clear at angle deg[j]: want[j]
-  /// packs the first axis (high 32 bits) and a mask of the 32 axes from it to try (low bits);
-  /// the answer is a mask of the same axes. A strict candidate's neighbours are gathered here
-  /// when some axis clears the organs met and they do not cover deg[j] yet.
-  std::vector<std::uint64_t> clear_axes(std::span<TurnSearch::Candidate* const> cands, std::span<const double> deg,
-                                        std::span<const std::uint64_t> want);
+  /// Up to 32 of a candidate's axes: bit i of `mask` is axis first + i.
+  struct AxisSet {
+    std::uint32_t first = 0, mask = 0;
+  };
+  /// Per candidate j, the axes of want[j] that clear every pair it must clear at angle deg[j]
+  /// (a mask over the same axes). A strict candidate's neighbours are gathered here when some
+  /// axis clears the organs met and they do not cover deg[j] yet.
+  std::vector<std::uint32_t> clear_axes(std::span<TurnSearch::Candidate* const> cands, std::span<const double> deg,
+                                        std::span<const AxisSet> want);
 
   const TurnSearch& search_;
   AttemptRunner& runner_;

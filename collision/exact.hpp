@@ -109,14 +109,20 @@ bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, 
                      const Affine3f& tb, float clearance, ExactScratch& scratch, Witness* witness = nullptr,
                      bool witness_tried = false);
 
+/// organs_touch_at for two organs in either order: the test runs with the lower id first (its
+/// plant's frame, its witness order), as every caller must.
+inline bool organs_touch_either(const Stand& stand, PrototypeLibrary& lib, std::int32_t x, const Affine3f& tx, std::int32_t y,
+                                const Affine3f& ty, float clearance, ExactScratch& scratch, Witness* witness = nullptr,
+                                bool witness_tried = false) {
+  return x < y ? organs_touch_at(stand, lib, x, tx, y, ty, clearance, scratch, witness, witness_tried)
+               : organs_touch_at(stand, lib, y, ty, x, tx, clearance, scratch, witness, witness_tried);
+}
+
 /// The organ's vertices in the plant frame of `frame_plant` (its own frame moved by the origin
 /// difference), as every exact test computes them.
 void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, std::int32_t organ, std::int32_t frame_plant,
                     std::vector<Vec3f>& out);
 void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, const Affine3f& transform, std::int32_t plant,
                     std::int32_t frame_plant, std::vector<Vec3f>& out);
-
-/// Solids: closed cylinders and spheres contain what lies inside them.
-inline bool is_solid(PrototypeKind k) { return k == PrototypeKind::cylinder || k == PrototypeKind::sphere; }
 
 }  // namespace canopy

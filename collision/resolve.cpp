@@ -266,7 +266,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   out.contacts_before = left;
   std::vector<std::uint8_t> carried(s.organ_count(), 0), moved_now(s.organ_count(), 0);
   std::map<std::size_t, std::string> why;
-  std::vector<std::uint32_t> changed;  // organs moved by the last round
+  std::vector<std::uint32_t> changed;  // organs moved by the last round (the runner is told next round)
   const AttemptRunner* told = nullptr;  // the runner that has seen every organ
   std::size_t best = left;
   int best_round = 0;
@@ -321,8 +321,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       turned.push_back(turn.organ);
     }
     std::sort(turned.begin(), turned.end());
-    const std::vector<std::uint32_t> moved = joints.update(s, turned, threads);
-    changed = moved;
+    changed = joints.update(s, turned, threads);
+    const std::vector<std::uint32_t>& moved = changed;
     std::vector<std::uint8_t> active(s.plant_count(), 0);
     for (std::uint32_t k : moved) {
       const Affine3f& m = s.transforms[k];

@@ -285,8 +285,7 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
     const float gap = met ? clearance : detect_clearance;
     Witness* w = &pairs.witness[p];
-    return x < y ? organs_touch_at(s, lib, x, tx_now, y, ty, gap, scratch, w, witness_tried)
-                 : organs_touch_at(s, lib, y, ty, x, tx_now, gap, scratch, w, witness_tried);
+    return organs_touch_either(s, lib, x, tx_now, y, ty, gap, scratch, w, witness_tried);
   };
   // Whether the triangles that touched last in pair p of `set` touch at this pose: a touch there
   // is a touch of the organs (their boxes overlap then too), found for the price of a few
