@@ -1,5 +1,7 @@
 #include "cuda/attempt_runner_cuda.hpp"
 
+#include "cuda/scatter.hpp"
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -36,15 +38,7 @@ void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> b
     stats_.uploaded_bytes += boxes.size() * sizeof(Obb);
     return;
   }
-  if (changed.empty()) return;
-  std::vector<Obb> moved(changed.size());
-  for (std::size_t i = 0; i < changed.size(); ++i) moved[i] = boxes[changed[i]];
-  staged_boxes_.grow(moved.size());
-  staged_boxes_.upload_at(0, moved.data(), moved.size());
-  staged_ids_.grow(changed.size());
-  staged_ids_.upload_at(0, changed.data(), changed.size());
-  launch_scatter(boxes_.get(), staged_boxes_.get(), staged_ids_.get(), static_cast<std::uint32_t>(changed.size()),
-                 sizeof(Obb) / sizeof(std::uint32_t));
+  scatter_from_host(boxes_.get(), boxes.data(), changed, staged_ids_, staged_boxes_);
   stats_.uploaded_bytes += changed.size() * (sizeof(Obb) + sizeof(std::uint32_t));
 }
 

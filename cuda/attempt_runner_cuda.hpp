@@ -21,14 +21,14 @@ class CudaAttemptRunner : public AttemptRunner {
   void clear() override;
   std::vector<std::uint32_t> touching(const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
-  /// What the device did so far: calls, box tests, exact tests, seconds spent in calls.
+
+ private:
+  /// What the device did so far (printed with CANOPY_BULK_STATS): calls, box and exact tests,
+  /// bytes sent, seconds spent in calls.
   struct Stats {
     std::uint64_t calls = 0, groups = 0, box_tests = 0, exact_tests = 0, uploaded_bytes = 0;
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;
   };
-  const Stats& stats() const { return stats_; }
-
- private:
   /// Sends the entries of `host` appended since the last call (all of them after a clear).
   template <typename T>
   void sync(DeviceBuffer<T>& device, const std::vector<T>& host, std::size_t& sent) {

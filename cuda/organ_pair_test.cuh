@@ -93,74 +93,49 @@ __device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n,
   return count;
 }
 
-}  // namespace detail
-
-/// Whether organs a < b touch (within `clearance` when it is positive) at transforms ta and tb
-/// (each in its own plant's frame); called by all 32 lanes of a warp, answer in every lane;
-/// `done` is the warp's own shared flag. The lanes share a's triangles (each lane its own
-/// against all of b's) and stop together once any lane finds a touching pair, since the answer
-/// is an "any" (the same answer as one thread walking every pair: min and max are exact in any
-/// order, and the containment test's votes are the serial loop's conjunction and disjunction).
-///
-/// With `stage` and meshes small enough for it, the meshes are posed once into shared memory,
-/// each keeps only its triangles that reach the other's box, and the lanes share the pairs of
-/// those (the same pairs pass the same box test as below, so the answer is the same).
-__device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
-                                         const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr) {
+/// Whether any triangle pair of the staged meshes touches (the lanes share the pairs of the
+/// triangles that reach the other mesh's box). Every lane returns the same answer.
+__device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& ma, const Affine3f& ta, const MeshRef& mb,
+                                             const Affine3f& tb, Vec3f db, float clearance, WarpStage& w) {
   const unsigned lane = threadIdx.x % 32;
-  const OrganRecord ra = v.organs[a], rb = v.organs[b];
-  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
-  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
-  const Vec3f zero{0, 0, 0};
-  const Vec3f db = offset_between(v, ra.plant, rb.plant);
-  const auto solid = [](PrototypeKind p) { return p == PrototypeKind::cylinder || p == PrototypeKind::sphere; };
-  if (stage && ma.vertex_count <= WarpStage::kVertices && mb.vertex_count <= WarpStage::kVertices &&
-      ma.triangle_count <= WarpStage::kTriangles && mb.triangle_count <= WarpStage::kTriangles) {
-    WarpStage& w = *stage;
-    detail::stage_mesh(v, ma, ta, zero, w.va, w.ba);
-    detail::stage_mesh(v, mb, tb, db, w.vb, w.bb);
-    const double c = clearance;
-    const float margin = clearance + kRejectSlack;
-    float alo[3], ahi[3], blo[3], bhi[3];
-    detail::staged_box(w.va, ma.vertex_count, alo, ahi);
-    detail::staged_box(w.vb, mb.vertex_count, blo, bhi);
-    const std::uint32_t na = detail::reaching(w.ba, ma.triangle_count, blo, bhi, c, true, w.la);
-    const std::uint32_t nb = na ? detail::reaching(w.bb, mb.triangle_count, alo, ahi, c, false, w.lb) : 0;
+  stage_mesh(v, ma, ta, Vec3f{0, 0, 0}, w.va, w.ba);
+  stage_mesh(v, mb, tb, db, w.vb, w.bb);
+  const double c = clearance;
+  const float margin = clearance + kRejectSlack;
+  float alo[3], ahi[3], blo[3], bhi[3];
+  staged_box(w.va, ma.vertex_count, alo, ahi);
+  staged_box(w.vb, mb.vertex_count, blo, bhi);
+  const std::uint32_t na = reaching(w.ba, ma.triangle_count, blo, bhi, c, true, w.la);
+  const std::uint32_t nb = na ? reaching(w.bb, mb.triangle_count, alo, ahi, c, false, w.lb) : 0;
+  for (std::uint32_t k0 = 0; k0 < na * nb; k0 += 32) {
+    const std::uint32_t k = k0 + lane;
     bool hit = false;
-    for (std::uint32_t k0 = 0; k0 < na * nb; k0 += 32) {
-      const std::uint32_t k = k0 + lane;
-      if (k < na * nb) {
-        const std::uint32_t i = w.la[k / nb], j = w.lb[k % nb];
-        bool box = true;
-        for (int d = 0; d < 3; ++d) box = box && w.bb[j][d] <= w.ba[i][3 + d] + c && w.bb[j][3 + d] >= w.ba[i][d] - c;
-        if (box) {
-          const std::uint32_t* ia = v.mesh_indices + ma.first_index + 3 * i;
-          const std::uint32_t* ib = v.mesh_indices + mb.first_index + 3 * j;
-          const Vec3f a3[3] = {w.va[ia[0]], w.va[ia[1]], w.va[ia[2]]};
-          const Vec3f b3[3] = {w.vb[ib[0]], w.vb[ib[1]], w.vb[ib[2]]};
-          // The host's float rejections first (collision/exact.cpp posed_touch): most pairs near
-          // a contact are settled there, not in the double-precision test.
-          const TrianglePlane pa = TrianglePlane::of(a3[0], a3[1], a3[2]), pb = TrianglePlane::of(b3[0], b3[1], b3[2]);
-          hit = !triangles_rejected(pa, a3, pb, b3, margin) && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3));
-        }
+    if (k < na * nb) {
+      const std::uint32_t i = w.la[k / nb], j = w.lb[k % nb];
+      bool box = true;
+      for (int d = 0; d < 3; ++d) box = box && w.bb[j][d] <= w.ba[i][3 + d] + c && w.bb[j][3 + d] >= w.ba[i][d] - c;
+      if (box) {
+        const std::uint32_t* ia = v.mesh_indices + ma.first_index + 3 * i;
+        const std::uint32_t* ib = v.mesh_indices + mb.first_index + 3 * j;
+        const Vec3f a3[3] = {w.va[ia[0]], w.va[ia[1]], w.va[ia[2]]};
+        const Vec3f b3[3] = {w.vb[ib[0]], w.vb[ib[1]], w.vb[ib[2]]};
+        // The host's float rejections first (collision/exact.cpp posed_touch): most pairs near
+        // a contact are settled there, not in the double-precision test.
+        const TrianglePlane pa = TrianglePlane::of(a3[0], a3[1], a3[2]), pb = TrianglePlane::of(b3[0], b3[1], b3[2]);
+        hit = !triangles_rejected(pa, a3, pb, b3, margin) && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3));
       }
-      if (__any_sync(kFullWarp, hit)) return true;
     }
-    // Containment, on the staged vertices (the same values as below).
-    const auto inside = [&](Vec3f p, const MeshRef& m, const Vec3f* vert) {
-      bool outer = false, inner = false;
-      for (std::uint32_t f = lane; f < m.triangle_count; f += 32) {
-        const std::uint32_t* idx = v.mesh_indices + m.first_index + 3 * f;
-        const double o = orient3d(d3(vert[idx[0]]), d3(vert[idx[1]]), d3(vert[idx[2]]), d3(p));
-        outer = outer || o > 0;
-        inner = inner || o < 0;
-      }
-      return !__any_sync(kFullWarp, outer) && __any_sync(kFullWarp, inner);
-    };
-    if (solid(rb.prototype) && ma.vertex_count && inside(w.va[0], mb, w.vb)) return true;
-    if (solid(ra.prototype) && mb.vertex_count && inside(w.vb[0], ma, w.va)) return true;
-    return false;
+    if (__any_sync(kFullWarp, hit)) return true;
   }
+  return false;
+}
+
+/// Whether any triangle pair touches, vertices made as needed (meshes of any size): each lane
+/// takes a's triangles in turn against all of b's; `done` is the warp's shared flag.
+__device__ inline bool surfaces_touch(const StandView& v, const MeshRef& ma, const Affine3f& ta, const MeshRef& mb,
+                                      const Affine3f& tb, Vec3f db, float clearance, volatile int& done) {
+  const unsigned lane = threadIdx.x % 32;
+  const Vec3f zero{0, 0, 0};
   // b's box, widened by the clearance: only a's triangles inside it need the full test.
   float lo[3] = {3e38f, 3e38f, 3e38f}, hi[3] = {-3e38f, -3e38f, -3e38f};
   for (std::uint32_t i = lane; i < mb.vertex_count; i += 32) {
@@ -196,24 +171,63 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
     __syncwarp();
     if (done) break;  // the same value in every lane after the sync
   }
-  bool found = done;
-  // Containment: a point of one organ inside the other's convex solid (faces made on the fly,
-  // shared by the lanes): no face sees it outside, and one sees it strictly inside.
-  const auto inside = [&](Vec3f p, const MeshRef& m, const Affine3f& tr, Vec3f d) {
-    bool outer = false, inner = false;
-    for (std::uint32_t f = lane; f < m.triangle_count; f += 32) {
-      const D3 x = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f]));
-      const D3 y = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f + 1]));
-      const D3 z = d3(vertex(v, m, tr, d, v.mesh_indices[m.first_index + 3 * f + 2]));
-      const double o = orient3d(x, y, z, d3(p));
-      outer = outer || o > 0;
-      inner = inner || o < 0;
-    }
-    return !__any_sync(kFullWarp, outer) && __any_sync(kFullWarp, inner);
-  };
-  if (!found && solid(rb.prototype) && ma.vertex_count) found = inside(vertex(v, ma, ta, zero, 0), mb, tb, db);
-  if (!found && solid(ra.prototype) && mb.vertex_count) found = inside(vertex(v, mb, tb, db, 0), ma, ta, zero);
-  return found;
+  return done;
+}
+
+/// Whether point p lies inside the convex solid of mesh m (its vertex k is vertex_of(k)), faces
+/// shared by the lanes: no face sees it outside, and one sees it strictly inside.
+template <typename VertexOf>
+__device__ inline bool inside_solid(const StandView& v, Vec3f p, const MeshRef& m, VertexOf vertex_of) {
+  bool outer = false, inner = false;
+  for (std::uint32_t f = threadIdx.x % 32; f < m.triangle_count; f += 32) {
+    const std::uint32_t* idx = v.mesh_indices + m.first_index + 3 * f;
+    const double o = orient3d(d3(vertex_of(idx[0])), d3(vertex_of(idx[1])), d3(vertex_of(idx[2])), d3(p));
+    outer = outer || o > 0;
+    inner = inner || o < 0;
+  }
+  return !__any_sync(kFullWarp, outer) && __any_sync(kFullWarp, inner);
+}
+
+/// Whether one organ lies wholly inside the other's solid (their vertices given by vertex_a and
+/// vertex_b), for organs whose surfaces do not meet.
+template <typename VertexA, typename VertexB>
+__device__ inline bool one_inside_other(const StandView& v, const OrganRecord& ra, const MeshRef& ma, VertexA vertex_a,
+                                        const OrganRecord& rb, const MeshRef& mb, VertexB vertex_b) {
+  if (is_solid(rb.prototype) && ma.vertex_count && inside_solid(v, vertex_a(0), mb, vertex_b)) return true;
+  return is_solid(ra.prototype) && mb.vertex_count && inside_solid(v, vertex_b(0), ma, vertex_a);
+}
+
+}  // namespace detail
+
+/// Whether organs a < b touch (within `clearance` when it is positive) at transforms ta and tb
+/// (each in its own plant's frame); called by all 32 lanes of a warp, answer in every lane;
+/// `done` is the warp's own shared flag. The lanes split the triangle pairs and stop together
+/// once any lane finds a touching pair, since the answer is an "any" (the same answer as one
+/// thread walking every pair: min and max are exact in any order, and the containment test's
+/// votes are the serial loop's conjunction and disjunction); capped cylinders and spheres are
+/// solids, so an organ wholly inside one touches it too.
+///
+/// With `stage` and meshes small enough for it, the meshes are posed once into shared memory,
+/// each keeps only its triangles that reach the other's box, and the lanes share the pairs of
+/// those (the same pairs pass the same box test as without, so the answer is the same).
+__device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
+                                         const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr) {
+  const OrganRecord ra = v.organs[a], rb = v.organs[b];
+  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
+  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
+  const Vec3f zero{0, 0, 0};
+  const Vec3f db = offset_between(v, ra.plant, rb.plant);
+  // Where no surfaces meet, one organ may still lie wholly inside the other's solid (tested on
+  // the staged vertices where the meshes were staged: the same values as those made anew).
+  if (stage && ma.vertex_count <= WarpStage::kVertices && mb.vertex_count <= WarpStage::kVertices &&
+      ma.triangle_count <= WarpStage::kTriangles && mb.triangle_count <= WarpStage::kTriangles) {
+    if (detail::staged_surfaces_touch(v, ma, ta, mb, tb, db, clearance, *stage)) return true;
+    return detail::one_inside_other(v, ra, ma, [&](std::uint32_t k) { return stage->va[k]; }, rb, mb,
+                                    [&](std::uint32_t k) { return stage->vb[k]; });
+  }
+  if (detail::surfaces_touch(v, ma, ta, mb, tb, db, clearance, done)) return true;
+  return detail::one_inside_other(v, ra, ma, [&](std::uint32_t k) { return vertex(v, ma, ta, zero, k); }, rb, mb,
+                                  [&](std::uint32_t k) { return vertex(v, mb, tb, db, k); });
 }
 
 }  // namespace canopy::cuda

@@ -1,5 +1,7 @@
 #include "cuda/stand_on_device.hpp"
 
+#include "cuda/scatter.hpp"
+
 #include <algorithm>
 
 namespace canopy::cuda {
@@ -67,14 +69,8 @@ float StandOnDevice::max_radius() const {
 
 void StandOnDevice::refit(const Stand& s, const Mbvt& m, const std::vector<std::uint32_t>& moved) {
   if (moved.empty()) return;
-  // The moved organs' transforms, scattered into place.
-  std::vector<Affine3f> t;
-  t.reserve(moved.size());
-  for (std::uint32_t k : moved) t.push_back(s.transforms[k]);
-  ids_.upload(moved);
-  moved_transforms_.upload(t);
-  launch_scatter(transforms_.get(), moved_transforms_.get(), ids_.get(), static_cast<std::uint32_t>(moved.size()),
-                 sizeof(Affine3f) / 4);
+  // The moved organs' transforms, scattered into place (ids_ keeps the ids for the refit).
+  scatter_from_host(transforms_.get(), s.transforms.data(), moved, ids_, moved_transforms_);
   launch_refit_organs(tree_, ids_.get(), static_cast<std::uint32_t>(moved.size()), m.config.clearance);
   // Every cluster of the plants that moved (their LCD boxes keep the axes fixed at the build),
   // then the plants' bounds.

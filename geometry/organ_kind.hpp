@@ -1,5 +1,7 @@
 #pragma once
 /// Organ kinds and prototypes (DESIGN.md "Organs"), with their names in grammar files and exports.
+#include "geometry/hd.hpp"
+
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -16,6 +18,9 @@ inline constexpr std::array<std::string_view, 4> kPrototypeNames{"cylinder", "le
 /// Parameters each prototype takes from its module, in order: cylinder(length, radius),
 /// leaflet(length, width), sphere(radius), disk(radius).
 inline constexpr std::array<int, 4> kPrototypeArity{2, 2, 1, 1};
+
+/// Solids: closed cylinders and spheres contain what lies inside them (both backends' exact test).
+CANOPY_HD inline bool is_solid(PrototypeKind k) { return k == PrototypeKind::cylinder || k == PrototypeKind::sphere; }
 
 inline std::string_view name_of(OrganKind k) { return kOrganKindNames[static_cast<int>(k)]; }
 inline std::string_view name_of(PrototypeKind k) { return kPrototypeNames[static_cast<int>(k)]; }
