@@ -66,8 +66,28 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   }
 }
 
-bool witness_touches(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
-                     const Affine3f& pose_b, float clearance, const Witness& w) {
+namespace {
+
+/// Whether the boxes of triangles p and q lie more than c apart along x, y or z (in double, as
+/// posed_touch compares a triangle's box with the other organ's widened box).
+bool boxes_apart(const Vec3f* p, const Vec3f* q, double c) {
+  for (int k = 0; k < 3; ++k) {
+    const auto lo_hi = [k](const Vec3f* t, float& lo, float& hi) {
+      const auto at = [k](const Vec3f& v) { return k == 0 ? v.x : k == 1 ? v.y : v.z; };
+      lo = std::min(at(t[0]), std::min(at(t[1]), at(t[2]))), hi = std::max(at(t[0]), std::max(at(t[1]), at(t[2])));
+    };
+    float plo, phi, qlo, qhi;
+    lo_hi(p, plo, phi), lo_hi(q, qlo, qhi);
+    if (static_cast<double>(plo) > static_cast<double>(qhi) + c || static_cast<double>(qlo) > static_cast<double>(phi) + c)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
+                          const Affine3f& pose_b, float clearance, const Witness& w) {
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
   const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
@@ -84,15 +104,21 @@ bool witness_touches(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
       p[k] = apply(pose_a, ma.positions[ma.indices[3 * wa + static_cast<std::size_t>(k)]]) + Vec3f{0, 0, 0};
       q[k] = apply(pose_b, mb.positions[mb.indices[3 * wb + static_cast<std::size_t>(k)]]) + d;
     }
-    if (clearance > 0 ? triangles_within(p, q, clearance, true) : triangles_intersect(p, q)) return true;
+    // The triangles' boxes first, as posed_touch filters triangles by box: most witnesses of a
+    // pose a few degrees on are clear of each other by more than the clearance.
+    if (boxes_apart(p, q, clearance)) continue;
+    if (clearance > 0 ? triangles_within(p, q, clearance, true) : triangles_intersect(p, q)) return slot;
   }
-  return false;
+  return -1;
 }
 
 bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
                      const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried) {
   assert(a < b);
-  if (witness && !witness_tried && witness_touches(s, lib, a, pose_a, b, pose_b, clearance, *witness)) return true;
+  if (witness && !witness_tried) {
+    const int slot = witness_slot_touching(s, lib, a, pose_a, b, pose_b, clearance, *witness);
+    if (slot >= 0) return witness->promote(slot), true;
+  }
   const std::int32_t frame = s.organs[static_cast<std::size_t>(a)].plant;
   const PosedOrgan& pa = x.poses.get(s, lib, a, pose_a, frame);
   const PosedOrgan& pb = x.poses.get(s, lib, b, pose_b, frame, &pa);

@@ -92,12 +92,23 @@ struct Witness {
     latest = static_cast<std::int8_t>((latest + 1) % kSlots);
     tri_a[latest] = static_cast<std::uint16_t>(a), tri_b[latest] = static_cast<std::uint16_t>(b);
   }
+  /// Makes slot k the newest (it swaps places with the newest): the pair found touching again.
+  void promote(int k) {
+    if (k == latest || k < 0) return;
+    std::swap(tri_a[k], tri_a[latest]);
+    std::swap(tri_b[k], tri_b[latest]);
+  }
 };
 
-/// Whether witness triangle pairs of organs a < b touch at the given transforms (a's plant frame):
-/// the quick first check of organs_touch_at, making only the six vertices of each pair.
-bool witness_touches(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
-                     const Affine3f& tb, float clearance, const Witness& witness);
+/// The slot of the newest witness triangle pair of organs a < b that touches at the given
+/// transforms (a's plant frame), or -1: the quick first check of organs_touch_at, making only
+/// the six vertices of each pair.
+int witness_slot_touching(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
+                          const Affine3f& tb, float clearance, const Witness& witness);
+inline bool witness_touches(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
+                            const Affine3f& tb, float clearance, const Witness& witness) {
+  return witness_slot_touching(stand, lib, a, ta, b, tb, clearance, witness) >= 0;
+}
 /// The full test of two posed organs (a < b; b posed in a's plant's frame), remembering the
 /// touching triangles in `witness` when given.
 bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);

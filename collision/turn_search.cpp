@@ -165,6 +165,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   }
   for (Vec3d a : {h, h * -1.0})
     if (length(a) > 0.5) c.axes.push_back(a);
+  c.axis_block.assign(c.axes.size(), Candidate::AxisBlock{});
   return c;
 }
 
@@ -181,6 +182,8 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   c.keep.resize(met), c.keep_box.resize(met), c.keep_off.resize(met);
   for (Candidate::Blocker& b : c.blocker)
     if (b.set == 1) b = Candidate::Blocker{};
+  for (Candidate::AxisBlock& b : c.axis_block)
+    if (b.by.set == 1) b = Candidate::AxisBlock{};
   // The region the subtree can sweep: per moving organ the ball about its centre grown by its
   // chord, its radius and both clearances (link_pairs' test below, with room for its rounding
   // slack), and one box around them all; a neighbour's sphere must reach into that box.
@@ -253,7 +256,7 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   keep_boxes(c, met);
 }
 
-bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const {
+bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch, int axis) const {
   const Stand& s = stand;
   const Mat3d r = rotation(c, a, deg);
   // The joint's rotation is made only near its limit, or when the attempt succeeds.
@@ -290,15 +293,27 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   // Whether the triangles that touched last in pair p of `set` touch at this pose: a touch there
   // is a touch of the organs (their boxes overlap then too), found for the price of a few
   // triangle tests.
-  const auto witness_meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p) {
+  const auto witness_meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p, const Witness& w) {
+    if (w.latest < 0) return -1;
     const PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
-    const Witness& w = pairs.witness[p];
-    if (w.latest < 0) return false;
     const std::int32_t x = c.moving[i], y = c.keep[pairs.y[p]];
     const Affine3f& tx_now = pose(x);
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
     const float gap = set == 0 ? clearance : detect_clearance;
-    return x < y ? witness_touches(s, lib, x, tx_now, y, ty, gap, w) : witness_touches(s, lib, y, ty, x, tx_now, gap, w);
+    return x < y ? witness_slot_touching(s, lib, x, tx_now, y, ty, gap, w) : witness_slot_touching(s, lib, y, ty, x, tx_now, gap, w);
+  };
+  // What blocked this axis last, kept for the next attempt about it: the pair and, at the exact
+  // level, the triangles that touched (the pair's newest witness slot).
+  Candidate::AxisBlock* const memo = axis >= 0 && static_cast<std::size_t>(axis) < c.axis_block.size()
+                                         ? &c.axis_block[static_cast<std::size_t>(axis)] : nullptr;
+  const auto blocked_by = [&](std::uint32_t set, std::uint32_t i, std::uint32_t p) {
+    if (!memo) return false;
+    const Witness& w = (set == 0 ? c.met_pairs : c.near_pairs).witness[p];
+    memo->by = {set, i, p};
+    const bool known = w.latest >= 0;
+    memo->tri_a = known ? w.tri_a[w.latest] : Witness::kNone;
+    memo->tri_b = known ? w.tri_b[w.latest] : Witness::kNone;
+    return false;
   };
   // The pairs that blocked the last attempts first (nearby poses are blocked by the same pairs),
   // their witness triangles before any full test; the answer, a conjunction over the pairs, does
@@ -312,13 +327,21 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     return c.blocker[(c.latest_blocker - n + Candidate::kBlockers) % Candidate::kBlockers];
   };
   const bool exact = config.level != ContactLevel::organ;
+  if (exact && memo && memo->by.pair != kNoPair && memo->tri_a != Witness::kNone) {
+    Witness last;
+    last.remember(memo->tri_a, memo->tri_b);
+    if (witness_meets(memo->by.set, memo->by.organ, memo->by.pair, last) >= 0) return false;
+  }
   for (int n = 0; exact && n < Candidate::kBlockers; ++n) {
     const Candidate::Blocker& b = recent_blocker(n);
-    if (b.pair != kNoPair && witness_meets(b.set, b.organ, b.pair)) return false;
+    if (b.pair == kNoPair) continue;
+    Witness& w = (b.set == 0 ? c.met_pairs : c.near_pairs).witness[b.pair];
+    const int slot = witness_meets(b.set, b.organ, b.pair, w);
+    if (slot >= 0) return w.promote(slot), blocked_by(b.set, b.organ, b.pair);
   }
   for (int n = 0; n < Candidate::kBlockers; ++n) {
     const Candidate::Blocker& b = recent_blocker(n);
-    if (b.pair != kNoPair && meets(b.set, b.organ, b.pair, exact)) return false;
+    if (b.pair != kNoPair && meets(b.set, b.organ, b.pair, exact)) return blocked_by(b.set, b.organ, b.pair);
   }
   // Then the organs met (the likeliest to fail), then the neighbours to keep clear.
   for (std::uint32_t set = 0; set < 2; ++set) {
@@ -332,7 +355,7 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
         if (blocked_before(set, p) || !meets(set, i, p)) continue;
         c.latest_blocker = (c.latest_blocker + 1) % Candidate::kBlockers;
         c.blocker[c.latest_blocker] = {set, static_cast<std::uint32_t>(i), p};
-        return false;
+        return blocked_by(set, static_cast<std::uint32_t>(i), p);
       }
   }
   if (!limit_near) local = Joints::local_after(c.frame, r);
@@ -364,7 +387,7 @@ bool TurnSearch::scan_level(Candidate& c, int level, ExactScratch& scratch) cons
   const double hi = std::min(level * step / c.weight, c.reach_deg);
   for (std::size_t i = 0; i < c.axes.size(); ++i) {
     Mat3d local;
-    if (!attempt(c, c.axes[i], hi, local, scratch)) continue;
+    if (!attempt(c, c.axes[i], hi, local, scratch, static_cast<int>(i))) continue;
     c.found_axis = static_cast<int>(i);
     c.hi = hi;
     c.local = local;
@@ -382,7 +405,7 @@ Turn TurnSearch::refine(Candidate& c, ExactScratch& scratch) const {
   while (b_hi - b_lo > config.angle_tolerance_deg) {
     const double mid = 0.5 * (b_lo + b_hi);
     Mat3d m;
-    if (attempt(c, a, mid, m, scratch)) b_hi = mid, best = m;
+    if (attempt(c, a, mid, m, scratch, c.found_axis)) b_hi = mid, best = m;
     else b_lo = mid;
   }
   return Turn{c.mover, best, b_hi};

@@ -109,6 +109,15 @@ struct TurnSearch {
     static constexpr int kBlockers = 4;
     Blocker blocker[kBlockers];
     int latest_blocker = 0;
+    /// Per axis: the pair and the triangles (by organ order, as Witness keeps them) that blocked
+    /// the last attempt about it, tested first when the scan comes back to the axis at the next
+    /// level or the bisection tries it again: the same triangles usually still touch a few
+    /// degrees further on, and the ring of recent blockers is shared by all the axes.
+    struct AxisBlock {
+      Blocker by;
+      std::uint16_t tri_a = Witness::kNone, tri_b = Witness::kNone;
+    };
+    std::vector<AxisBlock> axis_block;
     // Scan state: angles up to lo tried and failed; found_axis >= 0 when `hi` separates.
     double lo = 0, hi = 0;
     int found_axis = -1;
@@ -131,7 +140,9 @@ struct TurnSearch {
   Turn refine(Candidate& c, ExactScratch& scratch) const;
   /// Whether turning by `deg` about axis `a` keeps the joint in its limit and clears the list;
   /// `local` gets the joint's rotation.
-  bool attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch) const;
+  /// `axis`: the index of `a` in c.axes, so that the attempt starts from what blocked that axis
+  /// last (-1: an axis of the caller's own).
+  bool attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch, int axis = -1) const;
   /// Whether turning by `deg` about `a` keeps the joint within its limit (attempt's check).
   bool within_limit(Candidate& c, const Vec3d& a, double deg) const;
   /// The joint's local rotation after turning by `deg` about `a` (what attempt gives `local`).
