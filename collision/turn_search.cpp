@@ -62,15 +62,17 @@ const Witness* ContactGraph::witness_of(std::int32_t x, std::int32_t y) const {
   return nullptr;
 }
 
-TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg) const {
+void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg, PairSet& out) const {
   const Stand& s = stand;
   const std::int32_t plant = s.organs[c.mover].plant;
-  PairSet out;
+  out.clear();
   out.first.assign(1, 0);
-  // Each organ kept clear, in the mover's plant frame: its centre and reach.
+  // Each organ kept clear, in the mover's plant frame: its centre and reach (lists kept per
+  // thread: a search links pairs hundreds of thousands of times).
   const std::size_t n = to - from;
-  std::vector<Vec3d> cy(n);
-  std::vector<double> dy(n), ry(n);
+  thread_local std::vector<Vec3d> cy;
+  thread_local std::vector<double> dy, ry;
+  cy.resize(n), dy.resize(n), ry.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::int32_t y = c.keep[from + i];
     const Vec3f off = offset_into(s, plant, y);
@@ -98,7 +100,16 @@ TurnSearch::PairSet TurnSearch::link_pairs(const Candidate& c, std::size_t from,
     out.first.push_back(static_cast<std::uint32_t>(out.y.size()));
   }
   out.witness.assign(out.y.size(), Witness{});
-  return out;
+}
+
+void TurnSearch::Candidate::recycle() {
+  Candidate old = std::move(*this);
+  *this = Candidate{};
+  const auto reuse = [](auto& to, auto& from) { from.clear(), to = std::move(from); };
+  reuse(moving, old.moving), reuse(keep, old.keep), reuse(keep_box, old.keep_box), reuse(keep_off, old.keep_off);
+  reuse(axes, old.axes), reuse(axis_block, old.axis_block);
+  for (auto [to, from] : {std::pair{&met_pairs, &old.met_pairs}, std::pair{&near_pairs, &old.near_pairs}})
+    reuse(to->first, from->first), reuse(to->y, from->y), reuse(to->witness, from->witness);
 }
 
 void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
@@ -117,8 +128,14 @@ void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
 }
 
 TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict) const {
-  const Stand& s = stand;
   Candidate c;
+  prepare(c, mover, met_all, strict);
+  return c;
+}
+
+void TurnSearch::prepare(Candidate& c, std::uint32_t mover, const MetPairs& met_all, bool strict) const {
+  const Stand& s = stand;
+  c.recycle();
   c.mover = mover;
   const std::int32_t plant = s.organs[mover].plant;
   const std::uint32_t end = joints.subtree_end(mover);
@@ -150,7 +167,7 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
 
   c.strict = strict;
   keep_boxes(c, 0);
-  c.met_pairs = link_pairs(c, 0, met, c.reach_deg);
+  link_pairs(c, 0, met, c.reach_deg, c.met_pairs);
   for (std::size_t i = 0; i < c.moving.size(); ++i)
     for (std::uint32_t p = c.met_pairs.first[i]; p < c.met_pairs.first[i + 1]; ++p)
       if (const Witness* w = touching.witness_of(c.moving[i], c.keep[c.met_pairs.y[p]])) c.met_pairs.witness[p] = *w;
@@ -166,7 +183,6 @@ TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& m
   for (Vec3d a : {h, h * -1.0})
     if (length(a) > 0.5) c.axes.push_back(a);
   c.axis_block.assign(c.axes.size(), Candidate::AxisBlock{});
-  return c;
 }
 
 void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
@@ -206,7 +222,8 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   };
   const auto misses = [&](const Vec3d& q, double r) { return box_misses(q - Vec3d{r, r, r}, q + Vec3d{r, r, r}); };
   // Organs already touching the subtree are other contacts' business.
-  std::vector<std::int32_t> busy;
+  thread_local std::vector<std::int32_t> busy;
+  busy.clear();
   for (std::int32_t x : c.moving)
     for (std::uint32_t e = touching.first[static_cast<std::size_t>(x)]; e < touching.first[static_cast<std::size_t>(x) + 1]; ++e)
       busy.push_back(touching.with[e]);
@@ -244,9 +261,10 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
       }
     }
   }
-  c.near_pairs = link_pairs(c, met, c.keep.size(), cover);
+  link_pairs(c, met, c.keep.size(), cover, c.near_pairs);
   // Only the neighbours some pair names stay (in their order; the pairs renumbered).
-  std::vector<std::uint32_t> renumber(c.keep.size(), kNoPair);
+  thread_local std::vector<std::uint32_t> renumber;
+  renumber.assign(c.keep.size(), kNoPair);
   for (std::uint32_t k : c.near_pairs.y) renumber[k] = 0;
   std::size_t kept = met;
   for (std::size_t k = met; k < c.keep.size(); ++k)
