@@ -7,6 +7,7 @@
 /// and the current transform is T_k = D_k o G_k (G the grown transform). The joint angle |Q_k|
 /// is what the joint limit bounds (DESIGN.md "Organs": at most joint_limit degrees from the
 /// grown orientation). Organs under no turned joint keep their grown transform bit for bit.
+#include "geometry/first_touch.hpp"
 #include "geometry/motion.hpp"
 #include "geometry/stand.hpp"
 
@@ -23,7 +24,8 @@ double rotation_angle_deg(const Mat3d& r);
 /// The resolution state of a stand: grown transforms, subtrees, the turned joints.
 class Joints {
  public:
-  explicit Joints(const Stand& stand);
+  /// From the stand as grown (its transforms kept as the grown ones), on `threads` threads.
+  explicit Joints(const Stand& stand, int threads = 1);
 
   /// Organs [k, subtree_end(k)) are k and everything distal to it (the structure tree is
   /// depth-first in string order).
@@ -60,7 +62,7 @@ class Joints {
   }
 
  private:
-  std::vector<Affine3f> grown_;
+  std::vector<Affine3f, FirstTouchAllocator<Affine3f>> grown_;  // written by the threads that use it
   std::vector<std::int32_t> parent_;
   std::vector<std::uint32_t> subtree_end_;
   std::vector<std::int32_t> slot_;   // per organ: index into local_, -1 never turned

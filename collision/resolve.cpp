@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -242,12 +243,33 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     throw std::invalid_argument(fmt::format("resolution at the {} level was given contacts of the {} level", name_of(cfg.level),
                                             name_of(initial.level)));
   ResolveResult out;
-  Joints joints(s);
-  PrototypeLibrary lib;
-  for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // made before threads share them
   DetectRequest dreq = req.detect;
   dreq.level = cfg.level;
   const int threads = dreq.threads > 0 ? dreq.threads : omp_get_max_threads();
+  Joints joints(s, threads);
+  PrototypeLibrary lib;
+  // Every mesh the stand uses, made before threads share them (which ones: found on all threads;
+  // a level of detail out of range is left to the library to report, organ by organ).
+  std::array<std::array<bool, kMaxLod + 1>, 4> used{};
+  bool odd_lod = false;
+#pragma omp parallel num_threads(threads) reduction(|| : odd_lod)
+  {
+    std::array<std::array<bool, kMaxLod + 1>, 4> mine{};
+#pragma omp for schedule(static) nowait
+    for (std::size_t k = 0; k < s.organ_count(); ++k) {
+      const OrganRecord& r = s.organs[k];
+      if (r.lod >= 1 && r.lod <= kMaxLod) mine[static_cast<std::size_t>(r.prototype)][static_cast<std::size_t>(r.lod)] = true;
+      else odd_lod = true;
+    }
+#pragma omp critical
+    for (std::size_t p = 0; p < used.size(); ++p)
+      for (std::size_t l = 0; l < used[p].size(); ++l) used[p][l] = used[p][l] || mine[p][l];
+  }
+  for (std::size_t p = 0; p < used.size(); ++p)
+    for (int l = 1; l <= kMaxLod; ++l)
+      if (used[p][static_cast<std::size_t>(l)]) lib.get(static_cast<PrototypeKind>(p), l);
+  if (odd_lod)
+    for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);
   // Written in full by the parallel fit below, which also faults its pages in.
   std::vector<Obb, FirstTouchAllocator<Obb>> boxes(s.organ_count());
   const auto fit = [&](std::size_t k) {
