@@ -42,6 +42,19 @@ const MetPairs& contacts_of(const Joints& joints, const ContactGraph& g, std::ui
   return met;
 }
 
+/// The candidates of a batch come from a pool per thread, whose lists keep their memory from
+/// batch to batch and round to round: made, recycled and reused by the thread that took them,
+/// let go only when resolution ends (10,000 plants on the H200 machine's 16 threads: letting
+/// tens of thousands of candidates go after each batch cost about 0.2 s of 1.9 s of planning).
+struct CandidatePool {
+  std::vector<std::unique_ptr<TurnSearch::Candidate>> owned;
+  std::size_t used = 0;
+  TurnSearch::Candidate* take() {
+    if (used == owned.size()) owned.push_back(std::make_unique<TurnSearch::Candidate>());
+    return owned[used++].get();
+  }
+};
+
 /// One round's turns, all planned against the poses at the start of the round. Each contact
 /// takes the cheapest turn among its first candidate movers, each mover asked to separate every
 /// contact its subtree has (so a mover picked by several contacts makes one turn). Movers are
@@ -49,7 +62,7 @@ const MetPairs& contacts_of(const Joints& joints, const ContactGraph& g, std::ui
 /// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
 Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
                 const TurnSearch& search, int threads, const std::function<void(std::size_t)>& planning,
-                const std::vector<std::uint8_t>* plan_plants, AttemptRunner* runner) {
+                const std::vector<std::uint8_t>* plan_plants, AttemptRunner* runner, std::vector<CandidatePool>& pools) {
   const ResolveConfig& cfg = search.config;
   const std::size_t n = contacts.size();
   std::vector<std::vector<std::uint32_t>> cands(n);
@@ -76,19 +89,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     for (std::uint32_t m : cands[i]) cand_slots[i].push_back(slot(m));
 
   std::vector<std::optional<Turn>> turn_of(movers.size());
-  // The candidates of a batch come from a pool per thread, whose lists keep their memory from
-  // batch to batch: made, recycled and reused by the thread that took them, never let go inside
-  // the round (10,000 plants on the H200 machine's 16 threads: letting tens of thousands of
-  // candidates go after each batch cost about 0.2 s of 1.9 s of planning).
-  struct Pool {
-    std::vector<std::unique_ptr<TurnSearch::Candidate>> owned;
-    std::size_t used = 0;
-    TurnSearch::Candidate* take() {
-      if (used == owned.size()) owned.push_back(std::make_unique<TurnSearch::Candidate>());
-      return owned[used++].get();
-    }
-  };
-  std::vector<Pool> pools(static_cast<std::size_t>(threads));
   // One scratch per thread for the whole round: the poses it keeps stay valid while the stand
   // does not change, so they carry over from level to level.
   std::vector<ExactScratch> scratches(static_cast<std::size_t>(threads));
@@ -100,40 +100,50 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   // batch gives the same turns as the whole list, and the search state held at once stays
   // bounded whatever the stand's size.
   constexpr std::size_t kBatch = 8192;
+  // Per batch, reused: its movers (slots into `movers`), where each sits among them (kNoPair:
+  // not in the batch), their search state, whether each is still open (not made yet, or neither
+  // found nor exhausted), wanted at this level, and refined.
+  std::vector<std::size_t> slots;
+  std::vector<std::uint32_t> local_of(movers.size(), kNoPair);
+  std::vector<TurnSearch::Candidate*> state;
+  std::vector<std::uint8_t> open, want;
+  std::vector<std::optional<Turn>> refined;
   for (bool strict : {true, false}) {
     std::vector<std::size_t> waiting;
     for (std::size_t i = 0; i < n; ++i)
       if (!resolved[i] && !cand_slots[i].empty()) waiting.push_back(i);
     for (std::size_t b0 = 0; b0 < waiting.size(); b0 += kBatch) {
       const std::size_t b1 = std::min(waiting.size(), b0 + kBatch);
-      std::vector<std::size_t> slots;  // the batch's movers (slots into `movers`)
-      for (std::size_t q = b0; q < b1; ++q) slots.insert(slots.end(), cand_slots[waiting[q]].begin(), cand_slots[waiting[q]].end());
+      slots.clear();
+      for (std::size_t q = b0; q < b1; ++q)
+        for (std::size_t g : cand_slots[waiting[q]])
+          if (local_of[g] == kNoPair) local_of[g] = 0, slots.push_back(g);
       std::sort(slots.begin(), slots.end());
-      slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+      for (std::size_t k = 0; k < slots.size(); ++k) local_of[slots[k]] = static_cast<std::uint32_t>(k);
       // Each contact's candidates as indices into the batch's movers, found once: those of
       // waiting[b0 + q] are cand_local[local_first[q], local_first[q + 1]). Pending: values of q.
       std::vector<std::uint32_t> local_first{0}, cand_local, pending;
       for (std::size_t q = b0; q < b1; ++q) {
         pending.push_back(static_cast<std::uint32_t>(q - b0));
-        for (std::size_t g : cand_slots[waiting[q]])
-          cand_local.push_back(static_cast<std::uint32_t>(std::lower_bound(slots.begin(), slots.end(), g) - slots.begin()));
+        for (std::size_t g : cand_slots[waiting[q]]) cand_local.push_back(local_of[g]);
         local_first.push_back(static_cast<std::uint32_t>(cand_local.size()));
       }
+      for (std::size_t g : slots) local_of[g] = kNoPair;
       const auto candidates_of = [&](std::uint32_t q) {
         return std::span<const std::uint32_t>(cand_local.data() + local_first[q], local_first[q + 1] - local_first[q]);
       };
-      std::vector<TurnSearch::Candidate*> state(slots.size(), nullptr);
-      for (Pool& p : pools) p.used = 0;  // the last batch's candidates are free again
+      state.assign(slots.size(), nullptr);
+      open.assign(slots.size(), 1);
+      want.assign(slots.size(), 0);
+      refined.assign(slots.size(), std::nullopt);
+      for (CandidatePool& p : pools) p.used = 0;  // the last batch's candidates are free again
       if (bulk) bulk->clear();
-      std::vector<std::optional<Turn>> refined(slots.size());
       std::vector<std::size_t> chosen;
-      std::vector<std::uint8_t> want(slots.size(), 0);
       for (int level = 1; !pending.empty(); ++level) {
         if (planning) planning(pending.size() + (waiting.size() - b1));  // this batch's + later ones
         std::fill(want.begin(), want.end(), 0);
         for (std::uint32_t q : pending)
-          for (std::uint32_t k : candidates_of(q))
-            if (!state[k] || (!state[k]->exhausted() && state[k]->found_axis < 0)) want[k] = 1;
+          for (std::uint32_t k : candidates_of(q)) want[k] |= open[k];
         std::vector<std::size_t> scan;
         for (std::size_t k = 0; k < slots.size(); ++k)
           if (want[k]) scan.push_back(k);
@@ -147,6 +157,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           // Found: refined to its smallest turn at once, by the same thread (it depends on the
           // candidate alone).
           if (!bulk && search.scan_level(*state[k], level, scratches[me])) refined[k] = search.refine(*state[k], scratches[me]);
+          open[k] = !state[k]->exhausted() && state[k]->found_axis < 0;
         }
         const auto candidates = [&](const std::vector<std::size_t>& ks) {
           std::vector<TurnSearch::Candidate*> out;
@@ -161,6 +172,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
             if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
           const std::vector<Turn> turns = bulk->refine(candidates(found));
           for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = turns[j];
+          for (std::size_t k : scan) open[k] = !state[k]->exhausted() && state[k]->found_axis < 0;
         }
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
         std::erase_if(pending, [&](std::uint32_t q) {
@@ -182,9 +194,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         if (!turn_of[slots[k]]) turn_of[slots[k]] = refined[k];
     }
   }
-  // The pools let go by the threads that made their candidates, all at once.
-#pragma omp parallel num_threads(threads)
-  pools[static_cast<std::size_t>(omp_get_thread_num())].owned.clear();
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
   // turning this round (the first contact to claim a mover keeps it).
   std::vector<std::size_t> left;
@@ -299,6 +308,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   const AttemptRunner* told = nullptr;  // the runner that has seen every organ
   std::size_t best = left;
   int best_round = 0;
+  std::vector<CandidatePool> pools(static_cast<std::size_t>(threads));
   for (int round = 1;; ++round) {
     if (left == 0) {
       out.converged = true;
@@ -329,7 +339,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     std::function<void(std::size_t)> planning;
     if (req.progress)
       planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
-    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning, part ? &part->plan : nullptr, runner);
+    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning, part ? &part->plan : nullptr, runner, pools);
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
       std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });
@@ -390,6 +400,9 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     out.rounds = round;
     why.clear();  // reasons belong to the list they were found on
   }
+  // The candidates let go by the threads that made them, all at once.
+#pragma omp parallel num_threads(threads)
+  pools[static_cast<std::size_t>(omp_get_thread_num())].owned.clear();
   out.contacts_after = left;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     if (!mine(contacts[i].plant_a)) continue;
