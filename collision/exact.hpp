@@ -69,7 +69,9 @@ class PoseCache {
   std::uint64_t clock_ = 0;
 };
 
-struct ExactScratch {
+/// One thread's working memory for exact tests. Aligned to a cache line: threads keep theirs
+/// side by side in a vector, and the pose cache's clock changes on every test.
+struct alignas(64) ExactScratch {
   PoseCache poses;
   std::vector<std::uint32_t> near_b;  // triangles of b near a
 };
