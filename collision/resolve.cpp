@@ -148,7 +148,11 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         for (std::size_t k = 0; k < slots.size(); ++k)
           if (want[k]) scan.push_back(k);
         if (scan.empty()) break;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+        // Neighbouring candidates (organs of one leaf) test against the same organs: a thread
+        // that takes a few in a row finds their poses in its cache. Chunks of up to 8, fewer
+        // where the level is short, so that no thread waits long at its end.
+        const int chunk = static_cast<int>(std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
         for (std::size_t j = 0; j < scan.size(); ++j) {
           const std::size_t k = scan[j];
           const std::uint32_t m = movers[slots[k]];
