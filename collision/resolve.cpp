@@ -23,6 +23,28 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+/// Where resolution's time goes, phase by phase over all rounds, printed at its end when
+/// CANOPY_PLAN_STATS is set (off: one branch per phase); `scan_busy` sums the candidates'
+/// scan times over the threads, so scan_busy / (threads x scan) is the scan's parallel share.
+struct PhaseTimes {
+  enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
+  bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
+  double seconds[count] = {}, scan_busy = 0, mark = now();
+  void lap(Phase p) {
+    if (!on) return;
+    const double t = now();
+    seconds[p] += t - mark, mark = t;
+  }
+  void print(int threads) const {
+    if (!on) return;
+    static constexpr const char* names[count] = {"setup", "witnesses", "candidates", "bookkeeping", "scan", "pick",
+                                                 "last resort", "apply turns", "refit", "redetect", "merge", "release"};
+    std::string line = "resolution phases (s):";
+    for (int p = 0; p < count; ++p) line += fmt::format(" {} {:.3f},", names[p], seconds[p]);
+    fmt::print(stderr, "{} scan busy {:.2f} thread-s on {} threads\n", line, scan_busy, threads);
+  }
+};
+
 struct Plan {
   std::vector<Turn> turns;                   // by organ id
   std::map<std::size_t, std::string> why;    // contacts no turn took care of, by index
@@ -62,7 +84,8 @@ struct alignas(64) CandidatePool {  // one per thread, side by side: a cache lin
 /// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
 Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
                 const TurnSearch& search, int threads, const std::function<void(std::size_t)>& planning,
-                const std::vector<std::uint8_t>* plan_plants, AttemptRunner* runner, std::vector<CandidatePool>& pools) {
+                const std::vector<std::uint8_t>* plan_plants, AttemptRunner* runner, std::vector<CandidatePool>& pools,
+                PhaseTimes& times) {
   const ResolveConfig& cfg = search.config;
   const std::size_t n = contacts.size();
   std::vector<std::vector<std::uint32_t>> cands(n);
@@ -89,6 +112,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     for (std::uint32_t m : cands[i]) cand_slots[i].push_back(slot(m));
 
   std::vector<std::optional<Turn>> turn_of(movers.size());
+  times.lap(PhaseTimes::candidates);
   // One scratch per thread for the whole round: the poses it keeps stay valid while the stand
   // does not change, so they carry over from level to level.
   std::vector<ExactScratch> scratches(static_cast<std::size_t>(threads));
@@ -152,8 +176,10 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         // that takes a few in a row finds their poses in its cache. Chunks of up to 8, fewer
         // where the level is short, so that no thread waits long at its end.
         const int chunk = static_cast<int>(std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
+        times.lap(PhaseTimes::bookkeeping);
 #pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
         for (std::size_t j = 0; j < scan.size(); ++j) {
+          const double started = times.on ? now() : 0;
           const std::size_t k = scan[j];
           const std::uint32_t m = movers[slots[k]];
           const auto me = static_cast<std::size_t>(omp_get_thread_num());
@@ -162,7 +188,13 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           // candidate alone).
           if (!bulk && search.scan_level(*state[k], level, scratches[me])) refined[k] = search.refine(*state[k], scratches[me]);
           open[k] = !state[k]->exhausted() && state[k]->found_axis < 0;
+          if (times.on) {
+            const double busy = now() - started;
+#pragma omp atomic
+            times.scan_busy += busy;
+          }
         }
+        times.lap(PhaseTimes::scan);
         const auto candidates = [&](const std::vector<std::size_t>& ks) {
           std::vector<TurnSearch::Candidate*> out;
           for (std::size_t k : ks) out.push_back(state[k]);
@@ -178,6 +210,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = turns[j];
           for (std::size_t k : scan) open[k] = !state[k]->exhausted() && state[k]->found_axis < 0;
         }
+        times.lap(PhaseTimes::scan);  // the batched scan's own work counts as scanning
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
         std::erase_if(pending, [&](std::uint32_t q) {
           const std::size_t i = waiting[b0 + q];
@@ -193,6 +226,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           chosen.push_back(*pick);
           return true;
         });
+        times.lap(PhaseTimes::pick);
       }
       for (std::size_t k : chosen)
         if (!turn_of[slots[k]]) turn_of[slots[k]] = refined[k];
@@ -227,6 +261,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       }
     }
   }
+  times.lap(PhaseTimes::last_resort);
   for (std::size_t j = 0; j < left.size(); ++j) {
     if (!alone[j]) continue;
     std::optional<Turn>& slot_turn = turn_of[slot(alone[j]->organ)];
@@ -249,6 +284,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
 
 ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest& req, const Contacts& initial) {
   const double t0 = now();
+  PhaseTimes times;
   const ResolveConfig& cfg = req.config;
   if (cfg.level != ContactLevel::exact && cfg.level != ContactLevel::organ)
     throw std::invalid_argument("resolution detects at the exact or the organ level");
@@ -313,6 +349,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   std::size_t best = left;
   int best_round = 0;
   std::vector<CandidatePool> pools(static_cast<std::size_t>(threads));
+  times.lap(PhaseTimes::setup);
   for (int round = 1;; ++round) {
     if (left == 0) {
       out.converged = true;
@@ -333,6 +370,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     rr.round = round;
     rr.contacts = left;
     double t = now();
+    times.lap(PhaseTimes::merge);  // the loop's own checks
     touching.build(s.organ_count(), contacts);
     // The runner of bulk attempts, if any (asked each round: it holds the stand as detected last),
     // told which organs moved since it last looked.
@@ -340,10 +378,11 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     if (runner) runner->update_organs(s, boxes, changed, runner != told), told = runner;
     // The witnesses serve the host's attempts (a bulk scan tests every pair in full).
     if (cfg.level == ContactLevel::exact && !runner) touching.find_witnesses(s, lib, search.clearance, threads);
+    times.lap(PhaseTimes::witnesses);
     std::function<void(std::size_t)> planning;
     if (req.progress)
       planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
-    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning, part ? &part->plan : nullptr, runner, pools);
+    Plan plan = plan_round(s, joints, contacts, touching, search, threads, planning, part ? &part->plan : nullptr, runner, pools, times);
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
       std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });
@@ -365,6 +404,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     }
     std::sort(turned.begin(), turned.end());
     changed = joints.update(s, turned, threads);
+    times.lap(PhaseTimes::apply);
     const std::vector<std::uint32_t>& moved = changed;
     std::vector<std::uint8_t> active(s.plant_count(), 0);
     for (std::uint32_t k : moved) {
@@ -378,10 +418,12 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
 #pragma omp parallel for schedule(static, 1024) num_threads(threads)
     for (std::size_t i = 0; i < moved.size(); ++i) fit(moved[i]);
     near.update(s, boxes, active, threads);
+    times.lap(PhaseTimes::refit);
     t = now();
     dreq.active_plants = &active;
     dreq.moved_organs = &moved_now;
     Contacts again = backend.redetect(s, dreq, moved);
+    times.lap(PhaseTimes::redetect);
     dreq.active_plants = nullptr;
     dreq.moved_organs = nullptr;
     rr.detect_s = now() - t;
@@ -404,9 +446,12 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     out.rounds = round;
     why.clear();  // reasons belong to the list they were found on
   }
+  times.lap(PhaseTimes::merge);
   // The candidates let go by the threads that made them, all at once.
 #pragma omp parallel num_threads(threads)
   pools[static_cast<std::size_t>(omp_get_thread_num())].owned.clear();
+  times.lap(PhaseTimes::release);
+  times.print(threads);
   out.contacts_after = left;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     if (!mine(contacts[i].plant_a)) continue;
