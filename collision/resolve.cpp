@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -100,12 +101,16 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     cands[i] = candidate_movers(s, joints, contacts[i], cfg, why[i]);
     if (cands[i].size() > static_cast<std::size_t>(cfg.candidates)) cands[i].resize(static_cast<std::size_t>(cfg.candidates));
   }
-  for (std::size_t i = 0; i < n; ++i) movers.insert(movers.end(), cands[i].begin(), cands[i].end());
-  std::sort(movers.begin(), movers.end());
-  movers.erase(std::unique(movers.begin(), movers.end()), movers.end());
-  const auto slot = [&](std::uint32_t m) {
-    return static_cast<std::size_t>(std::lower_bound(movers.begin(), movers.end(), m) - movers.begin());
-  };
+  // The movers in organ order, and each one's slot among them: a mark per organ set on all
+  // threads, then one pass over the marks (instead of sorting every contact's candidates).
+  std::vector<std::uint8_t> is_mover(s.organ_count(), 0);
+#pragma omp parallel for schedule(static, 512) num_threads(threads)
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t m : cands[i]) std::atomic_ref<std::uint8_t>(is_mover[m]).store(1, std::memory_order_relaxed);
+  const auto slot_of = std::make_unique_for_overwrite<std::uint32_t[]>(s.organ_count());  // read only where marked
+  for (std::size_t k = 0; k < s.organ_count(); ++k)
+    if (is_mover[k]) slot_of[k] = static_cast<std::uint32_t>(movers.size()), movers.push_back(static_cast<std::uint32_t>(k));
+  const auto slot = [&](std::uint32_t m) { return static_cast<std::size_t>(slot_of[m]); };
   std::vector<std::vector<std::size_t>> cand_slots(n);
 #pragma omp parallel for schedule(static, 512) num_threads(threads)
   for (std::size_t i = 0; i < n; ++i)

@@ -27,11 +27,13 @@ void ContactGraph::build(std::size_t organs, const std::vector<Contact>& contact
   for (const Contact& c : contacts) ++first[static_cast<std::size_t>(c.organ_a) + 1], ++first[static_cast<std::size_t>(c.organ_b) + 1];
   for (std::size_t i = 0; i < organs; ++i) first[i + 1] += first[i];
   with.resize(first[organs]);
-  std::vector<std::uint32_t> at(first.begin(), first.end() - 1);
+  // first[x] serves as x's cursor (it ends at first[x + 1]), then moves back by one slot.
   for (const Contact& c : contacts) {
-    with[at[static_cast<std::size_t>(c.organ_a)]++] = c.organ_b;
-    with[at[static_cast<std::size_t>(c.organ_b)]++] = c.organ_a;
+    with[first[static_cast<std::size_t>(c.organ_a)]++] = c.organ_b;
+    with[first[static_cast<std::size_t>(c.organ_b)]++] = c.organ_a;
   }
+  for (std::size_t i = organs; i > 0; --i) first[i] = first[i - 1];
+  first[0] = 0;
 }
 
 void ContactGraph::find_witnesses(const Stand& s, PrototypeLibrary& lib, float clearance, int threads) {
