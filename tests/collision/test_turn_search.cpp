@@ -111,7 +111,9 @@ TEST_CASE("turn search: an attempt clears exactly what brute force over the whol
             if (length(axis) < 0.1) axis = Vec3d{0, 0, 1};
             axis = normalized(axis);
             Mat3d local;
-            const bool got = search.attempt(c, axis, deg, local, scratch);
+            // The candidate's own axes by index too, so that each starts from what blocked it last.
+            const int own = t % 3 == 0 ? -1 : static_cast<int>(static_cast<std::size_t>(t) % c.axes.size());
+            const bool got = search.attempt(c, axis, deg, local, scratch, own);
             const bool want = brute_attempt(w, search, c, axis_angle(axis, deg * kRad), oracle_scratch);
             INFO("seed " << seed << " mover " << m << (strict ? " strict" : " relaxed") << " axis " << t << " at " << deg << " deg");
             CHECK(got == want);
