@@ -17,7 +17,7 @@ void AabbTree::build(const Stand& s, PrototypeLibrary& lib, const KindMask& coll
   ids_.clear();
   for (std::size_t i = 0; i < n; ++i)
     if (collide[static_cast<std::size_t>(s.organs[i].kind)]) ids_.push_back(static_cast<std::uint32_t>(i));
-  for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);
+  make_meshes(s, lib);
 #pragma omp parallel
   {
     OrganMesh mesh;

@@ -154,7 +154,7 @@ void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
   std::vector<Candidate*> live;
   std::vector<double> hi;
   for (Candidate* c : cands)
-    if (c->found_axis < 0 && !c->exhausted()) live.push_back(c), hi.push_back(std::min(level * step / c->weight, c->reach_deg));
+    if (c->searching()) live.push_back(c), hi.push_back(std::min(level * step / c->weight, c->reach_deg));
   // Axes in chunks of a group's width; each candidate takes the first axis that clears.
   for (std::size_t first = 0;; first += kGroupAxes) {
     std::vector<Candidate*> act;

@@ -7,6 +7,7 @@
 #include "collision/exact.hpp"
 #include "collision/lcd_descent.hpp"
 #include "collision/mbvt_fit.hpp"
+#include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -185,7 +186,7 @@ class CpuBackend : public DetectionBackend {
     // Exact level.
     t = now();
     std::vector<std::uint8_t> hit(organ.size(), 0);
-    for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // every mesh made before threads share them
+    make_meshes(s, lib, threads);
 #pragma omp parallel num_threads(threads)
     {
       ExactScratch scratch;

@@ -3,13 +3,13 @@
 #include "collision/batched_scan.hpp"
 #include "collision/neighbourhood.hpp"
 #include "collision/turn_search.hpp"
+#include "geometry/organ_mesh.hpp"
 #include "geometry/first_touch.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -192,7 +192,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           // Found: refined to its smallest turn at once, by the same thread (it depends on the
           // candidate alone).
           if (!bulk && search.scan_level(*state[k], level, scratches[me])) refined[k] = search.refine(*state[k], scratches[me]);
-          open[k] = !state[k]->exhausted() && state[k]->found_axis < 0;
+          open[k] = state[k]->searching();
           if (times.on) {
             const double busy = now() - started;
 #pragma omp atomic
@@ -213,7 +213,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
             if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
           const std::vector<Turn> turns = bulk->refine(candidates(found));
           for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = turns[j];
-          for (std::size_t k : scan) open[k] = !state[k]->exhausted() && state[k]->found_axis < 0;
+          for (std::size_t k : scan) open[k] = state[k]->searching();
         }
         times.lap(PhaseTimes::scan);  // the batched scan's own work counts as scanning
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
@@ -302,28 +302,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   const int threads = dreq.threads > 0 ? dreq.threads : omp_get_max_threads();
   Joints joints(s, threads);
   PrototypeLibrary lib;
-  // Every mesh the stand uses, made before threads share them (which ones: found on all threads;
-  // a level of detail out of range is left to the library to report, organ by organ).
-  std::array<std::array<bool, kMaxLod + 1>, 4> used{};
-  bool odd_lod = false;
-#pragma omp parallel num_threads(threads) reduction(|| : odd_lod)
-  {
-    std::array<std::array<bool, kMaxLod + 1>, 4> mine{};
-#pragma omp for schedule(static) nowait
-    for (std::size_t k = 0; k < s.organ_count(); ++k) {
-      const OrganRecord& r = s.organs[k];
-      if (r.lod >= 1 && r.lod <= kMaxLod) mine[static_cast<std::size_t>(r.prototype)][static_cast<std::size_t>(r.lod)] = true;
-      else odd_lod = true;
-    }
-#pragma omp critical
-    for (std::size_t p = 0; p < used.size(); ++p)
-      for (std::size_t l = 0; l < used[p].size(); ++l) used[p][l] = used[p][l] || mine[p][l];
-  }
-  for (std::size_t p = 0; p < used.size(); ++p)
-    for (int l = 1; l <= kMaxLod; ++l)
-      if (used[p][static_cast<std::size_t>(l)]) lib.get(static_cast<PrototypeKind>(p), l);
-  if (odd_lod)
-    for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);
+  make_meshes(s, lib, threads);
   // Written in full by the parallel fit below, which also faults its pages in.
   std::vector<Obb, FirstTouchAllocator<Obb>> boxes(s.organ_count());
   const auto fit = [&](std::size_t k) {

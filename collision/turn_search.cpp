@@ -402,7 +402,7 @@ Mat3d TurnSearch::local_after(Candidate& c, const Vec3d& a, double deg) const {
 }
 
 bool TurnSearch::scan_level(Candidate& c, int level, ExactScratch& scratch) const {
-  if (c.found_axis >= 0 || c.exhausted()) return c.found_axis >= 0;
+  if (!c.searching()) return c.found_axis >= 0;
   const double step = std::max(config.scan_step_deg, config.angle_tolerance_deg);
   const double hi = std::min(level * step / c.weight, c.reach_deg);
   for (std::size_t i = 0; i < c.axes.size(); ++i) {

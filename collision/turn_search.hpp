@@ -132,6 +132,8 @@ struct TurnSearch {
     } tables;
     double trig_deg = -1, trig_cos = 1, trig_sin = 0;  // the last angle turned by, its cosine and sine
     bool exhausted() const { return found_axis < 0 && lo >= reach_deg; }
+    /// Neither found nor exhausted: the scan goes on to the next level.
+    bool searching() const { return found_axis < 0 && lo < reach_deg; }
     /// Back to a new candidate's state, keeping the memory of its lists: resolution plans tens
     /// of thousands of candidates per batch, and making and letting go of their lists cost it
     /// as much as a tenth of its time on 16 threads.

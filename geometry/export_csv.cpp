@@ -46,7 +46,7 @@ T parse(std::string_view cell, const std::string& file, int line, int column) {
 void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   const Stand& s = e.stand;
   out.fixed(kOrganHeader);
-  for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // meshes made before threads share them
+  make_meshes(s, lib);
   out.plants(e.plants.size(), 16, [&](std::size_t i, std::string& t) {
     const PlantRecord& pr = s.plants[e.plants[i]];
     for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {

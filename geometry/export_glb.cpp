@@ -183,7 +183,7 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   const bool float_ids = e.organs_total <= kFloatIdLimit;
   const std::size_t n = e.plants.size();
   std::vector<PlantLayout> plan(n);
-  for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);  // make meshes before threads share them
+  make_meshes(s, lib);
 #pragma omp parallel for schedule(dynamic, 8)
   for (std::size_t i = 0; i < n; ++i) plan[i] = plan_plant(s, e.plants[i], lib, 4);
 

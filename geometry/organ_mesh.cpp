@@ -4,6 +4,7 @@
 
 #include <omp.h>
 
+#include <array>
 #include <future>
 
 namespace canopy {
@@ -57,6 +58,32 @@ void write_ordered(AtomicFile& out, std::size_t n, std::size_t chunk,
     });
   }
   if (writing.valid()) writing.get();
+}
+
+void make_meshes(const Stand& s, PrototypeLibrary& lib, int threads) {
+  const int t = threads > 0 ? threads : omp_get_max_threads();
+  std::array<std::array<bool, kMaxLod + 1>, kPrototypeNames.size()> used{};
+  bool odd_lod = false;
+#pragma omp parallel num_threads(t) reduction(|| : odd_lod)
+  {
+    std::array<std::array<bool, kMaxLod + 1>, kPrototypeNames.size()> mine{};
+#pragma omp for schedule(static) nowait
+    for (std::size_t k = 0; k < s.organ_count(); ++k) {
+      const OrganRecord& r = s.organs[k];
+      if (r.lod >= 1 && r.lod <= kMaxLod) mine[static_cast<std::size_t>(r.prototype)][static_cast<std::size_t>(r.lod)] = true;
+      else odd_lod = true;
+    }
+#pragma omp critical
+    for (std::size_t p = 0; p < used.size(); ++p)
+      for (std::size_t l = 0; l < used[p].size(); ++l) used[p][l] = used[p][l] || mine[p][l];
+  }
+  if (odd_lod) {  // the library reports it, at the first such organ
+    for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);
+    return;
+  }
+  for (std::size_t p = 0; p < used.size(); ++p)
+    for (int l = 1; l <= kMaxLod; ++l)
+      if (used[p][static_cast<std::size_t>(l)]) lib.get(static_cast<PrototypeKind>(p), l);
 }
 
 double organ_area(const Stand& stand, std::size_t id, PrototypeLibrary& library) {
