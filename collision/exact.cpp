@@ -110,7 +110,7 @@ int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a,
     // The triangles' boxes first, as posed_touch filters triangles by box: most witnesses of a
     // pose a few degrees on are clear of each other by more than the clearance.
     if (boxes_apart(p, q, clearance)) continue;
-    if (clearance > 0 ? triangles_within(p, q, clearance, false) : triangles_intersect(p, q)) return slot;
+    if (clearance > 0 ? triangles_within(p, q, clearance, n == 0) : triangles_intersect(p, q)) return slot;
   }
   return -1;
 }

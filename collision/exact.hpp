@@ -107,10 +107,6 @@ struct Witness {
 /// the six vertices of each pair.
 int witness_slot_touching(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
                           const Affine3f& tb, float clearance, const Witness& witness);
-inline bool witness_touches(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
-                            const Affine3f& tb, float clearance, const Witness& witness) {
-  return witness_slot_touching(stand, lib, a, ta, b, tb, clearance, witness) >= 0;
-}
 /// The full test of two posed organs (a < b; b posed in a's plant's frame), remembering the
 /// touching triangles in `witness` when given.
 bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
