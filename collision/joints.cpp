@@ -18,12 +18,10 @@ double rotation_angle_deg(const Mat3d& r) {
 Joints::Joints(const Stand& s, int threads) : parent_(s.organ_count()), subtree_end_(s.organ_count()), slot_(s.organ_count(), -1) {
   const std::size_t n = s.organ_count();
   grown_.resize(n);
-  // Plant by plant (a plant's organs are a contiguous run, its structure tree inside it), each
-  // run from its last organ back so that a subtree's end reaches its root.
-  bool outside = false;
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) reduction(|| : outside)
-  for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    const std::size_t first = s.plants[p].first_organ, end = first + s.plants[p].organ_count;
+  // Organs [first, end) from the last back, so that a subtree's end reaches its root; false when
+  // a parent lies outside the run.
+  const auto fill = [&](std::size_t first, std::size_t end) {
+    bool inside = true;
     for (std::size_t i = first; i < end; ++i) {
       grown_[i] = s.transforms[i];
       parent_[i] = s.organs[i].parent;  // a global id in the stand
@@ -32,21 +30,20 @@ Joints::Joints(const Stand& s, int threads) : parent_(s.organ_count()), subtree_
     for (std::size_t i = end; i-- > first;)
       if (parent_[i] >= 0) {
         const auto q = static_cast<std::size_t>(parent_[i]);
-        outside = outside || q < first || q >= end;
-        if (q >= first && q < end) subtree_end_[q] = std::max(subtree_end_[q], subtree_end_[i]);
+        if (q < first || q >= end) inside = false;
+        else subtree_end_[q] = std::max(subtree_end_[q], subtree_end_[i]);
       }
-  }
+    return inside;
+  };
+  // Plant by plant on all threads (a plant's organs are a contiguous run, its structure tree
+  // inside it); a stand whose trees or runs are not per plant, as one run.
+  bool per_plant = true;
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads) reduction(&& : per_plant)
+  for (std::size_t p = 0; p < s.plant_count(); ++p)
+    per_plant = fill(s.plants[p].first_organ, s.plants[p].first_organ + s.plants[p].organ_count) && per_plant;
   std::size_t covered = 0;
   for (const PlantRecord& p : s.plants) covered += p.organ_count;
-  if (outside || covered != n) {  // a stand whose trees or runs are not per plant: the whole list at once
-    for (std::size_t i = 0; i < n; ++i)
-      grown_[i] = s.transforms[i], parent_[i] = s.organs[i].parent, subtree_end_[i] = static_cast<std::uint32_t>(i + 1);
-    for (std::size_t i = n; i-- > 0;)
-      if (parent_[i] >= 0) {
-        auto& e = subtree_end_[static_cast<std::size_t>(parent_[i])];
-        e = std::max(e, subtree_end_[i]);
-      }
-  }
+  if (!per_plant || covered != n) fill(0, n);
 }
 
 double Joints::angle_deg(std::uint32_t k) const {

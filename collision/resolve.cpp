@@ -199,7 +199,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
             times.scan_busy += busy;
           }
         }
-        times.lap(PhaseTimes::scan);
         const auto candidates = [&](const std::vector<std::size_t>& ks) {
           std::vector<TurnSearch::Candidate*> out;
           for (std::size_t k : ks) out.push_back(state[k]);
@@ -215,7 +214,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
           for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = turns[j];
           for (std::size_t k : scan) open[k] = state[k]->searching();
         }
-        times.lap(PhaseTimes::scan);  // the batched scan's own work counts as scanning
+        times.lap(PhaseTimes::scan);  // with the batched scan's own work
         // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
         std::erase_if(pending, [&](std::uint32_t q) {
           const std::size_t i = waiting[b0 + q];
