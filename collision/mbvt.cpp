@@ -64,44 +64,56 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
   PlantPart part;
   const PlantRecord& pr = s.plants[p];
   const MbvtConfig& config = m.config;
-  // One group per compound leaf (in order of first organ), then the stem organs in runs.
-  std::vector<std::int32_t> group_of_leaf(pr.leaf_count, -1);
-  std::vector<std::vector<std::uint32_t>> groups;
-  std::vector<std::int32_t> group_leaf;
-  std::vector<std::uint32_t> stem;
-  for (std::uint32_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
+  // One group per compound leaf (in order of first organ), then the stem organs in runs: each
+  // organ's group found in one pass, the groups' organs placed by counting in a second (lists
+  // kept per thread: a plant's build makes no allocation of its own beyond its result).
+  thread_local std::vector<std::int32_t> group_of_leaf, group_of;
+  thread_local std::vector<std::int32_t> group_leaf;
+  thread_local std::vector<std::uint32_t> group_first, level, up;
+  group_of_leaf.assign(pr.leaf_count, -1);
+  group_of.assign(pr.organ_count, -1);
+  group_leaf.clear();
+  std::uint32_t stem = 0, leaf_groups = 0;
+  for (std::uint32_t k = 0; k < pr.organ_count; ++k) {
+    const std::uint32_t id = pr.first_organ + k;
     if (!m.takes_part[id]) continue;
     const std::int32_t leaf = s.organs[id].leaf;
     const std::int64_t local = static_cast<std::int64_t>(leaf) - pr.first_leaf;
     if (leaf < 0 || local < 0 || local >= static_cast<std::int64_t>(pr.leaf_count)) {
-      stem.push_back(id);
+      group_of[k] = -2 - static_cast<std::int32_t>(stem++);  // stem organ number, resolved below
       continue;
     }
     std::int32_t& g = group_of_leaf[static_cast<std::size_t>(local)];
-    if (g < 0) {
-      g = static_cast<std::int32_t>(groups.size());
-      groups.emplace_back();
-      group_leaf.push_back(leaf);
-    }
-    groups[static_cast<std::size_t>(g)].push_back(id);
+    if (g < 0) g = static_cast<std::int32_t>(leaf_groups++), group_leaf.push_back(leaf);
+    group_of[k] = g;
   }
-  const auto chunk = static_cast<std::size_t>(config.stem_cluster);
-  for (std::size_t i = 0; i < stem.size(); i += chunk) {
-    groups.emplace_back(stem.begin() + static_cast<std::ptrdiff_t>(i),
-                        stem.begin() + static_cast<std::ptrdiff_t>(std::min(stem.size(), i + chunk)));
-    group_leaf.push_back(-1);
+  const auto chunk = static_cast<std::uint32_t>(config.stem_cluster);
+  const std::uint32_t groups = leaf_groups + (stem + chunk - 1) / chunk;
+  for (std::uint32_t g = leaf_groups; g < groups; ++g) group_leaf.push_back(-1);
+  group_first.assign(groups + 1, 0);
+  for (std::uint32_t k = 0; k < pr.organ_count; ++k) {
+    std::int32_t& g = group_of[k];
+    if (g == -1) continue;
+    if (g < -1) g = static_cast<std::int32_t>(leaf_groups + static_cast<std::uint32_t>(-2 - g) / chunk);
+    ++group_first[static_cast<std::size_t>(g) + 1];
   }
-  for (std::size_t g = 0; g < groups.size(); ++g) {
+  for (std::uint32_t g = 0; g < groups; ++g) group_first[g + 1] += group_first[g];
+  part.organs.resize(group_first[groups]);
+  for (std::uint32_t k = 0; k < pr.organ_count; ++k)
+    if (group_of[k] >= 0) part.organs[group_first[static_cast<std::size_t>(group_of[k])]++] = pr.first_organ + k;
+  for (std::uint32_t g = groups; g > 0; --g) group_first[g] = group_first[g - 1];
+  group_first[0] = 0;
+  part.clusters.reserve(groups);
+  for (std::uint32_t g = 0; g < groups; ++g) {
     Cluster c;
     c.plant = static_cast<std::int32_t>(p);
     c.leaf = group_leaf[g];
-    c.first = static_cast<std::uint32_t>(part.organs.size());
-    c.count = static_cast<std::uint32_t>(groups[g].size());
-    part.organs.insert(part.organs.end(), groups[g].begin(), groups[g].end());
+    c.first = group_first[g];
+    c.count = group_first[g + 1] - group_first[g];
     // Tree leaves over chunks in string order, then parents pairing neighbours level by level
     // (the axis comes with the boxes: fit_cluster_axis).
     c.first_node = static_cast<std::uint32_t>(part.nodes.size());
-    std::vector<std::uint32_t> level;
+    level.clear();
     for (std::uint32_t k = 0; k < c.count; k += static_cast<std::uint32_t>(config.leaf_chunk)) {
       LcdNode node;
       node.first = c.first + k;
@@ -110,7 +122,7 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
       part.nodes.push_back(node);
     }
     while (level.size() > 1) {
-      std::vector<std::uint32_t> up;
+      up.clear();
       for (std::size_t i = 0; i < level.size(); i += 2) {
         if (i + 1 == level.size()) {
           up.push_back(level[i]);
@@ -124,7 +136,7 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
         up.push_back(static_cast<std::uint32_t>(part.nodes.size()));
         part.nodes.push_back(node);
       }
-      level = up;
+      std::swap(level, up);
     }
     c.root = level[0];
     c.node_count = static_cast<std::uint32_t>(part.nodes.size()) - c.first_node;
@@ -182,16 +194,13 @@ Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
 
 void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   const std::size_t n = s.organ_count();
+  // Written in full below on all threads, which also fault its pages in (FirstTouchAllocator);
+  // each organ's mesh looked up where it is used (the library's look-up is a load once made).
   m.obbs.resize(n);
-  const PrototypeMesh* meshes[4][kMaxLod + 1] = {};
-  for (const OrganRecord& r : s.organs) {
-    const PrototypeMesh*& slot = meshes[static_cast<int>(r.prototype)][r.lod];
-    if (!slot) slot = &lib.get(r.prototype, r.lod);
-  }
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const OrganRecord& r = s.organs[i];
-    m.obbs[i] = make_obb(s.transforms[i], meshes[static_cast<int>(r.prototype)][r.lod]->box, m.config.clearance);
+    m.obbs[i] = make_obb(s.transforms[i], lib.get(r.prototype, r.lod).box, m.config.clearance);
   }
   const std::size_t np = m.plants.size();
 #pragma omp parallel for schedule(dynamic, 16)

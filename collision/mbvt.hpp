@@ -7,6 +7,7 @@
 /// plant's frame (origin excluded); tests between plants add the origin difference.
 #include "collision/contacts.hpp"
 #include "geometry/lcd.hpp"
+#include "geometry/first_touch.hpp"
 #include "geometry/obb.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
@@ -55,7 +56,7 @@ struct PlantBound {
 
 struct Mbvt {
   MbvtConfig config;
-  std::vector<Obb> obbs;                      // per organ (of every organ; unused where not taking part)
+  std::vector<Obb, FirstTouchAllocator<Obb>> obbs;  // per organ (of every organ; unused where not taking part)
   std::vector<std::uint8_t> takes_part;       // per organ
   std::vector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
   std::vector<Cluster> clusters;              // plant by plant

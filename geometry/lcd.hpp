@@ -37,11 +37,27 @@ CANOPY_HD inline void lcd_add(Lcd& l, Vec3f p) {
   }
 }
 
-/// Grows `l` to contain an OBB (its 8 corners).
+/// Grows `l` to contain an OBB (its 8 corners). The corners (as obb_corners makes them) and
+/// their projections are made side by side, then taken in corner order as lcd_add of each
+/// corner would take them: the same bits (min and max of signed zeros depend on the order).
 CANOPY_HD inline void lcd_add(Lcd& l, const Obb& o) {
-  Vec3f c[8];
-  obb_corners(o, c);
-  for (int i = 0; i < 8; ++i) lcd_add(l, c[i]);
+  float q[3][8];
+  for (int i = 0; i < 8; ++i) {
+    const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1],
+                sz = (i & 4) ? o.half[2] : -o.half[2];
+    const float x = o.centre.x + o.axis[0].x * sx + o.axis[1].x * sy + o.axis[2].x * sz;
+    const float y = o.centre.y + o.axis[0].y * sx + o.axis[1].y * sy + o.axis[2].y * sz;
+    q[2][i] = o.centre.z + o.axis[0].z * sx + o.axis[1].z * sy + o.axis[2].z * sz;
+    q[0][i] = l.ax * x + l.ay * y;
+    q[1][i] = -l.ay * x + l.ax * y;
+  }
+  int first = 0;
+  if (lcd_empty(l)) {
+    for (int k = 0; k < 3; ++k) l.lo[k] = l.hi[k] = q[k][0];
+    first = 1;
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int i = first; i < 8; ++i) l.lo[k] = min_f(l.lo[k], q[k][i]), l.hi[k] = max_f(l.hi[k], q[k][i]);
 }
 
 /// Grows `l` to contain another box of the same orientation.
