@@ -32,6 +32,9 @@ struct Collector {
   std::vector<Contact> leaf, organ;
   LevelCount leaves;
   bool keep_leaves = false;
+  /// Told which organs moved (a re-detection): pairs of two unmoved organs are left out here
+  /// rather than tested and dropped afterwards.
+  const std::vector<std::uint8_t>* moved = nullptr;
   void leaf_pair(std::int32_t p, std::int32_t q, std::uint32_t i, std::uint32_t j) {
     (p == q ? leaves.within : leaves.between)++;
     if (keep_leaves) leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
@@ -42,6 +45,7 @@ void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, V
                 std::int32_t plant_a, std::int32_t plant_b) {
   // offset_ab moves b into a's plant frame when a is the lower organ; callers pass organs of
   // one plant pair with the lower plant's organ first.
+  if (out.moved && !(*out.moved)[static_cast<std::size_t>(a)] && !(*out.moved)[static_cast<std::size_t>(b)]) return;
   if (adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return;
   if (!obb_overlap(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)], offset_ab)) return;
   Contact c;
@@ -98,7 +102,8 @@ class CpuBackend : public DetectionBackend {
     }
 
     // Leaf and organ levels, plant pair by plant pair. Told which organs moved, cluster pairs of
-    // which neither cluster holds one are passed over (their organ pairs would be left out below).
+    // which neither cluster holds one are passed over, and organ pairs of two unmoved organs are
+    // left out (Collector::moved): the caller keeps its answer for those.
     t = now();
     std::vector<std::uint8_t> cluster_moved;
     if (req.moved_organs) {
@@ -123,6 +128,7 @@ class CpuBackend : public DetectionBackend {
       const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
       Collector& col = per[w];
       col.keep_leaves = req.level == ContactLevel::leaf;
+      col.moved = req.moved_organs;
       for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
         const Cluster& ca = m.clusters[i];
         // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the
@@ -170,12 +176,6 @@ class CpuBackend : public DetectionBackend {
     }
     std::sort(organ.begin(), organ.end());
     organ.erase(std::unique(organ.begin(), organ.end()), organ.end());
-    if (req.moved_organs) {  // pairs of unmoved organs keep the answer the caller has
-      const std::vector<std::uint8_t>& moved = *req.moved_organs;
-      std::erase_if(organ, [&](const Contact& c) {
-        return !moved[static_cast<std::size_t>(c.organ_a)] && !moved[static_cast<std::size_t>(c.organ_b)];
-      });
-    }
     out.counts[2] = count_pairs(organ);
     out.seconds[2] = 0;  // organ pairs come out of the same pass as the leaf level
     if (req.level == ContactLevel::organ) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 
 namespace canopy {
@@ -223,19 +224,28 @@ Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config)
 }
 
 void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs) {
+  // The moved organs' boxes, then the plants that hold one, each on all threads (a resolution
+  // round moves organs in most plants of a stand).
   std::vector<std::uint8_t> plant_dirty(m.plants.size(), 0);
-  for (std::uint32_t id : organs) {
+  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(organs.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
+    const std::uint32_t id = organs[static_cast<std::size_t>(i)];
     const OrganRecord& r = s.organs[id];
     m.obbs[id] = make_obb(s.transforms[id], lib.get(r.prototype, r.lod).box, m.config.clearance);
-    plant_dirty[static_cast<std::size_t>(r.plant)] = 1;
+    std::atomic_ref<std::uint8_t>(plant_dirty[static_cast<std::size_t>(r.plant)]).store(1, std::memory_order_relaxed);
   }
-  for (std::size_t p = 0; p < m.plants.size(); ++p) {
-    if (!plant_dirty[p]) continue;
-    PlantBound& pb = m.plants[p];
+  float radius = m.max_radius;  // grows with the plants refitted, as build_mbvt sets it
+  const std::ptrdiff_t np = static_cast<std::ptrdiff_t>(m.plants.size());
+#pragma omp parallel for schedule(dynamic, 16) reduction(max : radius)
+  for (std::ptrdiff_t p = 0; p < np; ++p) {
+    if (!plant_dirty[static_cast<std::size_t>(p)]) continue;
+    PlantBound& pb = m.plants[static_cast<std::size_t>(p)];
     for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) fit_cluster(m, m.clusters[c]);
     fit_plant(m, pb);
-    m.max_radius = std::max(m.max_radius, pb.radius);
+    radius = std::max(radius, pb.radius);
   }
+  m.max_radius = radius;
 }
 
 }  // namespace canopy
