@@ -359,6 +359,18 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     const int slot = witness_meets(b.set, b.organ, b.pair, w);
     if (slot >= 0) return w.promote(slot), blocked_by(b.set, b.organ, b.pair);
   }
+  // A full test searches outwards from its pair's newest witness triangles: for the pair that
+  // blocked this axis last, the triangles that touched about this axis, where the touch has
+  // likely moved on to (1,000 plants: 70 k of 134 k attempts blocked by a recent blocker's full
+  // test are blocked by that pair). Only the order of the work changes.
+  if (exact && memo && memo->by.pair != kNoPair && memo->tri_a != Witness::kNone) {
+    Witness& w = (memo->by.set == 0 ? c.met_pairs : c.near_pairs).witness[memo->by.pair];
+    for (int k = 0; k < Witness::kSlots; ++k)
+      if (w.tri_a[k] == memo->tri_a && w.tri_b[k] == memo->tri_b) {
+        w.promote(k);
+        break;
+      }
+  }
   for (int n = 0; n < Candidate::kBlockers; ++n) {
     const Candidate::Blocker& b = recent_blocker(n);
     if (b.pair != kNoPair && meets(b.set, b.organ, b.pair, exact)) return blocked_by(b.set, b.organ, b.pair);
