@@ -87,7 +87,7 @@ bool boxes_apart(const Vec3f* p, const Vec3f* q, double c) {
 }  // namespace
 
 int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
-                          const Affine3f& pose_b, float clearance, const Witness& w) {
+                          const Affine3f& pose_b, float clearance, const Witness& w, int skip) {
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
   const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
@@ -100,6 +100,7 @@ int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a,
   // order throughout.
   for (int n = 0; n < Witness::kSlots; ++n) {
     const int slot = (w.latest - n + Witness::kSlots) % Witness::kSlots;
+    if (slot == skip) continue;
     const std::size_t wa = w.tri_a[slot], wb = w.tri_b[slot];
     if (wa >= ta || wb >= tb) continue;
     Vec3f p[3], q[3];

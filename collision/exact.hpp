@@ -104,9 +104,10 @@ struct Witness {
 
 /// The slot of the newest witness triangle pair of organs a < b that touches at the given
 /// transforms (a's plant frame), or -1: the quick first check of organs_touch_at, making only
-/// the six vertices of each pair.
+/// the six vertices of each pair. Slot `skip` is passed over (one the caller has just seen miss
+/// at these transforms).
 int witness_slot_touching(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
-                          const Affine3f& tb, float clearance, const Witness& witness);
+                          const Affine3f& tb, float clearance, const Witness& witness, int skip = -1);
 /// The full test of two posed organs (a < b; b posed in a's plant's frame), remembering the
 /// touching triangles in `witness` when given.
 bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);

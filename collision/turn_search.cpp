@@ -313,14 +313,14 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   // Whether the triangles that touched last in pair p of `set` touch at this pose: a touch there
   // is a touch of the organs (their boxes overlap then too), found for the price of a few
   // triangle tests.
-  const auto witness_meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p, const Witness& w) {
+  const auto witness_meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p, const Witness& w, int skip = -1) {
     if (w.latest < 0) return -1;
     const PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     const std::int32_t x = c.moving[i], y = c.keep[pairs.y[p]];
     const Affine3f& tx_now = pose(x);
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
     const float gap = set == 0 ? clearance : detect_clearance;
-    return x < y ? witness_slot_touching(s, lib, x, tx_now, y, ty, gap, w) : witness_slot_touching(s, lib, y, ty, x, tx_now, gap, w);
+    return x < y ? witness_slot_touching(s, lib, x, tx_now, y, ty, gap, w, skip) : witness_slot_touching(s, lib, y, ty, x, tx_now, gap, w, skip);
   };
   // What blocked this axis last, kept for the next attempt about it: the pair and, at the exact
   // level, the triangles that touched (the pair's newest witness slot).
@@ -356,7 +356,11 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     const Candidate::Blocker& b = recent_blocker(n);
     if (b.pair == kNoPair) continue;
     Witness& w = (b.set == 0 ? c.met_pairs : c.near_pairs).witness[b.pair];
-    const int slot = witness_meets(b.set, b.organ, b.pair, w);
+    int skip = -1;  // the remembered triangles of this axis, just seen to miss
+    if (memo && memo->by.pair == b.pair && memo->by.set == b.set && memo->tri_a != Witness::kNone)
+      for (int k = 0; k < Witness::kSlots; ++k)
+        if (w.tri_a[k] == memo->tri_a && w.tri_b[k] == memo->tri_b) skip = k;
+    const int slot = witness_meets(b.set, b.organ, b.pair, w, skip);
     if (slot >= 0) return w.promote(slot), blocked_by(b.set, b.organ, b.pair);
   }
   // A full test searches outwards from its pair's newest witness triangles: for the pair that
