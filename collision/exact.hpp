@@ -94,6 +94,12 @@ struct Witness {
     latest = static_cast<std::int8_t>((latest + 1) % kSlots);
     tri_a[latest] = static_cast<std::uint16_t>(a), tri_b[latest] = static_cast<std::uint16_t>(b);
   }
+  /// The slot holding triangles (a, b), or -1.
+  int slot_of(std::uint16_t a, std::uint16_t b) const {
+    for (int k = 0; k < kSlots; ++k)
+      if (tri_a[k] == a && tri_b[k] == b) return k;
+    return -1;
+  }
   /// Makes slot k the newest (it swaps places with the newest): the pair found touching again.
   void promote(int k) {
     if (k == latest || k < 0) return;

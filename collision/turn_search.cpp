@@ -356,10 +356,9 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     const Candidate::Blocker& b = recent_blocker(n);
     if (b.pair == kNoPair) continue;
     Witness& w = (b.set == 0 ? c.met_pairs : c.near_pairs).witness[b.pair];
-    int skip = -1;  // the remembered triangles of this axis, just seen to miss
-    if (memo && memo->by.pair == b.pair && memo->by.set == b.set && memo->tri_a != Witness::kNone)
-      for (int k = 0; k < Witness::kSlots; ++k)
-        if (w.tri_a[k] == memo->tri_a && w.tri_b[k] == memo->tri_b) skip = k;
+    // The remembered triangles of this axis were just seen to miss.
+    const int skip = memo && memo->by.pair == b.pair && memo->by.set == b.set && memo->tri_a != Witness::kNone
+                         ? w.slot_of(memo->tri_a, memo->tri_b) : -1;
     const int slot = witness_meets(b.set, b.organ, b.pair, w, skip);
     if (slot >= 0) return w.promote(slot), blocked_by(b.set, b.organ, b.pair);
   }
@@ -369,11 +368,7 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   // test are blocked by that pair). Only the order of the work changes.
   if (exact && memo && memo->by.pair != kNoPair && memo->tri_a != Witness::kNone) {
     Witness& w = (memo->by.set == 0 ? c.met_pairs : c.near_pairs).witness[memo->by.pair];
-    for (int k = 0; k < Witness::kSlots; ++k)
-      if (w.tri_a[k] == memo->tri_a && w.tri_b[k] == memo->tri_b) {
-        w.promote(k);
-        break;
-      }
+    w.promote(w.slot_of(memo->tri_a, memo->tri_b));
   }
   for (int n = 0; n < Candidate::kBlockers; ++n) {
     const Candidate::Blocker& b = recent_blocker(n);

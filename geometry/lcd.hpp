@@ -37,19 +37,16 @@ CANOPY_HD inline void lcd_add(Lcd& l, Vec3f p) {
   }
 }
 
-/// Grows `l` to contain an OBB (its 8 corners). The corners (as obb_corners makes them) and
-/// their projections are made side by side, then taken in corner order as lcd_add of each
-/// corner would take them: the same bits (min and max of signed zeros depend on the order).
+/// Grows `l` to contain an OBB (its 8 corners). The corners and their projections are made side
+/// by side, then taken in corner order as lcd_add of each corner would take them: the same bits
+/// (min and max of signed zeros depend on the order).
 CANOPY_HD inline void lcd_add(Lcd& l, const Obb& o) {
   float q[3][8];
   for (int i = 0; i < 8; ++i) {
-    const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1],
-                sz = (i & 4) ? o.half[2] : -o.half[2];
-    const float x = o.centre.x + o.axis[0].x * sx + o.axis[1].x * sy + o.axis[2].x * sz;
-    const float y = o.centre.y + o.axis[0].y * sx + o.axis[1].y * sy + o.axis[2].y * sz;
-    q[2][i] = o.centre.z + o.axis[0].z * sx + o.axis[1].z * sy + o.axis[2].z * sz;
-    q[0][i] = l.ax * x + l.ay * y;
-    q[1][i] = -l.ay * x + l.ax * y;
+    const Vec3f p = obb_corner(o, i);
+    q[0][i] = l.ax * p.x + l.ay * p.y;
+    q[1][i] = -l.ay * p.x + l.ax * p.y;
+    q[2][i] = p.z;
   }
   int first = 0;
   if (lcd_empty(l)) {

@@ -70,13 +70,16 @@ CANOPY_HD inline Obb grown(Obb o, float by) {
   return o;
 }
 
+/// Corner i (0-7) of an OBB: bit k of i picks the + side of axis k.
+CANOPY_HD inline Vec3f obb_corner(const Obb& o, int i) {
+  const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1],
+              sz = (i & 4) ? o.half[2] : -o.half[2];
+  return o.centre + o.axis[0] * sx + o.axis[1] * sy + o.axis[2] * sz;
+}
+
 /// The 8 corners of an OBB.
 CANOPY_HD inline void obb_corners(const Obb& o, Vec3f out[8]) {
-  for (int i = 0; i < 8; ++i) {
-    const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1],
-                sz = (i & 4) ? o.half[2] : -o.half[2];
-    out[i] = o.centre + o.axis[0] * sx + o.axis[1] * sy + o.axis[2] * sz;
-  }
+  for (int i = 0; i < 8; ++i) out[i] = obb_corner(o, i);
 }
 
 /// Whether two OBBs overlap (closed boxes), with b shifted by `offset`. The 15 axes of the
