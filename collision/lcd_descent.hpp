@@ -10,7 +10,8 @@
 namespace canopy {
 
 /// Calls on_pair(organ_a, organ_b) for each pair of organs under leaf nodes whose boxes overlap
-/// (b's cluster carried into a's plant frame by `offset`); the larger node is split first.
+/// (b's cluster carried into a's plant frame by `offset`); the larger node is split first. The
+/// roots' boxes are known to overlap (the caller found the cluster pair by that test).
 template <typename OnPair>
 CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, const std::uint32_t* cluster_organs, std::uint32_t root_a,
                                         std::uint32_t root_b, Vec3f offset, OnPair&& on_pair) {
@@ -23,7 +24,8 @@ CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, const std::uint32_
     const std::uint32_t ia = stack[top][0], ib = stack[top][1];
     const LcdNode& na = nodes[ia];
     const LcdNode& nb = nodes[ib];
-    if (!lcd_overlap(na.box, nb.box, offset)) continue;
+    const bool roots = ia == root_a && ib == root_b;  // only the first pair: children differ from their parents
+    if (!roots && !lcd_overlap(na.box, nb.box, offset)) continue;
     const bool leaf_a = na.left < 0, leaf_b = nb.left < 0;
     if (leaf_a && leaf_b) {
       for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
