@@ -1,5 +1,6 @@
 #include "collision/mbvt.hpp"
 #include "collision/mbvt_fit.hpp"
+#include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
 
@@ -195,8 +196,10 @@ Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
 
 void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   const std::size_t n = s.organ_count();
-  // Written in full below on all threads, which also fault its pages in (FirstTouchAllocator);
-  // each organ's mesh looked up where it is used (the library's look-up is a load once made).
+  // The meshes made before threads share the library (a level of detail out of range is
+  // reported there, not thrown inside the parallel loop); the boxes written in full below on all
+  // threads, which also fault the array's pages in (FirstTouchAllocator).
+  make_meshes(s, lib);
   m.obbs.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -225,7 +228,8 @@ Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config)
 
 void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs) {
   // The moved organs' boxes, then the plants that hold one, each on all threads (a resolution
-  // round moves organs in most plants of a stand).
+  // round moves organs in most plants of a stand). Their meshes were made by build_mbvt with
+  // this library.
   std::vector<std::uint8_t> plant_dirty(m.plants.size(), 0);
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(organs.size());
 #pragma omp parallel for schedule(static)

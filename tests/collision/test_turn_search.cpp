@@ -107,12 +107,12 @@ TEST_CASE("turn search: an attempt clears exactly what brute force over the whol
           // turns first, then again for larger ones), on its own axes and random ones.
           for (int t = 0; t < 24; ++t) {
             const double deg = t < 16 ? (t + 1) * 0.07 * c.reach_deg : (24 - t) * 0.05 * c.reach_deg;
-            Vec3d axis = t % 3 == 0 ? Vec3d{u(g), u(g), u(g)} : c.axes[static_cast<std::size_t>(t) % c.axes.size()];
+            // The candidate's own axes by index too, so that each starts from what blocked it last.
+            const int own = t % 3 == 0 ? -1 : static_cast<int>(static_cast<std::size_t>(t) % c.axes.size());
+            Vec3d axis = own < 0 ? Vec3d{u(g), u(g), u(g)} : c.axes[static_cast<std::size_t>(own)];
             if (length(axis) < 0.1) axis = Vec3d{0, 0, 1};
             axis = normalized(axis);
             Mat3d local;
-            // The candidate's own axes by index too, so that each starts from what blocked it last.
-            const int own = t % 3 == 0 ? -1 : static_cast<int>(static_cast<std::size_t>(t) % c.axes.size());
             const bool got = search.attempt(c, axis, deg, local, scratch, own);
             const bool want = brute_attempt(w, search, c, axis_angle(axis, deg * kRad), oracle_scratch);
             INFO("seed " << seed << " mover " << m << (strict ? " strict" : " relaxed") << " axis " << t << " at " << deg << " deg");
