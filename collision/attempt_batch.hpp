@@ -53,13 +53,21 @@ CANOPY_HD inline Motion group_turn(const AttemptGroup& g, Vec3d axis) {
   return rotation_about(g.joint, axis_angle(axis, g.cos, g.sin));
 }
 
+/// No triangle pair known to touch (AttemptTables::witness).
+inline constexpr std::uint32_t kNoWitness = ~0u;
+
 /// A batch's tables on the host; a runner copies what was appended since it last looked.
 struct AttemptTables {
   std::vector<std::int32_t> moving;
   std::vector<KeepEntry> keep;
   std::vector<PairEntry> pairs;
+  /// Per pair: the triangles that touched when the round began (of the lower organ << 16 | of
+  /// the higher, as Witness keeps them), or kNoWitness. A runner may test them first and keep
+  /// them up to date on its side: a touch there is a touch of the organs, so only the order of
+  /// the work changes, never an answer.
+  std::vector<std::uint32_t> witness;
   std::vector<Vec3d> axes;
-  void clear() { moving.clear(), keep.clear(), pairs.clear(), axes.clear(); }
+  void clear() { moving.clear(), keep.clear(), pairs.clear(), witness.clear(), axes.clear(); }
 };
 
 /// What a runner needs besides the tables.

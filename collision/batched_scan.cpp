@@ -70,6 +70,7 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
       keep_at[j] = static_cast<std::uint32_t>(k), k += near ? add[j]->keep.size() - add[j]->met_count : add[j]->met_count;
   }
   tables_.moving.resize(n_moving), tables_.keep.resize(n_keep), tables_.pairs.resize(n_pairs), tables_.axes.resize(n_axes);
+  tables_.witness.resize(n_pairs, kNoWitness);
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (std::size_t j = 0; j < add.size(); ++j) {
     const Candidate& c = *add[j];
@@ -83,9 +84,13 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
     const TurnSearch::PairSet& pairs = near ? c.near_pairs : c.met_pairs;
     std::uint32_t at = near ? t.near_first : t.met_first;
     for (std::size_t i = 0; i < c.moving.size(); ++i)
-      for (std::uint32_t p = pairs.first[i]; p < pairs.first[i + 1]; ++p)
+      for (std::uint32_t p = pairs.first[i]; p < pairs.first[i + 1]; ++p) {
+        // The witness the round began with (the organs met touched then; neighbours did not).
+        const Witness& w = pairs.witness[p];
+        tables_.witness[at] = w.latest >= 0 ? std::uint32_t{w.tri_a[w.latest]} << 16 | w.tri_b[w.latest] : kNoWitness;
         tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),
                                         keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
+      }
     if (near) continue;
     std::copy(c.moving.begin(), c.moving.end(), tables_.moving.begin() + t.moving);
     std::copy(c.axes.begin(), c.axes.end(), tables_.axes.begin() + t.axes);

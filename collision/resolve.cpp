@@ -359,8 +359,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     // told which organs moved since it last looked.
     AttemptRunner* runner = req.attempts ? req.attempts : req.bulk_attempts ? backend.attempt_runner(s) : nullptr;
     if (runner) runner->update_organs(s, boxes, changed, runner != told), told = runner;
-    // The witnesses serve the host's attempts (a bulk scan tests every pair in full).
-    if (cfg.level == ContactLevel::exact && !runner) touching.find_witnesses(s, lib, search.clearance, threads);
+    // The witnesses serve the host's attempts, and a bulk scan's runner tests them first.
+    if (cfg.level == ContactLevel::exact) touching.find_witnesses(s, lib, search.clearance, threads);
     times.lap(PhaseTimes::witnesses);
     std::function<void(std::size_t)> planning;
     if (req.progress)

@@ -24,7 +24,7 @@ __device__ std::uint32_t group_of(const std::uint32_t* task_first, std::uint32_t
   return lo;
 }
 
-__global__ void attempt_boxes_kernel(AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
+__global__ void attempt_boxes_kernel(StandView v, AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
                                      std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings,
                                      std::uint32_t* touch, ExactAttempt* out, unsigned long long capacity, Counters* c) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
@@ -34,12 +34,30 @@ __global__ void attempt_boxes_kernel(AttemptTablesView t, const AttemptGroup* gr
   const std::uint32_t p = g.pair_first + (k - task_first[gi]);
   const PairEntry pe = t.pairs[p];
   const KeepEntry y = t.keep[pe.keep];
-  const Obb bx = t.boxes[t.moving[pe.moving]], by = t.boxes[y.organ];
+  const auto xo = static_cast<std::uint32_t>(t.moving[pe.moving]), yo = static_cast<std::uint32_t>(y.organ);
+  const Obb bx = t.boxes[xo], by = t.boxes[yo];
+  const std::uint32_t witness = settings.exact ? t.witness[p] : kNoWitness;
   for (std::uint32_t i = 0; i < 32; ++i) {
     if (!(g.axis_mask >> i & 1u)) continue;
-    if (!turned_boxes_meet(bx, by, y, group_turn(g, t.axes[g.axis_first + i]), settings.clearance)) continue;
-    if (!settings.exact) atomicOr(&touch[gi], 1u << i);
-    else append(out, capacity, c, ExactAttempt{gi, p, i});
+    const Motion turn = group_turn(g, t.axes[g.axis_first + i]);
+    if (!turned_boxes_meet(bx, by, y, turn, settings.clearance)) continue;
+    if (!settings.exact) {
+      atomicOr(&touch[gi], 1u << i);
+      continue;
+    }
+    // Another pair of the attempt touches already (the answer is an "any").
+    if (*static_cast<volatile std::uint32_t*>(&touch[gi]) >> i & 1u) continue;
+    // The triangles that touched last first: the same triangles usually still touch a few
+    // degrees on, found by one thread instead of a warp's full test.
+    if (witness != kNoWitness) {
+      const Affine3f tx = apply(turn, v.transforms[xo]), ty = v.transforms[yo];
+      if (xo < yo ? witness_touches(v, xo, tx, yo, ty, witness, y.gap) : witness_touches(v, yo, ty, xo, tx, witness, y.gap)) {
+        atomicOr(&touch[gi], 1u << i);
+        atomicAdd(&c->witness_hits, 1ull);
+        continue;
+      }
+    }
+    append(out, capacity, c, ExactAttempt{gi, p, i});
   }
 }
 
@@ -68,17 +86,21 @@ __global__ void __launch_bounds__(kThreads, 4) attempt_exact_kernel(StandView v,
   const Affine3f ty = v.transforms[yo];
   volatile int& flag = done[threadIdx.x / 32];
   WarpStage* room = &stage[threadIdx.x / 32];
-  const bool found = xo < yo ? warp_organs_touch(v, xo, tx, yo, ty, y.gap, flag, room) : warp_organs_touch(v, yo, ty, xo, tx, y.gap, flag, room);
+  // A touch found keeps its triangles as the pair's witness for the next levels (any axis's
+  // will do: they serve only as the first thing to try).
+  std::uint32_t* keep = &t.witness[task.pair];
+  const bool found = xo < yo ? warp_organs_touch(v, xo, tx, yo, ty, y.gap, flag, room, keep)
+                             : warp_organs_touch(v, yo, ty, xo, tx, y.gap, flag, room, keep);
   if (found && threadIdx.x % 32 == 0) atomicOr(&touch[task.group], bit);
 }
 
 }  // namespace
 
-void launch_attempt_boxes(AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
+void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
                           std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
                           ExactAttempt* out, unsigned long long capacity, Counters* counters) {
   if (!n_tasks) return;
-  attempt_boxes_kernel<<<blocks(n_tasks), kThreads>>>(t, groups, task_first, n_groups, n_tasks, settings, touch, out, capacity,
+  attempt_boxes_kernel<<<blocks(n_tasks), kThreads>>>(v, t, groups, task_first, n_groups, n_tasks, settings, touch, out, capacity,
                                                       counters);
   CANOPY_CUDA_CHECK_LAUNCH("attempt_boxes_kernel");
 }

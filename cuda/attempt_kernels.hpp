@@ -14,7 +14,8 @@ struct AttemptTablesView {
   const KeepEntry* keep;
   const PairEntry* pairs;
   const Vec3d* axes;
-  const Obb* boxes;  // per organ of the stand: resolution's OBBs (no clearance)
+  const Obb* boxes;        // per organ of the stand: resolution's OBBs (no clearance)
+  std::uint32_t* witness;  // per pair (AttemptTables::witness), brought up to date by the exact tests
 };
 
 /// A pair of a group whose boxes meet at one axis: the exact test decides.
@@ -23,12 +24,14 @@ struct ExactAttempt {
 };
 
 /// Tasks t < n_tasks are (group g, its pair t - task_first[g]) with task_first ascending
-/// (n_groups + 1 entries). Touching boxes set the axis bit in touch[g] at the organ level and
-/// append an ExactAttempt otherwise (past `capacity` only counted).
-void launch_attempt_boxes(AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
+/// (n_groups + 1 entries). Touching boxes set the axis bit in touch[g] at the organ level; at
+/// the exact level a pair whose witness triangles touch at the turned pose sets it too (counted
+/// in witness_hits), and the others append an ExactAttempt (past `capacity` only counted).
+void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
                           std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
                           ExactAttempt* out, unsigned long long capacity, Counters* counters);
-/// The exact test of each ExactAttempt (skipped where its axis already touches).
+/// The exact test of each ExactAttempt (skipped where its axis already touches); a pair found
+/// touching keeps the triangles that touched as its witness.
 void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
                           std::uint32_t n, std::uint32_t* touch);
 

@@ -23,9 +23,9 @@ CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
 
 CudaAttemptRunner::~CudaAttemptRunner() {
   if (std::getenv("CANOPY_BULK_STATS"))
-    fmt::print(stderr, "bulk attempts on the device: {} calls, {} groups, {} box tests, {} exact tests, {:.1f} MB up; {:.3f} s ({:.3f} up, {:.3f} boxes, {:.3f} exact)\n",
-               stats_.calls, stats_.groups, stats_.box_tests, stats_.exact_tests, stats_.uploaded_bytes / 1e6, stats_.seconds,
-               stats_.upload_s, stats_.box_s, stats_.exact_s);
+    fmt::print(stderr, "bulk attempts on the device: {} calls, {} groups, {} box tests, {} witness hits, {} exact tests, {:.1f} MB up; {:.3f} s ({:.3f} up, {:.3f} boxes, {:.3f} exact)\n",
+               stats_.calls, stats_.groups, stats_.box_tests, stats_.witness_hits, stats_.exact_tests, stats_.uploaded_bytes / 1e6,
+               stats_.seconds, stats_.upload_s, stats_.box_s, stats_.exact_s);
 }
 
 void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
@@ -42,20 +42,24 @@ void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> b
   stats_.uploaded_bytes += changed.size() * (sizeof(Obb) + sizeof(std::uint32_t));
 }
 
-void CudaAttemptRunner::clear() { moving_sent_ = keep_sent_ = pairs_sent_ = axes_sent_ = 0; }
+void CudaAttemptRunner::clear() { moving_sent_ = keep_sent_ = pairs_sent_ = witness_sent_ = axes_sent_ = 0; }
 
 std::vector<std::uint32_t> CudaAttemptRunner::touching(const AttemptTables& t, std::span<const AttemptGroup> groups,
                                                        const AttemptSettings& settings) {
   std::vector<std::uint32_t> out(groups.size(), 0);
   if (groups.empty()) return out;
   const double t0 = now();
-  if (t.moving.size() < moving_sent_ || t.keep.size() < keep_sent_ || t.pairs.size() < pairs_sent_ || t.axes.size() < axes_sent_)
+  if (t.moving.size() < moving_sent_ || t.keep.size() < keep_sent_ || t.pairs.size() < pairs_sent_ || t.axes.size() < axes_sent_ ||
+      t.witness.size() < witness_sent_)
     throw std::logic_error("bulk attempts: the tables shrank without a clear()");
+  if (t.witness.size() != t.pairs.size()) throw std::logic_error("bulk attempts: one witness per pair expected");
   stats_.uploaded_bytes += (t.moving.size() - moving_sent_) * sizeof(std::int32_t) + (t.keep.size() - keep_sent_) * sizeof(KeepEntry) +
-                           (t.pairs.size() - pairs_sent_) * sizeof(PairEntry) + groups.size() * sizeof(AttemptGroup);
+                           (t.pairs.size() - pairs_sent_) * (sizeof(PairEntry) + sizeof(std::uint32_t)) +
+                           groups.size() * sizeof(AttemptGroup);
   sync(moving_, t.moving, moving_sent_);
   sync(keep_, t.keep, keep_sent_);
   sync(pairs_, t.pairs, pairs_sent_);
+  sync(witness_, t.witness, witness_sent_);  // new pairs only: the device keeps its own up to date
   sync(axes_, t.axes, axes_sent_);
   // Task t of the box kernel: (group g, pair t - first[g]).
   std::vector<std::uint32_t> first(groups.size() + 1, 0);
@@ -74,7 +78,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(const AttemptTables& t, s
   touch_.grow(groups.size());
   CANOPY_CUDA_CHECK(cudaMemset(touch_.get(), 0, groups.size() * sizeof(std::uint32_t)));
   if (boxes_.size() != dev_.organs()) throw std::logic_error("bulk attempts: update_organs() not called for this stand");
-  const AttemptTablesView view{moving_.get(), keep_.get(), pairs_.get(), axes_.get(), boxes_.get()};
+  const AttemptTablesView view{moving_.get(), keep_.get(), pairs_.get(), axes_.get(), boxes_.get(), witness_.get()};
   const auto n_groups = static_cast<std::uint32_t>(groups.size()), n_tasks = static_cast<std::uint32_t>(tasks);
   // The exact tests are listed with a capacity; a list that overflows is made again, larger.
   CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
@@ -82,7 +86,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(const AttemptTables& t, s
   Counters host{};
   for (;;) {
     CANOPY_CUDA_CHECK(cudaMemset(counters_.get(), 0, sizeof(Counters)));
-    launch_attempt_boxes(view, groups_.get(), task_first_.get(), n_groups, n_tasks, settings, touch_.get(), exact_.get(),
+    launch_attempt_boxes(dev_.view(), view, groups_.get(), task_first_.get(), n_groups, n_tasks, settings, touch_.get(), exact_.get(),
                          exact_.size(), counters_.get());
     CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters_.get(), sizeof(Counters), cudaMemcpyDeviceToHost));
     if (host.appended <= exact_.size()) break;
@@ -98,6 +102,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(const AttemptTables& t, s
   ++stats_.calls;
   stats_.groups += groups.size();
   stats_.box_tests += tasks;
+  stats_.witness_hits += host.witness_hits;
   stats_.exact_tests += host.appended;
   stats_.seconds += now() - t0;
   return out;

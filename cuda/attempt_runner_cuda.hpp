@@ -26,7 +26,7 @@ class CudaAttemptRunner : public AttemptRunner {
   /// What the device did so far (printed with CANOPY_BULK_STATS): calls, box and exact tests,
   /// bytes sent, seconds spent in calls.
   struct Stats {
-    std::uint64_t calls = 0, groups = 0, box_tests = 0, exact_tests = 0, uploaded_bytes = 0;
+    std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, uploaded_bytes = 0;
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;
   };
   /// Sends the entries of `host` appended since the last call (all of them after a clear).
@@ -43,8 +43,9 @@ class CudaAttemptRunner : public AttemptRunner {
   DeviceBuffer<std::int32_t> moving_;
   DeviceBuffer<KeepEntry> keep_;
   DeviceBuffer<PairEntry> pairs_;
+  DeviceBuffer<std::uint32_t> witness_;  // per pair; the exact tests bring it up to date on the device
   DeviceBuffer<Vec3d> axes_;
-  std::size_t moving_sent_ = 0, keep_sent_ = 0, pairs_sent_ = 0, axes_sent_ = 0;
+  std::size_t moving_sent_ = 0, keep_sent_ = 0, pairs_sent_ = 0, witness_sent_ = 0, axes_sent_ = 0;
   DeviceBuffer<AttemptGroup> groups_;
   DeviceBuffer<std::uint32_t> task_first_, touch_;
   DeviceBuffer<ExactAttempt> exact_;

@@ -48,6 +48,7 @@ struct ClusterPair {
 struct Counters {
   unsigned long long appended;
   unsigned long long between, within;
+  unsigned long long witness_hits;  // resolution's bulk attempts: answered by a pair's witness
 };
 
 /// Plant pairs (p < q) of a work list of plant-pair keys (pair_key(p, q)) made into work items.

@@ -96,7 +96,7 @@ __device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n,
 /// Whether any triangle pair of the staged meshes touches (the lanes share the pairs of the
 /// triangles that reach the other mesh's box). Every lane returns the same answer.
 __device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& ma, const Affine3f& ta, const MeshRef& mb,
-                                             const Affine3f& tb, Vec3f db, float clearance, WarpStage& w) {
+                                             const Affine3f& tb, Vec3f db, float clearance, WarpStage& w, std::uint32_t* found) {
   const unsigned lane = threadIdx.x % 32;
   stage_mesh(v, ma, ta, Vec3f{0, 0, 0}, w.va, w.ba);
   stage_mesh(v, mb, tb, db, w.vb, w.bb);
@@ -110,8 +110,9 @@ __device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& 
   for (std::uint32_t k0 = 0; k0 < na * nb; k0 += 32) {
     const std::uint32_t k = k0 + lane;
     bool hit = false;
+    std::uint32_t i = 0, j = 0;
     if (k < na * nb) {
-      const std::uint32_t i = w.la[k / nb], j = w.lb[k % nb];
+      i = w.la[k / nb], j = w.lb[k % nb];
       bool box = true;
       for (int d = 0; d < 3; ++d) box = box && w.bb[j][d] <= w.ba[i][3 + d] + c && w.bb[j][3 + d] >= w.ba[i][d] - c;
       if (box) {
@@ -125,7 +126,12 @@ __device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& 
         hit = !triangles_rejected(pa, a3, pb, b3, margin) && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3));
       }
     }
-    if (__any_sync(kFullWarp, hit)) return true;
+    const unsigned votes = __ballot_sync(kFullWarp, hit);
+    if (votes) {
+      // The lowest lane that hit keeps its triangles (of a << 16 | of b) for the caller.
+      if (found && lane == static_cast<unsigned>(__ffs(static_cast<int>(votes)) - 1)) *found = i << 16 | j;
+      return true;
+    }
   }
   return false;
 }
@@ -199,6 +205,26 @@ __device__ inline bool one_inside_other(const StandView& v, const OrganRecord& r
 
 }  // namespace detail
 
+/// Whether triangle `witness >> 16` of organ a < b and triangle `witness & 0xffff` of b touch at
+/// transforms ta and tb (each in its own plant's frame), one thread: their vertices made as the
+/// warp test makes them and its exact predicate, so a touch here is one the warp test finds too
+/// (resolution's bulk attempts try a pair's last touching triangles before a warp's full test).
+__device__ inline bool witness_touches(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
+                                       const Affine3f& tb, std::uint32_t witness, float clearance) {
+  const OrganRecord ra = v.organs[a], rb = v.organs[b];
+  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
+  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
+  const std::uint32_t i = witness >> 16, j = witness & 0xffffu;
+  if (i >= ma.triangle_count || j >= mb.triangle_count) return false;
+  const Vec3f zero{0, 0, 0}, db = offset_between(v, ra.plant, rb.plant);
+  Vec3f a3[3], b3[3];
+  for (int q = 0; q < 3; ++q) {
+    a3[q] = vertex(v, ma, ta, zero, v.mesh_indices[ma.first_index + 3 * i + q]);
+    b3[q] = vertex(v, mb, tb, db, v.mesh_indices[mb.first_index + 3 * j + q]);
+  }
+  return clearance > 0 ? triangles_within(a3, b3, clearance, true) : triangles_intersect(a3, b3);
+}
+
 /// Whether organs a < b touch (within `clearance` when it is positive) at transforms ta and tb
 /// (each in its own plant's frame); called by all 32 lanes of a warp, answer in every lane;
 /// `done` is the warp's own shared flag. The lanes split the triangle pairs and stop together
@@ -209,9 +235,11 @@ __device__ inline bool one_inside_other(const StandView& v, const OrganRecord& r
 ///
 /// With `stage` and meshes small enough for it, the meshes are posed once into shared memory,
 /// each keeps only its triangles that reach the other's box, and the lanes share the pairs of
-/// those (the same pairs pass the same box test as without, so the answer is the same).
+/// those (the same pairs pass the same box test as without, so the answer is the same); where
+/// `found` is given, a touching triangle pair found there is written to it (of a << 16 | of b).
 __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
-                                         const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr) {
+                                         const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr,
+                                         std::uint32_t* found = nullptr) {
   const OrganRecord ra = v.organs[a], rb = v.organs[b];
   const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
   const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
@@ -221,7 +249,7 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
   // the staged vertices where the meshes were staged: the same values as those made anew).
   if (stage && ma.vertex_count <= WarpStage::kVertices && mb.vertex_count <= WarpStage::kVertices &&
       ma.triangle_count <= WarpStage::kTriangles && mb.triangle_count <= WarpStage::kTriangles) {
-    if (detail::staged_surfaces_touch(v, ma, ta, mb, tb, db, clearance, *stage)) return true;
+    if (detail::staged_surfaces_touch(v, ma, ta, mb, tb, db, clearance, *stage, found)) return true;
     return detail::one_inside_other(v, ra, ma, [&](std::uint32_t k) { return stage->va[k]; }, rb, mb,
                                     [&](std::uint32_t k) { return stage->vb[k]; });
   }
