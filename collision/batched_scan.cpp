@@ -15,6 +15,9 @@ namespace {
 constexpr double kRad = std::numbers::pi / 180;
 /// Axes per group (the width of AttemptGroup::axis_mask).
 constexpr std::size_t kGroupAxes = 32;
+/// Candidates from which a loop over them runs on all threads (a level of 10,000 plants has
+/// tens of thousands; small ones are not worth waking the threads for).
+constexpr std::size_t kParallelFrom = 2048;
 
 using Candidate = TurnSearch::Candidate;
 
@@ -103,6 +106,7 @@ std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   std::vector<std::uint32_t> ok(cands.size(), 0);
   // The turn's cosine and sine, once per candidate (the met and the near groups share them).
   std::vector<double> cos(cands.size()), sin(cands.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (cands.size() > kParallelFrom)
   for (std::size_t j = 0; j < cands.size(); ++j) cos[j] = std::cos(deg[j] * kRad), sin[j] = std::sin(deg[j] * kRad);
   const auto group_of = [&](std::size_t j, bool near, std::uint32_t mask) {
     const Candidate::Tables& t = cands[j]->tables;
@@ -180,6 +184,7 @@ void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
       }
     }
     const std::vector<std::uint32_t> ok = clear_axes(act, deg, want);
+#pragma omp parallel for schedule(static) num_threads(threads_) if (act.size() > kParallelFrom)
     for (std::size_t j = 0; j < act.size(); ++j) {
       if (!ok[j]) continue;
       Candidate& c = *act[j];
@@ -206,12 +211,14 @@ std::vector<Turn> BatchedScan::refine(std::span<Candidate* const> cands) {
       if (hi[j] - lo[j] > tol) act.push_back(cands[j]), of.push_back(j), mid.push_back(0.5 * (lo[j] + hi[j]));
     if (act.empty()) break;
     std::vector<AxisSet> want(act.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (act.size() > kParallelFrom)
     for (std::size_t j = 0; j < act.size(); ++j) {
       Candidate& c = *act[j];
       const auto a = static_cast<std::size_t>(c.found_axis);
       want[j] = AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], mid[j]) ? 1u : 0u};
     }
     const std::vector<std::uint32_t> ok = clear_axes(act, mid, want);
+#pragma omp parallel for schedule(static) num_threads(threads_) if (act.size() > kParallelFrom)
     for (std::size_t j = 0; j < act.size(); ++j) {
       const std::size_t k = of[j];
       if (!ok[j]) {

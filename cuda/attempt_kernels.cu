@@ -64,7 +64,7 @@ __global__ void attempt_boxes_kernel(StandView v, AttemptTablesView t, const Att
 /// At most 128 registers a thread (4 blocks an SM): the exact test needs many, and more warps
 /// hide its latencies better than spilling costs.
 __global__ void __launch_bounds__(kThreads, 4) attempt_exact_kernel(StandView v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
-                                     std::uint32_t n, std::uint32_t* touch) {
+                                     std::uint32_t n, std::uint32_t* touch, Counters* c) {
   __shared__ volatile int done[kThreads / 32];
   __shared__ WarpStage stage[kThreads / 32];
   const std::uint64_t id = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -91,7 +91,7 @@ __global__ void __launch_bounds__(kThreads, 4) attempt_exact_kernel(StandView v,
   std::uint32_t* keep = &t.witness[task.pair];
   const bool found = xo < yo ? warp_organs_touch(v, xo, tx, yo, ty, y.gap, flag, room, keep)
                              : warp_organs_touch(v, yo, ty, xo, tx, y.gap, flag, room, keep);
-  if (found && threadIdx.x % 32 == 0) atomicOr(&touch[task.group], bit);
+  if (found && threadIdx.x % 32 == 0) atomicOr(&touch[task.group], bit), atomicAdd(&c->exact_touches, 1ull);
 }
 
 }  // namespace
@@ -106,9 +106,9 @@ void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const Attempt
 }
 
 void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
-                          std::uint32_t n, std::uint32_t* touch) {
+                          std::uint32_t n, std::uint32_t* touch, Counters* counters) {
   if (!n) return;
-  attempt_exact_kernel<<<blocks(std::uint64_t{n} * 32), kThreads>>>(v, t, groups, tasks, n, touch);
+  attempt_exact_kernel<<<blocks(std::uint64_t{n} * 32), kThreads>>>(v, t, groups, tasks, n, touch, counters);
   CANOPY_CUDA_CHECK_LAUNCH("attempt_exact_kernel");
 }
 

@@ -31,8 +31,8 @@ void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const Attempt
                           std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
                           ExactAttempt* out, unsigned long long capacity, Counters* counters);
 /// The exact test of each ExactAttempt (skipped where its axis already touches); a pair found
-/// touching keeps the triangles that touched as its witness.
+/// touching keeps the triangles that touched as its witness (counted in exact_touches).
 void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
-                          std::uint32_t n, std::uint32_t* touch);
+                          std::uint32_t n, std::uint32_t* touch, Counters* counters);
 
 }  // namespace canopy::cuda

@@ -23,9 +23,9 @@ CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
 
 CudaAttemptRunner::~CudaAttemptRunner() {
   if (std::getenv("CANOPY_BULK_STATS"))
-    fmt::print(stderr, "bulk attempts on the device: {} calls, {} groups, {} box tests, {} witness hits, {} exact tests, {:.1f} MB up; {:.3f} s ({:.3f} up, {:.3f} boxes, {:.3f} exact)\n",
-               stats_.calls, stats_.groups, stats_.box_tests, stats_.witness_hits, stats_.exact_tests, stats_.uploaded_bytes / 1e6,
-               stats_.seconds, stats_.upload_s, stats_.box_s, stats_.exact_s);
+    fmt::print(stderr, "bulk attempts on the device: {} calls, {} groups, {} box tests, {} witness hits, {} exact tests ({} touching), {:.1f} MB up; {:.3f} s ({:.3f} up, {:.3f} boxes, {:.3f} exact)\n",
+               stats_.calls, stats_.groups, stats_.box_tests, stats_.witness_hits, stats_.exact_tests, stats_.exact_touches,
+               stats_.uploaded_bytes / 1e6, stats_.seconds, stats_.upload_s, stats_.box_s, stats_.exact_s);
 }
 
 void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
@@ -95,14 +95,17 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(const AttemptTables& t, s
     exact_.resize(host.appended + host.appended / 4);
   }
   const double t2 = now();
-  launch_attempt_exact(dev_.view(), view, groups_.get(), exact_.get(), static_cast<std::uint32_t>(host.appended), touch_.get());
+  launch_attempt_exact(dev_.view(), view, groups_.get(), exact_.get(), static_cast<std::uint32_t>(host.appended), touch_.get(),
+                       counters_.get());
   CANOPY_CUDA_CHECK(cudaMemcpy(out.data(), touch_.get(), groups.size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost));
+  CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters_.get(), sizeof(Counters), cudaMemcpyDeviceToHost));
   const double t3 = now();
   stats_.upload_s += t1 - t0, stats_.box_s += t2 - t1, stats_.exact_s += t3 - t2;
   ++stats_.calls;
   stats_.groups += groups.size();
   stats_.box_tests += tasks;
   stats_.witness_hits += host.witness_hits;
+  stats_.exact_touches += host.exact_touches;
   stats_.exact_tests += host.appended;
   stats_.seconds += now() - t0;
   return out;

@@ -26,7 +26,7 @@ class CudaAttemptRunner : public AttemptRunner {
   /// What the device did so far (printed with CANOPY_BULK_STATS): calls, box and exact tests,
   /// bytes sent, seconds spent in calls.
   struct Stats {
-    std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, uploaded_bytes = 0;
+    std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;
   };
   /// Sends the entries of `host` appended since the last call (all of them after a clear).

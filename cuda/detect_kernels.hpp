@@ -48,7 +48,8 @@ struct ClusterPair {
 struct Counters {
   unsigned long long appended;
   unsigned long long between, within;
-  unsigned long long witness_hits;  // resolution's bulk attempts: answered by a pair's witness
+  unsigned long long witness_hits;   // resolution's bulk attempts: answered by a pair's witness
+  unsigned long long exact_touches;  // and by a warp's full test that found a touch
 };
 
 /// Plant pairs (p < q) of a work list of plant-pair keys (pair_key(p, q)) made into work items.
