@@ -8,6 +8,7 @@
 /// Tables grow append-only through a batch of contacts: a candidate's moving organs, the organs
 /// it keeps clear (the met ones once, its neighbours again each time it gathers them) and its
 /// pairs go in once, and every level's groups point into them.
+#include "geometry/first_touch.hpp"
 #include "geometry/hd.hpp"
 #include "geometry/motion.hpp"
 #include "geometry/obb.hpp"
@@ -56,17 +57,21 @@ CANOPY_HD inline Motion group_turn(const AttemptGroup& g, Vec3d axis) {
 /// No triangle pair known to touch (AttemptTables::witness).
 inline constexpr std::uint32_t kNoWitness = ~0u;
 
-/// A batch's tables on the host; a runner copies what was appended since it last looked.
+/// A batch's tables on the host; a runner copies what was appended since it last looked. Grown
+/// without writing the new entries (the batched scan writes each once, on all threads: at 10,000
+/// plants tens of millions of entries a round).
 struct AttemptTables {
-  std::vector<std::int32_t> moving;
-  std::vector<KeepEntry> keep;
-  std::vector<PairEntry> pairs;
+  template <typename T>
+  using Table = std::vector<T, FirstTouchAllocator<T>>;
+  Table<std::int32_t> moving;
+  Table<KeepEntry> keep;
+  Table<PairEntry> pairs;
   /// Per pair: the triangles that touched when the round began (of the lower organ << 16 | of
   /// the higher, as Witness keeps them), or kNoWitness. A runner may test them first and keep
   /// them up to date on its side: a touch there is a touch of the organs, so only the order of
   /// the work changes, never an answer.
-  std::vector<std::uint32_t> witness;
-  std::vector<Vec3d> axes;
+  Table<std::uint32_t> witness;
+  Table<Vec3d> axes;
   void clear() { moving.clear(), keep.clear(), pairs.clear(), witness.clear(), axes.clear(); }
 };
 

@@ -72,8 +72,9 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
     for (std::size_t j = 0; j < add.size(); ++j)
       keep_at[j] = static_cast<std::uint32_t>(k), k += near ? add[j]->keep.size() - add[j]->met_count : add[j]->met_count;
   }
+  // Every new entry is written below (the tables' allocator leaves them unwritten until then).
   tables_.moving.resize(n_moving), tables_.keep.resize(n_keep), tables_.pairs.resize(n_pairs), tables_.axes.resize(n_axes);
-  tables_.witness.resize(n_pairs, kNoWitness);
+  tables_.witness.resize(n_pairs);
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (std::size_t j = 0; j < add.size(); ++j) {
     const Candidate& c = *add[j];
@@ -125,26 +126,30 @@ std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   };
   // The organs met, for every axis wanted.
   add_tables(cands, false);
-  std::vector<AttemptGroup> groups;
   std::vector<std::size_t> of;
   for (std::size_t j = 0; j < cands.size(); ++j)
-    if (want[j].mask) groups.push_back(group_of(j, false, want[j].mask)), of.push_back(j);
+    if (want[j].mask) of.push_back(j);
+  std::vector<AttemptGroup> groups(of.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (of.size() > kParallelFrom)
+  for (std::size_t q = 0; q < of.size(); ++q) groups[q] = group_of(of[q], false, want[of[q]].mask);
   std::vector<std::uint32_t> touch = touching(groups);
   for (std::size_t q = 0; q < groups.size(); ++q) ok[of[q]] = groups[q].axis_mask & ~touch[q];
   // A strict search's neighbours, for the axes that cleared the organs met (gathered, as the
   // host search gathers them, when a turn first clears those and the gathered ones do not cover it).
   std::vector<Candidate*> strict;
-  std::vector<std::size_t> strict_of;
+  std::vector<std::size_t> strict_of, to_gather;
   for (std::size_t j = 0; j < cands.size(); ++j)
-    if (ok[j] && cands[j]->strict) strict.push_back(cands[j]), strict_of.push_back(j);
+    if (ok[j] && cands[j]->strict) {
+      if (cands[j]->near_deg < deg[j]) to_gather.push_back(j);
+      strict.push_back(cands[j]), strict_of.push_back(j);
+    }
   if (strict.empty()) return ok;
   {
     const Timed timed{times_.gather};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
-    for (std::size_t q = 0; q < strict.size(); ++q)
-      if (strict[q]->near_deg < deg[strict_of[q]]) search_.gather_neighbours(*strict[q], deg[strict_of[q]]);
+    for (std::size_t q = 0; q < to_gather.size(); ++q) search_.gather_neighbours(*cands[to_gather[q]], deg[to_gather[q]]);
   }
-  times_.gathers += strict.size();
+  times_.gathers += to_gather.size();
   add_tables(strict, true);
   groups.clear(), of.clear();
   for (std::size_t j : strict_of) {

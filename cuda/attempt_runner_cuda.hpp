@@ -30,8 +30,8 @@ class CudaAttemptRunner : public AttemptRunner {
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;
   };
   /// Sends the entries of `host` appended since the last call (all of them after a clear).
-  template <typename T>
-  void sync(DeviceBuffer<T>& device, const std::vector<T>& host, std::size_t& sent) {
+  template <typename T, typename A>
+  void sync(DeviceBuffer<T>& device, const std::vector<T, A>& host, std::size_t& sent) {
     device.grow_keeping(host.size(), sent);
     device.upload_at(sent, host.data() + sent, host.size() - sent);
     sent = host.size();
