@@ -9,6 +9,8 @@
 #include "cuda/device_buffer.hpp"
 #include "cuda/stand_on_device.hpp"
 
+#include <cstdlib>
+
 namespace canopy::cuda {
 
 class CudaAttemptRunner : public AttemptRunner {
@@ -38,6 +40,7 @@ class CudaAttemptRunner : public AttemptRunner {
   }
 
   const StandOnDevice& dev_;
+  const bool report_ = std::getenv("CANOPY_BULK_STATS") != nullptr;  // print Stats when done
   DeviceBuffer<Obb> boxes_, staged_boxes_;
   DeviceBuffer<std::uint32_t> staged_ids_;
   DeviceBuffer<std::int32_t> moving_;

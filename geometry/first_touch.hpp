@@ -2,8 +2,8 @@
 /// An allocator for large arrays that a parallel loop fills: elements made without arguments are
 /// left as the memory comes instead of being zeroed, so the pages of a 200 MB array (an OBB per
 /// organ of a 10,000-plant stand) are first touched, and faulted in, by the threads that write
-/// them rather than by one thread zeroing them beforehand. Only for implicit-lifetime aggregates
-/// (plain structs of numbers) that the caller writes in full before reading.
+/// them rather than by one thread zeroing them beforehand. Only for numbers and implicit-lifetime
+/// aggregates (plain structs of numbers) that the caller writes in full before reading.
 #include <memory>
 #include <type_traits>
 #include <utility>
