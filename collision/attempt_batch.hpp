@@ -90,11 +90,16 @@ class AttemptRunner {
   /// next call.
   virtual void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
                              bool all) = 0;
-  /// A new batch: the tables start empty.
-  virtual void clear() = 0;
+  /// How many batches the runner can answer for at once, each on a lane of its own (its tables
+  /// and, on the device, its own stream): one lane's host work then overlaps another's device
+  /// work. A lane's calls come from one thread at a time, different lanes' from different
+  /// threads; update_organs is never called while lanes work.
+  virtual std::size_t lanes() const { return 1; }
+  /// A new batch on `lane`: its tables start empty.
+  virtual void clear(std::size_t lane) = 0;
   /// Per group, bit i set where a pair touches when turned about axis i of the group's mask
-  /// (tables as they stand now; entries appended since the last call are new).
-  virtual std::vector<std::uint32_t> touching(const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  /// (the lane's tables as they stand now; entries appended since its last call are new).
+  virtual std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                               const AttemptSettings& settings) = 0;
 };
 

@@ -6,7 +6,7 @@
 
 namespace canopy {
 
-std::vector<std::uint32_t> HostAttemptRunner::touching(const AttemptTables& t, std::span<const AttemptGroup> groups,
+std::vector<std::uint32_t> HostAttemptRunner::touching(std::size_t, const AttemptTables& t, std::span<const AttemptGroup> groups,
                                                        const AttemptSettings& settings) {
   std::vector<std::uint32_t> out(groups.size(), 0);
 #pragma omp parallel num_threads(threads_)

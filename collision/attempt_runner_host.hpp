@@ -11,12 +11,14 @@ namespace canopy {
 
 class HostAttemptRunner : public AttemptRunner {
  public:
-  HostAttemptRunner(PrototypeLibrary& lib, int threads) : lib_(lib), threads_(threads) {}
+  /// `lanes`: how many batches it takes at once (it keeps no state per batch, so any number).
+  HostAttemptRunner(PrototypeLibrary& lib, int threads, std::size_t lanes = 1) : lib_(lib), threads_(threads), lanes_(lanes) {}
   void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t>, bool) override {
     stand_ = &stand, boxes_ = boxes;
   }
-  void clear() override {}
-  std::vector<std::uint32_t> touching(const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  std::size_t lanes() const override { return lanes_; }
+  void clear(std::size_t) override {}
+  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
 
  private:
@@ -24,6 +26,7 @@ class HostAttemptRunner : public AttemptRunner {
   std::span<const Obb> boxes_;
   PrototypeLibrary& lib_;
   int threads_;
+  std::size_t lanes_;
 };
 
 }  // namespace canopy

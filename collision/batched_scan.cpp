@@ -34,13 +34,13 @@ struct Timed {
 
 BatchedScan::~BatchedScan() {
   if (std::getenv("CANOPY_BULK_STATS"))
-    fmt::print(stderr, "batched scan (host): limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n", times_.limits,
+    fmt::print(stderr, "batched scan (host, lane {}): limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n", lane_, times_.limits,
                times_.tables, times_.gathers, times_.gather, times_.runner);
 }
 
 void BatchedScan::clear() {
   tables_.clear();
-  runner_.clear();
+  runner_.clear(lane_);
 }
 
 void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
@@ -122,7 +122,7 @@ std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   };
   const auto touching = [&](const std::vector<AttemptGroup>& groups) {
     const Timed timed{times_.runner};
-    return runner_.touching(tables_, groups, settings);
+    return runner_.touching(lane_, tables_, groups, settings);
   };
   // The organs met, for every axis wanted.
   add_tables(cands, false);

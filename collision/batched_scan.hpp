@@ -20,7 +20,9 @@ namespace canopy {
 
 class BatchedScan {
  public:
-  BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads) : search_(search), runner_(runner), threads_(threads) {}
+  /// Through lane `lane` of the runner (collision/attempt_batch.hpp).
+  BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads, std::size_t lane = 0)
+      : search_(search), runner_(runner), threads_(threads), lane_(lane) {}
   /// With CANOPY_BULK_STATS set in the environment, prints where the host's time went.
   ~BatchedScan();
   /// A new batch of contacts: the tables start empty (candidates of the last batch are gone).
@@ -47,6 +49,7 @@ class BatchedScan {
   const TurnSearch& search_;
   AttemptRunner& runner_;
   int threads_;
+  std::size_t lane_;
   AttemptTables tables_;
   struct Times {
     double limits = 0, tables = 0, gather = 0, runner = 0;

@@ -98,17 +98,17 @@ __global__ void __launch_bounds__(kThreads, 4) attempt_exact_kernel(StandView v,
 
 void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
                           std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
-                          ExactAttempt* out, unsigned long long capacity, Counters* counters) {
+                          ExactAttempt* out, unsigned long long capacity, Counters* counters, cudaStream_t stream) {
   if (!n_tasks) return;
-  attempt_boxes_kernel<<<blocks(n_tasks), kThreads>>>(v, t, groups, task_first, n_groups, n_tasks, settings, touch, out, capacity,
+  attempt_boxes_kernel<<<blocks(n_tasks), kThreads, 0, stream>>>(v, t, groups, task_first, n_groups, n_tasks, settings, touch, out, capacity,
                                                       counters);
   CANOPY_CUDA_CHECK_LAUNCH("attempt_boxes_kernel");
 }
 
 void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
-                          std::uint32_t n, std::uint32_t* touch, Counters* counters) {
+                          std::uint32_t n, std::uint32_t* touch, Counters* counters, cudaStream_t stream) {
   if (!n) return;
-  attempt_exact_kernel<<<blocks(std::uint64_t{n} * 32), kThreads>>>(v, t, groups, tasks, n, touch, counters);
+  attempt_exact_kernel<<<blocks(std::uint64_t{n} * 32), kThreads, 0, stream>>>(v, t, groups, tasks, n, touch, counters);
   CANOPY_CUDA_CHECK_LAUNCH("attempt_exact_kernel");
 }
 

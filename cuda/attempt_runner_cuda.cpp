@@ -16,16 +16,34 @@ double now() { return std::chrono::duration<double>(std::chrono::steady_clock::n
 
 }  // namespace
 
-CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
-  counters_.resize(1);
-  exact_.resize(1 << 20);
+void CudaAttemptRunner::Stats::add(const Stats& o) {
+  calls += o.calls, groups += o.groups, box_tests += o.box_tests, witness_hits += o.witness_hits, exact_tests += o.exact_tests;
+  exact_touches += o.exact_touches, uploaded_bytes += o.uploaded_bytes;
+  seconds += o.seconds, upload_s += o.upload_s, box_s += o.box_s, exact_s += o.exact_s;
 }
 
+CudaAttemptRunner::Lane::Lane() {
+  counters.resize(1);
+  exact.resize(1 << 20);
+}
+
+CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {}
+
 CudaAttemptRunner::~CudaAttemptRunner() {
-  if (report_)
-    fmt::print(stderr, "bulk attempts on the device: {} calls, {} groups, {} box tests, {} witness hits, {} exact tests ({} touching), {:.1f} MB up; {:.3f} s ({:.3f} up, {:.3f} boxes, {:.3f} exact)\n",
-               stats_.calls, stats_.groups, stats_.box_tests, stats_.witness_hits, stats_.exact_tests, stats_.exact_touches,
-               stats_.uploaded_bytes / 1e6, stats_.seconds, stats_.upload_s, stats_.box_s, stats_.exact_s);
+  if (!report_) return;
+  Stats all = stats_;
+  std::size_t used = 0;
+  for (const auto& l : lanes_)
+    if (l) all.add(l->stats), ++used;
+  fmt::print(stderr, "bulk attempts on the device ({} lanes): {} calls, {} groups, {} box tests, {} witness hits, {} exact tests ({} touching), {:.1f} MB up; {:.3f} s in calls ({:.3f} up, {:.3f} boxes, {:.3f} exact)\n",
+             used, all.calls, all.groups, all.box_tests, all.witness_hits, all.exact_tests, all.exact_touches, all.uploaded_bytes / 1e6,
+             all.seconds, all.upload_s, all.box_s, all.exact_s);
+}
+
+CudaAttemptRunner::Lane& CudaAttemptRunner::lane(std::size_t i) {
+  if (i >= kLanes) throw std::out_of_range(fmt::format("bulk attempts: lane {} of {}", i, kLanes));
+  if (!lanes_[i]) lanes_[i] = std::make_unique<Lane>();
+  return *lanes_[i];
 }
 
 void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
@@ -36,31 +54,40 @@ void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> b
     boxes_.resize(boxes.size());
     boxes_.upload_at(0, boxes.data(), boxes.size());
     stats_.uploaded_bytes += boxes.size() * sizeof(Obb);
-    return;
+  } else {
+    scatter_from_host(boxes_.get(), boxes.data(), changed, staged_ids_, staged_boxes_);
+    stats_.uploaded_bytes += changed.size() * (sizeof(Obb) + sizeof(std::uint32_t));
   }
-  scatter_from_host(boxes_.get(), boxes.data(), changed, staged_ids_, staged_boxes_);
-  stats_.uploaded_bytes += changed.size() * (sizeof(Obb) + sizeof(std::uint32_t));
+  // The lanes' streams do not wait for the default stream, where these boxes and the device
+  // stand's transforms (redetect) were written.
+  CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
 }
 
-void CudaAttemptRunner::clear() { moving_sent_ = keep_sent_ = pairs_sent_ = witness_sent_ = axes_sent_ = 0; }
+void CudaAttemptRunner::clear(std::size_t i) {
+  Lane& l = lane(i);
+  l.moving_sent = l.keep_sent = l.pairs_sent = l.witness_sent = l.axes_sent = 0;
+}
 
-std::vector<std::uint32_t> CudaAttemptRunner::touching(const AttemptTables& t, std::span<const AttemptGroup> groups,
+std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const AttemptTables& t, std::span<const AttemptGroup> groups,
                                                        const AttemptSettings& settings) {
   std::vector<std::uint32_t> out(groups.size(), 0);
   if (groups.empty()) return out;
+  Lane& l = lane(i);
+  const cudaStream_t stream = l.stream.get();
   const double t0 = now();
-  if (t.moving.size() < moving_sent_ || t.keep.size() < keep_sent_ || t.pairs.size() < pairs_sent_ || t.axes.size() < axes_sent_ ||
-      t.witness.size() < witness_sent_)
+  if (t.moving.size() < l.moving_sent || t.keep.size() < l.keep_sent || t.pairs.size() < l.pairs_sent ||
+      t.axes.size() < l.axes_sent || t.witness.size() < l.witness_sent)
     throw std::logic_error("bulk attempts: the tables shrank without a clear()");
   if (t.witness.size() != t.pairs.size()) throw std::logic_error("bulk attempts: one witness per pair expected");
-  stats_.uploaded_bytes += (t.moving.size() - moving_sent_) * sizeof(std::int32_t) + (t.keep.size() - keep_sent_) * sizeof(KeepEntry) +
-                           (t.pairs.size() - pairs_sent_) * (sizeof(PairEntry) + sizeof(std::uint32_t)) +
-                           groups.size() * sizeof(AttemptGroup);
-  sync(moving_, t.moving, moving_sent_);
-  sync(keep_, t.keep, keep_sent_);
-  sync(pairs_, t.pairs, pairs_sent_);
-  sync(witness_, t.witness, witness_sent_);  // new pairs only: the device keeps its own up to date
-  sync(axes_, t.axes, axes_sent_);
+  l.stats.uploaded_bytes += (t.moving.size() - l.moving_sent) * sizeof(std::int32_t) +
+                            (t.keep.size() - l.keep_sent) * sizeof(KeepEntry) +
+                            (t.pairs.size() - l.pairs_sent) * (sizeof(PairEntry) + sizeof(std::uint32_t)) +
+                            groups.size() * sizeof(AttemptGroup);
+  l.sync(l.moving, t.moving, l.moving_sent);
+  l.sync(l.keep, t.keep, l.keep_sent);
+  l.sync(l.pairs, t.pairs, l.pairs_sent);
+  l.sync(l.witness, t.witness, l.witness_sent);  // new pairs only: the device keeps its own up to date
+  l.sync(l.axes, t.axes, l.axes_sent);
   // Task t of the box kernel: (group g, pair t - first[g]).
   std::vector<std::uint32_t> first(groups.size() + 1, 0);
   std::uint64_t tasks = 0;
@@ -71,44 +98,47 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(const AttemptTables& t, s
   if (tasks > std::numeric_limits<std::uint32_t>::max())
     throw std::length_error(fmt::format("bulk attempts: {} pair tests in one call (at most 2^32 - 1)", tasks));
   first[groups.size()] = static_cast<std::uint32_t>(tasks);
-  groups_.grow(groups.size());
-  groups_.upload_at(0, groups.data(), groups.size());
-  task_first_.grow(first.size());
-  task_first_.upload_at(0, first.data(), first.size());
-  touch_.grow(groups.size());
-  CANOPY_CUDA_CHECK(cudaMemset(touch_.get(), 0, groups.size() * sizeof(std::uint32_t)));
+  l.groups.grow(groups.size());
+  l.groups.upload_at(0, groups.data(), groups.size(), stream);
+  l.task_first.grow(first.size());
+  l.task_first.upload_at(0, first.data(), first.size(), stream);
+  l.touch.grow(groups.size());
+  CANOPY_CUDA_CHECK(cudaMemsetAsync(l.touch.get(), 0, groups.size() * sizeof(std::uint32_t), stream));
   if (boxes_.size() != dev_.organs()) throw std::logic_error("bulk attempts: update_organs() not called for this stand");
-  const AttemptTablesView view{moving_.get(), keep_.get(), pairs_.get(), axes_.get(), boxes_.get(), witness_.get()};
+  const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(), l.axes.get(), boxes_.get(), l.witness.get()};
   const auto n_groups = static_cast<std::uint32_t>(groups.size()), n_tasks = static_cast<std::uint32_t>(tasks);
   // The exact tests are listed with a capacity; a list that overflows is made again, larger.
-  CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+  l.stream.synchronize();
   const double t1 = now();
   Counters host{};
   for (;;) {
-    CANOPY_CUDA_CHECK(cudaMemset(counters_.get(), 0, sizeof(Counters)));
-    launch_attempt_boxes(dev_.view(), view, groups_.get(), task_first_.get(), n_groups, n_tasks, settings, touch_.get(), exact_.get(),
-                         exact_.size(), counters_.get());
-    CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters_.get(), sizeof(Counters), cudaMemcpyDeviceToHost));
-    if (host.appended <= exact_.size()) break;
+    CANOPY_CUDA_CHECK(cudaMemsetAsync(l.counters.get(), 0, sizeof(Counters), stream));
+    launch_attempt_boxes(dev_.view(), view, l.groups.get(), l.task_first.get(), n_groups, n_tasks, settings, l.touch.get(),
+                         l.exact.get(), l.exact.size(), l.counters.get(), stream);
+    CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
+    l.stream.synchronize();
+    if (host.appended <= l.exact.size()) break;
     if (host.appended > std::numeric_limits<std::uint32_t>::max())
       throw std::length_error(fmt::format("bulk attempts: {} exact tests in one call (at most 2^32 - 1)", host.appended));
-    exact_.resize(host.appended + host.appended / 4);
+    l.exact.resize(host.appended + host.appended / 4);
   }
   const double t2 = now();
-  launch_attempt_exact(dev_.view(), view, groups_.get(), exact_.get(), static_cast<std::uint32_t>(host.appended), touch_.get(),
-                       counters_.get());
-  CANOPY_CUDA_CHECK(cudaMemcpy(out.data(), touch_.get(), groups.size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost));
+  launch_attempt_exact(dev_.view(), view, l.groups.get(), l.exact.get(), static_cast<std::uint32_t>(host.appended), l.touch.get(),
+                       l.counters.get(), stream);
+  CANOPY_CUDA_CHECK(cudaMemcpyAsync(out.data(), l.touch.get(), groups.size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost, stream));
   // The exact kernel's count of touches, read back only for the report (a copy per call).
-  if (report_) CANOPY_CUDA_CHECK(cudaMemcpy(&host, counters_.get(), sizeof(Counters), cudaMemcpyDeviceToHost));
+  if (report_) CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
+  l.stream.synchronize();
   const double t3 = now();
-  stats_.upload_s += t1 - t0, stats_.box_s += t2 - t1, stats_.exact_s += t3 - t2;
-  ++stats_.calls;
-  stats_.groups += groups.size();
-  stats_.box_tests += tasks;
-  stats_.witness_hits += host.witness_hits;
-  stats_.exact_touches += host.exact_touches;
-  stats_.exact_tests += host.appended;
-  stats_.seconds += now() - t0;
+  Stats& st = l.stats;
+  st.upload_s += t1 - t0, st.box_s += t2 - t1, st.exact_s += t3 - t2;
+  ++st.calls;
+  st.groups += groups.size();
+  st.box_tests += tasks;
+  st.witness_hits += host.witness_hits;
+  st.exact_touches += host.exact_touches;
+  st.exact_tests += host.appended;
+  st.seconds += now() - t0;
   return out;
 }
 

@@ -9,51 +9,65 @@
 #include "cuda/device_buffer.hpp"
 #include "cuda/stand_on_device.hpp"
 
+#include <array>
 #include <cstdlib>
+#include <memory>
 
 namespace canopy::cuda {
 
 class CudaAttemptRunner : public AttemptRunner {
  public:
+  /// Lanes a runner offers (each made at its first call: a stream and its tables).
+  static constexpr std::size_t kLanes = 8;
   explicit CudaAttemptRunner(const StandOnDevice& dev);
   ~CudaAttemptRunner() override;
   /// Uploads every box (`all`) or scatters the changed organs' boxes; the transforms are the
   /// device stand's, which the backend's redetect() keeps current.
   void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed, bool all) override;
-  void clear() override;
-  std::vector<std::uint32_t> touching(const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  std::size_t lanes() const override { return kLanes; }
+  void clear(std::size_t lane) override;
+  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
 
  private:
   /// What the device did so far (printed with CANOPY_BULK_STATS): calls, box and exact tests,
-  /// bytes sent, seconds spent in calls.
+  /// bytes sent, seconds spent in calls (summed over lanes, which overlap).
   struct Stats {
     std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;
+    void add(const Stats& o);
   };
-  /// Sends the entries of `host` appended since the last call (all of them after a clear).
-  template <typename T, typename A>
-  void sync(DeviceBuffer<T>& device, const std::vector<T, A>& host, std::size_t& sent) {
-    device.grow_keeping(host.size(), sent);
-    device.upload_at(sent, host.data() + sent, host.size() - sent);
-    sent = host.size();
-  }
+  /// A lane's stream and its batch's tables on the device, appended to as the host appends.
+  struct Lane {
+    Lane();
+    Stream stream;
+    DeviceBuffer<std::int32_t> moving;
+    DeviceBuffer<KeepEntry> keep;
+    DeviceBuffer<PairEntry> pairs;
+    DeviceBuffer<std::uint32_t> witness;  // per pair; the exact tests bring it up to date on the device
+    DeviceBuffer<Vec3d> axes;
+    std::size_t moving_sent = 0, keep_sent = 0, pairs_sent = 0, witness_sent = 0, axes_sent = 0;
+    DeviceBuffer<AttemptGroup> groups;
+    DeviceBuffer<std::uint32_t> task_first, touch;
+    DeviceBuffer<ExactAttempt> exact;
+    DeviceBuffer<Counters> counters;
+    Stats stats;
+    /// Sends the entries of `host` appended since the last call (all of them after a clear).
+    template <typename T, typename A>
+    void sync(DeviceBuffer<T>& device, const std::vector<T, A>& host, std::size_t& sent) {
+      device.grow_keeping(host.size(), sent, stream.get());
+      device.upload_at(sent, host.data() + sent, host.size() - sent, stream.get());
+      sent = host.size();
+    }
+  };
+  Lane& lane(std::size_t i);
 
   const StandOnDevice& dev_;
   const bool report_ = std::getenv("CANOPY_BULK_STATS") != nullptr;  // print Stats when done
   DeviceBuffer<Obb> boxes_, staged_boxes_;
   DeviceBuffer<std::uint32_t> staged_ids_;
-  DeviceBuffer<std::int32_t> moving_;
-  DeviceBuffer<KeepEntry> keep_;
-  DeviceBuffer<PairEntry> pairs_;
-  DeviceBuffer<std::uint32_t> witness_;  // per pair; the exact tests bring it up to date on the device
-  DeviceBuffer<Vec3d> axes_;
-  std::size_t moving_sent_ = 0, keep_sent_ = 0, pairs_sent_ = 0, witness_sent_ = 0, axes_sent_ = 0;
-  DeviceBuffer<AttemptGroup> groups_;
-  DeviceBuffer<std::uint32_t> task_first_, touch_;
-  DeviceBuffer<ExactAttempt> exact_;
-  DeviceBuffer<Counters> counters_;
-  Stats stats_;
+  std::array<std::unique_ptr<Lane>, kLanes> lanes_;  // slot i touched only by lane i's thread
+  Stats stats_;  // of update_organs
 };
 
 }  // namespace canopy::cuda

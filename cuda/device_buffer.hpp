@@ -38,15 +38,22 @@ class DeviceBuffer {
   }
   /// Room for at least n items keeping the first `keep` (an append-only table): grows to at
   /// least half again its size, so appends cost amortised constant copies.
-  void grow_keeping(std::size_t n, std::size_t keep) {
+  /// `stream`: the queue whose work on the buffer the copy must follow (0: the default stream).
+  void grow_keeping(std::size_t n, std::size_t keep, cudaStream_t stream = 0) {
     if (n <= n_) return;
     DeviceBuffer bigger(std::max(n, n_ + n_ / 2));
-    if (keep) CANOPY_CUDA_CHECK(cudaMemcpy(bigger.p_, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice));
+    if (keep) {
+      CANOPY_CUDA_CHECK(cudaMemcpyAsync(bigger.p_, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream));
+      CANOPY_CUDA_CHECK(cudaStreamSynchronize(stream));
+    }
     *this = std::move(bigger);
   }
-  /// Copies n items from the host to items [at, at + n).
-  void upload_at(std::size_t at, const T* src, std::size_t n) {
-    if (n) CANOPY_CUDA_CHECK(cudaMemcpy(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice));
+  /// Copies n items from the host to items [at, at + n), in `stream`'s order (0: the default
+  /// stream). `src` may change once it returns: pageable memory is staged before it does.
+  void upload_at(std::size_t at, const T* src, std::size_t n, cudaStream_t stream = 0) {
+    if (!n) return;
+    if (stream) CANOPY_CUDA_CHECK(cudaMemcpyAsync(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice, stream));
+    else CANOPY_CUDA_CHECK(cudaMemcpy(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice));
   }
   /// Room for n items, exactly when `tight` (a device memory budget is in force), else at least.
   void fit(std::size_t n, bool tight) { tight ? resize(n) : grow(n); }
@@ -65,6 +72,20 @@ class DeviceBuffer {
  private:
   T* p_ = nullptr;
   std::size_t n_ = 0;
+};
+
+/// A queue of device work of its own (RAII) that does not wait for the default stream's.
+class Stream {
+ public:
+  Stream() { CANOPY_CUDA_CHECK(cudaStreamCreateWithFlags(&s_, cudaStreamNonBlocking)); }
+  Stream(const Stream&) = delete;
+  Stream& operator=(const Stream&) = delete;
+  ~Stream() { cudaStreamDestroy(s_); }
+  cudaStream_t get() const { return s_; }
+  void synchronize() const { CANOPY_CUDA_CHECK(cudaStreamSynchronize(s_)); }
+
+ private:
+  cudaStream_t s_ = nullptr;
 };
 
 /// Page-locked host memory (RAII), which the device copies into at full speed; grows only.

@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;
   bool append = false, device_search = false;
+  std::size_t lanes = ResolveRequest{}.bulk_lanes;
   ResolveConfig base;
   std::string csv = "bench/results/resolve.csv";
   for (int i = 1; i < argc; ++i) {
@@ -67,18 +68,20 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) base.scan_step_deg = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--append")) append = true;
     else if (!std::strcmp(argv[i], "--device-search")) device_search = true;
+    else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc) lanes = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else {
       std::fprintf(stderr,
                    "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
-                   "       [--device-search]   (CUDA: each level's turn-search attempts on the device, not the host's search)\n");
+                   "       [--device-search]   (CUDA: each level's turn-search attempts on the device, not the host's search)\n"
+                   "       [--lanes N]         (with --device-search: batches of contacts planned at once, default 2)\n");
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
   const std::string config = fmt::format("candidates={} axes={} step={}{}", base.candidates, base.axis_fan, base.scan_step_deg,
-                                         device_search ? " device-search" : "");
+                                         device_search ? fmt::format(" device-search lanes={}", lanes) : "");
   if (!append)
     fmt::print(out,
              "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
@@ -110,6 +113,7 @@ int main(int argc, char** argv) {
           req.detect.threads = threads;
           req.config = base;
           req.bulk_attempts = device_search;
+          req.bulk_lanes = lanes;
           req.config.level = *parse_contact_level(lname);
           auto fresh = make_cpu_backend();  // the independent counts before and after
           const std::size_t before_exact = fresh->detect(s, DetectRequest{}).pairs.size();

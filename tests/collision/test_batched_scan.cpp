@@ -19,14 +19,18 @@ struct Outcome {
   Stand stand;
 };
 
-Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk) {
+/// `lanes` > 1: batches of `batch` contacts, that many planned at once (each on a thread of its
+/// own, through the runner's lanes).
+Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::size_t lanes = 1, std::size_t batch = 8192) {
   auto cpu = make_cpu_backend();
   ResolveRequest req;
   req.config = cfg;
   req.detect.clearance = clearance;
   req.detect.level = cfg.level;
+  req.bulk_lanes = lanes;
+  req.batch_contacts = batch;
   PrototypeLibrary lib;
-  HostAttemptRunner runner(lib, 2);
+  HostAttemptRunner runner(lib, 2, lanes);
   if (bulk) req.attempts = &runner;
   const Contacts first = cpu->detect(s, req.detect);
   ResolveResult r = resolve(s, *cpu, req, first);
@@ -90,4 +94,25 @@ TEST_CASE("batched turn search: organ level, clearances, crowded stands and many
       const Stand s = k.crowded ? random_stand(seed, 12) : row_stand(seed);
       same(run(s, cfg, k.detect_clearance, false), run(s, cfg, k.detect_clearance, true));
     }
+}
+
+TEST_CASE("batched turn search: batches planned at once on several lanes give the same turns") {
+  // Small batches, so that a stand of a few hundred contacts makes dozens of them, and lanes
+  // taking them in whatever order their threads get to them.
+  for (std::uint64_t seed : {1, 4}) {
+    INFO("seed " << seed);
+    const Stand s = row_stand(seed);
+    ResolveConfig cfg;
+    const Outcome host = run(s, cfg, 0, false);
+    const Outcome one = run(s, cfg, 0, true, 1, 7);
+    const Outcome three = run(s, cfg, 0, true, 3, 7);
+    same(host, one);
+    same(host, three);
+    CHECK(host.result.contacts_before > 3 * 7);  // more batches than lanes
+  }
+  INFO("crowded: the relaxed pass and the last resort after lanes");
+  ResolveConfig cfg;
+  cfg.max_rounds = 4;
+  const Stand s = random_stand(11, 12);
+  same(run(s, cfg, 0, false), run(s, cfg, 0, true, 4, 5));
 }

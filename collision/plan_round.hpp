@@ -1,0 +1,75 @@
+#pragma once
+/// One round of resolution's planning (collision/resolve.hpp): every contact's candidate movers
+/// scanned level by level of cost, in batches of contacts, each contact taking the cheapest
+/// separating turn among its candidates. With a runner of bulk attempts (collision/
+/// batched_scan.hpp) that has several lanes, several batches are planned at once, one per lane
+/// on a thread of its own: while one lane waits for the device, another does its host work.
+/// Batches are independent (a contact's pick depends only on its own candidates' scans) and
+/// their turns are merged in batch order, so the plan is the same for any number of lanes.
+#include "collision/attempt_batch.hpp"
+#include "collision/contacts.hpp"
+#include "collision/joints.hpp"
+#include "collision/turn_search.hpp"
+
+#include <cstdlib>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace canopy {
+
+/// Where resolution's time goes, phase by phase over all rounds, printed at its end when
+/// CANOPY_PLAN_STATS is set (off: one branch per phase); `scan_busy` sums the candidates'
+/// scan times over the threads, so scan_busy / (threads x scan) is the scan's parallel share.
+struct PhaseTimes {
+  enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
+  bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
+  double seconds[count] = {}, scan_busy = 0, mark = now();
+  void lap(Phase p);
+  void print(int threads) const;
+  static double now();
+};
+
+/// The candidates of a batch come from a pool per thread, whose lists keep their memory from
+/// batch to batch and round to round: made, recycled and reused by the thread that took them,
+/// let go only when resolution ends (10,000 plants on the H200 machine's 16 threads: letting
+/// tens of thousands of candidates go after each batch cost about 0.2 s of 1.9 s of planning).
+struct alignas(64) CandidatePool {  // one per thread, side by side: a cache line each
+  std::vector<std::unique_ptr<TurnSearch::Candidate>> owned;
+  std::size_t used = 0;
+  TurnSearch::Candidate* take() {
+    if (used == owned.size()) owned.push_back(std::make_unique<TurnSearch::Candidate>());
+    return owned[used++].get();
+  }
+};
+
+struct Plan {
+  std::vector<Turn> turns;                 // by organ id
+  std::map<std::size_t, std::string> why;  // contacts no turn took care of, by index
+};
+
+struct PlanRequest {
+  int threads = 1;
+  /// Called as planning goes on with the number of contacts still without a turn, when set.
+  std::function<void(std::size_t)> planning;
+  /// Per plant: whether its contacts decide turns here (tiles; null: all of them).
+  const std::vector<std::uint8_t>* plan_plants = nullptr;
+  /// Bulk attempts through this runner when set (else the host's candidate-by-candidate search).
+  AttemptRunner* runner = nullptr;
+  std::size_t lanes = 1;              // batches planned at once (at most the runner's lanes)
+  std::size_t batch_contacts = 8192;  // contacts per batch
+  /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
+  std::vector<std::vector<CandidatePool>>* pools = nullptr;
+};
+
+/// One round's turns, all planned against the poses at the start of the round. Each contact
+/// takes the cheapest turn among its first candidate movers, each mover asked to separate every
+/// contact its subtree has (so a mover picked by several contacts makes one turn). Movers are
+/// scanned level by level of cost, in parallel, each mover once per level whichever contacts
+/// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
+Plan plan_round(const Stand& stand, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
+                const TurnSearch& search, const PlanRequest& request, PhaseTimes& times);
+
+}  // namespace canopy
