@@ -3,12 +3,14 @@
 /// scanned level by level of cost, in batches of contacts, each contact taking the cheapest
 /// separating turn among its candidates. With a runner of bulk attempts (collision/
 /// batched_scan.hpp) that has several lanes, several batches are planned at once, one per lane
-/// on a thread of its own: while one lane waits for the device, another does its host work.
+/// on a thread of its own (collision/lane_threads.hpp): while one lane waits for the device,
+/// another does its host work.
 /// Batches are independent (a contact's pick depends only on its own candidates' scans) and
 /// their turns are merged in batch order, so the plan is the same for any number of lanes.
 #include "collision/attempt_batch.hpp"
 #include "collision/contacts.hpp"
 #include "collision/joints.hpp"
+#include "collision/lane_threads.hpp"
 #include "collision/turn_search.hpp"
 
 #include <cstdlib>
@@ -58,7 +60,9 @@ struct PlanRequest {
   const std::vector<std::uint8_t>* plan_plants = nullptr;
   /// Bulk attempts through this runner when set (else the host's candidate-by-candidate search).
   AttemptRunner* runner = nullptr;
-  std::size_t lanes = 1;              // batches planned at once (at most the runner's lanes)
+  /// Batches planned at once with a runner, one per lane of these (lane 0 the caller's; null:
+  /// one at a time). At most the runner's lanes.
+  LaneThreads* lanes = nullptr;
   std::size_t batch_contacts = 8192;  // contacts per batch
   /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
   std::vector<std::vector<CandidatePool>>* pools = nullptr;

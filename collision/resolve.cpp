@@ -72,6 +72,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   std::size_t best = left;
   int best_round = 0;
   std::vector<std::vector<CandidatePool>> pools;  // per lane of planning, per thread
+  std::optional<LaneThreads> lane_threads;         // made at the first round with a runner of several lanes
   times.lap(PhaseTimes::setup);
   for (int round = 1;; ++round) {
     if (left == 0) {
@@ -108,7 +109,9 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       preq.planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
     preq.plan_plants = part ? &part->plan : nullptr;
     preq.runner = runner;
-    preq.lanes = req.bulk_lanes;
+    if (runner && !lane_threads && std::min(req.bulk_lanes, runner->lanes()) > 1)
+      lane_threads.emplace(std::min(req.bulk_lanes, runner->lanes()));
+    preq.lanes = runner && lane_threads ? &*lane_threads : nullptr;
     preq.batch_contacts = req.batch_contacts;
     preq.pools = &pools;
     Plan plan = plan_round(s, joints, contacts, touching, search, preq, times);
@@ -177,11 +180,16 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   }
   times.lap(PhaseTimes::merge);
   // The candidates let go by the threads that made them, all at once.
-  if (!pools.empty()) {
+  // Each lane's candidates let go by the threads of its team that made them, lanes side by side.
+  const auto release = [&](std::size_t l) {
+    if (l >= pools.size()) return;
 #pragma omp parallel num_threads(threads)
-    pools[0][static_cast<std::size_t>(omp_get_thread_num())].owned.clear();
-  }
-  pools.clear();  // the other lanes' pools were made on threads that are gone
+    pools[l][static_cast<std::size_t>(omp_get_thread_num())].owned.clear();
+  };
+  if (lane_threads) lane_threads->run(release);
+  else release(0);
+  lane_threads.reset();
+  pools.clear();
   times.lap(PhaseTimes::release);
   times.print(threads);
   out.contacts_after = left;

@@ -60,7 +60,7 @@ struct ResolveRequest {
   /// Batches of contacts planned at once through the runner, each on a lane of its own (at most
   /// the runner's lanes): one lane's host work overlaps another's device work. The turns are the
   /// same for any number (collision/plan_round.hpp).
-  std::size_t bulk_lanes = 2;
+  std::size_t bulk_lanes = 4;
   /// Contacts per batch of planning: the search state held at once stays bounded whatever the
   /// stand's size; the turns do not depend on it.
   std::size_t batch_contacts = 8192;

@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -25,6 +27,19 @@ void CudaAttemptRunner::Stats::add(const Stats& o) {
 CudaAttemptRunner::Lane::Lane() {
   counters.resize(1);
   exact.resize(1 << 20);
+}
+
+void CudaAttemptRunner::Lane::stage(std::size_t bytes) {
+  staged = 0;
+  if (bytes > staging.size()) staging.grow(std::max<std::size_t>(bytes, 1 << 20) * 3 / 2);  // the last call's copies are done
+}
+
+void CudaAttemptRunner::Lane::put(void* to, const void* from, std::size_t bytes) {
+  if (!bytes) return;
+  if (staged + bytes > staging.size()) throw std::logic_error("bulk attempts: uploads beyond the room staged for them");
+  std::memcpy(staging.get() + staged, from, bytes);
+  CANOPY_CUDA_CHECK(cudaMemcpyAsync(to, staging.get() + staged, bytes, cudaMemcpyHostToDevice, stream.get()));
+  staged += bytes;
 }
 
 CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {}
@@ -79,10 +94,13 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
       t.axes.size() < l.axes_sent || t.witness.size() < l.witness_sent)
     throw std::logic_error("bulk attempts: the tables shrank without a clear()");
   if (t.witness.size() != t.pairs.size()) throw std::logic_error("bulk attempts: one witness per pair expected");
-  l.stats.uploaded_bytes += (t.moving.size() - l.moving_sent) * sizeof(std::int32_t) +
+  const std::size_t bytes = (t.moving.size() - l.moving_sent) * sizeof(std::int32_t) +
                             (t.keep.size() - l.keep_sent) * sizeof(KeepEntry) +
                             (t.pairs.size() - l.pairs_sent) * (sizeof(PairEntry) + sizeof(std::uint32_t)) +
-                            groups.size() * sizeof(AttemptGroup);
+                            (t.axes.size() - l.axes_sent) * sizeof(Vec3d) + groups.size() * sizeof(AttemptGroup) +
+                            (groups.size() + 1) * sizeof(std::uint32_t);
+  l.stats.uploaded_bytes += bytes;
+  l.stage(bytes);
   l.sync(l.moving, t.moving, l.moving_sent);
   l.sync(l.keep, t.keep, l.keep_sent);
   l.sync(l.pairs, t.pairs, l.pairs_sent);
@@ -99,9 +117,9 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
     throw std::length_error(fmt::format("bulk attempts: {} pair tests in one call (at most 2^32 - 1)", tasks));
   first[groups.size()] = static_cast<std::uint32_t>(tasks);
   l.groups.grow(groups.size());
-  l.groups.upload_at(0, groups.data(), groups.size(), stream);
+  l.put(l.groups.get(), groups.data(), groups.size() * sizeof(AttemptGroup));
   l.task_first.grow(first.size());
-  l.task_first.upload_at(0, first.data(), first.size(), stream);
+  l.put(l.task_first.get(), first.data(), first.size() * sizeof(std::uint32_t));
   l.touch.grow(groups.size());
   CANOPY_CUDA_CHECK(cudaMemsetAsync(l.touch.get(), 0, groups.size() * sizeof(std::uint32_t), stream));
   if (boxes_.size() != dev_.organs()) throw std::logic_error("bulk attempts: update_organs() not called for this stand");

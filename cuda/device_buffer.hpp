@@ -107,6 +107,7 @@ class PinnedBuffer {
     n_ = n;
   }
   T* get() const { return p_; }
+  std::size_t size() const { return n_; }
 
  private:
   T* p_ = nullptr;

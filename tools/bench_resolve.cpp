@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
                    "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
                    "       [--device-search]   (CUDA: each level's turn-search attempts on the device, not the host's search)\n"
-                   "       [--lanes N]         (with --device-search: batches of contacts planned at once, default 2)\n");
+                   "       [--lanes N]         (with --device-search: batches of contacts planned at once, default 4)\n");
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
