@@ -54,9 +54,10 @@ struct ResolveRequest {
   /// runner when set. The turns are the same either way.
   AttemptRunner* attempts = nullptr;
   /// True (and `attempts` null): through the backend's runner where it has one (CUDA: on the
-  /// device). Off by default: on the 16-core H200 machine the host's candidate-by-candidate
-  /// search, which stops at the first blocking pair, plans faster (bench/results/README.md).
-  bool bulk_attempts = false;
+  /// device, in lanes); the CPU backend has none and searches candidate by candidate. False: the
+  /// host's search on any backend. On the 16-core H100 machine the device's lanes plan 10,000
+  /// plants 25-35 % faster than the host's search (bench/results/README.md).
+  bool bulk_attempts = true;
   /// Batches of contacts planned at once through the runner, each on a lane of its own (at most
   /// the runner's lanes): one lane's host work overlaps another's device work. The turns are the
   /// same for any number (collision/plan_round.hpp).

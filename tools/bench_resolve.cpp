@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;
-  bool append = false, device_search = false;
+  bool append = false, device_search = true;
   std::size_t lanes = ResolveRequest{}.bulk_lanes;
   ResolveConfig base;
   std::string csv = "bench/results/resolve.csv";
@@ -67,21 +67,24 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--axes") && i + 1 < argc) base.axis_fan = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--step") && i + 1 < argc) base.scan_step_deg = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--append")) append = true;
-    else if (!std::strcmp(argv[i], "--device-search")) device_search = true;
+    else if (!std::strcmp(argv[i], "--device-search")) device_search = true;  // the default
+    else if (!std::strcmp(argv[i], "--host-search")) device_search = false;
     else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc) lanes = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else {
       std::fprintf(stderr,
                    "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
-                   "       [--device-search]   (CUDA: each level's turn-search attempts on the device, not the host's search)\n"
-                   "       [--lanes N]         (with --device-search: batches of contacts planned at once, default 4)\n");
+                   "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"
+                   "                            attempts on the device, the default)\n"
+                   "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default 4)\n");
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
-  const std::string config = fmt::format("candidates={} axes={} step={}{}", base.candidates, base.axis_fan, base.scan_step_deg,
-                                         device_search ? fmt::format(" device-search lanes={}", lanes) : "");
+  const std::string config = fmt::format("candidates={} axes={} step={}", base.candidates, base.axis_fan, base.scan_step_deg);
+  // How the CUDA backend plans (the CPU backend always searches candidate by candidate).
+  const std::string cuda_search = device_search ? fmt::format(" device-search lanes={}", lanes) : " host-search";
   if (!append)
     fmt::print(out,
              "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
@@ -131,7 +134,7 @@ int main(int argc, char** argv) {
           fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7.2f} {:>7.2f} {:>9} {:>9.3f} {:>9.3f} {:>7.3f}\n", bname, sp.name,
                      n, lname, before_exact, r.rounds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, residual, detect_s,
                      resolve_s, plan);
-          fmt::print(out, "{},{},", config, threads);
+          fmt::print(out, "{}{},{},", config, bname == "cuda" ? cuda_search : "", threads);
           fmt::print(out, "{},{},{},{},{},{},{:.1f},{},{},{},{},{},{},{:.4f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n", bname,
                      backend->device(), sp.name, sp.plant, sp.row, n, static_cast<double>(s.organ_count()) / n, lname,
                      before_exact, first.pairs.size(), r.rounds, r.organs_moved, r.organs_carried, r.mean_turn_deg,

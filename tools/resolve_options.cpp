@@ -27,9 +27,11 @@ void ResolveOptions::add_to(CLI::App& app) {
   app.add_option("--resolve-step", scan_step,
                  fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
       ->check(CLI::Range(0.5, 30.0));
-  app.add_flag("--resolve-device-search", device_search,
-               "Resolution: with --backend cuda, run each level's turn-search attempts on the device instead of searching "
-               "candidate by candidate on the host (the same turns; slower than the host on a 16-core machine)");
+  app.add_flag("--resolve-host-search", host_search,
+               "Resolution: with --backend cuda, search candidate by candidate on the host's cores instead of running each "
+               "level's attempts on the device in lanes of batches (the same turns; slower on the 16-core GPU machines)");
+  app.add_flag_callback("--resolve-device-search", [this] { host_search = false; },
+                        "Resolution: each level's attempts on the device with --backend cuda (the default there)");
 }
 
 ResolveConfig ResolveOptions::config() const {
@@ -60,7 +62,7 @@ ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const Dete
                              const ResolvePartition* partition) {
   ResolveRequest req;
   req.partition = partition;
-  req.bulk_attempts = o.device_search;
+  req.bulk_attempts = !o.host_search;
   req.detect = detect;
   req.config = o.config();
   const bool tty = !progress && o.progress && isatty(fileno(stderr));

@@ -19,7 +19,9 @@ struct ResolveOptions {
   int axis_fan = ResolveConfig{}.axis_fan;
   double scan_step = ResolveConfig{}.scan_step_deg;
   bool progress = true;
-  bool device_search = false;  // run each level's attempts through the backend's runner (CUDA: on the device)
+  /// Plan with the host's candidate-by-candidate search even where the backend runs attempts in
+  /// bulk (CUDA: on the device, the default there). The turns are the same either way.
+  bool host_search = false;
 
   void add_to(CLI::App& app);
   ResolveConfig config() const;

@@ -173,7 +173,10 @@ TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
 }
 
 TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the CPU") {
+  for (bool device_search : {true, false})
   for (int n : {20, 300}) {
+    const char* way = device_search ? "attempts on the device (the default)" : "the host's search";
+    INFO(way);
     GrowRequest g;
     g.grammar = source("grammars/tomato.yaml");
     g.plants = default_stand_layout(n);
@@ -182,6 +185,7 @@ TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the
     auto cpu = make_cpu_backend();
     auto gpu = cuda::make_cuda_backend();
     ResolveRequest req;
+    req.bulk_attempts = device_search;
     const Contacts ca = cpu->detect(a, req.detect), cb = gpu->detect(b, req.detect);
     REQUIRE(ca.pairs == cb.pairs);
     const ResolveResult ra = resolve(a, *cpu, req, ca), rb = resolve(b, *gpu, req, cb);
@@ -205,9 +209,13 @@ TEST_CASE("resolution's attempts on the device: the host search's turns at the o
     float detect_clearance;
     double clearance;
     bool crowded;
+    std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts;
   };
   for (const Case& k : {Case{"organ level", ContactLevel::organ, 0, 1e-4, false}, Case{"clearances", ContactLevel::exact, 0.001f, 0.002, false},
-                        Case{"crowded", ContactLevel::exact, 0, 1e-4, true}}) {
+                        Case{"crowded", ContactLevel::exact, 0, 1e-4, true},
+                        Case{"one lane", ContactLevel::exact, 0, 1e-4, false, 1},
+                        Case{"batches of 40 contacts, 3 lanes at once", ContactLevel::exact, 0, 1e-4, false, 3, 40},
+                        Case{"crowded, batches of 25, 8 lanes", ContactLevel::exact, 0, 1e-4, true, 8, 25}}) {
     GrowRequest g;
     g.grammar = source("grammars/tomato.yaml");
     g.plants = default_stand_layout(k.crowded ? 12 : 40);
@@ -218,6 +226,7 @@ TEST_CASE("resolution's attempts on the device: the host search's turns at the o
     ResolveRequest req;
     req.config.level = k.level;
     req.bulk_attempts = true;  // the CPU backend has no runner: it searches on the host
+    req.bulk_lanes = k.lanes, req.batch_contacts = k.batch;
     req.config.clearance = k.clearance;
     req.config.max_rounds = k.crowded ? 5 : req.config.max_rounds;
     req.detect.level = k.level;
