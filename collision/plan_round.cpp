@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -19,10 +20,17 @@ namespace canopy {
 
 double PhaseTimes::now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+double PhaseTimes::cpu_now() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 void PhaseTimes::lap(Phase p) {
   if (!on) return;
-  const double t = now();
+  const double t = now(), c = cpu_now();
   seconds[p] += t - mark, mark = t;
+  cpu[p] += c - cpu_mark, cpu_mark = c;
 }
 
 void PhaseTimes::print(int threads) const {
@@ -31,7 +39,9 @@ void PhaseTimes::print(int threads) const {
                                                "last resort", "apply turns", "refit", "redetect", "merge", "release"};
   std::string line = "resolution phases (s):";
   for (int p = 0; p < count; ++p) line += fmt::format(" {} {:.3f},", names[p], seconds[p]);
-  fmt::print(stderr, "{} scan busy {:.2f} thread-s on {} threads\n", line, scan_busy, threads);
+  fmt::print(stderr, "{} scan busy {:.2f} thread-s on {} threads; CPU s (all threads) setup to candidates {:.2f}, scan {:.2f}, the rest {:.2f}\n",
+             line, scan_busy, threads, cpu[setup] + cpu[witnesses] + cpu[candidates], cpu[scan],
+             cpu[bookkeeping] + cpu[pick] + cpu[last_resort] + cpu[apply] + cpu[refit] + cpu[redetect] + cpu[merge] + cpu[release]);
 }
 
 namespace {

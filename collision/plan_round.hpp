@@ -29,9 +29,11 @@ struct PhaseTimes {
   enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
   bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
   double seconds[count] = {}, scan_busy = 0, mark = now();
+  double cpu[count] = {}, cpu_mark = cpu_now();  // the process's CPU seconds (all threads) per phase
   void lap(Phase p);
   void print(int threads) const;
   static double now();
+  static double cpu_now();
 };
 
 /// The candidates of a batch come from a pool per thread, whose lists keep their memory from

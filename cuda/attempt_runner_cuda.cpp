@@ -64,7 +64,10 @@ CudaAttemptRunner::Lane& CudaAttemptRunner::lane(std::size_t i) {
 void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
                                       bool all) {
   if (boxes.size() != stand.organ_count()) throw std::logic_error("bulk attempts: one box per organ expected");
-  if (all || boxes_.size() != boxes.size()) {
+  device_boxes_ = dev_.obb_clearance() == 0 && dev_.organs() == boxes.size();
+  if (device_boxes_) {
+    boxes_.resize(0);
+  } else if (all || boxes_.size() != boxes.size()) {
     if (!all) throw std::logic_error("bulk attempts: organs changed before the runner saw them all");
     boxes_.resize(boxes.size());
     boxes_.upload_at(0, boxes.data(), boxes.size());
@@ -122,8 +125,9 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   l.put(l.task_first.get(), first.data(), first.size() * sizeof(std::uint32_t));
   l.touch.grow(groups.size());
   CANOPY_CUDA_CHECK(cudaMemsetAsync(l.touch.get(), 0, groups.size() * sizeof(std::uint32_t), stream));
-  if (boxes_.size() != dev_.organs()) throw std::logic_error("bulk attempts: update_organs() not called for this stand");
-  const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(), l.axes.get(), boxes_.get(), l.witness.get()};
+  if (!device_boxes_ && boxes_.size() != dev_.organs()) throw std::logic_error("bulk attempts: update_organs() not called for this stand");
+  const Obb* obbs = device_boxes_ ? dev_.view().obbs : boxes_.get();
+  const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(), l.axes.get(), obbs, l.witness.get()};
   const auto n_groups = static_cast<std::uint32_t>(groups.size()), n_tasks = static_cast<std::uint32_t>(tasks);
   // The exact tests are listed with a capacity; a list that overflows is made again, larger.
   l.stream.synchronize();

@@ -22,8 +22,9 @@ class CudaAttemptRunner : public AttemptRunner {
   static constexpr std::size_t kLanes = 8;
   explicit CudaAttemptRunner(const StandOnDevice& dev);
   ~CudaAttemptRunner() override;
-  /// Uploads every box (`all`) or scatters the changed organs' boxes; the transforms are the
-  /// device stand's, which the backend's redetect() keeps current.
+  /// Where the device stand's OBBs were fitted without a clearance, reads those (the same bits
+  /// as `boxes`, kept current by the backend's redetect()); otherwise uploads every box (`all`)
+  /// or scatters the changed organs' boxes. The transforms are the device stand's.
   void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed, bool all) override;
   std::size_t lanes() const override { return kLanes; }
   void clear(std::size_t lane) override;
@@ -75,7 +76,8 @@ class CudaAttemptRunner : public AttemptRunner {
 
   const StandOnDevice& dev_;
   const bool report_ = std::getenv("CANOPY_BULK_STATS") != nullptr;  // print Stats when done
-  DeviceBuffer<Obb> boxes_, staged_boxes_;
+  DeviceBuffer<Obb> boxes_, staged_boxes_;  // a copy of the host's boxes, where the device's differ
+  bool device_boxes_ = false;               // reading the device stand's own OBBs
   DeviceBuffer<std::uint32_t> staged_ids_;
   std::array<std::unique_ptr<Lane>, kLanes> lanes_;  // slot i touched only by lane i's thread
   Stats stats_;  // of update_organs

@@ -1,5 +1,7 @@
 #include "cuda/stand_on_device.hpp"
 
+#include <stdexcept>
+
 #include "cuda/scatter.hpp"
 
 #include <algorithm>
@@ -55,6 +57,7 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, c
 }
 
 void StandOnDevice::fit(float clearance) {
+  obb_clearance_ = clearance;
   CANOPY_CUDA_CHECK(cudaMemset(max_radius_.get(), 0, sizeof(float)));
   launch_refit_organs(tree_, nullptr, static_cast<std::uint32_t>(obbs_.size()), clearance);
   launch_fit_clusters(tree_, static_cast<std::uint32_t>(clusters_.size()), static_cast<std::uint32_t>(nodes_.size()));
@@ -71,6 +74,7 @@ void StandOnDevice::refit(const Stand& s, const Mbvt& m, const std::vector<std::
   if (moved.empty()) return;
   // The moved organs' transforms, scattered into place (ids_ keeps the ids for the refit).
   scatter_from_host(transforms_.get(), s.transforms.data(), moved, ids_, moved_transforms_);
+  if (m.config.clearance != obb_clearance_) throw std::logic_error("refit: not the clearance the boxes were fitted with");
   launch_refit_organs(tree_, ids_.get(), static_cast<std::uint32_t>(moved.size()), m.config.clearance);
   // Every cluster of the plants that moved (their LCD boxes keep the axes fixed at the build),
   // then the plants' bounds.

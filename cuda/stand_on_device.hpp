@@ -27,6 +27,10 @@ class StandOnDevice {
   void refit(const Stand& s, const Mbvt& m, const std::vector<std::uint32_t>& moved);
   /// The largest plant radius fitted (one float down).
   float max_radius() const;
+  /// The clearance the organs' OBBs were fitted with: at 0 they are, bit for bit, the host's
+  /// make_obb(transform, prototype box, 0) (the same CANOPY_HD function, no fused operations),
+  /// which resolution's attempts on the device then read instead of an uploaded copy.
+  float obb_clearance() const { return obb_clearance_; }
   const StandView& view() const { return view_; }
   const std::uint8_t* self() const { return self_.get(); }
   std::uint32_t plants() const { return static_cast<std::uint32_t>(plants_.size()); }
@@ -58,6 +62,7 @@ class StandOnDevice {
   StandView view_{};
   TreeView tree_{};
   double x0_ = 0, y0_ = 0, span_ = 0;
+  float obb_clearance_ = 0;
   std::size_t bytes_ = 0;
 };
 

@@ -7,6 +7,9 @@
 #include "cuda/check.hpp"
 #include "cuda/detect_cuda.hpp"
 #include "cuda/device.hpp"
+#include "cuda/stand_on_device.hpp"
+#include "collision/broad_phase.hpp"
+#include "geometry/organ_mesh.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -278,5 +281,43 @@ TEST_CASE("a stand that must be batched: the same contacts in batches under --ma
       CHECK(batched.counts[l]->between == want.counts[l]->between);
       CHECK(batched.counts[l]->within == want.counts[l]->within);
     }
+  }
+}
+
+TEST_CASE("the device stand's organ OBBs are the host's bit for bit, fitted and refitted (the attempts read them)") {
+  for (std::uint64_t seed : {3, 8}) {
+    INFO("seed " << seed);
+    Stand s = random_stand(seed);
+    PrototypeLibrary lib, host_lib;
+    const Mbvt tree = build_mbvt_topology(s, MbvtConfig{});
+    cuda::StandOnDevice dev;
+    dev.load(s, tree, lib, plants_with_free_pairs(s, tree));
+    dev.fit(0);
+    CHECK(dev.obb_clearance() == 0);
+    make_meshes(s, host_lib, 2);
+    const auto differing = [&] {
+      CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+      std::vector<Obb> got(s.organ_count());
+      CANOPY_CUDA_CHECK(cudaMemcpy(got.data(), dev.view().obbs, got.size() * sizeof(Obb), cudaMemcpyDeviceToHost));
+      std::size_t n = 0;
+      for (std::size_t k = 0; k < got.size(); ++k) {
+        const OrganRecord& r = s.organs[k];
+        const Obb want = make_obb(s.transforms[k], host_lib.get(r.prototype, r.lod).box, 0);
+        n += std::memcmp(&want, &got[k], sizeof(Obb)) != 0;
+      }
+      return n;
+    };
+    CHECK(differing() == 0);
+    // Every third organ turned a little about its own axes (as resolution turns them), refitted.
+    std::vector<std::uint32_t> moved;
+    for (std::uint32_t k = 0; k < s.organ_count(); k += 3) {
+      Affine3f& m = s.transforms[k];
+      const float c = 0.9f, d = 0.43588989f;
+      const Vec3f c0 = m.c0, c1 = m.c1;
+      m.c0 = c0 * c + c1 * d, m.c1 = c1 * c - c0 * d;
+      moved.push_back(k);
+    }
+    dev.refit(s, tree, moved);
+    CHECK(differing() == 0);
   }
 }
