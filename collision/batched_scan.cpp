@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
+#include <stdexcept>
 
 namespace canopy {
 namespace {
@@ -205,37 +206,74 @@ void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
 std::vector<Turn> BatchedScan::refine(std::span<Candidate* const> cands) {
   const double tol = search_.config.angle_tolerance_deg;
   std::vector<double> lo(cands.size()), hi(cands.size());
-  std::vector<Mat3d> best(cands.size());
-  for (std::size_t j = 0; j < cands.size(); ++j) lo[j] = cands[j]->lo, hi[j] = cands[j]->hi, best[j] = cands[j]->local;
-  // Bisection steps over every candidate still wider than the tolerance; hi stays feasible.
+  for (std::size_t j = 0; j < cands.size(); ++j) {
+    lo[j] = cands[j]->lo, hi[j] = cands[j]->hi;
+    // The neighbours gathered cover the found angle, so no midpoint gathers (clear_axes below
+    // takes a candidate several times, and gathering is not safe for that).
+    if (cands[j]->strict && cands[j]->near_deg < hi[j]) throw std::logic_error("batched scan: neighbours do not cover a found turn");
+  }
+  // The bisection (lo fails, hi separates; while hi - lo > tol, test the midpoint and keep the
+  // half with a failing end and a separating end) answered a few steps at a time: every
+  // midpoint the next kSpeculate steps could visit, as a tree (a separating midpoint leads to
+  // the left half, a failing one to the right; a half no wider than the tolerance ends its
+  // branch), tested in one call, then walked as the one-step-at-a-time bisection walks it. The
+  // same midpoints, 0.5 (lo + hi) of the same ends, so the same turns, for up to 7 attempts where
+  // the walk makes 3 but one round trip to the runner instead of 3.
+  constexpr int kSpeculate = 3;
+  struct Node {
+    double lo, hi;
+    std::int32_t left = -1, right = -1, depth = 0;
+  };
   for (;;) {
-    std::vector<Candidate*> act;
-    std::vector<std::size_t> of;
-    std::vector<double> mid;
-    for (std::size_t j = 0; j < cands.size(); ++j)
-      if (hi[j] - lo[j] > tol) act.push_back(cands[j]), of.push_back(j), mid.push_back(0.5 * (lo[j] + hi[j]));
-    if (act.empty()) break;
-    std::vector<AxisSet> want(act.size());
-#pragma omp parallel for schedule(static) num_threads(threads_) if (act.size() > kParallelFrom)
-    for (std::size_t j = 0; j < act.size(); ++j) {
-      Candidate& c = *act[j];
+    std::vector<std::uint32_t> first{0};
+    std::vector<std::size_t> of;  // per tree: its candidate
+    std::vector<Node> nodes;
+    for (std::size_t j = 0; j < cands.size(); ++j) {
+      if (!(hi[j] - lo[j] > tol)) continue;
+      of.push_back(j);
+      nodes.push_back(Node{lo[j], hi[j]});
+      for (std::size_t n = first.back(); n < nodes.size(); ++n) {
+        const Node at = nodes[n];
+        if (at.depth + 1 >= kSpeculate) continue;
+        const double mid = 0.5 * (at.lo + at.hi);
+        if (mid - at.lo > tol) nodes[n].left = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{at.lo, mid, -1, -1, at.depth + 1});
+        if (at.hi - mid > tol) nodes[n].right = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{mid, at.hi, -1, -1, at.depth + 1});
+      }
+      first.push_back(static_cast<std::uint32_t>(nodes.size()));
+    }
+    if (of.empty()) break;
+    // Every node's midpoint, its candidate and whether its joint stays within the limit there
+    // (a candidate's nodes by one thread: the turn's cosine and sine are kept in the candidate).
+    std::vector<Candidate*> act(nodes.size());
+    std::vector<double> mid(nodes.size());
+    std::vector<AxisSet> want(nodes.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (of.size() > kParallelFrom)
+    for (std::size_t t = 0; t < of.size(); ++t) {
+      Candidate& c = *cands[of[t]];
       const auto a = static_cast<std::size_t>(c.found_axis);
-      want[j] = AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], mid[j]) ? 1u : 0u};
+      for (std::uint32_t n = first[t]; n < first[t + 1]; ++n) {
+        act[n] = &c, mid[n] = 0.5 * (nodes[n].lo + nodes[n].hi);
+        want[n] = AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], mid[n]) ? 1u : 0u};
+      }
     }
     const std::vector<std::uint32_t> ok = clear_axes(act, mid, want);
-#pragma omp parallel for schedule(static) num_threads(threads_) if (act.size() > kParallelFrom)
-    for (std::size_t j = 0; j < act.size(); ++j) {
-      const std::size_t k = of[j];
-      if (!ok[j]) {
-        lo[k] = mid[j];
-        continue;
+    for (std::size_t t = 0; t < of.size(); ++t) {
+      const std::size_t j = of[t];
+      for (std::int32_t n = static_cast<std::int32_t>(first[t]); n >= 0;) {
+        const auto at = static_cast<std::size_t>(n);
+        if (ok[at]) hi[j] = mid[at], n = nodes[at].left;
+        else lo[j] = mid[at], n = nodes[at].right;
       }
-      hi[k] = mid[j];
-      best[k] = search_.local_after(*act[j], act[j]->axes[static_cast<std::size_t>(act[j]->found_axis)], mid[j]);
     }
   }
-  std::vector<Turn> out;
-  for (std::size_t j = 0; j < cands.size(); ++j) out.push_back(Turn{cands[j]->mover, best[j], hi[j]});
+  std::vector<Turn> out(cands.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (cands.size() > kParallelFrom)
+  for (std::size_t j = 0; j < cands.size(); ++j) {
+    Candidate& c = *cands[j];
+    // The joint's rotation at the last separating midpoint, or the scan's where none separated.
+    const Mat3d best = hi[j] != c.hi ? search_.local_after(c, c.axes[static_cast<std::size_t>(c.found_axis)], hi[j]) : c.local;
+    out[j] = Turn{c.mover, best, hi[j]};
+  }
   return out;
 }
 

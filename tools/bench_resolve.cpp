@@ -6,6 +6,7 @@
 // Usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]
 //                      [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG]
 //                      [--csv FILE] [--append]
+#include "collision/attempt_runner_host.hpp"
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/process_memory.hpp"
@@ -15,6 +16,7 @@
 #endif
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <chrono>
 #include <cstdio>
@@ -48,8 +50,8 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;
-  bool append = false, device_search = true;
-  std::size_t lanes = ResolveRequest{}.bulk_lanes;
+  bool append = false, device_search = true, host_runner = false;
+  std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts;
   ResolveConfig base;
   std::string csv = "bench/results/resolve.csv";
   for (int i = 1; i < argc; ++i) {
@@ -69,14 +71,20 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--append")) append = true;
     else if (!std::strcmp(argv[i], "--device-search")) device_search = true;  // the default
     else if (!std::strcmp(argv[i], "--host-search")) device_search = false;
+    else if (!std::strcmp(argv[i], "--host-runner")) host_runner = true;
     else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc) lanes = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
+    else if (!std::strcmp(argv[i], "--batch") && i + 1 < argc) batch = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else {
       std::fprintf(stderr,
                    "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
                    "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"
                    "                            attempts on the device, the default)\n"
-                   "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default 4)\n");
+                   "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default 4)\n"
+                   "       [--batch N]         (contacts per batch of planning at most, default 8192)\n"
+                   "       [--host-runner]     (the CPU backend plans as the device does, level by level in lanes,\n"
+                   "                            with the host answering the attempts: the device path's host side\n"
+                   "                            where there is no GPU, for profiling; the same turns)\n");
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
@@ -84,7 +92,7 @@ int main(int argc, char** argv) {
   if (!out) return 1;
   const std::string config = fmt::format("candidates={} axes={} step={}", base.candidates, base.axis_fan, base.scan_step_deg);
   // How the CUDA backend plans (the CPU backend always searches candidate by candidate).
-  const std::string cuda_search = device_search ? fmt::format(" device-search lanes={}", lanes) : " host-search";
+  const std::string cuda_search = device_search ? fmt::format(" device-search lanes={} batch={}", lanes, batch) : " host-search";
   if (!append)
     fmt::print(out,
              "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
@@ -116,7 +124,11 @@ int main(int argc, char** argv) {
           req.detect.threads = threads;
           req.config = base;
           req.bulk_attempts = device_search;
+          PrototypeLibrary runner_lib;
+          HostAttemptRunner runner(runner_lib, threads > 0 ? threads : omp_get_max_threads(), lanes);
+          if (host_runner && bname == "cpu") req.attempts = &runner;
           req.bulk_lanes = lanes;
+          req.batch_contacts = batch;
           req.config.level = *parse_contact_level(lname);
           auto fresh = make_cpu_backend();  // the independent counts before and after
           const std::size_t before_exact = fresh->detect(s, DetectRequest{}).pairs.size();

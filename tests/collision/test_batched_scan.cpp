@@ -76,12 +76,15 @@ TEST_CASE("batched turn search: organ level, clearances, crowded stands and many
     double clearance = ResolveConfig{}.clearance;
     float detect_clearance = 0;
     int axis_fan = ResolveConfig{}.axis_fan;
+    double tolerance = ResolveConfig{}.angle_tolerance_deg;
   };
   const Case cases[] = {
       {"organ level", {2, 3}, false, ContactLevel::organ},
       {"detection and resolution clearances", {4, 5}, false, ContactLevel::exact, 0.002, 0.001f},
       {"crowded: relaxed pass, last resort, unresolvable pairs", {11, 12}, true},
       {"more axes than one group of 32", {3}, false, ContactLevel::exact, ResolveConfig{}.clearance, 0, 40},
+      // 0.05 degrees: bisections of up to 6 steps, more than one call's worth of speculation.
+      {"a fine angle tolerance", {2, 6}, false, ContactLevel::exact, ResolveConfig{}.clearance, 0, ResolveConfig{}.axis_fan, 0.05},
   };
   for (const Case& k : cases)
     for (std::uint64_t seed : k.seeds) {
@@ -90,6 +93,7 @@ TEST_CASE("batched turn search: organ level, clearances, crowded stands and many
       cfg.level = k.level;
       cfg.clearance = k.clearance;
       cfg.axis_fan = k.axis_fan;
+      cfg.angle_tolerance_deg = k.tolerance;
       if (k.crowded) cfg.max_rounds = 4;
       const Stand s = k.crowded ? random_stand(seed, 12) : row_stand(seed);
       same(run(s, cfg, k.detect_clearance, false), run(s, cfg, k.detect_clearance, true));
