@@ -130,8 +130,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(), l.axes.get(), obbs, l.witness.get()};
   const auto n_groups = static_cast<std::uint32_t>(groups.size()), n_tasks = static_cast<std::uint32_t>(tasks);
   // The exact tests are listed with a capacity; a list that overflows is made again, larger.
-  l.stream.synchronize();
-  const double t1 = now();
+  const double t1 = now();  // the uploads queued (they run before the kernels, in the stream's order)
   Counters host{};
   for (;;) {
     CANOPY_CUDA_CHECK(cudaMemsetAsync(l.counters.get(), 0, sizeof(Counters), stream));
