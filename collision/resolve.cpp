@@ -1,5 +1,6 @@
 #include "collision/resolve.hpp"
 
+#include "collision/background_release.hpp"
 #include "collision/neighbourhood.hpp"
 #include "collision/plan_round.hpp"
 #include "collision/turn_search.hpp"
@@ -179,17 +180,11 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     why.clear();  // reasons belong to the list they were found on
   }
   times.lap(PhaseTimes::merge);
-  // The candidates let go by the threads that made them, all at once.
-  // Each lane's candidates let go by the threads of its team that made them, lanes side by side.
-  const auto release = [&](std::size_t l) {
-    if (l >= pools.size()) return;
-#pragma omp parallel num_threads(threads)
-    pools[l][static_cast<std::size_t>(omp_get_thread_num())].owned.clear();
-  };
-  if (lane_threads) lane_threads->run(release);
-  else release(0);
+  // The candidates go on a thread of their own (collision/background_release.hpp), and the lanes'
+  // threads end: every turn is made, the caller can go on.
   lane_threads.reset();
-  pools.clear();
+  auto gone = std::make_shared<std::vector<std::vector<CandidatePool>>>(std::move(pools));
+  BackgroundRelease::instance().hand_over([gone] { gone->clear(); });
   times.lap(PhaseTimes::release);
   times.print(threads);
   out.contacts_after = left;
