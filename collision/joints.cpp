@@ -15,18 +15,21 @@ double rotation_angle_deg(const Mat3d& r) {
   return std::acos(c) * 180 / std::numbers::pi;
 }
 
-Joints::Joints(const Stand& s, int threads) : parent_(s.organ_count()), subtree_end_(s.organ_count()), slot_(s.organ_count(), -1) {
+Joints::Joints(const Stand& s, int threads) {
   const std::size_t n = s.organ_count();
-  grown_.resize(n);
-  // Organs [first, end) from the last back, so that a subtree's end reaches its root; false when
-  // a parent lies outside the run.
-  const auto fill = [&](std::size_t first, std::size_t end) {
+  grown_.resize(n), parent_.resize(n), subtree_end_.resize(n), slot_.resize(n);
+  // Every entry written here, on all threads (the allocator leaves them unwritten).
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::size_t i = 0; i < n; ++i) {
+    grown_[i] = s.transforms[i];
+    parent_[i] = s.organs[i].parent;  // a global id in the stand
+    subtree_end_[i] = static_cast<std::uint32_t>(i + 1);
+    slot_[i] = -1;
+  }
+  // Subtree ends over organs [first, end), from the last back, so that a subtree's end reaches
+  // its root; false when a parent lies outside the run.
+  const auto ends = [&](std::size_t first, std::size_t end) {
     bool inside = true;
-    for (std::size_t i = first; i < end; ++i) {
-      grown_[i] = s.transforms[i];
-      parent_[i] = s.organs[i].parent;  // a global id in the stand
-      subtree_end_[i] = static_cast<std::uint32_t>(i + 1);
-    }
     for (std::size_t i = end; i-- > first;)
       if (parent_[i] >= 0) {
         const auto q = static_cast<std::size_t>(parent_[i]);
@@ -40,10 +43,13 @@ Joints::Joints(const Stand& s, int threads) : parent_(s.organ_count()), subtree_
   bool per_plant = true;
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads) reduction(&& : per_plant)
   for (std::size_t p = 0; p < s.plant_count(); ++p)
-    per_plant = fill(s.plants[p].first_organ, s.plants[p].first_organ + s.plants[p].organ_count) && per_plant;
+    per_plant = ends(s.plants[p].first_organ, s.plants[p].first_organ + s.plants[p].organ_count) && per_plant;
   std::size_t covered = 0;
   for (const PlantRecord& p : s.plants) covered += p.organ_count;
-  if (!per_plant || covered != n) fill(0, n);
+  if (!per_plant || covered != n) {
+    for (std::size_t i = 0; i < n; ++i) subtree_end_[i] = static_cast<std::uint32_t>(i + 1);
+    ends(0, n);
+  }
 }
 
 double Joints::angle_deg(std::uint32_t k) const {
