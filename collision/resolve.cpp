@@ -113,6 +113,9 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     if (runner && !lane_threads && std::min(req.bulk_lanes, runner->lanes()) > 1)
       lane_threads.emplace(std::min(req.bulk_lanes, runner->lanes()));
     preq.lanes = runner && lane_threads ? &*lane_threads : nullptr;
+    if (runner)
+      out.planning = fmt::format("{} attempts, {} lane{}", req.attempts ? "runner" : "device", lane_threads ? lane_threads->lanes() : 1,
+                                 lane_threads ? "s" : "");
     preq.batch_contacts = req.batch_contacts;
     preq.pools = &pools;
     Plan plan = plan_round(s, joints, contacts, touching, search, preq, times);

@@ -91,6 +91,9 @@ struct ResolveResult {
   std::vector<ResolveRound> per_round;
   std::vector<UnresolvedContact> unresolved;  // what is left, with why
   std::size_t joint_bytes = 0;
+  /// How the rounds were planned: "host search", or "device attempts, N lanes" (through the
+  /// backend's runner; "runner attempts" for one handed in with `attempts`).
+  std::string planning = "host search";
   double seconds = 0;
 };
 

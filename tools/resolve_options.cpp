@@ -32,6 +32,11 @@ void ResolveOptions::add_to(CLI::App& app) {
                "level's attempts on the device in lanes of batches (the same turns; slower on the 16-core GPU machines)");
   app.add_flag_callback("--resolve-device-search", [this] { host_search = false; },
                         "Resolution: each level's attempts on the device with --backend cuda (the default there)");
+  app.add_option("--resolve-lanes", lanes,
+                 fmt::format("Resolution: with the device's attempts, batches of contacts planned at once, each on a thread and "
+                             "stream of its own (default {}; 1 to 8; the same turns for any number)",
+                             lanes))
+      ->check(CLI::Range(1, 8));
 }
 
 ResolveConfig ResolveOptions::config() const {
@@ -54,6 +59,8 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
           {"max_rounds", c.max_rounds},    {"clearance", c.clearance},
           {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
           {"candidates", c.candidates},    {"axis_fan", c.axis_fan},
+          {"search", host_search ? "host" : "device"},  // device: the backend's runner where it has one (CUDA)
+          {"lanes", lanes},
           {"movable_rank", order},         {"outer_first", c.outer_first}};
 }
 
@@ -63,6 +70,7 @@ ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const Dete
   ResolveRequest req;
   req.partition = partition;
   req.bulk_attempts = !o.host_search;
+  req.bulk_lanes = static_cast<std::size_t>(o.lanes);
   req.detect = detect;
   req.config = o.config();
   const bool tty = !progress && o.progress && isatty(fileno(stderr));
@@ -106,6 +114,7 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
           {"unresolvable", r.unresolved.size()},
           {"remaining", left},
           {"joint_bytes", r.joint_bytes},
+          {"planning", r.planning},
           {"rounds", rounds}};
 }
 
@@ -114,6 +123,7 @@ void print_resolution(const ResolveResult& r) {
              "{} organs moved with them; {}\n",
              r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg,
              r.organs_carried, r.stop);
+  fmt::print("  planned with the {}\n", r.planning);
   fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s", "detect s");
   for (const ResolveRound& x : r.per_round)
     fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9.3f} {:>9.3f}\n", x.round, x.contacts, x.turned, x.plants_redetected, x.plan_s,

@@ -22,6 +22,8 @@ struct ResolveOptions {
   /// Plan with the host's candidate-by-candidate search even where the backend runs attempts in
   /// bulk (CUDA: on the device, the default there). The turns are the same either way.
   bool host_search = false;
+  /// Batches of contacts planned at once with the device's attempts (collision/plan_round.hpp).
+  int lanes = static_cast<int>(ResolveRequest{}.bulk_lanes);
 
   void add_to(CLI::App& app);
   ResolveConfig config() const;
