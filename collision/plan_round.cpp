@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <exception>
 #include <mutex>
 #include <optional>
 #include <span>
@@ -283,21 +282,19 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       return std::span<const std::size_t>(waiting).subspan(b * size, std::min(size, waiting.size() - b * size));
     };
     std::vector<Picks> picks(batches);
-    // Each lane takes the next batch not taken; any lane may plan any batch.
+    // Each lane takes the next batch not taken; any lane may plan any batch. A lane that fails
+    // stops the others after their batch (LaneThreads::run rethrows its exception).
     std::atomic<std::size_t> next{0};
-    std::vector<std::exception_ptr> failed(n_lanes);
     const auto work = [&](std::size_t l) {
       try {
         for (std::size_t b; (b = next++) < batches;) picks[b] = round.plan_batch(lanes[l], batch(b), strict);
       } catch (...) {
-        failed[l] = std::current_exception();
-        next = batches;  // the other lanes stop after their batch
+        next = batches;
+        throw;
       }
     };
     if (n_lanes > 1) req.lanes->run(work);
     else work(0);
-    for (const std::exception_ptr& e : failed)
-      if (e) std::rethrow_exception(e);
     times.lap(PhaseTimes::scan);  // lane 0's wait for the others
     // In batch order (a mover picked in two batches made the same turn in both).
     for (const Picks& list : picks)

@@ -110,8 +110,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       preq.planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
     preq.plan_plants = part ? &part->plan : nullptr;
     preq.runner = runner;
-    if (runner && !lane_threads && std::min(req.bulk_lanes, runner->lanes()) > 1)
-      lane_threads.emplace(std::min(req.bulk_lanes, runner->lanes()));
+    if (const std::size_t lanes = runner ? std::min(req.bulk_lanes, runner->lanes()) : 1; lanes > 1 && !lane_threads)
+      lane_threads.emplace(lanes);
     preq.lanes = runner && lane_threads ? &*lane_threads : nullptr;
     if (runner)
       out.planning = fmt::format("{} attempts, {} lane{}", req.attempts ? "runner" : "device", lane_threads ? lane_threads->lanes() : 1,

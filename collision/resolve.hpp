@@ -55,8 +55,8 @@ struct ResolveRequest {
   AttemptRunner* attempts = nullptr;
   /// True (and `attempts` null): through the backend's runner where it has one (CUDA: on the
   /// device, in lanes); the CPU backend has none and searches candidate by candidate. False: the
-  /// host's search on any backend. On the 16-core H100 machine the device's lanes plan 10,000
-  /// plants 25-35 % faster than the host's search (bench/results/README.md).
+  /// host's search on any backend. On the 16-core H100 machines the device's lanes resolve 10,000
+  /// plants in 0.58-0.84 of the host search's time (bench/results/README.md).
   bool bulk_attempts = true;
   /// Batches of contacts planned at once through the runner, each on a lane of its own (at most
   /// the runner's lanes): one lane's host work overlaps another's device work. The turns are the

@@ -48,12 +48,9 @@ class DeviceBuffer {
     }
     *this = std::move(bigger);
   }
-  /// Copies n items from the host to items [at, at + n), in `stream`'s order (0: the default
-  /// stream). `src` may change once it returns: pageable memory is staged before it does.
-  void upload_at(std::size_t at, const T* src, std::size_t n, cudaStream_t stream = 0) {
-    if (!n) return;
-    if (stream) CANOPY_CUDA_CHECK(cudaMemcpyAsync(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice, stream));
-    else CANOPY_CUDA_CHECK(cudaMemcpy(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice));
+  /// Copies n items from the host to items [at, at + n).
+  void upload_at(std::size_t at, const T* src, std::size_t n) {
+    if (n) CANOPY_CUDA_CHECK(cudaMemcpy(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice));
   }
   /// Room for n items, exactly when `tight` (a device memory budget is in force), else at least.
   void fit(std::size_t n, bool tight) { tight ? resize(n) : grow(n); }

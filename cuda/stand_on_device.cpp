@@ -1,10 +1,9 @@
 #include "cuda/stand_on_device.hpp"
 
-#include <stdexcept>
-
 #include "cuda/scatter.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace canopy::cuda {
 
@@ -72,9 +71,9 @@ float StandOnDevice::max_radius() const {
 
 void StandOnDevice::refit(const Stand& s, const Mbvt& m, const std::vector<std::uint32_t>& moved) {
   if (moved.empty()) return;
+  if (m.config.clearance != obb_clearance_) throw std::logic_error("refit: not the clearance the boxes were fitted with");
   // The moved organs' transforms, scattered into place (ids_ keeps the ids for the refit).
   scatter_from_host(transforms_.get(), s.transforms.data(), moved, ids_, moved_transforms_);
-  if (m.config.clearance != obb_clearance_) throw std::logic_error("refit: not the clearance the boxes were fitted with");
   launch_refit_organs(tree_, ids_.get(), static_cast<std::uint32_t>(moved.size()), m.config.clearance);
   // Every cluster of the plants that moved (their LCD boxes keep the axes fixed at the build),
   // then the plants' bounds.
