@@ -20,9 +20,13 @@ namespace canopy {
 
 class BatchedScan {
  public:
-  /// Through lane `lane` of the runner (collision/attempt_batch.hpp).
-  BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads, std::size_t lane = 0)
-      : search_(search), runner_(runner), threads_(threads), lane_(lane) {}
+  /// Through lane `lane` of the runner (collision/attempt_batch.hpp), writing into `tables` where
+  /// given (the caller keeps them from round to round, so that their memory, hundreds of
+  /// megabytes at 10,000 plants, is faulted in once) or into tables of its own.
+  BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads, std::size_t lane = 0, AttemptTables* tables = nullptr)
+      : search_(search), runner_(runner), threads_(threads), lane_(lane), tables_(tables ? *tables : own_tables_) {}
+  BatchedScan(const BatchedScan&) = delete;
+  BatchedScan& operator=(const BatchedScan&) = delete;
   /// With CANOPY_BULK_STATS set in the environment, prints where the host's time went.
   ~BatchedScan();
   /// A new batch of contacts: the tables start empty (candidates of the last batch are gone).
@@ -50,7 +54,8 @@ class BatchedScan {
   AttemptRunner& runner_;
   int threads_;
   std::size_t lane_;
-  AttemptTables tables_;
+  AttemptTables own_tables_;
+  AttemptTables& tables_;
   struct Times {
     double limits = 0, tables = 0, gather = 0, runner = 0;
     std::size_t gathers = 0;

@@ -252,6 +252,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   if (req.runner && n_lanes > req.runner->lanes()) throw std::logic_error("planning: more lanes than the runner has");
   std::vector<std::vector<CandidatePool>>& pools = *req.pools;
   if (pools.size() < n_lanes) pools.resize(n_lanes);
+  if (req.tables && req.tables->size() < n_lanes) req.tables->resize(n_lanes);
   PhaseTimes quiet;
   quiet.on = false;
   std::vector<Lane> lanes(n_lanes);
@@ -263,7 +264,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     if (pools[l].size() < static_cast<std::size_t>(threads)) pools[l].resize(static_cast<std::size_t>(threads));
     lane.pools = &pools[l];
     lane.scratches = &scratches;
-    if (req.runner) lane.bulk.emplace(search, *req.runner, threads, l);
+    if (req.runner) lane.bulk.emplace(search, *req.runner, threads, l, req.tables ? &(*req.tables)[l] : nullptr);
     lane.times = l == 0 ? &times : &quiet;
     lane.local_of.assign(movers.size(), kNoPair);
   }

@@ -68,6 +68,9 @@ struct PlanRequest {
   std::size_t batch_contacts = 8192;  // contacts per batch
   /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
   std::vector<std::vector<CandidatePool>>* pools = nullptr;
+  /// Per lane, the batched scan's tables (grown here; kept by the caller from round to round,
+  /// null: made anew each round).
+  std::vector<AttemptTables>* tables = nullptr;
 };
 
 /// One round's turns, all planned against the poses at the start of the round. Each contact

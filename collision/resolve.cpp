@@ -73,6 +73,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   std::size_t best = left;
   int best_round = 0;
   std::vector<std::vector<CandidatePool>> pools;  // per lane of planning, per thread
+  std::vector<AttemptTables> tables;              // per lane of bulk planning
   std::optional<LaneThreads> lane_threads;         // made at the first round with a runner of several lanes
   times.lap(PhaseTimes::setup);
   for (int round = 1;; ++round) {
@@ -118,6 +119,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
                                  lane_threads ? "s" : "");
     preq.batch_contacts = req.batch_contacts;
     preq.pools = &pools;
+    preq.tables = &tables;
     Plan plan = plan_round(s, joints, contacts, touching, search, preq, times);
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
@@ -183,11 +185,12 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     why.clear();  // reasons belong to the list they were found on
   }
   times.lap(PhaseTimes::merge);
-  // The candidates go on a thread of their own (collision/background_release.hpp), and the lanes'
-  // threads end: every turn is made, the caller can go on.
+  // The candidates and the lanes' tables go on a thread of their own (collision/
+  // background_release.hpp), and the lanes' threads end: every turn is made, the caller goes on.
   lane_threads.reset();
-  auto gone = std::make_shared<std::vector<std::vector<CandidatePool>>>(std::move(pools));
-  BackgroundRelease::instance().hand_over([gone] { gone->clear(); });
+  auto gone = std::make_shared<std::pair<std::vector<std::vector<CandidatePool>>, std::vector<AttemptTables>>>(std::move(pools),
+                                                                                                           std::move(tables));
+  BackgroundRelease::instance().hand_over([gone] { gone->first.clear(), gone->second.clear(); });
   times.lap(PhaseTimes::release);
   times.print(threads);
   out.contacts_after = left;

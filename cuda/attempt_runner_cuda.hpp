@@ -6,6 +6,7 @@
 /// fixed while a stand resolves.
 #include "collision/attempt_batch.hpp"
 #include "cuda/attempt_kernels.hpp"
+#include "cuda/busy_timeline.hpp"
 #include "cuda/device_buffer.hpp"
 #include "cuda/stand_on_device.hpp"
 
@@ -55,6 +56,7 @@ class CudaAttemptRunner : public AttemptRunner {
     DeviceBuffer<ExactAttempt> exact;
     DeviceBuffer<Counters> counters;
     Stats stats;
+    BusyTimeline busy;  // with CANOPY_BULK_STATS: when the device had this lane's kernels
     /// A call's uploads go through page-locked memory of the lane's own: copied there on the
     /// host, then sent by the copy engine in the stream's order, so the lane's thread does not
     /// wait for them. (Measured against pageable copies in the stream on an H100: no difference
@@ -82,6 +84,7 @@ class CudaAttemptRunner : public AttemptRunner {
   DeviceBuffer<std::uint32_t> staged_ids_;
   std::array<std::unique_ptr<Lane>, kLanes> lanes_;  // slot i touched only by lane i's thread
   Stats stats_;  // of update_organs
+  cudaEvent_t origin_{};  // with CANOPY_BULK_STATS: before every lane's work
 };
 
 }  // namespace canopy::cuda

@@ -4,7 +4,14 @@
 /// organ of a 10,000-plant stand) are first touched, and faulted in, by the threads that write
 /// them rather than by one thread zeroing them beforehand. Only for numbers and implicit-lifetime
 /// aggregates (plain structs of numbers) that the caller writes in full before reading.
+///
+/// Arrays of kLargeArrayBytes or more are mapped on their own in large pages where the system
+/// offers them (geometry/large_pages.hpp): a fault then brings in 2 MiB instead of 4 KiB.
+#include "geometry/large_pages.hpp"
+
+#include <cstddef>
 #include <memory>
+#include <new>
 #include <type_traits>
 #include <utility>
 
@@ -19,6 +26,15 @@ struct FirstTouchAllocator : std::allocator<T> {
   FirstTouchAllocator() = default;
   template <class U>
   FirstTouchAllocator(const FirstTouchAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) {
+    if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
+    if (n * sizeof(T) < kLargeArrayBytes) return std::allocator<T>::allocate(n);
+    return static_cast<T*>(map_large(n * sizeof(T)));
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (n * sizeof(T) < kLargeArrayBytes) std::allocator<T>::deallocate(p, n);
+    else unmap_large(p, n * sizeof(T));
+  }
   template <class U>
   void construct(U*) noexcept {
     static_assert((std::is_aggregate_v<U> || std::is_arithmetic_v<U>) && std::is_trivially_copyable_v<U> &&

@@ -14,6 +14,7 @@ inline void keep_freed_memory() {
 #ifdef M_MMAP_THRESHOLD
   mallopt(M_MMAP_THRESHOLD, 32 << 20);   // glibc's largest: blocks up to 32 MiB come from the heap
   mallopt(M_TRIM_THRESHOLD, 256 << 20);  // the heap top is trimmed only above 256 MiB free
+  mallopt(M_TOP_PAD, 256 << 20);         // and grows 256 MiB beyond what it needs each time
 #endif
 }
 

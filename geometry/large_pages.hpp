@@ -1,0 +1,21 @@
+#pragma once
+/// Memory for large arrays in 2 MiB pages where the system offers them (Linux transparent huge
+/// pages in "madvise" mode, which Debian and Ubuntu kernels default to): an array of hundreds of
+/// megabytes filled once per resolution round then faults in 512 times fewer pages. Measured on
+/// the H100 machine's 16 host cores, where page faults of the planning's tables and other
+/// per-round arrays cost about a tenth of a 10,000-plant resolution (bench/results/README.md,
+/// "Heap and pages").
+#include <cstddef>
+
+namespace canopy {
+
+/// Arrays of at least this many bytes are mapped on their own, in large pages where possible.
+inline constexpr std::size_t kLargeArrayBytes = std::size_t{4} << 20;
+
+/// `bytes` (at least kLargeArrayBytes) of fresh zeroed memory aligned to 2 MiB, with the kernel
+/// asked for huge pages; throws std::bad_alloc where the system has no room.
+void* map_large(std::size_t bytes);
+/// Gives back what map_large(bytes) returned.
+void unmap_large(void* p, std::size_t bytes) noexcept;
+
+}  // namespace canopy
