@@ -8,7 +8,6 @@
 #include "collision/backend.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/fcl/fcl_reference.hpp"
-#include "tools/huge_page_heap.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -78,7 +77,6 @@ std::size_t implied_pairs(const Stand& s, const Mbvt& m, const std::vector<Conta
 }  // namespace
 
 int main(int argc, char** argv) {
-  canopy::use_huge_page_heap(argv);
   canopy::keep_freed_memory();
   std::vector<int> sizes{200, 400, 600, 800, 1000, 2000, 10000};
   int fcl_max = 1000, repeats = 3;

@@ -12,7 +12,6 @@
 #include "collision/backend.hpp"
 #include "cuda/detect_cuda.hpp"
 #include "lsystem/grow.hpp"
-#include "tools/huge_page_heap.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -39,7 +38,6 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  canopy::use_huge_page_heap(argv);
   canopy::keep_freed_memory();
   std::vector<int> sizes{2000, 4000, 6000, 8000, 10000, 100000};
   int repeats = 5;

@@ -9,7 +9,6 @@
 #include "collision/attempt_runner_host.hpp"
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
-#include "tools/huge_page_heap.hpp"
 #include "tools/process_memory.hpp"
 #ifdef CANOPY_HAVE_CUDA
 #include "cuda/detect_cuda.hpp"
@@ -47,7 +46,6 @@ struct Spacing {
 }  // namespace
 
 int main(int argc, char** argv) {
-  canopy::use_huge_page_heap(argv);
   canopy::keep_freed_memory();
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};

@@ -10,7 +10,6 @@
 // Detection runs at the exact level only unless --all-levels (canopy stand's report counts every
 // level up to the one asked for, one detection each).
 #include "distributed/mpi_comm.hpp"
-#include "tools/huge_page_heap.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/stand_tiled.hpp"
 
@@ -46,7 +45,6 @@ double timing(const StandReport& r, const char* key) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  canopy::use_huge_page_heap(argv);
   canopy::keep_freed_memory();
   mpi::Session session;
   std::vector<std::string> sizes{"10000"};

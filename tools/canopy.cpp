@@ -1,7 +1,6 @@
 // canopy: grow tomato stands from L-system grammars, find and remove organ interpenetration.
 #include "lsystem/error.hpp"
 #include "tools/cli_common.hpp"
-#include "tools/huge_page_heap.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -14,7 +13,6 @@
 #include <new>
 
 int main(int argc, char** argv) {
-  canopy::use_huge_page_heap(argv);
   canopy::keep_freed_memory();
 #ifdef CANOPY_WITH_MPI
   // Under mpirun every rank runs the same command; MPI is started only there.
