@@ -35,8 +35,8 @@ struct Timed {
 
 BatchedScan::~BatchedScan() {
   if (std::getenv("CANOPY_BULK_STATS"))
-    fmt::print(stderr, "batched scan (host, lane {}): limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n", lane_, times_.limits,
-               times_.tables, times_.gathers, times_.gather, times_.runner);
+    fmt::print(stderr, "batched scan (host, lane {}): scan {:.3f} s and refine {:.3f} s, of which limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n",
+               lane_, times_.scan, times_.refine, times_.limits, times_.tables, times_.gathers, times_.gather, times_.runner);
 }
 
 void BatchedScan::clear() {
@@ -164,6 +164,7 @@ std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> c
 }
 
 void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
+  const Timed timed{times_.scan};
   const ResolveConfig& cfg = search_.config;
   const double step = std::max(cfg.scan_step_deg, cfg.angle_tolerance_deg);
   std::vector<Candidate*> live;
@@ -204,6 +205,7 @@ void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
 }
 
 std::vector<Turn> BatchedScan::refine(std::span<Candidate* const> cands) {
+  const Timed timed{times_.refine};
   const double tol = search_.config.angle_tolerance_deg;
   std::vector<double> lo(cands.size()), hi(cands.size());
   for (std::size_t j = 0; j < cands.size(); ++j) {

@@ -57,7 +57,7 @@ class BatchedScan {
   AttemptTables own_tables_;
   AttemptTables& tables_;
   struct Times {
-    double limits = 0, tables = 0, gather = 0, runner = 0;
+    double scan = 0, refine = 0, limits = 0, tables = 0, gather = 0, runner = 0;
     std::size_t gathers = 0;
   } times_;
 };

@@ -71,6 +71,9 @@ struct Lane {
   std::vector<TurnSearch::Candidate*> state;
   std::vector<std::uint8_t> open, want;  // not made yet or still searching; wanted at this level
   std::vector<std::optional<Turn>> refined;
+  /// With CANOPY_BULK_STATS: seconds in batches, in the candidates' preparation and levels run.
+  double batch_s = 0, prepare_s = 0;
+  std::size_t levels = 0;
 };
 
 /// (mover slot, turn) for each contact of a batch that picked one.
@@ -132,8 +135,10 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
   std::vector<CandidatePool>& pools = *lane.pools;
   for (CandidatePool& p : pools) p.used = 0;  // the last batch's candidates are free again
   if (lane.bulk) lane.bulk->clear();
+  const double batch_start = PhaseTimes::now();
   std::vector<std::size_t> chosen;
   for (int level = 1; !pending.empty(); ++level) {
+    ++lane.levels;
     tell(0);
     std::fill(want.begin(), want.end(), 0);
     for (std::uint32_t q : pending)
@@ -147,6 +152,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     // where the level is short, so that no thread waits long at its end.
     const int chunk = static_cast<int>(std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
     times.lap(PhaseTimes::bookkeeping);
+    const double prepare_start = PhaseTimes::now();
 #pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
     for (std::size_t j = 0; j < scan.size(); ++j) {
       const double started = times.on ? PhaseTimes::now() : 0;
@@ -165,6 +171,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
         times.scan_busy += busy;
       }
     }
+    lane.prepare_s += PhaseTimes::now() - prepare_start;
     const auto candidates = [&](const std::vector<std::size_t>& ks) {
       std::vector<TurnSearch::Candidate*> out;
       for (std::size_t k : ks) out.push_back(state[k]);
@@ -200,6 +207,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     times.lap(PhaseTimes::pick);
   }
   unplanned -= pending.size();  // left to the relaxed pass or the last resort
+  lane.batch_s += PhaseTimes::now() - batch_start;
   Picks out;
   for (std::size_t k : chosen) out.emplace_back(slots[k], *refined[k]);
   return out;
@@ -302,6 +310,10 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       for (const auto& [g, turn] : list)
         if (!turn_of[g]) turn_of[g] = turn;
   }
+  if (std::getenv("CANOPY_BULK_STATS"))
+    for (std::size_t l = 0; l < lanes.size(); ++l)
+      fmt::print(stderr, "planning lane {}: {:.3f} s in batches, {} levels, candidates prepared in {:.3f} s\n", l, lanes[l].batch_s,
+                 lanes[l].levels, lanes[l].prepare_s);
   lanes.clear();  // the batched scans print their statistics (CANOPY_BULK_STATS)
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
   // turning this round (the first contact to claim a mover keeps it).
