@@ -51,7 +51,9 @@ __global__ void attempt_boxes_kernel(StandView v, AttemptTablesView t, const Att
     // degrees on, found by one thread instead of a warp's full test.
     if (witness != kNoWitness) {
       const Affine3f tx = apply(turn, v.transforms[xo]), ty = v.transforms[yo];
-      if (xo < yo ? witness_touches(v, xo, tx, yo, ty, witness, y.gap) : witness_touches(v, yo, ty, xo, tx, witness, y.gap)) {
+      // One call with the lower organ first (a second call site would inline the test twice).
+      const bool low = xo < yo;
+      if (witness_touches(v, low ? xo : yo, low ? tx : ty, low ? yo : xo, low ? ty : tx, witness, y.gap)) {
         atomicOr(&touch[gi], 1u << i);
         atomicAdd(&c->witness_hits, 1ull);
         continue;
@@ -89,8 +91,10 @@ __global__ void __launch_bounds__(kThreads, 4) attempt_exact_kernel(StandView v,
   // A touch found keeps its triangles as the pair's witness for the next levels (any axis's
   // will do: they serve only as the first thing to try).
   std::uint32_t* keep = &t.witness[task.pair];
-  const bool found = xo < yo ? warp_organs_touch(v, xo, tx, yo, ty, y.gap, flag, room, keep)
-                             : warp_organs_touch(v, yo, ty, xo, tx, y.gap, flag, room, keep);
+  // One call with the lower organ first: the whole warp test is inlined once, not twice (the
+  // kernel's code is large enough that instruction fetch is its first stall).
+  const bool low = xo < yo;
+  const bool found = warp_organs_touch(v, low ? xo : yo, low ? tx : ty, low ? yo : xo, low ? ty : tx, y.gap, flag, room, keep);
   if (found && threadIdx.x % 32 == 0) atomicOr(&touch[task.group], bit), atomicAdd(&c->exact_touches, 1ull);
 }
 

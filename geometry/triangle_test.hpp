@@ -76,7 +76,7 @@ CANOPY_HD inline bool point_in_triangle_2d(P2 p, P2 a, P2 b, P2 c) {
 }
 
 /// Closed triangles in a common plane (projected along `axis`) meet.
-CANOPY_HD inline bool triangles_2d(const D3 t[3], const D3 u[3], int axis) {
+CANOPY_HD_OUTLINE inline bool triangles_2d(const D3 t[3], const D3 u[3], int axis) {
   P2 a[3], b[3];
   for (int i = 0; i < 3; ++i) a[i] = project(t[i], axis), b[i] = project(u[i], axis);
   for (int i = 0; i < 3; ++i)
@@ -86,7 +86,7 @@ CANOPY_HD inline bool triangles_2d(const D3 t[3], const D3 u[3], int axis) {
 }
 
 /// Closed segments [a, b] and [c, d] in space meet (degenerate segments are points).
-CANOPY_HD inline bool segments_3d(D3 a, D3 b, D3 c, D3 d) {
+CANOPY_HD_OUTLINE inline bool segments_3d(D3 a, D3 b, D3 c, D3 d) {
   if (orient3d(a, b, c, d) != 0) return false;  // skew
   // Coplanar: project along the normal of their plane, or of any plane holding them.
   D3 n = cross(b - a, d - c);
@@ -111,21 +111,24 @@ CANOPY_HD inline bool segments_3d(D3 a, D3 b, D3 c, D3 d) {
   return segments_2d(project(a, axis), project(b, axis), project(c, axis), project(d, axis));
 }
 
+/// Closed segment [a, b], lying in the plane of triangle t (normal n, not zero), meets t.
+CANOPY_HD_OUTLINE inline bool segment_triangle_in_plane(D3 a, D3 b, const D3 t[3], D3 n) {
+  const int axis = dominant_axis(n);
+  const P2 pa = project(a, axis), pb = project(b, axis);
+  P2 q[3];
+  for (int i = 0; i < 3; ++i) q[i] = project(t[i], axis);
+  if (point_in_triangle_2d(pa, q[0], q[1], q[2]) || point_in_triangle_2d(pb, q[0], q[1], q[2])) return true;
+  for (int i = 0; i < 3; ++i)
+    if (segments_2d(pa, pb, q[i], q[(i + 1) % 3])) return true;
+  return false;
+}
+
 /// Closed segment [a, b] meets the closed triangle t, given t's normal n = (t1 - t0) x (t2 - t0)
 /// when not zero and the orientations sa, sb of a and b against t's plane (orient3d(t0, t1, t2, .)):
 /// the values segment_triangle computes, passed in where the caller has them already.
 CANOPY_HD inline bool segment_triangle_sided(D3 a, D3 b, const D3 t[3], D3 n, double sa, double sb) {
   if ((sa > 0 && sb > 0) || (sa < 0 && sb < 0)) return false;
-  if (sa == 0 && sb == 0) {  // in the triangle's plane
-    const int axis = dominant_axis(n);
-    const P2 pa = project(a, axis), pb = project(b, axis);
-    P2 q[3];
-    for (int i = 0; i < 3; ++i) q[i] = project(t[i], axis);
-    if (point_in_triangle_2d(pa, q[0], q[1], q[2]) || point_in_triangle_2d(pb, q[0], q[1], q[2])) return true;
-    for (int i = 0; i < 3; ++i)
-      if (segments_2d(pa, pb, q[i], q[(i + 1) % 3])) return true;
-    return false;
-  }
+  if (sa == 0 && sb == 0) return segment_triangle_in_plane(a, b, t, n);
   // The segment crosses or touches the plane: does its line pass through the closed triangle?
   const int s1 = sign(orient3d(a, b, t[0], t[1])), s2 = sign(orient3d(a, b, t[1], t[2])),
             s3 = sign(orient3d(a, b, t[2], t[0]));
@@ -133,7 +136,7 @@ CANOPY_HD inline bool segment_triangle_sided(D3 a, D3 b, const D3 t[3], D3 n, do
 }
 
 /// Closed segment [a, b] meets the closed triangle t (which may be degenerate).
-CANOPY_HD inline bool segment_triangle(D3 a, D3 b, const D3 t[3]) {
+CANOPY_HD_OUTLINE inline bool segment_triangle(D3 a, D3 b, const D3 t[3]) {
   const D3 n = cross(t[1] - t[0], t[2] - t[0]);
   if (n.x == 0 && n.y == 0 && n.z == 0)  // degenerate triangle: its edges
     return segments_3d(a, b, t[0], t[1]) || segments_3d(a, b, t[1], t[2]) || segments_3d(a, b, t[2], t[0]);
@@ -164,17 +167,9 @@ CANOPY_HD inline void canonical_pair(const Vec3f* pa, const Vec3f* pb, D3 a[3], 
   if (triangle_less(b, a)) t = b, u = a;
 }
 
-/// Whether two closed triangles meet (touching counts). Any vertex order, either argument order.
-CANOPY_HD inline bool triangles_intersect_canonical(const D3* t, const D3* u);
-CANOPY_HD_OUTLINE inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
-  D3 a[3], b[3];
-  const D3 *t, *u;
-  canonical_pair(pa, pb, a, b, t, u);
-  return triangles_intersect_canonical(t, u);
-}
-
-/// The same on a pair already in canonical order (canonical_pair's t and u).
-CANOPY_HD inline bool triangles_intersect_canonical(const D3* t, const D3* u) {
+/// Whether two closed triangles meet (touching counts), on a pair in canonical order
+/// (canonical_pair's t and u); triangles_intersect below takes any order.
+CANOPY_HD_OUTLINE inline bool triangles_intersect_canonical(const D3* t, const D3* u) {
   const D3 nt = cross(t[1] - t[0], t[2] - t[0]), nu = cross(u[1] - u[0], u[2] - u[0]);
   const bool dt = nt.x == 0 && nt.y == 0 && nt.z == 0, du = nu.x == 0 && nu.y == 0 && nu.z == 0;
   // su: u's vertices against t's plane; st: t's against u's (what segment_triangle computes).
@@ -200,8 +195,16 @@ CANOPY_HD inline bool triangles_intersect_canonical(const D3* t, const D3* u) {
   return false;
 }
 
+/// Whether two closed triangles meet (touching counts). Any vertex order, either argument order.
+CANOPY_HD_OUTLINE inline bool triangles_intersect(const Vec3f* pa, const Vec3f* pb) {
+  D3 a[3], b[3];
+  const D3 *t, *u;
+  canonical_pair(pa, pb, a, b, t, u);
+  return triangles_intersect_canonical(t, u);
+}
+
 /// Squared distance between closed segments [p1, q1] and [p2, q2] (Ericsson §5.1.9).
-CANOPY_HD inline double segment_segment_dist2(D3 p1, D3 q1, D3 p2, D3 q2) {
+CANOPY_HD_OUTLINE inline double segment_segment_dist2(D3 p1, D3 q1, D3 p2, D3 q2) {
   const D3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
   const double a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
   double s = 0, t = 0;
@@ -234,7 +237,7 @@ CANOPY_HD inline double segment_segment_dist2(D3 p1, D3 q1, D3 p2, D3 q2) {
 
 /// Squared distance from p to the closed triangle t (Ericsson §5.1.5); a degenerate triangle
 /// counts as its edges.
-CANOPY_HD inline double point_triangle_dist2(D3 p, const D3 t[3]) {
+CANOPY_HD_OUTLINE inline double point_triangle_dist2(D3 p, const D3 t[3]) {
   const D3 a = t[0], b = t[1], c = t[2];
   const D3 n = cross(b - a, c - a);
   if (n.x == 0 && n.y == 0 && n.z == 0)
