@@ -18,15 +18,17 @@ class BusyTimeline {
   BusyTimeline(const BusyTimeline&) = delete;
   BusyTimeline& operator=(const BusyTimeline&) = delete;
   ~BusyTimeline() {
-    for (auto [a, b] : marks_) cudaEventDestroy(a), cudaEventDestroy(b);
+    for (auto [a, b] : marks_) {
+      if (a) cudaEventDestroy(a);
+      if (b) cudaEventDestroy(b);
+    }
   }
   /// Before a kernel in `stream`.
   void begin(cudaStream_t stream) {
-    cudaEvent_t a{}, b{};
-    CANOPY_CUDA_CHECK(cudaEventCreate(&a));
-    CANOPY_CUDA_CHECK(cudaEventCreate(&b));
-    marks_.emplace_back(a, b);
-    CANOPY_CUDA_CHECK(cudaEventRecord(a, stream));
+    marks_.emplace_back(nullptr, nullptr);  // each event kept as soon as it is made
+    CANOPY_CUDA_CHECK(cudaEventCreate(&marks_.back().first));
+    CANOPY_CUDA_CHECK(cudaEventCreate(&marks_.back().second));
+    CANOPY_CUDA_CHECK(cudaEventRecord(marks_.back().first, stream));
   }
   /// After that kernel.
   void end(cudaStream_t stream) { CANOPY_CUDA_CHECK(cudaEventRecord(marks_.back().second, stream)); }

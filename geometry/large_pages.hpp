@@ -1,10 +1,10 @@
 #pragma once
 /// Memory for large arrays in 2 MiB pages where the system offers them (Linux transparent huge
 /// pages in "madvise" mode, which Debian and Ubuntu kernels default to): an array of hundreds of
-/// megabytes filled once per resolution round then faults in 512 times fewer pages. Measured on
-/// the H100 machine's 16 host cores, where page faults of the planning's tables and other
-/// per-round arrays cost about a tenth of a 10,000-plant resolution (bench/results/README.md,
-/// "Heap and pages").
+/// megabytes then faults in 512 times fewer pages. Part, with the planning's tables kept from
+/// round to round and a padded heap top, of what took 10,000-plant resolutions on the H100
+/// machine's 16 host cores from about 1.17 to 0.95 s (bench/results/README.md, "The scan's
+/// waits, the heap and the kernels' code"; measured together, not one by one).
 #include <cstddef>
 
 namespace canopy {
