@@ -5,7 +5,8 @@
 // and, in a CUDA build on a machine with a GPU, on the GPU. Prints a table, writes CSV.
 // Usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]
 //                      [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG]
-//                      [--csv FILE] [--append]
+//                      [--csv FILE] [--append] [--host-search] [--lanes N] [--batch N] [--host-runner]
+//        (`--help` says what the last four do)
 #include "collision/attempt_runner_host.hpp"
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
