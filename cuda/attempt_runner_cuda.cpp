@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstring>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -25,24 +24,23 @@ void CudaAttemptRunner::Stats::add(const Stats& o) {
 }
 
 CudaAttemptRunner::Lane::Lane() {
-  counters.resize(1);
-  exact.resize(1 << 20);
-}
-
-void CudaAttemptRunner::Lane::stage(std::size_t bytes) {
-  staged = 0;
-  if (bytes > staging.size()) staging.grow(std::max<std::size_t>(bytes, 1 << 20) * 3 / 2);  // the last call's copies are done
+  counters.grow(1);
+  exact.grow(1 << 20);
 }
 
 void CudaAttemptRunner::Lane::put(void* to, const void* from, std::size_t bytes) {
-  if (!bytes) return;
-  if (staged + bytes > staging.size()) throw std::logic_error("bulk attempts: uploads beyond the room staged for them");
-  std::memcpy(staging.get() + staged, from, bytes);
-  CANOPY_CUDA_CHECK(cudaMemcpyAsync(to, staging.get() + staged, bytes, cudaMemcpyHostToDevice, stream.get()));
-  staged += bytes;
+  if (bytes) CANOPY_CUDA_CHECK(cudaMemcpyAsync(to, from, bytes, cudaMemcpyHostToDevice, stream.get()));
 }
 
 CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
+  // The lanes' buffers come from the device's default pool (StreamBuffer): memory freed there
+  // stays in the pool for the next growth instead of going back at every synchronisation.
+  int device = 0;
+  cudaMemPool_t pool{};
+  CANOPY_CUDA_CHECK(cudaGetDevice(&device));
+  CANOPY_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, device));
+  std::uint64_t keep = std::numeric_limits<std::uint64_t>::max();
+  CANOPY_CUDA_CHECK(cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep));
   if (!report_) return;
   CANOPY_CUDA_CHECK(cudaEventCreate(&origin_));
   CANOPY_CUDA_CHECK(cudaEventRecord(origin_));
@@ -126,7 +124,6 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
                             (t.axes.size() - l.axes_sent) * sizeof(Vec3d) + groups.size() * sizeof(AttemptGroup) +
                             (groups.size() + 1) * sizeof(std::uint32_t);
   l.stats.uploaded_bytes += bytes;
-  l.stage(bytes);
   l.sync(l.moving, t.moving, l.moving_sent);
   l.sync(l.keep, t.keep, l.keep_sent);
   l.sync(l.pairs, t.pairs, l.pairs_sent);
@@ -166,7 +163,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
     if (host.appended <= l.exact.size()) break;
     if (host.appended > std::numeric_limits<std::uint32_t>::max())
       throw std::length_error(fmt::format("bulk attempts: {} exact tests in one call (at most 2^32 - 1)", host.appended));
-    l.exact.resize(host.appended + host.appended / 4);
+    l.exact.grow(host.appended + host.appended / 4);
   }
   const double t2 = now();
   if (report_) l.busy.begin(stream);

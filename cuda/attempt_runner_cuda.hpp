@@ -34,7 +34,7 @@ class CudaAttemptRunner : public AttemptRunner {
 
  private:
   /// What the device did so far (printed with CANOPY_BULK_STATS): calls, box and exact tests,
-  /// bytes sent, seconds spent in calls (summed over lanes, which overlap): staging and queueing
+  /// bytes sent, seconds spent in calls (summed over lanes, which overlap): queueing
   /// the uploads, then until the box kernel's count is back, then until the answers are.
   struct Stats {
     std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
@@ -44,33 +44,28 @@ class CudaAttemptRunner : public AttemptRunner {
   /// A lane's stream and its batch's tables on the device, appended to as the host appends.
   struct Lane {
     Lane();
-    Stream stream;
-    DeviceBuffer<std::int32_t> moving;
-    DeviceBuffer<KeepEntry> keep;
-    DeviceBuffer<PairEntry> pairs;
-    DeviceBuffer<std::uint32_t> witness;  // per pair; the exact tests bring it up to date on the device
-    DeviceBuffer<Vec3d> axes;
+    Stream stream;  // first: the buffers below are allocated and freed in its order
+    StreamBuffer<std::int32_t> moving{stream.get()};
+    StreamBuffer<KeepEntry> keep{stream.get()};
+    StreamBuffer<PairEntry> pairs{stream.get()};
+    StreamBuffer<std::uint32_t> witness{stream.get()};  // per pair; the exact tests bring it up to date on the device
+    StreamBuffer<Vec3d> axes{stream.get()};
     std::size_t moving_sent = 0, keep_sent = 0, pairs_sent = 0, witness_sent = 0, axes_sent = 0;
-    DeviceBuffer<AttemptGroup> groups;
-    DeviceBuffer<std::uint32_t> task_first, touch;
-    DeviceBuffer<ExactAttempt> exact;
-    DeviceBuffer<Counters> counters;
+    StreamBuffer<AttemptGroup> groups{stream.get()};
+    StreamBuffer<std::uint32_t> task_first{stream.get()}, touch{stream.get()};
+    StreamBuffer<ExactAttempt> exact{stream.get()};
+    StreamBuffer<Counters> counters{stream.get()};
     Stats stats;
     BusyTimeline busy;  // with CANOPY_BULK_STATS: when the device had this lane's kernels
-    /// A call's uploads go through page-locked memory of the lane's own: copied there on the
-    /// host, then sent by the copy engine in the stream's order, so the lane's thread does not
-    /// wait for them. (Measured against pageable copies in the stream on an H100: no difference
-    /// in the summed upload time, about 0.6 s over 4 lanes either way.)
-    PinnedBuffer<std::byte> staging;
-    std::size_t staged = 0;
-    /// Room for a call's `bytes` of uploads (before its first put).
-    void stage(std::size_t bytes);
-    /// Sends `bytes` from `from` to device address `to` through the staging memory.
+    /// Sends `bytes` from `from` (pageable host memory) to device address `to` in the stream's
+    /// order: the driver copies them into its own page-locked buffers before returning, as fast
+    /// as a copy into page-locked memory of the lane's own was (which had to grow, at 1.7 GB/s,
+    /// in the first calls of every resolution), and the copy engine sends them from there.
     void put(void* to, const void* from, std::size_t bytes);
     /// Sends the entries of `host` appended since the last call (all of them after a clear).
     template <typename T, typename A>
-    void sync(DeviceBuffer<T>& device, const std::vector<T, A>& host, std::size_t& sent) {
-      device.grow_keeping(host.size(), sent, stream.get());
+    void sync(StreamBuffer<T>& device, const std::vector<T, A>& host, std::size_t& sent) {
+      device.grow_keeping(host.size(), sent);
       put(device.get() + sent, host.data() + sent, (host.size() - sent) * sizeof(T));
       sent = host.size();
     }

@@ -71,6 +71,42 @@ class DeviceBuffer {
   std::size_t n_ = 0;
 };
 
+/// The owner of a device array allocated and freed in a stream's order (cudaMallocAsync, from
+/// the device's default pool): growing it never waits for the device, where cudaMalloc and
+/// cudaFree wait for the work of every stream (of the other lanes too). Its contents are used
+/// only by work queued in the same stream.
+template <typename T>
+class StreamBuffer {
+ public:
+  explicit StreamBuffer(cudaStream_t stream) : stream_(stream) {}
+  StreamBuffer(const StreamBuffer&) = delete;
+  StreamBuffer& operator=(const StreamBuffer&) = delete;
+  ~StreamBuffer() {
+    if (p_) cudaFreeAsync(p_, stream_);
+  }
+  /// Room for at least n items (the contents are then lost), at least half again the size.
+  void grow(std::size_t n) { grow_keeping(n, 0); }
+  /// Room for at least n items keeping the first `keep`, at least half again the size (an
+  /// append-only table's appends then cost amortised constant copies).
+  void grow_keeping(std::size_t n, std::size_t keep) {
+    if (n <= n_) return;
+    const std::size_t m = std::max(n, n_ + n_ / 2);
+    T* bigger = nullptr;
+    CANOPY_CUDA_CHECK(cudaMallocAsync(reinterpret_cast<void**>(&bigger), m * sizeof(T), stream_));
+    if (keep) CANOPY_CUDA_CHECK(cudaMemcpyAsync(bigger, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream_));
+    if (p_) CANOPY_CUDA_CHECK(cudaFreeAsync(p_, stream_));
+    p_ = bigger;
+    n_ = m;
+  }
+  T* get() const { return p_; }
+  std::size_t size() const { return n_; }
+
+ private:
+  cudaStream_t stream_;
+  T* p_ = nullptr;
+  std::size_t n_ = 0;
+};
+
 /// A queue of device work of its own (RAII) that does not wait for the default stream's.
 class Stream {
  public:
