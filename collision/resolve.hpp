@@ -56,12 +56,14 @@ struct ResolveRequest {
   /// True (and `attempts` null): through the backend's runner where it has one (CUDA: on the
   /// device, in lanes); the CPU backend has none and searches candidate by candidate. False: the
   /// host's search on any backend. On the 16-core H100 machines the device's lanes resolve 10,000
-  /// plants in 0.58-0.84 of the host search's time (bench/results/README.md).
+  /// plants in about half the host search's time (bench/results/README.md).
   bool bulk_attempts = true;
   /// Batches of contacts planned at once through the runner, each on a lane of its own (at most
   /// the runner's lanes): one lane's host work overlaps another's device work. The turns are the
-  /// same for any number (collision/plan_round.hpp).
-  std::size_t bulk_lanes = 4;
+  /// same for any number (collision/plan_round.hpp). 6: at 10,000 plants on the 16-core H100 and
+  /// H200 machines, faster than 4 in 9 of 12 alternated runs, 0.04 s on average, once the lanes'
+  /// device buffers no longer synchronised the device as they grew (bench/results/resolve_session23.txt).
+  std::size_t bulk_lanes = 6;
   /// Contacts per batch of planning: the search state held at once stays bounded whatever the
   /// stand's size; the turns do not depend on it.
   std::size_t batch_contacts = 8192;

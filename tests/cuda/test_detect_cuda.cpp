@@ -197,7 +197,7 @@ TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the
     CHECK(ra.rounds == rb.rounds);
     CHECK(ra.organs_moved == rb.organs_moved);
     CHECK(ra.planning == "host search");
-    CHECK(rb.planning == (device_search ? "device attempts, 4 lanes" : "host search"));
+    CHECK(rb.planning == (device_search ? "device attempts, " + std::to_string(ResolveRequest{}.bulk_lanes) + " lanes" : std::string("host search")));
     CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
     // Re-detection after the rounds (refit kept on the device) equals a fresh CPU detection.
     CHECK(gpu->detect(b, req.detect).pairs == cpu->detect(a, req.detect).pairs);
