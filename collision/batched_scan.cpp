@@ -35,8 +35,8 @@ struct Timed {
 
 BatchedScan::~BatchedScan() {
   if (std::getenv("CANOPY_BULK_STATS"))
-    fmt::print(stderr, "batched scan (host, lane {}): scan {:.3f} s and refine {:.3f} s, of which limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n",
-               lane_, times_.scan, times_.refine, times_.limits, times_.tables, times_.gathers, times_.gather, times_.runner);
+    fmt::print(stderr, "batched scan (host, lane {}): scan and refine {:.3f} s, of which limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n",
+               lane_, times_.scan, times_.limits, times_.tables, times_.gathers, times_.gather, times_.runner);
 }
 
 void BatchedScan::clear() {
@@ -163,115 +163,112 @@ std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   return ok;
 }
 
-void BatchedScan::scan(std::span<Candidate* const> cands, int level) {
+std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan, int level, std::span<Candidate* const> refine) {
   const Timed timed{times_.scan};
   const ResolveConfig& cfg = search_.config;
-  const double step = std::max(cfg.scan_step_deg, cfg.angle_tolerance_deg);
+  const double step = std::max(cfg.scan_step_deg, cfg.angle_tolerance_deg), tol = cfg.angle_tolerance_deg;
+  // The scan (TurnSearch::scan_level): every candidate still searching, at the level's angle.
   std::vector<Candidate*> live;
-  std::vector<double> hi;
-  for (Candidate* c : cands)
-    if (c->searching()) live.push_back(c), hi.push_back(std::min(level * step / c->weight, c->reach_deg));
-  // Axes in chunks of a group's width; each candidate takes the first axis that clears.
-  for (std::size_t first = 0;; first += kGroupAxes) {
-    std::vector<Candidate*> act;
-    std::vector<double> deg;
-    for (std::size_t j = 0; j < live.size(); ++j)
-      if (live[j]->found_axis < 0 && live[j]->axes.size() > first) act.push_back(live[j]), deg.push_back(hi[j]);
-    if (act.empty()) break;
-    std::vector<AxisSet> want(act.size());
-    {
-      const Timed timed{times_.limits};
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
-      for (std::size_t j = 0; j < act.size(); ++j) {
-        Candidate& c = *act[j];
-        want[j].first = static_cast<std::uint32_t>(first);
-        const std::size_t end = std::min(c.axes.size(), first + kGroupAxes);
-        for (std::size_t i = first; i < end; ++i)
-          if (search_.within_limit(c, c.axes[i], deg[j])) want[j].mask |= 1u << (i - first);
-      }
-    }
-    const std::vector<std::uint32_t> ok = clear_axes(act, deg, want);
-#pragma omp parallel for schedule(static) num_threads(threads_) if (act.size() > kParallelFrom)
-    for (std::size_t j = 0; j < act.size(); ++j) {
-      if (!ok[j]) continue;
-      Candidate& c = *act[j];
-      c.found_axis = static_cast<int>(first) + std::countr_zero(ok[j]);
-      c.hi = deg[j];
-      c.local = search_.local_after(c, c.axes[static_cast<std::size_t>(c.found_axis)], deg[j]);
-    }
-  }
-  for (std::size_t j = 0; j < live.size(); ++j)
-    if (live[j]->found_axis < 0) live[j]->lo = hi[j];
-}
-
-std::vector<Turn> BatchedScan::refine(std::span<Candidate* const> cands) {
-  const Timed timed{times_.refine};
-  const double tol = search_.config.angle_tolerance_deg;
-  std::vector<double> lo(cands.size()), hi(cands.size());
-  for (std::size_t j = 0; j < cands.size(); ++j) {
-    lo[j] = cands[j]->lo, hi[j] = cands[j]->hi;
+  std::vector<double> level_deg;
+  for (Candidate* c : scan)
+    if (c->searching()) live.push_back(c), level_deg.push_back(std::min(level * step / c->weight, c->reach_deg));
+  // The refinement (TurnSearch::refine): each found candidate's bracket, lo failing, hi separating.
+  std::vector<double> lo(refine.size()), hi(refine.size());
+  for (std::size_t j = 0; j < refine.size(); ++j) {
+    lo[j] = refine[j]->lo, hi[j] = refine[j]->hi;
     // The neighbours gathered cover the found angle, so no midpoint gathers (clear_axes below
     // takes a candidate several times, and gathering is not safe for that).
-    if (cands[j]->strict && cands[j]->near_deg < hi[j]) throw std::logic_error("batched scan: neighbours do not cover a found turn");
+    if (refine[j]->strict && refine[j]->near_deg < hi[j]) throw std::logic_error("batched scan: neighbours do not cover a found turn");
   }
-  // The bisection (lo fails, hi separates; while hi - lo > tol, test the midpoint and keep the
-  // half with a failing end and a separating end) answered a few steps at a time: every
-  // midpoint the next kSpeculate steps could visit, as a tree (a separating midpoint leads to
-  // the left half, a failing one to the right; a half no wider than the tolerance ends its
-  // branch), tested in one call, then walked as the one-step-at-a-time bisection walks it. The
-  // same midpoints, 0.5 (lo + hi) of the same ends, so the same turns, for up to 7 attempts where
-  // the walk makes 3 but one round trip to the runner instead of 3.
+  // The bisection (while hi - lo > tol, test the midpoint and keep the half with a failing end
+  // and a separating end) answered a few steps at a time: every midpoint the next kSpeculate
+  // steps could visit, as a tree (a separating midpoint leads to the left half, a failing one to
+  // the right; a half no wider than the tolerance ends its branch), tested in one call, then
+  // walked as the one-step-at-a-time bisection walks it. The same midpoints, 0.5 (lo + hi) of
+  // the same ends, so the same turns, for up to 7 attempts where the walk makes 3 but one round
+  // trip to the runner instead of 3.
   constexpr int kSpeculate = 3;
   struct Node {
     double lo, hi;
     std::int32_t left = -1, right = -1, depth = 0;
   };
-  for (;;) {
-    std::vector<std::uint32_t> first{0};
+  // Each call: the scan's next chunk of axes (a group's width; each candidate takes the first
+  // axis that clears) and the refinement's next round of midpoints. The two sets of candidates
+  // are apart (a found candidate scans no more), and an attempt's answer depends on its own
+  // candidate alone, so they share the calls' round trips and every answer is what each would
+  // get alone.
+  for (std::size_t first = 0;; first += kGroupAxes) {
+    std::vector<Candidate*> act;
+    std::vector<double> deg;
+    for (std::size_t j = 0; j < live.size(); ++j)
+      if (live[j]->found_axis < 0 && live[j]->axes.size() > first) act.push_back(live[j]), deg.push_back(level_deg[j]);
+    const std::size_t n_scan = act.size();
+    std::vector<std::uint32_t> tree_first{0};
     std::vector<std::size_t> of;  // per tree: its candidate
     std::vector<Node> nodes;
-    for (std::size_t j = 0; j < cands.size(); ++j) {
+    for (std::size_t j = 0; j < refine.size(); ++j) {
       if (!(hi[j] - lo[j] > tol)) continue;
       of.push_back(j);
       nodes.push_back(Node{lo[j], hi[j]});
-      for (std::size_t n = first.back(); n < nodes.size(); ++n) {
+      for (std::size_t n = tree_first.back(); n < nodes.size(); ++n) {
         const Node at = nodes[n];
         if (at.depth + 1 >= kSpeculate) continue;
         const double mid = 0.5 * (at.lo + at.hi);
         if (mid - at.lo > tol) nodes[n].left = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{at.lo, mid, -1, -1, at.depth + 1});
         if (at.hi - mid > tol) nodes[n].right = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{mid, at.hi, -1, -1, at.depth + 1});
       }
-      first.push_back(static_cast<std::uint32_t>(nodes.size()));
+      tree_first.push_back(static_cast<std::uint32_t>(nodes.size()));
     }
-    if (of.empty()) break;
-    // Every node's midpoint, its candidate and whether its joint stays within the limit there
-    // (a candidate's nodes by one thread: the turn's cosine and sine are kept in the candidate).
-    std::vector<Candidate*> act(nodes.size());
-    std::vector<double> mid(nodes.size());
-    std::vector<AxisSet> want(nodes.size());
+    if (n_scan == 0 && of.empty()) break;
+    act.resize(n_scan + nodes.size()), deg.resize(n_scan + nodes.size());
+    std::vector<AxisSet> want(act.size());
+    {
+      const Timed timed{times_.limits};
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
+      for (std::size_t j = 0; j < n_scan; ++j) {
+        Candidate& c = *act[j];
+        want[j].first = static_cast<std::uint32_t>(first);
+        const std::size_t end = std::min(c.axes.size(), first + kGroupAxes);
+        for (std::size_t i = first; i < end; ++i)
+          if (search_.within_limit(c, c.axes[i], deg[j])) want[j].mask |= 1u << (i - first);
+      }
+      // Every node's midpoint, its candidate and whether its joint stays within the limit there
+      // (a candidate's nodes by one thread: the turn's cosine and sine are kept in the candidate).
 #pragma omp parallel for schedule(static) num_threads(threads_) if (of.size() > kParallelFrom)
-    for (std::size_t t = 0; t < of.size(); ++t) {
-      Candidate& c = *cands[of[t]];
-      const auto a = static_cast<std::size_t>(c.found_axis);
-      for (std::uint32_t n = first[t]; n < first[t + 1]; ++n) {
-        act[n] = &c, mid[n] = 0.5 * (nodes[n].lo + nodes[n].hi);
-        want[n] = AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], mid[n]) ? 1u : 0u};
+      for (std::size_t t = 0; t < of.size(); ++t) {
+        Candidate& c = *refine[of[t]];
+        const auto a = static_cast<std::size_t>(c.found_axis);
+        for (std::uint32_t n = tree_first[t]; n < tree_first[t + 1]; ++n) {
+          const std::size_t at = n_scan + n;
+          act[at] = &c, deg[at] = 0.5 * (nodes[n].lo + nodes[n].hi);
+          want[at] = AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], deg[at]) ? 1u : 0u};
+        }
       }
     }
-    const std::vector<std::uint32_t> ok = clear_axes(act, mid, want);
+    const std::vector<std::uint32_t> ok = clear_axes(act, deg, want);
+#pragma omp parallel for schedule(static) num_threads(threads_) if (n_scan > kParallelFrom)
+    for (std::size_t j = 0; j < n_scan; ++j) {
+      if (!ok[j]) continue;
+      Candidate& c = *act[j];
+      c.found_axis = static_cast<int>(first) + std::countr_zero(ok[j]);
+      c.hi = deg[j];
+      c.local = search_.local_after(c, c.axes[static_cast<std::size_t>(c.found_axis)], deg[j]);
+    }
     for (std::size_t t = 0; t < of.size(); ++t) {
       const std::size_t j = of[t];
-      for (std::int32_t n = static_cast<std::int32_t>(first[t]); n >= 0;) {
+      for (std::int32_t n = static_cast<std::int32_t>(tree_first[t]); n >= 0;) {
         const auto at = static_cast<std::size_t>(n);
-        if (ok[at]) hi[j] = mid[at], n = nodes[at].left;
-        else lo[j] = mid[at], n = nodes[at].right;
+        if (ok[n_scan + at]) hi[j] = deg[n_scan + at], n = nodes[at].left;
+        else lo[j] = deg[n_scan + at], n = nodes[at].right;
       }
     }
   }
-  std::vector<Turn> out(cands.size());
-#pragma omp parallel for schedule(static) num_threads(threads_) if (cands.size() > kParallelFrom)
-  for (std::size_t j = 0; j < cands.size(); ++j) {
-    Candidate& c = *cands[j];
+  for (std::size_t j = 0; j < live.size(); ++j)
+    if (live[j]->found_axis < 0) live[j]->lo = level_deg[j];
+  std::vector<Turn> out(refine.size());
+#pragma omp parallel for schedule(static) num_threads(threads_) if (refine.size() > kParallelFrom)
+  for (std::size_t j = 0; j < refine.size(); ++j) {
+    Candidate& c = *refine[j];
     // The joint's rotation at the last separating midpoint, or the scan's where none separated.
     const Mat3d best = hi[j] != c.hi ? search_.local_after(c, c.axes[static_cast<std::size_t>(c.found_axis)], hi[j]) : c.local;
     out[j] = Turn{c.mover, best, hi[j]};

@@ -31,10 +31,12 @@ class BatchedScan {
   ~BatchedScan();
   /// A new batch of contacts: the tables start empty (candidates of the last batch are gone).
   void clear();
-  /// TurnSearch::scan_level(c, level) for each candidate.
-  void scan(std::span<TurnSearch::Candidate* const> cands, int level);
-  /// TurnSearch::refine(c) for each candidate (each has found an axis).
-  std::vector<Turn> refine(std::span<TurnSearch::Candidate* const> cands);
+  /// TurnSearch::scan_level(c, level) for each candidate of `scan`, and TurnSearch::refine(c)
+  /// for each of `refine` (each has found an axis, at an earlier level), in the same calls to the
+  /// runner: the refinement of one level's finds rides along with the next level's scan, which
+  /// halves the round trips a level makes. The refined turns, one per candidate of `refine`.
+  std::vector<Turn> scan_and_refine(std::span<TurnSearch::Candidate* const> scan, int level,
+                                    std::span<TurnSearch::Candidate* const> refine);
 
  private:
   /// Puts each candidate's moving organs, axes and pairs with the organs met in the tables
@@ -57,7 +59,7 @@ class BatchedScan {
   AttemptTables own_tables_;
   AttemptTables& tables_;
   struct Times {
-    double scan = 0, refine = 0, limits = 0, tables = 0, gather = 0, runner = 0;
+    double scan = 0, limits = 0, tables = 0, gather = 0, runner = 0;
     std::size_t gathers = 0;
   } times_;
 };

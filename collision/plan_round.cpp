@@ -137,16 +137,25 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
   if (lane.bulk) lane.bulk->clear();
   const double batch_start = PhaseTimes::now();
   std::vector<std::size_t> chosen;
+  // Bulk: the candidates found at the last level, refined in this level's calls (with its scan).
+  // Their contacts are settled (a contact with a candidate found is resolved, whatever the
+  // refined angles), so they want no scan, and are picked once the refined turns are back: the
+  // same contacts scanned at every level and the same picks, one level later.
+  std::vector<std::size_t> unrefined;
   for (int level = 1; !pending.empty(); ++level) {
     ++lane.levels;
     tell(0);
     std::fill(want.begin(), want.end(), 0);
-    for (std::uint32_t q : pending)
-      for (std::uint32_t k : candidates_of(q)) want[k] |= open[k];
+    for (std::size_t k : unrefined) want[k] = 2;
+    for (std::uint32_t q : pending) {
+      const std::span<const std::uint32_t> ks = candidates_of(q);
+      if (std::any_of(ks.begin(), ks.end(), [&](std::uint32_t k) { return want[k] == 2; })) continue;  // settled
+      for (std::uint32_t k : ks) want[k] |= open[k];
+    }
     std::vector<std::size_t> scan;
     for (std::size_t k = 0; k < slots.size(); ++k)
-      if (want[k]) scan.push_back(k);
-    if (scan.empty()) break;
+      if (want[k] == 1) scan.push_back(k);
+    if (scan.empty() && unrefined.empty()) break;
     // Neighbouring candidates (organs of one leaf) test against the same organs: a thread
     // that takes a few in a row finds their poses in its cache. Chunks of up to 8, fewer
     // where the level is short, so that no thread waits long at its end.
@@ -178,13 +187,12 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       return out;
     };
     if (lane.bulk) {
-      lane.bulk->scan(candidates(scan), level);
-      // Candidates found at this level: each refined to its smallest turn, once.
-      std::vector<std::size_t> found;
+      // This level's scan, and the last level's finds each refined to its smallest turn, once.
+      const std::vector<Turn> turns = lane.bulk->scan_and_refine(candidates(scan), level, candidates(unrefined));
+      for (std::size_t j = 0; j < unrefined.size(); ++j) refined[unrefined[j]] = turns[j];
+      unrefined.clear();
       for (std::size_t k : scan)
-        if (state[k]->found_axis >= 0 && !refined[k]) found.push_back(k);
-      const std::vector<Turn> turns = lane.bulk->refine(candidates(found));
-      for (std::size_t j = 0; j < found.size(); ++j) refined[found[j]] = turns[j];
+        if (state[k]->found_axis >= 0 && !refined[k]) unrefined.push_back(k);
       for (std::size_t k : scan) open[k] = state[k]->searching();
     }
     times.lap(PhaseTimes::scan);  // with the batched scan's own work
