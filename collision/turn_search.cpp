@@ -69,18 +69,27 @@ void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to
   const std::int32_t plant = s.organs[c.mover].plant;
   out.clear();
   out.first.assign(1, 0);
-  // Each organ kept clear, in the mover's plant frame: its centre and reach (lists kept per
-  // thread: a search links pairs hundreds of thousands of times).
+  // Each organ kept clear, in the mover's plant frame: its centre, distance from the joint and
+  // reach, as arrays of their own (lists kept per thread: a search links pairs hundreds of
+  // thousands of times; the loops below read them through plain pointers, so that the
+  // compiler keeps them in registers and the first loop over them has no branch).
   const std::size_t n = to - from;
-  thread_local std::vector<Vec3d> cy;
-  thread_local std::vector<double> dy, ry;
-  cy.resize(n), dy.resize(n), ry.resize(n);
+  thread_local std::vector<double> lists;
+  thread_local std::vector<std::uint8_t> passes;
+  lists.resize(5 * n), passes.resize(n);
+  double* const yx = lists.data();
+  double* const yy = yx + n;
+  double* const yz = yy + n;
+  double* const dy = yz + n;
+  double* const ry = dy + n;
+  std::uint8_t* const pass = passes.data();
   for (std::size_t i = 0; i < n; ++i) {
     const std::int32_t y = c.keep[from + i];
     const Vec3f off = offset_into(s, plant, y);
     const Obb& oy = boxes[static_cast<std::size_t>(y)];
-    cy[i] = to_double(oy.centre + off);
-    dy[i] = length(cy[i] - c.joint);
+    const Vec3d cy = to_double(oy.centre + off);
+    yx[i] = cy.x, yy[i] = cy.y, yz[i] = cy.z;
+    dy[i] = length(cy - c.joint);
     ry[i] = oy.radius + 2.0 * clearance;
   }
   // A turn by at most max_deg moves a point at distance d from the joint by at most the chord
@@ -89,14 +98,19 @@ void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to
   for (std::int32_t x : c.moving) {
     const Obb& ox = boxes[static_cast<std::size_t>(x)];
     const Vec3d cx = to_double(ox.centre);
-    const double dx = length(cx - c.joint), chord = 2 * dx * sin_half;
+    const double dx = length(cx - c.joint), chord = 2 * dx * sin_half, rx = ox.radius;
     for (std::size_t i = 0; i < n; ++i) {
-      const double reach = ox.radius + ry[i], slack = 1e-6 * (1 + dx + dy[i]);
-      if (std::abs(dy[i] - dx) - reach > slack) continue;               // the shells never meet
+      const double reach = rx + ry[i], slack = 1e-6 * (1 + dx + dy[i]);
+      const double ex = yx[i] - cx.x, ey = yy[i] - cx.y, ez = yz[i] - cx.z;
       const double far = reach + chord + slack;
-      if (dot(cy[i] - cx, cy[i] - cx) > far * far) continue;            // too far for the largest turn
+      // Not: the shells never meet, or too far for the largest turn.
+      pass[i] = static_cast<std::uint8_t>(!(std::abs(dy[i] - dx) - reach > slack) & !(ex * ex + ey * ey + ez * ez > far * far));
+    }
+    const OrganRecord& rx_organ = s.organs[static_cast<std::size_t>(x)];
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!pass[i]) continue;
       const std::int32_t y = c.keep[from + i];
-      if (adjacent(s.organs[static_cast<std::size_t>(x)], x, s.organs[static_cast<std::size_t>(y)], y)) continue;
+      if (adjacent(rx_organ, x, s.organs[static_cast<std::size_t>(y)], y)) continue;
       out.y.push_back(static_cast<std::uint32_t>(from + i));
     }
     out.first.push_back(static_cast<std::uint32_t>(out.y.size()));
@@ -218,11 +232,10 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a] - r), hi[a] = std::max(hi[a], p[a] + r);
   }
   reach += clearance;
-  // Whether a box (corners a, b), or a sphere (centre q, radius r), misses the swept box.
+  // Whether a box (corners a, b) misses the swept box.
   const auto box_misses = [&](const Vec3d& a, const Vec3d& b) {
     return b.x < lo[0] || a.x > hi[0] || b.y < lo[1] || a.y > hi[1] || b.z < lo[2] || a.z > hi[2];
   };
-  const auto misses = [&](const Vec3d& q, double r) { return box_misses(q - Vec3d{r, r, r}, q + Vec3d{r, r, r}); };
   // Organs already touching the subtree are other contacts' business.
   thread_local std::vector<std::int32_t> busy;
   busy.clear();
@@ -254,8 +267,12 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
         const auto y = static_cast<std::int32_t>(k);
         const Obb& raw = boxes[k];
         const Vec3d cy = to_double(raw.centre + off);
-        // The swept box first: it turns most organs of a run away for a few comparisons.
-        if (misses(cy, raw.radius) || joints.holds(mover, y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
+        const double r = raw.radius;
+        // The swept box first: it turns most organs of a run away (whether the organ's sphere
+        // misses it, every comparison made and one branch taken: which pass is hard to predict).
+        const bool out = (cy.x + r < lo[0]) | (cy.x - r > hi[0]) | (cy.y + r < lo[1]) | (cy.y - r > hi[1]) | (cy.z + r < lo[2]) |
+                         (cy.z - r > hi[2]);
+        if (out || joints.holds(mover, y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
         if (length(cy - c.joint) > reach + raw.radius + clearance) continue;
         if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
         if (std::binary_search(busy.begin(), busy.end(), y)) continue;
