@@ -90,10 +90,9 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
     std::uint32_t at = near ? t.near_first : t.met_first;
     for (std::size_t i = 0; i < c.moving.size(); ++i)
       for (std::uint32_t p = pairs.first[i]; p < pairs.first[i + 1]; ++p) {
-        // The witness the round began with (the organs met touched then; neighbours did not,
-        // and a candidate searched in bulk keeps no witness for them).
-        const Witness* w = near ? nullptr : &pairs.witness[p];
-        tables_.witness[at] = w && w->latest >= 0 ? std::uint32_t{w->tri_a[w->latest]} << 16 | w->tri_b[w->latest] : kNoWitness;
+        // The witness the round began with (the organs met touched then; neighbours did not).
+        const Witness& w = pairs.witness[p];
+        tables_.witness[at] = w.latest >= 0 ? std::uint32_t{w.tri_a[w.latest]} << 16 | w.tri_b[w.latest] : kNoWitness;
         tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),
                                         keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
       }

@@ -168,10 +168,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       const std::size_t k = scan[j];
       const std::uint32_t m = movers[slots[k]];
       const auto me = static_cast<std::size_t>(omp_get_thread_num());
-      if (!state[k]) {
-        state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
-        state[k]->bulk = lane.bulk.has_value();
-      }
+      if (!state[k]) state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
       // Found: refined to its smallest turn at once, by the same thread (it depends on the
       // candidate alone).
       if (!lane.bulk && search.scan_level(*state[k], level, (*lane.scratches)[me]))

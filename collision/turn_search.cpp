@@ -115,6 +115,7 @@ void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to
     }
     out.first.push_back(static_cast<std::uint32_t>(out.y.size()));
   }
+  out.witness.assign(out.y.size(), Witness{});
 }
 
 void TurnSearch::Candidate::recycle() {
@@ -129,9 +130,8 @@ void TurnSearch::Candidate::recycle() {
 
 void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
   const std::int32_t plant = stand.organs[c.mover].plant;
-  const bool boxes_too = !c.bulk;
   c.keep_off.reserve(c.keep.size());
-  if (boxes_too) c.keep_box.reserve(c.keep.size());
+  c.keep_box.reserve(c.keep.size());
   std::int32_t last_plant = -1;
   Vec3f off;
   for (std::size_t i = from; i < c.keep.size(); ++i) {
@@ -139,7 +139,7 @@ void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
     const std::int32_t p = stand.organs[static_cast<std::size_t>(y)].plant;
     if (p != last_plant) off = offset_into(stand, plant, y), last_plant = p;  // neighbours come plant by plant
     c.keep_off.push_back(off);
-    if (boxes_too) c.keep_box.push_back(grown(boxes[static_cast<std::size_t>(y)], i < c.met_count ? clearance : detect_clearance));
+    c.keep_box.push_back(grown(boxes[static_cast<std::size_t>(y)], i < c.met_count ? clearance : detect_clearance));
   }
 }
 
@@ -184,7 +184,6 @@ void TurnSearch::prepare(Candidate& c, std::uint32_t mover, const MetPairs& met_
   c.strict = strict;
   keep_boxes(c, 0);
   link_pairs(c, 0, met, c.reach_deg, c.met_pairs);
-  c.met_pairs.witness.assign(c.met_pairs.y.size(), Witness{});
   for (std::size_t i = 0; i < c.moving.size(); ++i)
     for (std::uint32_t p = c.met_pairs.first[i]; p < c.met_pairs.first[i + 1]; ++p)
       if (const Witness* w = touching.witness_of(c.moving[i], c.keep[c.met_pairs.y[p]])) c.met_pairs.witness[p] = *w;
@@ -212,8 +211,7 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   const double level_deg = std::max(config.scan_step_deg, config.angle_tolerance_deg) / c.weight;
   const double cover = std::min(c.reach_deg, std::max(deg + 2 * level_deg, 2 * c.near_deg));
   c.near_deg = cover;
-  c.keep.resize(met), c.keep_off.resize(met);
-  if (!c.bulk) c.keep_box.resize(met);
+  c.keep.resize(met), c.keep_box.resize(met), c.keep_off.resize(met);
   for (Candidate::Blocker& b : c.blocker)
     if (b.set == 1) b = Candidate::Blocker{};
   for (Candidate::AxisBlock& b : c.axis_block)
@@ -283,8 +281,6 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
     }
   }
   link_pairs(c, met, c.keep.size(), cover, c.near_pairs);
-  // Neighbours did not touch when the round began: no witness yet (and none kept in bulk).
-  if (!c.bulk) c.near_pairs.witness.assign(c.near_pairs.y.size(), Witness{});
   // Only the neighbours some pair names stay (in their order; the pairs renumbered).
   thread_local std::vector<std::uint32_t> renumber;
   renumber.assign(c.keep.size(), kNoPair);

@@ -96,10 +96,6 @@ struct TurnSearch {
     /// never get that far before another candidate of their contacts wins.
     PairSet met_pairs, near_pairs;
     bool strict = false;
-    /// Searched in bulk (collision/batched_scan.hpp), where a runner tests its attempts from the
-    /// organs' own boxes and its own witnesses: its neighbours get no grown box (keep_box) and
-    /// its pairs with them no witness, which only the host's attempts read. Set after prepare().
-    bool bulk = false;
     /// The largest turn (degrees) the neighbours gathered cover (-1: none gathered yet). They
     /// are gathered for a few levels beyond the attempt that first needs them, not for the whole
     /// reach: a small turn sweeps the subtree through a small region (the chord bound), and most
@@ -170,7 +166,7 @@ struct TurnSearch {
   Mat3d rotation(Candidate& c, const Vec3d& a, double deg) const;
   /// Whether a turn by `deg` may take the joint past its limit (only then is it checked).
   bool near_limit(const Candidate& c, double deg) const;
-  /// keep_off, and keep_box unless the candidate is searched in bulk, for keep[from, end).
+  /// keep_box and keep_off for keep[from, end).
   void keep_boxes(Candidate& c, std::size_t from) const;
   /// The pairs of moving organs with keep[from, to) that a turn by at most `max_deg` could bring
   /// together.
