@@ -4,8 +4,10 @@
 /// level's angle at once against the organs it met, then (a strict search) the axes that cleared
 /// them against its neighbours; the first axis in order that clears both is the one
 /// TurnSearch::scan_level finds, and the bisection of TurnSearch::refine runs as steps over all
-/// found candidates. An attempt's answer is a conjunction over its pairs, the same whoever tests
-/// them in whatever order, so the turns are the candidate-by-candidate search's.
+/// found candidates, in the same calls as the next level's scan (the two sets of candidates are
+/// apart). An attempt's answer is a conjunction over its pairs, the same whoever tests them in
+/// whatever order and beside whichever other attempts, so the turns are the candidate-by-candidate
+/// search's.
 ///
 /// The host keeps what is cheap or branchy: the joint-limit checks, the neighbour gathering (for
 /// the candidates whose axes cleared the organs met, as the host search gathers them) and the

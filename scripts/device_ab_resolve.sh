@@ -11,7 +11,7 @@ nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"
 .devbin/bin/test_cuda 2>&1 | tail -3
 OLD=$(ls .devbin/bin/bench_resolve_* | head -1)
 B="--backends cuda --sizes 10000 --dense-sizes '' --levels exact --csv /tmp/x.csv"
-for r in 1 2 3; do
+for r in $(seq ${REPS:-3}); do
   echo "this build $(eval .devbin/bin/bench_resolve $B | grep '^cuda' | awk '{print $12}')  $(basename $OLD) $(eval $OLD $B | grep '^cuda' | awk '{print $12}')  host search $(eval .devbin/bin/bench_resolve $B --host-search | grep '^cuda' | awk '{print $12}')"
 done
 for bin in .devbin/bin/bench_resolve $OLD; do
