@@ -36,18 +36,6 @@ class DeviceBuffer {
   void grow(std::size_t n) {
     if (n > n_) resize(n);
   }
-  /// Room for at least n items keeping the first `keep` (an append-only table): grows to at
-  /// least half again its size, so appends cost amortised constant copies.
-  /// `stream`: the queue whose work on the buffer the copy must follow (0: the default stream).
-  void grow_keeping(std::size_t n, std::size_t keep, cudaStream_t stream = 0) {
-    if (n <= n_) return;
-    DeviceBuffer bigger(std::max(n, n_ + n_ / 2));
-    if (keep) {
-      CANOPY_CUDA_CHECK(cudaMemcpyAsync(bigger.p_, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream));
-      CANOPY_CUDA_CHECK(cudaStreamSynchronize(stream));
-    }
-    *this = std::move(bigger);
-  }
   /// Copies n items from the host to items [at, at + n).
   void upload_at(std::size_t at, const T* src, std::size_t n) {
     if (n) CANOPY_CUDA_CHECK(cudaMemcpy(p_ + at, src, n * sizeof(T), cudaMemcpyHostToDevice));
