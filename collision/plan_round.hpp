@@ -65,7 +65,7 @@ struct PlanRequest {
   /// Batches planned at once with a runner, one per lane of these (lane 0 the caller's; null:
   /// one at a time). At most the runner's lanes.
   LaneThreads* lanes = nullptr;
-  std::size_t batch_contacts = 8192;  // contacts per batch
+  std::size_t batch_contacts = 16384;  // contacts per batch (ResolveRequest::batch_contacts)
   /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
   std::vector<std::vector<CandidatePool>>* pools = nullptr;
   /// Per lane, the batched scan's tables (grown here; kept by the caller from round to round,

@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
                    "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"
                    "                            attempts on the device, the default)\n"
                    "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default 6)\n"
-                   "       [--batch N]         (contacts per batch of planning at most, default 8192)\n"
+                   "       [--batch N]         (contacts per batch of planning at most, default 16384)\n"
                    "       [--host-runner]     (the CPU backend plans as the device does, level by level in lanes,\n"
                    "                            with the host answering the attempts: the device path's host side\n"
                    "                            where there is no GPU, for profiling; the same turns)\n");
