@@ -34,13 +34,13 @@ void CudaAttemptRunner::Lane::put(void* to, const void* from, std::size_t bytes)
 
 CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
   // The lanes' buffers come from the device's default pool (StreamBuffer): memory freed there
-  // stays in the pool for the next growth instead of going back at every synchronisation.
+  // stays in the pool for the next growth instead of going back at every synchronisation, and
+  // goes back at the next round's start and when the runner ends (trim_pool).
   int device = 0;
-  cudaMemPool_t pool{};
   CANOPY_CUDA_CHECK(cudaGetDevice(&device));
-  CANOPY_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool, device));
+  CANOPY_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool_, device));
   std::uint64_t keep = std::numeric_limits<std::uint64_t>::max();
-  CANOPY_CUDA_CHECK(cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep));
+  CANOPY_CUDA_CHECK(cudaMemPoolSetAttribute(pool_, cudaMemPoolAttrReleaseThreshold, &keep));
   if (!report_) return;
   CANOPY_CUDA_CHECK(cudaEventCreate(&origin_));
   CANOPY_CUDA_CHECK(cudaEventRecord(origin_));
@@ -48,7 +48,14 @@ CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
 }
 
 CudaAttemptRunner::~CudaAttemptRunner() {
-  if (!report_) return;
+  if (report_) print_stats();
+  // The lanes' buffers back to the pool (in their streams' order), then the pool's unused memory
+  // back to the device, for whatever runs next.
+  for (auto& l : lanes_) l.reset();
+  if (cudaDeviceSynchronize() == cudaSuccess) cudaMemPoolTrimTo(pool_, 0);
+}
+
+void CudaAttemptRunner::print_stats() {
   Stats all = stats_;
   std::size_t used = 0;
   for (const auto& l : lanes_)
@@ -100,6 +107,8 @@ void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> b
   // The lanes' streams do not wait for the default stream, where these boxes and the device
   // stand's transforms (redetect) were written.
   CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+  // What the lanes' tables outgrew last round goes back to the device (the tables they hold stay).
+  CANOPY_CUDA_CHECK(cudaMemPoolTrimTo(pool_, 0));
 }
 
 void CudaAttemptRunner::clear(std::size_t i) {

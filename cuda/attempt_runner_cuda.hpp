@@ -80,6 +80,9 @@ class CudaAttemptRunner : public AttemptRunner {
   std::array<std::unique_ptr<Lane>, kLanes> lanes_;  // slot i touched only by lane i's thread
   Stats stats_;  // of update_organs
   cudaEvent_t origin_{};  // with CANOPY_BULK_STATS: before every lane's work
+  cudaMemPool_t pool_{};  // the device's default pool, which the lanes' StreamBuffers draw on
+  /// With CANOPY_BULK_STATS: what the device did, and its kernels' busy time (the destructor).
+  void print_stats();
 };
 
 }  // namespace canopy::cuda
