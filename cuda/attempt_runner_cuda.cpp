@@ -35,7 +35,7 @@ void CudaAttemptRunner::Lane::put(void* to, const void* from, std::size_t bytes)
 CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
   // The lanes' buffers come from the device's default pool (StreamBuffer): memory freed there
   // stays in the pool for the next growth instead of going back at every synchronisation, and
-  // goes back at the next round's start and when the runner ends (trim_pool).
+  // goes back at the next round's start (update_organs) and when the runner ends.
   int device = 0;
   CANOPY_CUDA_CHECK(cudaGetDevice(&device));
   CANOPY_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool_, device));

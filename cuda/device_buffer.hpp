@@ -81,7 +81,12 @@ class StreamBuffer {
     const std::size_t m = std::max(n, n_ + n_ / 2);
     T* bigger = nullptr;
     CANOPY_CUDA_CHECK(cudaMallocAsync(reinterpret_cast<void**>(&bigger), m * sizeof(T), stream_));
-    if (keep) CANOPY_CUDA_CHECK(cudaMemcpyAsync(bigger, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream_));
+    if (keep) {
+      if (const cudaError_t e = cudaMemcpyAsync(bigger, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream_); e != cudaSuccess) {
+        cudaFreeAsync(bigger, stream_);  // this buffer stays as it was
+        ::canopy::cuda::check(e, "cudaMemcpyAsync (keeping a stream buffer's entries as it grows)", __FILE__, __LINE__);
+      }
+    }
     if (p_) CANOPY_CUDA_CHECK(cudaFreeAsync(p_, stream_));
     p_ = bigger;
     n_ = m;
