@@ -54,6 +54,9 @@ struct Plan {
   std::map<std::size_t, std::string> why;  // contacts no turn took care of, by index
 };
 
+/// Contacts per batch of planning by default (ResolveRequest::batch_contacts says why this many).
+inline constexpr std::size_t kDefaultBatchContacts = 16384;
+
 struct PlanRequest {
   int threads = 1;
   /// Called as planning goes on with the number of contacts still without a turn, when set.
@@ -65,7 +68,7 @@ struct PlanRequest {
   /// Batches planned at once with a runner, one per lane of these (lane 0 the caller's; null:
   /// one at a time). At most the runner's lanes.
   LaneThreads* lanes = nullptr;
-  std::size_t batch_contacts = 16384;  // contacts per batch (ResolveRequest::batch_contacts)
+  std::size_t batch_contacts = kDefaultBatchContacts;  // contacts per batch
   /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
   std::vector<std::vector<CandidatePool>>* pools = nullptr;
   /// Per lane, the batched scan's tables (grown here; kept by the caller from round to round,

@@ -8,6 +8,7 @@
 #include "collision/attempt_batch.hpp"
 #include "collision/backend.hpp"
 #include "collision/joints.hpp"
+#include "collision/plan_round.hpp"
 #include "collision/resolve_policy.hpp"
 #include "collision/turn_search.hpp"
 
@@ -70,7 +71,7 @@ struct ResolveRequest {
   /// contacts: fewer levels one after another per lane than two batches each (8,192; 0.04 s
   /// faster at 10,000 plants on an H100, 4 of 4 alternated, bench/results/resolve_session23.txt),
   /// for 8 % more memory at the peak on the CPU backend (1.73 GB instead of 1.60 GB there).
-  std::size_t batch_contacts = 16384;
+  std::size_t batch_contacts = kDefaultBatchContacts;
 };
 
 struct ResolveRound {

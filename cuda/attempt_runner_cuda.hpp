@@ -34,8 +34,9 @@ class CudaAttemptRunner : public AttemptRunner {
 
  private:
   /// What the device did so far (printed with CANOPY_BULK_STATS): calls, box and exact tests,
-  /// bytes sent, seconds spent in calls (summed over lanes, which overlap): queueing
-  /// the uploads, then until the box kernel's count is back, then until the answers are.
+  /// bytes sent, seconds spent in calls (summed over lanes, which overlap): handing over the
+  /// uploads (a pageable copy returns once the driver holds the bytes), then until the box
+  /// kernel's count is back, then until the answers are.
   struct Stats {
     std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;

@@ -81,11 +81,12 @@ int main(int argc, char** argv) {
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
                    "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"
                    "                            attempts on the device, the default)\n"
-                   "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default 6)\n"
-                   "       [--batch N]         (contacts per batch of planning at most, default 16384)\n"
+                   "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default %zu)\n"
+                   "       [--batch N]         (contacts per batch of planning at most, default %zu)\n"
                    "       [--host-runner]     (the CPU backend plans as the device does, level by level in lanes,\n"
                    "                            with the host answering the attempts: the device path's host side\n"
-                   "                            where there is no GPU, for profiling; the same turns)\n");
+                   "                            where there is no GPU, for profiling; the same turns)\n",
+                   ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts);
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
