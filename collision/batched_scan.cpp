@@ -37,6 +37,11 @@ BatchedScan::~BatchedScan() {
   if (std::getenv("CANOPY_BULK_STATS"))
     fmt::print(stderr, "batched scan (host, lane {}): scan and refine {:.3f} s, of which limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n",
                lane_, times_.scan, times_.limits, times_.tables, times_.gathers, times_.gather, times_.runner);
+  if (std::getenv("CANOPY_BULK_STATS")) {
+    const auto mb = [](const auto& t) { return 1e-6 * static_cast<double>(t.capacity() * sizeof(t[0])); };
+    fmt::print(stderr, "batched scan tables (lane {}), MB held: moving {:.1f}, keep {:.1f}, pairs {:.1f}, witness {:.1f}, axes {:.1f}\n", lane_,
+               mb(tables_.moving), mb(tables_.keep), mb(tables_.pairs), mb(tables_.witness), mb(tables_.axes));
+  }
 }
 
 void BatchedScan::clear() {
@@ -90,9 +95,10 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
     std::uint32_t at = near ? t.near_first : t.met_first;
     for (std::size_t i = 0; i < c.moving.size(); ++i)
       for (std::uint32_t p = pairs.first[i]; p < pairs.first[i + 1]; ++p) {
-        // The witness the round began with (the organs met touched then; neighbours did not).
-        const Witness& w = pairs.witness[p];
-        tables_.witness[at] = w.latest >= 0 ? std::uint32_t{w.tri_a[w.latest]} << 16 | w.tri_b[w.latest] : kNoWitness;
+        // The witness the round began with (the organs met touched then; neighbours did not,
+        // and have none on the candidate).
+        const Witness* w = p < pairs.witness.size() ? &pairs.witness[p] : nullptr;
+        tables_.witness[at] = w && w->latest >= 0 ? std::uint32_t{w->tri_a[w->latest]} << 16 | w->tri_b[w->latest] : kNoWitness;
         tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),
                                         keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
       }

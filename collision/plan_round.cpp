@@ -25,11 +25,19 @@ double PhaseTimes::cpu_now() {
   return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
+long PhaseTimes::faults_now() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt;
+}
+
 void PhaseTimes::lap(Phase p) {
   if (!on) return;
   const double t = now(), c = cpu_now();
+  const long f = faults_now();
   seconds[p] += t - mark, mark = t;
   cpu[p] += c - cpu_mark, cpu_mark = c;
+  faults[p] += f - faults_mark, faults_mark = f;
 }
 
 void PhaseTimes::print(int threads) const {
@@ -41,6 +49,9 @@ void PhaseTimes::print(int threads) const {
   fmt::print(stderr, "{} scan busy {:.2f} thread-s on {} threads; CPU s (all threads) setup to candidates {:.2f}, scan {:.2f}, the rest {:.2f}\n",
              line, scan_busy, threads, cpu[setup] + cpu[witnesses] + cpu[candidates], cpu[scan],
              cpu[bookkeeping] + cpu[pick] + cpu[last_resort] + cpu[apply] + cpu[refit] + cpu[redetect] + cpu[merge] + cpu[release]);
+  std::string pages = "resolution minor page faults (thousands):";
+  for (int p = 0; p < count; ++p) pages += fmt::format(" {} {:.1f},", names[p], 1e-3 * static_cast<double>(faults[p]));
+  fmt::print(stderr, "{}\n", pages);
 }
 
 namespace {

@@ -30,10 +30,12 @@ struct PhaseTimes {
   bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
   double seconds[count] = {}, scan_busy = 0, mark = now();
   double cpu[count] = {}, cpu_mark = cpu_now();  // the process's CPU seconds (all threads) per phase
+  long faults[count] = {}, faults_mark = faults_now();  // the process's minor page faults per phase
   void lap(Phase p);
   void print(int threads) const;
   static double now();
   static double cpu_now();
+  static long faults_now();
 };
 
 /// The candidates of a batch come from a pool per thread, whose lists keep their memory from

@@ -115,7 +115,6 @@ void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to
     }
     out.first.push_back(static_cast<std::uint32_t>(out.y.size()));
   }
-  out.witness.assign(out.y.size(), Witness{});
 }
 
 void TurnSearch::Candidate::recycle() {
@@ -128,10 +127,9 @@ void TurnSearch::Candidate::recycle() {
     reuse(to->first, from->first), reuse(to->y, from->y), reuse(to->witness, from->witness);
 }
 
-void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
+void TurnSearch::keep_offsets(Candidate& c, std::size_t from) const {
   const std::int32_t plant = stand.organs[c.mover].plant;
   c.keep_off.reserve(c.keep.size());
-  c.keep_box.reserve(c.keep.size());
   std::int32_t last_plant = -1;
   Vec3f off;
   for (std::size_t i = from; i < c.keep.size(); ++i) {
@@ -139,8 +137,16 @@ void TurnSearch::keep_boxes(Candidate& c, std::size_t from) const {
     const std::int32_t p = stand.organs[static_cast<std::size_t>(y)].plant;
     if (p != last_plant) off = offset_into(stand, plant, y), last_plant = p;  // neighbours come plant by plant
     c.keep_off.push_back(off);
-    c.keep_box.push_back(grown(boxes[static_cast<std::size_t>(y)], i < c.met_count ? clearance : detect_clearance));
   }
+}
+
+void TurnSearch::host_state(Candidate& c) const {
+  c.keep_box.reserve(c.keep.size());
+  for (std::size_t i = c.keep_box.size(); i < c.keep.size(); ++i)
+    c.keep_box.push_back(grown(boxes[static_cast<std::size_t>(c.keep[i])], i < c.met_count ? clearance : detect_clearance));
+  // The neighbours did not touch when the round began: no witness yet (met pairs have theirs
+  // from prepare).
+  if (c.near_pairs.witness.size() != c.near_pairs.y.size()) c.near_pairs.witness.assign(c.near_pairs.y.size(), Witness{});
 }
 
 TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict) const {
@@ -182,8 +188,9 @@ void TurnSearch::prepare(Candidate& c, std::uint32_t mover, const MetPairs& met_
   c.met_count = met;
 
   c.strict = strict;
-  keep_boxes(c, 0);
+  keep_offsets(c, 0);
   link_pairs(c, 0, met, c.reach_deg, c.met_pairs);
+  c.met_pairs.witness.assign(c.met_pairs.y.size(), Witness{});
   for (std::size_t i = 0; i < c.moving.size(); ++i)
     for (std::uint32_t p = c.met_pairs.first[i]; p < c.met_pairs.first[i + 1]; ++p)
       if (const Witness* w = touching.witness_of(c.moving[i], c.keep[c.met_pairs.y[p]])) c.met_pairs.witness[p] = *w;
@@ -211,7 +218,8 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   const double level_deg = std::max(config.scan_step_deg, config.angle_tolerance_deg) / c.weight;
   const double cover = std::min(c.reach_deg, std::max(deg + 2 * level_deg, 2 * c.near_deg));
   c.near_deg = cover;
-  c.keep.resize(met), c.keep_box.resize(met), c.keep_off.resize(met);
+  c.keep.resize(met), c.keep_off.resize(met);
+  if (c.keep_box.size() > met) c.keep_box.resize(met);
   for (Candidate::Blocker& b : c.blocker)
     if (b.set == 1) b = Candidate::Blocker{};
   for (Candidate::AxisBlock& b : c.axis_block)
@@ -290,11 +298,12 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
     if (renumber[k] == 0) renumber[k] = static_cast<std::uint32_t>(kept), c.keep[kept++] = c.keep[k];
   c.keep.resize(kept);
   for (std::uint32_t& k : c.near_pairs.y) k = renumber[k];
-  keep_boxes(c, met);
+  keep_offsets(c, met);
 }
 
 bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch, int axis) const {
   const Stand& s = stand;
+  host_state(c);
   const Mat3d r = rotation(c, a, deg);
   // The joint's rotation is made only near its limit, or when the attempt succeeds.
   const bool limit_near = near_limit(c, deg);
@@ -395,7 +404,7 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   for (std::uint32_t set = 0; set < 2; ++set) {
     if (set == 1) {
       if (!c.strict) break;
-      if (c.near_deg < deg) gather_neighbours(c, deg);
+      if (c.near_deg < deg) gather_neighbours(c, deg), host_state(c);
     }
     const PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     for (std::size_t i = 0; i < c.moving.size(); ++i)

@@ -77,7 +77,9 @@ struct TurnSearch {
   /// y[first[i], first[i+1]).
   struct PairSet {
     std::vector<std::uint32_t> first, y;
-    std::vector<Witness> witness;  // per pair: the triangles that touched last
+    /// Per pair: the triangles that touched last (the neighbours' made by the host's attempts
+    /// when they first need them; a batched search keeps its own on the runner's side).
+    std::vector<Witness> witness;
     void clear() { first.clear(), y.clear(), witness.clear(); }
   };
   /// One mover's search state: what moves, what it must clear, its axes and reach.
@@ -88,8 +90,11 @@ struct TurnSearch {
     double weight = 1, reach_deg = 0, angle_now_deg = 0;
     std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;
-    std::vector<Obb> keep_box;     // per keep organ: its OBB grown by the clearance it must keep
-    std::vector<Vec3f> keep_off;   // and the offset into the mover's plant frame
+    /// Per keep organ: its OBB grown by the clearance it must keep (made by attempt, the host's
+    /// search, when it first needs them: a batched search never reads them, and at 10,000 plants
+    /// they would be hundreds of megabytes written a round).
+    std::vector<Obb> keep_box;
+    std::vector<Vec3f> keep_off;   // per keep organ: the offset into the mover's plant frame
     std::vector<Vec3d> axes;
     /// Pairs with the organs met, and (a strict search) with the neighbours to keep clear. The
     /// neighbours are gathered when an attempt first clears every organ met: most candidates
@@ -166,8 +171,11 @@ struct TurnSearch {
   Mat3d rotation(Candidate& c, const Vec3d& a, double deg) const;
   /// Whether a turn by `deg` may take the joint past its limit (only then is it checked).
   bool near_limit(const Candidate& c, double deg) const;
-  /// keep_box and keep_off for keep[from, end).
-  void keep_boxes(Candidate& c, std::size_t from) const;
+  /// keep_off for keep[from, end).
+  void keep_offsets(Candidate& c, std::size_t from) const;
+  /// What only the host's attempts read, made for what is new since they last looked: keep_box
+  /// and the neighbour pairs' witnesses.
+  void host_state(Candidate& c) const;
   /// The pairs of moving organs with keep[from, to) that a turn by at most `max_deg` could bring
   /// together.
   void link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg, PairSet& out) const;

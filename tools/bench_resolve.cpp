@@ -10,6 +10,7 @@
 #include "collision/attempt_runner_host.hpp"
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
+#include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
 #ifdef CANOPY_HAVE_CUDA
 #include "cuda/detect_cuda.hpp"
@@ -47,6 +48,7 @@ struct Spacing {
 }  // namespace
 
 int main(int argc, char** argv) {
+  canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "cpu")), argv);
   canopy::keep_freed_memory();
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
@@ -85,14 +87,17 @@ int main(int argc, char** argv) {
                    "       [--batch N]         (contacts per batch of planning at most, default %zu)\n"
                    "       [--host-runner]     (the CPU backend plans as the device does, level by level in lanes,\n"
                    "                            with the host answering the attempts: the device path's host side\n"
-                   "                            where there is no GPU, for profiling; the same turns)\n",
+                   "                            where there is no GPU, for profiling; the same turns)\n"
+                   "The heap is in large pages when --backends names cuda, else small (CANOPY_HEAP_PAGES=large|small\n"
+                   "overrides; tools/heap_pages.hpp); the CSV's config column says which.\n",
                    ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts);
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
-  const std::string config = fmt::format("candidates={} axes={} step={}", base.candidates, base.axis_fan, base.scan_step_deg);
+  const std::string config =
+      fmt::format("candidates={} axes={} step={} heap={}", base.candidates, base.axis_fan, base.scan_step_deg, heap_pages_in_use());
   // How the CUDA backend plans (the CPU backend always searches candidate by candidate).
   const std::string cuda_search = device_search ? fmt::format(" device-search lanes={} batch={}", lanes, batch) : " host-search";
   if (!append)

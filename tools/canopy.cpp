@@ -1,6 +1,7 @@
 // canopy: grow tomato stands from L-system grammars, find and remove organ interpenetration.
 #include "lsystem/error.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -13,11 +14,19 @@
 #include <new>
 
 int main(int argc, char** argv) {
+#ifdef CANOPY_WITH_MPI
+  const bool under_mpi = canopy::mpi::launched();
+#else
+  const bool under_mpi = false;
+#endif
+  // Large heap pages where the run uses the GPU (tools/heap_pages.hpp); not under mpirun (a rank
+  // that runs itself again is not what its launcher started; not tried there).
+  if (!under_mpi) canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")), argv);
   canopy::keep_freed_memory();
 #ifdef CANOPY_WITH_MPI
   // Under mpirun every rank runs the same command; MPI is started only there.
   std::optional<canopy::mpi::Session> mpi;
-  if (canopy::mpi::launched()) mpi.emplace();
+  if (under_mpi) mpi.emplace();
 #endif
   CLI::App app{"canopy: penetration-free plant stands from parametric L-system grammars", "canopy"};
   app.require_subcommand(1);

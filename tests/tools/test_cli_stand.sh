@@ -126,6 +126,24 @@ cp "$src/grammars/tomato.yaml" "$src/grammars/sunflower.yaml" "$tmp/"
 check "mixed exit" "0" "$?"
 check "mixed plants" "1,0.5,0,90,2,sunflower.yaml,6" "$(sed -n 3p "$tmp/m/plants.csv")"
 
+# The heap's pages: small unless asked for or the run uses the GPU; a run in large pages (the
+# program runs itself again with glibc.malloc.hugetlb=1, where the kernel offers them) writes the
+# same files.
+check "heap pages small" "1" "$(CANOPY_HEAP_PAGES=small "$canopy" info | grep -c '^heap pages: small')"
+if [ ! -e /dev/nvidiactl ]; then
+  check "heap pages without a GPU" "1" "$(env -u CANOPY_HEAP_PAGES "$canopy" info | grep -c '^heap pages: small')"
+fi
+if grep -q '\[never\]' /sys/kernel/mm/transparent_hugepage/enabled 2>/dev/null; then want=small; else want=large; fi
+check "heap pages large" "1" "$(CANOPY_HEAP_PAGES=large "$canopy" info | grep -c "^heap pages: $want")"
+for pages in small large; do
+  CANOPY_HEAP_PAGES=$pages "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation \
+    --seed 4 --steps 14 --formats obj --backend cpu -o "$tmp/heap_$pages" >/dev/null 2>&1
+  check "heap pages $pages exit" "0" "$?"
+done
+for f in organs.csv contacts.csv contacts_after.csv stand.obj; do
+  check "heap pages same $f" "same" "$(cmp -s "$tmp/heap_small/$f" "$tmp/heap_large/$f" && echo same || echo different)"
+done
+
 # Help lines for every option.
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \

@@ -1,0 +1,88 @@
+#pragma once
+/// The heap in 2 MiB pages for runs on the GPU. A CUDA resolution of 10,000 plants plans on all
+/// the host's cores from hundreds of thousands of small lists (candidates, their neighbours and
+/// pairs, each level's groups); in 4 KiB pages that is about 190,000 page faults a run. glibc
+/// (2.35 and later) asks the kernel for transparent huge pages on its heap when the tunable
+/// glibc.malloc.hugetlb=1 is set, which it reads only when a process starts: so a program that
+/// wants it sets the tunable and runs itself again, once, before doing anything else.
+///
+/// Measured (bench/results/README.md, "The heap in large pages"): on the H100 machines' 16
+/// host cores the planning's faults 188,000 -> 2,000 and the 10,000-plant CUDA resolution
+/// 0.75-0.90 -> 0.69-0.83 s, a fresh machine's first run included; the CPU backend there alike
+/// or faster; but on the 2-core development machine (a VM whose huge-page faults cost twice the
+/// system time of the small ones) the CPU backend's 1,000-plant resolutions were 10-40 % slower.
+/// Hence the default: large pages where the run uses the GPU, small ones otherwise.
+/// CANOPY_HEAP_PAGES=large or =small in the environment overrides the choice.
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+namespace canopy {
+
+enum class HeapPages { small, large };
+
+/// CANOPY_HEAP_PAGES if set to "large" or "small", else `gpu_run ? large : small`.
+inline HeapPages heap_pages_for(bool gpu_run) {
+  if (const char* v = std::getenv("CANOPY_HEAP_PAGES")) {
+    if (!std::strcmp(v, "large")) return HeapPages::large;
+    if (!std::strcmp(v, "small")) return HeapPages::small;
+  }
+  return gpu_run ? HeapPages::large : HeapPages::small;
+}
+
+/// Whether the machine has an NVIDIA GPU's device files: what `--backend auto` would run on.
+inline bool gpu_device_files() { return access("/dev/nvidiactl", F_OK) == 0; }
+
+/// With HeapPages::large, runs this program again (the same arguments, the same environment
+/// plus glibc.malloc.hugetlb=1) unless that is set already, the kernel offers no transparent
+/// huge pages, the run is under valgrind, or this process is such a rerun. Returns only when it
+/// does not run itself again (the exec failing included: the run goes on in small pages).
+/// Call first thing in main, before threads, MPI or the GPU are started.
+inline void use_heap_pages(HeapPages pages, char** argv) {
+  if (pages != HeapPages::large || std::getenv("CANOPY_HEAP_RERUN")) return;
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  const std::string before = tunables ? tunables : "";
+  if (before.find("glibc.malloc.hugetlb") != std::string::npos) return;
+  if (const char* preload = std::getenv("LD_PRELOAD"); preload && std::strstr(preload, "vgpreload")) return;
+  {
+    std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+    std::string modes;
+    if (!std::getline(thp, modes) || modes.find("[never]") != std::string::npos) return;
+  }
+  const std::string after = before.empty() ? "glibc.malloc.hugetlb=1" : before + ":glibc.malloc.hugetlb=1";
+  setenv("GLIBC_TUNABLES", after.c_str(), 1);
+  setenv("CANOPY_HEAP_RERUN", "1", 1);
+  execv("/proc/self/exe", argv);
+  // Not run again: as we were.
+  if (tunables) setenv("GLIBC_TUNABLES", before.c_str(), 1);
+  else unsetenv("GLIBC_TUNABLES");
+  unsetenv("CANOPY_HEAP_RERUN");
+}
+
+/// "large" where this process runs with glibc.malloc.hugetlb=1, else "small" (for reports).
+inline const char* heap_pages_in_use() {
+  const char* t = std::getenv("GLIBC_TUNABLES");
+  return t && std::strstr(t, "glibc.malloc.hugetlb=1") ? "large" : "small";
+}
+
+/// Whether a command line runs on the GPU: a backend option ("--backend X", "--backend=X",
+/// "--backends X,Y") naming cuda, or naming none or auto (`default_backend`'s meaning then)
+/// where the machine has an NVIDIA GPU.
+inline bool command_runs_on_gpu(int argc, char** argv, std::string_view default_backend) {
+  std::string_view backend = default_backend;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    for (std::string_view name : {"--backend", "--backends"}) {
+      if (a == name && i + 1 < argc) backend = argv[i + 1];
+      else if (a.size() > name.size() && a.substr(0, name.size()) == name && a[name.size()] == '=') backend = a.substr(name.size() + 1);
+    }
+  }
+  if (backend.find("cuda") != std::string_view::npos) return true;
+  return backend == "auto" && gpu_device_files();
+}
+
+}  // namespace canopy
