@@ -34,10 +34,9 @@ struct Timed {
 }  // namespace
 
 BatchedScan::~BatchedScan() {
-  if (std::getenv("CANOPY_BULK_STATS"))
+  if (std::getenv("CANOPY_BULK_STATS")) {
     fmt::print(stderr, "batched scan (host, lane {}): scan and refine {:.3f} s, of which limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n",
                lane_, times_.scan, times_.limits, times_.tables, times_.gathers, times_.gather, times_.runner);
-  if (std::getenv("CANOPY_BULK_STATS")) {
     const auto mb = [](const auto& t) { return 1e-6 * static_cast<double>(t.capacity() * sizeof(t[0])); };
     fmt::print(stderr, "batched scan tables (lane {}), MB held: moving {:.1f}, keep {:.1f}, pairs {:.1f}, witness {:.1f}, axes {:.1f}\n", lane_,
                mb(tables_.moving), mb(tables_.keep), mb(tables_.pairs), mb(tables_.witness), mb(tables_.axes));

@@ -29,7 +29,8 @@ class BatchedScan {
       : search_(search), runner_(runner), threads_(threads), lane_(lane), tables_(tables ? *tables : own_tables_) {}
   BatchedScan(const BatchedScan&) = delete;
   BatchedScan& operator=(const BatchedScan&) = delete;
-  /// With CANOPY_BULK_STATS set in the environment, prints where the host's time went.
+  /// With CANOPY_BULK_STATS set in the environment, prints where the host's time went and how
+  /// large the tables grew.
   ~BatchedScan();
   /// A new batch of contacts: the tables start empty (candidates of the last batch are gone).
   void clear();
