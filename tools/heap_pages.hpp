@@ -8,7 +8,7 @@
 ///
 /// Measured (bench/results/README.md, "The planning's page faults; the heap in large pages"): on
 /// the H100 and H200 machines' 16 host cores the planning's faults 189,000 -> 2,000 and the
-/// 10,000-plant CUDA resolution 0.68-0.97 -> 0.64-0.87 s (17 of 18 alternated pairs faster, a
+/// 10,000-plant CUDA resolution 0.68-0.97 -> 0.64-0.87 s (20 of 21 alternated pairs faster, a
 /// fresh machine's first run included); the CPU backend there alike or faster; but on the 2-core
 /// development machine (a VM whose huge-page faults cost twice the system time of the small ones)
 /// the CPU backend's 1,000-plant resolutions were 10-40 % slower.
