@@ -19,25 +19,19 @@ namespace canopy {
 
 double PhaseTimes::now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
-double PhaseTimes::cpu_now() {
+PhaseTimes::Usage PhaseTimes::usage() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-long PhaseTimes::faults_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_minflt;
+  return {static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec),
+          u.ru_minflt};
 }
 
 void PhaseTimes::lap(Phase p) {
   if (!on) return;
-  const double t = now(), c = cpu_now();
-  const long f = faults_now();
+  const double t = now();
+  const Usage u = usage();
   seconds[p] += t - mark, mark = t;
-  cpu[p] += c - cpu_mark, cpu_mark = c;
-  faults[p] += f - faults_mark, faults_mark = f;
+  cpu[p] += u.cpu - usage_mark.cpu, faults[p] += u.faults - usage_mark.faults, usage_mark = u;
 }
 
 void PhaseTimes::print(int threads) const {

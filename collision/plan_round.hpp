@@ -29,13 +29,18 @@ struct PhaseTimes {
   enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
   bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
   double seconds[count] = {}, scan_busy = 0, mark = now();
-  double cpu[count] = {}, cpu_mark = cpu_now();  // the process's CPU seconds (all threads) per phase
-  long faults[count] = {}, faults_mark = faults_now();  // the process's minor page faults per phase
+  /// The process's CPU seconds (all threads) and minor page faults so far (one getrusage).
+  struct Usage {
+    double cpu = 0;
+    long faults = 0;
+  };
+  double cpu[count] = {};   // per phase
+  long faults[count] = {};  // per phase
+  Usage usage_mark = usage();
   void lap(Phase p);
   void print(int threads) const;
   static double now();
-  static double cpu_now();
-  static long faults_now();
+  static Usage usage();
 };
 
 /// The candidates of a batch come from a pool per thread, whose lists keep their memory from
