@@ -80,7 +80,7 @@ CANOPY_HD inline void fit_cluster_nodes(LcdNode* nodes, const Obb* obbs, const s
 
 /// An axis-aligned box around LCD box l (its four horizontal corners, its vertical extent),
 /// widened by 16 times the bounds' relative slack: far above the rounding of the corners and of
-/// lcd_overlap's projections, so a pre-test on these boxes never rejects a pair of LCD boxes that
+/// lcd_overlap's arithmetic, so a pre-test on these boxes never rejects a pair of LCD boxes that
 /// lcd_overlap accepts (tests/collision/test_bounds.cpp). Empty (lo > hi) for an empty l.
 CANOPY_HD inline Box3f lcd_aabb(const Lcd& l) {
   Box3f b{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}};

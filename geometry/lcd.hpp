@@ -81,31 +81,29 @@ CANOPY_HD inline void lcd_inflate(Lcd& l, float by) {
   }
 }
 
-/// The interval of box `l` projected on the horizontal unit direction (dx, dy), with the box's
-/// frame moved by `offset`.
-CANOPY_HD inline void lcd_project(const Lcd& l, float dx, float dy, Vec3f offset, float& lo, float& hi) {
-  // Box centre and half sizes in its own (a, b) frame.
-  const float cu = 0.5f * (l.lo[0] + l.hi[0]), cv = 0.5f * (l.lo[1] + l.hi[1]);
-  const float hu = 0.5f * (l.hi[0] - l.lo[0]), hv = 0.5f * (l.hi[1] - l.lo[1]);
-  const float cx = l.ax * cu - l.ay * cv + offset.x, cy = l.ay * cu + l.ax * cv + offset.y;
-  const float c = cx * dx + cy * dy;
-  const float r = hu * fabsf(l.ax * dx + l.ay * dy) + hv * fabsf(-l.ay * dx + l.ax * dy);
-  lo = c - r;
-  hi = c + r;
-}
-
 /// Whether two LCD boxes overlap (closed), with b moved by `offset`: the vertical axis, then the
-/// two horizontal axes of each box.
+/// two horizontal axes of each box, as the separating-axis test of two rectangles in the plane
+/// (Gottschalk, Lin & Manocha 1996; Ericson, Real-Time Collision Detection §4.4.1, in 2D). Each
+/// box's centre and half sizes are found once and the four axes share the cosine and sine of
+/// the angle between the boxes, instead of both boxes being projected anew on every axis.
 CANOPY_HD inline bool lcd_overlap(const Lcd& a, const Lcd& b, Vec3f offset) {
   if (lcd_empty(a) || lcd_empty(b)) return false;
   if (a.lo[2] > b.hi[2] + offset.z || b.lo[2] + offset.z > a.hi[2]) return false;
-  const float axes[4][2] = {{a.ax, a.ay}, {-a.ay, a.ax}, {b.ax, b.ay}, {-b.ay, b.ax}};
-  for (int k = 0; k < 4; ++k) {
-    float alo, ahi, blo, bhi;
-    lcd_project(a, axes[k][0], axes[k][1], {0, 0, 0}, alo, ahi);
-    lcd_project(b, axes[k][0], axes[k][1], offset, blo, bhi);
-    if (alo > bhi || blo > ahi) return false;
-  }
+  // Centres (u, v in each box's own frame) and half sizes.
+  const float acu = 0.5f * (a.lo[0] + a.hi[0]), acv = 0.5f * (a.lo[1] + a.hi[1]);
+  const float ahu = 0.5f * (a.hi[0] - a.lo[0]), ahv = 0.5f * (a.hi[1] - a.lo[1]);
+  const float bcu = 0.5f * (b.lo[0] + b.hi[0]), bcv = 0.5f * (b.lo[1] + b.hi[1]);
+  const float bhu = 0.5f * (b.hi[0] - b.lo[0]), bhv = 0.5f * (b.hi[1] - b.lo[1]);
+  // From a's centre to b's, in the plant frame.
+  const float dx = (b.ax * bcu - b.ay * bcv + offset.x) - (a.ax * acu - a.ay * acv);
+  const float dy = (b.ay * bcu + b.ax * bcv + offset.y) - (a.ay * acu + a.ax * acv);
+  // |cos| and |sin| of the angle between the boxes' u axes: what each axis of one box makes
+  // with both axes of the other.
+  const float c = fabsf(a.ax * b.ax + a.ay * b.ay), sn = fabsf(a.ax * b.ay - a.ay * b.ax);
+  if (fabsf(dx * a.ax + dy * a.ay) > ahu + (bhu * c + bhv * sn)) return false;   // a's u axis
+  if (fabsf(dy * a.ax - dx * a.ay) > ahv + (bhu * sn + bhv * c)) return false;   // a's v axis
+  if (fabsf(dx * b.ax + dy * b.ay) > bhu + (ahu * c + ahv * sn)) return false;   // b's u axis
+  if (fabsf(dy * b.ax - dx * b.ay) > bhv + (ahu * sn + ahv * c)) return false;   // b's v axis
   return true;
 }
 
