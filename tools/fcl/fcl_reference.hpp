@@ -14,9 +14,12 @@ namespace canopy {
 
 struct FclResult {
   std::vector<std::pair<int, int>> pairs;  // organ pairs (a < b) whose meshes meet, sorted
-  double build_s = 0, detect_s = 0;
+  double build_s = 0;   // the organs' models and the manager's tree
+  double detect_s = 0;  // the query (the manager's collide with the narrow phase): median of the repeats
 };
 
-FclResult fcl_collide(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide);
+/// FCL's answer at the exact level; the query is run `repeats` times over the same manager (the
+/// median time kept; every run must give the same pairs, or this throws).
+FclResult fcl_collide(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide, int repeats = 1);
 
 }  // namespace canopy
