@@ -49,6 +49,8 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   organ = id, frame = frame_plant, mesh = &m;
   solid = is_solid(s.organs[static_cast<std::size_t>(id)].prototype);
   organ_vertices(s, m, t, plant, frame_plant, v);
+  obb = make_obb(t, m.box, 0);
+  if (plant != frame_plant) obb.centre = obb.centre + plant_offset(s, frame_plant, plant);
   box[0] = box[1] = box[2] = 1e300, box[3] = box[4] = box[5] = -1e300;
   for (const Vec3f& p : v) {
     box[0] = std::min<double>(box[0], p.x), box[1] = std::min<double>(box[1], p.y), box[2] = std::min<double>(box[2], p.z);
@@ -158,7 +160,8 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
   const PrototypeMesh& mb = *pb.mesh;
   const std::size_t ta = ma.triangle_count(), tb = mb.triangle_count();
   const double c = clearance;
-  // Only triangles inside the other organ's box widened by the clearance can meet anything of it.
+  // Only triangles inside the other organ's box widened by the clearance can meet anything of
+  // it; of those, only the ones not beyond its OBB by the margin below (beyond_obb).
   double box_a[6], box_b[6];
   for (int k = 0; k < 3; ++k) {
     box_a[k] = pa.box[k] - c, box_a[k + 3] = pa.box[k + 3] + c;
@@ -167,7 +170,8 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
   const auto meets = [](const float* t, const double* o) {
     return !(t[0] > o[3] || t[1] > o[4] || t[2] > o[5] || t[3] < o[0] || t[4] < o[1] || t[5] < o[2]);
   };
-  // The float plane pre-test below rejects only pairs more than this beyond the clearance.
+  // The float tests below (beyond_obb, triangles_rejected) reject only triangles or pairs more
+  // than this beyond the clearance.
   const float margin = static_cast<float>(c) + kRejectSlack;
   const auto pair_touches = [&](const Vec3f* p, const Vec3f* q) { return c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q); };
   // With a witness, start both loops at its triangles: a touching pair is likely near the one
@@ -179,7 +183,9 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
   Spiral order_b(start_b, tb);
   for (std::size_t jj = 0; jj < tb; ++jj) {
     const std::size_t j = order_b.next();
-    if (meets(&pb.tri_box[6 * j], box_a)) x.near_b.push_back(static_cast<std::uint32_t>(j));
+    if (!meets(&pb.tri_box[6 * j], box_a)) continue;
+    const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
+    if (!beyond_obb(tri_b, pa.obb, margin)) x.near_b.push_back(static_cast<std::uint32_t>(j));
   }
   if (!x.near_b.empty()) {
     Spiral order_a(start_a, ta);
@@ -188,6 +194,7 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
       const float* bx = &pa.tri_box[6 * i];
       if (!meets(bx, box_b)) continue;
       const Vec3f tri_a[3] = {pa.v[ma.indices[3 * i]], pa.v[ma.indices[3 * i + 1]], pa.v[ma.indices[3 * i + 2]]};
+      if (beyond_obb(tri_a, pb.obb, margin)) continue;
 
       // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
       const double lo[3] = {bx[0] - c, bx[1] - c, bx[2] - c}, hi[3] = {bx[3] + c, bx[4] + c, bx[5] + c};

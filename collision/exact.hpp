@@ -3,6 +3,7 @@
 /// prototype x transform (the higher organ moved into the lower organ's plant frame by the
 /// origin difference), a triangle-box filter, then the shared closed triangle test; capped
 /// cylinders and spheres are solids, so an organ wholly inside one counts too.
+#include "geometry/obb.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/triangle_reject.hpp"
 #include "geometry/stand.hpp"
@@ -25,6 +26,7 @@ struct PosedOrgan {
   std::vector<Vec3f> v;                // vertices
   std::vector<float> tri_box;          // 6 per triangle: lo xyz, hi xyz
   double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened)
+  Obb obb{};                           // its OBB in this frame (make_obb, centre moved by the origin difference)
   /// Triangle i's plane, made when first asked for: most triangles of a pose never pass the
   /// box tests that come before it.
   const TrianglePlane& plane(std::size_t i) const {

@@ -3,6 +3,7 @@
 /// (CANOPY_HD): a pair they reject lies farther apart than the exact test's clearance, so they
 /// change no answer, only how much of the double-precision test runs.
 #include "geometry/hd.hpp"
+#include "geometry/obb.hpp"
 #include "geometry/vec.hpp"
 
 namespace canopy {
@@ -54,6 +55,23 @@ CANOPY_HD inline bool apart_on_edges(const Vec3f* t, const Vec3f* u, float margi
       const float gap = max_f(u_lo - t_hi, t_lo - u_hi);
       if (gap > 0 && gap > margin * sqrtf(dot(n, n))) return true;
     }
+  }
+  return false;
+}
+
+/// Whether triangle t lies beyond OBB o's slab along one of o's axes by more than `margin`
+/// (clearance + kRejectSlack): then it is farther than the clearance from everything inside o,
+/// and o holds every vertex of its organ (with the bounds' slack, so every triangle too), so no
+/// triangle of that organ meets t. A filter of single triangles before the pair tests: the box
+/// filters pass triangles near the other organ's axis-aligned box, which for a tilted flat
+/// leaflet is far larger than its OBB. The float rounding of the projections (about 1e-7 of
+/// plant-frame coordinates) is far below the margin's slack, so it changes no answer.
+CANOPY_HD inline bool beyond_obb(const Vec3f* t, const Obb& o, float margin) {
+  const Vec3f d0 = t[0] - o.centre, d1 = t[1] - o.centre, d2 = t[2] - o.centre;
+  for (int k = 0; k < 3; ++k) {
+    const float x0 = dot(d0, o.axis[k]), x1 = dot(d1, o.axis[k]), x2 = dot(d2, o.axis[k]);
+    const float reach = o.half[k] + margin;
+    if (min_f(x0, min_f(x1, x2)) > reach || max_f(x0, max_f(x1, x2)) < -reach) return true;
   }
   return false;
 }

@@ -1,8 +1,9 @@
 // The quick rejections of the host exact test never reject a pair the full test accepts: the
 // float plane pre-test (TrianglePlane) and the float edge-axis test (apart_on_edges) against the
 // plain triangle distance on random pairs at plant scale, including coordinates a couple of
-// metres from the plant origin, thin slivers, and clearances around the distance. And the pose
-// cache never answers with a stale pose.
+// metres from the plant origin, thin slivers, and clearances around the distance; the filter of
+// single triangles against the other organ's OBB (beyond_obb) against the triangle distance to
+// every triangle of a posed organ. And the pose cache never answers with a stale pose.
 #include "collision/exact.hpp"
 #include "geometry/triangle_test.hpp"
 #include "tests/collision/helpers.hpp"
@@ -44,6 +45,56 @@ TEST_CASE("the float plane pre-test rejects only pairs farther apart than the cl
     }
   }
   CHECK(rejected > 1000);  // it does reject
+}
+
+TEST_CASE("the OBB filter rejects only triangles farther from the organ than the clearance") {
+  // Organs of random stands posed in their own plant's frame or a neighbour's; triangles of leaflet
+  // size near one of the organ's vertices (touching it, crossing it, or a few mm off), each
+  // against every triangle of the posed organ when the filter rejects it.
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<float> u(-1, 1);
+  PrototypeLibrary lib;
+  int rejected = 0, kept = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const Stand s = test::random_stand(seed, 6);
+    const auto n = static_cast<std::uint32_t>(s.organ_count());
+    for (int trial = 0; trial < 1500; ++trial) {
+      const auto id = static_cast<std::int32_t>(rng() % n);
+      const OrganRecord& r = s.organs[static_cast<std::size_t>(id)];
+      const std::int32_t frame = rng() % 2 ? r.plant : static_cast<std::int32_t>(rng() % s.plant_count());
+      const PrototypeMesh& mesh = lib.get(r.prototype, r.lod);
+      PosedOrgan posed;
+      posed.pose(s, mesh, id, s.transforms[static_cast<std::size_t>(id)], r.plant, frame);
+      if (posed.v.empty()) continue;
+      const Vec3f at = posed.v[rng() % posed.v.size()];
+      const float size = trial % 3 ? 0.02f : 0.002f;
+      const float off = trial % 4 == 0 ? 0.0f : 0.01f * static_cast<float>(rng() % 4);
+      const Vec3f dir{u(rng), u(rng), u(rng)};
+      Vec3f t[3];
+      for (int k = 0; k < 3; ++k) t[k] = at + dir * off + Vec3f{u(rng), u(rng), u(rng)} * size;
+      if (trial % 7 == 0) t[2] = t[0] + (t[1] - t[0]) * 0.5f;  // a degenerate triangle
+      double d = 1e300;
+      for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
+        const Vec3f q[3] = {posed.v[mesh.indices[3 * i]], posed.v[mesh.indices[3 * i + 1]], posed.v[mesh.indices[3 * i + 2]]};
+        d = std::min(d, reference_distance(t, q));
+      }
+      for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
+        if (!beyond_obb(t, posed.obb, c + kRejectSlack)) {
+          ++kept;
+          continue;
+        }
+        ++rejected;
+        CHECK_MESSAGE(d > c, "seed ", seed, " trial ", trial, " distance ", d, " clearance ", c);
+        for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
+          const Vec3f q[3] = {posed.v[mesh.indices[3 * i]], posed.v[mesh.indices[3 * i + 1]], posed.v[mesh.indices[3 * i + 2]]};
+          const bool touches = c > 0 ? triangles_within(t, q, c) : triangles_intersect(t, q);
+          CHECK_FALSE(touches);
+        }
+      }
+    }
+  }
+  CHECK(rejected > 1000);  // it does reject
+  CHECK(kept > 1000);      // and keeps the near ones
 }
 
 TEST_CASE("the float edge-axis test rejects pairs the plane test lets through") {
