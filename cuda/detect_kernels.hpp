@@ -12,7 +12,6 @@ namespace canopy::cuda {
 
 struct MeshRef {
   std::uint32_t first_vertex = 0, vertex_count = 0, first_index = 0, triangle_count = 0;
-  Box3f box{};  // the prototype's local box (its OBB at a pose: make_obb)
 };
 
 /// A plant's origin, in double as the stand keeps it: offsets between plants are made from

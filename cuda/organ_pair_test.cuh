@@ -73,14 +73,11 @@ __device__ inline void staged_box(const Vec3f* vert, std::uint32_t n, float lo[3
 }
 
 /// The triangles of a staged mesh whose box meets the box [lo, hi] with c between them (a
-/// triangle that does not cannot pass the pair test against any triangle inside it) and that do
-/// not lie beyond the other organ's OBB by `margin` (beyond_obb, as the host's posed_touch
-/// filters them): their indices in `out`, their count back. `widen_own`: c is added to the
-/// triangle's box, else to [lo, hi], as the pair test adds it (c on a's side), so rounding cannot
-/// drop a pair it passes. `vert` and `idx`: the staged vertices and the mesh's triangles.
+/// triangle that does not cannot pass the pair test against any triangle inside it): their
+/// indices in `out`, their count back. `widen_own`: c is added to the triangle's box, else to
+/// [lo, hi], as the pair test adds it (c on a's side), so rounding cannot drop a pair it passes.
 __device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n, const float lo[3], const float hi[3], double c,
-                                         bool widen_own, const Vec3f* vert, const std::uint32_t* idx, const Obb& other,
-                                         float margin, std::uint8_t* out) {
+                                         bool widen_own, std::uint8_t* out) {
   const unsigned lane = threadIdx.x % 32;
   std::uint32_t count = 0;
   for (std::uint32_t i0 = 0; i0 < n; i0 += 32) {
@@ -88,10 +85,6 @@ __device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n,
     bool in = i < n;
     for (int d = 0; in && d < 3; ++d)
       in = widen_own ? box[i][d] - c <= hi[d] && box[i][3 + d] + c >= lo[d] : box[i][d] <= hi[d] + c && box[i][3 + d] >= lo[d] - c;
-    if (in) {
-      const Vec3f t[3] = {vert[idx[3 * i]], vert[idx[3 * i + 1]], vert[idx[3 * i + 2]]};
-      in = !beyond_obb(t, other, margin);
-    }
     const unsigned votes = __ballot_sync(kFullWarp, in);
     if (in) out[count + __popc(votes & ((1u << lane) - 1))] = static_cast<std::uint8_t>(i);
     count += __popc(votes);
@@ -112,14 +105,8 @@ __device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& 
   float alo[3], ahi[3], blo[3], bhi[3];
   staged_box(w.va, ma.vertex_count, alo, ahi);
   staged_box(w.vb, mb.vertex_count, blo, bhi);
-  // Each organ's OBB at its pose (b's moved into a's frame), as the host's PosedOrgan keeps it.
-  const Obb oa = make_obb(ta, ma.box, 0);
-  Obb ob = make_obb(tb, mb.box, 0);
-  ob.centre = ob.centre + db;
-  const std::uint32_t na =
-      reaching(w.ba, ma.triangle_count, blo, bhi, c, true, w.va, v.mesh_indices + ma.first_index, ob, margin, w.la);
-  const std::uint32_t nb =
-      na ? reaching(w.bb, mb.triangle_count, alo, ahi, c, false, w.vb, v.mesh_indices + mb.first_index, oa, margin, w.lb) : 0;
+  const std::uint32_t na = reaching(w.ba, ma.triangle_count, blo, bhi, c, true, w.la);
+  const std::uint32_t nb = na ? reaching(w.bb, mb.triangle_count, alo, ahi, c, false, w.lb) : 0;
   for (std::uint32_t k0 = 0; k0 < na * nb; k0 += 32) {
     const std::uint32_t k = k0 + lane;
     bool hit = false;
@@ -247,9 +234,8 @@ __device__ inline bool witness_touches(const StandView& v, std::uint32_t a, cons
 /// solids, so an organ wholly inside one touches it too.
 ///
 /// With `stage` and meshes small enough for it, the meshes are posed once into shared memory,
-/// each keeps only its triangles that reach the other's box and are not beyond its OBB, and the
-/// lanes share the pairs of those (a triangle left out meets nothing of the other organ, so the
-/// answer is the same); where
+/// each keeps only its triangles that reach the other's box, and the lanes share the pairs of
+/// those (the same pairs pass the same box test as without, so the answer is the same); where
 /// `found` is given, a touching triangle pair found there is written to it (of a << 16 | of b).
 __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
                                          const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr,

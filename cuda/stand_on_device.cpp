@@ -18,7 +18,7 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, c
     if (ref.vertex_count) continue;
     const PrototypeMesh& pm = lib.get(r.prototype, r.lod);
     ref = {static_cast<std::uint32_t>(positions.size()), static_cast<std::uint32_t>(pm.positions.size()),
-           static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(pm.triangle_count()), pm.box};
+           static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(pm.triangle_count())};
     boxes[slot] = pm.box;
     positions.insert(positions.end(), pm.positions.begin(), pm.positions.end());
     indices.insert(indices.end(), pm.indices.begin(), pm.indices.end());
