@@ -1,7 +1,8 @@
 #pragma once
 /// The exact level for one organ pair on the host: the organs' triangles made on the fly from
 /// prototype x transform (the higher organ moved into the lower organ's plant frame by the
-/// origin difference), a triangle-box filter, then the shared closed triangle test; capped
+/// origin difference), filters of single triangles (the other organ's box, then its OBB) and of
+/// triangle pairs (box, planes, edge axes), then the shared closed triangle test; capped
 /// cylinders and spheres are solids, so an organ wholly inside one counts too.
 #include "geometry/obb.hpp"
 #include "geometry/prototype.hpp"
