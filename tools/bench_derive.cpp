@@ -2,6 +2,7 @@
 // grammars given, median of repeats, one thread. Prints a table and writes CSV.
 #include "lsystem/derive.hpp"
 #include "lsystem/grammar.hpp"
+#include "tools/bench_timing.hpp"
 
 #include <fmt/format.h>
 
@@ -20,10 +21,6 @@ struct Case {
   std::string file;
   int steps;
 };
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 
@@ -68,7 +65,7 @@ int main(int argc, char** argv) {
     for (;;) {
       const auto t0 = std::chrono::steady_clock::now();
       for (int l = 0; l < loops; ++l) derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
-      if (seconds_since(t0) > 0.05 || loops > (1 << 24)) break;
+      if (since(t0) > 0.05 || loops > (1 << 24)) break;
       loops *= 4;
     }
     std::vector<double> times;
@@ -78,10 +75,9 @@ int main(int argc, char** argv) {
         const ModuleString s = derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
         if (s.size() != final_size) throw std::runtime_error("nondeterministic derivation length");
       }
-      times.push_back(seconds_since(t0) / loops);
+      times.push_back(since(t0) / loops);
     }
-    std::sort(times.begin(), times.end());
-    const double med = times[times.size() / 2];
+    const double med = median(std::move(times));
     const double rate = static_cast<double>(written) / med;
     fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10.4f} {:>14.1f}\n", c.file, steps, final_size, written, med, rate / 1e6);
     fmt::print(out, "{},canopy,{},{},{},{:.6f},{:.0f}\n", c.file, steps, final_size, written, med, rate);

@@ -8,6 +8,7 @@
 #include "collision/aabb_baseline.hpp"
 #include "collision/backend.hpp"
 #include "lsystem/grow.hpp"
+#include "tools/bench_timing.hpp"
 #include "tools/fcl/fcl_reference.hpp"
 #include "tools/process_memory.hpp"
 
@@ -24,22 +25,6 @@
 using namespace canopy;
 
 namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-template <typename F>
-double median_time(int repeats, F&& f) {
-  std::vector<double> t;
-  for (int r = 0; r < repeats; ++r) {
-    const auto t0 = std::chrono::steady_clock::now();
-    f();
-    t.push_back(since(t0));
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 Stand default_stand(int n) {
   GrowRequest req;

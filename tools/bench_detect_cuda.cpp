@@ -12,6 +12,7 @@
 #include "collision/backend.hpp"
 #include "cuda/detect_cuda.hpp"
 #include "lsystem/grow.hpp"
+#include "tools/bench_timing.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -23,19 +24,6 @@
 #include <cstring>
 
 using namespace canopy;
-
-namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   canopy::keep_freed_memory();

@@ -2,6 +2,7 @@
 
 #include "collision/contacts.hpp"
 #include "geometry/organ_mesh.hpp"
+#include "tools/bench_timing.hpp"
 
 #include <fcl/fcl.h>
 
@@ -12,10 +13,6 @@
 
 namespace canopy {
 namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 struct Search {
   const Stand* stand;
@@ -78,8 +75,7 @@ FclResult fcl_collide(const Stand& stand, PrototypeLibrary& lib, const KindMask&
     if (r > 0 && search.pairs != out.pairs) throw std::runtime_error("fcl_collide: the query gave different pairs on a repeat");
     out.pairs = std::move(search.pairs);
   }
-  std::sort(times.begin(), times.end());
-  out.detect_s = times[times.size() / 2];
+  out.detect_s = median(std::move(times));
   return out;
 }
 

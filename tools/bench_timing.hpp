@@ -1,0 +1,33 @@
+#pragma once
+/// Timing helpers of the benchmark programs (tools/bench_*, the FCL reference): seconds since a
+/// time point, and the median of repeated timings (the middle one after sorting, the upper of
+/// the two middle ones for an even count).
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+namespace canopy {
+
+inline double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// The median of `times` (at least one).
+inline double median(std::vector<double> times) {
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+/// The median wall time of `repeats` calls of f.
+template <typename F>
+double median_time(int repeats, F&& f) {
+  std::vector<double> t;
+  for (int r = 0; r < repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    t.push_back(since(t0));
+  }
+  return median(std::move(t));
+}
+
+}  // namespace canopy
