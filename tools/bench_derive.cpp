@@ -28,10 +28,20 @@ int main(int argc, char** argv) {
   std::vector<Case> cases;
   std::string csv = "bench/results/derive.csv";
   int repeats = 5;
+  const auto usage = [](std::FILE* to) {
+    fmt::print(to, "usage: bench_derive GRAMMAR[:STEPS]... [--repeats N] [--csv FILE]\n");
+  };
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
-    else {
+    else if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (argv[i][0] == '-') {  // an unknown option, or one without its value: not a grammar file
+      fmt::print(stderr, "bench_derive: unknown option or missing value: {}\n", argv[i]);
+      usage(stderr);
+      return 2;
+    } else {
       std::string a = argv[i];
       const auto colon = a.rfind(':');
       if (colon != std::string::npos && colon + 1 < a.size() && std::isdigit(static_cast<unsigned char>(a[colon + 1])))
@@ -40,19 +50,22 @@ int main(int argc, char** argv) {
     }
   }
   if (cases.empty()) {
-    fmt::print(stderr, "usage: bench_derive GRAMMAR[:STEPS]... [--repeats N] [--csv FILE]\n");
+    usage(stderr);
     return 2;
   }
-  std::FILE* out = std::fopen(csv.c_str(), "w");
-  if (!out) {
-    fmt::print(stderr, "bench_derive: cannot write {}\n", csv);
-    return 1;
-  }
-  fmt::print(out, "grammar,engine,steps,final_modules,modules_written,median_s,modules_per_s\n");
+  // Rows are kept until every case has run, so a grammar that fails to load leaves an earlier
+  // CSV as it was.
+  std::string rows = "grammar,engine,steps,final_modules,modules_written,median_s,modules_per_s\n";
   fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10} {:>14}\n", "grammar", "steps", "final modules", "modules written",
              "median s", "Mmodules/s");
   for (const Case& c : cases) {
-    const Grammar g = load_grammar(c.file);
+    Grammar g;
+    try {
+      g = load_grammar(c.file);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "bench_derive: {}\n", e.what());
+      return 1;
+    }
     const int steps = c.steps >= 0 ? c.steps : g.steps;
     // Count what the derivation writes: the sum of the string lengths after each step.
     std::size_t written = 0, final_size = 0;
@@ -80,9 +93,13 @@ int main(int argc, char** argv) {
     const double med = median(std::move(times));
     const double rate = static_cast<double>(written) / med;
     fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10.4f} {:>14.1f}\n", c.file, steps, final_size, written, med, rate / 1e6);
-    fmt::print(out, "{},canopy,{},{},{},{:.6f},{:.0f}\n", c.file, steps, final_size, written, med, rate);
+    rows += fmt::format("{},canopy,{},{},{},{:.6f},{:.0f}\n", c.file, steps, final_size, written, med, rate);
   }
-  std::fclose(out);
+  std::FILE* out = std::fopen(csv.c_str(), "w");
+  if (!out || std::fputs(rows.c_str(), out) < 0 || std::fclose(out) != 0) {
+    fmt::print(stderr, "bench_derive: cannot write {}\n", csv);
+    return 1;
+  }
   fmt::print("wrote {}\n", csv);
   return 0;
 }
