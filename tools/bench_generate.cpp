@@ -1,9 +1,11 @@
 // Generation and export speed: grow (derive + interpret + turtle + place), layout, and each
 // export format, for default stands of N plants, on one thread and on all; the disk's own write
 // speed measured the same way (buffered writes of a 1 GiB file, closed). Prints a table, writes CSV.
+// Usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]
 #include "geometry/export.hpp"
 #include "geometry/layout.hpp"
 #include "lsystem/grow.hpp"
+#include "tools/bench_timing.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -19,10 +21,6 @@ using namespace canopy;
 namespace fs = std::filesystem;
 
 namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 /// Writes `bytes` to a file in 1 MiB blocks, buffered like the exports, optionally synced.
 double disk_write_mb_s(const std::string& dir, bool sync, std::size_t bytes = std::size_t(1) << 30) {
@@ -53,6 +51,12 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+    } else {  // --help, or an unknown option or one without its value: nothing is run or written
+      const bool help = !std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h");
+      if (!help) fmt::print(stderr, "bench_generate: unknown option or missing value: {}\n", argv[i]);
+      fmt::print(help ? stdout : stderr,
+                 "usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]\n");
+      return help ? 0 : 2;
     }
   }
   fs::create_directories(dir);

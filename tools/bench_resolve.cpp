@@ -10,6 +10,7 @@
 #include "collision/attempt_runner_host.hpp"
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
+#include "tools/bench_timing.hpp"
 #include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
 #ifdef CANOPY_HAVE_CUDA
@@ -29,10 +30,6 @@
 using namespace canopy;
 
 namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 std::vector<std::string> split(char* s) {
   std::vector<std::string> v;

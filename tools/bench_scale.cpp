@@ -63,8 +63,14 @@ int main(int argc, char** argv) {
     else if (a == "--no-resolve") resolve = false;
     else if (a == "--all-levels") all_levels = true;
     else {
-      if (mpi::rank() == 0) fmt::print(stderr, "bench_scale: unknown argument {}\n", a);
-      return 2;
+      const bool help = a == "--help" || a == "-h";
+      if (mpi::rank() == 0) {
+        if (!help) fmt::print(stderr, "bench_scale: unknown argument {}\n", a);
+        fmt::print(help ? stdout : stderr,
+                   "usage: mpirun -np P bench_scale [--sizes 10000,20000] [--backend cpu|cuda|auto] [--threads T]\n"
+                   "                                [--grammar FILE] [--csv FILE] [--no-resolve] [--all-levels]\n");
+      }
+      return help ? 0 : 2;
     }
   }
   const int rank = mpi::rank(), ranks = mpi::size();
