@@ -5,10 +5,10 @@
 # alternated three times; the device kernels' times with one lane (CANOPY_BULK_STATS) for both
 # builds; the 1,000-plant and dense stands. Writes the log into $OUT.
 set -u
-source .devbin/env.sh
+source scripts/device_common.sh
 {
-nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"
-.devbin/bin/test_cuda 2>&1 | tail -3
+device_info
+run_test_cuda
 OLD=$(ls .devbin/bin/bench_resolve_* | head -1)
 B="--backends cuda --sizes 10000 --dense-sizes '' --levels exact --csv /tmp/x.csv"
 for r in $(seq ${REPS:-3}); do

@@ -4,7 +4,7 @@
 # first run cost more?), then 60 GB written to and removed from /dev/shm, then twice more; each
 # run's phases and page faults (CANOPY_PLAN_STATS) and the free memory.
 set -u
-source .devbin/env.sh
+source scripts/device_common.sh
 B="--backends cuda --sizes 10000 --dense-sizes '' --levels exact --csv /tmp/x.csv"
 {
 nvidia-smi -L; free -g | head -2; cat /sys/kernel/mm/transparent_hugepage/enabled /sys/kernel/mm/transparent_hugepage/defrag; uptime

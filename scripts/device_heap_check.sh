@@ -6,8 +6,8 @@
 # then the kernels' busy timeline and the phases once, and the 1,000-plant and dense stands both
 # ways. Prints to stdout.
 set -u
-source .devbin/env.sh
-nvidia-smi -L
+source scripts/device_common.sh
+device_info
 B=".devbin/bin/bench_resolve --backends cuda --sizes 10000 --dense-sizes '' --levels exact --csv /tmp/x.csv"
 for r in 1 2 3; do
   echo "default"; eval $B | grep "^cuda"

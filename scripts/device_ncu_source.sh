@@ -4,7 +4,7 @@
 # launch of the exact attempt kernel at 10,000 plants with one lane. Writes the report, the
 # per-line CSV (cuda,sass: each source line with its instructions) and the details into $OUT.
 set -u
-source .devbin/env.sh
+source scripts/device_common.sh
 NCU=/usr/local/cuda/bin/ncu
 timeout 200 $NCU --clock-control none --kernel-name attempt_exact_kernel --launch-skip 0 --launch-count 1 --section SourceCounters --section WarpStateStats --import-source yes -o $OUT/exact -f \
   .devbin/bin/bench_resolve --backends cuda --sizes 10000 --dense-sizes "" --levels exact --lanes 1 --csv /tmp/n.csv > $OUT/ncu_run.txt 2>&1

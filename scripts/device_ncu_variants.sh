@@ -4,7 +4,7 @@
 # state figures for one launch of the exact attempt kernel (10,000 plants, one lane) of each
 # binary in NCU_BINS (names under .devbin/bin) at each launch index of NCU_SKIPS.
 set -u
-source .devbin/env.sh
+source scripts/device_common.sh
 NCU=$(command -v ncu || ls /opt/nvidia/nsight-compute/*/ncu /usr/local/cuda/bin/ncu 2>/dev/null | head -1)
 for v in ${NCU_BINS:-bench_resolve}; do
   for skip in ${NCU_SKIPS:-0 60}; do

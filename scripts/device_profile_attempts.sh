@@ -5,9 +5,8 @@
 # with 1, then Nsight Compute on a few launches of the attempt kernels at 1,000 plants.
 # Writes into $OUT.
 set -u
-source .devbin/env.sh
-nvidia-smi -L | tee $OUT/device.txt
-lscpu | grep -E "Model name|^CPU\(s\)" | tee -a $OUT/device.txt
+source scripts/device_common.sh
+device_info
 for lanes in 4 1 4; do
   echo "## lanes $lanes" | tee -a $OUT/profile.log
   CANOPY_BULK_STATS=1 CANOPY_PLAN_STATS=1 .devbin/bin/bench_resolve --backends cuda --sizes 10000 --dense-sizes "" --levels exact \

@@ -5,8 +5,8 @@
 # machines' host CPUs differ from loan to loan by up to a third), then the 1,000-plant and dense
 # rows with the current one. Writes into $OUT.
 set -u
-source .devbin/env.sh
-{ nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"; } | tee $OUT/device.txt
+source scripts/device_common.sh
+device_info
 old=$(ls .devbin/bin/bench_resolve_* | head -1)
 for r in 1 2 3; do
   for b in $old .devbin/bin/bench_resolve; do

@@ -4,12 +4,12 @@
 # stand resolved by this build and each variant, alternated REPS times, printing the resolve
 # seconds with the scan's and the planning lanes' seconds (CANOPY_PLAN_STATS, CANOPY_BULK_STATS).
 set -u
-source .devbin/env.sh
+source scripts/device_common.sh
 reps=${REPS:-4}
 B="--backends cuda --sizes 10000 --dense-sizes '' --levels exact --csv /tmp/x.csv"
 bins=".devbin/bin/bench_resolve $(ls .devbin/bin/bench_resolve_* 2>/dev/null)"
 {
-nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"
+device_info
 for r in $(seq $reps); do
   for bin in $bins; do
     out=$(CANOPY_PLAN_STATS=1 CANOPY_BULK_STATS=1 eval $bin $B 2>&1)

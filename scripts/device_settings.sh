@@ -6,10 +6,10 @@
 # (default 3); prints each run's resolve s, round 1's scan s, the scan's CPU seconds (all threads,
 # every round) and its minor page faults (CANOPY_PLAN_STATS).
 set -u
-source .devbin/env.sh
+source scripts/device_common.sh
 IFS=';' read -ra settings <<< "${SETTINGS:---lanes 4;--lanes 6;--lanes 8}"
 {
-nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"
+device_info
 for r in $(seq ${REPS:-3}); do
   for s in "${settings[@]}"; do
     envs=() args=()

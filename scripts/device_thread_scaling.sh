@@ -3,8 +3,9 @@
 # host's resolution planning scales over the machine's cores, and whether pinning OpenMP's
 # threads changes it. Writes into $OUT.
 set -u
-source .devbin/env.sh
-{ nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)|Thread\(s\) per core|Core\(s\) per socket|Socket\(s\)|MHz|L3|NUMA node\(s\)"; nproc; } | tee $OUT/device.txt
+source scripts/device_common.sh
+device_info "Model name|^CPU\(s\)|Thread\(s\) per core|Core\(s\) per socket|Socket\(s\)|MHz|L3|NUMA node\(s\)"
+nproc | tee -a $OUT/device.txt
 for t in 1 2 4 8 16; do
   .devbin/bin/bench_resolve --backends cpu --sizes 1000 --dense-sizes "" --levels exact --threads $t --csv $OUT/threads.csv --append 2>&1 | grep "^cpu" | sed "s/^/threads $t: /"
 done | tee $OUT/threads.log

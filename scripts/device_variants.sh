@@ -4,10 +4,10 @@
 # stand resolved by this build and by each variant, alternated, then each with one lane and
 # CANOPY_BULK_STATS (the kernels' busy time). Writes the log into $OUT.
 set -u
-source .devbin/env.sh
+source scripts/device_common.sh
 reps=${REPS:-2}
 {
-nvidia-smi -L; lscpu | grep -E "Model name|^CPU\(s\)"
+device_info
 B="--backends cuda --sizes 10000 --dense-sizes '' --levels exact --csv /tmp/x.csv"
 bins=".devbin/bin/bench_resolve $(ls .devbin/bin/bench_resolve_* 2>/dev/null)"
 for r in $(seq $reps); do
