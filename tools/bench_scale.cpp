@@ -55,6 +55,11 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+    const bool takes_value = a == "--sizes" || a == "--backend" || a == "--threads" || a == "--grammar" || a == "--csv";
+    if (takes_value && i + 1 >= argc) {
+      if (mpi::rank() == 0) fmt::print(stderr, "bench_scale: {} needs a value\n", a);
+      return 2;
+    }
     if (a == "--sizes") sizes = split(next());
     else if (a == "--backend") backend = next();
     else if (a == "--threads") threads = std::stoi(next());
