@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
     } else {
-      std::fprintf(stderr, "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
+      std::fprintf(std::strcmp(argv[i], "--help") ? stderr : stdout, "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
       return std::strcmp(argv[i], "--help") ? 2 : 0;
     }
   }

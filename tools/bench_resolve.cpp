@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc) lanes = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else if (!std::strcmp(argv[i], "--batch") && i + 1 < argc) batch = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else {
-      std::fprintf(stderr,
+      std::fprintf(std::strcmp(argv[i], "--help") ? stderr : stdout,
                    "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
                    "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The benchmark programs' arguments: --help prints a usage line and exits 0, an unknown option or
+# one missing its value exits 2, a grammar that cannot be read exits 1, and in every such case
+# nothing is run and the CSV named with --csv is left as it was (bench_derive --help used to
+# truncate it, bench_generate --help to run the whole benchmark over it).
+# Usage: BENCH_DIR=folder/of/the/bench/programs test_bench_args.sh SOURCE_DIR
+set -u
+src=$1
+dir=${BENCH_DIR:?set BENCH_DIR to the folder of the benchmark programs}
+source "$(dirname "$0")/check.sh"
+cd "$src" || exit 1
+
+csv=$tmp/kept.csv
+kept() { printf 'earlier,rows\n1,2\n' > "$csv"; }
+for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale; do
+  [ -x "$dir/$prog" ] || { echo "skip $prog (not built here)"; continue; }
+  kept
+  out=$(timeout 60 "$dir/$prog" --csv "$csv" --help 2>/dev/null); rc=$?
+  check "$prog --help exit" "0" "$rc"
+  check "$prog --help usage" "1" "$(grep -c -m1 '^usage: ' <<<"$out")"
+  check "$prog --help leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+  kept
+  timeout 60 "$dir/$prog" --csv "$csv" --no-such-option >/dev/null 2>&1; rc=$?
+  check "$prog unknown option exit" "2" "$rc"
+  check "$prog unknown option leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+done
+if [ -x "$dir/bench_derive" ]; then
+  kept
+  timeout 60 "$dir/bench_derive" grammars/classic/abop_1_24a.yaml "$tmp/missing.yaml" --repeats 1 --csv "$csv" >/dev/null 2>"$tmp/err"; rc=$?
+  check "bench_derive missing grammar exit" "1" "$rc"
+  check "bench_derive missing grammar message" "1" "$(grep -c "missing.yaml: cannot open the grammar file" "$tmp/err")"
+  check "bench_derive missing grammar leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+  timeout 60 "$dir/bench_derive" grammars/classic/abop_1_24a.yaml --csv >/dev/null 2>&1; rc=$?
+  check "bench_derive --csv without a value exit" "2" "$rc"
+  timeout 60 "$dir/bench_derive" grammars/classic/abop_1_24a.yaml:2 --repeats 1 --csv "$csv" >/dev/null 2>&1; rc=$?
+  check "bench_derive run exit" "0" "$rc"
+  check "bench_derive run rows" "grammar,engine,steps,final_modules|grammars/classic/abop_1_24a.yaml,canopy,2,61" \
+    "$(head -2 "$csv" | cut -d, -f1-4 | paste -sd'|')"
+fi
+if [ -x "$dir/bench_generate" ]; then
+  kept
+  timeout 60 "$dir/bench_generate" --csv "$csv" --sizes >/dev/null 2>&1; rc=$?
+  check "bench_generate --sizes without a value exit" "2" "$rc"
+  check "bench_generate --sizes without a value leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+fi
+
+echo "$pass passed, $failures failed"
+[ "$failures" -eq 0 ]
