@@ -3,6 +3,7 @@
 #include "lsystem/derive.hpp"
 #include "lsystem/grammar.hpp"
 #include "tools/bench_timing.hpp"
+#include "tools/bench_usage.hpp"
 
 #include <fmt/format.h>
 
@@ -28,20 +29,12 @@ int main(int argc, char** argv) {
   std::vector<Case> cases;
   std::string csv = "bench/results/derive.csv";
   int repeats = 5;
-  const auto usage = [](std::FILE* to) {
-    fmt::print(to, "usage: bench_derive GRAMMAR[:STEPS]... [--repeats N] [--csv FILE]\n");
-  };
+  const std::string usage = "usage: bench_derive GRAMMAR[:STEPS]... [--repeats N] [--csv FILE]\n";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
-    else if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
-      usage(stdout);
-      return 0;
-    } else if (argv[i][0] == '-') {  // an unknown option, or one without its value: not a grammar file
-      fmt::print(stderr, "bench_derive: unknown option or missing value: {}\n", argv[i]);
-      usage(stderr);
-      return 2;
-    } else {
+    else if (argv[i][0] == '-') return help_or_refuse("bench_derive", argv[i], usage);  // not a grammar file
+    else {
       std::string a = argv[i];
       const auto colon = a.rfind(':');
       if (colon != std::string::npos && colon + 1 < a.size() && std::isdigit(static_cast<unsigned char>(a[colon + 1])))
@@ -50,7 +43,7 @@ int main(int argc, char** argv) {
     }
   }
   if (cases.empty()) {
-    usage(stderr);
+    std::fputs(usage.c_str(), stderr);
     return 2;
   }
   // Rows are kept until every case has run, so a grammar that fails to load leaves an earlier

@@ -9,6 +9,7 @@
 #include "collision/backend.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
+#include "tools/bench_usage.hpp"
 #include "tools/fcl/fcl_reference.hpp"
 #include "tools/process_memory.hpp"
 
@@ -76,8 +77,7 @@ int main(int argc, char** argv) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
     } else {
-      std::fprintf(std::strcmp(argv[i], "--help") ? stderr : stdout, "usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--repeats R] [--csv FILE]\n");
-      return std::strcmp(argv[i], "--help") ? 2 : 0;
+      return help_or_refuse("bench_detect", argv[i], "usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--repeats R] [--csv FILE]\n");
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), "w");

@@ -13,6 +13,7 @@
 #include "cuda/detect_cuda.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
+#include "tools/bench_usage.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -37,8 +38,7 @@ int main(int argc, char** argv) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
     } else {
-      std::fprintf(std::strcmp(argv[i], "--help") ? stderr : stdout, "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
-      return std::strcmp(argv[i], "--help") ? 2 : 0;
+      return help_or_refuse("bench_detect_cuda", argv[i], "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
     }
   }
   auto gpu = cuda::make_cuda_backend();

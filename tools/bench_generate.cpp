@@ -6,6 +6,7 @@
 #include "geometry/layout.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
+#include "tools/bench_usage.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -51,12 +52,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
-    } else {  // --help, or an unknown option or one without its value: nothing is run or written
-      const bool help = !std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h");
-      if (!help) fmt::print(stderr, "bench_generate: unknown option or missing value: {}\n", argv[i]);
-      fmt::print(help ? stdout : stderr,
-                 "usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]\n");
-      return help ? 0 : 2;
+    } else {
+      return help_or_refuse("bench_generate", argv[i],
+                            "usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]\n");
     }
   }
   fs::create_directories(dir);

@@ -11,6 +11,7 @@
 #include "collision/resolve.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
+#include "tools/bench_usage.hpp"
 #include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
 #ifdef CANOPY_HAVE_CUDA
@@ -75,20 +76,19 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc) lanes = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else if (!std::strcmp(argv[i], "--batch") && i + 1 < argc) batch = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else {
-      std::fprintf(std::strcmp(argv[i], "--help") ? stderr : stdout,
+      return help_or_refuse("bench_resolve", argv[i], fmt::format(
                    "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
                    "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"
                    "                            attempts on the device, the default)\n"
-                   "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default %zu)\n"
-                   "       [--batch N]         (contacts per batch of planning at most, default %zu)\n"
+                   "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default {})\n"
+                   "       [--batch N]         (contacts per batch of planning at most, default {})\n"
                    "       [--host-runner]     (the CPU backend plans as the device does, level by level in lanes,\n"
                    "                            with the host answering the attempts: the device path's host side\n"
                    "                            where there is no GPU, for profiling; the same turns)\n"
                    "The heap is in large pages when --backends names cuda, else small (CANOPY_HEAP_PAGES=large|small\n"
                    "overrides; tools/heap_pages.hpp); the CSV's config column says which.\n",
-                   ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts);
-      return std::strcmp(argv[i], "--help") ? 2 : 0;
+                   ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts));
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");

@@ -10,6 +10,7 @@
 // Detection runs at the exact level only unless --all-levels (canopy stand's report counts every
 // level up to the one asked for, one detection each).
 #include "distributed/mpi_comm.hpp"
+#include "tools/bench_usage.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/stand_tiled.hpp"
 
@@ -54,28 +55,19 @@ int main(int argc, char** argv) {
   bool all_levels = false;  // detect the exact level only (canopy stand also counts the levels below it)
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    const auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-    const bool takes_value = a == "--sizes" || a == "--backend" || a == "--threads" || a == "--grammar" || a == "--csv";
-    if (takes_value && i + 1 >= argc) {
-      if (mpi::rank() == 0) fmt::print(stderr, "bench_scale: {} needs a value\n", a);
-      return 2;
-    }
-    if (a == "--sizes") sizes = split(next());
-    else if (a == "--backend") backend = next();
-    else if (a == "--threads") threads = std::stoi(next());
-    else if (a == "--grammar") grammar = next();
-    else if (a == "--csv") csv = next();
+    const bool value = i + 1 < argc;  // an option's value follows
+    if (a == "--sizes" && value) sizes = split(argv[++i]);
+    else if (a == "--backend" && value) backend = argv[++i];
+    else if (a == "--threads" && value) threads = std::stoi(argv[++i]);
+    else if (a == "--grammar" && value) grammar = argv[++i];
+    else if (a == "--csv" && value) csv = argv[++i];
     else if (a == "--no-resolve") resolve = false;
     else if (a == "--all-levels") all_levels = true;
     else {
-      const bool help = a == "--help" || a == "-h";
-      if (mpi::rank() == 0) {
-        if (!help) fmt::print(stderr, "bench_scale: unknown argument {}\n", a);
-        fmt::print(help ? stdout : stderr,
-                   "usage: mpirun -np P bench_scale [--sizes 10000,20000] [--backend cpu|cuda|auto] [--threads T]\n"
-                   "                                [--grammar FILE] [--csv FILE] [--no-resolve] [--all-levels]\n");
-      }
-      return help ? 0 : 2;
+      return help_or_refuse("bench_scale", argv[i],
+                            "usage: mpirun -np P bench_scale [--sizes 10000,20000] [--backend cpu|cuda|auto] [--threads T]\n"
+                            "                                [--grammar FILE] [--csv FILE] [--no-resolve] [--all-levels]\n",
+                            mpi::rank() == 0);
     }
   }
   const int rank = mpi::rank(), ranks = mpi::size();

@@ -11,25 +11,26 @@ source "$(dirname "$0")/check.sh"
 cd "$src" || exit 1
 
 csv=$tmp/kept.csv
-kept() { printf 'earlier,rows\n1,2\n' > "$csv"; }
+earlier=$'earlier,rows\n1,2'  # what the CSV holds before each run, and must hold after it
+kept() { printf '%s\n' "$earlier" > "$csv"; }
 for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale; do
   [ -x "$dir/$prog" ] || { echo "skip $prog (not built here)"; continue; }
   kept
   out=$(timeout 60 "$dir/$prog" --csv "$csv" --help 2>/dev/null); rc=$?
   check "$prog --help exit" "0" "$rc"
   check "$prog --help usage" "1" "$(grep -c -m1 '^usage: ' <<<"$out")"
-  check "$prog --help leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+  check "$prog --help leaves the CSV" "$earlier" "$(cat "$csv")"
   kept
   timeout 60 "$dir/$prog" --csv "$csv" --no-such-option >/dev/null 2>&1; rc=$?
   check "$prog unknown option exit" "2" "$rc"
-  check "$prog unknown option leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+  check "$prog unknown option leaves the CSV" "$earlier" "$(cat "$csv")"
 done
 if [ -x "$dir/bench_derive" ]; then
   kept
   timeout 60 "$dir/bench_derive" grammars/classic/abop_1_24a.yaml "$tmp/missing.yaml" --repeats 1 --csv "$csv" >/dev/null 2>"$tmp/err"; rc=$?
   check "bench_derive missing grammar exit" "1" "$rc"
   check "bench_derive missing grammar message" "1" "$(grep -c "missing.yaml: cannot open the grammar file" "$tmp/err")"
-  check "bench_derive missing grammar leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+  check "bench_derive missing grammar leaves the CSV" "$earlier" "$(cat "$csv")"
   timeout 60 "$dir/bench_derive" grammars/classic/abop_1_24a.yaml --csv >/dev/null 2>&1; rc=$?
   check "bench_derive --csv without a value exit" "2" "$rc"
   timeout 60 "$dir/bench_derive" grammars/classic/abop_1_24a.yaml:2 --repeats 1 --csv "$csv" >/dev/null 2>&1; rc=$?
@@ -41,7 +42,7 @@ if [ -x "$dir/bench_generate" ]; then
   kept
   timeout 60 "$dir/bench_generate" --csv "$csv" --sizes >/dev/null 2>&1; rc=$?
   check "bench_generate --sizes without a value exit" "2" "$rc"
-  check "bench_generate --sizes without a value leaves the CSV" "$(printf 'earlier,rows\n1,2')" "$(cat "$csv")"
+  check "bench_generate --sizes without a value leaves the CSV" "$earlier" "$(cat "$csv")"
 fi
 
 echo "$pass passed, $failures failed"
