@@ -102,6 +102,8 @@ std::vector<PlantPlacement> read_positions(const std::string& path) {
   std::size_t ncols = 0;
   while (std::getline(in, line)) {
     ++line_no;
+    // A spreadsheet's "CSV UTF-8" export starts with a byte-order mark: not part of the header.
+    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     const auto cells = split(line);
     if (col.empty()) {

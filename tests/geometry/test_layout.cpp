@@ -114,6 +114,18 @@ TEST_CASE("positions files: any column order, optional grammar and steps") {
   CHECK_FALSE(p[1].steps.has_value());
 }
 
+TEST_CASE("positions files from a spreadsheet: a byte-order mark and CRLF line ends") {
+  const std::string f = write_temp("\xEF\xBB\xBFx,y,rotation,seed\r\n0.5,1,30,7\r\n");
+  const auto p = read_positions(f);
+  std::remove(f.c_str());
+  REQUIRE(p.size() == 1);
+  CHECK(p[0].x == 0.5);
+  CHECK(p[0].rotation_deg == 30);
+  CHECK(p[0].seed == 7);
+  // The mark is skipped at the start of the file only: elsewhere it is a cell's text.
+  CHECK(error_of("x,y,rotation,seed\n\xEF\xBB\xBF1,2,0,4\n") == ":2:1: column 'x' needs a finite number, got '\xEF\xBB\xBF1'");
+}
+
 TEST_CASE("positions files: missing columns and bad cells name the place") {
   CHECK(error_of("x,y,seed\n1,2,3\n") == ":1: missing column 'rotation' (the header needs x,y,rotation,seed and may add grammar,steps)");
   CHECK(error_of("x,y,rotation,seed\n1,abc,0,1\n") == ":2:3: column 'y' needs a finite number, got 'abc'");
