@@ -109,8 +109,13 @@ std::vector<PlantPlacement> read_positions(const std::string& path) {
     if (col.empty()) {
       for (std::size_t i = 0; i < cells.size(); ++i) col[std::string(cells[i].first)] = static_cast<int>(i);
       for (const char* need : {"x", "y", "rotation", "seed"})
-        if (!col.count(need))
-          throw std::invalid_argument(fmt::format("{}:{}: missing column '{}' (the header needs x,y,rotation,seed and may add grammar,steps)", path, line_no, need));
+        if (!col.count(need)) {
+          // A spreadsheet set to a decimal comma separates its "CSV" cells with ';'.
+          const bool other_separator = cells.size() == 1 && cells[0].first.find_first_of(";\t") != std::string_view::npos;
+          throw std::invalid_argument(fmt::format("{}:{}: missing column '{}' (the header needs x,y,rotation,seed and may add grammar,steps){}",
+                                                  path, line_no, need,
+                                                  other_separator ? "; the cells are separated by ';' or tabs, and positions files use commas" : ""));
+        }
       ncols = cells.size();
       continue;
     }

@@ -123,7 +123,7 @@ TEST_CASE("positions files from a spreadsheet: a byte-order mark and CRLF line e
   CHECK(p[0].rotation_deg == 30);
   CHECK(p[0].seed == 7);
   // The mark is skipped at the start of the file only: elsewhere it is a cell's text.
-  CHECK(error_of("x,y,rotation,seed\n\xEF\xBB\xBF1,2,0,4\n") == ":2:1: column 'x' needs a finite number, got '\xEF\xBB\xBF1'");
+  CHECK(error_of("x,y,rotation,seed\n\xEF\xBB\xBF" "1,2,0,4\n") == ":2:1: column 'x' needs a finite number, got '\xEF\xBB\xBF" "1'");
 }
 
 TEST_CASE("positions files: missing columns and bad cells name the place") {
@@ -132,5 +132,7 @@ TEST_CASE("positions files: missing columns and bad cells name the place") {
   CHECK(error_of("x,y,rotation,seed\n1,2,0\n") == ":2: expected 4 cells as in the header, got 3");
   CHECK(error_of("x,y,rotation,seed\n1,2,0,-4\n") == ":2:7: column 'seed' needs a whole number, got '-4'");
   CHECK(error_of("x,y,rotation,seed,steps\n1,2,0,4,2.5\n") == ":2:9: column 'steps' needs a whole number of at least 0, got '2.5'");
+  CHECK(error_of("x;y;rotation;seed\n0,5;1;0;4\n") ==
+        ":1: missing column 'x' (the header needs x,y,rotation,seed and may add grammar,steps); the cells are separated by ';' or tabs, and positions files use commas");
   CHECK(error_of("") == ": empty positions file (expected a header x,y,rotation,seed)");
 }
