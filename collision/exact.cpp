@@ -1,7 +1,7 @@
 #include "collision/exact.hpp"
 
 #include "collision/mbvt.hpp"
-#include "geometry/triangle_test.hpp"
+#include "geometry/triangle_distance.hpp"
 
 #include <algorithm>
 #include <cassert>

@@ -11,6 +11,7 @@
 #include "collision/contacts.hpp"
 #include "collision/joints.hpp"
 #include "collision/lane_threads.hpp"
+#include "collision/phase_times.hpp"
 #include "collision/turn_search.hpp"
 
 #include <cstdlib>
@@ -21,27 +22,6 @@
 #include <vector>
 
 namespace canopy {
-
-/// Where resolution's time goes, phase by phase over all rounds, printed at its end when
-/// CANOPY_PLAN_STATS is set (off: one branch per phase); `scan_busy` sums the candidates'
-/// scan times over the threads, so scan_busy / (threads x scan) is the scan's parallel share.
-struct PhaseTimes {
-  enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
-  bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
-  double seconds[count] = {}, scan_busy = 0, mark = now();
-  /// The process's CPU seconds (all threads) and minor page faults so far (one getrusage).
-  struct Usage {
-    double cpu = 0;
-    long faults = 0;
-  };
-  double cpu[count] = {};   // per phase
-  long faults[count] = {};  // per phase
-  Usage usage_mark = usage();
-  void lap(Phase p);
-  void print(int threads) const;
-  static double now();
-  static Usage usage();
-};
 
 /// The candidates of a batch come from a pool per thread, whose lists keep their memory from
 /// batch to batch and round to round: made, recycled and reused by the thread that took them,

@@ -20,6 +20,7 @@
 /// candidate's neighbours are gathered only when an attempt first clears every organ met (most
 /// candidates of a contact are never picked and fail before that); the joint's rotation is made
 /// only near its limit (rotation angles obey the triangle inequality) or for a separating turn.
+#include "collision/contact_graph.hpp"
 #include "collision/contacts.hpp"
 #include "collision/exact.hpp"
 #include "collision/joints.hpp"
@@ -44,21 +45,6 @@ struct Turn {
 
 /// Organ pairs (x, y) to separate: x the organ of the contact the mover carries, y the other.
 using MetPairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
-
-/// Which organs touch at the start of the round (the round's contact list), organ by organ.
-struct ContactGraph {
-  std::vector<std::uint32_t> first;  // per organ + 1
-  std::vector<std::int32_t> with;
-  /// Per entry of `with`: the triangles of the pair that touch now (by organ order, as
-  /// organs_touch_at keeps them). Every candidate mover of a contact starts its search of that
-  /// pair from them instead of finding them again with a full test.
-  std::vector<Witness> witness;
-  void build(std::size_t organs, const std::vector<Contact>& contacts);
-  /// Fills `witness` (the exact test of each pair within `clearance`, on all threads).
-  void find_witnesses(const Stand& stand, PrototypeLibrary& lib, float clearance, int threads);
-  /// The witness of organs x and y, or none when they are not in the list.
-  const Witness* witness_of(std::int32_t x, std::int32_t y) const;
-};
 
 struct TurnSearch {
   const Stand& stand;

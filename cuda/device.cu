@@ -2,7 +2,7 @@
 #include "cuda/check.hpp"
 #include "cuda/device.hpp"
 #include "cuda/device_buffer.hpp"
-#include "geometry/triangle_test.hpp"
+#include "geometry/triangle_distance.hpp"
 
 #include <string>
 #include <vector>

@@ -30,9 +30,10 @@ DeviceReport query_devices();
 /// the binary's sm_90 / PTX code loads and runs there. Throws CudaError on failure.
 void self_test(int device);
 
-/// The shared triangle predicates (geometry/triangle_test.hpp) run on the current device: for
-/// each pair (a's three vertices, then b's), whether the triangles meet, or with a positive
-/// `clearance` whether they lie within it. Lets the tests hold the device's answers to the host's.
+/// The shared triangle predicates (geometry/triangle_test.hpp and triangle_distance.hpp) run on
+/// the current device: for each pair (a's three vertices, then b's), whether the triangles meet,
+/// or with a positive `clearance` whether they lie within it. Lets the tests hold the device's
+/// answers to the host's.
 std::vector<std::uint8_t> device_triangle_tests(const std::vector<std::array<Vec3f, 6>>& pairs, float clearance);
 
 }  // namespace canopy::cuda

@@ -2,11 +2,12 @@
 // The exact test of one organ pair by one warp, at given transforms: the detection's exact stage
 // (the stand's transforms) and resolution's bulk attempts (a turned pose of one organ) share it.
 // Same answer as collision/exact.cpp's organs_touch_at: the same vertices, the same closed
-// triangle predicates (geometry/triangle_test.hpp), the same containment test of solids.
+// triangle predicates (geometry/triangle_test.hpp, triangle_distance.hpp), the same containment
+// test of solids.
 #include "collision/mbvt_fit.hpp"
 #include "cuda/detect_kernels.hpp"
+#include "geometry/triangle_distance.hpp"
 #include "geometry/triangle_reject.hpp"
-#include "geometry/triangle_test.hpp"
 
 namespace canopy::cuda {
 

@@ -2,7 +2,7 @@
 // Stands for the collision suites, and the brute-force oracle they are checked against.
 #include "collision/backend.hpp"
 #include "collision/exact.hpp"
-#include "geometry/triangle_test.hpp"
+#include "geometry/triangle_distance.hpp"
 #include "lsystem/grow.hpp"
 
 #include <doctest/doctest.h>

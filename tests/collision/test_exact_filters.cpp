@@ -5,7 +5,7 @@
 // single triangles against the other organ's OBB (beyond_obb) against the triangle distance to
 // every triangle of a posed organ. And the pose cache never answers with a stale pose.
 #include "collision/exact.hpp"
-#include "geometry/triangle_test.hpp"
+#include "geometry/triangle_distance.hpp"
 #include "tests/collision/helpers.hpp"
 #include "tests/geometry/reference_distance.hpp"
 

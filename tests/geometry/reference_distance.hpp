@@ -2,7 +2,7 @@
 // A plain reference for the triangle tests: the distance of two closed triangles as 0 where they
 // meet, otherwise the least of the six vertex-triangle and nine edge-edge distances, with none of
 // the quick rejections (plane, edge-axis, float pre-tests) that the predicates under test try first.
-#include "geometry/triangle_test.hpp"
+#include "geometry/triangle_distance.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // The clearance test (triangles_within) against a plain reference distance (reference_distance.hpp):
 // the quick rejections (plane and edge-axis separations) that the shared predicate tries first
 // must never change an answer.
-#include "geometry/triangle_test.hpp"
+#include "geometry/triangle_distance.hpp"
 #include "tests/geometry/reference_distance.hpp"
 
 #include <doctest/doctest.h>
