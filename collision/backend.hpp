@@ -31,6 +31,12 @@ struct DetectRequest {
   std::size_t max_device_bytes = 0;
 };
 
+/// Throws std::invalid_argument naming what is wrong when a request cannot be met: a clearance
+/// that is negative, NaN or infinite (every comparison with NaN is false, so a NaN clearance
+/// would let every bound reject everything), or a negative thread count. Both backends call it
+/// before anything else.
+void check_request(const DetectRequest& request);
+
 /// The bounding-volume settings a request implies (same on every backend).
 inline MbvtConfig mbvt_config(const DetectRequest& r) {
   MbvtConfig c;

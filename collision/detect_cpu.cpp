@@ -62,6 +62,7 @@ class CpuBackend : public DetectionBackend {
   }
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {
+    check_request(req);
     const double t = now();
     lib_ = std::make_unique<PrototypeLibrary>();
     tree_ = build_mbvt(s, *lib_, mbvt_config(req));
@@ -69,6 +70,7 @@ class CpuBackend : public DetectionBackend {
   }
 
   Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
+    check_request(req);
     if (!tree_ || tree_->obbs.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
     const double t = now();

@@ -31,6 +31,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   const double t0 = now();
   PhaseTimes times;
   const ResolveConfig& cfg = req.config;
+  cfg.check();
   if (cfg.level != ContactLevel::exact && cfg.level != ContactLevel::organ)
     throw std::invalid_argument("resolution detects at the exact or the organ level");
   if (initial.level != cfg.level)

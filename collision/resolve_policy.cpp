@@ -4,9 +4,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 
 namespace canopy {
+
+void ResolveConfig::check() const {
+  const auto positive = [](const char* what, double v) {
+    if (!std::isfinite(v) || v <= 0)
+      throw std::invalid_argument(fmt::format("resolution: {} must be a finite number above 0 (got {})", what, v));
+  };
+  if (!std::isfinite(clearance) || clearance < 0)
+    throw std::invalid_argument(fmt::format("resolution: the clearance must be a finite number of metres, at least 0 (got {})", clearance));
+  positive("the angle tolerance (degrees)", angle_tolerance_deg);
+  positive("the scan step (degrees)", scan_step_deg);
+  for (std::size_t k = 0; k < kind_weight.size(); ++k)
+    if (movable[k]) positive(fmt::format("the {} weight", kOrganKindNames[k]).c_str(), kind_weight[k]);
+  if (max_rounds < 1 || candidates < 1 || axis_fan < 0 || stall_rounds < 1)
+    throw std::invalid_argument(fmt::format("resolution: rounds ({}), candidates ({}) and stall rounds ({}) must be at least 1, "
+                                            "axes ({}) at least 0", max_rounds, candidates, stall_rounds, axis_fan));
+}
 
 KindMask ResolveConfig::default_movable_kinds() {
   KindMask k{};

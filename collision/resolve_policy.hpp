@@ -37,6 +37,12 @@ struct ResolveConfig {
   int candidates = 10;                // movers per contact scanned together (policy order)
   bool outer_first = true;
 
+  /// Throws std::invalid_argument naming the setting that cannot be met: a clearance that is
+  /// negative or not finite, an angle step or tolerance or a kind weight that is not a finite
+  /// positive number (a NaN step never reaches the joint's reach: the scan would not end), fewer
+  /// than one round or candidate.
+  void check() const;
+
   static KindMask default_movable_kinds();
   static std::array<int, 7> default_kind_rank();
   static std::array<double, 7> default_kind_weight();

@@ -47,6 +47,7 @@ class CudaBackend : public DetectionBackend {
   /// The tree's shape on the host (the stand's structure alone), stand and shape uploaded
   /// (`load_s`); then every box fitted on the device (`build_s`) and the stages.
   Contacts detect(const Stand& s, const DetectRequest& req) override {
+    check_request(req);
     double t = now();
     lib_ = std::make_unique<PrototypeLibrary>();
     attempts_.reset();  // its tables belong to the stand held before
@@ -72,6 +73,7 @@ class CudaBackend : public DetectionBackend {
   }
 
   Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
+    check_request(req);
     if (!tree_ || tree_->takes_part.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
     const double t = now();

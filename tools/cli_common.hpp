@@ -6,10 +6,22 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 namespace canopy::cli {
+
+/// CLI11's number checks (NonNegativeNumber, Range, ...) compare, and every comparison with NaN
+/// is false, so they let "nan" through: options taking a real number add this check first.
+inline const CLI::Validator kFinite(
+    [](std::string& in) {
+      double v = 0;
+      std::string error;
+      if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v)) error.append("needs a finite number, got ").append(in);
+      return error;
+    },
+    "", "finite");
 
 /// A subcommand: registers its options on `app` and returns what runs it after parsing.
 struct Command {

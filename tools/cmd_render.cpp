@@ -78,9 +78,9 @@ Command add_render(CLI::App& root) {
   app->add_option("--size", o->size, "Picture size WIDTHxHEIGHT in pixels (default 1920x1080)");
   app->add_option("--rows", o->rows.rows, "From a grammar: rows")->check(CLI::PositiveNumber);
   app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")->check(CLI::PositiveNumber);
-  app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")->check(CLI::NonNegativeNumber);
-  app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")->check(CLI::NonNegativeNumber);
-  app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")->check(CLI::NonNegativeNumber);
+  app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")->check(kFinite)->check(CLI::NonNegativeNumber);
+  app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")->check(kFinite)->check(CLI::NonNegativeNumber);
+  app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")->check(kFinite)->check(CLI::NonNegativeNumber);
   app->add_flag("--random-rotation", o->random_rotation, "From a grammar: turn each plant at random");
   app->add_option("--seed", o->rows.seed, "From a grammar: stand seed");
   app->add_option("--steps", o->steps, "From a grammar: derivation steps")->check(CLI::NonNegativeNumber);

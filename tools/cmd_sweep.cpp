@@ -252,7 +252,7 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->check(CLI::PositiveNumber);
   app->add_option("--rows", o->rows, "Rows per stand (default 3)")->check(CLI::PositiveNumber);
   app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->check(CLI::PositiveNumber);
-  app->add_option("--jitter", o->jitter, "Jitter radius in metres (default 0.02; plants are turned at random)")->check(CLI::NonNegativeNumber);
+  app->add_option("--jitter", o->jitter, "Jitter radius in metres (default 0.02; plants are turned at random)")->check(kFinite)->check(CLI::NonNegativeNumber);
   app->add_option("--lod", o->lod, "Level of detail (default 2)")->check(CLI::Range(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")

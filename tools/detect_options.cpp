@@ -14,7 +14,7 @@ void DetectOptions::add_to(CLI::App& app) {
   app.add_option("--level", level, "Contact level: plant, leaf, organ or exact (default exact)")
       ->check(CLI::IsMember({"plant", "leaf", "organ", "exact"}));
   app.add_option("--clearance", clearance, "Organs closer than this many metres count as a contact (default 0)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFinite)->check(CLI::NonNegativeNumber);
   app.add_option("--collide", collide,
                  "Organ kinds that take part, comma separated, or all (default leaflet,petiole,rachis,internode,peduncle)");
   app.add_option("--backend", backend, "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
@@ -102,6 +102,7 @@ std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::str
   }
   const std::string why = report.unavailable_reason;
 #else
+  (void)device_hint;
   const std::string why = "this build has no CUDA backend";
 #endif
   if (name == "cuda") throw std::invalid_argument(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));

@@ -13,7 +13,7 @@ void ResolveOptions::add_to(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   app.add_option("--resolve-clearance", clearance,
                  "Resolution: metres left between a turned organ and what it met (default 0.0001)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kFinite)->check(CLI::NonNegativeNumber);
   app.add_option("--resolve-level", level,
                  "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
                  "turns organs that never touched)")
@@ -26,7 +26,7 @@ void ResolveOptions::add_to(CLI::App& app) {
       ->check(CLI::Range(4, 64));
   app.add_option("--resolve-step", scan_step,
                  fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
-      ->check(CLI::Range(0.5, 30.0));
+      ->check(kFinite)->check(CLI::Range(0.5, 30.0));
   app.add_flag("--resolve-host-search", host_search,
                "Resolution: with --backend cuda, search candidate by candidate on the host's cores instead of running each "
                "level's attempts on the device in lanes of batches (the same turns; slower on the 16-core GPU machines)");

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
 #include <numbers>
 
 using namespace canopy;
@@ -237,4 +239,40 @@ TEST_CASE("re-detection told which organs moved reports exactly the pairs with a
       CHECK(!moved.empty());
     }
   }
+}
+
+TEST_CASE("settings that cannot be met are refused by name, before any work") {
+  // Every comparison with NaN is false: a NaN scan step never reached the joint's reach (the scan
+  // ran forever), and a NaN clearance let every bound reject every pair (no contact found).
+  Stand s = random_stand(2, 3);
+  auto cpu = make_cpu_backend();
+  const Contacts first = cpu->detect(s, DetectRequest{});
+  const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(), -1.0};
+  for (const double v : bad) {
+    CAPTURE(v);
+    DetectRequest d;
+    d.clearance = static_cast<float>(v);
+    CHECK_THROWS_WITH_AS(cpu->detect(s, d), doctest::Contains("detection: the clearance must be a finite number"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(cpu->redetect(s, d, {}), doctest::Contains("detection: the clearance"), std::invalid_argument);
+    ResolveRequest req;
+    req.config.scan_step_deg = v;
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the scan step (degrees) must be"), std::invalid_argument);
+    req.config = ResolveConfig{};
+    req.config.clearance = v;
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the clearance must be"), std::invalid_argument);
+    req.config = ResolveConfig{};
+    req.config.angle_tolerance_deg = v;
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the angle tolerance"), std::invalid_argument);
+    req.config = ResolveConfig{};
+    req.config.kind_weight[static_cast<std::size_t>(OrganKind::petiole)] = v;
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the petiole weight"), std::invalid_argument);
+  }
+  DetectRequest threads;
+  threads.threads = -1;
+  CHECK_THROWS_AS(cpu->detect(s, threads), std::invalid_argument);
+  ResolveRequest rounds;
+  rounds.config.max_rounds = 0;
+  CHECK_THROWS_AS(resolve(s, *cpu, rounds, first), std::invalid_argument);
+  // The stand is as it was: nothing ran.
+  CHECK(cpu->detect(s, DetectRequest{}).pairs == first.pairs);
 }

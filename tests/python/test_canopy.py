@@ -131,6 +131,13 @@ def test_errors_carry_the_located_message(tmp_path):
         s.detect(level="twig")
     with pytest.raises(ValueError, match="unknown organ kind 'root'"):
         s.detect(collide="leaflet,root")
+    with pytest.raises(ValueError, match="clearance must be a finite number"):
+        s.detect(clearance=float("nan"))
+    with pytest.raises(ValueError, match="resolution: the clearance must be a finite number"):
+        s.resolve(resolve_clearance=float("inf"))
+    with pytest.raises(ValueError, match="clearance must be a finite number"):
+        canopy.stand(TOMATO, tmp_path / "nan", rows=1, per_row=2, steps=10, clearance=float("nan"))
+    assert not any((tmp_path / "nan").glob("*"))
     with pytest.raises(ValueError, match="N x 4"):
         canopy.Stand.grow(TOMATO, positions=np.zeros((2, 3)))
     with pytest.raises(ValueError, match="unknown option 'rowz'"):

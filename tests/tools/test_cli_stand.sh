@@ -115,6 +115,16 @@ expect_error "positions cell" "pos2.csv:2:3: column 'y' needs a finite number, g
 expect_error "too large" "needs about .* GB .* more than the .* GB available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
 expect_error "formats" "unknown format 'fbx'" "$src/grammars/tomato.yaml" --formats glb,fbx
 expect_error "collide" "unknown organ kind 'root'" "$src/grammars/tomato.yaml" --collide leaflet,root
+# Real-number options refuse NaN and infinities (CLI11's own checks compare, and let NaN through:
+# a NaN --clearance found no contact, a NaN --resolve-step never ended).
+for opt in "--clearance nan" "--resolve-clearance inf" "--resolve-step nan" "--jitter nan" "--row-spacing -inf"; do
+  rm -rf "$tmp/bad"
+  timeout 60 "$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 $opt -o "$tmp/bad" >/dev/null 2>"$tmp/e"
+  rc=$?
+  check "$opt refused" "1" "$([ $rc -ne 0 ] && [ $rc -ne 124 ] && echo 1 || echo 0)"
+  check "$opt message" "1" "$(grep -c -- "${opt%% *}: needs a finite number, got ${opt##* }" "$tmp/e")"
+  check "$opt no files" "0" "$(ls "$tmp/bad" 2>/dev/null | wc -l | tr -d ' ')"
+done
 "$canopy" stand "$src/grammars/tomato.yaml" -o /proc/canopy-no >/dev/null 2>"$tmp/e"
 check "unwritable exit" "1" "$?"
 check "unwritable message" "1" "$(grep -c 'cannot create the output folder /proc/canopy-no' "$tmp/e")"
