@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 #include <omp.h>
+#include <stdexcept>
 
 namespace canopy {
 namespace {
@@ -103,6 +104,13 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     return index[path] = static_cast<int>(grammars.size() - 1);
   };
   const std::size_t n = req.plants.size();
+  // Every entry point (a positions file, rows, the Python module's array) comes through here.
+  for (std::size_t p = 0; p < n; ++p) {
+    const PlantPlacement& pl = req.plants[p];
+    if (!std::isfinite(pl.x) || !std::isfinite(pl.y) || !std::isfinite(pl.rotation_deg))
+      throw std::invalid_argument(
+          fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y, pl.rotation_deg));
+  }
   std::vector<GrownPlant> grown(n);
   for (std::size_t p = 0; p < n; ++p) {
     grown[p].grammar = grammar_index(req.plants[p].grammar);

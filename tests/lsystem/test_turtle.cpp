@@ -1,9 +1,12 @@
 // The turtle: frames against hand-computed matrices for each symbol, structure-tree parents and
 // compound-leaf ids, organs attached to their parents' joints.
 #include "helpers.hpp"
+#include "lsystem/grow.hpp"
 #include "lsystem/turtle.hpp"
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 using namespace canopy;
 using namespace canopy::test;
@@ -145,4 +148,24 @@ TEST_CASE("negative or non-finite sizes reaching the turtle are errors naming th
   } catch (const std::runtime_error& e) {
     CHECK(std::string(e.what()) == "test.yaml: the plant, module 0 'I(-1,1)': cylinder parameter 1 must not be negative");
   }
+}
+
+TEST_CASE("a plant placed at a non-finite position or rotation is refused by number, before any growing") {
+  // grow_stand is where rows, positions files and the Python module's arrays all arrive.
+  GrowRequest req;
+  req.grammar = source("grammars/tomato.yaml");
+  req.steps = 3;
+  req.plants.resize(3);
+  req.plants[1].seed = 7;
+  CHECK(grow_stand(req).plant_count() == 3);
+  const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (const double v : bad)
+    for (int field = 0; field < 3; ++field) {
+      GrowRequest r = req;
+      (field == 0 ? r.plants[2].x : field == 1 ? r.plants[2].y : r.plants[2].rotation_deg) = v;
+      CAPTURE(field);
+      CAPTURE(v);
+      CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("plant 2: its position and rotation must be finite numbers"),
+                           std::invalid_argument);
+    }
 }

@@ -140,6 +140,13 @@ def test_errors_carry_the_located_message(tmp_path):
     assert not any((tmp_path / "nan").glob("*"))
     with pytest.raises(ValueError, match="N x 4"):
         canopy.Stand.grow(TOMATO, positions=np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="plant 1: its position and rotation must be finite numbers"):
+        canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, 0, 1], [float("nan"), 0, 0, 2]]), steps=5)
+    with pytest.raises(ValueError, match="plant 0: its position and rotation must be finite"):
+        canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, float("inf"), 1]]), steps=5)
+    for seed in (1.5, 2.0**70, -1):
+        with pytest.raises(ValueError, match="row 0: the seed must be a non-negative integer below 2\\^64"):
+            canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, 0, seed]]), steps=5)
     with pytest.raises(ValueError, match="unknown option 'rowz'"):
         canopy.stand(TOMATO, tmp_path / "o", rowz=3)
     with pytest.raises(ValueError, match="is empty"):

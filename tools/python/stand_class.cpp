@@ -11,6 +11,7 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <cstring>
 
 namespace canopy::python {
@@ -35,7 +36,9 @@ void bind_stand(py::module_& m) {
               for (py::ssize_t i = 0; i < a.shape(0); ++i) {
                 PlantPlacement p;
                 p.x = a(i, 0), p.y = a(i, 1), p.rotation_deg = a(i, 2);
-                if (!(a(i, 3) >= 0)) throw std::invalid_argument(fmt::format("positions: row {}: the seed must be a non-negative integer", i));
+                // A whole number in [0, 2^64): a cast would truncate 1.5 and wrap 2^70 without a word.
+                if (!(a(i, 3) >= 0 && a(i, 3) < 0x1p64 && std::floor(a(i, 3)) == a(i, 3)))
+                  throw std::invalid_argument(fmt::format("positions: row {}: the seed must be a non-negative integer below 2^64, got {}", i, a(i, 3)));
                 p.seed = static_cast<std::uint64_t>(a(i, 3));
                 req.plants.push_back(p);
               }
