@@ -1,5 +1,6 @@
 #include "lsystem/grow.hpp"
 
+#include "geometry/prototype.hpp"
 #include "lsystem/turtle.hpp"
 
 #include <chrono>
@@ -104,9 +105,15 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     return index[path] = static_cast<int>(grammars.size() - 1);
   };
   const std::size_t n = req.plants.size();
-  // Every entry point (a positions file, rows, the Python module's array) comes through here.
+  // Every entry point (the command line, a positions file, the Python module) comes through here.
+  if (req.lod < 1 || req.lod > kMaxLod)
+    throw std::invalid_argument(fmt::format("the level of detail must lie in 1..{} (got {})", kMaxLod, req.lod));
+  if (req.threads < 0) throw std::invalid_argument(fmt::format("the thread count must be at least 0 (0: all cores; got {})", req.threads));
+  if (req.steps && *req.steps < 0) throw std::invalid_argument(fmt::format("the derivation steps must be at least 0 (got {})", *req.steps));
   for (std::size_t p = 0; p < n; ++p) {
     const PlantPlacement& pl = req.plants[p];
+    if (pl.steps && *pl.steps < 0)
+      throw std::invalid_argument(fmt::format("plant {}: its derivation steps must be at least 0 (got {})", p, *pl.steps));
     if (!std::isfinite(pl.x) || !std::isfinite(pl.y) || !std::isfinite(pl.rotation_deg))
       throw std::invalid_argument(
           fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y, pl.rotation_deg));

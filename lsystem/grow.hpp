@@ -31,8 +31,9 @@ struct GrowTimings {
   double derive_s = 0, turtle_s = 0, place_s = 0;
 };
 
-/// Throws GrammarError for grammar problems, std::invalid_argument naming the plant for a
-/// position or rotation that is not finite, std::runtime_error naming the plant for turtle
+/// Throws GrammarError for grammar problems, std::invalid_argument for a level of detail outside
+/// 1..kMaxLod, negative steps or threads, and naming the plant for a position or rotation that is
+/// not finite, std::runtime_error naming the plant for turtle
 /// problems and for a stand too large for memory (said before growing it).
 Stand grow_stand(const GrowRequest& request, GrowTimings* timings = nullptr);
 

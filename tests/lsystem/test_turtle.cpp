@@ -1,5 +1,6 @@
 // The turtle: frames against hand-computed matrices for each symbol, structure-tree parents and
 // compound-leaf ids, organs attached to their parents' joints.
+#include "geometry/prototype.hpp"
 #include "helpers.hpp"
 #include "lsystem/grow.hpp"
 #include "lsystem/turtle.hpp"
@@ -150,7 +151,7 @@ TEST_CASE("negative or non-finite sizes reaching the turtle are errors naming th
   }
 }
 
-TEST_CASE("a plant placed at a non-finite position or rotation is refused by number, before any growing") {
+TEST_CASE("a non-finite position or rotation, a level of detail out of range, negative steps or threads: refused before growing") {
   // grow_stand is where rows, positions files and the Python module's arrays all arrive.
   GrowRequest req;
   req.grammar = source("grammars/tomato.yaml");
@@ -168,4 +169,19 @@ TEST_CASE("a plant placed at a non-finite position or rotation is refused by num
       CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("plant 2: its position and rotation must be finite numbers"),
                            std::invalid_argument);
     }
+  // What the command line's checks refuse, refused here too (the Python module has no others).
+  for (const int lod : {0, kMaxLod + 1}) {
+    GrowRequest r = req;
+    r.lod = lod;
+    CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the level of detail must lie in 1..16"), std::invalid_argument);
+  }
+  GrowRequest r = req;
+  r.threads = -1;
+  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the thread count must be at least 0"), std::invalid_argument);
+  r = req;
+  r.steps = -1;
+  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the derivation steps must be at least 0 (got -1)"), std::invalid_argument);
+  r = req;
+  r.plants[1].steps = -2;
+  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("plant 1: its derivation steps must be at least 0 (got -2)"), std::invalid_argument);
 }

@@ -144,6 +144,12 @@ def test_errors_carry_the_located_message(tmp_path):
         canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, 0, 1], [float("nan"), 0, 0, 2]]), steps=5)
     with pytest.raises(ValueError, match="plant 0: its position and rotation must be finite"):
         canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, float("inf"), 1]]), steps=5)
+    with pytest.raises(ValueError, match="the level of detail must lie in 1..16"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, lod=0)
+    with pytest.raises(ValueError, match="the derivation steps must be at least 0"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=-1)
+    with pytest.raises(ValueError, match="the thread count must be at least 0"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, threads=-3)
     for seed in (1.5, 2.0**70, -1):
         with pytest.raises(ValueError, match="row 0: the seed must be a non-negative integer below 2\\^64"):
             canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, 0, seed]]), steps=5)
