@@ -59,6 +59,24 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
                     [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); });
 }
 
+std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats) {
+  std::vector<std::string> removed;
+  const std::pair<const char*, const char*> files[] = {{"glb", "stand.glb"}, {"obj", "stand.obj"}, {"obj", "stand.mtl"}, {"ply", "stand.ply"}};
+  for (const auto& [format, name] : files) {
+    if (formats.count(format)) continue;
+    std::error_code ec;
+    if (std::filesystem::remove(std::filesystem::path(dir) / name, ec)) removed.emplace_back(name);
+  }
+  return removed;
+}
+
+void print_stale_removed(const std::vector<std::string>& removed) {
+  if (removed.empty()) return;
+  std::string list;
+  for (const std::string& name : removed) list += (list.empty() ? "" : ", ") + name;
+  fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list);
+}
+
 StandPlan plan_stand(StandOptions& o) {
   if (o.random_rotation) o.rows.random_rotation = true;
   if (!o.positions.empty() && any_row_option(o.rows))
@@ -182,7 +200,9 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
   files.commit_all();
+  const std::vector<std::string> stale = remove_stale_meshes(o.out, formats);
   if (print) {
+    print_stale_removed(stale);
     print_summary(stand, lib, rep, o.out);
     print_contacts_table(contacts, backend_note);
     if (resolved) print_resolution(*resolved);

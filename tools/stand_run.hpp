@@ -67,6 +67,13 @@ void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const st
 void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
                        OutputSet& files);
 
+/// After a run's files are in place in `dir`: removes the mesh files an earlier run left there in
+/// formats this run did not write (stand.glb, stand.obj with stand.mtl, stand.ply), so the folder
+/// holds one stand; returns their names. Only those names are touched.
+std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats);
+/// Says on standard output which files remove_stale_meshes removed (nothing when none).
+void print_stale_removed(const std::vector<std::string>& removed);
+
 /// Runs `canopy stand` with `o`: writes the files into o.out, prints the summary when `print`.
 /// `progress`, when set, is called once per resolution round (instead of the terminal line).
 StandOutcome run_stand(StandOptions o, bool print = true, std::function<void(const ResolveProgress&)> progress = {});

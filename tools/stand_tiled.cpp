@@ -228,6 +228,7 @@ void run_stand_tiled(StandOptions o) {
   }
   files.commit_all();
   if (rank == 0) {
+    print_stale_removed(remove_stale_meshes(o.out, ts.formats));
     print_summary(counts, rep, o.out);
     fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,
                ts.tiling.axis == 0 ? "x" : "y", ts.halo, ts.reach, t.region.size());

@@ -72,6 +72,9 @@ def test_step_by_step_equals_the_command_line(cli_stand, tmp_path):
     for f in FILES:
         assert filecmp.cmp(cli_stand / f, tmp_path / f, shallow=False), f
     assert filecmp.cmp(cli_stand / "contacts_after.csv", tmp_path / "contacts.csv", shallow=False)
+    # Exported again in fewer formats: the meshes of the formats left out go, the folder holds one stand.
+    s.export(tmp_path, formats=["ply"])
+    assert sorted(p.name for p in tmp_path.glob("stand.*")) == ["stand.ply"]
 
 
 def test_arrays_shapes_dtypes_and_views(cli_stand):

@@ -115,6 +115,16 @@ expect_error "positions cell" "pos2.csv:2:3: column 'y' needs a finite number, g
 expect_error "too large" "needs about .* GB .* more than the .* GB available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
 expect_error "formats" "unknown format 'fbx'" "$src/grammars/tomato.yaml" --formats glb,fbx
 expect_error "collide" "unknown organ kind 'root'" "$src/grammars/tomato.yaml" --collide leaflet,root
+# A run into a folder of an earlier one in other formats: the earlier meshes go (the folder holds
+# one stand), and the run says so; a failed run removes nothing.
+rm -rf "$tmp/again"
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 10 --formats obj,ply -o "$tmp/again" >/dev/null 2>&1
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 10 --formats glb -o "$tmp/again" --collide root >/dev/null 2>&1
+check "failed run keeps earlier meshes" "stand.mtl stand.obj stand.ply" "$(cd "$tmp/again" && echo stand.*)"
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 10 --formats glb -o "$tmp/again" >"$tmp/o" 2>&1
+check "stale meshes removed" "stand.glb" "$(cd "$tmp/again" && echo stand.*)"
+check "stale meshes named" "1" "$(grep -c 'removed stand.obj, stand.mtl, stand.ply left by an earlier run' "$tmp/o")"
+
 # Real-number options refuse NaN and infinities (CLI11's own checks compare, and let NaN through:
 # a NaN --clearance found no contact, a NaN --resolve-step never ended).
 for opt in "--clearance nan" "--resolve-clearance inf" "--resolve-step nan" "--jitter nan" "--row-spacing -inf"; do

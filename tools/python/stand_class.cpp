@@ -228,6 +228,7 @@ void bind_stand(py::module_& m) {
             cli::write_stand_files(s.stand, lib, fs, glb_instancing, files);
             if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
             files.commit_all();
+            cli::remove_stale_meshes(dir, fs);
           },
           py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("glb_instancing") = false,
           "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv of the last "
