@@ -9,6 +9,7 @@
 #include "tools/resolve_options.hpp"
 #include "tools/sweep_spec.hpp"
 #include "tools/sweep_run.hpp"
+#include "tools/sweep_settings.hpp"
 #include "tools/sweep_table.hpp"
 
 #ifdef CANOPY_WITH_MPI
@@ -128,16 +129,36 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
 
   const std::string runs_path = o.out + "/runs.csv";
   std::set<std::string> finished;
-  std::string finished_list;  // rank 0 reads runs.csv and tells the others what is done
+  // Rank 0 reads runs.csv and tells the others what is done, or why the sweep cannot go on: then
+  // every rank stops with that error instead of waiting for rank 0.
+  std::string answer;
   if (me == 0) {
-    std::filesystem::create_directories(o.out);
-    std::vector<RunRow> done = read_runs(runs_path);
-    if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
-    write_runs(runs_path, done);  // drops a torn last line
-    for (const RunRow& r : done) finished.insert(run_key(r));
-    finished_list = nlohmann::json(finished).dump();
+    nlohmann::json a;
+    try {
+      std::filesystem::create_directories(o.out);
+      std::vector<RunRow> done = read_runs(runs_path);
+      check_sweep_settings(o.out, sweep_settings(o), done.size());
+      if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
+      write_runs(runs_path, done);  // drops a torn last line
+      std::set<std::string> keys;
+      for (const RunRow& r : done) keys.insert(run_key(r));
+      a["finished"] = keys;
+    } catch (const std::invalid_argument& e) {
+      a["error"] = e.what(), a["bad_input"] = true;
+    } catch (const std::exception& e) {
+      a["error"] = e.what(), a["bad_input"] = false;
+    }
+    answer = a.dump();
   }
-  if (ranks) finished = nlohmann::json::parse(ranks->gather(finished_list)[0]).get<std::set<std::string>>();
+  if (ranks) answer = ranks->gather(answer)[0];
+  {
+    const nlohmann::json a = nlohmann::json::parse(answer);
+    if (a.contains("error")) {
+      if (a["bad_input"].get<bool>()) throw std::invalid_argument(a["error"].get<std::string>());
+      throw std::runtime_error(a["error"].get<std::string>());
+    }
+    finished = a["finished"].get<std::set<std::string>>();
+  }
 
   const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
   if (print)

@@ -200,3 +200,5 @@ def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
     left = canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=1, per_row=2, backend="cpu")
     assert left["ran"] == 1 and len(canopy.sweep_rows(tmp_path / "w")) == 2
     assert len(canopy.sweep_rows(tmp_path / "w", summary=True)) == 2
+    with pytest.raises(ValueError, match=r"holds 2 run\(s\) made with other settings \(rows 1 -> 2\)"):
+        canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=2, per_row=2, backend="cpu")

@@ -50,6 +50,18 @@ check "resume runs nothing" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/log2"
 cmp -s "$tmp/runs.before" "$tmp/s/runs.csv"
 check "resume leaves runs.csv" "0" "$?"
 
+# Resuming with other settings is refused, naming them, runs.csv untouched; settings that change
+# no answer (threads) resume as before.
+"$canopy" sweep "$g" --plant-spacing 0.3,0.45 --steps 10:12:2 --seeds 2 --rows 3 --per-row 2 --jitter 0 --backend cpu \
+  -o "$tmp/s" >"$tmp/o" 2>"$tmp/e"
+check "other settings refused" "2" "$?"
+check "other settings named" "1" "$(grep -c 'holds 8 run(s) made with other settings (per_row 3 -> 2; jitter 0.02 -> 0.0)' "$tmp/e")"
+cmp -s "$tmp/runs.before" "$tmp/s/runs.csv"
+check "other settings: runs.csv untouched" "0" "$?"
+sweep -o "$tmp/s" --threads 1 >"$tmp/o" 2>&1
+check "threads resume" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/o")"
+check "sweep.json" "3" "$(python3 -c "import json; print(json.load(open('$tmp/s/sweep.json'))['rows'])")"
+
 # An interrupted sweep: three runs done and a torn fourth line; resuming makes exactly five.
 head -4 "$tmp/runs.before" > "$tmp/s/runs.csv"
 printf '3,0.3,1,3.3333,12,2,ok,9,11' >> "$tmp/s/runs.csv"

@@ -1,0 +1,77 @@
+#include "tools/sweep_settings.hpp"
+
+#include "collision/mbvt.hpp"
+#include "geometry/atomic_file.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace canopy::cli {
+namespace {
+
+/// FNV-1a over the file's bytes: the grammar's identity, whatever path names it.
+std::string file_digest(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  char c;
+  while (in.get(c)) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
+  return fmt::format("{:016x}", h);
+}
+
+}  // namespace
+
+nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
+  const KindMask collide = parse_collide_kinds(o.detect.collide);
+  std::string kinds;
+  for (std::size_t k = 0; k < collide.size(); ++k)
+    if (collide[k]) kinds += (kinds.empty() ? "" : ",") + std::string(kOrganKindNames[k]);
+  nlohmann::ordered_json resolve = o.resolve.config_json();
+  resolve.erase("search");  // the same turns either way, and for any number of lanes
+  resolve.erase("lanes");
+  return {{"grammar", o.grammar},
+          {"grammar_digest", file_digest(o.grammar)},
+          {"set", o.set},
+          {"rows", o.rows},
+          {"per_row", o.per_row},
+          {"jitter", o.jitter},
+          {"lod", o.lod},
+          {"max_modules", o.max_modules},
+          {"level", o.detect.level},
+          {"clearance", o.detect.clearance},
+          {"collide", kinds},
+          {"resolve", resolve}};
+}
+
+void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& settings, std::size_t finished_runs) {
+  const std::string path = (std::filesystem::path(dir) / "sweep.json").string();
+  if (finished_runs > 0 && std::filesystem::exists(path)) {
+    nlohmann::ordered_json before;
+    try {
+      std::ifstream in(path);
+      before = nlohmann::ordered_json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(fmt::format("{}: not a sweep's settings ({})", path, e.what()));
+    }
+    std::string differs;
+    for (const auto& [key, value] : settings.items()) {
+      if (key == "grammar") continue;  // the file's text is compared, not the path naming it
+      if (!before.contains(key) || before[key] != value)
+        differs += fmt::format("{}{} {} -> {}", differs.empty() ? "" : "; ", key, before.contains(key) ? before[key].dump() : "(none)",
+                               value.dump());
+    }
+    if (!differs.empty())
+      throw std::invalid_argument(fmt::format("sweep: {} holds {} run(s) made with other settings ({}); give another -o, or the same "
+                                              "settings to resume it",
+                                              dir, finished_runs, differs));
+    return;
+  }
+  AtomicFile out(path);
+  out.write(settings.dump(2) + "\n");
+  out.commit();
+}
+
+}  // namespace canopy::cli
