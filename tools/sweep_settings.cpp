@@ -2,12 +2,13 @@
 
 #include "collision/mbvt.hpp"
 #include "geometry/atomic_file.hpp"
+#include "lsystem/grammar.hpp"
 
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <map>
 #include <stdexcept>
 
 namespace canopy::cli {
@@ -29,12 +30,18 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
   std::string kinds;
   for (std::size_t k = 0; k < collide.size(); ++k)
     if (collide[k]) kinds += (kinds.empty() ? "" : ",") + std::string(kOrganKindNames[k]);
+  // --set as the grammar applies it: by name, the last value given winning (so order is no change).
+  std::map<std::string, double> constants;
+  for (const std::string& text : o.set) {
+    const ConstantOverride c = parse_override(text);
+    constants[c.name] = c.value;
+  }
   nlohmann::ordered_json resolve = o.resolve.config_json();
   resolve.erase("search");  // the same turns either way, and for any number of lanes
   resolve.erase("lanes");
   return {{"grammar", o.grammar},
           {"grammar_digest", file_digest(o.grammar)},
-          {"set", o.set},
+          {"set", constants},
           {"rows", o.rows},
           {"per_row", o.per_row},
           {"jitter", o.jitter},

@@ -61,6 +61,12 @@ check "other settings: runs.csv untouched" "0" "$?"
 sweep -o "$tmp/s" --threads 1 >"$tmp/o" 2>&1
 check "threads resume" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/o")"
 check "sweep.json" "3" "$(python3 -c "import json; print(json.load(open('$tmp/s/sweep.json'))['rows'])")"
+one() { "$canopy" sweep "$g" --plant-spacing 0.45 --steps 10 --seeds 1 --rows 1 --per-row 2 --backend cpu -o "$tmp/c" "$@"; }
+one --set nodes=12 --set phyllotaxis=137 >/dev/null 2>&1
+one --set phyllotaxis=137.0 --set nodes=12 >"$tmp/o" 2>&1
+check "--set in another order resumes" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/o")"
+one --set nodes=13 --set phyllotaxis=137 >"$tmp/o" 2>"$tmp/e"
+check "--set other value refused" "1" "$(grep -c 'set {"nodes":12.0,"phyllotaxis":137.0} -> {"nodes":13.0,"phyllotaxis":137.0}' "$tmp/e")"
 
 # An interrupted sweep: three runs done and a torn fourth line; resuming makes exactly five.
 head -4 "$tmp/runs.before" > "$tmp/s/runs.csv"
