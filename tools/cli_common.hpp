@@ -6,7 +6,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,19 @@ inline const CLI::Validator kFinite(
       return error;
     },
     "", "finite");
+
+/// A seed: a whole number in [0, 2^64). CLI11 reads an unsigned option with strtoull, which takes
+/// "-1" and "18446744073709551616" to 2^64 - 1 without a word.
+inline const CLI::Validator kSeed(
+    [](std::string& in) {
+      std::uint64_t v = 0;
+      const auto r = std::from_chars(in.data(), in.data() + in.size(), v);
+      std::string error;
+      if (in.empty() || r.ec != std::errc() || r.ptr != in.data() + in.size())
+        error.append("needs a whole number from 0 to 18446744073709551615, got ").append(in);
+      return error;
+    },
+    "", "seed");
 
 /// A subcommand: registers its options on `app` and returns what runs it after parsing.
 struct Command {

@@ -82,7 +82,7 @@ Command add_render(CLI::App& root) {
   app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")->check(kFinite)->check(CLI::NonNegativeNumber);
   app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")->check(kFinite)->check(CLI::NonNegativeNumber);
   app->add_flag("--random-rotation", o->random_rotation, "From a grammar: turn each plant at random");
-  app->add_option("--seed", o->rows.seed, "From a grammar: stand seed");
+  app->add_option("--seed", o->rows.seed, "From a grammar: stand seed")->check(kSeed);
   app->add_option("--steps", o->steps, "From a grammar: derivation steps")->check(CLI::NonNegativeNumber);
   app->add_option("--set", o->set, "From a grammar: override a constant NAME=VALUE (repeatable)");
   app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")->check(CLI::Range(1, kMaxLod));

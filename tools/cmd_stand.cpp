@@ -32,7 +32,7 @@ Command add_stand(CLI::App& root) {
   layout->add_option("--double-rows", o->rows.double_rows, "Rows in pairs GAP metres apart; pairs --row-spacing apart")->check(kFinite)->check(CLI::NonNegativeNumber);
   layout->add_option("--jitter", o->rows.jitter, "Radius in metres of a uniform disc around each position")->check(kFinite)->check(CLI::NonNegativeNumber);
   layout->add_flag("--random-rotation", o->random_rotation, "Turn each plant by a random angle about Z");
-  layout->add_option("--seed", o->rows.seed, "Stand seed: plant seeds, jitter and rotations derive from it (default 1)");
+  layout->add_option("--seed", o->rows.seed, "Stand seed: plant seeds, jitter and rotations derive from it (default 1)")->check(kSeed);
   layout->add_option("--positions", o->positions, "CSV with columns x,y,rotation,seed and optional grammar,steps");
   return {app, [o]() {
 #ifdef CANOPY_WITH_MPI

@@ -39,6 +39,15 @@ printf 'axiom: [F\n' > "$tmp/bad.yaml"
 check "bad yaml" "1" "$(grep -c "^canopy: error: $tmp/bad.yaml:2:1: malformed YAML" "$tmp/err")"
 check "one line" "1" "$(wc -l < "$tmp/err" | tr -d ' ')"
 
+# Seeds are whole numbers in [0, 2^64): CLI11 alone took -1 and 2^64 to 2^64 - 1.
+"$canopy" derive "$tmp/s.yaml" --seed 18446744073709551615 >/dev/null 2>&1
+check "largest seed" "0" "$?"
+for seed in -1 18446744073709551616 1.5 0x10; do
+  "$canopy" derive "$tmp/s.yaml" --seed "$seed" >/dev/null 2>"$tmp/err"; rc=$?
+  check "seed $seed refused" "105" "$rc"
+  check "seed $seed named" "1" "$(grep -c -- "--seed: needs a whole number from 0 to 18446744073709551615, got $seed" "$tmp/err")"
+done
+
 # Every option has a --help line.
 help=$("$canopy" derive --help)
 for opt in --steps --seed --set --stats --max-modules --interpreted; do
