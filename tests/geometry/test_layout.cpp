@@ -98,12 +98,16 @@ std::string error_of(const std::string& text) {
   std::remove(f.c_str());
   return "";
 }
+std::vector<PlantPlacement> positions_of(const std::string& text) {
+  const std::string f = write_temp(text);
+  auto p = read_positions(f);
+  std::remove(f.c_str());
+  return p;
+}
 }  // namespace
 
 TEST_CASE("positions files: any column order, optional grammar and steps") {
-  const std::string f = write_temp("seed,x,y,rotation,grammar,steps\n5,1.5,2,90,young.yaml,8\n6, 3 ,4,0,,\n");
-  const auto p = read_positions(f);
-  std::remove(f.c_str());
+  const auto p = positions_of("seed,x,y,rotation,grammar,steps\n5,1.5,2,90,young.yaml,8\n6, 3 ,4,0,,\n");
   REQUIRE(p.size() == 2);
   CHECK(p[0].x == 1.5);
   CHECK(p[0].seed == 5);
@@ -115,9 +119,7 @@ TEST_CASE("positions files: any column order, optional grammar and steps") {
 }
 
 TEST_CASE("positions files from a spreadsheet: a byte-order mark and CRLF line ends") {
-  const std::string f = write_temp("\xEF\xBB\xBFx,y,rotation,seed\r\n0.5,1,30,7\r\n");
-  const auto p = read_positions(f);
-  std::remove(f.c_str());
+  const auto p = positions_of("\xEF\xBB\xBFx,y,rotation,seed\r\n0.5,1,30,7\r\n");
   REQUIRE(p.size() == 1);
   CHECK(p[0].x == 0.5);
   CHECK(p[0].rotation_deg == 30);
