@@ -8,6 +8,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -37,6 +38,23 @@ inline const CLI::Validator kSeed(
       return error;
     },
     "", "seed");
+
+/// A distance in metres that is rarely meant above 0.1 m (a clearance): a larger value runs as
+/// asked, with a note on stderr saying what it means, since millimetres typed where metres are
+/// read (`--clearance 0.5` for half a millimetre) make most organ pairs of a stand a contact.
+inline CLI::Validator metres_note(std::string option) {
+  return CLI::Validator(
+      [option](std::string& in) {
+        double v = 0;
+        if (CLI::detail::lexical_cast(in, v) && std::isfinite(v) && v >= 0.1)
+          std::fprintf(stderr,
+                       "canopy: note: %s is in metres: %s is %g mm, more than a tomato leaflet is wide; %g mm "
+                       "would be %g\n",
+                       option.c_str(), in.c_str(), v * 1000, v, v / 1000);
+        return std::string();
+      },
+      "", "metres");
+}
 
 /// A subcommand: registers its options on `app` and returns what runs it after parsing.
 struct Command {

@@ -14,7 +14,7 @@ void DetectOptions::add_to(CLI::App& app) {
   app.add_option("--level", level, "Contact level: plant, leaf, organ or exact (default exact)")
       ->check(CLI::IsMember({"plant", "leaf", "organ", "exact"}));
   app.add_option("--clearance", clearance, "Organs closer than this many metres count as a contact (default 0)")
-      ->check(kFinite)->check(CLI::NonNegativeNumber);
+      ->check(kFinite)->check(CLI::NonNegativeNumber)->check(metres_note("--clearance"));
   app.add_option("--collide", collide,
                  "Organ kinds that take part, comma separated, or all (default leaflet,petiole,rachis,internode,peduncle)");
   app.add_option("--backend", backend, "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")

@@ -13,7 +13,7 @@ void ResolveOptions::add_to(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   app.add_option("--resolve-clearance", clearance,
                  "Resolution: metres left between a turned organ and what it met (default 0.0001)")
-      ->check(kFinite)->check(CLI::NonNegativeNumber);
+      ->check(kFinite)->check(CLI::NonNegativeNumber)->check(metres_note("--resolve-clearance"));
   app.add_option("--resolve-level", level,
                  "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
                  "turns organs that never touched)")

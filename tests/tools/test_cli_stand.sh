@@ -135,6 +135,15 @@ for opt in "--clearance nan" "--resolve-clearance inf" "--resolve-step nan" "--j
   check "$opt message" "1" "$(grep -c -- "${opt%% *}: needs a finite number, got ${opt##* }" "$tmp/e")"
   check "$opt no files" "0" "$(ls "$tmp/bad" 2>/dev/null | wc -l | tr -d ' ')"
 done
+# A clearance of 0.1 m or more runs, with a note that it is in metres (millimetres typed where
+# metres are read make most organ pairs a contact); a usual one says nothing.
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 8 --clearance 0.5 --resolve-clearance 2 --no-resolve \
+  -o "$tmp/far" >/dev/null 2>"$tmp/e"
+check "large clearance runs" "0" "$?"
+check "large clearance noted" "1" "$(grep -c -- '--clearance is in metres: 0.5 is 500 mm, .* 0.5 mm would be 0.0005' "$tmp/e")"
+check "large resolve clearance noted" "1" "$(grep -c -- '--resolve-clearance is in metres: 2 is 2000 mm' "$tmp/e")"
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 8 --clearance 0.002 --no-resolve -o "$tmp/near" >/dev/null 2>"$tmp/e"
+check "usual clearance quiet" "0" "$(grep -c 'in metres' "$tmp/e")"
 "$canopy" stand "$src/grammars/tomato.yaml" -o /proc/canopy-no >/dev/null 2>"$tmp/e"
 check "unwritable exit" "1" "$?"
 check "unwritable message" "1" "$(grep -c 'cannot create the output folder /proc/canopy-no' "$tmp/e")"
