@@ -32,11 +32,23 @@ void organ_vertices(const Stand& s, const PrototypeMesh& mesh, std::int32_t orga
                  frame_plant, out);
 }
 
-void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m, std::int32_t plant, std::int32_t frame_plant,
-                    std::vector<Vec3f>& out) {
-  const Vec3f d = plant == frame_plant ? Vec3f{0, 0, 0} : plant_offset(s, frame_plant, plant);
+namespace {
+
+/// The offset from plant `plant`'s frame to `frame_plant`'s (zero within one plant).
+Vec3f frame_offset(const Stand& s, std::int32_t plant, std::int32_t frame_plant) {
+  return plant == frame_plant ? Vec3f{0, 0, 0} : plant_offset(s, frame_plant, plant);
+}
+
+void moved_vertices(const PrototypeMesh& mesh, const Affine3f& m, Vec3f d, std::vector<Vec3f>& out) {
   out.resize(mesh.positions.size());
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) out[i] = apply(m, mesh.positions[i]) + d;
+}
+
+}  // namespace
+
+void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m, std::int32_t plant, std::int32_t frame_plant,
+                    std::vector<Vec3f>& out) {
+  moved_vertices(mesh, m, frame_offset(s, plant, frame_plant), out);
 }
 
 bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance, ExactScratch& x) {
@@ -48,9 +60,10 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
                       std::int32_t frame_plant) {
   organ = id, frame = frame_plant, mesh = &m;
   solid = is_solid(s.organs[static_cast<std::size_t>(id)].prototype);
-  organ_vertices(s, m, t, plant, frame_plant, v);
+  const Vec3f d = frame_offset(s, plant, frame_plant);
+  moved_vertices(m, t, d, v);
   obb = make_obb(t, m.box, 0);
-  if (plant != frame_plant) obb.centre = obb.centre + plant_offset(s, frame_plant, plant);
+  if (plant != frame_plant) obb.centre = obb.centre + d;
   box[0] = box[1] = box[2] = 1e300, box[3] = box[4] = box[5] = -1e300;
   for (const Vec3f& p : v) {
     box[0] = std::min<double>(box[0], p.x), box[1] = std::min<double>(box[1], p.y), box[2] = std::min<double>(box[2], p.z);
@@ -95,7 +108,7 @@ int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a,
   const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
   const PrototypeMesh& mb = lib.get(rb.prototype, rb.lod);
   const std::size_t ta = ma.triangle_count(), tb = mb.triangle_count();
-  const Vec3f d = rb.plant == ra.plant ? Vec3f{0, 0, 0} : plant_offset(s, ra.plant, rb.plant);
+  const Vec3f d = frame_offset(s, rb.plant, ra.plant);
   // Newest first, the six vertices made as organ_vertices makes them. The newest pair is the
   // likeliest to touch still (the intersection test first); an older one, to miss (the quick
   // rejections first): the same answers, 1.5 % fewer instructions in resolution than either
