@@ -51,6 +51,13 @@ std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant) {
   return mix(mix(stand_seed) ^ (plant * 0xd1b54a32d192ed03ULL)) >> 1;  // 63 bits: prints as a plain number
 }
 
+std::optional<std::uint64_t> parse_seed(std::string_view text) {
+  std::uint64_t v = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || r.ec != std::errc() || r.ptr != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
 std::vector<PlantPlacement> row_layout(const RowLayout& l) {
   if (l.rows < 1 || l.per_row < 1) throw std::invalid_argument(fmt::format("--rows and --per-row must be at least 1 (got {} and {})", l.rows, l.per_row));
   if (!(l.row_spacing >= 0) || !(l.plant_spacing >= 0) || !(l.jitter >= 0) || (l.double_rows && !(*l.double_rows >= 0)))
@@ -142,9 +149,10 @@ std::vector<PlantPlacement> read_positions(const std::string& path) {
     p.rotation_deg = number("rotation");
     {
       const auto& [cell, column] = cells[static_cast<std::size_t>(col["seed"])];
-      const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), p.seed);
-      if (cell.empty() || r.ec != std::errc() || r.ptr != cell.data() + cell.size())
+      const auto seed = parse_seed(cell);
+      if (!seed)
         throw std::invalid_argument(fmt::format("{}:{}:{}: column 'seed' needs a whole number, got '{}'", path, line_no, column, cell));
+      p.seed = *seed;
     }
     if (col.count("grammar")) p.grammar = std::string(cells[static_cast<std::size_t>(col["grammar"])].first);
     if (col.count("steps") && !cells[static_cast<std::size_t>(col["steps"])].first.empty())

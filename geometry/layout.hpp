@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace canopy {
@@ -45,6 +46,10 @@ std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant);
 
 /// Positions in row-major order. Throws std::invalid_argument on a negative spacing or count.
 std::vector<PlantPlacement> row_layout(const RowLayout& layout);
+
+/// A seed as written in a positions file or on the command line: a whole number from 0 to
+/// 2^64 - 1 in decimal and nothing else (no sign, no spaces), or nothing.
+std::optional<std::uint64_t> parse_seed(std::string_view text);
 
 /// Reads a CSV with a header naming at least x,y,rotation,seed (and optionally grammar, steps),
 /// in any column order. Errors name file, line and column.

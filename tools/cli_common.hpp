@@ -6,7 +6,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -30,11 +29,8 @@ inline const CLI::Validator kFinite(
 /// "-1" and "18446744073709551616" to 2^64 - 1 without a word.
 inline const CLI::Validator kSeed(
     [](std::string& in) {
-      std::uint64_t v = 0;
-      const auto r = std::from_chars(in.data(), in.data() + in.size(), v);
       std::string error;
-      if (in.empty() || r.ec != std::errc() || r.ptr != in.data() + in.size())
-        error.append("needs a whole number from 0 to 18446744073709551615, got ").append(in);
+      if (!parse_seed(in)) error.append("needs a whole number from 0 to 18446744073709551615, got ").append(in);
       return error;
     },
     "", "seed");

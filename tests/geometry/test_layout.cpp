@@ -138,3 +138,15 @@ TEST_CASE("positions files: missing columns and bad cells name the place") {
         ":1: missing column 'x' (the header needs x,y,rotation,seed and may add grammar,steps); the cells are separated by ';' or tabs, and positions files use commas");
   CHECK(error_of("") == ": empty positions file (expected a header x,y,rotation,seed)");
 }
+
+TEST_CASE("seeds as written: whole numbers from 0 to 2^64 - 1 in decimal, nothing else") {
+  CHECK(parse_seed("0") == std::optional<std::uint64_t>(0));
+  CHECK(parse_seed("42") == std::optional<std::uint64_t>(42));
+  CHECK(parse_seed("18446744073709551615") == std::optional<std::uint64_t>(18446744073709551615ULL));
+  for (const char* bad : {"", "-1", "18446744073709551616", "0x10", "1.5", " 1", "1 ", "+1", "1e3", "seven"})
+    CHECK_MESSAGE(!parse_seed(bad), bad);
+  // A positions file takes the same seeds.
+  CHECK(positions_of("x,y,rotation,seed\n0,0,0,18446744073709551615\n")[0].seed == 18446744073709551615ULL);
+  CHECK(error_of("x,y,rotation,seed\n0,0,0,18446744073709551616\n") ==
+        ":2:7: column 'seed' needs a whole number, got '18446744073709551616'");
+}
