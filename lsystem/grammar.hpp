@@ -122,6 +122,13 @@ struct LoadOptions {
   std::vector<ConstantOverride> overrides;
 };
 
+/// FNV-1a over the grammar file's YAML document as parsed, in one canonical form: the same for
+/// files that differ only in comments, blank lines, indentation, quoting or block/flow style,
+/// different for any other change (a resumed sweep compares it). Throws GrammarError on malformed YAML.
+std::string grammar_digest(const std::string& path);
+/// FNV-1a over the file's bytes: what sweeps of canopy before grammar_digest kept.
+std::string grammar_text_digest(const std::string& path);
+
 /// Reads and compiles a grammar file; throws GrammarError (file, line, column) on any problem.
 Grammar load_grammar(const std::string& path, const LoadOptions& options = {});
 /// The same from text; `file` names it in errors.

@@ -12,18 +12,6 @@
 #include <stdexcept>
 
 namespace canopy::cli {
-namespace {
-
-/// FNV-1a over the file's bytes: the grammar's identity, whatever path names it.
-std::string file_digest(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  char c;
-  while (in.get(c)) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
-  return fmt::format("{:016x}", h);
-}
-
-}  // namespace
 
 nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
   const KindMask collide = parse_collide_kinds(o.detect.collide);
@@ -40,7 +28,7 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
   resolve.erase("search");  // the same turns either way, and for any number of lanes
   resolve.erase("lanes");
   return {{"grammar", o.grammar},
-          {"grammar_digest", file_digest(o.grammar)},
+          {"grammar_digest", grammar_digest(o.grammar)},
           {"set", constants},
           {"rows", o.rows},
           {"per_row", o.per_row},
@@ -65,7 +53,10 @@ void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& 
     }
     std::string differs;
     for (const auto& [key, value] : settings.items()) {
-      if (key == "grammar") continue;  // the file's text is compared, not the path naming it
+      if (key == "grammar") continue;  // the file's document is compared, not the path naming it
+      // A sweep begun by a canopy of before grammar_digest kept the digest of the file's bytes.
+      if (key == "grammar_digest" && before.contains(key) && before[key] == grammar_text_digest(settings["grammar"].get<std::string>()))
+        continue;
       if (!before.contains(key) || before[key] != value)
         differs += fmt::format("{}{} {} -> {}", differs.empty() ? "" : "; ", key, before.contains(key) ? before[key].dump() : "(none)",
                                value.dump());

@@ -1,5 +1,5 @@
 #pragma once
-/// What every run of a sweep shares besides its cell and seed (the grammar's text, --set's values, the
+/// What every run of a sweep shares besides its cell and seed (the grammar's YAML document, --set's values, the
 /// stand's rows, jitter and detail, detection's and resolution's settings), kept in the sweep's
 /// folder as sweep.json: a resumed sweep must ask for the same, or its rows would mix stands of
 /// two kinds in one table. Settings that change no answer (backend, threads, lanes, search) are

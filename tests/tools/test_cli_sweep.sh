@@ -68,6 +68,25 @@ check "--set in another order resumes" "1" "$(grep -c '^sweep: 0 runs made now' 
 one --set nodes=13 --set phyllotaxis=137 >"$tmp/o" 2>"$tmp/e"
 check "--set other value refused" "1" "$(grep -c 'set {"nodes":12.0,"phyllotaxis":137.0} -> {"nodes":13.0,"phyllotaxis":137.0}' "$tmp/e")"
 
+# The grammar is compared as a document: a comment or blank line added resumes, a value changed is
+# refused, and a sweep.json of an earlier canopy (the digest of the file's bytes) still resumes.
+cp "$g" "$tmp/gd.yaml"
+oneg() { "$canopy" sweep "$tmp/gd.yaml" --plant-spacing 0.45 --steps 10 --seeds 1 --rows 1 --per-row 2 --backend cpu -o "$tmp/d" "$@"; }
+oneg >/dev/null 2>&1
+printf '\n# a note added between runs\n' >> "$tmp/gd.yaml"
+oneg >"$tmp/o" 2>&1
+check "grammar comment resumes" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/o")"
+python3 -c "
+import json; p='$tmp/d/sweep.json'; j=json.load(open(p)); h=0xcbf29ce484222325
+for c in open('$tmp/gd.yaml','rb').read(): h=((h^c)*0x100000001b3)&(2**64-1)
+j['grammar_digest']=format(h,'016x'); json.dump(j,open(p,'w'),indent=2)"
+oneg >"$tmp/o" 2>&1
+check "earlier sweep.json resumes" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/o")"
+sed -i 's/^  nodes: 18 /  nodes: 17 /' "$tmp/gd.yaml"
+oneg >"$tmp/o" 2>"$tmp/e"
+check "grammar value refused" "2" "$?"
+check "grammar value named" "1" "$(grep -c 'other settings (grammar_digest ' "$tmp/e")"
+
 # An interrupted sweep: three runs done and a torn fourth line; resuming makes exactly five.
 head -4 "$tmp/runs.before" > "$tmp/s/runs.csv"
 printf '3,0.3,1,3.3333,12,2,ok,9,11' >> "$tmp/s/runs.csv"
