@@ -44,9 +44,8 @@ inline CLI::Validator metres_note(std::string option) {
         double v = 0;
         if (CLI::detail::lexical_cast(in, v) && std::isfinite(v) && v >= 0.1)
           std::fprintf(stderr,
-                       "canopy: note: %s is in metres: %s is %g mm, more than a tomato leaflet is wide; %g mm "
-                       "would be %g\n",
-                       option.c_str(), in.c_str(), v * 1000, v, v / 1000);
+                       "canopy: note: %s is in metres: %s is %g mm (for %g mm write %g)\n", option.c_str(), in.c_str(),
+                       v * 1000, v, v / 1000);
         return std::string();
       },
       "", "metres");

@@ -140,7 +140,7 @@ done
 "$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 8 --clearance 0.5 --resolve-clearance 2 --no-resolve \
   -o "$tmp/far" >/dev/null 2>"$tmp/e"
 check "large clearance runs" "0" "$?"
-check "large clearance noted" "1" "$(grep -c -- '--clearance is in metres: 0.5 is 500 mm, .* 0.5 mm would be 0.0005' "$tmp/e")"
+check "large clearance noted" "1" "$(grep -c -- '--clearance is in metres: 0.5 is 500 mm (for 0.5 mm write 0.0005)' "$tmp/e")"
 check "large resolve clearance noted" "1" "$(grep -c -- '--resolve-clearance is in metres: 2 is 2000 mm' "$tmp/e")"
 "$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 8 --clearance 0.002 --no-resolve -o "$tmp/near" >/dev/null 2>"$tmp/e"
 check "usual clearance quiet" "0" "$(grep -c 'in metres' "$tmp/e")"
