@@ -1,5 +1,6 @@
 // canopy detect: detection alone on a stand written by canopy stand (organs.csv + plants.csv).
 #include "geometry/atomic_file.hpp"
+#include "geometry/thread_limit.hpp"
 #include "geometry/export.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
@@ -22,6 +23,7 @@ Command add_detect(CLI::App& root) {
   app->add_option("--csv", o->csv, "Also write the contacts to this file (contacts.csv columns)");
   o->detect.add_to(*app);
   return {app, [o]() {
+            const ThreadLimit thread_limit(o->detect.threads);
             const auto t0 = std::chrono::steady_clock::now();
             const Stand stand = read_stand(o->dir);
             const double read_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -3,6 +3,7 @@
 // contacts it still has. From a grammar: the stand grown, before resolution and after it, side by
 // side.
 #include "geometry/export.hpp"
+#include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
@@ -89,6 +90,7 @@ Command add_render(CLI::App& root) {
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() -> int {
+            const ThreadLimit thread_limit(o->detect.threads);
             int w = 0, h = 0;
             char x = 0;
             if (std::sscanf(o->size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 || w > 16384 || h > 16384)

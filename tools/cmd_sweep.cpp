@@ -1,6 +1,7 @@
 // canopy sweep: a spacing / density x age experiment, several seeds per cell, one CSV row per
 // run (resumable), and a summary per cell.
 #include "geometry/atomic_file.hpp"
+#include "geometry/thread_limit.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/stand_metrics.hpp"
 #include "lsystem/grow.hpp"
@@ -101,6 +102,7 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
 }  // namespace
 
 SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& after_run, const SweepRanks* ranks) {
+  const ThreadLimit thread_limit(o.detect.threads);
   const int me = ranks ? ranks->rank : 0, team = ranks ? ranks->size : 1;
   print = print && me == 0;
   std::string note;

@@ -1,5 +1,6 @@
 // canopy stand's run: grow, detect, resolve, export, report.
 #include "geometry/export.hpp"
+#include "geometry/thread_limit.hpp"
 #include "geometry/layout.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
@@ -143,6 +144,7 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
 
 StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
   const auto t_start = std::chrono::steady_clock::now();
+  const ThreadLimit thread_limit(o.detect.threads);
   const std::set<std::string> formats = parse_formats(o.formats);
   StandPlan plan = plan_stand(o);
   const DetectRequest dreq = o.detect.request();  // bad options fail before any work

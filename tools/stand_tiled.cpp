@@ -11,6 +11,7 @@
 // within one hop are planned (they make every decision an own turn depends on); the rest of the
 // halo supplies their candidates' contacts and surroundings.
 #include "collision/swept_reach.hpp"
+#include "geometry/thread_limit.hpp"
 #include "distributed/mpi_comm.hpp"
 #include "distributed/mpi_files.hpp"
 #include "distributed/region.hpp"
@@ -191,6 +192,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
 }
 
 void run_stand_tiled(StandOptions o) {
+  const ThreadLimit thread_limit(o.detect.threads);
   TiledStand ts = grow_detect_resolve_tiled(o);
   const int rank = mpi::rank(), ranks = mpi::size();
   const std::size_t n = ts.placements.size();

@@ -1,5 +1,6 @@
 // canopy.Stand: a stand owned by Python, NumPy views of its organs, detection, resolution, export.
 #include "geometry/export.hpp"
+#include "geometry/thread_limit.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "lsystem/grow.hpp"
@@ -50,6 +51,7 @@ void bind_stand(py::module_& m) {
             out->grammar = grammar;
             {
               py::gil_scoped_release nogil;
+              const ThreadLimit thread_limit(threads);
               out->stand = grow_stand(req);
             }
             return out;
@@ -159,6 +161,7 @@ void bind_stand(py::module_& m) {
             std::string name;
             {
               py::gil_scoped_release nogil;
+              const ThreadLimit thread_limit(threads);
               auto b = backend_named(backend, note);
               c = b->detect(s.stand, req);
               name = b->name();
@@ -192,6 +195,7 @@ void bind_stand(py::module_& m) {
             Contacts after;
             try {
               py::gil_scoped_release nogil;
+              const ThreadLimit thread_limit(threads);
               std::string note;
               auto b = backend_named(backend, note);
               DetectRequest at = dreq;
