@@ -3,15 +3,13 @@
 // sequences and scalar values, each scalar with its length), so comments, blank lines,
 // indentation, quoting and block or flow style change nothing, while any key, value or their
 // order does.
-#include "lsystem/error.hpp"
 #include "lsystem/grammar.hpp"
+#include "lsystem/yaml_source.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 
 namespace canopy {
@@ -53,29 +51,15 @@ void canonical(const YAML::Node& node, std::string& out) {
   }
 }
 
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw GrammarFileError({path, 0, 0}, "cannot open the grammar file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 }  // namespace
 
 std::string grammar_digest(const std::string& path) {
-  const std::string text = read_file(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw GrammarError({path, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = parse_yaml_document(read_grammar_file(path), path);
   std::string form;
   canonical(root, form);
   return fnv1a(form);
 }
 
-std::string grammar_text_digest(const std::string& path) { return fnv1a(read_file(path)); }
+std::string grammar_text_digest(const std::string& path) { return fnv1a(read_grammar_file(path)); }
 
 }  // namespace canopy

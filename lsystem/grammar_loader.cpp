@@ -6,9 +6,7 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 namespace canopy {
 namespace {
@@ -258,12 +256,7 @@ ConstantOverride parse_override(const std::string& text) {
 }
 
 Grammar parse_grammar(const std::string& text, const std::string& file, const LoadOptions& options) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = parse_yaml_document(text, file);
   const YamlSource src(file, text);
   try {
     return Loader(src, options).load(root);
@@ -273,11 +266,7 @@ Grammar parse_grammar(const std::string& text, const std::string& file, const Lo
 }
 
 Grammar load_grammar(const std::string& path, const LoadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw GrammarFileError({path, 0, 0}, "cannot open the grammar file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_grammar(ss.str(), path, options);
+  return parse_grammar(read_grammar_file(path), path, options);
 }
 
 }  // namespace canopy

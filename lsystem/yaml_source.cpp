@@ -2,9 +2,27 @@
 
 #include <charconv>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <vector>
 
 namespace canopy {
+
+std::string read_grammar_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw GrammarFileError({path, 0, 0}, "cannot open the grammar file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+YAML::Node parse_yaml_document(const std::string& text, const std::string& file) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);
+  }
+}
 
 SourcePos YamlSource::at(const YAML::Node& node) const {
   const YAML::Mark m = node.Mark();

@@ -10,6 +10,13 @@
 
 namespace canopy {
 
+/// A grammar file's text; throws GrammarFileError ("cannot open the grammar file") when it cannot
+/// be read.
+std::string read_grammar_file(const std::string& path);
+/// The YAML document in `text`; throws GrammarError at the parser's place ("malformed YAML: ...")
+/// naming `file`.
+YAML::Node parse_yaml_document(const std::string& text, const std::string& file);
+
 class YamlSource {
  public:
   YamlSource(std::string file, std::string text) : file_(std::move(file)), text_(std::move(text)) {}
