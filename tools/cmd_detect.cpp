@@ -1,7 +1,7 @@
 // canopy detect: detection alone on a stand written by canopy stand (organs.csv + plants.csv).
 #include "geometry/atomic_file.hpp"
-#include "geometry/thread_limit.hpp"
 #include "geometry/export.hpp"
+#include "geometry/thread_limit.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
 

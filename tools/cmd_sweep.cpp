@@ -1,9 +1,9 @@
 // canopy sweep: a spacing / density x age experiment, several seeds per cell, one CSV row per
 // run (resumable), and a summary per cell.
 #include "geometry/atomic_file.hpp"
-#include "geometry/thread_limit.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/stand_metrics.hpp"
+#include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"

@@ -1,7 +1,7 @@
 // canopy stand's run: grow, detect, resolve, export, report.
 #include "geometry/export.hpp"
-#include "geometry/thread_limit.hpp"
 #include "geometry/layout.hpp"
+#include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"

@@ -11,12 +11,12 @@
 // within one hop are planned (they make every decision an own turn depends on); the rest of the
 // halo supplies their candidates' contacts and surroundings.
 #include "collision/swept_reach.hpp"
-#include "geometry/thread_limit.hpp"
 #include "distributed/mpi_comm.hpp"
 #include "distributed/mpi_files.hpp"
 #include "distributed/region.hpp"
 #include "distributed/tiles.hpp"
 #include "geometry/export.hpp"
+#include "geometry/thread_limit.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/stand_run.hpp"
 #include "tools/stand_tiled.hpp"

@@ -1,8 +1,8 @@
 // canopy.Stand: a stand owned by Python, NumPy views of its organs, detection, resolution, export.
 #include "geometry/export.hpp"
-#include "geometry/thread_limit.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/organ_mesh.hpp"
+#include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/python/common.hpp"
