@@ -1,6 +1,7 @@
 #include "collision/exact.hpp"
 
 #include "collision/mbvt.hpp"
+#include "geometry/solid_bound.hpp"
 #include "geometry/triangle_distance.hpp"
 
 #include <algorithm>
@@ -134,13 +135,15 @@ int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a,
 bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
                      const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried) {
   assert(a < b);
+  const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
+  const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
+  if (solids_apart(ra.prototype, pose_a, rb.prototype, pose_b, frame_offset(s, rb.plant, ra.plant), clearance)) return false;
   if (witness && !witness_tried) {
     const int slot = witness_slot_touching(s, lib, a, pose_a, b, pose_b, clearance, *witness);
     if (slot >= 0) return witness->promote(slot), true;
   }
-  const std::int32_t frame = s.organs[static_cast<std::size_t>(a)].plant;
-  const PosedOrgan& pa = x.poses.get(s, lib, a, pose_a, frame);
-  const PosedOrgan& pb = x.poses.get(s, lib, b, pose_b, frame, &pa);
+  const PosedOrgan& pa = x.poses.get(s, lib, a, pose_a, ra.plant);
+  const PosedOrgan& pb = x.poses.get(s, lib, b, pose_b, ra.plant, &pa);
   return posed_touch(pa, pb, clearance, x, witness);
 }
 

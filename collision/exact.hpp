@@ -1,5 +1,6 @@
 #pragma once
-/// The exact level for one organ pair on the host: the organs' triangles made on the fly from
+/// The exact level for one organ pair on the host: two solids whose capsules lie apart are
+/// rejected first (geometry/solid_bound.hpp); otherwise the organs' triangles made on the fly from
 /// prototype x transform (the higher organ moved into the lower organ's plant frame by the
 /// origin difference), filters of single triangles (the other organ's box, then its OBB) and of
 /// triangle pairs (box, planes, edge axes), then the shared closed triangle test; capped

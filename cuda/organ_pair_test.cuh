@@ -6,6 +6,7 @@
 // test of solids.
 #include "collision/mbvt_fit.hpp"
 #include "cuda/detect_kernels.hpp"
+#include "geometry/solid_bound.hpp"
 #include "geometry/triangle_distance.hpp"
 #include "geometry/triangle_reject.hpp"
 
@@ -246,6 +247,8 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
   const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
   const Vec3f zero{0, 0, 0};
   const Vec3f db = offset_between(v, ra.plant, rb.plant);
+  // Two solids whose capsules lie apart: the host's first rejection (collision/exact.cpp).
+  if (solids_apart(ra.prototype, ta, rb.prototype, tb, db, clearance)) return false;
   // Where no surfaces meet, one organ may still lie wholly inside the other's solid (tested on
   // the staged vertices where the meshes were staged: the same values as those made anew).
   if (stage && ma.vertex_count <= WarpStage::kVertices && mb.vertex_count <= WarpStage::kVertices &&

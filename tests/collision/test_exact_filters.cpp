@@ -5,7 +5,9 @@
 // single triangles against the other organ's OBB (beyond_obb) against the triangle distance to
 // every triangle of a posed organ. And the pose cache never answers with a stale pose.
 #include "collision/exact.hpp"
+#include "geometry/solid_bound.hpp"
 #include "geometry/triangle_distance.hpp"
+#include "tests/collision/hard_cases.hpp"
 #include "tests/collision/helpers.hpp"
 #include "tests/geometry/reference_distance.hpp"
 
@@ -140,4 +142,80 @@ TEST_CASE("a long-lived exact scratch answers as a fresh one for poses that chan
   }
   CHECK(touching > 100);
   CHECK(apart > 100);
+}
+
+TEST_CASE("two solids rejected by their capsules never touch: against the full test and brute force") {
+  // Random capped cylinders and spheres (some with unequal radial scales) placed about touching
+  // one another, in one plant or in two plants 10^6 m from the origin; clearances 0, 0.1 mm and
+  // 1 mm. Where solids_apart rejects a pair, the full test of the posed organs (which does not
+  // use it) and the brute-force oracle (every triangle pair, and containment) find no touch;
+  // organs_touch, which does use it, answers as the full test every time.
+  std::mt19937_64 g(23);
+  std::uniform_real_distribution<double> u01(0, 1);
+  const auto unit = [&] {
+    std::normal_distribution<float> n(0, 1);
+    const Vec3f v{n(g), n(g), n(g)};
+    return v * (1 / length(v));
+  };
+  PrototypeLibrary lib;
+  int rejected = 0, touching = 0, kept_apart = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    test::Built b;
+    const bool two_plants = trial % 2 == 1;
+    b.stand.plants[0].x = 1e6, b.stand.plants[0].y = 2e5;
+    if (two_plants) {
+      b.stand.plants.push_back(b.stand.plants[0]);
+      b.stand.plants[1].x += 0.3, b.stand.plants[1].y -= 0.1;
+    }
+    b.stand.stand_origin = {1e6, 2e5, 0};
+    const auto solid = [&](int which, Vec3f at, Vec3f heading) {
+      const PrototypeKind kind = (trial >> which) % 3 == 0 ? PrototypeKind::sphere : PrototypeKind::cylinder;
+      const float len = static_cast<float>(0.01 + 0.2 * u01(g)), r = static_cast<float>(0.001 + 0.015 * u01(g));
+      Vec3f l = cross(heading, unit());
+      l = l * (1 / length(l));
+      Affine3f m = test::frame(heading, l, at, kind == PrototypeKind::sphere ? r : len, r);
+      if (trial % 5 == 0) m.c2 = m.c2 * 0.6f;  // unequal radial scales
+      const auto id = b.add(kind, kind == PrototypeKind::sphere ? OrganKind::fruit : OrganKind::internode, m, kind == PrototypeKind::sphere ? r : len, r);
+      return std::make_pair(id, r);
+    };
+    const Vec3f h0 = unit();
+    const auto [a, ra] = solid(0, {static_cast<float>(u01(g)), static_cast<float>(u01(g)), 1.0f}, h0);
+    // The second starts beside a point of the first's axis, its surface near the first's.
+    const Affine3f& ta = b.stand.transforms[0];
+    const Vec3f beside = ta.t + ta.c0 * static_cast<float>(u01(g) * 1.2 - 0.1) + unit() * (ra * static_cast<float>(0.5 + 2.5 * u01(g)));
+    const auto [bo, rb] = solid(1, beside, unit());
+    if (two_plants) {
+      b.stand.organs[1].plant = 1;
+      b.stand.plants[0].organ_count = 1;
+      b.stand.plants[1].first_organ = 1, b.stand.plants[1].organ_count = 1;
+      // Carried into plant 1's frame: the same place in the field.
+      b.stand.transforms[1].t = b.stand.transforms[1].t - plant_offset(b.stand, 0, 1);
+    }
+    (void)rb;
+    const Stand& s = b.stand;
+    const Vec3f db = two_plants ? plant_offset(s, 0, 1) : Vec3f{0, 0, 0};
+    for (float c : {0.0f, 1e-4f, 1e-3f}) {
+      const bool apart = solids_apart(s.organs[0].prototype, s.transforms[0], s.organs[1].prototype, s.transforms[1], db, c);
+      ExactScratch x;
+      const PosedOrgan& pa = x.poses.get(s, lib, a, s.transforms[0], 0);
+      const PosedOrgan& pb = x.poses.get(s, lib, bo, s.transforms[1], 0, &pa);
+      const bool full = posed_touch(pa, pb, c, x, nullptr);
+      ExactScratch y;
+      CHECK_MESSAGE(organs_touch(s, lib, a, bo, c, y) == full, "trial ", trial);
+      KindMask all{};
+      all.fill(true);
+      const bool brute = !test::brute_force_exact(s, all, c).empty();
+      CHECK_MESSAGE(brute == full, "trial ", trial, " clearance ", c);
+      if (apart) {
+        ++rejected;
+        CHECK_MESSAGE(!full, "trial ", trial, " clearance ", c, ": rejected, yet the organs touch");
+      } else if (!full) {
+        ++kept_apart;
+      }
+      touching += full;
+    }
+  }
+  CHECK(rejected > 1000);   // it does reject
+  CHECK(touching > 1000);   // the pairs are near enough to touch
+  CHECK(kept_apart > 100);  // and the near misses go on to the full test
 }
