@@ -1,11 +1,12 @@
 #pragma once
 /// A quick, conservative rejection of two solid organs (capped cylinders, spheres) before the
-/// exact test, shared by both backends (CANOPY_HD): each solid, its mesh and what its mesh
-/// encloses lie inside a capsule (a segment and a radius; a ball for a sphere), and two capsules
-/// farther apart than the clearance plus a slack far above every rounding keep the organs so too.
-/// It changes no answer, only how many pairs are posed: on the default 1,000-plant stand half of
-/// the organ pairs whose OBBs overlap without touching are an internode beside a peduncle of the
-/// same plant, and every one of them is rejected here (bench/results/README.md).
+/// host's exact test (collision/exact.cpp; the device's warp test measured faster without it,
+/// cuda/organ_pair_test.cuh): each solid, its mesh and what its mesh encloses lie inside a
+/// capsule (a segment and a radius; a ball for a sphere), and two capsules farther apart than the
+/// clearance plus a slack far above every rounding keep the organs so too. It changes no answer,
+/// only how many pairs are posed: on the default 1,000-plant stand half of the organ pairs whose
+/// OBBs overlap without touching are an internode beside a peduncle of the same plant, and every
+/// one of them is rejected here (bench/results/README.md).
 ///
 /// Segment distance: Ericson, Real-Time Collision Detection §5.1.9, made a lower bound here (the
 /// least distance of two segments lies at an end of one of them unless both closest points are
