@@ -23,7 +23,7 @@ namespace canopy {
 /// The points p + s u (s in [0, 1]) widened by `radius`; `size` bounds the magnitudes that the
 /// posed vertices are computed from (their float rounding is far below 1e-5 of it).
 struct Capsule {
-  D3 p, u;
+  D3 p{0, 0, 0}, u{0, 0, 0};
   double radius = 0, size = 0;
 };
 
