@@ -79,7 +79,7 @@ CANOPY_HD inline double segments_distance_bound(D3 p, D3 u, D3 q, D3 v) {
 /// sphere's (unit sphere about x = 1) within the ball about t + c0 of the stretch of all three.
 CANOPY_HD inline bool solid_capsule(PrototypeKind k, const Affine3f& m, Vec3f d, Capsule& c) {
   using solid_bound_detail::norm;
-  if (k != PrototypeKind::cylinder && k != PrototypeKind::sphere) return false;
+  if (!is_solid(k)) return false;
   const D3 col[3] = {d3(m.c0), d3(m.c1), d3(m.c2)};
   const D3 t = d3(m.t) + d3(d);
   const int first = k == PrototypeKind::cylinder ? 1 : 0, n = 3 - first;
