@@ -1,12 +1,14 @@
 // CPU detection: plant pairs from the grid, cluster (compound-leaf) pairs by LCD boxes, organ
-// pairs by OBBs through the LCD trees, then the exact test; inside one plant the same between
-// its clusters (the paper's m(m-1)/2 leaf pairs, §3.4) and all pairs within a cluster, with the
-// structure tree's adjacent pairs left out.
+// pairs by OBBs through the LCD trees (down to blocks of at most kBlockOrgans organs a side,
+// whose pairs are pre-tested 8 at a time on axis-aligned organ boxes), then the exact test;
+// inside one plant the same between its clusters (the paper's m(m-1)/2 leaf pairs, §3.4) and
+// all pairs within a cluster, with the structure tree's adjacent pairs left out.
 #include "collision/backend.hpp"
 #include "collision/broad_phase.hpp"
 #include "collision/exact.hpp"
 #include "collision/lcd_descent.hpp"
 #include "collision/mbvt_fit.hpp"
+#include "collision/organ_rows.hpp"
 #include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
@@ -52,6 +54,31 @@ void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, V
   c.organ_a = std::min(a, b), c.organ_b = std::max(a, b);
   c.plant_a = plant_a, c.plant_b = plant_b;
   out.organ.push_back(c);
+}
+
+/// Asks for plant q's boxes, organ records and lanes ahead of a work item that needs them:
+/// the pass waits on memory more than it computes (bench/results/README.md, thirty-first
+/// session), and the plant pairs come in an order that a prefetch two items ahead covers.
+void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
+  const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
+  const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
+  const auto lines = [](const void* p, std::size_t bytes) {
+    const char* c = static_cast<const char*>(p);
+    for (std::size_t k = 0; k < bytes; k += 64) __builtin_prefetch(c + k);
+  };
+  lines(&m.obbs[pr.first_organ], pr.organ_count * sizeof(Obb));
+  lines(&s.organs[pr.first_organ], pr.organ_count * sizeof(OrganRecord));
+  if (pb.cluster_count == 0) return;
+  const Cluster& c0 = m.clusters[pb.first_cluster];
+  const Cluster& c1 = m.clusters[pb.first_cluster + pb.cluster_count - 1];
+  lines(&m.clusters[pb.first_cluster], pb.cluster_count * sizeof(Cluster));
+  lines(&m.nodes[c0.first_node], (c1.first_node + c1.node_count - c0.first_node) * sizeof(LcdNode));
+  const OrganLanes& l = m.lanes;
+  const auto lanes = [&](const BoxLanes& b, std::size_t l0, std::size_t l1) {
+    for (const std::vector<float>* v : {&b.lo_x, &b.lo_y, &b.lo_z, &b.hi_x, &b.hi_y, &b.hi_z}) lines(v->data() + l0, (l1 - l0) * sizeof(float));
+  };
+  lanes(l.organs, l.organ_first[pb.first_cluster], l.organ_first[pb.first_cluster + pb.cluster_count - 1] + c1.count);
+  lanes(l.clusters, l.cluster_first[static_cast<std::size_t>(q)], l.cluster_first[static_cast<std::size_t>(q)] + pb.cluster_count);
 }
 
 class CpuBackend : public DetectionBackend {
@@ -121,14 +148,17 @@ class CpuBackend : public DetectionBackend {
     const auto passed_over = [&](std::uint32_t i, std::uint32_t j) {
       return !cluster_moved.empty() && !cluster_moved[i] && !cluster_moved[j];
     };
-    std::vector<Collector> per(work.size());
+    // A collector per thread (the lists are sorted afterwards, so which thread found a pair
+    // does not show in the answer).
+    std::vector<Collector> per(static_cast<std::size_t>(threads));
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (std::size_t w = 0; w < work.size(); ++w) {
       const auto [p, q] = work[w];
+      if (w + 2 < work.size() && work[w + 2].q != q) prefetch_plant(s, m, work[w + 2].q);
       const PlantBound& pa = m.plants[static_cast<std::size_t>(p)];
       const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
       const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
-      Collector& col = per[w];
+      Collector& col = per[static_cast<std::size_t>(omp_get_thread_num())];
       col.keep_leaves = req.level == ContactLevel::leaf;
       col.moved = req.moved_organs;
       for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
@@ -136,25 +166,23 @@ class CpuBackend : public DetectionBackend {
         // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the
         // other plant's box, then each cluster's.
         if (p != q && !boxes_meet(ca.box, pb.box, offset)) continue;
-        for (std::uint32_t j = p == q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
-          const Cluster& cb = m.clusters[j];
-          if (passed_over(i, j) || (i != j && !boxes_meet(ca.box, cb.box, offset))) continue;
-          if (i == j) {  // within one cluster: all its pairs
-            if (!has_free_pair(s, m, ca.first, ca.count)) continue;
-            col.leaf_pair(p, q, i, j);
-            if (req.level == ContactLevel::leaf) continue;
-            for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
-              for (std::uint32_t y = x + 1; y < ca.first + ca.count; ++y)
-                organ_pair(s, m, static_cast<std::int32_t>(m.cluster_organs[x]), static_cast<std::int32_t>(m.cluster_organs[y]),
-                           offset, col, p, q);
-            continue;
-          }
-          if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
-          col.leaf_pair(p, q, i, j);
+        if (p == q && !passed_over(i, i) && has_free_pair(s, m, ca.first, ca.count)) {  // within one cluster: all its pairs
+          col.leaf_pair(p, q, i, i);
           if (req.level != ContactLevel::leaf)
-            descend_lcd_trees(m.nodes.data(), m.cluster_organs.data(), ca.root, cb.root, offset,
-                              [&](std::int32_t a, std::int32_t b) { organ_pair(s, m, a, b, offset, col, ca.plant, cb.plant); });
+            lane_own_pairs(m.lanes, m.cluster_organs.data(), i, ca,
+                           [&](std::int32_t a, std::int32_t b) { organ_pair(s, m, a, b, offset, col, p, q); });
         }
+        const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
+        lane_clusters_meeting(m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, offset, [&](std::uint32_t j) {
+          const Cluster& cb = m.clusters[j];
+          if (passed_over(i, j) || !lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) return;
+          col.leaf_pair(p, q, i, j);
+          if (req.level == ContactLevel::leaf) return;
+          descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {
+            lane_block_pairs(m.lanes, m.cluster_organs.data(), i, ca, na, j, cb, nb, offset,
+                             [&](std::int32_t x, std::int32_t y) { organ_pair(s, m, x, y, offset, col, ca.plant, cb.plant); });
+          });
+        });
       }
     }
     std::vector<Contact> leaf, organ;

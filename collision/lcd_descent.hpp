@@ -1,6 +1,9 @@
 #pragma once
-/// The descent of two clusters' LCD trees together down to organ pairs (Ding et al. 2019 §3.3),
-/// shared by the CPU backend and the CUDA organ-pairs kernel (CANOPY_HD): one implementation.
+/// The descent of two clusters' LCD trees together (Ding et al. 2019 §3.3), shared by the CPU
+/// backend and the CUDA organ-pairs kernel (CANOPY_HD): one implementation. It stops at node
+/// pairs of at most kBlockOrgans organs a side and hands those over as a block, whose organ
+/// pairs collision/organ_blocks.hpp tests flat: a tomato's compound leaf (at most 12 organs)
+/// is one block at its root, and only larger clusters descend.
 #include "collision/mbvt.hpp"
 #include "geometry/hd.hpp"
 #include "geometry/lcd.hpp"
@@ -9,12 +12,18 @@
 
 namespace canopy {
 
-/// Calls on_pair(organ_a, organ_b) for each pair of organs under leaf nodes whose boxes overlap
-/// (b's cluster carried into a's plant frame by `offset`); the larger node is split first. The
-/// roots' boxes are known to overlap (the caller found the cluster pair by that test).
-template <typename OnPair>
-CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, const std::uint32_t* cluster_organs, std::uint32_t root_a,
-                                        std::uint32_t root_b, Vec3f offset, OnPair&& on_pair) {
+/// Organs a side at or below which two nodes make one block. Measured on the default
+/// 1,000-plant stand (bench/results/README.md, thirty-first session): the flat organ-box tests of
+/// a whole 12-organ compound leaf against another cost less than descending to 4-organ leaves.
+inline constexpr std::uint32_t kBlockOrgans = 16;
+
+/// Calls on_block(node_a, node_b) for each pair of nodes, of at most kBlockOrgans organs a side
+/// or leaves of the trees, whose boxes overlap (b's cluster carried into a's plant frame by
+/// `offset`); the larger node is split first. The roots' boxes are known to overlap (the caller
+/// found the cluster pair by that test).
+template <typename OnBlock>
+CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, std::uint32_t root_a, std::uint32_t root_b, Vec3f offset,
+                                        OnBlock&& on_block) {
   constexpr int kStack = 64;  // at most the two trees' depths together: far below this
   std::uint32_t stack[kStack][2];
   int top = 0;
@@ -26,15 +35,13 @@ CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, const std::uint32_
     const LcdNode& nb = nodes[ib];
     const bool roots = ia == root_a && ib == root_b;  // only the first pair: children differ from their parents
     if (!roots && !lcd_overlap(na.box, nb.box, offset)) continue;
-    const bool leaf_a = na.left < 0, leaf_b = nb.left < 0;
-    if (leaf_a && leaf_b) {
-      for (std::uint32_t i = na.first; i < na.first + na.count; ++i)
-        for (std::uint32_t j = nb.first; j < nb.first + nb.count; ++j)
-          on_pair(static_cast<std::int32_t>(cluster_organs[i]), static_cast<std::int32_t>(cluster_organs[j]));
+    const bool split_a = na.left >= 0 && na.count > kBlockOrgans, split_b = nb.left >= 0 && nb.count > kBlockOrgans;
+    if (!split_a && !split_b) {
+      on_block(na, nb);
       continue;
     }
     if (top + 2 > kStack) continue;  // trees of this depth do not occur (2^32 organs per cluster)
-    if (!leaf_a && (leaf_b || na.count >= nb.count)) {
+    if (split_a && (!split_b || na.count >= nb.count)) {
       stack[top][0] = static_cast<std::uint32_t>(na.left), stack[top][1] = ib, ++top;
       stack[top][0] = static_cast<std::uint32_t>(na.right), stack[top][1] = ib, ++top;
     } else {

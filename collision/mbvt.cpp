@@ -207,14 +207,17 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
     m.obbs[i] = make_obb(s.transforms[i], lib.get(r.prototype, r.lod).box, m.config.clearance);
   }
   const std::size_t np = m.plants.size();
+  lay_out_lanes(m.lanes, m);
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t p = 0; p < np; ++p) {
     PlantBound& pb = m.plants[p];
     for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) {
       fit_cluster_axis(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), m.clusters[c]);
       fit_cluster(m, m.clusters[c]);
+      fill_organ_lanes(m.lanes, m, c);
     }
     fit_plant(m, pb);
+    fill_cluster_lanes(m.lanes, m, static_cast<std::uint32_t>(p));
   }
   m.max_radius = 0;
   for (const PlantBound& pb : m.plants) m.max_radius = std::max(m.max_radius, pb.radius);
@@ -245,8 +248,12 @@ void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vecto
   for (std::ptrdiff_t p = 0; p < np; ++p) {
     if (!plant_dirty[static_cast<std::size_t>(p)]) continue;
     PlantBound& pb = m.plants[static_cast<std::size_t>(p)];
-    for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) fit_cluster(m, m.clusters[c]);
+    for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) {
+      fit_cluster(m, m.clusters[c]);
+      fill_organ_lanes(m.lanes, m, c);
+    }
     fit_plant(m, pb);
+    fill_cluster_lanes(m.lanes, m, static_cast<std::uint32_t>(p));
     radius = std::max(radius, pb.radius);
   }
   m.max_radius = radius;

@@ -6,6 +6,7 @@
 /// internodes, trusses, fruit), so those take part like any other organ. Bounds are in each
 /// plant's frame (origin excluded); tests between plants add the origin difference.
 #include "collision/contacts.hpp"
+#include "collision/organ_lanes.hpp"
 #include "geometry/lcd.hpp"
 #include "geometry/first_touch.hpp"
 #include "geometry/obb.hpp"
@@ -63,6 +64,7 @@ struct Mbvt {
   std::vector<LcdNode> nodes;
   std::vector<PlantBound> plants;
   float max_radius = 0;
+  OrganLanes lanes;  // the organs' axis-aligned boxes in lanes: the host's (fit_mbvt, refit_mbvt)
 };
 
 /// Builds the tree from the stand (never from meshes): its shape, then its boxes.
@@ -72,10 +74,11 @@ Mbvt build_mbvt(const Stand& stand, PrototypeLibrary& lib, const MbvtConfig& con
 /// (boxes, axes and bounds left empty). The CUDA backend fits the boxes on the device.
 Mbvt build_mbvt_topology(const Stand& stand, const MbvtConfig& config);
 /// The boxes of a tree from its shape: every organ's OBB, every cluster's LCD axis (from its
-/// first organ towards the mean of its organs) and node boxes, every plant's bound.
+/// first organ towards the mean of its organs) and node boxes, every plant's bound, and the
+/// organs' axis-aligned boxes in lanes.
 void fit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib);
-/// After organs turned: new OBBs for `organs` (ids) and new boxes for their clusters and plants,
-/// with the tree's shape and axes kept: a transform per organ, not a rebuild.
+/// After organs turned: new OBBs for `organs` (ids) and new boxes for their clusters and plants
+/// (lanes included), with the tree's shape and axes kept: a transform per organ, not a rebuild.
 void refit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs);
 
 /// The organ pair (a, b) and the offset that carries b's plant frame into a's.

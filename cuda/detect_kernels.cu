@@ -3,6 +3,7 @@
 #include "collision/contacts.hpp"
 #include "collision/lcd_descent.hpp"
 #include "collision/mbvt_fit.hpp"
+#include "collision/organ_blocks.hpp"
 #include "cuda/append.cuh"
 #include "cuda/check.hpp"
 #include "cuda/detect_kernels.hpp"
@@ -68,14 +69,16 @@ __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const Clus
   const ClusterPair cp = pairs[k];
   const WorkItem it = work[cp.work];
   const Cluster ca = v.clusters[cp.a], cb = v.clusters[cp.b];
+  // The host keeps these boxes in lanes; here each is made from its OBB when asked for, by the
+  // same function (the same bits).
+  const auto box_of = [&](std::uint32_t pos) { return obb_aabb(v.obbs[v.cluster_organs[pos]]); };
+  const auto on_pair = [&](std::int32_t a, std::int32_t b) { organ_pair(v, a, b, it, out, capacity, c); };
   if (cp.a == cp.b) {
-    for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
-      for (std::uint32_t y = x + 1; y < ca.first + ca.count; ++y)
-        organ_pair(v, static_cast<std::int32_t>(v.cluster_organs[x]), static_cast<std::int32_t>(v.cluster_organs[y]), it, out, capacity, c);
+    own_pairs(v.cluster_organs, ca.first, ca.count, box_of, on_pair);
     return;
   }
-  descend_lcd_trees(v.nodes, v.cluster_organs, ca.root, cb.root, it.offset,
-                    [&](std::int32_t a, std::int32_t b) { organ_pair(v, a, b, it, out, capacity, c); });
+  descend_lcd_trees(v.nodes, ca.root, cb.root, it.offset,
+                    [&](const LcdNode& na, const LcdNode& nb) { block_pairs(v.cluster_organs, na, nb, it.offset, box_of, on_pair); });
 }
 
 __global__ void count_pairs_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, Counters* c) {

@@ -70,6 +70,18 @@ CANOPY_HD inline Obb grown(Obb o, float by) {
   return o;
 }
 
+/// The axis-aligned box around an OBB (its centre plus or minus the axes' reach along x, y and
+/// z), grown by the bounds' rounding slack so that it holds every point the OBB holds: the
+/// organ-pair stage's pre-test (collision/organ_blocks.hpp). A NaN box meets nothing.
+CANOPY_HD inline Box3f obb_aabb(const Obb& o) {
+  const float ex = fabsf(o.axis[0].x) * o.half[0] + fabsf(o.axis[1].x) * o.half[1] + fabsf(o.axis[2].x) * o.half[2];
+  const float ey = fabsf(o.axis[0].y) * o.half[0] + fabsf(o.axis[1].y) * o.half[1] + fabsf(o.axis[2].y) * o.half[2];
+  const float ez = fabsf(o.axis[0].z) * o.half[0] + fabsf(o.axis[1].z) * o.half[1] + fabsf(o.axis[2].z) * o.half[2];
+  const float size = fabsf(o.centre.x) + fabsf(o.centre.y) + fabsf(o.centre.z) + ex + ey + ez;
+  const float s = kBoundRelSlack * size + kBoundAbsSlack;
+  return Box3f{{o.centre.x - ex - s, o.centre.y - ey - s, o.centre.z - ez - s}, {o.centre.x + ex + s, o.centre.y + ey + s, o.centre.z + ez + s}};
+}
+
 /// Corner i (0-7) of an OBB: bit k of i picks the + side of axis k.
 CANOPY_HD inline Vec3f obb_corner(const Obb& o, int i) {
   const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1],

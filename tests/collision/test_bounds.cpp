@@ -6,6 +6,7 @@
 #include "helpers.hpp"
 
 #include <cmath>
+#include <cstring>
 
 using namespace canopy;
 using namespace canopy::test;
@@ -135,14 +136,21 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
   const auto inside = [](Vec3f v, const Box3f& b) {
     return v.x >= b.lo.x && v.x <= b.hi.x && v.y >= b.lo.y && v.y <= b.hi.y && v.z >= b.lo.z && v.z <= b.hi.z;
   };
-  for (const Cluster& c : m.clusters)
+  for (std::uint32_t ci = 0; ci < m.clusters.size(); ++ci) {
+    const Cluster& c = m.clusters[ci];
+    const PlantBound& pb = m.plants[static_cast<std::size_t>(c.plant)];
+    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x == c.box.lo.x);
     for (std::uint32_t k = c.first; k < c.first + c.count; ++k) {
       organ_mesh(s, m.cluster_organs[k], lib, mesh, true);
+      const Box3f organ_box = m.lanes.organs.get(m.lanes.organ_first[ci] + (k - c.first));
       for (const Vec3f& v : mesh.positions) {
         CHECK(inside(v, c.box));
-        CHECK(inside(v, m.plants[static_cast<std::size_t>(c.plant)].box));
+        CHECK(inside(v, pb.box));
+        CHECK(inside(v, organ_box));  // the organ's axis-aligned box in its lane (obb_aabb)
+        CHECK(inside(v, m.lanes.around[ci]));
       }
     }
+  }
   for (std::size_t id = 0; id < s.organ_count(); ++id) {
     organ_mesh(s, id, lib, mesh, true);
     const Obb& o = m.obbs[id];
@@ -205,6 +213,17 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
   refit_mbvt(m, s, lib, moved);
   const Mbvt fresh = build_mbvt(s, lib, MbvtConfig{});
   for (std::uint32_t id : moved) CHECK(m.obbs[id].centre.x == fresh.obbs[id].centre.x);
+  // Organ lanes are made from the OBBs alone: the refit's are the rebuild's, bit for bit.
+  CHECK(m.lanes.organ_first == fresh.lanes.organ_first);
+  for (const auto& [x, y] : {std::pair{&m.lanes.organs.lo_x, &fresh.lanes.organs.lo_x}, {&m.lanes.organs.hi_y, &fresh.lanes.organs.hi_y},
+                             {&m.lanes.organs.hi_z, &fresh.lanes.organs.hi_z}})
+    CHECK(std::memcmp(x->data(), y->data(), x->size() * sizeof(float)) == 0);
+  for (std::size_t c = 0; c < m.clusters.size(); ++c) {
+    CHECK(m.lanes.around[c].lo.y == fresh.lanes.around[c].lo.y);
+    const PlantBound& pb = m.plants[static_cast<std::size_t>(m.clusters[c].plant)];
+    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster)).hi.z ==
+          m.clusters[c].box.hi.z);
+  }
   // Boxes contain what they must (axes kept from the first build, so not equal to the fresh ones).
   OrganMesh mesh;
   for (std::uint32_t id : moved) {

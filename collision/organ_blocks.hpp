@@ -1,0 +1,42 @@
+#pragma once
+/// Which organ pairs of a block (two nodes handed over by descend_lcd_trees, or one cluster with
+/// itself) go on to the adjacency and OBB tests: those whose organs' axis-aligned boxes
+/// (obb_aabb) meet. This is the definition both backends keep, written once here (CANOPY_HD):
+/// the CUDA organ-pairs kernel runs it as it stands, the CPU backend runs the same box test on 8
+/// pairs at once over boxes kept in lanes (collision/organ_rows.hpp), and the tests hold the two
+/// to the same pairs.
+#include "collision/mbvt.hpp"
+#include "collision/mbvt_fit.hpp"
+#include "geometry/hd.hpp"
+#include "geometry/obb.hpp"
+
+#include <cstdint>
+
+namespace canopy {
+
+/// Calls on_pair(organ_a, organ_b) for organ x under node na and y under nb (positions in
+/// cluster_organs) whose boxes meet, b's moved by `offset`; box_of(position) gives an organ's box.
+template <typename BoxOf, typename OnPair>
+CANOPY_HD inline void block_pairs(const std::uint32_t* cluster_organs, const LcdNode& na, const LcdNode& nb, Vec3f offset,
+                                  BoxOf&& box_of, OnPair&& on_pair) {
+  for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
+    const Box3f bx = box_of(x);
+    for (std::uint32_t y = nb.first; y < nb.first + nb.count; ++y)
+      if (boxes_meet(bx, box_of(y), offset))
+        on_pair(static_cast<std::int32_t>(cluster_organs[x]), static_cast<std::int32_t>(cluster_organs[y]));
+  }
+}
+
+/// The same for the pairs x < y of one cluster's organs (positions first .. first + count).
+template <typename BoxOf, typename OnPair>
+CANOPY_HD inline void own_pairs(const std::uint32_t* cluster_organs, std::uint32_t first, std::uint32_t count, BoxOf&& box_of,
+                                OnPair&& on_pair) {
+  for (std::uint32_t x = first; x < first + count; ++x) {
+    const Box3f bx = box_of(x);
+    for (std::uint32_t y = x + 1; y < first + count; ++y)
+      if (boxes_meet(bx, box_of(y), Vec3f{0, 0, 0}))
+        on_pair(static_cast<std::int32_t>(cluster_organs[x]), static_cast<std::int32_t>(cluster_organs[y]));
+  }
+}
+
+}  // namespace canopy

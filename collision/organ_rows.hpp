@@ -1,0 +1,99 @@
+#pragma once
+/// The CPU backend's form of collision/organ_blocks.hpp: the same pairs (organ boxes that meet,
+/// boxes_meet's very comparisons), found 8 at a time over the boxes kept in lanes
+/// (collision/organ_lanes.hpp) with GCC vector extensions. A row (one organ of a against b's
+/// organs) is skipped where the organ's box misses the box around b's organs, which it then
+/// misses one by one too (exactly: that box is their least lo and greatest hi). Host only: nvcc
+/// never reads this file.
+#include "collision/mbvt.hpp"
+#include "collision/mbvt_fit.hpp"
+#include "collision/organ_lanes.hpp"
+
+#include <cstdint>
+#include <cstring>
+
+namespace canopy {
+
+namespace lanes_detail {
+typedef float F8 __attribute__((vector_size(32)));
+typedef int I8 __attribute__((vector_size(32)));
+inline F8 load8(const float* p) {
+  F8 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline unsigned bits8(I8 m) {
+#if defined(__AVX__)
+  return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<F8>(m)));
+#else
+  unsigned b = 0;
+  for (int t = 0; t < 8; ++t) b |= static_cast<unsigned>(m[t] & 1) << t;
+  return b;
+#endif
+}
+}  // namespace lanes_detail
+
+/// Bit t set where boxes_meet(box, box of lane `lane + t`, offset) holds.
+inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f& box, Vec3f offset) {
+  using namespace lanes_detail;
+  const I8 meet = (box.lo.x <= load8(&l.hi_x[lane]) + offset.x) & (load8(&l.lo_x[lane]) + offset.x <= box.hi.x) &
+                  (box.lo.y <= load8(&l.hi_y[lane]) + offset.y) & (load8(&l.lo_y[lane]) + offset.y <= box.hi.y) &
+                  (box.lo.z <= load8(&l.hi_z[lane]) + offset.z) & (load8(&l.lo_z[lane]) + offset.z <= box.hi.z);
+  return bits8(meet);
+}
+
+/// block_pairs over lanes: organs under node na of cluster ca (index ia) against those under nb
+/// of cluster cb (index ib).
+template <typename OnPair>
+inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ia, const Cluster& ca,
+                             const LcdNode& na, std::uint32_t ib, const Cluster& cb, const LcdNode& nb, Vec3f offset,
+                             OnPair&& on_pair) {
+  const Box3f around_b = l.around[ib];
+  const std::uint32_t lb = l.organ_first[ib] + (nb.first - cb.first);
+  for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
+    const Box3f bx = l.organs.get(l.organ_first[ia] + (x - ca.first));
+    if (!boxes_meet(bx, around_b, offset)) continue;
+    for (std::uint32_t y0 = 0; y0 < nb.count; y0 += OrganLanes::kWidth) {
+      unsigned mask = lanes_meeting(l.organs, lb + y0, bx, offset);
+      if (nb.count - y0 < OrganLanes::kWidth) mask &= (1u << (nb.count - y0)) - 1;
+      for (; mask; mask &= mask - 1) {
+        const std::uint32_t y = nb.first + y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
+        on_pair(static_cast<std::int32_t>(cluster_organs[x]), static_cast<std::int32_t>(cluster_organs[y]));
+      }
+    }
+  }
+}
+
+/// Calls on_cluster(j) for plant q's clusters j (global indices) from its local index `from` on
+/// whose boxes meet `box` (boxes_meet(box, cluster j's box, offset)), in order.
+template <typename OnCluster>
+inline void lane_clusters_meeting(const OrganLanes& l, const PlantBound& pb, std::uint32_t q, std::uint32_t from, const Box3f& box,
+                                  Vec3f offset, OnCluster&& on_cluster) {
+  const std::uint32_t l0 = l.cluster_first[q];
+  for (std::uint32_t k0 = from / OrganLanes::kWidth * OrganLanes::kWidth; k0 < pb.cluster_count; k0 += OrganLanes::kWidth) {
+    unsigned mask = lanes_meeting(l.clusters, l0 + k0, box, offset);
+    if (k0 < from) mask &= ~0u << (from - k0);
+    if (pb.cluster_count - k0 < OrganLanes::kWidth) mask &= (1u << (pb.cluster_count - k0)) - 1;
+    for (; mask; mask &= mask - 1) on_cluster(pb.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
+  }
+}
+
+/// own_pairs over lanes: the pairs x < y of cluster c's organs (index ic).
+template <typename OnPair>
+inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ic, const Cluster& c,
+                           OnPair&& on_pair) {
+  const std::uint32_t l0 = l.organ_first[ic];
+  for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
+    const Box3f bx = l.organs.get(l0 + x);
+    for (std::uint32_t y0 = x + 1; y0 < c.count; y0 += OrganLanes::kWidth) {
+      unsigned mask = lanes_meeting(l.organs, l0 + y0, bx, Vec3f{0, 0, 0});
+      if (c.count - y0 < OrganLanes::kWidth) mask &= (1u << (c.count - y0)) - 1;
+      for (; mask; mask &= mask - 1) {
+        const std::uint32_t y = y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
+        on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]), static_cast<std::int32_t>(cluster_organs[c.first + y]));
+      }
+    }
+  }
+}
+
+}  // namespace canopy
