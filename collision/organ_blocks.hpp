@@ -2,9 +2,10 @@
 /// Which organ pairs of a block (two nodes handed over by descend_lcd_trees, or one cluster with
 /// itself) go on to the adjacency and OBB tests: those whose organs' axis-aligned boxes
 /// (obb_aabb) meet. This is the definition both backends keep, written once here (CANOPY_HD):
-/// the CUDA organ-pairs kernel runs it as it stands, the CPU backend runs the same box test on 8
-/// pairs at once over boxes kept in lanes (collision/organ_rows.hpp), and the tests hold the two
-/// to the same pairs.
+/// the CPU backend runs the same box test on 8 pairs at once over boxes kept in lanes
+/// (collision/organ_rows.hpp), the CUDA organ-pairs kernel the same conjunction (boxes meet, not
+/// adjacent, OBBs overlap) with the boxes tested last, and the tests hold all of them to the same
+/// pairs (tests/collision/test_organ_rows.cpp, tests/cuda).
 #include "collision/mbvt.hpp"
 #include "collision/mbvt_fit.hpp"
 #include "geometry/hd.hpp"
@@ -14,20 +15,27 @@
 
 namespace canopy {
 
+/// The box around the organ boxes under node n: their least lo and greatest hi, an organ's value
+/// first so that a NaN one leaves it as it was. An organ box that misses it misses each of them,
+/// exactly, so a row of a block whose box misses it is passed over whole without changing which
+/// pairs come out.
+template <typename BoxOf>
+CANOPY_HD inline Box3f box_around(const LcdNode& n, BoxOf&& box_of) {
+  Box3f around{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}};
+  for (std::uint32_t y = n.first; y < n.first + n.count; ++y) {
+    const Box3f by = box_of(y);
+    around.lo = {min_f(by.lo.x, around.lo.x), min_f(by.lo.y, around.lo.y), min_f(by.lo.z, around.lo.z)};
+    around.hi = {max_f(by.hi.x, around.hi.x), max_f(by.hi.y, around.hi.y), max_f(by.hi.z, around.hi.z)};
+  }
+  return around;
+}
+
 /// Calls on_pair(organ_a, organ_b) for organ x under node na and y under nb (positions in
 /// cluster_organs) whose boxes meet, b's moved by `offset`; box_of(position) gives an organ's box.
 template <typename BoxOf, typename OnPair>
 CANOPY_HD inline void block_pairs(const std::uint32_t* cluster_organs, const LcdNode& na, const LcdNode& nb, Vec3f offset,
                                   BoxOf&& box_of, OnPair&& on_pair) {
-  // The box around b's organs' boxes (their least lo and greatest hi, an organ's value first so
-  // that a NaN one leaves it as it was): an organ box that misses it misses each of them, exactly,
-  // so such a row is passed over whole without changing which pairs come out.
-  Box3f around{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}};
-  for (std::uint32_t y = nb.first; y < nb.first + nb.count; ++y) {
-    const Box3f by = box_of(y);
-    around.lo = {min_f(by.lo.x, around.lo.x), min_f(by.lo.y, around.lo.y), min_f(by.lo.z, around.lo.z)};
-    around.hi = {max_f(by.hi.x, around.hi.x), max_f(by.hi.y, around.hi.y), max_f(by.hi.z, around.hi.z)};
-  }
+  const Box3f around = box_around(nb, box_of);
   for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
     const Box3f bx = box_of(x);
     if (!boxes_meet(bx, around, offset)) continue;

@@ -55,13 +55,6 @@ __global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uin
   if (found) atomicAdd(it.p == it.q ? &c->within : &c->between, found);
 }
 
-__device__ void organ_pair(const StandView& v, std::int32_t a, std::int32_t b, const WorkItem& it, std::uint64_t* out,
-                           unsigned long long capacity, Counters* c) {
-  if (adjacent(v.organs[a], a, v.organs[b], b)) return;
-  if (!obb_overlap(v.obbs[a], v.obbs[b], it.offset)) return;
-  append(out, capacity, c, pair_key(static_cast<std::uint32_t>(a < b ? a : b), static_cast<std::uint32_t>(a < b ? b : a)));
-}
-
 __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n,
                                    std::uint64_t* out, unsigned long long capacity, Counters* c) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
@@ -69,16 +62,29 @@ __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const Clus
   const ClusterPair cp = pairs[k];
   const WorkItem it = work[cp.work];
   const Cluster ca = v.clusters[cp.a], cb = v.clusters[cp.b];
-  // The host keeps these boxes in lanes; here each is made from its OBB when asked for, by the
-  // same function (the same bits).
+  // The pairs of collision/organ_blocks.hpp (organ boxes that meet), then not adjacent and OBBs
+  // overlapping, as on the host: one conjunction, tested here in the order cheapest on the device,
+  // the organ boxes last (each made from its OBB when asked for, by the host's function: the same
+  // bits as the host's lanes), as most pairs fail the OBB test's sphere step on data it loads anyway.
   const auto box_of = [&](std::uint32_t pos) { return obb_aabb(v.obbs[v.cluster_organs[pos]]); };
-  const auto on_pair = [&](std::int32_t a, std::int32_t b) { organ_pair(v, a, b, it, out, capacity, c); };
+  const auto test = [&](std::uint32_t x, std::uint32_t y) {
+    const auto a = static_cast<std::int32_t>(v.cluster_organs[x]), b = static_cast<std::int32_t>(v.cluster_organs[y]);
+    if (adjacent(v.organs[a], a, v.organs[b], b) || !obb_overlap(v.obbs[a], v.obbs[b], it.offset)) return;
+    if (!boxes_meet(box_of(x), box_of(y), it.offset)) return;
+    append(out, capacity, c, pair_key(static_cast<std::uint32_t>(a < b ? a : b), static_cast<std::uint32_t>(a < b ? b : a)));
+  };
   if (cp.a == cp.b) {
-    own_pairs(v.cluster_organs, ca.first, ca.count, box_of, on_pair);
+    for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
+      for (std::uint32_t y = x + 1; y < ca.first + ca.count; ++y) test(x, y);
     return;
   }
-  descend_lcd_trees(v.nodes, ca.root, cb.root, it.offset,
-                    [&](const LcdNode& na, const LcdNode& nb) { block_pairs(v.cluster_organs, na, nb, it.offset, box_of, on_pair); });
+  descend_lcd_trees(v.nodes, ca.root, cb.root, it.offset, [&](const LcdNode& na, const LcdNode& nb) {
+    const Box3f around = box_around(nb, box_of);  // rows whose box misses it hold no pair (block_pairs)
+    for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
+      if (!boxes_meet(box_of(x), around, it.offset)) continue;
+      for (std::uint32_t y = nb.first; y < nb.first + nb.count; ++y) test(x, y);
+    }
+  });
 }
 
 __global__ void count_pairs_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, Counters* c) {
