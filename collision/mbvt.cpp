@@ -233,6 +233,8 @@ void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vecto
   // The moved organs' boxes, then the plants that hold one, each on all threads (a resolution
   // round moves organs in most plants of a stand). Their meshes were made by build_mbvt with
   // this library.
+  if (m.lanes.organ_first.size() != m.clusters.size())
+    throw std::logic_error("refit_mbvt: the tree's boxes were never fit on the host (build_mbvt or fit_mbvt first)");
   std::vector<std::uint8_t> plant_dirty(m.plants.size(), 0);
   const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(organs.size());
 #pragma omp parallel for schedule(static)
