@@ -221,8 +221,14 @@ class CpuBackend : public DetectionBackend {
     {
       ExactScratch scratch;
 #pragma omp for schedule(dynamic, 64)
-      for (std::size_t i = 0; i < organ.size(); ++i)
+      for (std::size_t i = 0; i < organ.size(); ++i) {
+        if (i + 4 < organ.size()) {
+          const auto b = static_cast<std::size_t>(organ[i + 4].organ_b);
+          __builtin_prefetch(&s.transforms[b]);
+          __builtin_prefetch(&s.organs[b]);
+        }
         hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch) ? 1 : 0;
+      }
     }
     out.pairs = keep_hits(organ, hit);
     out.counts[3] = count_pairs(out.pairs);
