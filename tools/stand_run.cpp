@@ -39,14 +39,24 @@ std::set<std::string> parse_formats(const std::string& list) {
   return formats;
 }
 
+namespace {
+
+// The mesh files' names, written by write_stand_files and looked for by remove_stale_meshes.
+constexpr const char* kGlbFile = "stand.glb";
+constexpr const char* kObjFile = "stand.obj";
+constexpr const char* kMtlFile = "stand.mtl";  // the OBJ's material library, beside it
+constexpr const char* kPlyFile = "stand.ply";
+
+}  // namespace
+
 void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
                        const OpenChunks& open) {
-  if (formats.count("glb")) write_glb(scope, lib, open("stand.glb"));
+  if (formats.count("glb")) write_glb(scope, lib, open(kGlbFile));
   if (formats.count("obj")) {
-    ChunkWriter& obj = open("stand.obj");
-    write_obj(scope, lib, obj, open("stand.mtl"), "stand.mtl");
+    ChunkWriter& obj = open(kObjFile);
+    write_obj(scope, lib, obj, open(kMtlFile), kMtlFile);
   }
-  if (formats.count("ply")) write_ply(scope, lib, open("stand.ply"));
+  if (formats.count("ply")) write_ply(scope, lib, open(kPlyFile));
   write_organs_csv(scope, lib, open("organs.csv"));
   write_plants_csv(scope, open("plants.csv"));
 }
@@ -54,7 +64,7 @@ void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const st
 void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
                        OutputSet& files) {
   std::set<std::string> chunked = formats;
-  if (glb_instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open("stand.glb"));
+  if (glb_instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open(kGlbFile));
   std::deque<ChunkFile> opened;
   write_stand_files(ExportScope::whole(stand), lib, chunked,
                     [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); });
@@ -62,7 +72,7 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
 
 std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats) {
   std::vector<std::string> removed;
-  const std::pair<const char*, const char*> files[] = {{"glb", "stand.glb"}, {"obj", "stand.obj"}, {"obj", "stand.mtl"}, {"ply", "stand.ply"}};
+  const std::pair<const char*, const char*> files[] = {{"glb", kGlbFile}, {"obj", kObjFile}, {"obj", kMtlFile}, {"ply", kPlyFile}};
   for (const auto& [format, name] : files) {
     if (formats.count(format)) continue;
     std::error_code ec;
