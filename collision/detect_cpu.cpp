@@ -151,6 +151,10 @@ class CpuBackend : public DetectionBackend {
     // A collector per thread (the lists are sorted afterwards, so which thread found a pair
     // does not show in the answer).
     std::vector<Collector> per(static_cast<std::size_t>(threads));
+    for (Collector& col : per) {
+      col.keep_leaves = req.level == ContactLevel::leaf;
+      col.moved = req.moved_organs;
+    }
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (std::size_t w = 0; w < work.size(); ++w) {
       const auto [p, q] = work[w];
@@ -159,8 +163,6 @@ class CpuBackend : public DetectionBackend {
       const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
       const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
       Collector& col = per[static_cast<std::size_t>(omp_get_thread_num())];
-      col.keep_leaves = req.level == ContactLevel::leaf;
-      col.moved = req.moved_organs;
       for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
         const Cluster& ca = m.clusters[i];
         // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the

@@ -15,18 +15,23 @@
 
 namespace canopy {
 
-/// The box around the organ boxes under node n: their least lo and greatest hi, an organ's value
-/// first so that a NaN one leaves it as it was. An organ box that misses it misses each of them,
-/// exactly, so a row of a block whose box misses it is passed over whole without changing which
-/// pairs come out.
+/// A box that meets nothing, to grow boxes around others from.
+CANOPY_HD inline Box3f empty_box() { return Box3f{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}}; }
+
+/// Grows `around` to hold box b: the least lo and greatest hi, b's value first so that a NaN one
+/// leaves `around` as it was. An organ box that misses a box grown around others misses each of
+/// them, exactly.
+CANOPY_HD inline void grow_around(Box3f& around, const Box3f& b) {
+  around.lo = {min_f(b.lo.x, around.lo.x), min_f(b.lo.y, around.lo.y), min_f(b.lo.z, around.lo.z)};
+  around.hi = {max_f(b.hi.x, around.hi.x), max_f(b.hi.y, around.hi.y), max_f(b.hi.z, around.hi.z)};
+}
+
+/// The box around the organ boxes under node n (grow_around): a row of a block whose box misses
+/// it is passed over whole without changing which pairs come out.
 template <typename BoxOf>
 CANOPY_HD inline Box3f box_around(const LcdNode& n, BoxOf&& box_of) {
-  Box3f around{{3e38f, 3e38f, 3e38f}, {-3e38f, -3e38f, -3e38f}};
-  for (std::uint32_t y = n.first; y < n.first + n.count; ++y) {
-    const Box3f by = box_of(y);
-    around.lo = {min_f(by.lo.x, around.lo.x), min_f(by.lo.y, around.lo.y), min_f(by.lo.z, around.lo.z)};
-    around.hi = {max_f(by.hi.x, around.hi.x), max_f(by.hi.y, around.hi.y), max_f(by.hi.z, around.hi.z)};
-  }
+  Box3f around = empty_box();
+  for (std::uint32_t y = n.first; y < n.first + n.count; ++y) grow_around(around, box_of(y));
   return around;
 }
 

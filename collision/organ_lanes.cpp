@@ -1,14 +1,12 @@
 #include "collision/organ_lanes.hpp"
 
 #include "collision/mbvt.hpp"
+#include "collision/organ_blocks.hpp"
 #include "geometry/obb.hpp"
 
 namespace canopy {
 
 namespace {
-
-constexpr float kEmptyLo = 3e38f, kEmptyHi = -3e38f;  // an empty box: meets nothing
-constexpr Box3f kEmpty{{kEmptyLo, kEmptyLo, kEmptyLo}, {kEmptyHi, kEmptyHi, kEmptyHi}};
 
 /// Prefix sums of `count(k)` rounded up to whole lanes of 8; returns the lanes needed.
 template <typename Count>
@@ -26,25 +24,24 @@ std::size_t lay_out(std::vector<std::uint32_t>& first, std::size_t n, Count coun
 }  // namespace
 
 void BoxLanes::assign_empty(std::size_t lanes) {
-  for (auto* v : {&lo_x, &lo_y, &lo_z}) v->assign(lanes, kEmptyLo);
-  for (auto* v : {&hi_x, &hi_y, &hi_z}) v->assign(lanes, kEmptyHi);
+  const Box3f e = empty_box();
+  for (auto* v : {&lo_x, &lo_y, &lo_z}) v->assign(lanes, e.lo.x);
+  for (auto* v : {&hi_x, &hi_y, &hi_z}) v->assign(lanes, e.hi.x);
 }
 
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {
   lanes.organs.assign_empty(lay_out(lanes.organ_first, m.clusters.size(), [&](std::size_t c) { return m.clusters[c].count; }));
-  lanes.around.assign(m.clusters.size(), kEmpty);
+  lanes.around.assign(m.clusters.size(), empty_box());
   lanes.clusters.assign_empty(lay_out(lanes.cluster_first, m.plants.size(), [&](std::size_t p) { return m.plants[p].cluster_count; }));
 }
 
 void fill_organ_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t c) {
   const Cluster& cl = m.clusters[c];
-  Box3f around = kEmpty;
+  Box3f around = empty_box();
   for (std::uint32_t k = 0; k < cl.count; ++k) {
     const Box3f b = obb_aabb(m.obbs[m.cluster_organs[cl.first + k]]);
     lanes.organs.set(lanes.organ_first[c] + k, b);
-    // The organ's value first: a NaN one (never met by anything) leaves the box as it was.
-    around.lo = {min_f(b.lo.x, around.lo.x), min_f(b.lo.y, around.lo.y), min_f(b.lo.z, around.lo.z)};
-    around.hi = {max_f(b.hi.x, around.hi.x), max_f(b.hi.y, around.hi.y), max_f(b.hi.z, around.hi.z)};
+    grow_around(around, b);
   }
   lanes.around[c] = around;
 }
