@@ -48,7 +48,8 @@ void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, V
   // offset_ab moves b into a's plant frame when a is the lower organ; callers pass organs of
   // one plant pair with the lower plant's organ first.
   if (out.moved && !(*out.moved)[static_cast<std::size_t>(a)] && !(*out.moved)[static_cast<std::size_t>(b)]) return;
-  if (adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return;
+  // Organs of two plants are never adjacent: their records are left unread.
+  if (plant_a == plant_b && adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return;
   if (!obb_overlap(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)], offset_ab)) return;
   Contact c;
   c.organ_a = std::min(a, b), c.organ_b = std::max(a, b);
@@ -72,6 +73,7 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   const Cluster& c0 = m.clusters[pb.first_cluster];
   const Cluster& c1 = m.clusters[pb.first_cluster + pb.cluster_count - 1];
   lines(&m.clusters[pb.first_cluster], pb.cluster_count * sizeof(Cluster));
+  lines(&m.lanes.around[pb.first_cluster], pb.cluster_count * sizeof(Box3f));
   lines(&m.nodes[c0.first_node], (c1.first_node + c1.node_count - c0.first_node) * sizeof(LcdNode));
   const OrganLanes& l = m.lanes;
   const auto lanes = [&](const BoxLanes& b, std::size_t l0, std::size_t l1) {

@@ -9,6 +9,7 @@
 #include "collision/mbvt_fit.hpp"
 #include "collision/organ_lanes.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -43,23 +44,44 @@ inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f
 }
 
 /// block_pairs over lanes: organs under node na of cluster ca (index ia) against those under nb
-/// of cluster cb (index ib).
+/// of cluster cb (index ib). Both sides are sifted 8 at a time first, each organ's box against
+/// the box around the other cluster's organs (l.around): an organ that misses it misses each of
+/// them too, exactly, as that box is their least lo and greatest hi and b's side is compared in
+/// the very sums of the pair test (a's side against around's hi + offset, which is not below
+/// any of b's hi + offset). Only the rows left are tested against b's lanes left, so a
+/// compound-leaf pair whose leaves barely cross costs a few vector tests rather than a row per
+/// organ. a's side goes in slices of 64 organs (a bit each).
 template <typename OnPair>
 inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ia, const Cluster& ca,
                              const LcdNode& na, std::uint32_t ib, const Cluster& cb, const LcdNode& nb, Vec3f offset,
                              OnPair&& on_pair) {
+  constexpr std::uint32_t kW = OrganLanes::kWidth, kSlice = 64;
+  const auto in_range = [](std::uint32_t count, std::uint32_t at) {
+    return count - at < kW ? (1u << (count - at)) - 1 : 0xffu;
+  };
+  const Box3f around_a = l.around[ia];
   const Box3f around_b = l.around[ib];
+  const Box3f b_moved{around_b.lo + offset, around_b.hi + offset};
+  const std::uint32_t la = l.organ_first[ia] + (na.first - ca.first);
   const std::uint32_t lb = l.organ_first[ib] + (nb.first - cb.first);
-  for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
-    const Box3f bx = l.organs.get(l.organ_first[ia] + (x - ca.first));
-    if (!boxes_meet(bx, around_b, offset)) continue;
-    for (std::uint32_t y0 = 0; y0 < nb.count; y0 += OrganLanes::kWidth) {
-      unsigned mask = lanes_meeting(l.organs, lb + y0, bx, offset);
-      if (nb.count - y0 < OrganLanes::kWidth) mask &= (1u << (nb.count - y0)) - 1;
-      for (; mask; mask &= mask - 1) {
-        const std::uint32_t y = nb.first + y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
-        on_pair(static_cast<std::int32_t>(cluster_organs[x]), static_cast<std::int32_t>(cluster_organs[y]));
-      }
+  for (std::uint32_t xs = 0; xs < na.count; xs += kSlice) {
+    const std::uint32_t x_end = std::min(na.count, xs + kSlice);
+    unsigned rows[kSlice / kW];
+    unsigned any = 0;
+    for (std::uint32_t x0 = xs; x0 < x_end; x0 += kW)
+      any |= rows[(x0 - xs) / kW] = lanes_meeting(l.organs, la + x0, b_moved, Vec3f{0, 0, 0}) & in_range(x_end, x0);
+    if (!any) continue;
+    for (std::uint32_t y0 = 0; y0 < nb.count; y0 += kW) {
+      const unsigned cols = lanes_meeting(l.organs, lb + y0, around_a, offset) & in_range(nb.count, y0);
+      if (!cols) continue;
+      for (std::uint32_t x0 = xs; x0 < x_end; x0 += kW)
+        for (unsigned r = rows[(x0 - xs) / kW]; r; r &= r - 1) {
+          const std::uint32_t x = x0 + static_cast<std::uint32_t>(__builtin_ctz(r));
+          for (unsigned mask = lanes_meeting(l.organs, lb + y0, l.organs.get(la + x), offset) & cols; mask; mask &= mask - 1) {
+            const std::uint32_t y = nb.first + y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
+            on_pair(static_cast<std::int32_t>(cluster_organs[na.first + x]), static_cast<std::int32_t>(cluster_organs[y]));
+          }
+        }
     }
   }
 }

@@ -30,7 +30,7 @@ Box3f random_box(std::mt19937& g) {
 /// Every cluster pair the pass looks at (plant pairs of the plant level, clusters whose roots'
 /// LCD boxes overlap) and every cluster with itself: candidates by the shared definition and by
 /// the lanes. `blocks` counts the blocks below the clusters' roots.
-void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::size_t& blocks) {
+void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::size_t& blocks, std::uint32_t* largest = nullptr) {
   LevelCount count;
   const auto box_of = [&](std::uint32_t pos) { return obb_aabb(m.obbs[m.cluster_organs[pos]]); };
   for (const auto& [p, q] : plant_level(s, m, count)) {
@@ -50,6 +50,7 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
           if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
           descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {
             blocks += &na != &m.nodes[ca.root] || &nb != &m.nodes[cb.root];  // below a root
+            if (largest) *largest = std::max({*largest, na.count, nb.count});
             block_pairs(m.cluster_organs.data(), na, nb, offset, box_of, into(shared));
             lane_block_pairs(m.lanes, m.cluster_organs.data(), i, ca, na, j, cb, nb, offset, into(lanes));
           });
@@ -108,6 +109,7 @@ TEST_CASE("eight lanes at once give boxes_meet's answer lane by lane, touching, 
 
 TEST_CASE("organ pairs through lanes equal the shared definition on random stands, blocks below the root included") {
   std::size_t pairs = 0, blocks = 0, sub_blocks = 0;
+  std::uint32_t largest_block = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const Stand s = seed % 2 ? random_stand(seed) : row_stand(seed);
     PrototypeLibrary lib;
@@ -123,7 +125,14 @@ TEST_CASE("organ pairs through lanes equal the shared definition on random stand
     std::size_t big_blocks = 0;
     compare_candidates(s, build_mbvt(s, lib, cfg), pairs, big_blocks);
     sub_blocks += big_blocks;
+    // Every organ outside the compound leaves in one cluster and one tree leaf: blocks of more
+    // than 64 organs a side, which the lanes take in slices.
+    cfg.collide = parse_collide_kinds("all");
+    cfg.stem_cluster = 1000;
+    cfg.leaf_chunk = 1000;
+    compare_candidates(s, build_mbvt(s, lib, cfg), pairs, big_blocks, &largest_block);
   }
+  CHECK(largest_block > 64);
   CHECK(pairs > 1000);
   CHECK(blocks == 0);        // a tomato's clusters are one block each
   CHECK(sub_blocks > 1000);  // the larger clusters did descend below their roots
