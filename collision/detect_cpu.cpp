@@ -8,6 +8,7 @@
 #include "collision/exact.hpp"
 #include "collision/lcd_descent.hpp"
 #include "collision/mbvt_fit.hpp"
+#include "collision/obb_lanes.hpp"
 #include "collision/organ_rows.hpp"
 #include "geometry/organ_mesh.hpp"
 
@@ -37,9 +38,22 @@ struct Collector {
   /// Told which organs moved (a re-detection): pairs of two unmoved organs are left out here
   /// rather than tested and dropped afterwards.
   const std::vector<std::uint8_t>* moved = nullptr;
+  /// Organ pairs waiting for their OBB test, 8 at a time (collision/obb_lanes.hpp).
+  ObbBatch waiting;
   void leaf_pair(std::int32_t p, std::int32_t q, std::uint32_t i, std::uint32_t j) {
     (p == q ? leaves.within : leaves.between)++;
     if (keep_leaves) leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+  }
+  /// The waiting pairs' OBB tests; those whose OBBs overlap join the organ level.
+  void test_waiting() {
+    for (unsigned hit = waiting.overlapping(); hit; hit &= hit - 1) {
+      const int t = __builtin_ctz(hit);
+      Contact c;
+      c.organ_a = std::min(waiting.organ_a[t], waiting.organ_b[t]), c.organ_b = std::max(waiting.organ_a[t], waiting.organ_b[t]);
+      c.plant_a = waiting.plant_a[t], c.plant_b = waiting.plant_b[t];
+      organ.push_back(c);
+    }
+    waiting.size = 0;
   }
 };
 
@@ -50,11 +64,8 @@ void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, V
   if (out.moved && !(*out.moved)[static_cast<std::size_t>(a)] && !(*out.moved)[static_cast<std::size_t>(b)]) return;
   // Organs of two plants are never adjacent: their records are left unread.
   if (plant_a == plant_b && adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b)) return;
-  if (!obb_overlap(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)], offset_ab)) return;
-  Contact c;
-  c.organ_a = std::min(a, b), c.organ_b = std::max(a, b);
-  c.plant_a = plant_a, c.plant_b = plant_b;
-  out.organ.push_back(c);
+  out.waiting.add(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)], offset_ab, a, b, plant_a, plant_b);
+  if (out.waiting.full()) out.test_waiting();
 }
 
 /// Asks for plant q's boxes, organ records and lanes ahead of a work item that needs them:
@@ -189,6 +200,7 @@ class CpuBackend : public DetectionBackend {
         });
       }
     }
+    for (Collector& c : per) c.test_waiting();
     std::vector<Contact> leaf, organ;
     LevelCount leaf_count;
     std::size_t n_leaf = 0, n_organ = 0;
