@@ -105,7 +105,15 @@ class CpuBackend : public DetectionBackend {
     check_request(req);
     const double t = now();
     lib_ = std::make_unique<PrototypeLibrary>();
-    tree_ = build_mbvt(s, *lib_, mbvt_config(req));
+    // The last detection's tree is built anew in place: its arrays' memory kept (no page
+    // faults for a stand no larger than the last); one that failed half-way is dropped.
+    if (!tree_) tree_.emplace();
+    try {
+      rebuild_mbvt(*tree_, s, *lib_, mbvt_config(req));
+    } catch (...) {
+      tree_.reset();
+      throw;
+    }
     return run(s, req, now() - t);
   }
 

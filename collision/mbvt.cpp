@@ -149,9 +149,12 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
 
 }  // namespace
 
-Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
-  Mbvt m;
+namespace {
+
+/// build_mbvt_topology into `m`, whose arrays keep their memory where they are large enough.
+void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
   m.config = config;
+  m.max_radius = 0;
   const std::size_t n = s.organ_count();
   m.takes_part.resize(n);
 #pragma omp parallel for schedule(static)
@@ -167,10 +170,10 @@ Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
     o0[p + 1] = o0[p] + parts[p].organs.size();
     n0[p + 1] = n0[p] + parts[p].nodes.size();
   }
-  m.clusters.resize(c0[np]);
+  m.clusters.resize(c0[np]);  // each written in full below
   m.cluster_organs.resize(o0[np]);
   m.nodes.resize(n0[np]);
-  m.plants.resize(np);
+  m.plants.assign(np, PlantBound{});  // bounds empty until fit
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t p = 0; p < np; ++p) {
     const PlantPart& part = parts[p];
@@ -191,6 +194,13 @@ Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
     pb.first_cluster = static_cast<std::uint32_t>(c0[p]);
     pb.cluster_count = static_cast<std::uint32_t>(part.clusters.size());
   }
+}
+
+}  // namespace
+
+Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
+  Mbvt m;
+  lay_out_topology(m, s, config);
   return m;
 }
 
@@ -224,9 +234,14 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
 }
 
 Mbvt build_mbvt(const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config) {
-  Mbvt m = build_mbvt_topology(s, config);
-  fit_mbvt(m, s, lib);
+  Mbvt m;
+  rebuild_mbvt(m, s, lib, config);
   return m;
+}
+
+void rebuild_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const MbvtConfig& config) {
+  lay_out_topology(m, s, config);
+  fit_mbvt(m, s, lib);
 }
 
 void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs) {

@@ -69,6 +69,10 @@ struct Mbvt {
 
 /// Builds the tree from the stand (never from meshes): its shape, then its boxes.
 Mbvt build_mbvt(const Stand& stand, PrototypeLibrary& lib, const MbvtConfig& config);
+/// build_mbvt into an existing tree (of any stand), every box and index made anew: its arrays
+/// keep their memory where it is large enough, so a backend that detects stand after stand of
+/// one size (benchmarks, sweeps) pays the page faults of its arrays once, not at every build.
+void rebuild_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const MbvtConfig& config);
 /// The tree's shape alone, which depends on the stand's structure and not on organ poses:
 /// which organs take part, clusters, their organs and node topology, plants' cluster ranges
 /// (boxes, axes and bounds left empty). The CUDA backend fits the boxes on the device.
