@@ -149,3 +149,14 @@ TEST_CASE("plant pairs from the grid equal all pairs of overlapping bounds") {
     CHECK(plant_pairs(s, m) == want);
   }
 }
+
+TEST_CASE("one backend detecting stand after stand gives each stand's own answer") {
+  // The CPU backend builds each tree into the last one's memory.
+  auto reused = make_cpu_backend();
+  for (std::uint64_t seed : {3, 8, 5, 3}) {
+    const Stand s = seed % 2 ? random_stand(seed) : row_stand(seed);
+    DetectRequest req;
+    req.level = seed == 5 ? ContactLevel::organ : ContactLevel::exact;
+    CHECK(reused->detect(s, req).pairs == make_cpu_backend()->detect(s, req).pairs);
+  }
+}
