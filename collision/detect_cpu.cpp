@@ -1,6 +1,7 @@
 // CPU detection: plant pairs from the grid, cluster (compound-leaf) pairs by LCD boxes, organ
 // pairs by OBBs through the LCD trees (down to blocks of at most kBlockOrgans organs a side,
-// whose pairs are pre-tested 8 at a time on axis-aligned organ boxes), then the exact test;
+// whose pairs are pre-tested 8 at a time on axis-aligned organ boxes, and whose OBB tests run 8
+// pairs at a time), then the exact test;
 // inside one plant the same between its clusters (the paper's m(m-1)/2 leaf pairs, §3.4) and
 // all pairs within a cluster, with the structure tree's adjacent pairs left out.
 #include "collision/backend.hpp"

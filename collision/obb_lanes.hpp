@@ -6,7 +6,8 @@
 /// very operations in its very order (no fused multiply-add: -ffp-contract=off), so the answer
 /// is the same bit for bit; only the early exits are gone. Measured on the default 1,000-plant
 /// stand (bench/results/README.md, thirty-second session): one OBB test at a time cost about
-/// 100 ns (its branches taken one way or the other at random), more than its arithmetic.
+/// 100 ns, and computing fewer of its terms did not change that: its branches, taken one way or
+/// the other as the boxes come, cost more than its arithmetic.
 /// tests/collision/test_obb_lanes.cpp holds the two equal lane by lane. Host only: nvcc never
 /// reads this file.
 #include "collision/organ_rows.hpp"
