@@ -50,13 +50,7 @@ struct ObbBatch {
 
 inline unsigned ObbBatch::overlapping() const {
   using namespace lanes_detail;
-  typedef float V __attribute__((vector_size(32)));
-  const auto at = [](const float* p) {
-    V v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
-  };
-  const auto abs8 = [](V v) {
+  const auto abs8 = [](F8 v) {
     I8 bits;
     std::memcpy(&bits, &v, sizeof v);
     bits &= 0x7fffffff;
@@ -66,17 +60,17 @@ inline unsigned ObbBatch::overlapping() const {
   // obb_overlap's names: gap (= d) from a's centre to b's moved, reach of the spheres, r and
   // |r| + eps, d along a's axes.
   constexpr float kEps = 1e-6f;
-  const V gx = (at(b[0]) + at(offset[0])) - at(a[0]);
-  const V gy = (at(b[1]) + at(offset[1])) - at(a[1]);
-  const V gz = (at(b[2]) + at(offset[2])) - at(a[2]);
-  const V reach = at(a[15]) + at(b[15]);
+  const F8 gx = (load8(b[0]) + load8(offset[0])) - load8(a[0]);
+  const F8 gy = (load8(b[1]) + load8(offset[1])) - load8(a[1]);
+  const F8 gz = (load8(b[2]) + load8(offset[2])) - load8(a[2]);
+  const F8 reach = load8(a[15]) + load8(b[15]);
   I8 apart = (gx * gx + gy * gy + gz * gz) > reach * reach * (1 + 4 * kBoundRelSlack);
-  V ax[3][3], bx[3][3], ah[3], bh[3];
+  F8 ax[3][3], bx[3][3], ah[3], bh[3];
   for (int i = 0; i < 3; ++i) {
-    for (int c = 0; c < 3; ++c) ax[i][c] = at(a[3 + 3 * i + c]), bx[i][c] = at(b[3 + 3 * i + c]);
-    ah[i] = at(a[12 + i]), bh[i] = at(b[12 + i]);
+    for (int c = 0; c < 3; ++c) ax[i][c] = load8(a[3 + 3 * i + c]), bx[i][c] = load8(b[3 + 3 * i + c]);
+    ah[i] = load8(a[12 + i]), bh[i] = load8(b[12 + i]);
   }
-  V r[3][3], ar[3][3], t[3];
+  F8 r[3][3], ar[3][3], t[3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       r[i][j] = ax[i][0] * bx[j][0] + ax[i][1] * bx[j][1] + ax[i][2] * bx[j][2];
@@ -91,8 +85,8 @@ inline unsigned ObbBatch::overlapping() const {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {
       const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
-      const V ra = ah[i1] * ar[i2][j] + ah[i2] * ar[i1][j];
-      const V rb = bh[j1] * ar[i][j2] + bh[j2] * ar[i][j1];
+      const F8 ra = ah[i1] * ar[i2][j] + ah[i2] * ar[i1][j];
+      const F8 rb = bh[j1] * ar[i][j2] + bh[j2] * ar[i][j1];
       apart |= abs8(t[i2] * r[i1][j] - t[i1] * r[i2][j]) > ra + rb;
     }
   }

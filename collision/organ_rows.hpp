@@ -23,6 +23,10 @@ inline F8 load8(const float* p) {
   std::memcpy(&v, p, sizeof v);
   return v;
 }
+/// The lanes at + t (t < 8) that lie below `count`, as bits: a run's last lanes masked off.
+inline unsigned lanes_below(std::uint32_t count, std::uint32_t at) {
+  return count - at < 8 ? (1u << (count - at)) - 1 : 0xffu;
+}
 inline unsigned bits8(I8 m) {
 #if defined(__AVX__)
   return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<F8>(m)));
@@ -55,10 +59,8 @@ template <typename OnPair>
 inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ia, const Cluster& ca,
                              const LcdNode& na, std::uint32_t ib, const Cluster& cb, const LcdNode& nb, Vec3f offset,
                              OnPair&& on_pair) {
+  using lanes_detail::lanes_below;
   constexpr std::uint32_t kW = OrganLanes::kWidth, kSlice = 64;
-  const auto in_range = [](std::uint32_t count, std::uint32_t at) {
-    return count - at < kW ? (1u << (count - at)) - 1 : 0xffu;
-  };
   const Box3f around_a = l.around[ia];
   const Box3f around_b = l.around[ib];
   const Box3f b_moved{around_b.lo + offset, around_b.hi + offset};
@@ -69,10 +71,10 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
     unsigned rows[kSlice / kW];
     unsigned any = 0;
     for (std::uint32_t x0 = xs; x0 < x_end; x0 += kW)
-      any |= rows[(x0 - xs) / kW] = lanes_meeting(l.organs, la + x0, b_moved, Vec3f{0, 0, 0}) & in_range(x_end, x0);
+      any |= rows[(x0 - xs) / kW] = lanes_meeting(l.organs, la + x0, b_moved, Vec3f{0, 0, 0}) & lanes_below(x_end, x0);
     if (!any) continue;
     for (std::uint32_t y0 = 0; y0 < nb.count; y0 += kW) {
-      const unsigned cols = lanes_meeting(l.organs, lb + y0, around_a, offset) & in_range(nb.count, y0);
+      const unsigned cols = lanes_meeting(l.organs, lb + y0, around_a, offset) & lanes_below(nb.count, y0);
       if (!cols) continue;
       for (std::uint32_t x0 = xs; x0 < x_end; x0 += kW)
         for (unsigned r = rows[(x0 - xs) / kW]; r; r &= r - 1) {
@@ -93,9 +95,8 @@ inline void lane_clusters_meeting(const OrganLanes& l, const PlantBound& pb, std
                                   Vec3f offset, OnCluster&& on_cluster) {
   const std::uint32_t l0 = l.cluster_first[q];
   for (std::uint32_t k0 = from / OrganLanes::kWidth * OrganLanes::kWidth; k0 < pb.cluster_count; k0 += OrganLanes::kWidth) {
-    unsigned mask = lanes_meeting(l.clusters, l0 + k0, box, offset);
+    unsigned mask = lanes_meeting(l.clusters, l0 + k0, box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
     if (k0 < from) mask &= ~0u << (from - k0);
-    if (pb.cluster_count - k0 < OrganLanes::kWidth) mask &= (1u << (pb.cluster_count - k0)) - 1;
     for (; mask; mask &= mask - 1) on_cluster(pb.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
   }
 }
@@ -108,9 +109,8 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
   for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
     const Box3f bx = l.organs.get(l0 + x);
     for (std::uint32_t y0 = x + 1; y0 < c.count; y0 += OrganLanes::kWidth) {
-      unsigned mask = lanes_meeting(l.organs, l0 + y0, bx, Vec3f{0, 0, 0});
-      if (c.count - y0 < OrganLanes::kWidth) mask &= (1u << (c.count - y0)) - 1;
-      for (; mask; mask &= mask - 1) {
+      for (unsigned mask = lanes_meeting(l.organs, l0 + y0, bx, Vec3f{0, 0, 0}) & lanes_detail::lanes_below(c.count, y0); mask;
+           mask &= mask - 1) {
         const std::uint32_t y = y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
         on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]), static_cast<std::int32_t>(cluster_organs[c.first + y]));
       }
