@@ -14,39 +14,73 @@
 #include "geometry/obb.hpp"
 
 #include <cstdint>
+#include <cstring>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 namespace canopy {
 
-/// Up to 8 OBB pairs (a, b moved by an offset into a's frame) laid out by lane.
+/// Up to 8 OBB pairs (a, b moved by an offset into a's frame), kept as pointers to the tree's
+/// OBBs until the test: it loads the 8 OBBs of each side together, 64 bytes each, and turns them
+/// into lanes by component (an 8 x 8 transpose of registers), rather than copying every pair's
+/// 32 floats one by one into lanes as the pair comes (which waited on each OBB's load in turn:
+/// bench/results/README.md, thirty-third session). The OBBs must stay where they are until
+/// overlapping().
 struct ObbBatch {
   static constexpr int kLanes = 8;
-  /// Per component (x, y, z, then the 3 axes' x, y, z, the 3 half extents and the radius):
-  /// 16 floats of a's OBB, 16 of b's, and the offset's 3, each in 8 lanes.
-  alignas(32) float a[16][kLanes] = {};
-  alignas(32) float b[16][kLanes] = {};
+  const Obb* a[kLanes] = {};
+  const Obb* b[kLanes] = {};
   alignas(32) float offset[3][kLanes] = {};
   std::int32_t organ_a[kLanes] = {}, organ_b[kLanes] = {}, plant_a[kLanes] = {}, plant_b[kLanes] = {};
   int size = 0;
 
   bool full() const { return size == kLanes; }
   void add(const Obb& oa, const Obb& ob, Vec3f off, std::int32_t ia, std::int32_t ib, std::int32_t pa, std::int32_t pb) {
-    put(a, oa);
-    put(b, ob);
+    a[size] = &oa, b[size] = &ob;
     offset[0][size] = off.x, offset[1][size] = off.y, offset[2][size] = off.z;
     organ_a[size] = ia, organ_b[size] = ib, plant_a[size] = pa, plant_b[size] = pb;
     ++size;
   }
   /// Bit t set where obb_overlap(a of lane t, b of lane t, offset of lane t) holds (t < size).
   unsigned overlapping() const;
-
- private:
-  void put(float (*to)[kLanes], const Obb& o) {
-    const float v[16] = {o.centre.x,  o.centre.y,  o.centre.z,  o.axis[0].x, o.axis[0].y, o.axis[0].z,
-                         o.axis[1].x, o.axis[1].y, o.axis[1].z, o.axis[2].x, o.axis[2].y, o.axis[2].z,
-                         o.half[0],   o.half[1],   o.half[2],   o.radius};
-    for (int k = 0; k < 16; ++k) to[k][size] = v[k];
-  }
 };
+
+namespace lanes_detail {
+static_assert(sizeof(Obb) == 16 * sizeof(float), "an OBB is read as 16 floats: centre, 3 axes, half extents, radius");
+
+/// out[k] lane t: float k of OBB obbs[t] (centre x y z, the axes' x y z, half extents, radius,
+/// in Obb's order); lanes from `size` on repeat lane 0's OBB.
+inline void obb_components(const Obb* const* obbs, int size, F8 (&out)[16]) {
+  const Obb* at[8];
+  for (int t = 0; t < 8; ++t) at[t] = obbs[t < size ? t : 0];
+#if defined(__AVX__)
+  for (int half = 0; half < 2; ++half) {
+    __m256 r[8];
+    for (int t = 0; t < 8; ++t) r[t] = _mm256_loadu_ps(reinterpret_cast<const float*>(at[t]) + 8 * half);
+    __m256 u[8], v[8];
+    for (int t = 0; t < 8; t += 2) u[t] = _mm256_unpacklo_ps(r[t], r[t + 1]), u[t + 1] = _mm256_unpackhi_ps(r[t], r[t + 1]);
+    for (int t = 0; t < 8; t += 4) {
+      v[t] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(1, 0, 1, 0));
+      v[t + 1] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(3, 2, 3, 2));
+      v[t + 2] = _mm256_shuffle_ps(u[t + 1], u[t + 3], _MM_SHUFFLE(1, 0, 1, 0));
+      v[t + 3] = _mm256_shuffle_ps(u[t + 1], u[t + 3], _MM_SHUFFLE(3, 2, 3, 2));
+    }
+    for (int k = 0; k < 4; ++k) {
+      const __m256 lo = _mm256_permute2f128_ps(v[k], v[k + 4], 0x20), hi = _mm256_permute2f128_ps(v[k], v[k + 4], 0x31);
+      std::memcpy(&out[8 * half + k], &lo, sizeof lo);
+      std::memcpy(&out[8 * half + k + 4], &hi, sizeof hi);
+    }
+  }
+#else
+  for (int t = 0; t < 8; ++t) {
+    float f[16];
+    std::memcpy(f, at[t], sizeof f);
+    for (int k = 0; k < 16; ++k) out[k][t] = f[k];
+  }
+#endif
+}
+}  // namespace lanes_detail
 
 inline unsigned ObbBatch::overlapping() const {
   using namespace lanes_detail;
@@ -60,15 +94,18 @@ inline unsigned ObbBatch::overlapping() const {
   // obb_overlap's names: gap (= d) from a's centre to b's moved, reach of the spheres, r and
   // |r| + eps, d along a's axes.
   constexpr float kEps = 1e-6f;
-  const F8 gx = (load8(b[0]) + load8(offset[0])) - load8(a[0]);
-  const F8 gy = (load8(b[1]) + load8(offset[1])) - load8(a[1]);
-  const F8 gz = (load8(b[2]) + load8(offset[2])) - load8(a[2]);
-  const F8 reach = load8(a[15]) + load8(b[15]);
+  F8 oa[16], ob[16];
+  obb_components(a, size, oa);
+  obb_components(b, size, ob);
+  const F8 gx = (ob[0] + load8(offset[0])) - oa[0];
+  const F8 gy = (ob[1] + load8(offset[1])) - oa[1];
+  const F8 gz = (ob[2] + load8(offset[2])) - oa[2];
+  const F8 reach = oa[15] + ob[15];
   I8 apart = (gx * gx + gy * gy + gz * gz) > reach * reach * (1 + 4 * kBoundRelSlack);
   F8 ax[3][3], bx[3][3], ah[3], bh[3];
   for (int i = 0; i < 3; ++i) {
-    for (int c = 0; c < 3; ++c) ax[i][c] = load8(a[3 + 3 * i + c]), bx[i][c] = load8(b[3 + 3 * i + c]);
-    ah[i] = load8(a[12 + i]), bh[i] = load8(b[12 + i]);
+    for (int c = 0; c < 3; ++c) ax[i][c] = oa[3 + 3 * i + c], bx[i][c] = ob[3 + 3 * i + c];
+    ah[i] = oa[12 + i], bh[i] = ob[12 + i];
   }
   F8 r[3][3], ar[3][3], t[3];
   for (int i = 0; i < 3; ++i)
