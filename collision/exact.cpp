@@ -1,5 +1,6 @@
 #include "collision/exact.hpp"
 
+#include "collision/lanes8.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/solid_bound.hpp"
 #include "geometry/triangle_distance.hpp"
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cstring>
+#include <limits>
 
 namespace canopy {
 namespace {
@@ -71,18 +73,83 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
     box[3] = std::max<double>(box[3], p.x), box[4] = std::max<double>(box[4], p.y), box[5] = std::max<double>(box[5], p.z);
   }
   const std::size_t tris = m.triangle_count();
-  tri_box.resize(6 * tris);
   plane_.resize(tris);
   plane_made_.assign(tris, 0);
+  tri_lanes.assign((tris + 7) / 8 * kGroupFloats, 0.0f);
   for (std::size_t i = 0; i < tris; ++i) {
     const Vec3f p = v[m.indices[3 * i]], q = v[m.indices[3 * i + 1]], r = v[m.indices[3 * i + 2]];
-    float* bx = &tri_box[6 * i];
-    bx[0] = min_f(p.x, min_f(q.x, r.x)), bx[1] = min_f(p.y, min_f(q.y, r.y)), bx[2] = min_f(p.z, min_f(q.z, r.z));
-    bx[3] = max_f(p.x, max_f(q.x, r.x)), bx[4] = max_f(p.y, max_f(q.y, r.y)), bx[5] = max_f(p.z, max_f(q.z, r.z));
+    float* lane = &tri_lanes[i / 8 * kGroupFloats + i % 8];
+    const float corners[9] = {p.x, p.y, p.z, q.x, q.y, q.z, r.x, r.y, r.z};
+    for (int k = 0; k < 9; ++k) lane[8 * k] = corners[k];
+  }
+  // Each triangle's box, min_f and max_f of its corners lane by lane.
+  using namespace lanes_detail;
+  const auto lo = [](F8 a, F8 b) { return a < b ? a : b; };
+  const auto hi = [](F8 a, F8 b) { return a > b ? a : b; };
+  for (std::size_t g = 0; g < tri_lanes.size(); g += kGroupFloats) {
+    float* group = &tri_lanes[g];
+    for (int k = 0; k < 3; ++k) {
+      const F8 p = load8(group + 8 * k), q = load8(group + 8 * (3 + k)), r = load8(group + 8 * (6 + k));
+      const F8 box_lo = lo(p, lo(q, r)), box_hi = hi(p, hi(q, r));
+      std::memcpy(group + 8 * (9 + k), &box_lo, sizeof box_lo);
+      std::memcpy(group + 8 * (12 + k), &box_hi, sizeof box_hi);
+    }
   }
 }
 
 namespace {
+
+/// A box given in double (lo x y z, hi x y z) as float bounds that a float compares with as with
+/// the double: t > hi exactly when t > hi_below (the largest float not above hi), t < lo exactly
+/// when t < lo_above (the smallest float not below lo).
+struct FloatBounds {
+  float lo_above[3], hi_below[3];
+  explicit FloatBounds(const double* box) {
+    for (int k = 0; k < 3; ++k) {
+      float lo = static_cast<float>(box[k]), hi = static_cast<float>(box[k + 3]);
+      if (static_cast<double>(lo) < box[k]) lo = std::nextafter(lo, std::numeric_limits<float>::infinity());
+      if (static_cast<double>(hi) > box[k + 3]) hi = std::nextafter(hi, -std::numeric_limits<float>::infinity());
+      lo_above[k] = lo, hi_below[k] = hi;
+    }
+  }
+};
+
+/// Bit t set where triangle t of a group (PosedOrgan::tri_lanes) is near the other organ: its
+/// box meets the other's (posed_touch's box test) and it does not lie beyond the other's OBB by
+/// `margin` (beyond_obb), both with their scalar operations in their order, lane by lane.
+unsigned near_lanes(const float* group, const FloatBounds& box, const Obb& obb, float margin) {
+  using namespace lanes_detail;
+  const auto at = [group](int k) { return load8(group + 8 * k); };
+  I8 far = (at(9) > box.hi_below[0]) | (at(10) > box.hi_below[1]) | (at(11) > box.hi_below[2]) | (at(12) < box.lo_above[0]) |
+           (at(13) < box.lo_above[1]) | (at(14) < box.lo_above[2]);
+  if (bits8(far) == 0xffu) return 0;
+  F8 d[3][3];  // corner minus the OBB's centre
+  for (int c = 0; c < 3; ++c)
+    d[c][0] = at(3 * c) - obb.centre.x, d[c][1] = at(3 * c + 1) - obb.centre.y, d[c][2] = at(3 * c + 2) - obb.centre.z;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3f a = obb.axis[k];
+    F8 x[3];
+    for (int c = 0; c < 3; ++c) x[c] = d[c][0] * a.x + d[c][1] * a.y + d[c][2] * a.z;
+    const float reach = obb.half[k] + margin;
+    const F8 lo = x[1] < x[2] ? x[1] : x[2], hi = x[1] > x[2] ? x[1] : x[2];
+    far |= ((x[0] < lo ? x[0] : lo) > reach) | ((x[0] > hi ? x[0] : hi) < -reach);
+  }
+  return ~bits8(far) & 0xffu;
+}
+
+/// A bit per triangle of `p` (8 per byte): near_lanes against the other organ's box and OBB.
+/// Whether any is set.
+bool near_bits(const PosedOrgan& p, const FloatBounds& box, const Obb& obb, float margin, std::vector<std::uint8_t>& bits) {
+  const std::size_t tris = p.mesh->triangle_count(), groups = (tris + 7) / 8;
+  bits.resize(groups);
+  unsigned any = 0;
+  for (std::size_t g = 0; g < groups; ++g)
+    any |= bits[g] = static_cast<std::uint8_t>(near_lanes(&p.tri_lanes[g * PosedOrgan::kGroupFloats], box, obb, margin) &
+                                               lanes_detail::lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g)));
+  return any != 0;
+}
+
+bool bit(const std::vector<std::uint8_t>& bits, std::size_t i) { return (bits[i / 8] >> (i % 8)) & 1u; }
 
 /// Whether the boxes of triangles p and q lie more than c apart along x, y or z (in double, as
 /// posed_touch compares a triangle's box with the other organ's widened box).
@@ -183,9 +250,6 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
     box_a[k] = pa.box[k] - c, box_a[k + 3] = pa.box[k + 3] + c;
     box_b[k] = pb.box[k] - c, box_b[k + 3] = pb.box[k + 3] + c;
   }
-  const auto meets = [](const float* t, const double* o) {
-    return !(t[0] > o[3] || t[1] > o[4] || t[2] > o[5] || t[3] < o[0] || t[4] < o[1] || t[5] < o[2]);
-  };
   // The float tests below (beyond_obb, triangles_rejected) reject only triangles or pairs more
   // than this beyond the clearance.
   const float margin = static_cast<float>(c) + kRejectSlack;
@@ -195,28 +259,30 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
   const bool seen = witness && witness->latest >= 0 && witness->tri_a[witness->latest] < ta && witness->tri_b[witness->latest] < tb;
   const std::size_t start_a = seen ? static_cast<std::size_t>(witness->tri_a[witness->latest]) : 0;
   const std::size_t start_b = seen ? static_cast<std::size_t>(witness->tri_b[witness->latest]) : 0;
+  // The triangles of each organ near the other, 8 at a time; then b's in a list in the order
+  // of the search.
   x.near_b.clear();
-  Spiral order_b(start_b, tb);
-  for (std::size_t jj = 0; jj < tb; ++jj) {
-    const std::size_t j = order_b.next();
-    if (!meets(&pb.tri_box[6 * j], box_a)) continue;
-    const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
-    if (!beyond_obb(tri_b, pa.obb, margin)) x.near_b.push_back(static_cast<std::uint32_t>(j));
+  if (near_bits(pb, FloatBounds(box_a), pa.obb, margin, x.near_b_bits)) {
+    Spiral order_b(start_b, tb);
+    for (std::size_t jj = 0; jj < tb; ++jj) {
+      const std::size_t j = order_b.next();
+      if (bit(x.near_b_bits, j)) x.near_b.push_back(static_cast<std::uint32_t>(j));
+    }
   }
-  if (!x.near_b.empty()) {
+  if (!x.near_b.empty() && near_bits(pa, FloatBounds(box_b), pb.obb, margin, x.near_a_bits)) {
     Spiral order_a(start_a, ta);
     for (std::size_t ii = 0; ii < ta; ++ii) {
       const std::size_t i = order_a.next();
-      const float* bx = &pa.tri_box[6 * i];
-      if (!meets(bx, box_b)) continue;
+      if (!bit(x.near_a_bits, i)) continue;
       const Vec3f tri_a[3] = {pa.v[ma.indices[3 * i]], pa.v[ma.indices[3 * i + 1]], pa.v[ma.indices[3 * i + 2]]};
-      if (beyond_obb(tri_a, pb.obb, margin)) continue;
 
       // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
-      const double lo[3] = {bx[0] - c, bx[1] - c, bx[2] - c}, hi[3] = {bx[3] + c, bx[4] + c, bx[5] + c};
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) lo[k] = pa.tri_box(i, k) - c, hi[k] = pa.tri_box(i, k + 3) + c;
       for (const std::uint32_t j : x.near_b) {
-        const float* b6 = &pb.tri_box[6 * j];
-        if (b6[0] > hi[0] || b6[1] > hi[1] || b6[2] > hi[2] || b6[3] < lo[0] || b6[4] < lo[1] || b6[5] < lo[2]) continue;
+        if (pb.tri_box(j, 0) > hi[0] || pb.tri_box(j, 1) > hi[1] || pb.tri_box(j, 2) > hi[2] || pb.tri_box(j, 3) < lo[0] ||
+            pb.tri_box(j, 4) < lo[1] || pb.tri_box(j, 5) < lo[2])
+          continue;
         const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
         if (triangles_rejected(pa.plane(i), tri_a, pb.plane(j), tri_b, margin)) continue;
         if (pair_touches(tri_a, tri_b)) {

@@ -26,7 +26,13 @@ struct PosedOrgan {
   const PrototypeMesh* mesh = nullptr;
   bool solid = false;
   std::vector<Vec3f> v;                // vertices
-  std::vector<float> tri_box;          // 6 per triangle: lo xyz, hi xyz
+  /// The triangles by groups of 8 in lanes (collision/lanes8.hpp), for the filters that test 8
+  /// at a time: per group 9 lanes of corner coordinates (first corner x y z, second, third) and
+  /// 6 of the triangle's box (lo x y z, hi x y z); lanes past the last triangle hold zeros.
+  std::vector<float> tri_lanes;
+  static constexpr std::size_t kGroupFloats = 15 * 8;
+  /// Component k (lo x y z, hi x y z) of triangle i's box.
+  float tri_box(std::size_t i, int k) const { return tri_lanes[i / 8 * kGroupFloats + static_cast<std::size_t>(9 + k) * 8 + i % 8]; }
   double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened)
   Obb obb{};                           // its OBB in this frame (make_obb, centre moved by the origin difference)
   /// Triangle i's plane, made when first asked for: most triangles of a pose never pass the
@@ -78,6 +84,7 @@ class PoseCache {
 struct alignas(64) ExactScratch {
   PoseCache poses;
   std::vector<std::uint32_t> near_b;  // triangles of b near a
+  std::vector<std::uint8_t> near_a_bits, near_b_bits;  // a bit per triangle near the other organ, 8 per byte
 };
 
 /// Whether organs a < b touch (or come within `clearance`). Same answer on both backends.

@@ -10,7 +10,7 @@
 /// the other as the boxes come, cost more than its arithmetic.
 /// tests/collision/test_obb_lanes.cpp holds the two equal lane by lane. Host only: nvcc never
 /// reads this file.
-#include "collision/organ_rows.hpp"
+#include "collision/lanes8.hpp"
 #include "geometry/obb.hpp"
 
 #include <cstdint>
@@ -42,7 +42,8 @@ struct ObbBatch {
     organ_a[size] = ia, organ_b[size] = ib, plant_a[size] = pa, plant_b[size] = pb;
     ++size;
   }
-  /// Bit t set where obb_overlap(a of lane t, b of lane t, offset of lane t) holds (t < size).
+  /// Bit t set where obb_overlap(a of lane t, b of lane t, offset of lane t) holds (t < size);
+  /// an empty batch reads no OBB.
   unsigned overlapping() const;
 };
 
@@ -94,6 +95,7 @@ inline unsigned ObbBatch::overlapping() const {
   // obb_overlap's names: gap (= d) from a's centre to b's moved, reach of the spheres, r and
   // |r| + eps, d along a's axes.
   constexpr float kEps = 1e-6f;
+  if (size == 0) return 0;
   F8 oa[16], ob[16];
   obb_components(a, size, oa);
   obb_components(b, size, ob);

@@ -5,38 +5,15 @@
 /// organs) is skipped where the organ's box misses the box around b's organs, which it then
 /// misses one by one too (exactly: that box is their least lo and greatest hi). Host only: nvcc
 /// never reads this file.
+#include "collision/lanes8.hpp"
 #include "collision/mbvt.hpp"
 #include "collision/mbvt_fit.hpp"
 #include "collision/organ_lanes.hpp"
 
 #include <algorithm>
 #include <cstdint>
-#include <cstring>
 
 namespace canopy {
-
-namespace lanes_detail {
-typedef float F8 __attribute__((vector_size(32)));
-typedef int I8 __attribute__((vector_size(32)));
-inline F8 load8(const float* p) {
-  F8 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-/// The lanes at + t (t < 8) that lie below `count`, as bits: a run's last lanes masked off.
-inline unsigned lanes_below(std::uint32_t count, std::uint32_t at) {
-  return count - at < 8 ? (1u << (count - at)) - 1 : 0xffu;
-}
-inline unsigned bits8(I8 m) {
-#if defined(__AVX__)
-  return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<F8>(m)));
-#else
-  unsigned b = 0;
-  for (int t = 0; t < 8; ++t) b |= static_cast<unsigned>(m[t] & 1) << t;
-  return b;
-#endif
-}
-}  // namespace lanes_detail
 
 /// Bit t set where boxes_meet(box, box of lane `lane + t`, offset) holds.
 inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f& box, Vec3f offset) {
