@@ -1,0 +1,116 @@
+// The exact stage's 8-at-a-time filter of single triangles (collision/triangle_lanes.hpp)
+// against the scalar tests it stands for, triangle by triangle: the box test in double
+// (posed_touch's, a triangle's float box against the other organ's double box widened by the
+// clearance) and beyond_obb. On posed organs of random stands against their neighbours' boxes and
+// OBBs, and on boxes placed at, one float beyond and a fraction of a float beyond a triangle's
+// box, where the float bounds made from the double box must round the right way. Also the
+// boxes a pose keeps in lanes against its triangles' corners.
+#include "collision/exact.hpp"
+#include "collision/triangle_lanes.hpp"
+#include "tests/collision/helpers.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace canopy;
+
+namespace {
+
+/// posed_touch's box test as it was written before the lanes: float box t against double box o.
+bool meets_in_double(const float* t, const double* o) {
+  return !(t[0] > o[3] || t[1] > o[4] || t[2] > o[5] || t[3] < o[0] || t[4] < o[1] || t[5] < o[2]);
+}
+
+/// Compares near_lanes with the scalar tests for every triangle of `p` against box `box` and OBB
+/// `obb`; returns the triangles found near, counting disagreements in `differ`.
+int compare(const PosedOrgan& p, const double* box, const Obb& obb, float margin, int& differ) {
+  const PrototypeMesh& m = *p.mesh;
+  const std::size_t tris = m.triangle_count();
+  const FloatBounds bounds(box);
+  int near = 0;
+  for (std::size_t i = 0; i < tris; ++i) {
+    const Vec3f t[3] = {p.v[m.indices[3 * i]], p.v[m.indices[3 * i + 1]], p.v[m.indices[3 * i + 2]]};
+    const float tb[6] = {min_f(t[0].x, min_f(t[1].x, t[2].x)), min_f(t[0].y, min_f(t[1].y, t[2].y)),
+                         min_f(t[0].z, min_f(t[1].z, t[2].z)), max_f(t[0].x, max_f(t[1].x, t[2].x)),
+                         max_f(t[0].y, max_f(t[1].y, t[2].y)), max_f(t[0].z, max_f(t[1].z, t[2].z))};
+    for (int k = 0; k < 6; ++k) CHECK(p.tri_box(i, k) == tb[k]);
+    const bool want = meets_in_double(tb, box) && !beyond_obb(t, obb, margin);
+    const unsigned bits = near_lanes(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats], bounds, obb, margin);
+    const bool got = (bits >> (i % 8)) & 1u;
+    differ += got != want;
+    near += want;
+  }
+  return near;
+}
+
+}  // namespace
+
+TEST_CASE("triangles near another organ, 8 at a time, are those the scalar box and OBB tests keep") {
+  std::mt19937 rng(23);
+  PrototypeLibrary lib;
+  int differ = 0, near = 0, far = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const Stand s = test::random_stand(seed, 8);
+    const auto n = static_cast<std::uint32_t>(s.organ_count());
+    for (int trial = 0; trial < 1500; ++trial) {
+      const auto a = static_cast<std::int32_t>(rng() % n);
+      // The other organ: one with an id close by (often touching or crossing) or any.
+      const auto b = static_cast<std::int32_t>(trial % 2 ? (static_cast<std::uint32_t>(a) + 1 + rng() % 12) % n : rng() % n);
+      const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
+      const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
+      PosedOrgan pa, pb;
+      pa.pose(s, lib.get(ra.prototype, ra.lod), a, s.transforms[static_cast<std::size_t>(a)], ra.plant, ra.plant);
+      pb.pose(s, lib.get(rb.prototype, rb.lod), b, s.transforms[static_cast<std::size_t>(b)], rb.plant, ra.plant);
+      for (const double c : {0.0, 1e-4, 0.013}) {
+        double box[6];
+        for (int k = 0; k < 3; ++k) box[k] = pb.box[k] - c, box[k + 3] = pb.box[k + 3] + c;
+        const int found = compare(pa, box, pb.obb, static_cast<float>(c) + kRejectSlack, differ);
+        near += found;
+        far += static_cast<int>(pa.mesh->triangle_count()) - found;
+      }
+    }
+  }
+  CHECK(differ == 0);
+  CHECK(near > 10000);
+  CHECK(far > 10000);
+}
+
+TEST_CASE("a box at a triangle's box, a float beyond it or a fraction of a float beyond it") {
+  // Every face of the other box placed on a face of a triangle's box: exactly (the boxes touch),
+  // one float outside (they miss), and a double between two floats (inside or outside by less
+  // than a float: the float bounds must round outwards of the double only as far as the floats
+  // compare the same). The OBB is far larger than everything, so only the box test decides.
+  std::mt19937 rng(5);
+  PrototypeLibrary lib;
+  const Stand s = test::random_stand(2, 3);
+  Obb huge{};
+  huge.axis[0] = {1, 0, 0}, huge.axis[1] = {0, 1, 0}, huge.axis[2] = {0, 0, 1};
+  huge.half[0] = huge.half[1] = huge.half[2] = 1e4f;
+  set_radius(huge);
+  int differ = 0, near = 0, checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const auto a = static_cast<std::int32_t>(rng() % s.organ_count());
+    const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
+    PosedOrgan pa;
+    pa.pose(s, lib.get(ra.prototype, ra.lod), a, s.transforms[static_cast<std::size_t>(a)], ra.plant, ra.plant);
+    const std::size_t i = rng() % pa.mesh->triangle_count();
+    const int face = static_cast<int>(rng() % 6), axis = face % 3;
+    const bool upper = face >= 3;  // the other box's hi on the triangle's lo, or its lo on the triangle's hi
+    const float at = pa.tri_box(i, upper ? axis : axis + 3);
+    double box[6] = {-1e3, -1e3, -1e3, 1e3, 1e3, 1e3};
+    const float outward = upper ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();
+    const double one_float = std::fabs(static_cast<double>(std::nextafter(at, outward)) - at);
+    for (const double place : {static_cast<double>(at), static_cast<double>(std::nextafter(at, outward)),
+                               at + (upper ? -0.5 : 0.5) * one_float, at + (upper ? 0.25 : -0.25) * one_float}) {
+      box[upper ? axis + 3 : axis] = place;
+      near += compare(pa, box, huge, kRejectSlack, differ);
+      ++checked;
+    }
+  }
+  CHECK(differ == 0);
+  CHECK(checked == 1600);
+  CHECK(near > 400);
+}
