@@ -76,22 +76,29 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   const std::size_t tris = m.triangle_count();
   plane_.resize(tris);
   plane_made_.assign(tris, 0);
-  tri_lanes.assign((tris + 7) / 8 * kGroupFloats, 0.0f);
-  for (std::size_t i = 0; i < tris; ++i) {
-    const Vec3f p = v[m.indices[3 * i]], q = v[m.indices[3 * i + 1]], r = v[m.indices[3 * i + 2]];
-    float* lane = &tri_lanes[i / 8 * kGroupFloats + i % 8];
-    const float corners[9] = {p.x, p.y, p.z, q.x, q.y, q.z, r.x, r.y, r.z};
-    for (int k = 0; k < 9; ++k) lane[8 * k] = corners[k];
-  }
-  // Each triangle's box, min_f and max_f of its corners lane by lane.
+  // The corners 8 triangles at a time from the mesh's corners in lanes, with the operations of
+  // apply(t, p) + d in their order (so each equals its vertex in v bit for bit), then each
+  // triangle's box, min_f and max_f of its corners.
   using namespace lanes_detail;
   const auto lo = [](F8 a, F8 b) { return a < b ? a : b; };
   const auto hi = [](F8 a, F8 b) { return a > b ? a : b; };
-  for (std::size_t g = 0; g < tri_lanes.size(); g += kGroupFloats) {
-    float* group = &tri_lanes[g];
+  const std::size_t groups = (tris + 7) / 8;
+  tri_lanes.resize(groups * kGroupFloats);
+  const float cols[3][3] = {{t.c0.x, t.c0.y, t.c0.z}, {t.c1.x, t.c1.y, t.c1.z}, {t.c2.x, t.c2.y, t.c2.z}};
+  const float shift[3] = {t.t.x, t.t.y, t.t.z}, move[3] = {d.x, d.y, d.z};
+  for (std::size_t g = 0; g < groups; ++g) {
+    const float* local = &m.corner_lanes[g * 72];
+    float* group = &tri_lanes[g * kGroupFloats];
+    F8 at[3][3];  // corner, coordinate
+    for (int c = 0; c < 3; ++c) {
+      const F8 x = load8(local + 24 * c), y = load8(local + 24 * c + 8), z = load8(local + 24 * c + 16);
+      for (int k = 0; k < 3; ++k) {
+        at[c][k] = cols[0][k] * x + cols[1][k] * y + cols[2][k] * z + shift[k] + move[k];
+        std::memcpy(group + 8 * (3 * c + k), &at[c][k], sizeof(F8));
+      }
+    }
     for (int k = 0; k < 3; ++k) {
-      const F8 p = load8(group + 8 * k), q = load8(group + 8 * (3 + k)), r = load8(group + 8 * (6 + k));
-      const F8 box_lo = lo(p, lo(q, r)), box_hi = hi(p, hi(q, r));
+      const F8 box_lo = lo(at[0][k], lo(at[1][k], at[2][k])), box_hi = hi(at[0][k], hi(at[1][k], at[2][k]));
       std::memcpy(group + 8 * (9 + k), &box_lo, sizeof box_lo);
       std::memcpy(group + 8 * (12 + k), &box_hi, sizeof box_hi);
     }

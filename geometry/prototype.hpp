@@ -30,6 +30,10 @@ struct PrototypeMesh {
   std::vector<std::array<float, 2>> uvs;  // leaflets only
   std::vector<std::uint32_t> indices;     // triangles, counter-clockwise seen from the normal
   std::vector<Vec3f> face_cross;          // (b - a) x (c - a) per triangle, local frame
+  /// The triangles' corners by groups of 8 triangles in lanes: per group 9 runs of 8 floats
+  /// (first corner x y z, second, third), zeros past the last triangle. The host's exact stage
+  /// poses 8 triangles at a time from them (collision/exact.cpp).
+  std::vector<float> corner_lanes;
   Box3f box;                              // local box (exact bounds of the vertices)
   std::size_t triangle_count() const { return indices.size() / 3; }
 };

@@ -4,7 +4,7 @@
 // clearance) and beyond_obb. On posed organs of random stands against their neighbours' boxes and
 // OBBs, and on boxes placed at, one float beyond and a fraction of a float beyond a triangle's
 // box, where the float bounds made from the double box must round the right way. Also the
-// boxes a pose keeps in lanes against its triangles' corners.
+// corners and boxes a pose keeps in lanes against its vertices.
 #include "collision/exact.hpp"
 #include "collision/triangle_lanes.hpp"
 #include "tests/collision/helpers.hpp"
@@ -12,6 +12,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 
@@ -37,6 +38,13 @@ int compare(const PosedOrgan& p, const double* box, const Obb& obb, float margin
                          min_f(t[0].z, min_f(t[1].z, t[2].z)), max_f(t[0].x, max_f(t[1].x, t[2].x)),
                          max_f(t[0].y, max_f(t[1].y, t[2].y)), max_f(t[0].z, max_f(t[1].z, t[2].z))};
     for (int k = 0; k < 6; ++k) CHECK(p.tri_box(i, k) == tb[k]);
+    // The corners in lanes are the vertices bit for bit (made 8 at a time, not gathered).
+    for (int c = 0; c < 3; ++c) {
+      const float xyz[3] = {t[c].x, t[c].y, t[c].z};
+      for (int k = 0; k < 3; ++k)
+        CHECK(std::memcmp(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats + static_cast<std::size_t>(3 * c + k) * 8 + i % 8], &xyz[k],
+                          sizeof(float)) == 0);
+    }
     const bool want = meets_in_double(tb, box) && !beyond_obb(t, obb, margin);
     const unsigned bits = near_lanes(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats], bounds, obb, margin);
     const bool got = (bits >> (i % 8)) & 1u;
@@ -64,12 +72,18 @@ TEST_CASE("triangles near another organ, 8 at a time, are those the scalar box a
       PosedOrgan pa, pb;
       pa.pose(s, lib.get(ra.prototype, ra.lod), a, s.transforms[static_cast<std::size_t>(a)], ra.plant, ra.plant);
       pb.pose(s, lib.get(rb.prototype, rb.lod), b, s.transforms[static_cast<std::size_t>(b)], rb.plant, ra.plant);
+      // Both sides, as posed_touch filters them: a's triangles against b's box and OBB, and b's
+      // (posed in a's plant's frame, moved by the origin difference) against a's.
       for (const double c : {0.0, 1e-4, 0.013}) {
-        double box[6];
-        for (int k = 0; k < 3; ++k) box[k] = pb.box[k] - c, box[k + 3] = pb.box[k + 3] + c;
-        const int found = compare(pa, box, pb.obb, static_cast<float>(c) + kRejectSlack, differ);
+        double box_a[6], box_b[6];
+        for (int k = 0; k < 3; ++k) {
+          box_a[k] = pa.box[k] - c, box_a[k + 3] = pa.box[k + 3] + c;
+          box_b[k] = pb.box[k] - c, box_b[k + 3] = pb.box[k + 3] + c;
+        }
+        const float margin = static_cast<float>(c) + kRejectSlack;
+        const int found = compare(pa, box_b, pb.obb, margin, differ) + compare(pb, box_a, pa.obb, margin, differ);
         near += found;
-        far += static_cast<int>(pa.mesh->triangle_count()) - found;
+        far += static_cast<int>(pa.mesh->triangle_count() + pb.mesh->triangle_count()) - found;
       }
     }
   }
