@@ -185,11 +185,10 @@ class CpuBackend : public DetectionBackend {
       const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
       const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
       Collector& col = per[static_cast<std::size_t>(omp_get_thread_num())];
-      for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
+      // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the other
+      // plant's box (8 of p's clusters at a time), then each cluster's.
+      lane_clusters_meeting_moved(m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
         const Cluster& ca = m.clusters[i];
-        // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the
-        // other plant's box, then each cluster's.
-        if (p != q && !boxes_meet(ca.box, pb.box, offset)) continue;
         if (p == q && !passed_over(i, i) && has_free_pair(s, m, ca.first, ca.count)) {  // within one cluster: all its pairs
           col.leaf_pair(p, q, i, i);
           if (req.level != ContactLevel::leaf)
@@ -207,7 +206,7 @@ class CpuBackend : public DetectionBackend {
                              [&](std::int32_t x, std::int32_t y) { organ_pair(s, m, x, y, offset, col, ca.plant, cb.plant); });
           });
         });
-      }
+      });
     }
     for (Collector& c : per) c.test_waiting();
     std::vector<Contact> leaf, organ;

@@ -24,6 +24,16 @@ inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f
   return bits8(meet);
 }
 
+/// Bit t set where boxes_meet(box of lane `lane + t`, box, offset) holds: the lanes' boxes on the
+/// other side of the test, `box` the one moved.
+inline unsigned lanes_meeting_moved(const BoxLanes& l, std::uint32_t lane, const Box3f& box, Vec3f offset) {
+  using namespace lanes_detail;
+  const I8 meet = (load8(&l.lo_x[lane]) <= box.hi.x + offset.x) & (box.lo.x + offset.x <= load8(&l.hi_x[lane])) &
+                  (load8(&l.lo_y[lane]) <= box.hi.y + offset.y) & (box.lo.y + offset.y <= load8(&l.hi_y[lane])) &
+                  (load8(&l.lo_z[lane]) <= box.hi.z + offset.z) & (box.lo.z + offset.z <= load8(&l.hi_z[lane]));
+  return bits8(meet);
+}
+
 /// block_pairs over lanes: organs under node na of cluster ca (index ia) against those under nb
 /// of cluster cb (index ib). Both sides are sifted 8 at a time first, each organ's box against
 /// the box around the other cluster's organs (l.around): an organ that misses it misses each of
@@ -75,6 +85,20 @@ inline void lane_clusters_meeting(const OrganLanes& l, const PlantBound& pb, std
     unsigned mask = lanes_meeting(l.clusters, l0 + k0, box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
     if (k0 < from) mask &= ~0u << (from - k0);
     for (; mask; mask &= mask - 1) on_cluster(pb.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
+  }
+}
+
+/// Calls on_cluster(i) for plant p's clusters i (global indices) whose boxes meet `box` moved by
+/// `offset` (boxes_meet(cluster i's box, box, offset)), in order; for every cluster of p with
+/// `all`.
+template <typename OnCluster>
+inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& pa, std::uint32_t p, const Box3f& box, Vec3f offset,
+                                        bool all, OnCluster&& on_cluster) {
+  const std::uint32_t l0 = l.cluster_first[p];
+  for (std::uint32_t k0 = 0; k0 < pa.cluster_count; k0 += OrganLanes::kWidth) {
+    unsigned mask = lanes_detail::lanes_below(pa.cluster_count, k0);
+    if (!all) mask &= lanes_meeting_moved(l.clusters, l0 + k0, box, offset);
+    for (; mask; mask &= mask - 1) on_cluster(pa.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
   }
 }
 

@@ -107,6 +107,52 @@ TEST_CASE("eight lanes at once give boxes_meet's answer lane by lane, touching, 
   CHECK(missed > 10000);
 }
 
+TEST_CASE("eight lanes against a moved box give boxes_meet's answer lane by lane, touching, empty and NaN boxes included") {
+  // lanes_meeting_moved: the lanes' boxes unmoved, the one box moved by the offset (a plant's
+  // clusters against the other plant's box).
+  std::mt19937 g(37);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int met = 0, missed = 0;
+  for (int round = 0; round < 3000; ++round) {
+    const Box3f a = random_box(g);
+    const Vec3f offset = round % 2 ? Vec3f{u(g), u(g), 0} : Vec3f{0, 0, 0};
+    const Box3f moved{a.lo + offset, a.hi + offset};
+    BoxLanes lanes;
+    lanes.assign_empty(24);
+    for (std::uint32_t k = 0; k < 16; ++k) {
+      // Lanes 0-5 and 8-13 touch the moved box exactly through one of boxes_meet's six
+      // comparisons (its sums a.lo + offset and a.hi + offset, as the test makes them).
+      Box3f b = moved;
+      switch (k % 8) {
+        case 0: b.lo.x = moved.hi.x, b.hi.x = b.lo.x + 0.1f; break;
+        case 1: b.hi.x = moved.lo.x, b.lo.x = b.hi.x - 0.1f; break;
+        case 2: b.lo.y = moved.hi.y, b.hi.y = b.lo.y + 0.1f; break;
+        case 3: b.hi.y = moved.lo.y, b.lo.y = b.hi.y - 0.1f; break;
+        case 4: b.lo.z = moved.hi.z, b.hi.z = b.lo.z + 0.1f; break;
+        case 5: b.hi.z = moved.lo.z, b.lo.z = b.hi.z - 0.1f; break;
+        case 6: b = random_box(g); break;
+        default: b = random_box(g), b.hi.x = std::numeric_limits<float>::quiet_NaN();
+      }
+      if (k % 8 < 6 && round % 3 == 0) {  // one float beyond touching: they miss
+        float& f = k % 2 ? (k % 8 < 2 ? b.hi.x : k % 8 < 4 ? b.hi.y : b.hi.z) : (k % 8 < 2 ? b.lo.x : k % 8 < 4 ? b.lo.y : b.lo.z);
+        f = std::nextafter(f, k % 2 ? -1e30f : 1e30f);
+      }
+      if (k != 15) lanes.set(k, b);
+    }
+    for (std::uint32_t first = 0; first <= 8; ++first) {
+      const unsigned bits = lanes_meeting_moved(lanes, first, a, offset);
+      for (std::uint32_t t = 0; t < 8; ++t) {
+        const bool meet = boxes_meet(lanes.get(first + t), a, offset);
+        INFO("round " << round << " lane " << first + t);
+        CHECK(((bits >> t) & 1u) == (meet ? 1u : 0u));
+        (meet ? met : missed)++;
+      }
+    }
+  }
+  CHECK(met > 10000);
+  CHECK(missed > 10000);
+}
+
 TEST_CASE("organ pairs through lanes equal the shared definition on random stands, blocks below the root included") {
   std::size_t pairs = 0, blocks = 0, sub_blocks = 0;
   std::uint32_t largest_block = 0;
