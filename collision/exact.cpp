@@ -229,35 +229,35 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
   const bool seen = witness && witness->latest >= 0 && witness->tri_a[witness->latest] < ta && witness->tri_b[witness->latest] < tb;
   const std::size_t start_a = seen ? static_cast<std::size_t>(witness->tri_a[witness->latest]) : 0;
   const std::size_t start_b = seen ? static_cast<std::size_t>(witness->tri_b[witness->latest]) : 0;
-  // The triangles of each organ near the other, 8 at a time; then b's in a list in the order
-  // of the search.
-  x.near_b.clear();
-  if (near_bits(pb, FloatBounds(box_a), pa.obb, margin, x.near_b_bits)) {
-    Spiral order_b(start_b, tb);
-    for (std::size_t jj = 0; jj < tb; ++jj) {
-      const std::size_t j = order_b.next();
-      if (bit(x.near_b_bits, j)) x.near_b.push_back(static_cast<std::uint32_t>(j));
-    }
-  }
-  if (!x.near_b.empty() && near_bits(pa, FloatBounds(box_b), pb.obb, margin, x.near_a_bits)) {
+  // The triangles of each organ near the other, 8 at a time. Then a's near triangles one by
+  // one (from the witness's outwards), each against b's near ones 8 at a time (their groups
+  // from the witness's on): the pair's boxes, then the float rejections (triangles_rejected),
+  // then the exact test on the pairs left, in lane order.
+  const std::size_t groups_b = (tb + 7) / 8;
+  if (near_bits(pb, FloatBounds(box_a), pa.obb, margin, x.near_b_bits) &&
+      near_bits(pa, FloatBounds(box_b), pb.obb, margin, x.near_a_bits)) {
     Spiral order_a(start_a, ta);
     for (std::size_t ii = 0; ii < ta; ++ii) {
       const std::size_t i = order_a.next();
       if (!bit(x.near_a_bits, i)) continue;
       const Vec3f tri_a[3] = {pa.v[ma.indices[3 * i]], pa.v[ma.indices[3 * i + 1]], pa.v[ma.indices[3 * i + 2]]};
-
       // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
-      double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) lo[k] = pa.tri_box(i, k) - c, hi[k] = pa.tri_box(i, k + 3) + c;
-      for (const std::uint32_t j : x.near_b) {
-        if (pb.tri_box(j, 0) > hi[0] || pb.tri_box(j, 1) > hi[1] || pb.tri_box(j, 2) > hi[2] || pb.tri_box(j, 3) < lo[0] ||
-            pb.tri_box(j, 4) < lo[1] || pb.tri_box(j, 5) < lo[2])
-          continue;
-        const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
-        if (triangles_rejected(pa.plane(i), tri_a, pb.plane(j), tri_b, margin)) continue;
-        if (pair_touches(tri_a, tri_b)) {
-          if (witness) witness->remember(i, j);
-          return true;
+      double box_i[6];
+      for (int k = 0; k < 3; ++k) box_i[k] = pa.tri_box(i, k) - c, box_i[k + 3] = pa.tri_box(i, k + 3) + c;
+      const FloatBounds bounds_i(box_i);
+      for (std::size_t gg = 0; gg < groups_b; ++gg) {
+        const std::size_t g = (start_b / 8 + gg) % groups_b;
+        const float* group = &pb.tri_lanes[g * PosedOrgan::kGroupFloats];
+        unsigned lanes = x.near_b_bits[g];
+        if (lanes) lanes &= boxes_meeting_lanes(group, bounds_i);
+        if (lanes) lanes &= ~rejected_lanes(pa.plane(i), tri_a, group, margin);
+        for (; lanes; lanes &= lanes - 1) {
+          const std::size_t j = 8 * g + static_cast<std::size_t>(__builtin_ctz(lanes));
+          const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
+          if (pair_touches(tri_a, tri_b)) {
+            if (witness) witness->remember(i, j);
+            return true;
+          }
         }
       }
     }

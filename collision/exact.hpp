@@ -83,7 +83,6 @@ class PoseCache {
 /// side by side in a vector, and the pose cache's clock changes on every test.
 struct alignas(64) ExactScratch {
   PoseCache poses;
-  std::vector<std::uint32_t> near_b;  // triangles of b near a
   std::vector<std::uint8_t> near_a_bits, near_b_bits;  // a bit per triangle near the other organ, 8 per byte
 };
 

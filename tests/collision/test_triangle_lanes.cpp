@@ -128,3 +128,113 @@ TEST_CASE("a box at a triangle's box, a float beyond it or a fraction of a float
   CHECK(checked == 1600);
   CHECK(near > 400);
 }
+
+namespace {
+
+/// Puts triangle u in lane `lane` of a group laid out as PosedOrgan::tri_lanes.
+void put(float* group, int lane, const Vec3f* u) {
+  for (int c = 0; c < 3; ++c) {
+    const float xyz[3] = {u[c].x, u[c].y, u[c].z};
+    for (int k = 0; k < 3; ++k) group[8 * (3 * c + k) + lane] = xyz[k];
+  }
+}
+
+/// Lanes whose answer differs from triangles_rejected's: t against the 8 triangles u[0..7].
+int rejected_differences(const Vec3f* t, const Vec3f (*u)[3], float margin, int& rejected) {
+  float group[PosedOrgan::kGroupFloats] = {};
+  for (int lane = 0; lane < 8; ++lane) put(group, lane, u[lane]);
+  const TrianglePlane pt = TrianglePlane::of(t[0], t[1], t[2]);
+  const unsigned bits = rejected_lanes(pt, t, group, margin);
+  int differ = 0;
+  for (int lane = 0; lane < 8; ++lane) {
+    const bool want = triangles_rejected(pt, t, TrianglePlane::of(u[lane][0], u[lane][1], u[lane][2]), u[lane], margin);
+    rejected += want;
+    differ += want != (((bits >> lane) & 1u) != 0);
+  }
+  return differ;
+}
+
+}  // namespace
+
+TEST_CASE("a triangle's float rejections against 8 others at once are triangles_rejected's, lane by lane") {
+  // Triangles of leaflet size up to 2 m from the origin, the others shifted by up to twice their
+  // size (crossing, touching, apart), slivers, points, shared corners and copies; margins of the
+  // exact stage (clearance + kRejectSlack) and a NaN lane.
+  std::mt19937 rng(41);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int differ = 0, rejected = 0, kept = 0;
+  for (int trial = 0; trial < 6000; ++trial) {
+    const Vec3f base{2.0f * u(rng), 2.0f * u(rng), 1.5f + u(rng)};
+    const float size = trial % 2 ? 0.02f : 0.002f;
+    Vec3f t[3], others[8][3];
+    for (auto& p : t) p = base + Vec3f{u(rng), u(rng), u(rng)} * size;
+    for (int lane = 0; lane < 8; ++lane) {
+      const Vec3f shift = Vec3f{u(rng), u(rng), u(rng)} * (2 * size * static_cast<float>(lane) / 7.0f);
+      for (auto& p : others[lane]) p = base + shift + Vec3f{u(rng), u(rng), u(rng)} * size;
+      switch ((trial + lane) % 9) {
+        case 0: others[lane][2] = others[lane][0] + (others[lane][1] - others[lane][0]) * 0.5f; break;  // a sliver
+        case 1: others[lane][1] = others[lane][2] = others[lane][0]; break;                              // a point
+        case 2: others[lane][0] = t[1]; break;                                                           // a shared corner
+        case 3: for (int c = 0; c < 3; ++c) others[lane][c] = t[(c + 1) % 3]; break;                     // t itself
+        case 4: for (int c = 0; c < 3; ++c) others[lane][c] = t[c] + Vec3f{0, 0, size * 0.5f}; break;   // parallel planes
+        default: break;
+      }
+    }
+    if (trial % 50 == 0) others[trial % 8][1].y = std::numeric_limits<float>::quiet_NaN();
+    for (const float c : {0.0f, 1e-4f, 0.01f}) {
+      int r = 0;
+      differ += rejected_differences(t, others, c + kRejectSlack, r);
+      rejected += r, kept += 8 - r;
+    }
+  }
+  CHECK(differ == 0);
+  CHECK(rejected > 20000);
+  CHECK(kept > 20000);
+}
+
+TEST_CASE("the float rejections 8 at a time agree at the last float where they change") {
+  // The other triangle slid along a direction (the first triangle's normal, or an edge-cross-edge
+  // axis) to the float at which triangles_rejected's answer flips, found by bisection; the lanes
+  // hold that position and the floats around it.
+  std::mt19937 rng(43);
+  std::uniform_real_distribution<float> u(-1, 1);
+  int differ = 0, flips = 0, rejected = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Vec3f base{2.0f * u(rng), 2.0f * u(rng), 1.5f + u(rng)};
+    const float size = trial % 2 ? 0.02f : 0.002f, margin = (trial % 3 ? 0.0f : 1e-4f) + kRejectSlack;
+    Vec3f t[3], q[3];
+    for (auto& p : t) p = base + Vec3f{u(rng), u(rng), u(rng)} * size;
+    for (auto& p : q) p = base + Vec3f{u(rng), u(rng), u(rng)} * size;
+    const Vec3f dir = trial % 2 ? cross(t[1] - t[0], t[2] - t[0]) : cross(t[1] - t[0], q[2] - q[1]);
+    const float len = std::sqrt(dot(dir, dir));
+    if (!(len > 0)) continue;
+    const Vec3f unit = dir * (1.0f / len);
+    const auto moved = [&](float s, Vec3f* out) {
+      for (int c = 0; c < 3; ++c) out[c] = q[c] + unit * s;
+    };
+    const TrianglePlane pt = TrianglePlane::of(t[0], t[1], t[2]);
+    const auto rejects = [&](float s) {
+      Vec3f m[3];
+      moved(s, m);
+      return triangles_rejected(pt, t, TrianglePlane::of(m[0], m[1], m[2]), m, margin);
+    };
+    float lo = 0, hi = 4 * size;  // at 0 they overlap often, at 4 sizes they are apart
+    if (rejects(lo) || !rejects(hi)) continue;
+    for (int step = 0; step < 60 && std::nextafter(lo, hi) < hi; ++step) {
+      const float mid = 0.5f * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      (rejects(mid) ? hi : lo) = mid;
+    }
+    ++flips;
+    Vec3f others[8][3];
+    float s = lo;
+    for (int k = 0; k < 3; ++k) s = std::nextafter(s, -1.0f);
+    for (int lane = 0; lane < 8; ++lane, s = std::nextafter(s, 1.0f)) moved(s, others[lane]);
+    int r = 0;
+    differ += rejected_differences(t, others, margin, r);
+    rejected += r;
+  }
+  CHECK(differ == 0);
+  CHECK(flips > 500);
+  CHECK(rejected > 1000);
+}
