@@ -65,14 +65,9 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   organ = id, frame = frame_plant, mesh = &m;
   solid = is_solid(s.organs[static_cast<std::size_t>(id)].prototype);
   const Vec3f d = frame_offset(s, plant, frame_plant);
-  moved_vertices(m, t, d, v);
+  at_ = t, moved_ = d, v_made_ = false;
   obb = make_obb(t, m.box, 0);
   if (plant != frame_plant) obb.centre = obb.centre + d;
-  box[0] = box[1] = box[2] = 1e300, box[3] = box[4] = box[5] = -1e300;
-  for (const Vec3f& p : v) {
-    box[0] = std::min<double>(box[0], p.x), box[1] = std::min<double>(box[1], p.y), box[2] = std::min<double>(box[2], p.z);
-    box[3] = std::max<double>(box[3], p.x), box[4] = std::max<double>(box[4], p.y), box[5] = std::max<double>(box[5], p.z);
-  }
   const std::size_t tris = m.triangle_count();
   plane_.resize(tris);
   plane_made_.assign(tris, 0);
@@ -86,6 +81,11 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   tri_lanes.resize(groups * kGroupFloats);
   const float cols[3][3] = {{t.c0.x, t.c0.y, t.c0.z}, {t.c1.x, t.c1.y, t.c1.z}, {t.c2.x, t.c2.y, t.c2.z}};
   const float shift[3] = {t.t.x, t.t.y, t.t.z}, move[3] = {d.x, d.y, d.z};
+  // The organ's box: the least and greatest corner (every vertex is a corner of a triangle:
+  // tests/geometry), the lanes past the last triangle left out.
+  F8 organ_lo[3], organ_hi[3];
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < 3; ++k) organ_lo[k] = F8{kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf}, organ_hi[k] = -organ_lo[k];
   for (std::size_t g = 0; g < groups; ++g) {
     const float* local = &m.corner_lanes[g * 72];
     float* group = &tri_lanes[g * kGroupFloats];
@@ -97,12 +97,33 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
         std::memcpy(group + 8 * (3 * c + k), &at[c][k], sizeof(F8));
       }
     }
+    const unsigned used = lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g));
+    I8 in_use;
+    for (int t = 0; t < 8; ++t) in_use[t] = (used >> t) & 1u ? -1 : 0;
     for (int k = 0; k < 3; ++k) {
       const F8 box_lo = lo(at[0][k], lo(at[1][k], at[2][k])), box_hi = hi(at[0][k], hi(at[1][k], at[2][k]));
       std::memcpy(group + 8 * (9 + k), &box_lo, sizeof box_lo);
       std::memcpy(group + 8 * (12 + k), &box_hi, sizeof box_hi);
+      // As std::min and std::max take a new value (a NaN one leaves the box as it was).
+      organ_lo[k] = in_use ? lo(box_lo, organ_lo[k]) : organ_lo[k];
+      organ_hi[k] = in_use ? hi(box_hi, organ_hi[k]) : organ_hi[k];
     }
   }
+  box[0] = box[1] = box[2] = 1e300, box[3] = box[4] = box[5] = -1e300;
+  if (groups > 0)
+    for (int k = 0; k < 3; ++k) {
+      float least = organ_lo[k][0], greatest = organ_hi[k][0];
+      for (int t = 1; t < 8; ++t) least = std::min(least, organ_lo[k][t]), greatest = std::max(greatest, organ_hi[k][t]);
+      box[k] = least, box[k + 3] = greatest;
+    }
+}
+
+const std::vector<Vec3f>& PosedOrgan::vertices() const {
+  if (!v_made_) {
+    moved_vertices(*mesh, at_, moved_, v_);
+    v_made_ = true;
+  }
+  return v_;
 }
 
 namespace {
@@ -240,7 +261,8 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
     for (std::size_t ii = 0; ii < ta; ++ii) {
       const std::size_t i = order_a.next();
       if (!bit(x.near_a_bits, i)) continue;
-      const Vec3f tri_a[3] = {pa.v[ma.indices[3 * i]], pa.v[ma.indices[3 * i + 1]], pa.v[ma.indices[3 * i + 2]]};
+      Vec3f tri_a[3];
+      pa.corners(i, tri_a);
       // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
       double box_i[6];
       for (int k = 0; k < 3; ++k) box_i[k] = pa.tri_box(i, k) - c, box_i[k + 3] = pa.tri_box(i, k + 3) + c;
@@ -253,7 +275,8 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
         if (lanes) lanes &= ~rejected_lanes(pa.plane(i), tri_a, group, margin);
         for (; lanes; lanes &= lanes - 1) {
           const std::size_t j = 8 * g + static_cast<std::size_t>(__builtin_ctz(lanes));
-          const Vec3f tri_b[3] = {pb.v[mb.indices[3 * j]], pb.v[mb.indices[3 * j + 1]], pb.v[mb.indices[3 * j + 2]]};
+          Vec3f tri_b[3];
+          pb.corners(j, tri_b);
           if (pair_touches(tri_a, tri_b)) {
             if (witness) witness->remember(i, j);
             return true;
@@ -263,9 +286,9 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
     }
   }
   // No surfaces meet: one organ may still lie wholly inside the other's solid.
-  if (pb.solid && !pa.v.empty() && point_in_convex(d3(pa.v[0]), pb.v.data(), mb.indices.data(), static_cast<int>(tb)))
+  if (pb.solid && ta > 0 && point_in_convex(d3(pa.vertices()[0]), pb.vertices().data(), mb.indices.data(), static_cast<int>(tb)))
     return true;
-  if (pa.solid && !pb.v.empty() && point_in_convex(d3(pb.v[0]), pa.v.data(), ma.indices.data(), static_cast<int>(ta)))
+  if (pa.solid && tb > 0 && point_in_convex(d3(pb.vertices()[0]), pa.vertices().data(), ma.indices.data(), static_cast<int>(ta)))
     return true;
   return false;
 }

@@ -25,32 +25,45 @@ struct PosedOrgan {
   std::int32_t organ = -1, frame = -1;  // which organ, in which plant's frame (-1: not posed)
   const PrototypeMesh* mesh = nullptr;
   bool solid = false;
-  std::vector<Vec3f> v;                // vertices
-  /// The triangles by groups of 8 in lanes (collision/lanes8.hpp), for the filters that test 8
-  /// at a time: per group 9 lanes of corner coordinates (first corner x y z, second, third) and
-  /// 6 of the triangle's box (lo x y z, hi x y z); lanes past the last triangle hold zeros.
+  /// The triangles by groups of 8 in lanes (collision/lanes8.hpp), made 8 at a time and tested
+  /// 8 at a time: per group 9 lanes of corner coordinates (first corner x y z, second, third),
+  /// each corner apply(transform, vertex) + origin difference as organ_vertices makes it, and 6
+  /// of the triangle's box (lo x y z, hi x y z); lanes past the last triangle are not used.
   std::vector<float> tri_lanes;
   static constexpr std::size_t kGroupFloats = 15 * 8;
   /// Component k (lo x y z, hi x y z) of triangle i's box.
   float tri_box(std::size_t i, int k) const { return tri_lanes[i / 8 * kGroupFloats + static_cast<std::size_t>(9 + k) * 8 + i % 8]; }
-  double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened)
+  /// Triangle i's corners.
+  void corners(std::size_t i, Vec3f* out) const {
+    const float* g = &tri_lanes[i / 8 * kGroupFloats + i % 8];
+    for (int c = 0; c < 3; ++c) out[c] = {g[8 * (3 * c)], g[8 * (3 * c + 1)], g[8 * (3 * c + 2)]};
+  }
+  double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened): its corners' (every vertex is one)
   Obb obb{};                           // its OBB in this frame (make_obb, centre moved by the origin difference)
   /// Triangle i's plane, made when first asked for: most triangles of a pose never pass the
   /// box tests that come before it.
   const TrianglePlane& plane(std::size_t i) const {
     if (!plane_made_[i]) {
-      const std::uint32_t* t = &mesh->indices[3 * i];
-      plane_[i] = TrianglePlane::of(v[t[0]], v[t[1]], v[t[2]]);
+      Vec3f t[3];
+      corners(i, t);
+      plane_[i] = TrianglePlane::of(t[0], t[1], t[2]);
       plane_made_[i] = 1;
     }
     return plane_[i];
   }
+  /// The vertices (organ_vertices), made when first asked for: only the test of an organ
+  /// wholly inside a solid reads them.
+  const std::vector<Vec3f>& vertices() const;
   /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
   /// plant `frame_plant`.
   void pose(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
             std::int32_t frame_plant);
 
  private:
+  Affine3f at_{};
+  Vec3f moved_{};
+  mutable std::vector<Vec3f> v_;
+  mutable bool v_made_ = false;
   mutable std::vector<TrianglePlane> plane_;
   mutable std::vector<std::uint8_t> plane_made_;
 };

@@ -67,8 +67,8 @@ TEST_CASE("the OBB filter rejects only triangles farther from the organ than the
       const PrototypeMesh& mesh = lib.get(r.prototype, r.lod);
       PosedOrgan posed;
       posed.pose(s, mesh, id, s.transforms[static_cast<std::size_t>(id)], r.plant, frame);
-      if (posed.v.empty()) continue;
-      const Vec3f at = posed.v[rng() % posed.v.size()];
+      if (posed.vertices().empty()) continue;
+      const Vec3f at = posed.vertices()[rng() % posed.vertices().size()];
       const float size = trial % 3 ? 0.02f : 0.002f;
       const float off = trial % 4 == 0 ? 0.0f : 0.01f * static_cast<float>(rng() % 4);
       const Vec3f dir{u(rng), u(rng), u(rng)};
@@ -77,7 +77,7 @@ TEST_CASE("the OBB filter rejects only triangles farther from the organ than the
       if (trial % 7 == 0) t[2] = t[0] + (t[1] - t[0]) * 0.5f;  // a degenerate triangle
       double d = 1e300;
       for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-        const Vec3f q[3] = {posed.v[mesh.indices[3 * i]], posed.v[mesh.indices[3 * i + 1]], posed.v[mesh.indices[3 * i + 2]]};
+        const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]], posed.vertices()[mesh.indices[3 * i + 1]], posed.vertices()[mesh.indices[3 * i + 2]]};
         d = std::min(d, reference_distance(t, q));
       }
       for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
@@ -88,7 +88,7 @@ TEST_CASE("the OBB filter rejects only triangles farther from the organ than the
         ++rejected;
         CHECK_MESSAGE(d > c, "seed ", seed, " trial ", trial, " distance ", d, " clearance ", c);
         for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-          const Vec3f q[3] = {posed.v[mesh.indices[3 * i]], posed.v[mesh.indices[3 * i + 1]], posed.v[mesh.indices[3 * i + 2]]};
+          const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]], posed.vertices()[mesh.indices[3 * i + 1]], posed.vertices()[mesh.indices[3 * i + 2]]};
           const bool touches = c > 0 ? triangles_within(t, q, c) : triangles_intersect(t, q);
           CHECK_FALSE(touches);
         }

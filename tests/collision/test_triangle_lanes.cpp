@@ -11,6 +11,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -31,9 +32,16 @@ int compare(const PosedOrgan& p, const double* box, const Obb& obb, float margin
   const PrototypeMesh& m = *p.mesh;
   const std::size_t tris = m.triangle_count();
   const FloatBounds bounds(box);
+  // The organ's box is its vertices' (in double, as the exact test widens it).
+  double vbox[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
+  for (const Vec3f& v : p.vertices()) {
+    const double xyz[3] = {v.x, v.y, v.z};
+    for (int k = 0; k < 3; ++k) vbox[k] = std::min(vbox[k], xyz[k]), vbox[k + 3] = std::max(vbox[k + 3], xyz[k]);
+  }
+  for (int k = 0; k < 6; ++k) CHECK(p.box[k] == vbox[k]);
   int near = 0;
   for (std::size_t i = 0; i < tris; ++i) {
-    const Vec3f t[3] = {p.v[m.indices[3 * i]], p.v[m.indices[3 * i + 1]], p.v[m.indices[3 * i + 2]]};
+    const Vec3f t[3] = {p.vertices()[m.indices[3 * i]], p.vertices()[m.indices[3 * i + 1]], p.vertices()[m.indices[3 * i + 2]]};
     const float tb[6] = {min_f(t[0].x, min_f(t[1].x, t[2].x)), min_f(t[0].y, min_f(t[1].y, t[2].y)),
                          min_f(t[0].z, min_f(t[1].z, t[2].z)), max_f(t[0].x, max_f(t[1].x, t[2].x)),
                          max_f(t[0].y, max_f(t[1].y, t[2].y)), max_f(t[0].z, max_f(t[1].z, t[2].z))};

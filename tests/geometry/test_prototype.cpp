@@ -1,11 +1,14 @@
-// Prototype meshes: leaflet outline and area, closed solids, outward normals, exact local boxes.
+// Prototype meshes: leaflet outline and area, closed solids, outward normals, exact local boxes,
+// every vertex a triangle's corner and the corners in lanes.
 #include "geometry/organ_mesh.hpp"
 #include "geometry/prototype.hpp"
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <vector>
 
 using namespace canopy;
 
@@ -78,6 +81,28 @@ TEST_CASE("local boxes are the exact bounds of the vertices") {
   CHECK(l.box.hi.z == 0);
   CHECK(l.box.hi.y <= 0.5f);
   CHECK(l.box.hi.y > 0.48f);
+}
+
+TEST_CASE("every vertex is a corner of a triangle, and the corners in lanes are the triangles' corners") {
+  // The exact stage takes an organ's box from its triangles' corners (collision/exact.cpp), the
+  // box of its vertices only while every vertex is a corner.
+  for (const PrototypeKind kind : {PrototypeKind::cylinder, PrototypeKind::leaflet, PrototypeKind::sphere, PrototypeKind::disk})
+    for (int lod = 1; lod <= kMaxLod; ++lod) {
+      const PrototypeMesh m = make_prototype(kind, lod);
+      std::vector<char> corner(m.positions.size(), 0);
+      for (const std::uint32_t i : m.indices) corner[i] = 1;
+      INFO("kind " << static_cast<int>(kind) << " lod " << lod);
+      CHECK(std::count(corner.begin(), corner.end(), 0) == 0);
+      REQUIRE(m.corner_lanes.size() == (m.triangle_count() + 7) / 8 * 72);
+      for (std::size_t t = 0; t < m.triangle_count(); ++t)
+        for (int c = 0; c < 3; ++c) {
+          const Vec3f p = m.positions[m.indices[3 * t + static_cast<std::size_t>(c)]];
+          const float* lane = &m.corner_lanes[t / 8 * 72 + t % 8];
+          CHECK(lane[8 * (3 * c)] == p.x);
+          CHECK(lane[8 * (3 * c + 1)] == p.y);
+          CHECK(lane[8 * (3 * c + 2)] == p.z);
+        }
+    }
 }
 
 TEST_CASE("triangle counts per level of detail") {
