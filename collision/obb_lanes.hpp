@@ -38,6 +38,7 @@ struct ObbBatch {
   bool full() const { return size == kLanes; }
   void add(const Obb& oa, const Obb& ob, Vec3f off, std::int32_t ia, std::int32_t ib, std::int32_t pa, std::int32_t pb) {
     a[size] = &oa, b[size] = &ob;
+    __builtin_prefetch(&oa), __builtin_prefetch(&ob);
     offset[0][size] = off.x, offset[1][size] = off.y, offset[2][size] = off.z;
     organ_a[size] = ia, organ_b[size] = ib, plant_a[size] = pa, plant_b[size] = pb;
     ++size;
