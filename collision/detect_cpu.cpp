@@ -89,6 +89,7 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   const Cluster& c1 = m.clusters[pb.first_cluster + pb.cluster_count - 1];
   lines(&m.clusters[pb.first_cluster], pb.cluster_count * sizeof(Cluster));
   lines(&m.lanes.around[pb.first_cluster], pb.cluster_count * sizeof(Box3f));
+  lines(&m.lanes.roots[pb.first_cluster], pb.cluster_count * sizeof(Lcd));
   lines(&m.nodes[c0.first_node], (c1.first_node + c1.node_count - c0.first_node) * sizeof(LcdNode));
   const OrganLanes& l = m.lanes;
   const auto lanes = [&](const BoxLanes& b, std::size_t l0, std::size_t l1) {
@@ -201,7 +202,7 @@ class CpuBackend : public DetectionBackend {
         const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
         lane_clusters_meeting(m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, offset, [&](std::uint32_t j) {
           const Cluster& cb = m.clusters[j];
-          if (passed_over(i, j) || !lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) return;
+          if (passed_over(i, j) || !lcd_overlap(m.lanes.roots[i], m.lanes.roots[j], offset)) return;
           col.leaf_pair(p, q, i, j);
           if (req.level == ContactLevel::leaf) return;
           descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {

@@ -3,6 +3,7 @@
 /// tests 8 box pairs at once (collision/organ_rows.hpp): every cluster's organs' boxes
 /// (obb_aabb), and every plant's clusters' boxes (Cluster::box). Part of the MBVT on the host:
 /// fit with the OBBs (fit_mbvt) and refit with them (refit_mbvt), a box per organ and cluster.
+#include "geometry/lcd.hpp"
 #include "geometry/prototype.hpp"
 
 #include <cstdint>
@@ -34,6 +35,9 @@ struct OrganLanes {
   /// Per cluster: the box around its organs' boxes (their least lo and greatest hi, so an organ
   /// box that misses it misses every one of them, exactly).
   std::vector<Box3f> around;
+  /// Per cluster: its root's LCD box, a copy of nodes[root].box side by side with the other
+  /// clusters' (the pass tests cluster pairs' roots without going through the cluster's index).
+  std::vector<Lcd> roots;
   /// Plant p's k-th cluster's box at lane cluster_first[p] + k, padded the same way.
   std::vector<std::uint32_t> cluster_first;
   BoxLanes clusters;

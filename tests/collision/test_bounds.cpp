@@ -140,6 +140,7 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
     const Cluster& c = m.clusters[ci];
     const PlantBound& pb = m.plants[static_cast<std::size_t>(c.plant)];
     CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x == c.box.lo.x);
+    CHECK(std::memcmp(&m.lanes.roots[ci], &m.nodes[c.root].box, sizeof(Lcd)) == 0);  // the root's LCD box, copied
     for (std::uint32_t k = c.first; k < c.first + c.count; ++k) {
       organ_mesh(s, m.cluster_organs[k], lib, mesh, true);
       const Box3f organ_box = m.lanes.organs.get(m.lanes.organ_first[ci] + (k - c.first));
@@ -220,6 +221,9 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
     CHECK(std::memcmp(x->data(), y->data(), x->size() * sizeof(float)) == 0);
   for (std::size_t c = 0; c < m.clusters.size(); ++c) {
     CHECK(m.lanes.around[c].lo.y == fresh.lanes.around[c].lo.y);
+    // The refit's root boxes are copied again: they are its nodes' (the refit keeps the axes, so
+    // they need not equal a fresh build's).
+    CHECK(std::memcmp(&m.lanes.roots[c], &m.nodes[m.clusters[c].root].box, sizeof(Lcd)) == 0);
     const PlantBound& pb = m.plants[static_cast<std::size_t>(m.clusters[c].plant)];
     CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster)).hi.z ==
           m.clusters[c].box.hi.z);
@@ -246,7 +250,8 @@ bool same_tree(const Mbvt& a, const Mbvt& b) {
   bool same = same_bytes(a.obbs, b.obbs) && same_bytes(a.takes_part, b.takes_part) && same_bytes(a.cluster_organs, b.cluster_organs) &&
               same_bytes(a.clusters, b.clusters) && same_bytes(a.nodes, b.nodes) && same_bytes(a.plants, b.plants) &&
               a.max_radius == b.max_radius && same_bytes(a.lanes.organ_first, b.lanes.organ_first) &&
-              same_bytes(a.lanes.around, b.lanes.around) && same_bytes(a.lanes.cluster_first, b.lanes.cluster_first);
+              same_bytes(a.lanes.around, b.lanes.around) && same_bytes(a.lanes.roots, b.lanes.roots) &&
+              same_bytes(a.lanes.cluster_first, b.lanes.cluster_first);
   for (const auto& [x, y] : {std::pair{&a.lanes.organs, &b.lanes.organs}, {&a.lanes.clusters, &b.lanes.clusters}})
     for (const auto& [u, v] : {std::pair{&x->lo_x, &y->lo_x}, {&x->lo_y, &y->lo_y}, {&x->lo_z, &y->lo_z}, {&x->hi_x, &y->hi_x},
                                {&x->hi_y, &y->hi_y}, {&x->hi_z, &y->hi_z}})
