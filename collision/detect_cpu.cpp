@@ -99,6 +99,13 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   lanes(l.clusters, l.cluster_first[static_cast<std::size_t>(q)], l.cluster_first[static_cast<std::size_t>(q)] + pb.cluster_count);
 }
 
+/// A node spanning cluster c's organs, as its tree's root does (its box left empty).
+LcdNode cluster_span(const Cluster& c) {
+  LcdNode n;
+  n.first = c.first, n.count = c.count;
+  return n;
+}
+
 class CpuBackend : public DetectionBackend {
  public:
   std::string name() const override { return "cpu"; }
@@ -205,10 +212,17 @@ class CpuBackend : public DetectionBackend {
           if (passed_over(i, j) || !lcd_overlap(m.lanes.roots[i], m.lanes.roots[j], offset)) return;
           col.leaf_pair(p, q, i, j);
           if (req.level == ContactLevel::leaf) return;
-          descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {
+          const auto block = [&](const LcdNode& na, const LcdNode& nb) {
             lane_block_pairs(m.lanes, m.cluster_organs.data(), i, ca, na, j, cb, nb, offset,
                              [&](std::int32_t x, std::int32_t y) { organ_pair(s, m, x, y, offset, col, ca.plant, cb.plant); });
-          });
+          };
+          // Two clusters of one block each (a tomato's compound leaves): the descent would hand
+          // their roots straight over, and a root spans its cluster's organs; their spans are
+          // taken from the clusters, the nodes left unread.
+          if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
+            block(cluster_span(ca), cluster_span(cb));
+          else
+            descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, block);
         });
       });
     }

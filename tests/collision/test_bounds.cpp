@@ -141,6 +141,9 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
     const PlantBound& pb = m.plants[static_cast<std::size_t>(c.plant)];
     CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x == c.box.lo.x);
     CHECK(std::memcmp(&m.lanes.roots[ci], &m.nodes[c.root].box, sizeof(Lcd)) == 0);  // the root's LCD box, copied
+    // The root spans the cluster's organs (the CPU pass takes a one-block cluster's span from it).
+    CHECK(m.nodes[c.root].first == c.first);
+    CHECK(m.nodes[c.root].count == c.count);
     for (std::uint32_t k = c.first; k < c.first + c.count; ++k) {
       organ_mesh(s, m.cluster_organs[k], lib, mesh, true);
       const Box3f organ_box = m.lanes.organs.get(m.lanes.organ_first[ci] + (k - c.first));
