@@ -69,7 +69,7 @@ void organ_pair(const Stand& s, const Mbvt& m, std::int32_t a, std::int32_t b, V
   if (out.waiting.full()) out.test_waiting();
 }
 
-/// Asks for plant q's boxes, organ records and lanes ahead of a work item that needs them:
+/// Asks for plant q's boxes, organ records, organ ids and lanes ahead of a work item that needs them:
 /// the pass waits on memory more than it computes (bench/results/README.md, thirty-first
 /// session), and the plant pairs come in an order that a prefetch two items ahead covers. Into
 /// the second-level cache, not the first: a plant's arrays (about 37 kB at the default level
@@ -91,6 +91,7 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   lines(&m.lanes.around[pb.first_cluster], pb.cluster_count * sizeof(Box3f));
   lines(&m.lanes.roots[pb.first_cluster], pb.cluster_count * sizeof(Lcd));
   lines(&m.nodes[c0.first_node], (c1.first_node + c1.node_count - c0.first_node) * sizeof(LcdNode));
+  lines(&m.cluster_organs[c0.first], (c1.first + c1.count - c0.first) * sizeof(std::uint32_t));
   const OrganLanes& l = m.lanes;
   const auto lanes = [&](const BoxLanes& b, std::size_t l0, std::size_t l1) {
     for (const std::vector<float>* v : {&b.lo_x, &b.lo_y, &b.lo_z, &b.hi_x, &b.hi_y, &b.hi_z}) lines(v->data() + l0, (l1 - l0) * sizeof(float));
