@@ -72,7 +72,7 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   plane_.resize(tris);
   plane_made_.assign(tris, 0);
   // The corners 8 triangles at a time from the mesh's corners in lanes, with the operations of
-  // apply(t, p) + d in their order (so each equals its vertex in v bit for bit), then each
+  // apply(t, p) + d in their order (so each equals organ_vertices' vertex bit for bit), then each
   // triangle's box, min_f and max_f of its corners.
   using namespace lanes_detail;
   const auto lo = [](F8 a, F8 b) { return a < b ? a : b; };
@@ -99,7 +99,7 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
     }
     const unsigned used = lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g));
     I8 in_use;
-    for (int t = 0; t < 8; ++t) in_use[t] = (used >> t) & 1u ? -1 : 0;
+    for (int lane = 0; lane < 8; ++lane) in_use[lane] = (used >> lane) & 1u ? -1 : 0;
     for (int k = 0; k < 3; ++k) {
       const F8 box_lo = lo(at[0][k], lo(at[1][k], at[2][k])), box_hi = hi(at[0][k], hi(at[1][k], at[2][k]));
       std::memcpy(group + 8 * (9 + k), &box_lo, sizeof box_lo);
@@ -113,7 +113,8 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   if (groups > 0)
     for (int k = 0; k < 3; ++k) {
       float least = organ_lo[k][0], greatest = organ_hi[k][0];
-      for (int t = 1; t < 8; ++t) least = std::min(least, organ_lo[k][t]), greatest = std::max(greatest, organ_hi[k][t]);
+      for (int lane = 1; lane < 8; ++lane)
+        least = std::min(least, organ_lo[k][lane]), greatest = std::max(greatest, organ_hi[k][lane]);
       box[k] = least, box[k + 3] = greatest;
     }
 }

@@ -1,7 +1,7 @@
 #pragma once
 /// Lanes of 8 floats or ints (GCC vector extensions, one AVX register each) and the few helpers
 /// the CPU backend's 8-at-a-time tests share: organ boxes (collision/organ_rows.hpp), OBB pairs
-/// (collision/obb_lanes.hpp) and the exact stage's triangle filters (collision/exact.cpp). Each
+/// (collision/obb_lanes.hpp) and the exact stage's triangle tests (collision/triangle_lanes.hpp). Each
 /// such test does per lane the scalar predicate's very operations in its very order, so its
 /// answers are the same bit for bit. Host only: nvcc never reads this file.
 #include <cstdint>
