@@ -75,8 +75,6 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   // apply(t, p) + d in their order (so each equals organ_vertices' vertex bit for bit), then each
   // triangle's box, min_f and max_f of its corners.
   using namespace lanes_detail;
-  const auto lo = [](F8 a, F8 b) { return a < b ? a : b; };
-  const auto hi = [](F8 a, F8 b) { return a > b ? a : b; };
   const std::size_t groups = (tris + 7) / 8;
   tri_lanes.resize(groups * kGroupFloats);
   const float cols[3][3] = {{t.c0.x, t.c0.y, t.c0.z}, {t.c1.x, t.c1.y, t.c1.z}, {t.c2.x, t.c2.y, t.c2.z}};
@@ -84,10 +82,10 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
   // The organ's box: the least and greatest corner (every vertex is a corner of a triangle:
   // tests/geometry), the lanes past the last triangle left out.
   F8 organ_lo[3], organ_hi[3];
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  for (int k = 0; k < 3; ++k) organ_lo[k] = F8{kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf}, organ_hi[k] = -organ_lo[k];
+  for (int k = 0; k < 3; ++k)
+    organ_lo[k] = splat8(std::numeric_limits<float>::infinity()), organ_hi[k] = splat8(-std::numeric_limits<float>::infinity());
   for (std::size_t g = 0; g < groups; ++g) {
-    const float* local = &m.corner_lanes[g * 72];
+    const float* local = &m.corner_lanes[g * PrototypeMesh::kCornerGroupFloats];
     float* group = &tri_lanes[g * kGroupFloats];
     F8 at[3][3];  // corner, coordinate
     for (int c = 0; c < 3; ++c) {
@@ -101,12 +99,12 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
     I8 in_use;
     for (int lane = 0; lane < 8; ++lane) in_use[lane] = (used >> lane) & 1u ? -1 : 0;
     for (int k = 0; k < 3; ++k) {
-      const F8 box_lo = lo(at[0][k], lo(at[1][k], at[2][k])), box_hi = hi(at[0][k], hi(at[1][k], at[2][k]));
+      const F8 box_lo = min8(at[0][k], min8(at[1][k], at[2][k])), box_hi = max8(at[0][k], max8(at[1][k], at[2][k]));
       std::memcpy(group + 8 * (9 + k), &box_lo, sizeof box_lo);
       std::memcpy(group + 8 * (12 + k), &box_hi, sizeof box_hi);
       // As std::min and std::max take a new value (a NaN one leaves the box as it was).
-      organ_lo[k] = in_use ? lo(box_lo, organ_lo[k]) : organ_lo[k];
-      organ_hi[k] = in_use ? hi(box_hi, organ_hi[k]) : organ_hi[k];
+      organ_lo[k] = in_use ? min8(box_lo, organ_lo[k]) : organ_lo[k];
+      organ_hi[k] = in_use ? max8(box_hi, organ_hi[k]) : organ_hi[k];
     }
   }
   box[0] = box[1] = box[2] = 1e300, box[3] = box[4] = box[5] = -1e300;

@@ -4,8 +4,12 @@
 /// (collision/obb_lanes.hpp) and the exact stage's triangle tests (collision/triangle_lanes.hpp). Each
 /// such test does per lane the scalar predicate's very operations in its very order, so its
 /// answers are the same bit for bit. Host only: nvcc never reads this file.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 namespace canopy {
 
@@ -29,6 +33,20 @@ inline unsigned bits8(I8 m) {
   for (int t = 0; t < 8; ++t) b |= static_cast<unsigned>(m[t] & 1) << t;
   return b;
 #endif
+}
+inline F8 splat8(float x) { return F8{x, x, x, x, x, x, x, x}; }  // x in every lane
+inline F8 min8(F8 a, F8 b) { return a < b ? a : b; }  // min_f lane by lane
+inline F8 max8(F8 a, F8 b) { return a > b ? a : b; }  // max_f lane by lane
+inline F8 sqrt8(F8 v) {  // sqrtf lane by lane (both correctly rounded)
+#if defined(__AVX__)
+  __m256 r;
+  std::memcpy(&r, &v, sizeof v);
+  r = _mm256_sqrt_ps(r);
+  std::memcpy(&v, &r, sizeof v);
+#else
+  for (int t = 0; t < 8; ++t) v[t] = std::sqrt(v[t]);
+#endif
+  return v;
 }
 }  // namespace lanes_detail
 

@@ -13,9 +13,6 @@
 
 #include <cmath>
 #include <limits>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
 
 namespace canopy {
 
@@ -66,28 +63,10 @@ inline unsigned near_lanes(const float* group, const FloatBounds& box, const Obb
     F8 x[3];
     for (int c = 0; c < 3; ++c) x[c] = d[c][0] * a.x + d[c][1] * a.y + d[c][2] * a.z;
     const float reach = obb.half[k] + margin;
-    const F8 lo = x[1] < x[2] ? x[1] : x[2], hi = x[1] > x[2] ? x[1] : x[2];
-    far |= ((x[0] < lo ? x[0] : lo) > reach) | ((x[0] > hi ? x[0] : hi) < -reach);
+    far |= (min8(x[0], min8(x[1], x[2])) > reach) | (max8(x[0], max8(x[1], x[2])) < -reach);
   }
   return ~bits8(far) & 0xffu;
 }
-
-namespace lanes_detail {
-inline F8 splat8(float x) { return F8{x, x, x, x, x, x, x, x}; }
-inline F8 min8(F8 a, F8 b) { return a < b ? a : b; }  // min_f lane by lane
-inline F8 max8(F8 a, F8 b) { return a > b ? a : b; }  // max_f lane by lane
-inline F8 sqrt8(F8 v) {  // sqrtf lane by lane (both correctly rounded)
-#if defined(__AVX__)
-  __m256 r;
-  std::memcpy(&r, &v, sizeof v);
-  r = _mm256_sqrt_ps(r);
-  std::memcpy(&v, &r, sizeof v);
-#else
-  for (int t = 0; t < 8; ++t) v[t] = std::sqrt(v[t]);
-#endif
-  return v;
-}
-}  // namespace lanes_detail
 
 /// Bit t set where triangles_rejected(pt, t, plane of u_t, u_t, margin) holds, u_t the
 /// triangle in lane t of a group (PosedOrgan::tri_lanes): its plane made as TrianglePlane::of

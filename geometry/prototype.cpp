@@ -18,13 +18,13 @@ double leaflet_norm() {
 }
 
 void finish_box(PrototypeMesh& m) {
-  m.corner_lanes.assign((m.triangle_count() + 7) / 8 * 72, 0.0f);
+  m.corner_lanes.assign((m.triangle_count() + 7) / 8 * PrototypeMesh::kCornerGroupFloats, 0.0f);
   for (std::size_t i = 0; i < m.indices.size(); i += 3) {
     const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]], c = m.positions[m.indices[i + 2]];
     m.face_cross.push_back(cross(b - a, c - a));
     const std::size_t t = i / 3;
     const float corners[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
-    for (std::size_t k = 0; k < 9; ++k) m.corner_lanes[t / 8 * 72 + 8 * k + t % 8] = corners[k];
+    for (std::size_t k = 0; k < 9; ++k) m.corner_lanes[t / 8 * PrototypeMesh::kCornerGroupFloats + 8 * k + t % 8] = corners[k];
   }
   Vec3f lo = m.positions.front(), hi = lo;
   for (const Vec3f& p : m.positions) {

@@ -93,11 +93,11 @@ TEST_CASE("every vertex is a corner of a triangle, and the corners in lanes are 
       for (const std::uint32_t i : m.indices) corner[i] = 1;
       INFO("kind " << static_cast<int>(kind) << " lod " << lod);
       CHECK(std::count(corner.begin(), corner.end(), 0) == 0);
-      REQUIRE(m.corner_lanes.size() == (m.triangle_count() + 7) / 8 * 72);
+      REQUIRE(m.corner_lanes.size() == (m.triangle_count() + 7) / 8 * PrototypeMesh::kCornerGroupFloats);
       for (std::size_t t = 0; t < m.triangle_count(); ++t)
         for (int c = 0; c < 3; ++c) {
           const Vec3f p = m.positions[m.indices[3 * t + static_cast<std::size_t>(c)]];
-          const float* lane = &m.corner_lanes[t / 8 * 72 + t % 8];
+          const float* lane = &m.corner_lanes[t / 8 * PrototypeMesh::kCornerGroupFloats + t % 8];
           CHECK(lane[8 * (3 * c)] == p.x);
           CHECK(lane[8 * (3 * c + 1)] == p.y);
           CHECK(lane[8 * (3 * c + 2)] == p.z);
