@@ -271,7 +271,7 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
         const float* group = &pb.tri_lanes[g * PosedOrgan::kGroupFloats];
         unsigned lanes = x.near_b_bits[g];
         if (lanes) lanes &= boxes_meeting_lanes(group, bounds_i);
-        if (lanes) lanes &= ~rejected_lanes(pa.plane(i), tri_a, group, margin);
+        if (lanes) lanes &= ~rejected_lanes(pa.plane(i), tri_a, group, margin, lanes);
         for (; lanes; lanes &= lanes - 1) {
           const std::size_t j = 8 * g + static_cast<std::size_t>(__builtin_ctz(lanes));
           Vec3f tri_b[3];

@@ -72,8 +72,10 @@ inline unsigned near_lanes(const float* group, const FloatBounds& box, const Obb
 /// triangle in lane t of a group (PosedOrgan::tri_lanes): its plane made as TrianglePlane::of
 /// makes it, then u's plane against t, t's plane against u and the nine edge-cross-edge axes
 /// (apart_on_edges), each with the scalar operations in their order; all of them computed for
-/// every lane, the answers joined at the end.
-inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const float* group, float margin) {
+/// every lane, the answers joined at the end. Only the lanes in `wanted` are answered: where the
+/// two planes reject all of those, the edge axes are left uncomputed (the other lanes' bits are
+/// then whatever the planes gave).
+inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const float* group, float margin, unsigned wanted = 0xffu) {
   using namespace lanes_detail;
   F8 u[3][3];  // corner, coordinate
   for (int c = 0; c < 3; ++c)
@@ -95,6 +97,7 @@ inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const fl
   const F8 pn[3] = {splat8(pt.n.x), splat8(pt.n.y), splat8(pt.n.z)};
   const F8 f0 = dot_u(pn, u[0]), f1 = dot_u(pn, u[1]), f2 = dot_u(pn, u[2]);
   rejected |= (min8(f0, min8(f1, f2)) > pt.hi + lim_t) | (max8(f0, max8(f1, f2)) < pt.lo - lim_t);
+  if ((wanted & ~bits8(rejected)) == 0) return bits8(rejected);
   // apart_on_edges(t, u): axes et x eu.
   for (int i = 0; i < 3; ++i) {
     const Vec3f et = t[i == 2 ? 0 : i + 1] - t[i];

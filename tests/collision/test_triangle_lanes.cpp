@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <random>
 
@@ -147,18 +148,22 @@ void put(float* group, int lane, const Vec3f* u) {
   }
 }
 
-/// Lanes whose answer differs from triangles_rejected's: t against the 8 triangles u[0..7].
-int rejected_differences(const Vec3f* t, const Vec3f (*u)[3], float margin, int& rejected) {
+/// Lanes whose answer differs from triangles_rejected's: t against the 8 triangles u[0..7], all
+/// lanes asked for and then each of the masks in `wanted` (their lanes only).
+int rejected_differences(const Vec3f* t, const Vec3f (*u)[3], float margin, int& rejected, std::initializer_list<unsigned> wanted = {}) {
   float group[PosedOrgan::kGroupFloats] = {};
   for (int lane = 0; lane < 8; ++lane) put(group, lane, u[lane]);
   const TrianglePlane pt = TrianglePlane::of(t[0], t[1], t[2]);
   const unsigned bits = rejected_lanes(pt, t, group, margin);
   int differ = 0;
+  unsigned want_bits = 0;
   for (int lane = 0; lane < 8; ++lane) {
     const bool want = triangles_rejected(pt, t, TrianglePlane::of(u[lane][0], u[lane][1], u[lane][2]), u[lane], margin);
     rejected += want;
+    want_bits |= want ? 1u << lane : 0u;
     differ += want != (((bits >> lane) & 1u) != 0);
   }
+  for (const unsigned w : wanted) differ += __builtin_popcount((rejected_lanes(pt, t, group, margin, w) ^ want_bits) & w);
   return differ;
 }
 
@@ -191,7 +196,7 @@ TEST_CASE("a triangle's float rejections against 8 others at once are triangles_
     if (trial % 50 == 0) others[trial % 8][1].y = std::numeric_limits<float>::quiet_NaN();
     for (const float c : {0.0f, 1e-4f, 0.01f}) {
       int r = 0;
-      differ += rejected_differences(t, others, c + kRejectSlack, r);
+      differ += rejected_differences(t, others, c + kRejectSlack, r, {1u << (trial % 8), static_cast<unsigned>(rng() & 0xffu)});
       rejected += r, kept += 8 - r;
     }
   }
