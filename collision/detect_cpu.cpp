@@ -201,10 +201,10 @@ class CpuBackend : public DetectionBackend {
       // plant's box (8 of p's clusters at a time), then each cluster's.
       lane_clusters_meeting_moved(m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
         const Cluster& ca = m.clusters[i];
-        if (p == q && !passed_over(i, i) && has_free_pair(s, m, ca.first, ca.count)) {  // within one cluster: all its pairs
+        if (p == q && !passed_over(i, i) && m.cluster_has_free[i]) {  // within one cluster: all its pairs
           col.leaf_pair(p, q, i, i);
           if (req.level != ContactLevel::leaf)
-            lane_own_pairs(m.lanes, m.cluster_organs.data(), i, ca,
+            lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), i, ca,
                            [&](std::int32_t a, std::int32_t b) { organ_pair(s, m, a, b, offset, col, p, q); });
         }
         const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q

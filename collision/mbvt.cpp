@@ -1,4 +1,5 @@
 #include "collision/mbvt.hpp"
+#include "collision/free_pairs.hpp"
 #include "collision/mbvt_fit.hpp"
 #include "geometry/organ_mesh.hpp"
 
@@ -59,6 +60,8 @@ namespace {
 struct PlantPart {
   std::vector<Cluster> clusters;
   std::vector<std::uint32_t> organs;
+  std::vector<std::uint64_t> free_after;  // beside organs
+  std::vector<std::uint8_t> has_free;     // per cluster
   std::vector<LcdNode> nodes;
 };
 
@@ -144,6 +147,13 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
     c.node_count = static_cast<std::uint32_t>(part.nodes.size()) - c.first_node;
     part.clusters.push_back(c);
   }
+  // The clusters' free pairs, while the plant's organ records are at hand.
+  part.free_after.resize(part.organs.size());
+  part.has_free.resize(groups);
+  for (std::uint32_t g = 0; g < groups; ++g) {
+    const Cluster& c = part.clusters[g];
+    part.has_free[g] = free_pair_masks(s.organs.data(), &part.organs[c.first], c.count, &part.free_after[c.first]) ? 1 : 0;
+  }
   return part;
 }
 
@@ -172,6 +182,8 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
   }
   m.clusters.resize(c0[np]);  // each written in full below
   m.cluster_organs.resize(o0[np]);
+  m.free_after.resize(o0[np]);
+  m.cluster_has_free.resize(c0[np]);
   m.nodes.resize(n0[np]);
   m.plants.assign(np, PlantBound{});  // bounds empty until fit
 #pragma omp parallel for schedule(dynamic, 16)
@@ -179,6 +191,8 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
     const PlantPart& part = parts[p];
     const auto oo = static_cast<std::uint32_t>(o0[p]), no = static_cast<std::uint32_t>(n0[p]);
     std::copy(part.organs.begin(), part.organs.end(), m.cluster_organs.begin() + static_cast<std::ptrdiff_t>(o0[p]));
+    std::copy(part.free_after.begin(), part.free_after.end(), m.free_after.begin() + static_cast<std::ptrdiff_t>(o0[p]));
+    std::copy(part.has_free.begin(), part.has_free.end(), m.cluster_has_free.begin() + static_cast<std::ptrdiff_t>(c0[p]));
     for (std::size_t k = 0; k < part.nodes.size(); ++k) {
       LcdNode node = part.nodes[k];
       node.first += oo;

@@ -60,6 +60,11 @@ struct Mbvt {
   std::vector<Obb, FirstTouchAllocator<Obb>> obbs;  // per organ (of every organ; unused where not taking part)
   std::vector<std::uint8_t> takes_part;       // per organ
   std::vector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
+  /// Beside cluster_organs: each organ's later organs in its cluster that are not adjacent to
+  /// it (free_pair_masks), and per cluster whether it holds such a pair; the host's (the CPU
+  /// pass's own pairs), made with the shape.
+  std::vector<std::uint64_t> free_after;
+  std::vector<std::uint8_t> cluster_has_free;
   std::vector<Cluster> clusters;              // plant by plant
   std::vector<LcdNode> nodes;
   std::vector<PlantBound> plants;

@@ -5,6 +5,7 @@
 /// organs) is skipped where the organ's box misses the box around b's organs, which it then
 /// misses one by one too (exactly: that box is their least lo and greatest hi). Host only: nvcc
 /// never reads this file.
+#include "collision/free_pairs.hpp"
 #include "collision/lanes8.hpp"
 #include "collision/mbvt.hpp"
 #include "collision/mbvt_fit.hpp"
@@ -102,15 +103,23 @@ inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& p
   }
 }
 
-/// own_pairs over lanes: the pairs x < y of cluster c's organs (index ic).
+/// own_pairs over lanes less the pairs free_after leaves out (collision/free_pairs.hpp, beside
+/// cluster_organs): the pairs x < y of cluster c's organs (index ic) whose boxes meet and, in a
+/// cluster of at most kMaskOrgans organs, that are not adjacent (in a larger one every pair
+/// whose boxes meet).
 template <typename OnPair>
-inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ic, const Cluster& c,
-                           OnPair&& on_pair) {
+inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after, std::uint32_t ic,
+                           const Cluster& c, OnPair&& on_pair) {
   const std::uint32_t l0 = l.organ_first[ic];
+  const bool masked = c.count <= kMaskOrgans;
   for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
+    const std::uint64_t free = free_after[c.first + x];
+    if (!free) continue;
     const Box3f bx = l.organs.get(l0 + x);
     for (std::uint32_t y0 = x + 1; y0 < c.count; y0 += OrganLanes::kWidth) {
-      for (unsigned mask = lanes_meeting(l.organs, l0 + y0, bx, Vec3f{0, 0, 0}) & lanes_detail::lanes_below(c.count, y0); mask;
+      const unsigned wanted = masked ? static_cast<unsigned>(free >> y0) & 0xffu : 0xffu;
+      if (!wanted) continue;
+      for (unsigned mask = lanes_meeting(l.organs, l0 + y0, bx, Vec3f{0, 0, 0}) & wanted & lanes_detail::lanes_below(c.count, y0); mask;
            mask &= mask - 1) {
         const std::uint32_t y = y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
         on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]), static_cast<std::int32_t>(cluster_organs[c.first + y]));

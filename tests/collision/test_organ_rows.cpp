@@ -2,6 +2,7 @@
 // definition both backends share (collision/organ_blocks.hpp, boxes_meet pair by pair): the
 // same pairs, compared as sorted lists, on seeded random stands and on boxes made to touch.
 #include "collision/broad_phase.hpp"
+#include "collision/free_pairs.hpp"
 #include "collision/lcd_descent.hpp"
 #include "collision/organ_blocks.hpp"
 #include "collision/organ_rows.hpp"
@@ -44,8 +45,11 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
         Pairs shared, lanes;
         const auto into = [](Pairs& out) { return [&out](std::int32_t a, std::int32_t b) { out.emplace_back(a, b); }; };
         if (i == j) {
+          // The lanes leave out the adjacent pairs of a cluster whose pairs are masked.
           own_pairs(m.cluster_organs.data(), ca.first, ca.count, box_of, into(shared));
-          lane_own_pairs(m.lanes, m.cluster_organs.data(), i, ca, into(lanes));
+          if (ca.count <= kMaskOrgans)
+            std::erase_if(shared, [&](const auto& ab) { return adjacent(s.organs[ab.first], ab.first, s.organs[ab.second], ab.second); });
+          lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), i, ca, into(lanes));
         } else {
           if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
           descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {
