@@ -116,8 +116,11 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
     const std::uint64_t free = free_after[c.first + x];
     if (!free) continue;
     const Box3f bx = l.organs.get(l0 + x);
-    for (std::uint32_t y0 = x + 1; y0 < c.count; y0 += OrganLanes::kWidth) {
-      const unsigned wanted = masked ? static_cast<unsigned>(free >> y0) & 0xffu : 0xffu;
+    // Whole groups of 8 lanes from the one holding x + 1 (aligned loads), the organs up to x
+    // left out (by the mask, or else by hand).
+    for (std::uint32_t y0 = (x + 1) / OrganLanes::kWidth * OrganLanes::kWidth; y0 < c.count; y0 += OrganLanes::kWidth) {
+      unsigned wanted = masked ? static_cast<unsigned>(free >> y0) & 0xffu : 0xffu;
+      if (y0 <= x) wanted &= ~0u << (x + 1 - y0);
       if (!wanted) continue;
       for (unsigned mask = lanes_meeting(l.organs, l0 + y0, bx, Vec3f{0, 0, 0}) & wanted & lanes_detail::lanes_below(c.count, y0); mask;
            mask &= mask - 1) {
