@@ -145,6 +145,7 @@ class CpuBackend : public DetectionBackend {
  private:
   std::optional<Mbvt> tree_;
   std::unique_ptr<PrototypeLibrary> lib_;
+  std::vector<ExactScratch> scratch_;  // per thread
 
   Contacts run(const Stand& s, const DetectRequest& req, double build_s) {
     Contacts out;
@@ -264,9 +265,13 @@ class CpuBackend : public DetectionBackend {
     t = now();
     std::vector<std::uint8_t> hit(organ.size(), 0);
     make_meshes(s, lib, threads);
+    // Each thread's scratch kept from the last detection (its poses' memory warm), its poses
+    // forgotten.
+    if (scratch_.size() < static_cast<std::size_t>(threads)) scratch_.resize(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
     {
-      ExactScratch scratch;
+      ExactScratch& scratch = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
+      scratch.poses.forget();
 #pragma omp for schedule(dynamic, 64)
       for (std::size_t i = 0; i < organ.size(); ++i) {
         // The record and transform of the pair twelve on (both lines a 48-byte transform may

@@ -79,6 +79,11 @@ class PoseCache {
   /// returned before) is never evicted by this call.
   const PosedOrgan& get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t, std::int32_t frame,
                         const PosedOrgan* keep = nullptr);
+  /// Forgets every pose (nothing is found again) and keeps the poses' memory for the next ones.
+  void forget() {
+    for (Entry& e : entries_) e.stand = nullptr, e.pose.organ = -1, e.used = 0;
+    clock_ = 0;
+  }
 
  private:
   static constexpr std::size_t kSets = 64;

@@ -151,7 +151,7 @@ TEST_CASE("plant pairs from the grid equal all pairs of overlapping bounds") {
 }
 
 TEST_CASE("one backend detecting stand after stand gives each stand's own answer") {
-  // The CPU backend builds each tree into the last one's memory.
+  // The CPU backend builds each tree into the last one's memory and keeps its exact stage's scratch.
   auto reused = make_cpu_backend();
   for (std::uint64_t seed : {3, 8, 5, 3}) {
     const Stand s = seed % 2 ? random_stand(seed) : row_stand(seed);
