@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
-#include <stdexcept>
 
 namespace canopy {
 namespace {
@@ -36,11 +35,17 @@ bool on_pair(fcl::CollisionObjectd* o1, fcl::CollisionObjectd* o2, void* data) {
 
 }  // namespace
 
-FclResult fcl_collide(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide, int repeats) {
-  using Model = fcl::BVHModel<fcl::OBBRSSd>;
-  FclResult out;
-  auto t = std::chrono::steady_clock::now();
+struct FclScene::Impl {
+  const Stand* stand = nullptr;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  mutable fcl::DynamicAABBTreeCollisionManagerd manager;
+  double build_s = 0;
+};
+
+FclScene::FclScene(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide) : impl_(std::make_unique<Impl>()) {
+  using Model = fcl::BVHModel<fcl::OBBRSSd>;
+  const auto t = std::chrono::steady_clock::now();
+  impl_->stand = &stand;
   std::vector<fcl::CollisionObjectd*> raw;
   OrganMesh mesh;
   for (std::size_t id = 0; id < stand.organ_count(); ++id) {
@@ -57,26 +62,24 @@ FclResult fcl_collide(const Stand& stand, PrototypeLibrary& lib, const KindMask&
     model->beginModel();
     model->addSubModel(v, tris);
     model->endModel();
-    objects.push_back(std::make_unique<fcl::CollisionObjectd>(model, fcl::Transform3d::Identity()));
-    objects.back()->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
-    raw.push_back(objects.back().get());
+    impl_->objects.push_back(std::make_unique<fcl::CollisionObjectd>(model, fcl::Transform3d::Identity()));
+    impl_->objects.back()->setUserData(reinterpret_cast<void*>(static_cast<std::intptr_t>(id)));
+    raw.push_back(impl_->objects.back().get());
   }
-  fcl::DynamicAABBTreeCollisionManagerd manager;
-  manager.registerObjects(raw);
-  manager.setup();
-  out.build_s = since(t);
-  std::vector<double> times;
-  for (int r = 0; r < std::max(1, repeats); ++r) {
-    t = std::chrono::steady_clock::now();
-    Search search{&stand, {}};
-    manager.collide(&search, on_pair);
-    times.push_back(since(t));
-    std::sort(search.pairs.begin(), search.pairs.end());
-    if (r > 0 && search.pairs != out.pairs) throw std::runtime_error("fcl_collide: the query gave different pairs on a repeat");
-    out.pairs = std::move(search.pairs);
-  }
-  out.detect_s = median(std::move(times));
-  return out;
+  impl_->manager.registerObjects(raw);
+  impl_->manager.setup();
+  impl_->build_s = since(t);
+}
+
+FclScene::~FclScene() = default;
+
+double FclScene::build_s() const { return impl_->build_s; }
+
+std::vector<std::pair<int, int>> FclScene::query() const {
+  Search search{impl_->stand, {}};
+  impl_->manager.collide(&search, on_pair);
+  std::sort(search.pairs.begin(), search.pairs.end());
+  return std::move(search.pairs);
 }
 
 }  // namespace canopy

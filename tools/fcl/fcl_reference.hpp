@@ -3,23 +3,35 @@
 /// benchmark: one BVHModel<OBBRSS> per organ (FCL transforms are rigid, so organs of different
 /// sizes cannot share a prototype model: the closest real setup), a dynamic AABB tree
 /// broad-phase manager over the organs, adjacent pairs and other kinds filtered in its callback.
-/// No Eigen type crosses this header, so canopy's code keeps its own compile flags.
+/// No Eigen or FCL type crosses this header, so canopy's code keeps its own compile flags.
 #include "collision/mbvt.hpp"
 #include "geometry/stand.hpp"
 
+#include <memory>
 #include <utility>
 #include <vector>
 
 namespace canopy {
 
-struct FclResult {
-  std::vector<std::pair<int, int>> pairs;  // organ pairs (a < b) whose meshes meet, sorted
-  double build_s = 0;   // the organs' models and the manager's tree
-  double detect_s = 0;  // the query (the manager's collide with the narrow phase): median of the repeats
-};
+/// FCL's models and manager over a stand's organs, built once; the query can then be run and
+/// timed as often as wanted, beside canopy's (bench_detect alternates the two, so that both see
+/// the same stretch of the machine's speed).
+class FclScene {
+ public:
+  /// Builds the models and the manager's tree of the organs of the kinds in `collide`.
+  FclScene(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide);
+  ~FclScene();
+  FclScene(const FclScene&) = delete;
+  FclScene& operator=(const FclScene&) = delete;
+  /// Seconds the constructor took (the organs' models and the manager's tree).
+  double build_s() const;
+  /// FCL's answer at the exact level (the manager's collide with the narrow phase): the organ
+  /// pairs (a < b) whose meshes meet, sorted.
+  std::vector<std::pair<int, int>> query() const;
 
-/// FCL's answer at the exact level; the query is run `repeats` times over the same manager (the
-/// median time kept; every run must give the same pairs, or this throws).
-FclResult fcl_collide(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide, int repeats = 1);
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace canopy
