@@ -209,7 +209,7 @@ class CpuBackend : public DetectionBackend {
           col.leaf_pair(p, q, i, i);
           if (req.level != ContactLevel::leaf)
             lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), i, ca, [&](std::int32_t a, std::int32_t b) {
-              organ_pair(s, m, a, b, offset, col, p, q, ca.count <= kMaskOrgans);
+              organ_pair(s, m, a, b, offset, col, p, q, pairs_masked(ca.count));
             });
         }
         const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
@@ -279,16 +279,13 @@ class CpuBackend : public DetectionBackend {
         // are too far apart for the hardware to see a stream (at 1,000 plants, thirty-fourth
         // session: b's alone 4 pairs on -> 12 pairs on, both lines, 0.1-0.2 ms less; a's too,
         // 1.1 ms less).
-        if (i + 12 < organ.size()) {
-          const auto b = static_cast<std::size_t>(organ[i + 12].organ_b);
-          __builtin_prefetch(&s.transforms[b]);
-          __builtin_prefetch(reinterpret_cast<const char*>(&s.transforms[b]) + 47);
-          __builtin_prefetch(&s.organs[b]);
-          const auto a = static_cast<std::size_t>(organ[i + 12].organ_a);
-          __builtin_prefetch(&s.transforms[a]);
-          __builtin_prefetch(reinterpret_cast<const char*>(&s.transforms[a]) + 47);
-          __builtin_prefetch(&s.organs[a]);
-        }
+        if (i + 12 < organ.size())
+          for (const std::int32_t id : {organ[i + 12].organ_a, organ[i + 12].organ_b}) {
+            const auto k = static_cast<std::size_t>(id);
+            __builtin_prefetch(&s.transforms[k]);
+            __builtin_prefetch(reinterpret_cast<const char*>(&s.transforms[k]) + 47);
+            __builtin_prefetch(&s.organs[k]);
+          }
         hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch) ? 1 : 0;
       }
     }

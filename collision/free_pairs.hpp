@@ -4,6 +4,7 @@
 /// with the tree's shape (it depends on the stand's structure alone, never on poses): the CPU
 /// pass then offers a cluster's own pairs to the OBB test without reading their organ records.
 /// Host only.
+#include "collision/mbvt_fit.hpp"
 #include "geometry/stand.hpp"
 
 #include <cstdint>
@@ -14,13 +15,17 @@ namespace canopy {
 /// bit set (its pairs are then sifted by adjacent() one by one).
 inline constexpr std::uint32_t kMaskOrgans = 64;
 
+/// Whether a cluster of `organs` organs has its pairs masked (its masks' bits are its free pairs).
+inline bool pairs_masked(std::uint32_t organs) { return organs <= kMaskOrgans; }
+
 /// For the cluster of organs ids[0, n) (one plant's, in string order): free_after[k] gets bit y
 /// set where k < y < n and organs ids[k], ids[y] are not adjacent (every bit when n exceeds
-/// kMaskOrgans). Returns whether any bit is set (for n above kMaskOrgans: true).
+/// kMaskOrgans). Returns whether the cluster holds a pair that is not adjacent
+/// (organs_hold_free_pair's answer).
 inline bool free_pair_masks(const OrganRecord* organs, const std::uint32_t* ids, std::uint32_t n, std::uint64_t* free_after) {
-  if (n > kMaskOrgans) {
+  if (!pairs_masked(n)) {
     for (std::uint32_t k = 0; k < n; ++k) free_after[k] = ~std::uint64_t{0};
-    return true;
+    return organs_hold_free_pair(organs, ids, 0, n);
   }
   // Each organ's parent is looked for among the cluster's earlier organs (where the ids run
   // on without a gap it sits ids[k] - parent places back; otherwise nearest first); children are

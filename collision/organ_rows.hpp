@@ -111,7 +111,7 @@ template <typename OnPair>
 inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after, std::uint32_t ic,
                            const Cluster& c, OnPair&& on_pair) {
   const std::uint32_t l0 = l.organ_first[ic];
-  const bool masked = c.count <= kMaskOrgans;
+  const bool masked = pairs_masked(c.count);
   for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
     const std::uint64_t free = free_after[c.first + x];
     if (!free) continue;

@@ -23,7 +23,7 @@ std::size_t check_masks(const Stand& s, const Mbvt& m, std::size_t& unmasked_clu
   for (std::size_t c = 0; c < m.clusters.size(); ++c) {
     const Cluster& cl = m.clusters[c];
     CHECK(static_cast<bool>(m.cluster_has_free[c]) == has_free_pair(s, m, cl.first, cl.count));
-    if (cl.count > kMaskOrgans) {
+    if (!pairs_masked(cl.count)) {
       ++unmasked_clusters;
       for (std::uint32_t x = 0; x < cl.count; ++x) CHECK(m.free_after[cl.first + x] == ~std::uint64_t{0});
       continue;
@@ -90,9 +90,9 @@ TEST_CASE("free-pair masks of random forests: roots, parents outside the cluster
     }
     std::vector<std::uint64_t> masks(n);
     const bool any = free_pair_masks(organs.data(), ids.data(), n, masks.data());
-    if (n > kMaskOrgans) {
+    if (!pairs_masked(n)) {
       for (std::uint64_t m : masks) CHECK(m == ~std::uint64_t{0});
-      CHECK(any);
+      CHECK(any == organs_hold_free_pair(organs.data(), ids.data(), 0, n));
       continue;
     }
     bool want_any = false;
@@ -109,4 +109,26 @@ TEST_CASE("free-pair masks of random forests: roots, parents outside the cluster
   }
   CHECK(free > 10000);
   CHECK(adjacent_pairs > 1000);
+}
+
+TEST_CASE("a cluster of one parent and its children holds no free pair, masked or not") {
+  // Every pair adjacent (the parent with each child, the children with each other): 64 organs
+  // are masked, 65 are not; either way the cluster holds no free pair, as has_free_pair says.
+  for (const std::uint32_t n : {2u, 64u, 65u, 100u}) {
+    std::vector<std::uint32_t> ids(n);
+    std::vector<OrganRecord> organs(n + 20);
+    for (std::uint32_t k = 0; k < n; ++k) ids[k] = 20 + k;
+    for (std::uint32_t k = 1; k < n; ++k) organs[ids[k]].parent = static_cast<std::int32_t>(ids[0]);
+    organs[ids[0]].parent = 3;  // outside the cluster
+    std::vector<std::uint64_t> masks(n);
+    INFO("organs " << n);
+    CHECK_FALSE(free_pair_masks(organs.data(), ids.data(), n, masks.data()));
+    if (pairs_masked(n))
+      for (std::uint64_t m : masks) CHECK(m == 0);
+    // One grandchild (of three organs or more) makes free pairs: with every child but its parent.
+    if (n > 2) {
+      organs[ids[n - 1]].parent = static_cast<std::int32_t>(ids[1]);
+      CHECK(free_pair_masks(organs.data(), ids.data(), n, masks.data()));
+    }
+  }
 }

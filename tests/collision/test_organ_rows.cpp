@@ -47,7 +47,7 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
         if (i == j) {
           // The lanes leave out the adjacent pairs of a cluster whose pairs are masked.
           own_pairs(m.cluster_organs.data(), ca.first, ca.count, box_of, into(shared));
-          if (ca.count <= kMaskOrgans)
+          if (pairs_masked(ca.count))
             std::erase_if(shared, [&](const auto& ab) { return adjacent(s.organs[ab.first], ab.first, s.organs[ab.second], ab.second); });
           lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), i, ca, into(lanes));
         } else {
