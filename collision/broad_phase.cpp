@@ -2,8 +2,8 @@
 #include "collision/mbvt_fit.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
-#include <unordered_map>
 
 namespace canopy {
 
@@ -15,41 +15,33 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, c
   std::vector<std::pair<std::int32_t, std::int32_t>> out;
   const std::size_t n = s.plant_count();
   if (n < 2) return out;
+  // Each plant's cell, the plants sorted by cell (row of cells, then cell in the row, then
+  // plant): the cells a plant's bound may reach, a 3 x 3 block around its own, are three runs of
+  // that order, one per row of cells. Taking the plants in that order, where each run starts
+  // only moves on, so one cursor per row keeps it (no hash map, no list per cell, no search).
   const double cell = std::max(2.0 * static_cast<double>(m.max_radius), 1e-3);
-  const auto key = [](std::int64_t ix, std::int64_t iy) {
-    return static_cast<std::uint64_t>(ix) * 0x9e3779b97f4a7c15ULL ^ static_cast<std::uint64_t>(iy);
+  struct Placed {
+    std::int64_t iy, ix;
+    std::int32_t plant;
+    bool operator<(const Placed& o) const { return iy != o.iy ? iy < o.iy : ix != o.ix ? ix < o.ix : plant < o.plant; }
   };
-  struct Cell {
-    std::int64_t ix, iy;
-    std::vector<std::int32_t> plants;
-  };
-  std::unordered_map<std::uint64_t, std::vector<Cell>> grid;
-  std::vector<std::pair<std::int64_t, std::int64_t>> cell_of(n);
-  for (std::size_t p = 0; p < n; ++p) {
-    const std::int64_t ix = static_cast<std::int64_t>(std::floor(s.plants[p].x / cell));
-    const std::int64_t iy = static_cast<std::int64_t>(std::floor(s.plants[p].y / cell));
-    cell_of[p] = {ix, iy};
-    auto& bucket = grid[key(ix, iy)];
-    auto it = std::find_if(bucket.begin(), bucket.end(), [&](const Cell& c) { return c.ix == ix && c.iy == iy; });
-    if (it == bucket.end()) {
-      bucket.push_back({ix, iy, {}});
-      it = bucket.end() - 1;
-    }
-    it->plants.push_back(static_cast<std::int32_t>(p));
-  }
-  for (std::size_t p = 0; p < n; ++p) {
-    const auto [ix, iy] = cell_of[p];
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        auto b = grid.find(key(ix + dx, iy + dy));
-        if (b == grid.end()) continue;
-        for (const Cell& c : b->second) {
-          if (c.ix != ix + dx || c.iy != iy + dy) continue;
-          for (std::int32_t q : c.plants)
-            if (static_cast<std::size_t>(q) > p && plant_bounds_overlap(s, m, p, static_cast<std::size_t>(q)))
-              out.emplace_back(static_cast<std::int32_t>(p), q);
-        }
+  std::vector<Placed> sorted(n);
+  for (std::size_t p = 0; p < n; ++p)
+    sorted[p] = {static_cast<std::int64_t>(std::floor(s.plants[p].y / cell)), static_cast<std::int64_t>(std::floor(s.plants[p].x / cell)),
+                 static_cast<std::int32_t>(p)};
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t run[3] = {0, 0, 0};  // where the run of row dy - 1 starts
+  for (const Placed& at : sorted) {
+    const auto p = static_cast<std::size_t>(at.plant);
+    for (int dy = 0; dy < 3; ++dy) {
+      const std::int64_t iy = at.iy + dy - 1;
+      std::size_t& k = run[dy];
+      while (k < n && sorted[k] < Placed{iy, at.ix - 1, -1}) ++k;
+      for (std::size_t j = k; j < n && sorted[j].iy == iy && sorted[j].ix <= at.ix + 1; ++j) {
+        const auto q = static_cast<std::size_t>(sorted[j].plant);
+        if (q > p && plant_bounds_overlap(s, m, p, q)) out.emplace_back(at.plant, sorted[j].plant);
       }
+    }
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -61,15 +53,7 @@ bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint
 
 std::vector<std::uint8_t> plants_with_free_pairs(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>* only) {
   std::vector<std::uint8_t> self(s.plant_count(), 0);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    const PlantBound& pb = m.plants[p];
-    if (pb.cluster_count == 0 || (only && !(*only)[p])) continue;
-    // The plant's organs that take part are contiguous in cluster_organs.
-    const Cluster& first = m.clusters[pb.first_cluster];
-    const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-    self[p] = has_free_pair(s, m, first.first, last.first + last.count - first.first) ? 1 : 0;
-  }
+  for (std::size_t p = 0; p < s.plant_count(); ++p) self[p] = m.plant_has_free[p] && (!only || (*only)[p]) ? 1 : 0;
   return self;
 }
 
@@ -80,10 +64,16 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, c
   if (active) std::erase_if(work, [&](const auto& w) { return !on(w.first) && !on(w.second); });
   count = {work.size(), 0};
   const std::vector<std::uint8_t> self = plants_with_free_pairs(s, m, active);
-  for (std::size_t p = 0; p < s.plant_count(); ++p)
-    if (self[p]) work.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(p)), ++count.within;
-  std::sort(work.begin(), work.end());
-  return work;
+  // Each plant with itself merged in before its pairs with later plants (both lists sorted).
+  std::vector<std::pair<std::int32_t, std::int32_t>> out;
+  out.reserve(work.size() + s.plant_count());
+  std::size_t k = 0;
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    if (self[p]) out.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(p)), ++count.within;
+    for (; k < work.size() && static_cast<std::size_t>(work[k].first) == p; ++k) out.push_back(work[k]);
+  }
+  assert(k == work.size() && std::is_sorted(out.begin(), out.end()));
+  return out;
 }
 
 }  // namespace canopy

@@ -264,7 +264,7 @@ class CpuBackend : public DetectionBackend {
     // Exact level.
     t = now();
     std::vector<std::uint8_t> hit(organ.size(), 0);
-    make_meshes(s, lib, threads);
+    // Every organ's mesh was made with the tree (fit_mbvt, before threads share the library).
     // Each thread's scratch kept from the last detection (its poses' memory warm), its poses
     // forgotten.
     if (scratch_.size() < static_cast<std::size_t>(threads)) scratch_.resize(static_cast<std::size_t>(threads));

@@ -62,6 +62,7 @@ struct PlantPart {
   std::vector<std::uint32_t> organs;
   std::vector<std::uint64_t> free_after;  // beside organs
   std::vector<std::uint8_t> has_free;     // per cluster
+  bool plant_has_free = false;            // a pair of the plant's organs taking part
   std::vector<LcdNode> nodes;
 };
 
@@ -153,7 +154,12 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
   for (std::uint32_t g = 0; g < groups; ++g) {
     const Cluster& c = part.clusters[g];
     part.has_free[g] = free_pair_masks(s.organs.data(), &part.organs[c.first], c.count, &part.free_after[c.first]) ? 1 : 0;
+    part.plant_has_free = part.plant_has_free || part.has_free[g];
   }
+  // Otherwise a free pair can only lie across clusters (the plant's organs taking part, as the
+  // plant level asks).
+  if (!part.plant_has_free)
+    part.plant_has_free = organs_hold_free_pair(s.organs.data(), part.organs.data(), 0, static_cast<std::uint32_t>(part.organs.size()));
   return part;
 }
 
@@ -184,6 +190,7 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
   m.cluster_organs.resize(o0[np]);
   m.free_after.resize(o0[np]);
   m.cluster_has_free.resize(c0[np]);
+  m.plant_has_free.resize(np);
   m.nodes.resize(n0[np]);
   m.plants.assign(np, PlantBound{});  // bounds empty until fit
 #pragma omp parallel for schedule(dynamic, 16)
@@ -204,6 +211,7 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
       c.first += oo, c.first_node += no, c.root += no;
       m.clusters[c0[p] + k] = c;
     }
+    m.plant_has_free[p] = part.plant_has_free ? 1 : 0;
     PlantBound& pb = m.plants[p];
     pb.first_cluster = static_cast<std::uint32_t>(c0[p]);
     pb.cluster_count = static_cast<std::uint32_t>(part.clusters.size());

@@ -65,6 +65,9 @@ struct Mbvt {
   /// pass's own pairs), made with the shape.
   std::vector<std::uint64_t> free_after;
   std::vector<std::uint8_t> cluster_has_free;
+  /// Per plant: whether its organs taking part hold a pair that is not adjacent, so it meets
+  /// itself at the plant level (made with the shape; plants_with_free_pairs reads it).
+  std::vector<std::uint8_t> plant_has_free;
   std::vector<Cluster> clusters;              // plant by plant
   std::vector<LcdNode> nodes;
   std::vector<PlantBound> plants;

@@ -252,6 +252,7 @@ bool same_bytes(const V& a, const V& b) {
 bool same_tree(const Mbvt& a, const Mbvt& b) {
   bool same = same_bytes(a.obbs, b.obbs) && same_bytes(a.takes_part, b.takes_part) && same_bytes(a.cluster_organs, b.cluster_organs) &&
               same_bytes(a.free_after, b.free_after) && same_bytes(a.cluster_has_free, b.cluster_has_free) &&
+              same_bytes(a.plant_has_free, b.plant_has_free) &&
               same_bytes(a.clusters, b.clusters) && same_bytes(a.nodes, b.nodes) && same_bytes(a.plants, b.plants) &&
               a.max_radius == b.max_radius && same_bytes(a.lanes.organ_first, b.lanes.organ_first) &&
               same_bytes(a.lanes.around, b.lanes.around) && same_bytes(a.lanes.roots, b.lanes.roots) &&

@@ -3,6 +3,7 @@
 #include "collision/broad_phase.hpp"
 #include "helpers.hpp"
 
+#include <random>
 #include <set>
 
 using namespace canopy;
@@ -148,6 +149,32 @@ TEST_CASE("plant pairs from the grid equal all pairs of overlapping bounds") {
         if (plant_bounds_overlap(s, m, p, q)) want.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(q));
     CHECK(plant_pairs(s, m) == want);
   }
+  // Clumps of plants scattered over a field on both sides of the origin (cells of negative
+  // index, clumps a few cells wide, cells left empty between them), two on one spot in each.
+  std::mt19937_64 g(61);
+  std::uniform_real_distribution<double> u(0, 1);
+  GrowRequest req;
+  req.grammar = source("grammars/tomato.yaml");
+  for (int clump = 0; clump < 6; ++clump) {
+    const double cx = -30 + 60 * u(g), cy = -30 + 60 * u(g), spread = 0.2 + 2.0 * u(g);
+    for (int i = 0; i < 10; ++i) {
+      PlantPlacement p;
+      p.x = cx + spread * u(g), p.y = cy + spread * u(g), p.rotation_deg = 360 * u(g), p.seed = g() % 1000;
+      req.plants.push_back(p);
+    }
+    req.plants.push_back(req.plants.back());
+  }
+  req.steps = 10;
+  req.lod = 1;
+  const Stand s = grow_stand(req);
+  PrototypeLibrary lib;
+  const Mbvt m = build_mbvt(s, lib, MbvtConfig{});
+  std::vector<std::pair<std::int32_t, std::int32_t>> want;
+  for (std::size_t p = 0; p < s.plant_count(); ++p)
+    for (std::size_t q = p + 1; q < s.plant_count(); ++q)
+      if (plant_bounds_overlap(s, m, p, q)) want.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(q));
+  CHECK(want.size() > 60);
+  CHECK(plant_pairs(s, m) == want);
 }
 
 TEST_CASE("one backend detecting stand after stand gives each stand's own answer") {

@@ -44,6 +44,28 @@ std::size_t check_masks(const Stand& s, const Mbvt& m, std::size_t& unmasked_clu
   return free;
 }
 
+/// Checks each plant's flag against has_free_pair over all its organs taking part (the plant
+/// level's question, asked pair by pair). Returns the plants flagged with no cluster flagged.
+std::size_t check_plant_flags(const Stand& s, const Mbvt& m) {
+  std::size_t across_only = 0;
+  REQUIRE(m.plant_has_free.size() == s.plant_count());
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    const PlantBound& pb = m.plants[p];
+    bool want = false, any_cluster = false;
+    if (pb.cluster_count > 0) {
+      const Cluster& first = m.clusters[pb.first_cluster];
+      const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
+      want = has_free_pair(s, m, first.first, last.first + last.count - first.first);
+      for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) any_cluster |= m.cluster_has_free[c] != 0;
+    }
+    INFO("plant " << p);
+    CHECK(static_cast<bool>(m.plant_has_free[p]) == want);
+    across_only += want && !any_cluster;
+  }
+  CHECK(plants_with_free_pairs(s, m) == m.plant_has_free);
+  return across_only;
+}
+
 }  // namespace
 
 TEST_CASE("a cluster's free-pair masks mark exactly its pairs that are not adjacent, on random stands") {
@@ -62,6 +84,23 @@ TEST_CASE("a cluster's free-pair masks mark exactly its pairs that are not adjac
   }
   CHECK(free > 10000);
   CHECK(unmasked > 0);
+}
+
+TEST_CASE("a plant's flag says whether its organs hold a free pair, across clusters too") {
+  // Stem organs alone in clusters of 1 or 2 (a child with its parent): their free pairs lie
+  // across clusters only; plants of one organ taking part hold none.
+  std::size_t across_only = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const Stand s = seed % 2 ? random_stand(seed) : row_stand(seed);
+    for (const char* kinds : {"internode", "leaflet,petiole,rachis,internode,peduncle", "all", "fruit"})
+      for (int stem : {1, 2, 8}) {
+        MbvtConfig cfg;
+        cfg.collide = parse_collide_kinds(kinds);
+        cfg.stem_cluster = stem;
+        across_only += check_plant_flags(s, build_mbvt_topology(s, cfg));
+      }
+  }
+  CHECK(across_only > 0);
 }
 
 TEST_CASE("free-pair masks of random forests: roots, parents outside the cluster, gaps in the ids, 1 to 65 organs") {
