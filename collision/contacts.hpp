@@ -58,10 +58,15 @@ inline std::vector<Contact> keep_hits(const std::vector<Contact>& pairs, const s
   return out;
 }
 
+/// adjacent() for two organs of one plant, ia and ib, from their parents alone.
+CANOPY_HD inline bool parents_adjacent(std::int32_t parent_a, std::int32_t ia, std::int32_t parent_b, std::int32_t ib) {
+  return parent_a == ib || parent_b == ia || parent_a == parent_b;
+}
+
 /// Organs joined in the structure tree (parent and child, or two children of one parent, roots
 /// of one plant included) touch by construction and are never a contact (DESIGN.md "Adjacency").
 CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const OrganRecord& b, std::int32_t ib) {
-  return a.plant == b.plant && (a.parent == ib || b.parent == ia || a.parent == b.parent);
+  return a.plant == b.plant && parents_adjacent(a.parent, ia, b.parent, ib);
 }
 
 /// contacts.csv of a whole stand: header `organ_a,organ_b,plant_a,plant_b,level`, rows sorted.

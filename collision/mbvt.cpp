@@ -173,8 +173,12 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
   m.max_radius = 0;
   const std::size_t n = s.organ_count();
   m.takes_part.resize(n);
+  m.parent_of.resize(n);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) m.takes_part[i] = config.collide[static_cast<std::size_t>(s.organs[i].kind)] ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    m.takes_part[i] = config.collide[static_cast<std::size_t>(s.organs[i].kind)] ? 1 : 0;
+    m.parent_of[i] = s.organs[i].parent;
+  }
   // Plants in parallel, then placed one after another (local indices moved to global ones).
   const std::size_t np = s.plant_count();
   std::vector<PlantPart> parts(np);

@@ -59,6 +59,7 @@ struct Mbvt {
   MbvtConfig config;
   std::vector<Obb, FirstTouchAllocator<Obb>> obbs;  // per organ (of every organ; unused where not taking part)
   std::vector<std::uint8_t> takes_part;       // per organ
+  std::vector<std::int32_t> parent_of;        // per organ: its record's parent (the pass's adjacency test)
   std::vector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
   /// Beside cluster_organs: each organ's later organs in its cluster that are not adjacent to
   /// it (free_pair_masks), and per cluster whether it holds such a pair; the host's (the CPU
