@@ -1,6 +1,7 @@
 #include "collision/mbvt.hpp"
 #include "collision/free_pairs.hpp"
 #include "collision/mbvt_fit.hpp"
+#include "collision/obb_fit_lanes.hpp"
 #include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
@@ -230,6 +231,27 @@ Mbvt build_mbvt_topology(const Stand& s, const MbvtConfig& config) {
   return m;
 }
 
+namespace {
+
+/// The OBBs of `count` (1 to 8) organs, id_of(t) the t-th one's id, 8 at a time (make_obbs8:
+/// make_obb's bits).
+template <typename IdOf>
+void fit_obbs8(Mbvt& m, const Stand& s, PrototypeLibrary& lib, IdOf&& id_of, int count) {
+  const Affine3f* transform[8];
+  const Box3f* local[8];
+  Obb* out[8];
+  for (int t = 0; t < count; ++t) {
+    const std::size_t id = id_of(t);
+    const OrganRecord& r = s.organs[id];
+    transform[t] = &s.transforms[id];
+    local[t] = &lib.get(r.prototype, r.lod).box;
+    out[t] = &m.obbs[id];
+  }
+  make_obbs8(transform, local, count, m.config.clearance, out);
+}
+
+}  // namespace
+
 void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   const std::size_t n = s.organ_count();
   // The meshes made before threads share the library (a level of detail out of range is
@@ -237,10 +259,11 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   // threads, which also fault the array's pages in (FirstTouchAllocator).
   make_meshes(s, lib);
   m.obbs.resize(n);
+  const std::ptrdiff_t groups = static_cast<std::ptrdiff_t>((n + 7) / 8);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const OrganRecord& r = s.organs[i];
-    m.obbs[i] = make_obb(s.transforms[i], lib.get(r.prototype, r.lod).box, m.config.clearance);
+  for (std::ptrdiff_t g = 0; g < groups; ++g) {
+    const auto first = static_cast<std::size_t>(g) * 8;
+    fit_obbs8(m, s, lib, [first](int t) { return first + static_cast<std::size_t>(t); }, static_cast<int>(std::min<std::size_t>(8, n - first)));
   }
   const std::size_t np = m.plants.size();
   lay_out_lanes(m.lanes, m);
@@ -277,13 +300,16 @@ void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vecto
   if (m.lanes.organ_first.size() != m.clusters.size())
     throw std::logic_error("refit_mbvt: the tree's boxes were never fit on the host (build_mbvt or fit_mbvt first)");
   std::vector<std::uint8_t> plant_dirty(m.plants.size(), 0);
-  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(organs.size());
+  const std::size_t n = organs.size();
+  const std::ptrdiff_t groups = static_cast<std::ptrdiff_t>((n + 7) / 8);
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t i = 0; i < n; ++i) {
-    const std::uint32_t id = organs[static_cast<std::size_t>(i)];
-    const OrganRecord& r = s.organs[id];
-    m.obbs[id] = make_obb(s.transforms[id], lib.get(r.prototype, r.lod).box, m.config.clearance);
-    std::atomic_ref<std::uint8_t>(plant_dirty[static_cast<std::size_t>(r.plant)]).store(1, std::memory_order_relaxed);
+  for (std::ptrdiff_t g = 0; g < groups; ++g) {
+    const auto first = static_cast<std::size_t>(g) * 8;
+    const int count = static_cast<int>(std::min<std::size_t>(8, n - first));
+    fit_obbs8(m, s, lib, [&organs, first](int t) { return static_cast<std::size_t>(organs[first + static_cast<std::size_t>(t)]); }, count);
+    for (int t = 0; t < count; ++t)
+      std::atomic_ref<std::uint8_t>(plant_dirty[static_cast<std::size_t>(s.organs[organs[first + static_cast<std::size_t>(t)]].plant)])
+          .store(1, std::memory_order_relaxed);
   }
   float radius = m.max_radius;  // grows with the plants refitted, as build_mbvt sets it
   const std::ptrdiff_t np = static_cast<std::ptrdiff_t>(m.plants.size());
