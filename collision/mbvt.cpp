@@ -259,16 +259,28 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   // threads, which also fault the array's pages in (FirstTouchAllocator).
   make_meshes(s, lib);
   m.obbs.resize(n);
-  const std::ptrdiff_t groups = static_cast<std::ptrdiff_t>((n + 7) / 8);
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t g = 0; g < groups; ++g) {
-    const auto first = static_cast<std::size_t>(g) * 8;
-    fit_obbs8(m, s, lib, [first](int t) { return first + static_cast<std::size_t>(t); }, static_cast<int>(std::min<std::size_t>(8, n - first)));
-  }
+  // Where the plants' organs follow one another and cover the stand (a grown stand's do), each
+  // plant's OBBs are made just before its clusters read them, while they are in the caches
+  // (the build at 1,000 plants on one thread about 2 ms less than all OBBs first, thirty-fifth
+  // session); otherwise all OBBs first.
   const std::size_t np = m.plants.size();
+  bool tiled = np == s.plant_count();
+  for (std::size_t p = 0, next = 0; tiled && p < np; next += s.plants[p].organ_count, ++p) tiled = s.plants[p].first_organ == next;
+  tiled = tiled && (np == 0 ? n == 0 : s.plants[np - 1].first_organ + s.plants[np - 1].organ_count == n);
+  const auto fit_range = [&](std::size_t from, std::size_t to) {
+    for (std::size_t first = from; first < to; first += 8)
+      fit_obbs8(m, s, lib, [first](int t) { return first + static_cast<std::size_t>(t); }, static_cast<int>(std::min<std::size_t>(8, to - first)));
+  };
+  if (!tiled) {
+    const std::ptrdiff_t chunks = static_cast<std::ptrdiff_t>((n + 1023) / 1024);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t k = 0; k < chunks; ++k)
+      fit_range(static_cast<std::size_t>(k) * 1024, std::min<std::size_t>(n, static_cast<std::size_t>(k + 1) * 1024));
+  }
   lay_out_lanes(m.lanes, m);
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t p = 0; p < np; ++p) {
+    if (tiled) fit_range(s.plants[p].first_organ, s.plants[p].first_organ + s.plants[p].organ_count);
     PlantBound& pb = m.plants[p];
     for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) {
       fit_cluster_axis(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), m.clusters[c]);

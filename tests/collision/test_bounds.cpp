@@ -280,3 +280,31 @@ TEST_CASE("a tree rebuilt in place over another stand's equals a fresh build, by
     CHECK(same_tree(reused, build_mbvt(s, lib, cfg)));
   }
 }
+
+TEST_CASE("every organ's OBB is make_obb's, whether or not the plants' organs follow one another") {
+  // A grown stand's plants hold consecutive organ ranges (each plant's OBBs are then made with
+  // its clusters); with two plants' records swapped, the ranges no longer follow the plant order
+  // (all OBBs are made first). Either way each OBB is make_obb's, bit for bit.
+  for (std::uint64_t seed : {4, 7}) {
+    Stand s = seed % 2 ? random_stand(seed) : row_stand(seed);
+    for (int swapped = 0; swapped < 2; ++swapped) {
+      if (swapped) {
+        std::swap(s.plants[0], s.plants[1]);
+        for (OrganRecord& r : s.organs) r.plant = r.plant == 0 ? 1 : r.plant == 1 ? 0 : r.plant;
+      }
+      PrototypeLibrary lib;
+      MbvtConfig cfg;
+      cfg.clearance = swapped ? 0.002f : 0.0f;
+      const Mbvt m = build_mbvt(s, lib, cfg);
+      REQUIRE(m.obbs.size() == s.organ_count());
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < s.organ_count(); ++i) {
+        const OrganRecord& r = s.organs[i];
+        const Obb want = make_obb(s.transforms[i], lib.get(r.prototype, r.lod).box, cfg.clearance);
+        differ += std::memcmp(&want, &m.obbs[i], sizeof want) != 0;
+      }
+      INFO("seed " << seed << " swapped " << swapped);
+      CHECK(differ == 0);
+    }
+  }
+}
