@@ -138,15 +138,26 @@ TEST_CASE("the same contacts on any thread count and on every run") {
   CHECK(std::is_sorted(one.begin(), one.end()));
 }
 
+namespace {
+
+/// Every plant pair p < q whose bounds overlap, tested pair by pair; the tree built on the way.
+std::vector<std::pair<std::int32_t, std::int32_t>> all_overlapping_plants(const Stand& s, Mbvt& m) {
+  PrototypeLibrary lib;
+  m = build_mbvt(s, lib, MbvtConfig{});
+  std::vector<std::pair<std::int32_t, std::int32_t>> want;
+  for (std::size_t p = 0; p < s.plant_count(); ++p)
+    for (std::size_t q = p + 1; q < s.plant_count(); ++q)
+      if (plant_bounds_overlap(s, m, p, q)) want.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(q));
+  return want;
+}
+
+}  // namespace
+
 TEST_CASE("plant pairs from the grid equal all pairs of overlapping bounds") {
+  Mbvt m;
   for (std::uint64_t seed = 50; seed <= 53; ++seed) {
     const Stand s = random_stand(seed);
-    PrototypeLibrary lib;
-    const Mbvt m = build_mbvt(s, lib, MbvtConfig{});
-    std::vector<std::pair<std::int32_t, std::int32_t>> want;
-    for (std::size_t p = 0; p < s.plant_count(); ++p)
-      for (std::size_t q = p + 1; q < s.plant_count(); ++q)
-        if (plant_bounds_overlap(s, m, p, q)) want.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(q));
+    const auto want = all_overlapping_plants(s, m);
     CHECK(plant_pairs(s, m) == want);
   }
   // Clumps of plants scattered over a field on both sides of the origin (cells of negative
@@ -167,12 +178,7 @@ TEST_CASE("plant pairs from the grid equal all pairs of overlapping bounds") {
   req.steps = 10;
   req.lod = 1;
   const Stand s = grow_stand(req);
-  PrototypeLibrary lib;
-  const Mbvt m = build_mbvt(s, lib, MbvtConfig{});
-  std::vector<std::pair<std::int32_t, std::int32_t>> want;
-  for (std::size_t p = 0; p < s.plant_count(); ++p)
-    for (std::size_t q = p + 1; q < s.plant_count(); ++q)
-      if (plant_bounds_overlap(s, m, p, q)) want.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(q));
+  const auto want = all_overlapping_plants(s, m);
   CHECK(want.size() > 60);
   CHECK(plant_pairs(s, m) == want);
 }
