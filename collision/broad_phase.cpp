@@ -47,10 +47,6 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, c
   return out;
 }
 
-bool has_free_pair(const Stand& s, const Mbvt& m, std::uint32_t first, std::uint32_t count) {
-  return organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), first, count);
-}
-
 std::vector<std::uint8_t> plants_with_free_pairs(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>* only) {
   std::vector<std::uint8_t> self(s.plant_count(), 0);
   for (std::size_t p = 0; p < s.plant_count(); ++p) self[p] = m.plant_has_free[p] && (!only || (*only)[p]) ? 1 : 0;

@@ -17,10 +17,6 @@ bool plant_bounds_overlap(const Stand& stand, const Mbvt& m, std::size_t p, std:
 /// Plant pairs (p < q) whose bounds overlap, sorted.
 std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& stand, const Mbvt& m);
 
-/// Whether organs cluster_organs[first, first + count) hold a pair that is not adjacent (so a
-/// contact among them is possible).
-bool has_free_pair(const Stand& stand, const Mbvt& m, std::uint32_t first, std::uint32_t count);
-
 /// A flag per plant: it holds a pair of organs taking part that are not adjacent, so it meets
 /// itself at the plant level (the tree's shape alone decides). With `only`, unflagged plants
 /// get 0.

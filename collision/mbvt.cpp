@@ -264,7 +264,7 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   // (the build at 1,000 plants on one thread about 2 ms less than all OBBs first, thirty-fifth
   // session); otherwise all OBBs first.
   const std::size_t np = m.plants.size();
-  bool tiled = np == s.plant_count();
+  bool tiled = true;
   for (std::size_t p = 0, next = 0; tiled && p < np; next += s.plants[p].organ_count, ++p) tiled = s.plants[p].first_organ == next;
   tiled = tiled && (np == 0 ? n == 0 : s.plants[np - 1].first_organ + s.plants[np - 1].organ_count == n);
   const auto fit_range = [&](std::size_t from, std::size_t to) {

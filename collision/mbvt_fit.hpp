@@ -20,7 +20,8 @@ CANOPY_HD inline void fit_cluster_axis(LcdNode* nodes, const Obb* obbs, const st
 }
 
 /// Whether organs cluster_organs[first, first + count) hold a pair that is not adjacent (so a
-/// contact among them is possible): the host's has_free_pair and the CUDA cluster-pairs kernel.
+/// contact among them is possible): the host's shape build (clusters above kMaskOrgans organs,
+/// plants) and the CUDA cluster-pairs kernel.
 CANOPY_HD inline bool organs_hold_free_pair(const OrganRecord* organs, const std::uint32_t* cluster_organs, std::uint32_t first,
                                             std::uint32_t count) {
   for (std::uint32_t i = first; i < first + count; ++i)

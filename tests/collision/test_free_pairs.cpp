@@ -15,14 +15,14 @@ using namespace canopy::test;
 namespace {
 
 /// Checks every cluster of the tree: each bit of free_after against adjacent(), and the
-/// cluster's flag against has_free_pair. Returns the free pairs seen in masked clusters.
+/// cluster's flag against organs_hold_free_pair. Returns the free pairs seen in masked clusters.
 std::size_t check_masks(const Stand& s, const Mbvt& m, std::size_t& unmasked_clusters) {
   std::size_t free = 0;
   REQUIRE(m.free_after.size() == m.cluster_organs.size());
   REQUIRE(m.cluster_has_free.size() == m.clusters.size());
   for (std::size_t c = 0; c < m.clusters.size(); ++c) {
     const Cluster& cl = m.clusters[c];
-    CHECK(static_cast<bool>(m.cluster_has_free[c]) == has_free_pair(s, m, cl.first, cl.count));
+    CHECK(static_cast<bool>(m.cluster_has_free[c]) == organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), cl.first, cl.count));
     if (!pairs_masked(cl.count)) {
       ++unmasked_clusters;
       for (std::uint32_t x = 0; x < cl.count; ++x) CHECK(m.free_after[cl.first + x] == ~std::uint64_t{0});
@@ -44,7 +44,7 @@ std::size_t check_masks(const Stand& s, const Mbvt& m, std::size_t& unmasked_clu
   return free;
 }
 
-/// Checks each plant's flag against has_free_pair over all its organs taking part (the plant
+/// Checks each plant's flag against organs_hold_free_pair over all its organs taking part (the plant
 /// level's question, asked pair by pair). Returns the plants flagged with no cluster flagged.
 std::size_t check_plant_flags(const Stand& s, const Mbvt& m) {
   std::size_t across_only = 0;
@@ -55,7 +55,7 @@ std::size_t check_plant_flags(const Stand& s, const Mbvt& m) {
     if (pb.cluster_count > 0) {
       const Cluster& first = m.clusters[pb.first_cluster];
       const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-      want = has_free_pair(s, m, first.first, last.first + last.count - first.first);
+      want = organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), first.first, last.first + last.count - first.first);
       for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) any_cluster |= m.cluster_has_free[c] != 0;
     }
     INFO("plant " << p);
@@ -152,7 +152,7 @@ TEST_CASE("free-pair masks of random forests: roots, parents outside the cluster
 
 TEST_CASE("a cluster of one parent and its children holds no free pair, masked or not") {
   // Every pair adjacent (the parent with each child, the children with each other): 64 organs
-  // are masked, 65 are not; either way the cluster holds no free pair, as has_free_pair says.
+  // are masked, 65 are not; either way the cluster holds no free pair, as organs_hold_free_pair says.
   for (const std::uint32_t n : {2u, 64u, 65u, 100u}) {
     std::vector<std::uint32_t> ids(n);
     std::vector<OrganRecord> organs(n + 20);
