@@ -95,7 +95,7 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   const Cluster& c1 = m.clusters[pb.first_cluster + pb.cluster_count - 1];
   lines(&m.clusters[pb.first_cluster], pb.cluster_count * sizeof(Cluster));
   lines(&m.lanes.around[pb.first_cluster], pb.cluster_count * sizeof(Box3f));
-  lines(&m.lanes.roots[pb.first_cluster], pb.cluster_count * sizeof(Lcd));
+  lines(&m.lanes.roots[pb.first_cluster], pb.cluster_count * sizeof(LcdCentred));
   lines(&m.nodes[c0.first_node], (c1.first_node + c1.node_count - c0.first_node) * sizeof(LcdNode));
   lines(&m.cluster_organs[c0.first], (c1.first + c1.count - c0.first) * sizeof(std::uint32_t));
   const OrganLanes& l = m.lanes;

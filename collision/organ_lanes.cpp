@@ -32,7 +32,7 @@ void BoxLanes::assign_empty(std::size_t lanes) {
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {
   lanes.organs.assign_empty(lay_out(lanes.organ_first, m.clusters.size(), [&](std::size_t c) { return m.clusters[c].count; }));
   lanes.around.assign(m.clusters.size(), empty_box());
-  lanes.roots.assign(m.clusters.size(), Lcd{});
+  lanes.roots.assign(m.clusters.size(), lcd_centred(Lcd{}));
   lanes.clusters.assign_empty(lay_out(lanes.cluster_first, m.plants.size(), [&](std::size_t p) { return m.plants[p].cluster_count; }));
 }
 
@@ -45,7 +45,7 @@ void fill_organ_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t c) {
     grow_around(around, b);
   }
   lanes.around[c] = around;
-  lanes.roots[c] = m.nodes[cl.root].box;
+  lanes.roots[c] = lcd_centred(m.nodes[cl.root].box);
 }
 
 void fill_cluster_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t p) {

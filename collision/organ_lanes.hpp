@@ -35,9 +35,9 @@ struct OrganLanes {
   /// Per cluster: the box around its organs' boxes (their least lo and greatest hi, so an organ
   /// box that misses it misses every one of them, exactly).
   std::vector<Box3f> around;
-  /// Per cluster: its root's LCD box, a copy of nodes[root].box side by side with the other
+  /// Per cluster: its root's LCD box, lcd_centred(nodes[root].box), side by side with the other
   /// clusters' (the pass tests cluster pairs' roots without going through the cluster's index).
-  std::vector<Lcd> roots;
+  std::vector<LcdCentred> roots;
   /// Plant p's k-th cluster's box at lane cluster_first[p] + k, padded the same way.
   std::vector<std::uint32_t> cluster_first;
   BoxLanes clusters;

@@ -6,6 +6,8 @@
 #include "geometry/obb.hpp"
 #include "geometry/vec.hpp"
 
+#include <cmath>
+
 namespace canopy {
 
 /// Horizontal axis a = (ax, ay) (unit), b = (-ay, ax); the box spans [lo, hi] along a, b and z.
@@ -81,30 +83,49 @@ CANOPY_HD inline void lcd_inflate(Lcd& l, float by) {
   }
 }
 
+/// An LCD box in the form its overlap test reads: the centre of its horizontal rectangle in the
+/// plant frame (cx, cy), its axis, its half sizes along u and v, and its vertical range; made
+/// once per box (lcd_centred) rather than at every test, where the pass tests each cluster's
+/// root against a dozen others (2 % of the query at 1,000 plants, thirty-sixth session). Half a
+/// cache line. An empty box's form has an empty vertical range (+inf, -inf), which meets no box
+/// of finite height.
+struct LcdCentred {
+  float cx = 0, cy = 0, ax = 1, ay = 0, hu = 0, hv = 0;
+  float z_lo = 0, z_hi = -1;
+};
+
+CANOPY_HD inline LcdCentred lcd_centred(const Lcd& l) {
+  if (lcd_empty(l)) return LcdCentred{0, 0, 1, 0, 0, 0, INFINITY, -INFINITY};
+  // Centre (u, v in the box's own frame) and half sizes; then the centre in the plant frame.
+  const float cu = 0.5f * (l.lo[0] + l.hi[0]), cv = 0.5f * (l.lo[1] + l.hi[1]);
+  const float hu = 0.5f * (l.hi[0] - l.lo[0]), hv = 0.5f * (l.hi[1] - l.lo[1]);
+  return LcdCentred{l.ax * cu - l.ay * cv, l.ay * cu + l.ax * cv, l.ax, l.ay, hu, hv, l.lo[2], l.hi[2]};
+}
+
 /// Whether two LCD boxes overlap (closed), with b moved by `offset`: the vertical axis, then the
 /// two horizontal axes of each box, as the separating-axis test of two rectangles in the plane
-/// (Gottschalk, Lin & Manocha 1996; Ericson, Real-Time Collision Detection §4.4.1, in 2D). Each
-/// box's centre and half sizes are found once and the four axes share the cosine and sine of
-/// the angle between the boxes, instead of both boxes being projected anew on every axis.
-CANOPY_HD inline bool lcd_overlap(const Lcd& a, const Lcd& b, Vec3f offset) {
-  if (lcd_empty(a) || lcd_empty(b)) return false;
-  if (a.lo[2] > b.hi[2] + offset.z || b.lo[2] + offset.z > a.hi[2]) return false;
-  // Centres (u, v in each box's own frame) and half sizes.
-  const float acu = 0.5f * (a.lo[0] + a.hi[0]), acv = 0.5f * (a.lo[1] + a.hi[1]);
-  const float ahu = 0.5f * (a.hi[0] - a.lo[0]), ahv = 0.5f * (a.hi[1] - a.lo[1]);
-  const float bcu = 0.5f * (b.lo[0] + b.hi[0]), bcv = 0.5f * (b.lo[1] + b.hi[1]);
-  const float bhu = 0.5f * (b.hi[0] - b.lo[0]), bhv = 0.5f * (b.hi[1] - b.lo[1]);
+/// (Gottschalk, Lin & Manocha 1996; Ericson, Real-Time Collision Detection §4.4.1, in 2D). The
+/// four axes share the cosine and sine of the angle between the boxes, instead of both boxes
+/// being projected anew on every axis.
+CANOPY_HD inline bool lcd_overlap(const LcdCentred& a, const LcdCentred& b, Vec3f offset) {
+  if (a.z_lo > b.z_hi + offset.z || b.z_lo + offset.z > a.z_hi) return false;
   // From a's centre to b's, in the plant frame.
-  const float dx = (b.ax * bcu - b.ay * bcv + offset.x) - (a.ax * acu - a.ay * acv);
-  const float dy = (b.ay * bcu + b.ax * bcv + offset.y) - (a.ay * acu + a.ax * acv);
+  const float dx = (b.cx + offset.x) - a.cx;
+  const float dy = (b.cy + offset.y) - a.cy;
   // |cos| and |sin| of the angle between the boxes' u axes: what each axis of one box makes
   // with both axes of the other.
   const float c = fabsf(a.ax * b.ax + a.ay * b.ay), sn = fabsf(a.ax * b.ay - a.ay * b.ax);
-  if (fabsf(dx * a.ax + dy * a.ay) > ahu + (bhu * c + bhv * sn)) return false;   // a's u axis
-  if (fabsf(dy * a.ax - dx * a.ay) > ahv + (bhu * sn + bhv * c)) return false;   // a's v axis
-  if (fabsf(dx * b.ax + dy * b.ay) > bhu + (ahu * c + ahv * sn)) return false;   // b's u axis
-  if (fabsf(dy * b.ax - dx * b.ay) > bhv + (ahu * sn + ahv * c)) return false;   // b's v axis
+  if (fabsf(dx * a.ax + dy * a.ay) > a.hu + (b.hu * c + b.hv * sn)) return false;   // a's u axis
+  if (fabsf(dy * a.ax - dx * a.ay) > a.hv + (b.hu * sn + b.hv * c)) return false;   // a's v axis
+  if (fabsf(dx * b.ax + dy * b.ay) > b.hu + (a.hu * c + a.hv * sn)) return false;   // b's u axis
+  if (fabsf(dy * b.ax - dx * b.ay) > b.hv + (a.hu * sn + a.hv * c)) return false;   // b's v axis
   return true;
+}
+
+/// The same test on two boxes as they are kept: none overlaps an empty box.
+CANOPY_HD inline bool lcd_overlap(const Lcd& a, const Lcd& b, Vec3f offset) {
+  if (lcd_empty(a) || lcd_empty(b)) return false;
+  return lcd_overlap(lcd_centred(a), lcd_centred(b), offset);
 }
 
 }  // namespace canopy

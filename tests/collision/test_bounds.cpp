@@ -110,6 +110,24 @@ TEST_CASE("LCD overlap agrees with the brute-force test of the same boxes as OBB
   CHECK(overlaps > 2000);
 }
 
+TEST_CASE("an empty LCD box meets nothing, kept as it is or centred") {
+  std::mt19937 g(9);
+  std::uniform_real_distribution<float> u(-1, 1);
+  const Lcd empty;
+  const LcdCentred empty_centred = lcd_centred(empty);
+  int met = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Lcd l = random_lcd(g, u(g) * 3.14159f, 1.0f, 0.05f, 0.5f);
+    const Vec3f off{u(g), u(g), u(g)};
+    CHECK_FALSE(lcd_overlap(empty, l, off));
+    CHECK_FALSE(lcd_overlap(l, empty, off));
+    CHECK_FALSE(lcd_overlap(empty_centred, lcd_centred(l), off));
+    CHECK_FALSE(lcd_overlap(lcd_centred(l), empty_centred, off));
+    met += lcd_overlap(lcd_centred(l), lcd_centred(l), off);  // the test is not always false
+  }
+  CHECK(met > 100);
+}
+
 TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-aligned boxes and its plant's bounds") {
   const Stand s = random_stand(7);
   PrototypeLibrary lib;
@@ -140,7 +158,8 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
     const Cluster& c = m.clusters[ci];
     const PlantBound& pb = m.plants[static_cast<std::size_t>(c.plant)];
     CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x == c.box.lo.x);
-    CHECK(std::memcmp(&m.lanes.roots[ci], &m.nodes[c.root].box, sizeof(Lcd)) == 0);  // the root's LCD box, copied
+    const LcdCentred root = lcd_centred(m.nodes[c.root].box);
+    CHECK(std::memcmp(&m.lanes.roots[ci], &root, sizeof root) == 0);  // the root's LCD box, centred
     // The root spans the cluster's organs (the CPU pass takes a one-block cluster's span from it).
     CHECK(m.nodes[c.root].first == c.first);
     CHECK(m.nodes[c.root].count == c.count);
@@ -224,9 +243,10 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
     CHECK(std::memcmp(x->data(), y->data(), x->size() * sizeof(float)) == 0);
   for (std::size_t c = 0; c < m.clusters.size(); ++c) {
     CHECK(m.lanes.around[c].lo.y == fresh.lanes.around[c].lo.y);
-    // The refit's root boxes are copied again: they are its nodes' (the refit keeps the axes, so
+    // The refit's root boxes are made again: from its nodes' (the refit keeps the axes, so
     // they need not equal a fresh build's).
-    CHECK(std::memcmp(&m.lanes.roots[c], &m.nodes[m.clusters[c].root].box, sizeof(Lcd)) == 0);
+    const LcdCentred root = lcd_centred(m.nodes[m.clusters[c].root].box);
+    CHECK(std::memcmp(&m.lanes.roots[c], &root, sizeof root) == 0);
     const PlantBound& pb = m.plants[static_cast<std::size_t>(m.clusters[c].plant)];
     CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster)).hi.z ==
           m.clusters[c].box.hi.z);
