@@ -255,16 +255,19 @@ class CpuBackend : public DetectionBackend {
       std::sort(out.pairs.begin(), out.pairs.end());
       return out;
     }
-    std::sort(organ.begin(), organ.end());
-    organ.erase(std::unique(organ.begin(), organ.end()), organ.end());
+    // Each organ pair comes once: an organ is in one cluster, each cluster pair (and each
+    // cluster's own pairs) is taken once, and the descent's node pairs split the organ pairs.
     out.counts[2] = count_pairs(organ);
     out.seconds[2] = 0;  // organ pairs come out of the same pass as the leaf level
     if (req.level == ContactLevel::organ) {
+      std::sort(organ.begin(), organ.end());
       out.pairs = std::move(organ);
       return out;
     }
 
-    // Exact level.
+    // Exact level, over the organ pairs in the order the pass found them: only the pairs that
+    // touch are sorted (at 1,000 plants 7,458 of 18,141: 0.3-0.5 ms less than sorting all first,
+    // thirty-sixth session).
     t = now();
     std::vector<std::uint8_t> hit(organ.size(), 0);
     // Every organ's mesh was made with the tree (fit_mbvt, before threads share the library).
@@ -293,6 +296,7 @@ class CpuBackend : public DetectionBackend {
       }
     }
     out.pairs = keep_hits(organ, hit);
+    std::sort(out.pairs.begin(), out.pairs.end());
     out.counts[3] = count_pairs(out.pairs);
     out.seconds[3] = now() - t;
     return out;

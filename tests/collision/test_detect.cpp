@@ -120,8 +120,17 @@ TEST_CASE("each level's organ pairs contain the next level's") {
       CHECK(leaves.count({std::min(ca, cb), std::max(ca, cb)}));
     }
     req.level = ContactLevel::exact;
-    const auto exact = cpu->detect(s, req).pairs;
+    const Contacts exact_detection = cpu->detect(s, req);
+    const auto& exact = exact_detection.pairs;
+    CHECK(std::is_sorted(exact.begin(), exact.end()));
     CHECK(std::includes(organ.begin(), organ.end(), exact.begin(), exact.end()));
+    // The exact detection's counts of the levels above are those levels' lists (each organ pair
+    // found once).
+    REQUIRE(exact_detection.counts[1]);
+    REQUIRE(exact_detection.counts[2]);
+    CHECK(exact_detection.counts[1]->total() == leaves.size());
+    CHECK(exact_detection.counts[2]->total() == organ.size());
+    CHECK(exact_detection.counts[2]->within == count_pairs(organ).within);
   }
 }
 
