@@ -60,8 +60,9 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
                          clearance, x);
 }
 
-void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
-                      std::int32_t frame_plant) {
+// The body of pose(), built into both builds (collision/isa.hpp).
+[[gnu::always_inline]] inline void PosedOrgan::pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
+                                                         std::int32_t plant, std::int32_t frame_plant) {
   organ = id, frame = frame_plant, mesh = &m;
   solid = is_solid(s.organs[static_cast<std::size_t>(id)].prototype);
   const Vec3f d = frame_offset(s, plant, frame_plant);
@@ -115,6 +116,24 @@ void PosedOrgan::pose(const Stand& s, const PrototypeMesh& m, std::int32_t id, c
         least = std::min(least, organ_lo[k][lane]), greatest = std::max(greatest, organ_hi[k][lane]);
       box[k] = least, box[k + 3] = greatest;
     }
+}
+
+CANOPY_TARGET_V4 void PosedOrgan::pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
+                                          std::int32_t plant, std::int32_t frame_plant) {
+  pose_body(s, m, id, t, plant, frame_plant);
+}
+
+void PosedOrgan::pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
+                                   std::int32_t frame_plant) {
+  pose_body(s, m, id, t, plant, frame_plant);
+}
+
+void PosedOrgan::pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
+                         std::int32_t frame_plant) {
+  if (isa == Isa::x86_64_v4)
+    pose_v4(s, m, id, t, plant, frame_plant);
+  else
+    pose_build_target(s, m, id, t, plant, frame_plant);
 }
 
 const std::vector<Vec3f>& PosedOrgan::vertices() const {
@@ -227,7 +246,11 @@ const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int
   return e.pose;
 }
 
-bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+namespace {
+
+// The body of posed_touch, built into both builds (collision/isa.hpp).
+[[gnu::always_inline]] inline bool posed_touch_body(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
+                                                    Witness* witness) {
   assert(pa.organ < pb.organ && pa.frame == pb.frame);
   const PrototypeMesh& ma = *pa.mesh;
   const PrototypeMesh& mb = *pb.mesh;
@@ -290,6 +313,24 @@ bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, Ex
   if (pa.solid && tb > 0 && point_in_convex(d3(pb.vertices()[0]), pa.vertices().data(), ma.indices.data(), static_cast<int>(ta)))
     return true;
   return false;
+}
+
+CANOPY_TARGET_V4 bool posed_touch_v4(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+  return posed_touch_body(pa, pb, clearance, x, witness);
+}
+
+bool posed_touch_build_target(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+  return posed_touch_body(pa, pb, clearance, x, witness);
+}
+
+}  // namespace
+
+bool posed_touch_as(Isa isa, const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+  return isa == Isa::x86_64_v4 ? posed_touch_v4(pa, pb, clearance, x, witness) : posed_touch_build_target(pa, pb, clearance, x, witness);
+}
+
+bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+  return posed_touch_as(fastest_isa(), pa, pb, clearance, x, witness);
 }
 
 }  // namespace canopy

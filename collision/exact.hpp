@@ -5,6 +5,7 @@
 /// origin difference), filters of single triangles (the other organ's box, then its OBB) and of
 /// triangle pairs (box, planes, edge axes), then the shared closed triangle test; capped
 /// cylinders and spheres are solids, so an organ wholly inside one counts too.
+#include "collision/isa.hpp"
 #include "geometry/obb.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/triangle_reject.hpp"
@@ -55,11 +56,23 @@ struct PosedOrgan {
   /// wholly inside a solid reads them.
   const std::vector<Vec3f>& vertices() const;
   /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
-  /// plant `frame_plant`.
+  /// plant `frame_plant`, with the fastest build this CPU runs (collision/isa.hpp).
   void pose(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-            std::int32_t frame_plant);
+            std::int32_t frame_plant) {
+    pose_as(fastest_isa(), s, m, organ, t, plant, frame_plant);
+  }
+  /// pose() with the given build (Isa::x86_64_v4 only where cpu_has_x86_64_v4()): the same bits.
+  void pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
+               std::int32_t frame_plant);
 
  private:
+  void pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
+                 std::int32_t frame_plant);
+  void pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
+               std::int32_t frame_plant);
+  void pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
+                         std::int32_t frame_plant);
+
   Affine3f at_{};
   Vec3f moved_{};
   mutable std::vector<Vec3f> v_;
@@ -143,8 +156,12 @@ struct Witness {
 int witness_slot_touching(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
                           const Affine3f& tb, float clearance, const Witness& witness, int skip = -1);
 /// The full test of two posed organs (a < b; b posed in a's plant's frame), remembering the
-/// touching triangles in `witness` when given.
+/// touching triangles in `witness` when given; with the fastest build this CPU runs
+/// (collision/isa.hpp).
 bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
+/// posed_touch with the given build (Isa::x86_64_v4 only where cpu_has_x86_64_v4()): the same
+/// answer and witness.
+bool posed_touch_as(Isa isa, const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
 
 /// The same test as organs_touch with the organs at the given plant-frame transforms instead of
 /// the stand's (the turn search of resolution tries poses before it keeps one). With a witness,
