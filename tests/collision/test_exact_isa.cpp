@@ -5,11 +5,14 @@
 // the build target's code can run; the test says so.
 #include "collision/backend.hpp"
 #include "collision/exact.hpp"
+#include "geometry/motion.hpp"
 #include "tests/collision/helpers.hpp"
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstring>
+#include <numbers>
 
 using namespace canopy;
 using namespace canopy::test;
@@ -26,13 +29,11 @@ bool same_witness(const Witness& x, const Witness& y) {
   return std::memcmp(x.tri_a, y.tri_a, sizeof x.tri_a) == 0 && std::memcmp(x.tri_b, y.tri_b, sizeof x.tri_b) == 0 && x.latest == y.latest;
 }
 
-/// Transform t turned by `deg` degrees about z through its origin (a turn search's kind of pose).
-Affine3f turned(const Affine3f& t, float deg) {
-  const float c = std::cos(deg * 0.0174532925f), s = std::sin(deg * 0.0174532925f);
-  const auto rot = [&](Vec3f v) { return Vec3f{c * v.x - s * v.y, s * v.x + c * v.y, v.z}; };
-  Affine3f r = t;
-  r.c0 = rot(t.c0), r.c1 = rot(t.c1), r.c2 = rot(t.c2);
-  return r;
+/// Transform t turned by `deg` degrees about the vertical through its origin, as resolution turns
+/// an organ about its joint (geometry/motion.hpp).
+Affine3f turned(const Affine3f& t, double deg) {
+  const double rad = deg * std::numbers::pi / 180;
+  return apply(rotation_about(to_double(t.t), axis_angle(Vec3d{0, 0, 1}, std::cos(rad), std::sin(rad))), t);
 }
 
 }  // namespace
@@ -57,7 +58,7 @@ TEST_CASE("posing and the posed test give the same bits from the build target's 
       const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
       const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
       const PrototypeMesh& mb = lib.get(rb.prototype, rb.lod);
-      for (const float deg : {0.0f, 3.0f}) {
+      for (const double deg : {0.0, 3.0}) {
         const Affine3f ta = s.transforms[static_cast<std::size_t>(a)];
         const Affine3f tb = turned(s.transforms[static_cast<std::size_t>(b)], deg);
         PosedOrgan pa[2], pb[2];
