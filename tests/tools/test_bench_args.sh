@@ -44,6 +44,13 @@ if [ -x "$dir/bench_generate" ]; then
   check "bench_generate --sizes without a value exit" "2" "$rc"
   check "bench_generate --sizes without a value leaves the CSV" "$earlier" "$(cat "$csv")"
 fi
+if [ -x "$dir/bench_detect" ]; then
+  # With one thread available it runs the one-thread rows once (it used to run none at all).
+  OMP_NUM_THREADS=1 timeout 120 "$dir/bench_detect" --sizes 20 --fcl-max 0 --repeats 1 --csv "$csv" >/dev/null 2>&1; rc=$?
+  check "bench_detect on one thread exit" "0" "$rc"
+  check "bench_detect on one thread: its query row" "1" "$(grep -c '^20,[^,]*,[^,]*,1,mbvt,query(exact),' "$csv")"
+  check "bench_detect on one thread: no other thread count" "0" "$(grep -vc '^plants,\|^20,[^,]*,[^,]*,1,' "$csv")"
+fi
 
 echo "$pass passed, $failures failed"
 [ "$failures" -eq 0 ]
