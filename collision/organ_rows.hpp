@@ -119,6 +119,7 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
     // plants, one thread: the query 0.4-5.6 % less than with the rows below (thirty-eighth
     // session, bench/results/README.md): their skips of rows and groups were mispredicted
     // branches, dearer than the lane tests they saved.
+    static_assert(2 * OrganLanes::kWidth <= kMaskOrgans, "the masks must hold these clusters' free pairs");
     unsigned hits[2 * kW];
     unsigned any = 0;
     for (std::uint32_t x = 0; x + 1 < c.count; ++x) {

@@ -107,10 +107,7 @@ int main(int argc, char** argv) {
       fp[l] = (level == ContactLevel::organ ? rows.size() : implied_pairs(s, m, rows, level == ContactLevel::leaf)) - exact.size();
     }
     pairs[3] = exact.size();
-    // One thread, then all of them (where there are more than one).
-    std::vector<int> thread_counts{1};
-    if (all > 1) thread_counts.push_back(all);
-    for (int threads : thread_counts) {
+    for (int threads : thread_counts(all)) {
       omp_set_num_threads(threads);
       const auto row = [&](const char* method, const std::string& stage, double sec, std::size_t p, long long f, long long missed) {
         fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10} {:>12} {:>8}\n", n, threads, method, stage, sec, p, f, missed);

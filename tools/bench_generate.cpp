@@ -70,8 +70,7 @@ int main(int argc, char** argv) {
   fmt::print("{:>7} {:>7} {:<17} {:>9} {:>10} {:>11} {:>12} {:>13} {:>9} {:>9}\n", "plants", "threads", "stage", "seconds",
              "organs", "triangles", "Morgans/s", "Mtriangles/s", "MB/s", "disk MB/s");
   for (int n : sizes) {
-    for (int threads : {1, all}) {
-      if (threads == all && all == 1) continue;
+    for (int threads : thread_counts(all)) {
       omp_set_num_threads(threads);
       double disk_now = 0;
       const auto row = [&](const char* stage, double s, std::size_t organs, std::size_t tris, std::size_t bytes) {

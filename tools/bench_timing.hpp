@@ -1,7 +1,7 @@
 #pragma once
 /// Timing helpers of the benchmark programs (tools/bench_*, the FCL reference): seconds since a
-/// time point, and the median of repeated timings (the middle one after sorting, the upper of
-/// the two middle ones for an even count).
+/// time point, the median of repeated timings (the middle one after sorting, the upper of the
+/// two middle ones for an even count), and the thread counts a benchmark runs at.
 #include <algorithm>
 #include <chrono>
 #include <vector>
@@ -28,6 +28,14 @@ double median_time(int repeats, F&& f) {
     t.push_back(since(t0));
   }
   return median(std::move(t));
+}
+
+/// The thread counts of a benchmark's rows: one, then `all` where that is more (with one thread
+/// available, the one-thread rows once).
+inline std::vector<int> thread_counts(int all) {
+  std::vector<int> counts{1};
+  if (all > 1) counts.push_back(all);
+  return counts;
 }
 
 }  // namespace canopy
