@@ -55,19 +55,31 @@ void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m
   moved_vertices(mesh, m, frame_offset(s, plant, frame_plant), out);
 }
 
-bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance, ExactScratch& x) {
-  return organs_touch_at(s, lib, a, s.transforms[static_cast<std::size_t>(a)], b, s.transforms[static_cast<std::size_t>(b)],
-                         clearance, x);
+bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance, ExactScratch& x,
+                  const Obb* obbs) {
+  if (!obbs)
+    return organs_touch_at(s, lib, a, s.transforms[static_cast<std::size_t>(a)], b, s.transforms[static_cast<std::size_t>(b)],
+                           clearance, x);
+  // organs_touch_at's steps with no witness, the poses taking the OBBs given.
+  assert(a < b);
+  const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
+  const OrganRecord& ra = s.organs[ia];
+  const OrganRecord& rb = s.organs[ib];
+  if (solids_apart(ra.prototype, s.transforms[ia], rb.prototype, s.transforms[ib], frame_offset(s, rb.plant, ra.plant), clearance))
+    return false;
+  const PosedOrgan& pa = x.poses.get(s, lib, a, s.transforms[ia], ra.plant, nullptr, &obbs[ia]);
+  const PosedOrgan& pb = x.poses.get(s, lib, b, s.transforms[ib], ra.plant, &pa, &obbs[ib]);
+  return posed_touch(pa, pb, clearance, x, nullptr);
 }
 
 // The body of pose(), built into both builds (collision/isa.hpp).
 [[gnu::always_inline]] inline void PosedOrgan::pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
-                                                         std::int32_t plant, std::int32_t frame_plant) {
+                                                         std::int32_t plant, std::int32_t frame_plant, const Obb* made) {
   organ = id, frame = frame_plant, mesh = &m;
   solid = is_solid(s.organs[static_cast<std::size_t>(id)].prototype);
   const Vec3f d = frame_offset(s, plant, frame_plant);
   at_ = t, moved_ = d, v_made_ = false;
-  obb = make_obb(t, m.box, 0);
+  obb = made ? *made : make_obb(t, m.box, 0);
   if (plant != frame_plant) obb.centre = obb.centre + d;
   const std::size_t tris = m.triangle_count();
   plane_.resize(tris);
@@ -92,8 +104,10 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
     for (int c = 0; c < 3; ++c) {
       const F8 x = load8(local + 24 * c), y = load8(local + 24 * c + 8), z = load8(local + 24 * c + 16);
       for (int k = 0; k < 3; ++k) {
-        at[c][k] = cols[0][k] * x + cols[1][k] * y + cols[2][k] * z + shift[k] + move[k];
-        std::memcpy(group + 8 * (3 * c + k), &at[c][k], sizeof(F8));
+        // Stored from a register (a copy out of the array went through the stack 16 bytes at a time).
+        const F8 v = cols[0][k] * x + cols[1][k] * y + cols[2][k] * z + shift[k] + move[k];
+        store8(group + 8 * (3 * c + k), v);
+        at[c][k] = v;
       }
     }
     const unsigned used = lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g));
@@ -101,8 +115,8 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
     for (int lane = 0; lane < 8; ++lane) in_use[lane] = (used >> lane) & 1u ? -1 : 0;
     for (int k = 0; k < 3; ++k) {
       const F8 box_lo = min8(at[0][k], min8(at[1][k], at[2][k])), box_hi = max8(at[0][k], max8(at[1][k], at[2][k]));
-      std::memcpy(group + 8 * (9 + k), &box_lo, sizeof box_lo);
-      std::memcpy(group + 8 * (12 + k), &box_hi, sizeof box_hi);
+      store8(group + 8 * (9 + k), box_lo);
+      store8(group + 8 * (12 + k), box_hi);
       // As std::min and std::max take a new value (a NaN one leaves the box as it was).
       organ_lo[k] = in_use ? min8(box_lo, organ_lo[k]) : organ_lo[k];
       organ_hi[k] = in_use ? max8(box_hi, organ_hi[k]) : organ_hi[k];
@@ -119,21 +133,21 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
 }
 
 CANOPY_TARGET_V4 void PosedOrgan::pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
-                                          std::int32_t plant, std::int32_t frame_plant) {
-  pose_body(s, m, id, t, plant, frame_plant);
+                                          std::int32_t plant, std::int32_t frame_plant, const Obb* made) {
+  pose_body(s, m, id, t, plant, frame_plant, made);
 }
 
 void PosedOrgan::pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
-                                   std::int32_t frame_plant) {
-  pose_body(s, m, id, t, plant, frame_plant);
+                                   std::int32_t frame_plant, const Obb* made) {
+  pose_body(s, m, id, t, plant, frame_plant, made);
 }
 
 void PosedOrgan::pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
-                         std::int32_t frame_plant) {
+                         std::int32_t frame_plant, const Obb* made) {
   if (isa == Isa::x86_64_v4)
-    pose_v4(s, m, id, t, plant, frame_plant);
+    pose_v4(s, m, id, t, plant, frame_plant, made);
   else
-    pose_build_target(s, m, id, t, plant, frame_plant);
+    pose_build_target(s, m, id, t, plant, frame_plant, made);
 }
 
 const std::vector<Vec3f>& PosedOrgan::vertices() const {
@@ -224,7 +238,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
 }
 
 const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t,
-                                 std::int32_t frame, const PosedOrgan* keep) {
+                                 std::int32_t frame, const PosedOrgan* keep, const Obb* made) {
   const std::size_t set = (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) % kSets;
   Entry* way = &entries_[2 * set];
   ++clock_;
@@ -239,7 +253,7 @@ const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int
   if (&way[w].pose == keep) w ^= 1;
   Entry& e = way[w];
   const OrganRecord& r = s.organs[static_cast<std::size_t>(organ)];
-  e.pose.pose(s, lib.get(r.prototype, r.lod), organ, t, r.plant, frame);
+  e.pose.pose(s, lib.get(r.prototype, r.lod), organ, t, r.plant, frame, made);
   e.stand = &s;
   e.at = t;
   e.used = clock_;

@@ -57,21 +57,23 @@ struct PosedOrgan {
   const std::vector<Vec3f>& vertices() const;
   /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
   /// plant `frame_plant`, with the fastest build this CPU runs (collision/isa.hpp).
+  /// `made`, where given, is make_obb(t, m.box, 0) made before (the tree's OBB of the organ at
+  /// the stand's pose, when the tree is not inflated): taken instead of made again.
   void pose(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-            std::int32_t frame_plant) {
-    pose_as(fastest_isa(), s, m, organ, t, plant, frame_plant);
+            std::int32_t frame_plant, const Obb* made = nullptr) {
+    pose_as(fastest_isa(), s, m, organ, t, plant, frame_plant, made);
   }
   /// pose() with the given build (Isa::x86_64_v4 only where cpu_has_x86_64_v4()): the same bits.
   void pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-               std::int32_t frame_plant);
+               std::int32_t frame_plant, const Obb* made = nullptr);
 
  private:
   void pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-                 std::int32_t frame_plant);
+                 std::int32_t frame_plant, const Obb* made);
   void pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-               std::int32_t frame_plant);
+               std::int32_t frame_plant, const Obb* made);
   void pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-                         std::int32_t frame_plant);
+                         std::int32_t frame_plant, const Obb* made);
 
   Affine3f at_{};
   Vec3f moved_{};
@@ -89,9 +91,9 @@ struct PosedOrgan {
 class PoseCache {
  public:
   /// `organ` at transform `t` in the frame of plant `frame`, made now or found; `keep` (a pose
-  /// returned before) is never evicted by this call.
+  /// returned before) is never evicted by this call; `made` as PosedOrgan::pose takes it.
   const PosedOrgan& get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t, std::int32_t frame,
-                        const PosedOrgan* keep = nullptr);
+                        const PosedOrgan* keep = nullptr, const Obb* made = nullptr);
   /// Forgets every pose (nothing is found again) and keeps the poses' memory for the next ones.
   void forget() {
     for (Entry& e : entries_) e.stand = nullptr, e.pose.organ = -1, e.used = 0;
@@ -118,8 +120,10 @@ struct alignas(64) ExactScratch {
 };
 
 /// Whether organs a < b touch (or come within `clearance`). Same answer on both backends.
+/// `obbs`, where given, holds make_obb(transform, mesh box, 0) of every organ at the stand's
+/// pose (a tree fit with no clearance: Mbvt::obbs), which the poses then take rather than make.
 bool organs_touch(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance,
-                  ExactScratch& scratch);
+                  ExactScratch& scratch, const Obb* obbs = nullptr);
 
 /// The triangle pairs that touched the last few times: tested first next time (a turn search
 /// asks about the same organ pair at nearby poses many times over, and as the poses swing about

@@ -21,6 +21,13 @@ inline F8 load8(const float* p) {
   std::memcpy(&v, p, sizeof v);
   return v;
 }
+inline void store8(float* p, F8 v) {
+#if defined(__AVX__)
+  _mm256_storeu_ps(p, reinterpret_cast<__m256>(v));
+#else
+  std::memcpy(p, &v, sizeof v);
+#endif
+}
 /// The lanes at + t (t < 8) that lie below `count`, as bits: a run's last lanes masked off.
 inline unsigned lanes_below(std::uint32_t count, std::uint32_t at) {
   return count - at < 8 ? (1u << (count - at)) - 1 : 0xffu;
@@ -34,7 +41,38 @@ inline unsigned bits8(I8 m) {
   return b;
 #endif
 }
+/// out[k] lane t = rows[t][k] (k, t < 8): 8 records of 8 floats into lanes by component, an
+/// 8 x 8 transpose of registers (one load per record rather than a gather per component).
+inline void transpose8(const float* const* rows, F8* out) {
+#if defined(__AVX__)
+  __m256 r[8];
+  for (int t = 0; t < 8; ++t) r[t] = _mm256_loadu_ps(rows[t]);
+  __m256 u[8], v[8];
+  for (int t = 0; t < 8; t += 2) u[t] = _mm256_unpacklo_ps(r[t], r[t + 1]), u[t + 1] = _mm256_unpackhi_ps(r[t], r[t + 1]);
+  for (int t = 0; t < 8; t += 4) {
+    v[t] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(1, 0, 1, 0));
+    v[t + 1] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(3, 2, 3, 2));
+    v[t + 2] = _mm256_shuffle_ps(u[t + 1], u[t + 3], _MM_SHUFFLE(1, 0, 1, 0));
+    v[t + 3] = _mm256_shuffle_ps(u[t + 1], u[t + 3], _MM_SHUFFLE(3, 2, 3, 2));
+  }
+  for (int k = 0; k < 4; ++k) {
+    const __m256 lo = _mm256_permute2f128_ps(v[k], v[k + 4], 0x20), hi = _mm256_permute2f128_ps(v[k], v[k + 4], 0x31);
+    std::memcpy(&out[k], &lo, sizeof lo);
+    std::memcpy(&out[k + 4], &hi, sizeof hi);
+  }
+#else
+  for (int t = 0; t < 8; ++t)
+    for (int k = 0; k < 8; ++k) out[k][t] = rows[t][k];
+#endif
+}
 inline F8 splat8(float x) { return F8{x, x, x, x, x, x, x, x}; }  // x in every lane
+inline F8 abs8(F8 v) {  // fabsf lane by lane (the sign bit cleared)
+  I8 bits;
+  std::memcpy(&bits, &v, sizeof v);
+  bits &= 0x7fffffff;
+  std::memcpy(&v, &bits, sizeof v);
+  return v;
+}
 inline F8 min8(F8 a, F8 b) { return a < b ? a : b; }  // min_f lane by lane
 inline F8 max8(F8 a, F8 b) { return a > b ? a : b; }  // max_f lane by lane
 inline F8 sqrt8(F8 v) {  // sqrtf lane by lane (both correctly rounded)

@@ -15,9 +15,6 @@
 
 #include <cstdint>
 #include <cstring>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
 
 namespace canopy {
 
@@ -54,45 +51,16 @@ static_assert(sizeof(Obb) == 16 * sizeof(float), "an OBB is read as 16 floats: c
 /// out[k] lane t: float k of OBB obbs[t] (centre x y z, the axes' x y z, half extents, radius,
 /// in Obb's order); lanes from `size` on repeat lane 0's OBB.
 inline void obb_components(const Obb* const* obbs, int size, F8 (&out)[16]) {
-  const Obb* at[8];
-  for (int t = 0; t < 8; ++t) at[t] = obbs[t < size ? t : 0];
-#if defined(__AVX__)
   for (int half = 0; half < 2; ++half) {
-    __m256 r[8];
-    for (int t = 0; t < 8; ++t) r[t] = _mm256_loadu_ps(reinterpret_cast<const float*>(at[t]) + 8 * half);
-    __m256 u[8], v[8];
-    for (int t = 0; t < 8; t += 2) u[t] = _mm256_unpacklo_ps(r[t], r[t + 1]), u[t + 1] = _mm256_unpackhi_ps(r[t], r[t + 1]);
-    for (int t = 0; t < 8; t += 4) {
-      v[t] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(1, 0, 1, 0));
-      v[t + 1] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(3, 2, 3, 2));
-      v[t + 2] = _mm256_shuffle_ps(u[t + 1], u[t + 3], _MM_SHUFFLE(1, 0, 1, 0));
-      v[t + 3] = _mm256_shuffle_ps(u[t + 1], u[t + 3], _MM_SHUFFLE(3, 2, 3, 2));
-    }
-    for (int k = 0; k < 4; ++k) {
-      const __m256 lo = _mm256_permute2f128_ps(v[k], v[k + 4], 0x20), hi = _mm256_permute2f128_ps(v[k], v[k + 4], 0x31);
-      std::memcpy(&out[8 * half + k], &lo, sizeof lo);
-      std::memcpy(&out[8 * half + k + 4], &hi, sizeof hi);
-    }
+    const float* rows[8];
+    for (int t = 0; t < 8; ++t) rows[t] = reinterpret_cast<const float*>(obbs[t < size ? t : 0]) + 8 * half;
+    transpose8(rows, &out[8 * half]);
   }
-#else
-  for (int t = 0; t < 8; ++t) {
-    float f[16];
-    std::memcpy(f, at[t], sizeof f);
-    for (int k = 0; k < 16; ++k) out[k][t] = f[k];
-  }
-#endif
 }
 }  // namespace lanes_detail
 
 inline unsigned ObbBatch::overlapping() const {
   using namespace lanes_detail;
-  const auto abs8 = [](F8 v) {
-    I8 bits;
-    std::memcpy(&bits, &v, sizeof v);
-    bits &= 0x7fffffff;
-    std::memcpy(&v, &bits, sizeof v);
-    return v;
-  };
   // obb_overlap's names: gap (= d) from a's centre to b's moved, reach of the spheres, r and
   // |r| + eps, d along a's axes.
   constexpr float kEps = 1e-6f;

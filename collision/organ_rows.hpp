@@ -7,6 +7,7 @@
 /// never reads this file.
 #include "collision/free_pairs.hpp"
 #include "collision/lanes8.hpp"
+#include "collision/lcd_lanes.hpp"
 #include "collision/mbvt.hpp"
 #include "collision/mbvt_fit.hpp"
 #include "collision/organ_lanes.hpp"
@@ -77,15 +78,24 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
 }
 
 /// Calls on_cluster(j) for plant q's clusters j (global indices) from its local index `from` on
-/// whose boxes meet `box` (boxes_meet(box, cluster j's box, offset)), in order.
+/// whose boxes meet `box` (boxes_meet(box, cluster j's box, offset)) and whose roots' LCD boxes
+/// overlap `root` (lcd_overlap(root, roots[j], offset)), in order: the boxes 8 at a time, then,
+/// where any of the 8 meet, the LCD boxes 8 at a time (collision/lcd_lanes.hpp). At 1,000
+/// plants, one thread (thirty-ninth session): the pass about 1.3 % less than with an LCD test
+/// and a branch per cluster whose box meets.
 template <typename OnCluster>
-inline void lane_clusters_meeting(const OrganLanes& l, const PlantBound& pb, std::uint32_t q, std::uint32_t from, const Box3f& box,
-                                  Vec3f offset, OnCluster&& on_cluster) {
+inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb, std::uint32_t q, std::uint32_t from, const Box3f& box,
+                                      const LcdCentred& root, Vec3f offset, OnCluster&& on_cluster) {
   const std::uint32_t l0 = l.cluster_first[q];
   for (std::uint32_t k0 = from / OrganLanes::kWidth * OrganLanes::kWidth; k0 < pb.cluster_count; k0 += OrganLanes::kWidth) {
     unsigned mask = lanes_meeting(l.clusters, l0 + k0, box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
     if (k0 < from) mask &= ~0u << (from - k0);
-    for (; mask; mask &= mask - 1) on_cluster(pb.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
+    if (!mask) continue;
+    // The lanes past the plant's last cluster repeat it (their bits are masked off above).
+    const LcdCentred* roots[OrganLanes::kWidth];
+    for (std::uint32_t t = 0; t < OrganLanes::kWidth; ++t) roots[t] = &l.roots[pb.first_cluster + std::min(k0 + t, pb.cluster_count - 1)];
+    for (mask &= lcd_overlapping8(root, roots, offset); mask; mask &= mask - 1)
+      on_cluster(pb.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
   }
 }
 

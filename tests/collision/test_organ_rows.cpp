@@ -187,3 +187,42 @@ TEST_CASE("organ pairs through lanes equal the shared definition on random stand
   CHECK(blocks == 0);        // a tomato's clusters are one block each
   CHECK(sub_blocks > 1000);  // the larger clusters did descend below their roots
 }
+
+TEST_CASE("the clusters found through lanes are those whose boxes meet and whose roots' LCD boxes overlap") {
+  // lane_clusters_overlapping against the two definitions, cluster by cluster: for every plant
+  // pair of the plant level and every cluster of the first plant, the second plant's clusters
+  // from each starting index the pass uses (0 between plants, i + 1 inside one), in order.
+  std::size_t found = 0, box_only = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    const Stand s = seed % 2 ? random_stand(seed) : row_stand(seed);
+    PrototypeLibrary lib;
+    MbvtConfig cfg;
+    if (seed % 3 == 1) cfg.clearance = 0.01f;
+    if (seed % 4 == 2) cfg.stem_cluster = 3;  // plants of more clusters: several groups of 8
+    const Mbvt m = build_mbvt(s, lib, cfg);
+    LevelCount count;
+    for (const auto& [p, q] : plant_level(s, m, count)) {
+      const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
+      const PlantBound& pa = m.plants[static_cast<std::size_t>(p)];
+      const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
+      for (std::uint32_t i = pa.first_cluster; i < pa.first_cluster + pa.cluster_count; ++i) {
+        const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;
+        std::vector<std::uint32_t> want, got;
+        for (std::uint32_t j = pb.first_cluster + from; j < pb.first_cluster + pb.cluster_count; ++j) {
+          if (!boxes_meet(m.clusters[i].box, m.clusters[j].box, offset)) continue;
+          if (lcd_overlap(m.nodes[m.clusters[i].root].box, m.nodes[m.clusters[j].root].box, offset))
+            want.push_back(j);
+          else
+            ++box_only;
+        }
+        lane_clusters_overlapping(m.lanes, pb, static_cast<std::uint32_t>(q), from, m.clusters[i].box, m.lanes.roots[i], offset,
+                                  [&](std::uint32_t j) { got.push_back(j); });
+        INFO("seed " << seed << " plants " << p << " " << q << " cluster " << i);
+        CHECK(got == want);
+        found += want.size();
+      }
+    }
+  }
+  CHECK(found > 1000);
+  CHECK(box_only > 100);  // the LCD test does leave out clusters whose boxes meet
+}
