@@ -76,9 +76,10 @@ struct Collector {
 };
 
 /// `known_free`: the pair is known not to be adjacent (a cluster's own pair that its free_after
-/// mask let through), so the parents are left unread.
-void organ_pair(const Mbvt& m, std::int32_t a, std::int32_t b, Vec3f offset_ab, Collector& out,
-                std::int32_t plant_a, std::int32_t plant_b, bool known_free = false) {
+/// mask let through), so the parents are left unread. Inlined where the pass finds its pairs:
+/// called, it cost the pass about 4 % at 1,000 plants, one thread (thirty-ninth session).
+[[gnu::always_inline]] inline void organ_pair(const Mbvt& m, std::int32_t a, std::int32_t b, Vec3f offset_ab, Collector& out,
+                                              std::int32_t plant_a, std::int32_t plant_b, bool known_free = false) {
   // offset_ab moves b into a's plant frame when a is the lower organ; callers pass organs of
   // one plant pair with the lower plant's organ first.
   if (out.moved && !(*out.moved)[static_cast<std::size_t>(a)] && !(*out.moved)[static_cast<std::size_t>(b)]) return;
