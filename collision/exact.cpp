@@ -321,11 +321,19 @@ namespace {
       }
     }
   }
-  // No surfaces meet: one organ may still lie wholly inside the other's solid.
-  if (pb.solid && ta > 0 && point_in_convex(d3(pa.vertices()[0]), pb.vertices().data(), mb.indices.data(), static_cast<int>(tb)))
-    return true;
-  if (pa.solid && tb > 0 && point_in_convex(d3(pb.vertices()[0]), pa.vertices().data(), ma.indices.data(), static_cast<int>(ta)))
-    return true;
+  // No surfaces meet: one organ may still lie wholly inside the other's solid, which its vertex
+  // 0 tells. A vertex beyond the solid's OBB by the margin lies outside it (beyond_obb's
+  // reasoning, the point taken as a triangle of three equal corners), so the solid's vertices
+  // are made only for a vertex within (thirty-ninth session: making them for every pair whose
+  // surfaces miss was about 1.5 % of the query at 1,000 plants).
+  const auto inside = [margin](const PosedOrgan& solid, std::size_t solid_tris, const PosedOrgan& other) {
+    const Vec3f p = other.first_vertex();
+    const Vec3f point[3] = {p, p, p};
+    return !beyond_obb(point, solid.obb, margin) &&
+           point_in_convex(d3(p), solid.vertices().data(), solid.mesh->indices.data(), static_cast<int>(solid_tris));
+  };
+  if (pb.solid && ta > 0 && inside(pb, tb, pa)) return true;
+  if (pa.solid && tb > 0 && inside(pa, ta, pb)) return true;
   return false;
 }
 

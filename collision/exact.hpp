@@ -55,6 +55,8 @@ struct PosedOrgan {
   /// The vertices (organ_vertices), made when first asked for: only the test of an organ
   /// wholly inside a solid reads them.
   const std::vector<Vec3f>& vertices() const;
+  /// Vertex 0 alone, as vertices() makes it (the point a test of containment takes).
+  Vec3f first_vertex() const { return apply(at_, mesh->positions[0]) + moved_; }
   /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
   /// plant `frame_plant`, with the fastest build this CPU runs (collision/isa.hpp).
   /// `made`, where given, is make_obb(t, m.box, 0) made before (the tree's OBB of the organ at
