@@ -55,21 +55,31 @@ void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m
   moved_vertices(mesh, m, frame_offset(s, plant, frame_plant), out);
 }
 
+namespace {
+
+/// organs_touch_at's test, the poses taking `made_a` / `made_b` (PosedOrgan::pose) where given.
+bool touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b, const Affine3f& pose_b,
+              float clearance, ExactScratch& x, Witness* witness, bool witness_tried, const Obb* made_a, const Obb* made_b) {
+  assert(a < b);
+  const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
+  const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
+  if (solids_apart(ra.prototype, pose_a, rb.prototype, pose_b, frame_offset(s, rb.plant, ra.plant), clearance)) return false;
+  if (witness && !witness_tried) {
+    const int slot = witness_slot_touching(s, lib, a, pose_a, b, pose_b, clearance, *witness);
+    if (slot >= 0) return witness->promote(slot), true;
+  }
+  const PosedOrgan& pa = x.poses.get(s, lib, a, pose_a, ra.plant, nullptr, made_a);
+  const PosedOrgan& pb = x.poses.get(s, lib, b, pose_b, ra.plant, &pa, made_b);
+  return posed_touch(pa, pb, clearance, x, witness);
+}
+
+}  // namespace
+
 bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance, ExactScratch& x,
                   const Obb* obbs) {
-  if (!obbs)
-    return organs_touch_at(s, lib, a, s.transforms[static_cast<std::size_t>(a)], b, s.transforms[static_cast<std::size_t>(b)],
-                           clearance, x);
-  // organs_touch_at's steps with no witness, the poses taking the OBBs given.
-  assert(a < b);
   const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
-  const OrganRecord& ra = s.organs[ia];
-  const OrganRecord& rb = s.organs[ib];
-  if (solids_apart(ra.prototype, s.transforms[ia], rb.prototype, s.transforms[ib], frame_offset(s, rb.plant, ra.plant), clearance))
-    return false;
-  const PosedOrgan& pa = x.poses.get(s, lib, a, s.transforms[ia], ra.plant, nullptr, &obbs[ia]);
-  const PosedOrgan& pb = x.poses.get(s, lib, b, s.transforms[ib], ra.plant, &pa, &obbs[ib]);
-  return posed_touch(pa, pb, clearance, x, nullptr);
+  return touch_at(s, lib, a, s.transforms[ia], b, s.transforms[ib], clearance, x, nullptr, false, obbs ? &obbs[ia] : nullptr,
+                  obbs ? &obbs[ib] : nullptr);
 }
 
 // The body of pose(), built into both builds (collision/isa.hpp).
@@ -224,17 +234,7 @@ int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a,
 
 bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
                      const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried) {
-  assert(a < b);
-  const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
-  const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
-  if (solids_apart(ra.prototype, pose_a, rb.prototype, pose_b, frame_offset(s, rb.plant, ra.plant), clearance)) return false;
-  if (witness && !witness_tried) {
-    const int slot = witness_slot_touching(s, lib, a, pose_a, b, pose_b, clearance, *witness);
-    if (slot >= 0) return witness->promote(slot), true;
-  }
-  const PosedOrgan& pa = x.poses.get(s, lib, a, pose_a, ra.plant);
-  const PosedOrgan& pb = x.poses.get(s, lib, b, pose_b, ra.plant, &pa);
-  return posed_touch(pa, pb, clearance, x, witness);
+  return touch_at(s, lib, a, pose_a, b, pose_b, clearance, x, witness, witness_tried, nullptr, nullptr);
 }
 
 const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t,

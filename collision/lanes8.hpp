@@ -21,6 +21,8 @@ inline F8 load8(const float* p) {
   std::memcpy(&v, p, sizeof v);
   return v;
 }
+/// Stores 8 lanes at p (unaligned) from a register: a copy of an array element through
+/// memcpy went through the stack 16 bytes at a time (collision/exact.cpp, posing).
 inline void store8(float* p, F8 v) {
 #if defined(__AVX__)
   _mm256_storeu_ps(p, reinterpret_cast<__m256>(v));
