@@ -123,13 +123,6 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   lanes(l.clusters, l.cluster_first[static_cast<std::size_t>(q)], l.cluster_first[static_cast<std::size_t>(q)] + pb.cluster_count);
 }
 
-/// A node spanning cluster c's organs, as its tree's root does (its box left empty).
-LcdNode cluster_span(const Cluster& c) {
-  LcdNode n;
-  n.first = c.first, n.count = c.count;
-  return n;
-}
-
 class CpuBackend : public DetectionBackend {
  public:
   std::string name() const override { return "cpu"; }
@@ -258,10 +251,12 @@ class CpuBackend : public DetectionBackend {
                              [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, ca.plant, cb.plant); });
           };
           // Two clusters of one block each (a tomato's compound leaves): the descent would hand
-          // their roots straight over, and a root spans its cluster's organs; their spans are
-          // taken from the clusters, the nodes left unread.
+          // their roots straight over, and a root spans its cluster's organs; the clusters' own
+          // lanes are taken, the nodes left unread.
+          static_assert(kBlockOrgans == 2 * OrganLanes::kWidth, "lane_small_cluster_pairs takes clusters of one block");
           if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
-            block(cluster_span(ca), cluster_span(cb));
+            lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), i, ca, j, cb, offset,
+                                     [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, ca.plant, cb.plant); });
           else
             descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, block);
         });

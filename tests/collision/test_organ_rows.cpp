@@ -30,8 +30,10 @@ Box3f random_box(std::mt19937& g) {
 
 /// Every cluster pair the pass looks at (plant pairs of the plant level, clusters whose roots'
 /// LCD boxes overlap) and every cluster with itself: candidates by the shared definition and by
-/// the lanes. `blocks` counts the blocks below the clusters' roots.
-void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::size_t& blocks, std::uint32_t* largest = nullptr) {
+/// the lanes (lane_small_cluster_pairs too, for two clusters of one block each). `blocks` counts
+/// the blocks below the clusters' roots, `small_pairs` the pairs lane_small_cluster_pairs found.
+void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::size_t& blocks, std::uint32_t* largest = nullptr,
+                        std::size_t* small_pairs = nullptr) {
   LevelCount count;
   const auto box_of = [&](std::uint32_t pos) { return obb_aabb(m.obbs[m.cluster_organs[pos]]); };
   for (const auto& [p, q] : plant_level(s, m, count)) {
@@ -64,6 +66,14 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
         INFO("plants " << p << " " << q << " clusters " << i << " " << j);
         CHECK(shared == lanes);
         pairs += shared.size();
+        // Clusters of one block each: the pass takes them whole, with 16-bit masks.
+        if (i != j && ca.count <= kBlockOrgans && cb.count <= kBlockOrgans) {
+          Pairs small;
+          lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), i, ca, j, cb, offset, into(small));
+          std::sort(small.begin(), small.end());
+          CHECK(small == shared);
+          if (small_pairs) *small_pairs += small.size();
+        }
       }
     }
   }
@@ -158,7 +168,7 @@ TEST_CASE("eight lanes against a moved box give boxes_meet's answer lane by lane
 }
 
 TEST_CASE("organ pairs through lanes equal the shared definition on random stands, blocks below the root included") {
-  std::size_t pairs = 0, blocks = 0, sub_blocks = 0;
+  std::size_t pairs = 0, blocks = 0, sub_blocks = 0, small_pairs = 0;
   std::uint32_t largest_block = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const Stand s = seed % 2 ? random_stand(seed) : row_stand(seed);
@@ -166,7 +176,7 @@ TEST_CASE("organ pairs through lanes equal the shared definition on random stand
     MbvtConfig cfg;
     if (seed % 3 == 0) cfg.collide = parse_collide_kinds("all");
     if (seed % 3 == 1) cfg.clearance = 0.01f;
-    compare_candidates(s, build_mbvt(s, lib, cfg), pairs, blocks);
+    compare_candidates(s, build_mbvt(s, lib, cfg), pairs, blocks, nullptr, &small_pairs);
     // Stem clusters of up to 40 organs in tree leaves of 3: trees deeper than one block, so the
     // descent hands over nodes below the root, whose lanes start anywhere in the cluster's run
     // and are followed by other organs' lanes.
@@ -184,6 +194,7 @@ TEST_CASE("organ pairs through lanes equal the shared definition on random stand
   }
   CHECK(largest_block > 64);
   CHECK(pairs > 1000);
+  CHECK(small_pairs > 1000);
   CHECK(blocks == 0);        // a tomato's clusters are one block each
   CHECK(sub_blocks > 1000);  // the larger clusters did descend below their roots
 }
