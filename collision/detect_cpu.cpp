@@ -117,7 +117,7 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   lines(&m.cluster_organs[c0.first], (c1.first + c1.count - c0.first) * sizeof(std::uint32_t));
   const OrganLanes& l = m.lanes;
   const auto lanes = [&](const BoxLanes& b, std::size_t l0, std::size_t l1) {
-    for (const std::vector<float>* v : {&b.lo_x, &b.lo_y, &b.lo_z, &b.hi_x, &b.hi_y, &b.hi_z}) lines(v->data() + l0, (l1 - l0) * sizeof(float));
+    lines(b.group(l0), (l1 - l0 + BoxLanes::kWidth - 1) / BoxLanes::kWidth * BoxLanes::kGroupFloats * sizeof(float));
   };
   lanes(l.organs, l.organ_first[pb.first_cluster], l.organ_first[pb.first_cluster + pb.cluster_count - 1] + c1.count);
   lanes(l.clusters, l.cluster_first[static_cast<std::size_t>(q)], l.cluster_first[static_cast<std::size_t>(q)] + pb.cluster_count);

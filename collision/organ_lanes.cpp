@@ -24,9 +24,9 @@ std::size_t lay_out(std::vector<std::uint32_t>& first, std::size_t n, Count coun
 }  // namespace
 
 void BoxLanes::assign_empty(std::size_t lanes) {
+  data.resize((lanes + kWidth - 1) / kWidth * kGroupFloats);
   const Box3f e = empty_box();
-  for (auto* v : {&lo_x, &lo_y, &lo_z}) v->assign(lanes, e.lo.x);
-  for (auto* v : {&hi_x, &hi_y, &hi_z}) v->assign(lanes, e.hi.x);
+  for (std::size_t lane = 0; lane < data.size() / kGroupFloats * kWidth; ++lane) set(lane, e);
 }
 
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {

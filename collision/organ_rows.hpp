@@ -17,23 +17,54 @@
 
 namespace canopy {
 
+namespace lanes_detail {
+/// Lanes lane .. lane + 7 copied into one group's layout: an LCD node below a cluster's root
+/// starts anywhere in its run (every cluster's and plant's run starts a group).
+[[gnu::noinline]] inline void gather_group(const BoxLanes& l, std::uint32_t lane, float* out) {
+  for (int k = 0; k < 6; ++k)
+    for (std::uint32_t t = 0; t < BoxLanes::kWidth; ++t) out[static_cast<std::uint32_t>(k) * BoxLanes::kWidth + t] = l.at(lane + t, k);
+}
+/// boxes_meet(box, box of lane t of group g, offset) for the 8 lanes, as bits.
+inline unsigned group_meeting(const float* g, const Box3f& box, Vec3f offset) {
+  const auto c = [g](int k) { return load8(g + BoxLanes::kWidth * static_cast<std::size_t>(k)); };
+  return bits8((box.lo.x <= c(3) + offset.x) & (c(0) + offset.x <= box.hi.x) & (box.lo.y <= c(4) + offset.y) &
+               (c(1) + offset.y <= box.hi.y) & (box.lo.z <= c(5) + offset.z) & (c(2) + offset.z <= box.hi.z));
+}
+/// boxes_meet(box of lane t of group g, box, offset) for the 8 lanes, as bits.
+inline unsigned group_meeting_moved(const float* g, const Box3f& box, Vec3f offset) {
+  const auto c = [g](int k) { return load8(g + BoxLanes::kWidth * static_cast<std::size_t>(k)); };
+  return bits8((c(0) <= box.hi.x + offset.x) & (box.lo.x + offset.x <= c(3)) & (c(1) <= box.hi.y + offset.y) &
+               (box.lo.y + offset.y <= c(4)) & (c(2) <= box.hi.z + offset.z) & (box.lo.z + offset.z <= c(5)));
+}
+/// The box of lane t of the run whose first group is g (t may lie in a later group).
+inline Box3f run_box(const float* g, std::uint32_t t) {
+  const float* at = g + t / BoxLanes::kWidth * BoxLanes::kGroupFloats + t % BoxLanes::kWidth;
+  constexpr std::size_t w = BoxLanes::kWidth;
+  return Box3f{{at[0], at[w], at[2 * w]}, {at[3 * w], at[4 * w], at[5 * w]}};
+}
+}  // namespace lanes_detail
+
 /// Bit t set where boxes_meet(box, box of lane `lane + t`, offset) holds.
 inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f& box, Vec3f offset) {
   using namespace lanes_detail;
-  const I8 meet = (box.lo.x <= load8(&l.hi_x[lane]) + offset.x) & (load8(&l.lo_x[lane]) + offset.x <= box.hi.x) &
-                  (box.lo.y <= load8(&l.hi_y[lane]) + offset.y) & (load8(&l.lo_y[lane]) + offset.y <= box.hi.y) &
-                  (box.lo.z <= load8(&l.hi_z[lane]) + offset.z) & (load8(&l.lo_z[lane]) + offset.z <= box.hi.z);
-  return bits8(meet);
+  if (lane % BoxLanes::kWidth != 0) [[unlikely]] {
+    alignas(32) float g[BoxLanes::kGroupFloats];
+    gather_group(l, lane, g);
+    return group_meeting(g, box, offset);
+  }
+  return group_meeting(l.group(lane), box, offset);
 }
 
 /// Bit t set where boxes_meet(box of lane `lane + t`, box, offset) holds: the lanes' boxes on the
 /// other side of the test, `box` the one moved.
 inline unsigned lanes_meeting_moved(const BoxLanes& l, std::uint32_t lane, const Box3f& box, Vec3f offset) {
   using namespace lanes_detail;
-  const I8 meet = (load8(&l.lo_x[lane]) <= box.hi.x + offset.x) & (box.lo.x + offset.x <= load8(&l.hi_x[lane])) &
-                  (load8(&l.lo_y[lane]) <= box.hi.y + offset.y) & (box.lo.y + offset.y <= load8(&l.hi_y[lane])) &
-                  (load8(&l.lo_z[lane]) <= box.hi.z + offset.z) & (box.lo.z + offset.z <= load8(&l.hi_z[lane]));
-  return bits8(meet);
+  if (lane % BoxLanes::kWidth != 0) [[unlikely]] {
+    alignas(32) float g[BoxLanes::kGroupFloats];
+    gather_group(l, lane, g);
+    return group_meeting_moved(g, box, offset);
+  }
+  return group_meeting_moved(l.group(lane), box, offset);
 }
 
 /// block_pairs over lanes: organs under node na of cluster ca (index ia) against those under nb
@@ -90,22 +121,26 @@ inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* c
   const Box3f around_a = l.around[ia];
   const Box3f around_b = l.around[ib];
   const Box3f b_moved{around_b.lo + offset, around_b.hi + offset};
-  const std::uint32_t la = l.organ_first[ia], lb = l.organ_first[ib];
+  using lanes_detail::group_meeting;
+  constexpr std::size_t kG = BoxLanes::kGroupFloats;
+  // Each cluster's run starts a group: its lanes are read from its first group on.
+  const float* ga = l.organs.group(l.organ_first[ia]);
+  const float* gb = l.organs.group(l.organ_first[ib]);
   // a's organs whose boxes meet the box around b's, then b's that meet the box around a's.
-  unsigned rows = lanes_meeting(l.organs, la, b_moved, Vec3f{0, 0, 0});
-  if (ca.count > kW) rows |= lanes_meeting(l.organs, la + kW, b_moved, Vec3f{0, 0, 0}) << kW;
+  unsigned rows = group_meeting(ga, b_moved, Vec3f{0, 0, 0});
+  if (ca.count > kW) rows |= group_meeting(ga + kG, b_moved, Vec3f{0, 0, 0}) << kW;
   rows &= upto(ca.count);
   if (!rows) return;
-  unsigned cols = lanes_meeting(l.organs, lb, around_a, offset);
-  if (cb.count > kW) cols |= lanes_meeting(l.organs, lb + kW, around_a, offset) << kW;
+  unsigned cols = group_meeting(gb, around_a, offset);
+  if (cb.count > kW) cols |= group_meeting(gb + kG, around_a, offset) << kW;
   cols &= upto(cb.count);
   if (!cols) return;
   const bool low = (cols & 0xffu) != 0, high = cols > 0xffu;
   for (; rows; rows &= rows - 1) {
     const auto x = static_cast<std::uint32_t>(__builtin_ctz(rows));
-    const Box3f bx = l.organs.get(la + x);
-    unsigned meet = low ? lanes_meeting(l.organs, lb, bx, offset) : 0u;
-    if (high) meet |= lanes_meeting(l.organs, lb + kW, bx, offset) << kW;
+    const Box3f bx = lanes_detail::run_box(ga, x);
+    unsigned meet = low ? group_meeting(gb, bx, offset) : 0u;
+    if (high) meet |= group_meeting(gb + kG, bx, offset) << kW;
     for (meet &= cols; meet; meet &= meet - 1)
       on_pair(static_cast<std::int32_t>(cluster_organs[ca.first + x]),
               static_cast<std::int32_t>(cluster_organs[cb.first + static_cast<std::uint32_t>(__builtin_ctz(meet))]));
@@ -123,7 +158,7 @@ inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb,
                                       const LcdCentred& root, Vec3f offset, OnCluster&& on_cluster) {
   const std::uint32_t l0 = l.cluster_first[q];
   for (std::uint32_t k0 = from / OrganLanes::kWidth * OrganLanes::kWidth; k0 < pb.cluster_count; k0 += OrganLanes::kWidth) {
-    unsigned mask = lanes_meeting(l.clusters, l0 + k0, box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
+    unsigned mask = lanes_detail::group_meeting(l.clusters.group(l0 + k0), box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
     if (k0 < from) mask &= ~0u << (from - k0);
     if (!mask) continue;
     // The lanes past the plant's last cluster repeat it (their bits are masked off above).
@@ -143,7 +178,7 @@ inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& p
   const std::uint32_t l0 = l.cluster_first[p];
   for (std::uint32_t k0 = 0; k0 < pa.cluster_count; k0 += OrganLanes::kWidth) {
     unsigned mask = lanes_detail::lanes_below(pa.cluster_count, k0);
-    if (!all) mask &= lanes_meeting_moved(l.clusters, l0 + k0, box, offset);
+    if (!all) mask &= lanes_detail::group_meeting_moved(l.clusters.group(l0 + k0), box, offset);
     for (; mask; mask &= mask - 1) on_cluster(pa.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
   }
 }
@@ -167,10 +202,11 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
     static_assert(2 * OrganLanes::kWidth <= kMaskOrgans, "the masks must hold these clusters' free pairs");
     unsigned hits[2 * kW];
     unsigned any = 0;
+    const float* g0 = l.organs.group(l0);  // the cluster's run starts a group
     for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
-      const Box3f bx = l.organs.get(l0 + x);
-      unsigned meet = lanes_meeting(l.organs, l0, bx, Vec3f{0, 0, 0});
-      if (c.count > kW) meet |= lanes_meeting(l.organs, l0 + kW, bx, Vec3f{0, 0, 0}) << kW;
+      const Box3f bx = lanes_detail::run_box(g0, x);
+      unsigned meet = lanes_detail::group_meeting(g0, bx, Vec3f{0, 0, 0});
+      if (c.count > kW) meet |= lanes_detail::group_meeting(g0 + BoxLanes::kGroupFloats, bx, Vec3f{0, 0, 0}) << kW;
       any |= hits[x] = meet & static_cast<unsigned>(free_after[c.first + x]);
     }
     if (!any) return;
@@ -184,15 +220,15 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
   for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
     const std::uint64_t free = free_after[c.first + x];
     if (!free) continue;
-    const Box3f bx = l.organs.get(l0 + x);
+    const Box3f bx = lanes_detail::run_box(l.organs.group(l0), x);
     // Whole groups of 8 lanes from the one holding x + 1 (aligned loads), the organs up to x
     // left out (by the mask, or else by hand).
     for (std::uint32_t y0 = (x + 1) / OrganLanes::kWidth * OrganLanes::kWidth; y0 < c.count; y0 += OrganLanes::kWidth) {
       unsigned wanted = masked ? static_cast<unsigned>(free >> y0) & 0xffu : 0xffu;
       if (y0 <= x) wanted &= ~0u << (x + 1 - y0);
       if (!wanted) continue;
-      for (unsigned mask = lanes_meeting(l.organs, l0 + y0, bx, Vec3f{0, 0, 0}) & wanted & lanes_detail::lanes_below(c.count, y0); mask;
-           mask &= mask - 1) {
+      const unsigned meet = lanes_detail::group_meeting(l.organs.group(l0 + y0), bx, Vec3f{0, 0, 0});
+      for (unsigned mask = meet & wanted & lanes_detail::lanes_below(c.count, y0); mask; mask &= mask - 1) {
         const std::uint32_t y = y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
         on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]), static_cast<std::int32_t>(cluster_organs[c.first + y]));
       }
