@@ -73,8 +73,9 @@ inline unsigned near_lanes(const float* group, const FloatBounds& box, const Obb
 /// makes it, then u's plane against t, t's plane against u and the nine edge-cross-edge axes
 /// (apart_on_edges), each with the scalar operations in their order; all of them computed for
 /// every lane, the answers joined at the end. Only the lanes in `wanted` are answered: where the
-/// two planes reject all of those, the edge axes are left uncomputed (the other lanes' bits are
-/// then whatever the planes gave).
+/// two planes reject all of those, the edge axes are left uncomputed, and where the axes of t's
+/// first edge (or first two) do, the rest (the other lanes' bits are then whatever the tests
+/// made so far gave).
 inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const float* group, float margin, unsigned wanted = 0xffu) {
   using namespace lanes_detail;
   F8 u[3][3];  // corner, coordinate
