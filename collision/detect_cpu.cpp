@@ -151,7 +151,7 @@ class CpuBackend : public DetectionBackend {
     if (!tree_ || tree_->obbs.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
     const double t = now();
-    refit_mbvt(*tree_, s, *lib_, moved);
+    refit_mbvt(*tree_, s, *lib_, moved, req.threads);
     return run(s, req, now() - t);
   }
 

@@ -5,6 +5,7 @@
 #include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <cmath>
 #include <algorithm>
@@ -305,16 +306,20 @@ void rebuild_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const MbvtConf
   fit_mbvt(m, s, lib);
 }
 
-void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs) {
+void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs, int threads) {
   // The moved organs' boxes, then the plants that hold one, each on all threads (a resolution
   // round moves organs in most plants of a stand). Their meshes were made by build_mbvt with
   // this library.
   if (m.lanes.organ_first.size() != m.clusters.size())
     throw std::logic_error("refit_mbvt: the tree's boxes were never fit on the host (build_mbvt or fit_mbvt first)");
+  // Nothing moved: no thread is started (an idle OpenMP worker would then spin beside a
+  // detection asked to run on one thread).
+  if (organs.empty()) return;
+  if (threads <= 0) threads = omp_get_max_threads();
   std::vector<std::uint8_t> plant_dirty(m.plants.size(), 0);
   const std::size_t n = organs.size();
   const std::ptrdiff_t groups = static_cast<std::ptrdiff_t>((n + 7) / 8);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) num_threads(threads)
   for (std::ptrdiff_t g = 0; g < groups; ++g) {
     const auto first = static_cast<std::size_t>(g) * 8;
     const int count = static_cast<int>(std::min<std::size_t>(8, n - first));
@@ -325,7 +330,7 @@ void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vecto
   }
   float radius = m.max_radius;  // grows with the plants refitted, as build_mbvt sets it
   const std::ptrdiff_t np = static_cast<std::ptrdiff_t>(m.plants.size());
-#pragma omp parallel for schedule(dynamic, 16) reduction(max : radius)
+#pragma omp parallel for schedule(dynamic, 16) reduction(max : radius) num_threads(threads)
   for (std::ptrdiff_t p = 0; p < np; ++p) {
     if (!plant_dirty[static_cast<std::size_t>(p)]) continue;
     PlantBound& pb = m.plants[static_cast<std::size_t>(p)];

@@ -96,7 +96,8 @@ Mbvt build_mbvt_topology(const Stand& stand, const MbvtConfig& config);
 void fit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib);
 /// After organs turned: new OBBs for `organs` (ids) and new boxes for their clusters and plants
 /// (lanes included), with the tree's shape and axes kept: a transform per organ, not a rebuild.
-void refit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs);
+/// `threads`: how many threads (0: all cores); nothing moved, nothing is done.
+void refit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs, int threads = 0);
 
 /// The organ pair (a, b) and the offset that carries b's plant frame into a's.
 Vec3f plant_offset(const Stand& stand, std::int32_t plant_a, std::int32_t plant_b);
