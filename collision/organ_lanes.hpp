@@ -23,11 +23,12 @@ struct BoxLanes {
   static constexpr std::size_t kGroupFloats = 6 * kWidth;
   std::vector<float> data;
   void assign_empty(std::size_t lanes);
-  /// Float k (lo x y z, hi x y z) of lane `lane`.
-  float& at(std::size_t lane, int k) { return data[lane / kWidth * kGroupFloats + static_cast<std::size_t>(k) * kWidth + lane % kWidth]; }
-  float at(std::size_t lane, int k) const {
-    return data[lane / kWidth * kGroupFloats + static_cast<std::size_t>(k) * kWidth + lane % kWidth];
+  /// Where float k (lo x y z, hi x y z) of lane `lane` lies in `data`.
+  static std::size_t index(std::size_t lane, int k) {
+    return lane / kWidth * kGroupFloats + static_cast<std::size_t>(k) * kWidth + lane % kWidth;
   }
+  float& at(std::size_t lane, int k) { return data[index(lane, k)]; }
+  float at(std::size_t lane, int k) const { return data[index(lane, k)]; }
   void set(std::size_t lane, const Box3f& b) {
     at(lane, 0) = b.lo.x, at(lane, 1) = b.lo.y, at(lane, 2) = b.lo.z;
     at(lane, 3) = b.hi.x, at(lane, 4) = b.hi.y, at(lane, 5) = b.hi.z;
@@ -38,7 +39,7 @@ struct BoxLanes {
 };
 
 struct OrganLanes {
-  static constexpr std::uint32_t kWidth = 8;
+  static constexpr std::uint32_t kWidth = BoxLanes::kWidth;
   /// Cluster c's k-th organ (cluster_organs[c.first + k]) at lane organ_first[c] + k; each
   /// cluster's run padded to a multiple of kWidth, with kWidth lanes more after the last.
   std::vector<std::uint32_t> organ_first;

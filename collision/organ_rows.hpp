@@ -24,6 +24,14 @@ namespace lanes_detail {
   for (int k = 0; k < 6; ++k)
     for (std::uint32_t t = 0; t < BoxLanes::kWidth; ++t) out[static_cast<std::uint32_t>(k) * BoxLanes::kWidth + t] = l.at(lane + t, k);
 }
+/// Lanes lane .. lane + 7 in one group's layout: the group itself where `lane` starts one, else
+/// gathered into `scratch` (kGroupFloats floats).
+inline const float* group_from(const BoxLanes& l, std::uint32_t lane, float* scratch) {
+  if (lane % BoxLanes::kWidth == 0) [[likely]]
+    return l.group(lane);
+  gather_group(l, lane, scratch);
+  return scratch;
+}
 /// boxes_meet(box, box of lane t of group g, offset) for the 8 lanes, as bits.
 inline unsigned group_meeting(const float* g, const Box3f& box, Vec3f offset) {
   const auto c = [g](int k) { return load8(g + BoxLanes::kWidth * static_cast<std::size_t>(k)); };
@@ -47,24 +55,16 @@ inline Box3f run_box(const float* g, std::uint32_t t) {
 /// Bit t set where boxes_meet(box, box of lane `lane + t`, offset) holds.
 inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f& box, Vec3f offset) {
   using namespace lanes_detail;
-  if (lane % BoxLanes::kWidth != 0) [[unlikely]] {
-    alignas(32) float g[BoxLanes::kGroupFloats];
-    gather_group(l, lane, g);
-    return group_meeting(g, box, offset);
-  }
-  return group_meeting(l.group(lane), box, offset);
+  alignas(32) float scratch[BoxLanes::kGroupFloats];
+  return group_meeting(group_from(l, lane, scratch), box, offset);
 }
 
 /// Bit t set where boxes_meet(box of lane `lane + t`, box, offset) holds: the lanes' boxes on the
 /// other side of the test, `box` the one moved.
 inline unsigned lanes_meeting_moved(const BoxLanes& l, std::uint32_t lane, const Box3f& box, Vec3f offset) {
   using namespace lanes_detail;
-  if (lane % BoxLanes::kWidth != 0) [[unlikely]] {
-    alignas(32) float g[BoxLanes::kGroupFloats];
-    gather_group(l, lane, g);
-    return group_meeting_moved(g, box, offset);
-  }
-  return group_meeting_moved(l.group(lane), box, offset);
+  alignas(32) float scratch[BoxLanes::kGroupFloats];
+  return group_meeting_moved(group_from(l, lane, scratch), box, offset);
 }
 
 /// block_pairs over lanes: organs under node na of cluster ca (index ia) against those under nb
