@@ -93,7 +93,11 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
   if (plant != frame_plant) obb.centre = obb.centre + d;
   const std::size_t tris = m.triangle_count();
   plane_.resize(tris);
-  plane_made_.assign(tris, 0);
+  plane_stamp_.resize(tris);  // new entries 0, never a pose's stamp
+  if (++stamp_ == 0) {        // the stamps ran round: start again
+    std::fill(plane_stamp_.begin(), plane_stamp_.end(), 0u);
+    stamp_ = 1;
+  }
   // The corners 8 triangles at a time from the mesh's corners in lanes, with the operations of
   // apply(t, p) + d in their order (so each equals organ_vertices' vertex bit for bit), then each
   // triangle's box, min_f and max_f of its corners.
@@ -302,7 +306,9 @@ namespace {
       // Box of a's triangle, widened by the clearance in double (exact for touching boxes).
       double box_i[6];
       for (int k = 0; k < 3; ++k) box_i[k] = pa.tri_box(i, k) - c, box_i[k + 3] = pa.tri_box(i, k + 3) + c;
-      const FloatBounds bounds_i(box_i);
+      // With no clearance the widened box is the float box itself (the same bounds, without
+      // the conversions and nextafter tests).
+      const FloatBounds bounds_i = c == 0 ? FloatBounds::of_floats(box_i) : FloatBounds(box_i);
       for (std::size_t gg = 0; gg < groups_b; ++gg) {
         const std::size_t g = (start_b / 8 + gg) % groups_b;
         const float* group = &pb.tri_lanes[g * PosedOrgan::kGroupFloats];

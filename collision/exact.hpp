@@ -44,11 +44,11 @@ struct PosedOrgan {
   /// Triangle i's plane, made when first asked for: most triangles of a pose never pass the
   /// box tests that come before it.
   const TrianglePlane& plane(std::size_t i) const {
-    if (!plane_made_[i]) {
+    if (plane_stamp_[i] != stamp_) {
       Vec3f t[3];
       corners(i, t);
       plane_[i] = TrianglePlane::of(t[0], t[1], t[2]);
-      plane_made_[i] = 1;
+      plane_stamp_[i] = stamp_;
     }
     return plane_[i];
   }
@@ -82,7 +82,11 @@ struct PosedOrgan {
   mutable std::vector<Vec3f> v_;
   mutable bool v_made_ = false;
   mutable std::vector<TrianglePlane> plane_;
-  mutable std::vector<std::uint8_t> plane_made_;
+  /// plane_[i] was made for this pose where plane_stamp_[i] == stamp_: each pose takes a new
+  /// stamp instead of clearing a flag per triangle (a call to memset per pose, about 0.7 % of
+  /// the query at 1,000 plants, forty-first session).
+  mutable std::vector<std::uint32_t> plane_stamp_;
+  std::uint32_t stamp_ = 0;
 };
 
 /// Poses made lately, found again by stand, organ, frame and transform (bit for bit): an organ

@@ -29,6 +29,15 @@ struct FloatBounds {
       lo_above[k] = lo, hi_below[k] = hi;
     }
   }
+  /// The same bounds for a box whose six doubles hold floats exactly (no rounding to correct).
+  static FloatBounds of_floats(const double* box) {
+    FloatBounds b;
+    for (int k = 0; k < 3; ++k) b.lo_above[k] = static_cast<float>(box[k]), b.hi_below[k] = static_cast<float>(box[k + 3]);
+    return b;
+  }
+
+ private:
+  FloatBounds() = default;
 };
 
 namespace lanes_detail {

@@ -251,3 +251,23 @@ TEST_CASE("the float rejections 8 at a time agree at the last float where they c
   CHECK(flips > 500);
   CHECK(rejected > 1000);
 }
+
+TEST_CASE("float bounds of a box of floats are the floats themselves, as the rounding constructor makes them") {
+  // posed_touch takes FloatBounds::of_floats for a triangle's box when there is no clearance:
+  // the same bounds as FloatBounds' constructor, which corrects any rounding (none here), on
+  // signed zeros, tiny, huge and random floats.
+  std::mt19937 g(41);
+  std::uniform_real_distribution<float> u(-3, 3);
+  const float special[] = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::min(),
+                           std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), 1e-30f, 123456.7f};
+  int checked = 0;
+  for (int i = 0; i < 20000; ++i) {
+    double box[6];
+    for (double& v : box) v = g() % 5 == 0 ? special[g() % 8] : u(g) * std::pow(10.0f, static_cast<float>(g() % 9) - 4.0f);
+    const FloatBounds want(box), got = FloatBounds::of_floats(box);
+    CHECK(std::memcmp(want.lo_above, got.lo_above, sizeof want.lo_above) == 0);
+    CHECK(std::memcmp(want.hi_below, got.hi_below, sizeof want.hi_below) == 0);
+    ++checked;
+  }
+  CHECK(checked == 20000);
+}
