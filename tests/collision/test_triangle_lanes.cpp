@@ -260,14 +260,11 @@ TEST_CASE("float bounds of a box of floats are the floats themselves, as the rou
   std::uniform_real_distribution<float> u(-3, 3);
   const float special[] = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::min(),
                            std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), 1e-30f, 123456.7f};
-  int checked = 0;
   for (int i = 0; i < 20000; ++i) {
     double box[6];
     for (double& v : box) v = g() % 5 == 0 ? special[g() % 8] : u(g) * std::pow(10.0f, static_cast<float>(g() % 9) - 4.0f);
     const FloatBounds want(box), got = FloatBounds::of_floats(box);
     CHECK(std::memcmp(want.lo_above, got.lo_above, sizeof want.lo_above) == 0);
     CHECK(std::memcmp(want.hi_below, got.hi_below, sizeof want.hi_below) == 0);
-    ++checked;
   }
-  CHECK(checked == 20000);
 }
