@@ -308,8 +308,8 @@ void rebuild_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const MbvtConf
 
 void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs, int threads) {
   // The moved organs' boxes, then the plants that hold one, each on `threads` threads (all by
-  // default: a resolution round moves organs in most plants of a stand). Their meshes were made by build_mbvt with
-  // this library.
+  // default: a resolution round moves organs in most plants of a stand). Their meshes were made
+  // by build_mbvt with this library.
   if (m.lanes.organ_first.size() != m.clusters.size())
     throw std::logic_error("refit_mbvt: the tree's boxes were never fit on the host (build_mbvt or fit_mbvt first)");
   // Nothing moved: no thread is started (an idle OpenMP worker would then spin beside a
