@@ -124,9 +124,8 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
         at[c][k] = v;
       }
     }
-    const unsigned used = lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g));
-    I8 in_use;
-    for (int lane = 0; lane < 8; ++lane) in_use[lane] = (used >> lane) & 1u ? -1 : 0;
+    // Lanes below the triangle count (a compare of the lane numbers, not a mask built lane by lane).
+    const I8 in_use = I8{0, 1, 2, 3, 4, 5, 6, 7} < static_cast<int>(std::min<std::size_t>(tris - 8 * g, 8));
     for (int k = 0; k < 3; ++k) {
       const F8 box_lo = min8(at[0][k], min8(at[1][k], at[2][k])), box_hi = max8(at[0][k], max8(at[1][k], at[2][k]));
       store8(group + 8 * (9 + k), box_lo);
@@ -139,10 +138,7 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
   box[0] = box[1] = box[2] = 1e300, box[3] = box[4] = box[5] = -1e300;
   if (groups > 0)
     for (int k = 0; k < 3; ++k) {
-      float least = organ_lo[k][0], greatest = organ_hi[k][0];
-      for (int lane = 1; lane < 8; ++lane)
-        least = std::min(least, organ_lo[k][lane]), greatest = std::max(greatest, organ_hi[k][lane]);
-      box[k] = least, box[k + 3] = greatest;
+      box[k] = least8(organ_lo[k]), box[k + 3] = greatest8(organ_hi[k]);
     }
 }
 
@@ -243,7 +239,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
 
 const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t,
                                  std::int32_t frame, const PosedOrgan* keep, const Obb* made) {
-  const std::size_t set = (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) % kSets;
+  const std::size_t set = (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) % sets_;
   Entry* way = &entries_[2 * set];
   ++clock_;
   for (int w = 0; w < 2; ++w)

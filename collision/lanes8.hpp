@@ -77,6 +77,18 @@ inline F8 abs8(F8 v) {  // fabsf lane by lane (the sign bit cleared)
 }
 inline F8 min8(F8 a, F8 b) { return a < b ? a : b; }  // min_f lane by lane
 inline F8 max8(F8 a, F8 b) { return a > b ? a : b; }  // max_f lane by lane
+/// The least and the greatest of 8 lanes holding no NaN (halves, then quarters, then pairs: the
+/// value a scan lane by lane gives, a zero's sign aside, which no comparison sees).
+inline float least8(F8 v) {
+  v = min8(v, __builtin_shuffle(v, I8{4, 5, 6, 7, 0, 1, 2, 3}));
+  v = min8(v, __builtin_shuffle(v, I8{2, 3, 0, 1, 6, 7, 4, 5}));
+  return min8(v, __builtin_shuffle(v, I8{1, 0, 3, 2, 5, 4, 7, 6}))[0];
+}
+inline float greatest8(F8 v) {
+  v = max8(v, __builtin_shuffle(v, I8{4, 5, 6, 7, 0, 1, 2, 3}));
+  v = max8(v, __builtin_shuffle(v, I8{2, 3, 0, 1, 6, 7, 4, 5}));
+  return max8(v, __builtin_shuffle(v, I8{1, 0, 3, 2, 5, 4, 7, 6}))[0];
+}
 inline F8 sqrt8(F8 v) {  // sqrtf lane by lane (both correctly rounded)
 #if defined(__AVX__)
   __m256 r;
