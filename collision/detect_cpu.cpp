@@ -301,7 +301,7 @@ class CpuBackend : public DetectionBackend {
     hit.assign(organ.size(), 0);
     // Every organ's mesh was made with the tree (fit_mbvt, before threads share the library).
     // Each thread's scratch kept from the last detection (its poses' memory warm), its poses
-    // forgotten.
+    // forgotten; its pose cache holds two poses (PoseCache::kDetectionSets).
     while (scratch_.size() < static_cast<std::size_t>(threads)) scratch_.emplace_back(PoseCache::kDetectionSets);
     // The tree's OBBs are the poses' own (make_obb at the stand's transforms) where it was fit with
     // no clearance: the poses take them rather than make them again.

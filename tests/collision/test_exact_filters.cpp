@@ -118,12 +118,13 @@ TEST_CASE("the float edge-axis test rejects pairs the plane test lets through") 
 
 TEST_CASE("a long-lived exact scratch answers as a fresh one for poses that change") {
   // One scratch (and its pose cache) over many organ pairs at many poses, some repeated, some
-  // differing in one transform bit; each answer against a fresh scratch's.
+  // differing in one transform bit; each answer against a fresh scratch's. Both cache sizes: the
+  // turn search's, and detection's two poses, where nearly every pose evicts one.
   const Stand s = test::random_stand(11, 6);
   PrototypeLibrary lib;
   std::mt19937 rng(3);
-  ExactScratch kept;
-  Witness witness;
+  ExactScratch kept, kept_small(PoseCache::kDetectionSets);
+  Witness witness, witness_small;
   const auto n = static_cast<std::int32_t>(s.organ_count());
   int touching = 0, apart = 0;
   for (int trial = 0; trial < 4000; ++trial) {
@@ -140,6 +141,7 @@ TEST_CASE("a long-lived exact scratch answers as a fresh one for poses that chan
     const float c = rng() % 2 ? 0.0f : 1e-4f;
     const bool want = organs_touch_at(s, lib, a, ta, b, tb, c, fresh);
     CHECK_MESSAGE(organs_touch_at(s, lib, a, ta, b, tb, c, kept, &witness) == want, "trial ", trial);
+    CHECK_MESSAGE(organs_touch_at(s, lib, a, ta, b, tb, c, kept_small, &witness_small) == want, "trial ", trial);
     (want ? touching : apart) += 1;
   }
   CHECK(touching > 100);
