@@ -239,7 +239,7 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
 
 const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t,
                                  std::int32_t frame, const PosedOrgan* keep, const Obb* made) {
-  const std::size_t set = (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) % sets_;
+  const std::size_t set = (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) & set_mask_;
   Entry* way = &entries_[2 * set];
   ++clock_;
   for (int w = 0; w < 2; ++w)

@@ -12,6 +12,7 @@
 #include "geometry/stand.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <vector>
 
@@ -104,8 +105,10 @@ class PoseCache {
   /// first-level cache: the exact stage 0.89-0.93 of its time with 128 at 200 and 1,000
   /// plants, the query 0.95-0.97 (forty-second session, one thread, both orders in one process).
   static constexpr std::size_t kDetectionSets = 1;
-  /// `sets` sets of two poses each (at least one).
-  explicit PoseCache(std::size_t sets = kSearchSets) : sets_(sets < 1 ? 1 : sets), entries_(2 * sets_) {}
+  /// `sets` sets of two poses each (at least one; rounded up to a power of two, so that a set is
+  /// found by a mask rather than a division on every lookup).
+  explicit PoseCache(std::size_t sets = kSearchSets)
+      : set_mask_(std::bit_ceil(std::max<std::size_t>(sets, 1)) - 1), entries_(2 * (set_mask_ + 1)) {}
   /// `organ` at transform `t` in the frame of plant `frame`, made now or found; `keep` (a pose
   /// returned before) is never evicted by this call; `made` as PosedOrgan::pose takes it.
   const PosedOrgan& get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t, std::int32_t frame,
@@ -123,7 +126,7 @@ class PoseCache {
     Affine3f at{};
     std::uint64_t used = 0;
   };
-  std::size_t sets_;
+  std::size_t set_mask_;  // sets - 1
   std::vector<Entry> entries_;
   std::uint64_t clock_ = 0;
 };
