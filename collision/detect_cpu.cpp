@@ -112,7 +112,6 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   const Cluster& c1 = m.clusters[pb.first_cluster + pb.cluster_count - 1];
   lines(&m.clusters[pb.first_cluster], pb.cluster_count * sizeof(Cluster));
   lines(&m.lanes.around[pb.first_cluster], pb.cluster_count * sizeof(Box3f));
-  lines(&m.lanes.roots[pb.first_cluster], pb.cluster_count * sizeof(LcdCentred));
   lines(&m.nodes[c0.first_node], (c1.first_node + c1.node_count - c0.first_node) * sizeof(LcdNode));
   lines(&m.cluster_organs[c0.first], (c1.first + c1.count - c0.first) * sizeof(std::uint32_t));
   const OrganLanes& l = m.lanes;
@@ -120,7 +119,9 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
     lines(b.group(l0), (l1 - l0 + BoxLanes::kWidth - 1) / BoxLanes::kWidth * BoxLanes::kGroupFloats * sizeof(float));
   };
   lanes(l.organs, l.organ_first[pb.first_cluster], l.organ_first[pb.first_cluster + pb.cluster_count - 1] + c1.count);
-  lanes(l.clusters, l.cluster_first[static_cast<std::size_t>(q)], l.cluster_first[static_cast<std::size_t>(q)] + pb.cluster_count);
+  const std::size_t k0 = l.cluster_first[static_cast<std::size_t>(q)], k1 = k0 + pb.cluster_count;
+  lanes(l.clusters, k0, k1);
+  lines(l.root_lanes.group(k0), (k1 - k0 + LcdLanes::kWidth - 1) / LcdLanes::kWidth * LcdLanes::kGroupFloats * sizeof(float));
 }
 
 class CpuBackend : public DetectionBackend {

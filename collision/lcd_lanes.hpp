@@ -16,14 +16,10 @@ namespace canopy {
 
 static_assert(sizeof(LcdCentred) == 8 * sizeof(float), "an LCD box's centred form is read as 8 floats");
 
-/// Bit t set where lcd_overlap(a, *b[t], offset) holds.
-inline unsigned lcd_overlapping8(const LcdCentred& a, const LcdCentred* const* b, Vec3f offset) {
+/// Bit t set where lcd_overlap(a, b_t, offset) holds, lb[k] holding field k of the 8 boxes b_t
+/// (LcdCentred's fields in order: cx, cy, ax, ay, hu, hv, z_lo, z_hi).
+inline unsigned lcd_overlapping8(const LcdCentred& a, const lanes_detail::F8* lb, Vec3f offset) {
   using namespace lanes_detail;
-  const float* rows_b[8];
-  for (int t = 0; t < 8; ++t) rows_b[t] = reinterpret_cast<const float*>(b[t]);
-  // LcdCentred's fields in order: cx, cy, ax, ay, hu, hv, z_lo, z_hi.
-  F8 lb[8];
-  transpose8(rows_b, lb);
   I8 apart = (a.z_lo > lb[7] + offset.z) | (lb[6] + offset.z > a.z_hi);
   const F8 dx = (lb[0] + offset.x) - a.cx;
   const F8 dy = (lb[1] + offset.y) - a.cy;
@@ -33,6 +29,25 @@ inline unsigned lcd_overlapping8(const LcdCentred& a, const LcdCentred* const* b
   apart |= abs8(dx * lb[2] + dy * lb[3]) > lb[4] + (a.hu * c + a.hv * sn);
   apart |= abs8(dy * lb[2] - dx * lb[3]) > lb[5] + (a.hu * sn + a.hv * c);
   return ~bits8(apart) & 0xffu;
+}
+
+/// Bit t set where lcd_overlap(a, b_t, offset) holds, the 8 boxes b_t a group of LCD lanes
+/// (collision/organ_lanes.hpp LcdLanes: field k of the 8 at group + 8 k).
+inline unsigned lcd_overlapping8(const LcdCentred& a, const float* group, Vec3f offset) {
+  using namespace lanes_detail;
+  F8 lb[8];
+  for (int k = 0; k < 8; ++k) lb[k] = load8(group + 8 * k);
+  return lcd_overlapping8(a, lb, offset);
+}
+
+/// Bit t set where lcd_overlap(a, *b[t], offset) holds: 8 records gathered and transposed.
+inline unsigned lcd_overlapping8(const LcdCentred& a, const LcdCentred* const* b, Vec3f offset) {
+  using namespace lanes_detail;
+  const float* rows_b[8];
+  for (int t = 0; t < 8; ++t) rows_b[t] = reinterpret_cast<const float*>(b[t]);
+  F8 lb[8];
+  transpose8(rows_b, lb);
+  return lcd_overlapping8(a, lb, offset);
 }
 
 }  // namespace canopy

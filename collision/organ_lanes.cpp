@@ -29,11 +29,30 @@ void BoxLanes::assign_empty(std::size_t lanes) {
   for (std::size_t lane = 0; lane < data.size() / kGroupFloats * kWidth; ++lane) set(lane, e);
 }
 
+void LcdLanes::assign_empty(std::size_t lanes) {
+  data.resize((lanes + kWidth - 1) / kWidth * kGroupFloats);
+  const LcdCentred e = lcd_centred(Lcd{});
+  for (std::size_t lane = 0; lane < data.size() / kGroupFloats * kWidth; ++lane) set(lane, e);
+}
+
+void LcdLanes::set(std::size_t lane, const LcdCentred& box) {
+  const float fields[kFields] = {box.cx, box.cy, box.ax, box.ay, box.hu, box.hv, box.z_lo, box.z_hi};
+  float* g = &data[lane / kWidth * kGroupFloats + lane % kWidth];
+  for (std::size_t k = 0; k < kFields; ++k) g[k * kWidth] = fields[k];
+}
+
+LcdCentred LcdLanes::get(std::size_t lane) const {
+  const float* g = &data[lane / kWidth * kGroupFloats + lane % kWidth];
+  return LcdCentred{g[0], g[kWidth], g[2 * kWidth], g[3 * kWidth], g[4 * kWidth], g[5 * kWidth], g[6 * kWidth], g[7 * kWidth]};
+}
+
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {
   lanes.organs.assign_empty(lay_out(lanes.organ_first, m.clusters.size(), [&](std::size_t c) { return m.clusters[c].count; }));
   lanes.around.assign(m.clusters.size(), empty_box());
   lanes.roots.assign(m.clusters.size(), lcd_centred(Lcd{}));
-  lanes.clusters.assign_empty(lay_out(lanes.cluster_first, m.plants.size(), [&](std::size_t p) { return m.plants[p].cluster_count; }));
+  const std::size_t cluster_lanes = lay_out(lanes.cluster_first, m.plants.size(), [&](std::size_t p) { return m.plants[p].cluster_count; });
+  lanes.clusters.assign_empty(cluster_lanes);
+  lanes.root_lanes.assign_empty(cluster_lanes);
 }
 
 void fill_organ_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t c) {
@@ -50,7 +69,10 @@ void fill_organ_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t c) {
 
 void fill_cluster_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t p) {
   const PlantBound& pb = m.plants[p];
-  for (std::uint32_t k = 0; k < pb.cluster_count; ++k) lanes.clusters.set(lanes.cluster_first[p] + k, m.clusters[pb.first_cluster + k].box);
+  for (std::uint32_t k = 0; k < pb.cluster_count; ++k) {
+    lanes.clusters.set(lanes.cluster_first[p] + k, m.clusters[pb.first_cluster + k].box);
+    lanes.root_lanes.set(lanes.cluster_first[p] + k, lanes.roots[pb.first_cluster + k]);
+  }
 }
 
 }  // namespace canopy

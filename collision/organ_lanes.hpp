@@ -38,6 +38,22 @@ struct BoxLanes {
   const float* group(std::size_t lane) const { return &data[lane / kWidth * kGroupFloats]; }
 };
 
+/// LCD boxes (centred form, geometry/lcd.hpp) by lane, laid out as BoxLanes are: 8 lanes to a
+/// group, each group's 8 fields (cx, cy, ax, ay, hu, hv, z_lo, z_hi) side by side, 8 floats each
+/// (256 bytes), so that 8 LCD tests read their boxes with 8 loads (collision/lcd_lanes.hpp) rather
+/// than gathering 8 records and transposing them. Lanes no box was set in hold an empty LCD box.
+struct LcdLanes {
+  static constexpr std::uint32_t kWidth = BoxLanes::kWidth;
+  static constexpr std::size_t kFields = 8;
+  static constexpr std::size_t kGroupFloats = kFields * kWidth;
+  std::vector<float> data;
+  void assign_empty(std::size_t lanes);
+  void set(std::size_t lane, const LcdCentred& box);
+  LcdCentred get(std::size_t lane) const;
+  /// The group holding lane `lane` (a multiple of kWidth): field k of its 8 lanes at + 8 k.
+  const float* group(std::size_t lane) const { return &data[lane / kWidth * kGroupFloats]; }
+};
+
 struct OrganLanes {
   static constexpr std::uint32_t kWidth = BoxLanes::kWidth;
   /// Cluster c's k-th organ (cluster_organs[c.first + k]) at lane organ_first[c] + k; each
@@ -50,16 +66,19 @@ struct OrganLanes {
   /// Per cluster: its root's LCD box, lcd_centred(nodes[root].box), side by side with the other
   /// clusters' (the pass tests cluster pairs' roots without going through the cluster's index).
   std::vector<LcdCentred> roots;
-  /// Plant p's k-th cluster's box at lane cluster_first[p] + k, padded the same way.
+  /// Plant p's k-th cluster's box at lane cluster_first[p] + k, padded the same way, and its
+  /// root's LCD box (roots[c]) at the same lane of root_lanes.
   std::vector<std::uint32_t> cluster_first;
   BoxLanes clusters;
+  LcdLanes root_lanes;
 };
 
 /// Lays the lanes out for the tree's clusters and plants, every box empty.
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m);
 /// Cluster c's organ lanes and its box around them, from its organs' OBBs.
 void fill_organ_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t c);
-/// Plant p's cluster lanes from its clusters' boxes (fit_plant_bound sets those).
+/// Plant p's cluster lanes from its clusters' boxes (fit_plant_bound sets those) and roots
+/// (fill_organ_lanes sets those).
 void fill_cluster_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t p);
 
 }  // namespace canopy

@@ -38,6 +38,14 @@ inline unsigned group_meeting(const float* g, const Box3f& box, Vec3f offset) {
   return bits8((box.lo.x <= c(3) + offset.x) & (c(0) + offset.x <= box.hi.x) & (box.lo.y <= c(4) + offset.y) &
                (c(1) + offset.y <= box.hi.y) & (box.lo.z <= c(5) + offset.z) & (c(2) + offset.z <= box.hi.z));
 }
+/// boxes_meet(box, box of lane t of group g, {0, 0, 0}) for the 8 lanes, as bits: the same
+/// answers as group_meeting with a zero offset (x + 0 compares as x; -0 becomes +0, which
+/// compares equal) without its 6 additions of zero, which the compiler must keep.
+inline unsigned group_meeting(const float* g, const Box3f& box) {
+  const auto c = [g](int k) { return load8(g + BoxLanes::kWidth * static_cast<std::size_t>(k)); };
+  return bits8((box.lo.x <= c(3)) & (c(0) <= box.hi.x) & (box.lo.y <= c(4)) & (c(1) <= box.hi.y) & (box.lo.z <= c(5)) &
+               (c(2) <= box.hi.z));
+}
 /// boxes_meet(box of lane t of group g, box, offset) for the 8 lanes, as bits.
 inline unsigned group_meeting_moved(const float* g, const Box3f& box, Vec3f offset) {
   const auto c = [g](int k) { return load8(g + BoxLanes::kWidth * static_cast<std::size_t>(k)); };
@@ -57,6 +65,13 @@ inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f
   using namespace lanes_detail;
   alignas(32) float scratch[BoxLanes::kGroupFloats];
   return group_meeting(group_from(l, lane, scratch), box, offset);
+}
+
+/// lanes_meeting with a zero offset (group_meeting's form without one).
+inline unsigned lanes_meeting(const BoxLanes& l, std::uint32_t lane, const Box3f& box) {
+  using namespace lanes_detail;
+  alignas(32) float scratch[BoxLanes::kGroupFloats];
+  return group_meeting(group_from(l, lane, scratch), box);
 }
 
 /// Bit t set where boxes_meet(box of lane `lane + t`, box, offset) holds: the lanes' boxes on the
@@ -91,7 +106,7 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
     unsigned rows[kSlice / kW];
     unsigned any = 0;
     for (std::uint32_t x0 = xs; x0 < x_end; x0 += kW)
-      any |= rows[(x0 - xs) / kW] = lanes_meeting(l.organs, la + x0, b_moved, Vec3f{0, 0, 0}) & lanes_below(x_end, x0);
+      any |= rows[(x0 - xs) / kW] = lanes_meeting(l.organs, la + x0, b_moved) & lanes_below(x_end, x0);
     if (!any) continue;
     for (std::uint32_t y0 = 0; y0 < nb.count; y0 += kW) {
       const unsigned cols = lanes_meeting(l.organs, lb + y0, around_a, offset) & lanes_below(nb.count, y0);
@@ -127,8 +142,8 @@ inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* c
   const float* ga = l.organs.group(l.organ_first[ia]);
   const float* gb = l.organs.group(l.organ_first[ib]);
   // a's organs whose boxes meet the box around b's, then b's that meet the box around a's.
-  unsigned rows = group_meeting(ga, b_moved, Vec3f{0, 0, 0});
-  if (ca.count > kW) rows |= group_meeting(ga + kG, b_moved, Vec3f{0, 0, 0}) << kW;
+  unsigned rows = group_meeting(ga, b_moved);
+  if (ca.count > kW) rows |= group_meeting(ga + kG, b_moved) << kW;
   rows &= upto(ca.count);
   if (!rows) return;
   unsigned cols = group_meeting(gb, around_a, offset);
@@ -161,10 +176,7 @@ inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb,
     unsigned mask = lanes_detail::group_meeting(l.clusters.group(l0 + k0), box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
     if (k0 < from) mask &= ~0u << (from - k0);
     if (!mask) continue;
-    // The lanes past the plant's last cluster repeat it (their bits are masked off above).
-    const LcdCentred* roots[OrganLanes::kWidth];
-    for (std::uint32_t t = 0; t < OrganLanes::kWidth; ++t) roots[t] = &l.roots[pb.first_cluster + std::min(k0 + t, pb.cluster_count - 1)];
-    for (mask &= lcd_overlapping8(root, roots, offset); mask; mask &= mask - 1)
+    for (mask &= lcd_overlapping8(root, l.root_lanes.group(l0 + k0), offset); mask; mask &= mask - 1)
       on_cluster(pb.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
   }
 }
@@ -201,17 +213,17 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
     // branches, dearer than the lane tests they saved.
     static_assert(2 * OrganLanes::kWidth <= kMaskOrgans, "the masks must hold these clusters' free pairs");
     unsigned hits[2 * kW];
-    unsigned any = 0;
+    unsigned rows = 0;  // bit x set where row x has a pair
     const float* g0 = l.organs.group(l0);  // the cluster's run starts a group
     for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
       const Box3f bx = lanes_detail::run_box(g0, x);
-      unsigned meet = lanes_detail::group_meeting(g0, bx, Vec3f{0, 0, 0});
-      if (c.count > kW) meet |= lanes_detail::group_meeting(g0 + BoxLanes::kGroupFloats, bx, Vec3f{0, 0, 0}) << kW;
-      any |= hits[x] = meet & static_cast<unsigned>(free_after[c.first + x]);
+      unsigned meet = lanes_detail::group_meeting(g0, bx);
+      if (c.count > kW) meet |= lanes_detail::group_meeting(g0 + BoxLanes::kGroupFloats, bx) << kW;
+      hits[x] = meet & static_cast<unsigned>(free_after[c.first + x]);
+      rows |= static_cast<unsigned>(hits[x] != 0) << x;
     }
-    if (!any) return;
-    for (std::uint32_t x = 0; x + 1 < c.count; ++x)
-      for (unsigned mask = hits[x]; mask; mask &= mask - 1)
+    for (; rows; rows &= rows - 1)
+      for (unsigned x = static_cast<unsigned>(__builtin_ctz(rows)), mask = hits[x]; mask; mask &= mask - 1)
         on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]),
                 static_cast<std::int32_t>(cluster_organs[c.first + static_cast<std::uint32_t>(__builtin_ctz(mask))]));
     return;
@@ -227,7 +239,7 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
       unsigned wanted = masked ? static_cast<unsigned>(free >> y0) & 0xffu : 0xffu;
       if (y0 <= x) wanted &= ~0u << (x + 1 - y0);
       if (!wanted) continue;
-      const unsigned meet = lanes_detail::group_meeting(l.organs.group(l0 + y0), bx, Vec3f{0, 0, 0});
+      const unsigned meet = lanes_detail::group_meeting(l.organs.group(l0 + y0), bx);
       for (unsigned mask = meet & wanted & lanes_detail::lanes_below(c.count, y0); mask; mask &= mask - 1) {
         const std::uint32_t y = y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
         on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]), static_cast<std::int32_t>(cluster_organs[c.first + y]));

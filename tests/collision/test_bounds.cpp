@@ -160,6 +160,8 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
     CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x == c.box.lo.x);
     const LcdCentred root = lcd_centred(m.nodes[c.root].box);
     CHECK(std::memcmp(&m.lanes.roots[ci], &root, sizeof root) == 0);  // the root's LCD box, centred
+    const LcdCentred root_lane = m.lanes.root_lanes.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster));
+    CHECK(std::memcmp(&root_lane, &root, sizeof root) == 0);  // and in the plant's LCD lanes
     // The root spans the cluster's organs (the CPU pass takes a one-block cluster's span from it).
     CHECK(m.nodes[c.root].first == c.first);
     CHECK(m.nodes[c.root].count == c.count);
@@ -247,6 +249,9 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
     const LcdCentred root = lcd_centred(m.nodes[m.clusters[c].root].box);
     CHECK(std::memcmp(&m.lanes.roots[c], &root, sizeof root) == 0);
     const PlantBound& pb = m.plants[static_cast<std::size_t>(m.clusters[c].plant)];
+    const LcdCentred root_lane =
+        m.lanes.root_lanes.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster));
+    CHECK(std::memcmp(&root_lane, &root, sizeof root) == 0);
     CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster)).hi.z ==
           m.clusters[c].box.hi.z);
   }
@@ -276,7 +281,8 @@ bool same_tree(const Mbvt& a, const Mbvt& b) {
               a.max_radius == b.max_radius && same_bytes(a.lanes.organ_first, b.lanes.organ_first) &&
               same_bytes(a.lanes.around, b.lanes.around) && same_bytes(a.lanes.roots, b.lanes.roots) &&
               same_bytes(a.lanes.cluster_first, b.lanes.cluster_first);
-  return same && same_bytes(a.lanes.organs.data, b.lanes.organs.data) && same_bytes(a.lanes.clusters.data, b.lanes.clusters.data);
+  return same && same_bytes(a.lanes.organs.data, b.lanes.organs.data) && same_bytes(a.lanes.clusters.data, b.lanes.clusters.data) &&
+         same_bytes(a.lanes.root_lanes.data, b.lanes.root_lanes.data);
 }
 
 }  // namespace

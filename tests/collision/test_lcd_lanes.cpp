@@ -1,8 +1,10 @@
 // The CPU backend's 8-at-a-time LCD test (collision/lcd_lanes.hpp) against lcd_overlap, the one
 // definition both backends share: the same answer lane by lane on random boxes, parallel and
 // empty ones, and on pairs moved to the last float at which they still meet (where any change in
-// the order of operations would show).
+// the order of operations would show); from 8 records and from a group of LCD lanes
+// (collision/organ_lanes.hpp), as the pass reads a plant's roots.
 #include "collision/lcd_lanes.hpp"
+#include "collision/organ_lanes.hpp"
 
 #include <doctest/doctest.h>
 
@@ -38,6 +40,10 @@ int differences(const LcdCentred& a, const std::vector<LcdCentred>& b, Vec3f off
     for (std::size_t t = 0; t < 8; ++t) lanes[t] = &b[std::min(k0 + t, b.size() - 1)];
     const unsigned got = lcd_overlapping8(a, lanes, offset);
     CHECK((got >> 8) == 0u);
+    LcdLanes group;
+    group.assign_empty(8);
+    for (std::size_t t = 0; t < 8; ++t) group.set(t, *lanes[t]);
+    CHECK(lcd_overlapping8(a, group.group(0), offset) == got);
     for (std::size_t t = 0; t < 8; ++t) {
       const bool want = lcd_overlap(a, *lanes[t], offset);
       overlaps += want;
@@ -108,6 +114,9 @@ TEST_CASE("an empty LCD box meets nothing in the 8-at-a-time test either") {
     CHECK(lcd_overlapping8(b[0], lanes, {0, 0, 0}) == 0u);
     lanes[0] = &b[0];
     met += lcd_overlapping8(b[0], lanes, {0, 0, 0}) & 1u;  // a box meets itself unless empty
+    LcdLanes unset;  // lanes no box was set in (a plant's run padded to whole groups)
+    unset.assign_empty(8);
+    CHECK(lcd_overlapping8(b[0], unset.group(0), {0, 0, 0}) == 0u);
   }
   CHECK(met > 150);
 }
