@@ -5,6 +5,7 @@
 /// origin difference), filters of single triangles (the other organ's box, then its OBB) and of
 /// triangle pairs (box, planes, edge axes), then the shared closed triangle test; capped
 /// cylinders and spheres are solids, so an organ wholly inside one counts too.
+#include "geometry/line_aligned.hpp"
 #include "collision/isa.hpp"
 #include "geometry/obb.hpp"
 #include "geometry/prototype.hpp"
@@ -31,7 +32,7 @@ struct PosedOrgan {
   /// 8 at a time: per group 9 lanes of corner coordinates (first corner x y z, second, third),
   /// each corner apply(transform, vertex) + origin difference as organ_vertices makes it, and 6
   /// of the triangle's box (lo x y z, hi x y z); lanes past the last triangle are not used.
-  std::vector<float> tri_lanes;
+  LineAlignedVector<float> tri_lanes;
   static constexpr std::size_t kGroupFloats = 15 * 8;
   /// Component k (lo x y z, hi x y z) of triangle i's box.
   float tri_box(std::size_t i, int k) const { return tri_lanes[i / 8 * kGroupFloats + static_cast<std::size_t>(9 + k) * 8 + i % 8]; }

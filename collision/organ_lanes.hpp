@@ -3,6 +3,7 @@
 /// tests 8 box pairs at once (collision/organ_rows.hpp): every cluster's organs' boxes
 /// (obb_aabb), and every plant's clusters' boxes (Cluster::box). Part of the MBVT on the host:
 /// fit with the OBBs (fit_mbvt) and refit with them (refit_mbvt), a box per organ and cluster.
+#include "geometry/line_aligned.hpp"
 #include "geometry/lcd.hpp"
 #include "geometry/prototype.hpp"
 
@@ -21,7 +22,7 @@ struct Mbvt;
 struct BoxLanes {
   static constexpr std::uint32_t kWidth = 8;
   static constexpr std::size_t kGroupFloats = 6 * kWidth;
-  std::vector<float> data;
+  LineAlignedVector<float> data;
   void assign_empty(std::size_t lanes);
   /// Where float k (lo x y z, hi x y z) of lane `lane` lies in `data`.
   static std::size_t index(std::size_t lane, int k) {
@@ -46,7 +47,7 @@ struct LcdLanes {
   static constexpr std::uint32_t kWidth = BoxLanes::kWidth;
   static constexpr std::size_t kFields = 8;
   static constexpr std::size_t kGroupFloats = kFields * kWidth;
-  std::vector<float> data;
+  LineAlignedVector<float> data;
   void assign_empty(std::size_t lanes);
   void set(std::size_t lane, const LcdCentred& box);
   LcdCentred get(std::size_t lane) const;

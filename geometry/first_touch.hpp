@@ -8,6 +8,7 @@
 /// Arrays of kLargeArrayBytes or more are mapped on their own in large pages where the system
 /// offers them (geometry/large_pages.hpp): a fault then brings in 2 MiB instead of 4 KiB.
 #include "geometry/large_pages.hpp"
+#include "geometry/line_aligned.hpp"
 
 #include <cstddef>
 #include <memory>
@@ -28,11 +29,12 @@ struct FirstTouchAllocator : std::allocator<T> {
   FirstTouchAllocator(const FirstTouchAllocator<U>&) noexcept {}
   T* allocate(std::size_t n) {
     if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
-    if (n * sizeof(T) < kLargeArrayBytes) return std::allocator<T>::allocate(n);
+    // Below the large arrays' size, from the heap on a cache line (a 64-byte OBB then spans one).
+    if (n * sizeof(T) < kLargeArrayBytes) return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kCacheLine)));
     return static_cast<T*>(map_large(n * sizeof(T)));
   }
   void deallocate(T* p, std::size_t n) noexcept {
-    if (n * sizeof(T) < kLargeArrayBytes) std::allocator<T>::deallocate(p, n);
+    if (n * sizeof(T) < kLargeArrayBytes) ::operator delete(p, std::align_val_t(kCacheLine));
     else unmap_large(p, n * sizeof(T));
   }
   template <class U>

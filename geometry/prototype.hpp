@@ -7,6 +7,7 @@
 ///   leaflet:  flat ovate, pointed blade from (0,0,0) to (1,0,0), widest 1 (so y in [-0.5, 0.5]), z = 0
 ///   sphere:   radius 1 centred at (1, 0, 0)
 ///   disk:     radius 1 centred at the origin in the x-y plane
+#include "geometry/line_aligned.hpp"
 #include "geometry/organ_kind.hpp"
 #include "geometry/vec.hpp"
 
@@ -33,7 +34,7 @@ struct PrototypeMesh {
   /// The triangles' corners by groups of 8 triangles in lanes: per group 9 runs of 8 floats
   /// (first corner x y z, second, third), zeros past the last triangle. The host's exact stage
   /// poses 8 triangles at a time from them (collision/exact.cpp).
-  std::vector<float> corner_lanes;
+  LineAlignedVector<float> corner_lanes;
   static constexpr std::size_t kCornerGroupFloats = 9 * 8;  // floats of corner_lanes per group of 8 triangles
   Box3f box;                              // local box (exact bounds of the vertices)
   std::size_t triangle_count() const { return indices.size() / 3; }
