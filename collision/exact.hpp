@@ -5,8 +5,8 @@
 /// origin difference), filters of single triangles (the other organ's box, then its OBB) and of
 /// triangle pairs (box, planes, edge axes), then the shared closed triangle test; capped
 /// cylinders and spheres are solids, so an organ wholly inside one counts too.
-#include "geometry/line_aligned.hpp"
 #include "collision/isa.hpp"
+#include "geometry/line_aligned.hpp"
 #include "geometry/obb.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/triangle_reject.hpp"

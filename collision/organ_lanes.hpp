@@ -3,8 +3,8 @@
 /// tests 8 box pairs at once (collision/organ_rows.hpp): every cluster's organs' boxes
 /// (obb_aabb), and every plant's clusters' boxes (Cluster::box). Part of the MBVT on the host:
 /// fit with the OBBs (fit_mbvt) and refit with them (refit_mbvt), a box per organ and cluster.
-#include "geometry/line_aligned.hpp"
 #include "geometry/lcd.hpp"
+#include "geometry/line_aligned.hpp"
 #include "geometry/prototype.hpp"
 
 #include <cstdint>

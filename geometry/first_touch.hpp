@@ -6,7 +6,8 @@
 /// aggregates (plain structs of numbers) that the caller writes in full before reading.
 ///
 /// Arrays of kLargeArrayBytes or more are mapped on their own in large pages where the system
-/// offers them (geometry/large_pages.hpp): a fault then brings in 2 MiB instead of 4 KiB.
+/// offers them (geometry/large_pages.hpp): a fault then brings in 2 MiB instead of 4 KiB. Smaller
+/// ones come from the heap on a cache line (geometry/line_aligned.hpp), as the mapped ones start.
 #include "geometry/large_pages.hpp"
 #include "geometry/line_aligned.hpp"
 
