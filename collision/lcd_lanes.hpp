@@ -40,14 +40,4 @@ inline unsigned lcd_overlapping8(const LcdCentred& a, const float* group, Vec3f 
   return lcd_overlapping8(a, lb, offset);
 }
 
-/// Bit t set where lcd_overlap(a, *b[t], offset) holds: 8 records gathered and transposed.
-inline unsigned lcd_overlapping8(const LcdCentred& a, const LcdCentred* const* b, Vec3f offset) {
-  using namespace lanes_detail;
-  const float* rows_b[8];
-  for (int t = 0; t < 8; ++t) rows_b[t] = reinterpret_cast<const float*>(b[t]);
-  F8 lb[8];
-  transpose8(rows_b, lb);
-  return lcd_overlapping8(a, lb, offset);
-}
-
 }  // namespace canopy

@@ -24,26 +24,13 @@ std::size_t lay_out(std::vector<std::uint32_t>& first, std::size_t n, Count coun
 }  // namespace
 
 void BoxLanes::assign_empty(std::size_t lanes) {
-  data.resize((lanes + kWidth - 1) / kWidth * kGroupFloats);
   const Box3f e = empty_box();
-  for (std::size_t lane = 0; lane < data.size() / kGroupFloats * kWidth; ++lane) set(lane, e);
+  for (std::size_t lane = 0, n = resize_lanes(lanes); lane < n; ++lane) set(lane, e);
 }
 
 void LcdLanes::assign_empty(std::size_t lanes) {
-  data.resize((lanes + kWidth - 1) / kWidth * kGroupFloats);
   const LcdCentred e = lcd_centred(Lcd{});
-  for (std::size_t lane = 0; lane < data.size() / kGroupFloats * kWidth; ++lane) set(lane, e);
-}
-
-void LcdLanes::set(std::size_t lane, const LcdCentred& box) {
-  const float fields[kFields] = {box.cx, box.cy, box.ax, box.ay, box.hu, box.hv, box.z_lo, box.z_hi};
-  float* g = &data[lane / kWidth * kGroupFloats + lane % kWidth];
-  for (std::size_t k = 0; k < kFields; ++k) g[k * kWidth] = fields[k];
-}
-
-LcdCentred LcdLanes::get(std::size_t lane) const {
-  const float* g = &data[lane / kWidth * kGroupFloats + lane % kWidth];
-  return LcdCentred{g[0], g[kWidth], g[2 * kWidth], g[3 * kWidth], g[4 * kWidth], g[5 * kWidth], g[6 * kWidth], g[7 * kWidth]};
+  for (std::size_t lane = 0, n = resize_lanes(lanes); lane < n; ++lane) set(lane, e);
 }
 
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {

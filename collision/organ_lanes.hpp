@@ -14,45 +14,55 @@ namespace canopy {
 
 struct Mbvt;
 
-/// Boxes by lane, 8 lanes to a group, each group's six components side by side (lo x, y, z,
-/// hi x, y, z, 8 floats each: 192 bytes), so that a test of 8 lanes reads one run of memory from
-/// one pointer (with six arrays the hot loops kept six pointers, which spilled to the stack:
-/// bench/results/README.md, fortieth session). Lanes no box was set in hold an empty box
-/// (meeting nothing).
-struct BoxLanes {
+/// Records of K float fields by lane, 8 lanes to a group, each group's K fields side by side (8
+/// floats each), so that a test of 8 lanes reads one run of memory from one pointer (with an array
+/// per field the hot loops kept one pointer each, which spilled to the stack:
+/// bench/results/README.md, fortieth session). The layout BoxLanes and LcdLanes share.
+template <std::size_t K>
+struct FieldLanes {
   static constexpr std::uint32_t kWidth = 8;
-  static constexpr std::size_t kGroupFloats = 6 * kWidth;
+  static constexpr std::size_t kFields = K;
+  static constexpr std::size_t kGroupFloats = K * kWidth;
   LineAlignedVector<float> data;
-  void assign_empty(std::size_t lanes);
-  /// Where float k (lo x y z, hi x y z) of lane `lane` lies in `data`.
+  /// Where field k of lane `lane` lies in `data`.
   static std::size_t index(std::size_t lane, int k) {
     return lane / kWidth * kGroupFloats + static_cast<std::size_t>(k) * kWidth + lane % kWidth;
   }
   float& at(std::size_t lane, int k) { return data[index(lane, k)]; }
   float at(std::size_t lane, int k) const { return data[index(lane, k)]; }
+  /// The group holding lane `lane` (a multiple of kWidth): field k of its 8 lanes at + 8 k.
+  const float* group(std::size_t lane) const { return &data[lane / kWidth * kGroupFloats]; }
+  /// Room for `lanes` lanes, whole groups; the caller sets every lane.
+  std::size_t resize_lanes(std::size_t lanes) {
+    data.resize((lanes + kWidth - 1) / kWidth * kGroupFloats);
+    return data.size() / kGroupFloats * kWidth;
+  }
+};
+
+/// Axis-aligned boxes by lane (lo x, y, z, hi x, y, z: 192 bytes a group). Lanes no box was set
+/// in hold an empty box (meeting nothing).
+struct BoxLanes : FieldLanes<6> {
+  void assign_empty(std::size_t lanes);
   void set(std::size_t lane, const Box3f& b) {
     at(lane, 0) = b.lo.x, at(lane, 1) = b.lo.y, at(lane, 2) = b.lo.z;
     at(lane, 3) = b.hi.x, at(lane, 4) = b.hi.y, at(lane, 5) = b.hi.z;
   }
   Box3f get(std::size_t lane) const { return Box3f{{at(lane, 0), at(lane, 1), at(lane, 2)}, {at(lane, 3), at(lane, 4), at(lane, 5)}}; }
-  /// The group holding lane `lane` (a multiple of kWidth): component k of its 8 lanes at + 8 k.
-  const float* group(std::size_t lane) const { return &data[lane / kWidth * kGroupFloats]; }
 };
 
-/// LCD boxes (centred form, geometry/lcd.hpp) by lane, laid out as BoxLanes are: 8 lanes to a
-/// group, each group's 8 fields (cx, cy, ax, ay, hu, hv, z_lo, z_hi) side by side, 8 floats each
-/// (256 bytes), so that 8 LCD tests read their boxes with 8 loads (collision/lcd_lanes.hpp) rather
-/// than gathering 8 records and transposing them. Lanes no box was set in hold an empty LCD box.
-struct LcdLanes {
-  static constexpr std::uint32_t kWidth = BoxLanes::kWidth;
-  static constexpr std::size_t kFields = 8;
-  static constexpr std::size_t kGroupFloats = kFields * kWidth;
-  LineAlignedVector<float> data;
+/// LCD boxes (centred form, geometry/lcd.hpp) by lane (cx, cy, ax, ay, hu, hv, z_lo, z_hi: 256
+/// bytes a group), so that 8 LCD tests read their boxes with 8 loads (collision/lcd_lanes.hpp)
+/// rather than gathering 8 records and transposing them. Lanes no box was set in hold an empty
+/// LCD box.
+struct LcdLanes : FieldLanes<8> {
   void assign_empty(std::size_t lanes);
-  void set(std::size_t lane, const LcdCentred& box);
-  LcdCentred get(std::size_t lane) const;
-  /// The group holding lane `lane` (a multiple of kWidth): field k of its 8 lanes at + 8 k.
-  const float* group(std::size_t lane) const { return &data[lane / kWidth * kGroupFloats]; }
+  void set(std::size_t lane, const LcdCentred& b) {
+    at(lane, 0) = b.cx, at(lane, 1) = b.cy, at(lane, 2) = b.ax, at(lane, 3) = b.ay;
+    at(lane, 4) = b.hu, at(lane, 5) = b.hv, at(lane, 6) = b.z_lo, at(lane, 7) = b.z_hi;
+  }
+  LcdCentred get(std::size_t lane) const {
+    return LcdCentred{at(lane, 0), at(lane, 1), at(lane, 2), at(lane, 3), at(lane, 4), at(lane, 5), at(lane, 6), at(lane, 7)};
+  }
 };
 
 struct OrganLanes {

@@ -31,11 +31,11 @@ struct FirstTouchAllocator : std::allocator<T> {
   T* allocate(std::size_t n) {
     if (n > static_cast<std::size_t>(-1) / sizeof(T)) throw std::bad_array_new_length();
     // Below the large arrays' size, from the heap on a cache line (a 64-byte OBB then spans one).
-    if (n * sizeof(T) < kLargeArrayBytes) return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(kCacheLine)));
+    if (n * sizeof(T) < kLargeArrayBytes) return LineAlignedAllocator<T>().allocate(n);
     return static_cast<T*>(map_large(n * sizeof(T)));
   }
   void deallocate(T* p, std::size_t n) noexcept {
-    if (n * sizeof(T) < kLargeArrayBytes) ::operator delete(p, std::align_val_t(kCacheLine));
+    if (n * sizeof(T) < kLargeArrayBytes) LineAlignedAllocator<T>().deallocate(p, n);
     else unmap_large(p, n * sizeof(T));
   }
   template <class U>

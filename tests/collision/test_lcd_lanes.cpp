@@ -1,8 +1,8 @@
 // The CPU backend's 8-at-a-time LCD test (collision/lcd_lanes.hpp) against lcd_overlap, the one
 // definition both backends share: the same answer lane by lane on random boxes, parallel and
 // empty ones, and on pairs moved to the last float at which they still meet (where any change in
-// the order of operations would show); from 8 records and from a group of LCD lanes
-// (collision/organ_lanes.hpp), as the pass reads a plant's roots.
+// the order of operations would show); from a group of LCD lanes (collision/organ_lanes.hpp), as
+// the pass reads a plant's roots.
 #include "collision/lcd_lanes.hpp"
 #include "collision/organ_lanes.hpp"
 
@@ -38,12 +38,11 @@ int differences(const LcdCentred& a, const std::vector<LcdCentred>& b, Vec3f off
   for (std::size_t k0 = 0; k0 < b.size(); k0 += 8) {
     const LcdCentred* lanes[8];
     for (std::size_t t = 0; t < 8; ++t) lanes[t] = &b[std::min(k0 + t, b.size() - 1)];
-    const unsigned got = lcd_overlapping8(a, lanes, offset);
-    CHECK((got >> 8) == 0u);
     LcdLanes group;
     group.assign_empty(8);
     for (std::size_t t = 0; t < 8; ++t) group.set(t, *lanes[t]);
-    CHECK(lcd_overlapping8(a, group.group(0), offset) == got);
+    const unsigned got = lcd_overlapping8(a, group.group(0), offset);
+    CHECK((got >> 8) == 0u);
     for (std::size_t t = 0; t < 8; ++t) {
       const bool want = lcd_overlap(a, *lanes[t], offset);
       overlaps += want;
@@ -107,13 +106,14 @@ TEST_CASE("an empty LCD box meets nothing in the 8-at-a-time test either") {
   int met = 0;
   for (int i = 0; i < 200; ++i) {
     for (LcdCentred& r : b) r = random_root(g);
-    const LcdCentred* lanes[8];
-    for (int t = 0; t < 8; ++t) lanes[t] = &b[static_cast<std::size_t>(t)];
-    CHECK(lcd_overlapping8(empty, lanes, {0, 0, 0}) == 0u);
-    for (int t = 0; t < 8; ++t) lanes[t] = &empty;
-    CHECK(lcd_overlapping8(b[0], lanes, {0, 0, 0}) == 0u);
-    lanes[0] = &b[0];
-    met += lcd_overlapping8(b[0], lanes, {0, 0, 0}) & 1u;  // a box meets itself unless empty
+    LcdLanes lanes;
+    lanes.assign_empty(8);
+    for (std::size_t t = 0; t < 8; ++t) lanes.set(t, b[t]);
+    CHECK(lcd_overlapping8(empty, lanes.group(0), {0, 0, 0}) == 0u);
+    for (std::size_t t = 0; t < 8; ++t) lanes.set(t, empty);
+    CHECK(lcd_overlapping8(b[0], lanes.group(0), {0, 0, 0}) == 0u);
+    lanes.set(0, b[0]);
+    met += lcd_overlapping8(b[0], lanes.group(0), {0, 0, 0}) & 1u;  // a box meets itself unless empty
     LcdLanes unset;  // lanes no box was set in (a plant's run padded to whole groups)
     unset.assign_empty(8);
     CHECK(lcd_overlapping8(b[0], unset.group(0), {0, 0, 0}) == 0u);
