@@ -110,8 +110,7 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   if (pb.cluster_count == 0) return;
   const Cluster& c0 = m.clusters[pb.first_cluster];
   const Cluster& c1 = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-  lines(&m.clusters[pb.first_cluster], pb.cluster_count * sizeof(Cluster));
-  lines(&m.lanes.around[pb.first_cluster], pb.cluster_count * sizeof(Box3f));
+  lines(&m.lanes.pass[pb.first_cluster], pb.cluster_count * sizeof(PassCluster));
   lines(&m.nodes[c0.first_node], (c1.first_node + c1.node_count - c0.first_node) * sizeof(LcdNode));
   lines(&m.cluster_organs[c0.first], (c1.first + c1.count - c0.first) * sizeof(std::uint32_t));
   const OrganLanes& l = m.lanes;
@@ -233,33 +232,33 @@ class CpuBackend : public DetectionBackend {
       // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the other
       // plant's box (8 of p's clusters at a time), then each cluster's.
       lane_clusters_meeting_moved(m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
-        const Cluster& ca = m.clusters[i];
-        if (p == q && !passed_over(i, i) && m.cluster_has_free[i]) {  // within one cluster: all its pairs
+        const PassCluster& ca = m.lanes.pass[i];
+        if (p == q && !passed_over(i, i) && ca.has_free) {  // within one cluster: all its pairs
           col.leaf_pair(p, q, i, i);
           if (req.level != ContactLevel::leaf)
-            lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), i, ca, [&](std::int32_t a, std::int32_t b) {
+            lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), ca, [&](std::int32_t a, std::int32_t b) {
               organ_pair(m, a, b, offset, col, p, q, pairs_masked(ca.count));
             });
         }
         const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
         lane_clusters_overlapping(m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, m.lanes.roots[i], offset, [&](std::uint32_t j) {
-          const Cluster& cb = m.clusters[j];
+          const PassCluster& cb = m.lanes.pass[j];
           if (passed_over(i, j)) return;
           col.leaf_pair(p, q, i, j);
           if (req.level == ContactLevel::leaf) return;
           const auto block = [&](const LcdNode& na, const LcdNode& nb) {
-            lane_block_pairs(m.lanes, m.cluster_organs.data(), i, ca, na, j, cb, nb, offset,
-                             [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, ca.plant, cb.plant); });
+            lane_block_pairs(m.lanes, m.cluster_organs.data(), i, m.clusters[i], na, j, m.clusters[j], nb, offset,
+                             [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
           };
           // Two clusters of one block each (a tomato's compound leaves): the descent would hand
           // their roots straight over, and a root spans its cluster's organs; the clusters' own
           // lanes are taken, the nodes left unread.
           static_assert(kBlockOrgans == 2 * OrganLanes::kWidth, "lane_small_cluster_pairs takes clusters of one block");
           if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
-            lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), i, ca, j, cb, offset,
-                                     [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, ca.plant, cb.plant); });
+            lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), ca, cb, offset,
+                                     [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
           else
-            descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, block);
+            descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset, block);
         });
       });
     }

@@ -35,8 +35,8 @@ void LcdLanes::assign_empty(std::size_t lanes) {
 
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {
   lanes.organs.assign_empty(lay_out(lanes.organ_first, m.clusters.size(), [&](std::size_t c) { return m.clusters[c].count; }));
-  lanes.around.assign(m.clusters.size(), empty_box());
   lanes.roots.assign(m.clusters.size(), lcd_centred(Lcd{}));
+  lanes.pass.assign(m.clusters.size(), PassCluster{});
   const std::size_t cluster_lanes = lay_out(lanes.cluster_first, m.plants.size(), [&](std::size_t p) { return m.plants[p].cluster_count; });
   lanes.clusters.assign_empty(cluster_lanes);
   lanes.root_lanes.assign_empty(cluster_lanes);
@@ -50,8 +50,10 @@ void fill_organ_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t c) {
     lanes.organs.set(lanes.organ_first[c] + k, b);
     grow_around(around, b);
   }
-  lanes.around[c] = around;
   lanes.roots[c] = lcd_centred(m.nodes[cl.root].box);
+  PassCluster& pc = lanes.pass[c];
+  pc.around = around, pc.first = cl.first, pc.count = cl.count, pc.lane = lanes.organ_first[c];
+  pc.has_free = m.cluster_has_free[c];
 }
 
 void fill_cluster_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t p) {
@@ -59,6 +61,7 @@ void fill_cluster_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t p) {
   for (std::uint32_t k = 0; k < pb.cluster_count; ++k) {
     lanes.clusters.set(lanes.cluster_first[p] + k, m.clusters[pb.first_cluster + k].box);
     lanes.root_lanes.set(lanes.cluster_first[p] + k, lanes.roots[pb.first_cluster + k]);
+    lanes.pass[pb.first_cluster + k].box = m.clusters[pb.first_cluster + k].box;
   }
 }
 

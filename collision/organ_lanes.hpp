@@ -65,15 +65,29 @@ struct LcdLanes : FieldLanes<8> {
   }
 };
 
+/// What the CPU pass reads of a cluster, on one cache line (copies of Cluster's and the tree's
+/// fields, side by side): with them in three arrays and a 52-byte record, a cluster pair's first
+/// loads waited on up to four lines, and the pass 0.97-0.99 of its time with them on one
+/// (bench/results/README.md, forty-fourth session).
+struct alignas(64) PassCluster {
+  Box3f box;                           // Cluster::box
+  /// The box around its organs' boxes (their least lo and greatest hi, so an organ box that
+  /// misses it misses every one of them, exactly).
+  Box3f around;
+  std::uint32_t first = 0, count = 0;  // Cluster::first, count: its organs in cluster_organs
+  std::uint32_t lane = 0;              // its first organ lane (OrganLanes::organ_first)
+  std::uint32_t has_free = 0;          // Mbvt::cluster_has_free
+};
+static_assert(sizeof(PassCluster) == 64);
+
 struct OrganLanes {
   static constexpr std::uint32_t kWidth = BoxLanes::kWidth;
   /// Cluster c's k-th organ (cluster_organs[c.first + k]) at lane organ_first[c] + k; each
   /// cluster's run padded to a multiple of kWidth, with kWidth lanes more after the last.
   std::vector<std::uint32_t> organ_first;
   BoxLanes organs;
-  /// Per cluster: the box around its organs' boxes (their least lo and greatest hi, so an organ
-  /// box that misses it misses every one of them, exactly).
-  std::vector<Box3f> around;
+  /// Per cluster: what the pass reads of it (fill_organ_lanes, fill_cluster_lanes).
+  std::vector<PassCluster, LineAlignedAllocator<PassCluster>> pass;
   /// Per cluster: its root's LCD box, lcd_centred(nodes[root].box), side by side with the other
   /// clusters' (the pass tests cluster pairs' roots without going through the cluster's index).
   std::vector<LcdCentred> roots;
@@ -86,10 +100,11 @@ struct OrganLanes {
 
 /// Lays the lanes out for the tree's clusters and plants, every box empty.
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m);
-/// Cluster c's organ lanes and its box around them, from its organs' OBBs.
+/// Cluster c's organ lanes, from its organs' OBBs, its root's LCD box, and its pass record but
+/// its box (fill_cluster_lanes sets that).
 void fill_organ_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t c);
 /// Plant p's cluster lanes from its clusters' boxes (fit_plant_bound sets those) and roots
-/// (fill_organ_lanes sets those).
+/// (fill_organ_lanes sets those), and its clusters' boxes in their pass records.
 void fill_cluster_lanes(OrganLanes& lanes, const Mbvt& m, std::uint32_t p);
 
 }  // namespace canopy

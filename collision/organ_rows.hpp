@@ -84,7 +84,7 @@ inline unsigned lanes_meeting_moved(const BoxLanes& l, std::uint32_t lane, const
 
 /// block_pairs over lanes: organs under node na of cluster ca (index ia) against those under nb
 /// of cluster cb (index ib). Both sides are sifted 8 at a time first, each organ's box against
-/// the box around the other cluster's organs (l.around): an organ that misses it misses each of
+/// the box around the other cluster's organs (PassCluster::around): an organ that misses it misses each of
 /// them too, exactly, as that box is their least lo and greatest hi and b's side is compared in
 /// the very sums of the pair test (a's side against around's hi + offset, which is not below
 /// any of b's hi + offset). Only the rows left are tested against b's lanes left, so a
@@ -96,8 +96,8 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
                              OnPair&& on_pair) {
   using lanes_detail::lanes_below;
   constexpr std::uint32_t kW = OrganLanes::kWidth, kSlice = 64;
-  const Box3f around_a = l.around[ia];
-  const Box3f around_b = l.around[ib];
+  const Box3f around_a = l.pass[ia].around;
+  const Box3f around_b = l.pass[ib].around;
   const Box3f b_moved{around_b.lo + offset, around_b.hi + offset};
   const std::uint32_t la = l.organ_first[ia] + (na.first - ca.first);
   const std::uint32_t lb = l.organ_first[ib] + (nb.first - cb.first);
@@ -129,18 +129,18 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
 /// groups and rows of groups and no array of rows (through lane_block_pairs a leaf pair took
 /// about 300 cycles at 1,000 plants; with this, the pass 0.92-0.95 of before, fortieth session).
 template <typename OnPair>
-inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ia, const Cluster& ca,
-                                     std::uint32_t ib, const Cluster& cb, Vec3f offset, OnPair&& on_pair) {
+inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const PassCluster& ca,
+                                     const PassCluster& cb, Vec3f offset, OnPair&& on_pair) {
   constexpr std::uint32_t kW = OrganLanes::kWidth;
   const auto upto = [](std::uint32_t count) { return (1u << count) - 1; };  // count <= 16
-  const Box3f around_a = l.around[ia];
-  const Box3f around_b = l.around[ib];
+  const Box3f around_a = ca.around;
+  const Box3f around_b = cb.around;
   const Box3f b_moved{around_b.lo + offset, around_b.hi + offset};
   using lanes_detail::group_meeting;
   constexpr std::size_t kG = BoxLanes::kGroupFloats;
   // Each cluster's run starts a group: its lanes are read from its first group on.
-  const float* ga = l.organs.group(l.organ_first[ia]);
-  const float* gb = l.organs.group(l.organ_first[ib]);
+  const float* ga = l.organs.group(ca.lane);
+  const float* gb = l.organs.group(cb.lane);
   // a's organs whose boxes meet the box around b's, then b's that meet the box around a's.
   unsigned rows = group_meeting(ga, b_moved);
   if (ca.count > kW) rows |= group_meeting(ga + kG, b_moved) << kW;
@@ -196,13 +196,13 @@ inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& p
 }
 
 /// own_pairs over lanes less the pairs free_after leaves out (collision/free_pairs.hpp, beside
-/// cluster_organs): the pairs x < y of cluster c's organs (index ic) whose boxes meet and, in a
+/// cluster_organs): the pairs x < y of the organs of cluster c (its pass record) whose boxes meet and, in a
 /// cluster of at most kMaskOrgans organs, that are not adjacent (in a larger one every pair
 /// whose boxes meet).
 template <typename OnPair>
-inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after, std::uint32_t ic,
-                           const Cluster& c, OnPair&& on_pair) {
-  const std::uint32_t l0 = l.organ_first[ic];
+inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after, const PassCluster& c,
+                           OnPair&& on_pair) {
+  const std::uint32_t l0 = c.lane;
   constexpr std::uint32_t kW = OrganLanes::kWidth;
   if (c.count <= 2 * kW) {
     // A cluster of one or two groups (every tomato cluster): each row against the groups whole,

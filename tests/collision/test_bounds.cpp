@@ -172,7 +172,7 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
         CHECK(inside(v, c.box));
         CHECK(inside(v, pb.box));
         CHECK(inside(v, organ_box));  // the organ's axis-aligned box in its lane (obb_aabb)
-        CHECK(inside(v, m.lanes.around[ci]));
+        CHECK(inside(v, m.lanes.pass[ci].around));
       }
     }
   }
@@ -243,7 +243,16 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
   REQUIRE(m.lanes.organs.data.size() == fresh.lanes.organs.data.size());
   CHECK(std::memcmp(m.lanes.organs.data.data(), fresh.lanes.organs.data.data(), m.lanes.organs.data.size() * sizeof(float)) == 0);
   for (std::size_t c = 0; c < m.clusters.size(); ++c) {
-    CHECK(m.lanes.around[c].lo.y == fresh.lanes.around[c].lo.y);
+    CHECK(m.lanes.pass[c].around.lo.y == fresh.lanes.pass[c].around.lo.y);
+    // The pass records hold the refit tree's own fields.
+    for (const Mbvt* t : {static_cast<const Mbvt*>(&m), &fresh}) {
+      const PassCluster& pc = t->lanes.pass[c];
+      CHECK(std::memcmp(&pc.box, &t->clusters[c].box, sizeof(Box3f)) == 0);
+      CHECK(pc.first == t->clusters[c].first);
+      CHECK(pc.count == t->clusters[c].count);
+      CHECK(pc.lane == t->lanes.organ_first[c]);
+      CHECK(pc.has_free == t->cluster_has_free[c]);
+    }
     // The refit's root boxes are made again: from its nodes' (the refit keeps the axes, so
     // they need not equal a fresh build's).
     const LcdCentred root = lcd_centred(m.nodes[m.clusters[c].root].box);
@@ -279,7 +288,7 @@ bool same_tree(const Mbvt& a, const Mbvt& b) {
               same_bytes(a.plant_has_free, b.plant_has_free) &&
               same_bytes(a.clusters, b.clusters) && same_bytes(a.nodes, b.nodes) && same_bytes(a.plants, b.plants) &&
               a.max_radius == b.max_radius && same_bytes(a.lanes.organ_first, b.lanes.organ_first) &&
-              same_bytes(a.lanes.around, b.lanes.around) && same_bytes(a.lanes.roots, b.lanes.roots) &&
+              same_bytes(a.lanes.pass, b.lanes.pass) && same_bytes(a.lanes.roots, b.lanes.roots) &&
               same_bytes(a.lanes.cluster_first, b.lanes.cluster_first);
   return same && same_bytes(a.lanes.organs.data, b.lanes.organs.data) && same_bytes(a.lanes.clusters.data, b.lanes.clusters.data) &&
          same_bytes(a.lanes.root_lanes.data, b.lanes.root_lanes.data);

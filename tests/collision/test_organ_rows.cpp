@@ -51,7 +51,7 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
           own_pairs(m.cluster_organs.data(), ca.first, ca.count, box_of, into(shared));
           if (pairs_masked(ca.count))
             std::erase_if(shared, [&](const auto& ab) { return adjacent(s.organs[ab.first], ab.first, s.organs[ab.second], ab.second); });
-          lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), i, ca, into(lanes));
+          lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), m.lanes.pass[i], into(lanes));
         } else {
           if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
           descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {
@@ -69,7 +69,7 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
         // Clusters of one block each: the pass takes them whole, with 16-bit masks.
         if (i != j && ca.count <= kBlockOrgans && cb.count <= kBlockOrgans) {
           Pairs small;
-          lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), i, ca, j, cb, offset, into(small));
+          lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), m.lanes.pass[i], m.lanes.pass[j], offset, into(small));
           std::sort(small.begin(), small.end());
           CHECK(small == shared);
           if (small_pairs) *small_pairs += small.size();
