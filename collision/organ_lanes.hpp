@@ -66,8 +66,8 @@ struct LcdLanes : FieldLanes<8> {
 };
 
 /// What the CPU pass reads of a cluster, on one cache line (copies of Cluster's and the tree's
-/// fields, side by side): with them in three arrays and a 52-byte record, a cluster pair's first
-/// loads waited on up to four lines, and the pass 0.97-0.99 of its time with them on one
+/// fields, side by side): from a 52-byte record and three arrays a cluster pair's first loads
+/// waited on up to four lines; on one, the query 0.92-0.96 of its time, the pass 0.91-0.94
 /// (bench/results/README.md, forty-fourth session).
 struct alignas(64) PassCluster {
   Box3f box;                           // Cluster::box

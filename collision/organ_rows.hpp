@@ -84,12 +84,12 @@ inline unsigned lanes_meeting_moved(const BoxLanes& l, std::uint32_t lane, const
 
 /// block_pairs over lanes: organs under node na of cluster ca (index ia) against those under nb
 /// of cluster cb (index ib). Both sides are sifted 8 at a time first, each organ's box against
-/// the box around the other cluster's organs (PassCluster::around): an organ that misses it misses each of
-/// them too, exactly, as that box is their least lo and greatest hi and b's side is compared in
-/// the very sums of the pair test (a's side against around's hi + offset, which is not below
-/// any of b's hi + offset). Only the rows left are tested against b's lanes left, so a
-/// compound-leaf pair whose leaves barely cross costs a few vector tests rather than a row per
-/// organ. a's side goes in slices of 64 organs (a bit each).
+/// the box around the other cluster's organs (PassCluster::around): an organ that misses it
+/// misses each of them too, exactly, as that box is their least lo and greatest hi and b's side
+/// is compared in the very sums of the pair test (a's side against around's hi + offset, which
+/// is not below any of b's hi + offset). Only the rows left are tested against b's lanes left,
+/// so a compound-leaf pair whose leaves barely cross costs a few vector tests rather than a row
+/// per organ. a's side goes in slices of 64 organs (a bit each).
 template <typename OnPair>
 inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ia, const Cluster& ca,
                              const LcdNode& na, std::uint32_t ib, const Cluster& cb, const LcdNode& nb, Vec3f offset,
@@ -196,9 +196,9 @@ inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& p
 }
 
 /// own_pairs over lanes less the pairs free_after leaves out (collision/free_pairs.hpp, beside
-/// cluster_organs): the pairs x < y of the organs of cluster c (its pass record) whose boxes meet and, in a
-/// cluster of at most kMaskOrgans organs, that are not adjacent (in a larger one every pair
-/// whose boxes meet).
+/// cluster_organs): the pairs x < y of the organs of cluster c (its pass record) whose boxes
+/// meet and, in a cluster of at most kMaskOrgans organs, that are not adjacent (in a larger one
+/// every pair whose boxes meet).
 template <typename OnPair>
 inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after, const PassCluster& c,
                            OnPair&& on_pair) {
