@@ -29,18 +29,10 @@ struct Capsule {
 
 namespace solid_bound_detail {
 
-/// |a.x| + |a.y| + |a.z|: never below the Euclidean norm, without its square root.
-CANOPY_HD inline double norm_bound(D3 a) { return fabs(a.x) + fabs(a.y) + fabs(a.z); }
+CANOPY_HD inline double norm(D3 a) { return sqrt(dot(a, a)); }
 
-/// Squared distance from x to the segment p + s u, s in [0, 1] (to a point of it: never below
-/// the least), `inv_uu` being 1 / |u|^2 (0 for a point segment): segment_segment_dist2's
-/// arithmetic for a point, without its branches on which segment is a point.
-CANOPY_HD inline double point_segment_dist2(D3 x, D3 p, D3 u, double inv_uu) {
-  const D3 r = x - p;
-  const double s = min_d(max_d(dot(r, u) * inv_uu, 0.0), 1.0);
-  const D3 w = r - u * s;
-  return dot(w, w);
-}
+/// Distance from x to the segment p + s u, s in [0, 1] (to a point of it: never below the least).
+CANOPY_HD inline double point_segment_distance(D3 x, D3 p, D3 u) { return sqrt(segment_segment_dist2(x, x, p, p + u)); }
 
 /// sqrt of Gershgorin's bound on the largest eigenvalue of a Gram matrix: a bound on the
 /// largest stretch of the map whose columns made it (its spectral norm), exact for orthogonal
@@ -61,11 +53,10 @@ CANOPY_HD inline double stretch_bound(const double* g, int n) {
 /// double rounding. Where the lines are all but parallel (sin < 1e-5) the ends' distances,
 /// which then exceed the least by at most 2 (|u| + |v|) sin, less that.
 CANOPY_HD inline double segments_distance_bound(D3 p, D3 u, D3 q, D3 v) {
-  using solid_bound_detail::point_segment_dist2;
+  using solid_bound_detail::point_segment_distance;
+  double best = min_d(min_d(point_segment_distance(p, q, v), point_segment_distance(p + u, q, v)),
+                      min_d(point_segment_distance(q, p, u), point_segment_distance(q + v, p, u)));
   const double uu = dot(u, u), vv = dot(v, v);
-  const double inv_uu = uu > 0 ? 1 / uu : 0, inv_vv = vv > 0 ? 1 / vv : 0;
-  double best = sqrt(min_d(min_d(point_segment_dist2(p, q, v, inv_vv), point_segment_dist2(p + u, q, v, inv_vv)),
-                           min_d(point_segment_dist2(q, p, u, inv_uu), point_segment_dist2(q + v, p, u, inv_uu))));
   if (!(uu > 0 && vv > 0)) return best;  // a point: its distance to the other is at an end
   const D3 n = cross(u, v);
   const double nn = dot(n, n);
@@ -87,7 +78,7 @@ CANOPY_HD inline double segments_distance_bound(D3 p, D3 u, D3 q, D3 v) {
 /// x = 0 and 1) lies within its axis segment t + s c0 widened by the stretch of (c1, c2); a
 /// sphere's (unit sphere about x = 1) within the ball about t + c0 of the stretch of all three.
 CANOPY_HD inline bool solid_capsule(PrototypeKind k, const Affine3f& m, Vec3f d, Capsule& c) {
-  using solid_bound_detail::norm_bound;
+  using solid_bound_detail::norm;
   if (!is_solid(k)) return false;
   const D3 col[3] = {d3(m.c0), d3(m.c1), d3(m.c2)};
   const D3 t = d3(m.t) + d3(d);
@@ -101,7 +92,7 @@ CANOPY_HD inline bool solid_capsule(PrototypeKind k, const Affine3f& m, Vec3f d,
   } else {
     c.p = t + col[0], c.u = D3{0, 0, 0};
   }
-  c.size = norm_bound(d3(m.t)) + norm_bound(d3(d)) + norm_bound(col[0]) + norm_bound(col[1]) + norm_bound(col[2]);
+  c.size = norm(d3(m.t)) + norm(d3(d)) + norm(col[0]) + norm(col[1]) + norm(col[2]);
   return true;
 }
 
