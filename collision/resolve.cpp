@@ -48,7 +48,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   std::vector<Obb, FirstTouchAllocator<Obb>> boxes(s.organ_count());
   const auto fit = [&](std::size_t k) {
     const OrganRecord& r = s.organs[k];
-    boxes[k] = make_obb(s.transforms[k], lib.get(r.prototype, r.lod).box, 0);
+    boxes[k] = make_obb(s.transforms[k], lib.get(r).box, 0);
   };
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t k = 0; k < s.organ_count(); ++k) fit(k);

@@ -18,6 +18,9 @@ namespace {
 constexpr const char* kOrganHeader =
     "id,plant,parent,kind,leaf,area,length,prototype,p0,p1,lod,joint_limit,"
     "hx,hy,hz,lx,ly,lz,ux,uy,uz,tx,ty,tz\n";
+/// A stand with a curved leaflet has three more columns, its angles (geometry/leaflet_shape.hpp;
+/// 0 for every other organ); a stand without one keeps the columns above, byte for byte.
+constexpr const char* kShapeColumns = ",bend,cup,fold";
 constexpr const char* kPlantHeader = "id,x,y,rotation,seed,grammar,steps\n";
 
 /// Splits a CSV line without quoting (canopy never writes commas inside cells).
@@ -45,7 +48,16 @@ T parse(std::string_view cell, const std::string& file, int line, int column) {
 
 void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   const Stand& s = e.stand;
-  out.fixed(kOrganHeader);
+  // Whether any process writes a curved leaflet (the same answer on every process).
+  std::vector<std::uint64_t> curved(e.plants.size(), 0), totals;
+  for (std::size_t i = 0; i < e.plants.size(); ++i) {
+    const PlantRecord& pr = s.plants[e.plants[i]];
+    for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) curved[i] += s.organs[id].shape != 0;
+  }
+  e.exclusive(curved, 1, totals);
+  const bool shapes = totals[0] > 0;
+  const std::string_view header(kOrganHeader);
+  out.fixed(shapes ? std::string(header.substr(0, header.size() - 1)) + kShapeColumns + "\n" : std::string(header));
   make_meshes(s, lib);
   out.plants(e.plants.size(), 16, [&](std::size_t i, std::string& t) {
     const PlantRecord& pr = s.plants[e.plants[i]];
@@ -82,6 +94,13 @@ void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& 
         append_number(t, c.y);
         t += ',';
         append_number(t, c.z);
+      }
+      if (shapes) {
+        const LeafletShape shape = leaflet_shape(r.shape);
+        for (double a : {shape.bend_deg, shape.cup_deg, shape.fold_deg}) {
+          t += ',';
+          append_number(t, a);
+        }
       }
       t += '\n';
     }
@@ -149,13 +168,18 @@ Stand read_stand(const std::string& dir) {
     s.plants.push_back(pr);
   }
   ln = 0;
+  const std::string_view plain(kOrganHeader);
+  const std::string with_shapes = std::string(plain.substr(0, plain.size() - 1)) + kShapeColumns + "\n";
+  std::size_t columns = 24;
   while (std::getline(oin, line)) {
     if (++ln == 1) {
-      if (line + "\n" != kOrganHeader) throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, kOrganHeader));
+      if (line + "\n" == with_shapes) columns = 27;
+      else if (line + "\n" != plain)
+        throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, kOrganHeader));
       continue;
     }
     const auto c = cells(line);
-    if (c.size() != 24) throw std::runtime_error(fmt::format("{}:{}: expected 24 cells, got {}", ofile, ln, c.size()));
+    if (c.size() != columns) throw std::runtime_error(fmt::format("{}:{}: expected {} cells, got {}", ofile, ln, columns, c.size()));
     const std::size_t id = parse<std::size_t>(c[0], ofile, ln, 1);
     if (id != s.organs.size()) throw std::runtime_error(fmt::format("{}:{}: organ ids must run 0, 1, 2, ...", ofile, ln));
     OrganRecord r;
@@ -170,6 +194,15 @@ Stand read_stand(const std::string& dir) {
     r.prototype = *proto;
     r.lod = static_cast<std::uint8_t>(parse<int>(c[10], ofile, ln, 11));
     if (r.lod < 1 || r.lod > kMaxLod) throw std::runtime_error(fmt::format("{}:{}: lod must lie in 1..{}", ofile, ln, kMaxLod));
+    if (columns == 27) {
+      const LeafletShape shape{parse<double>(c[24], ofile, ln, 25), parse<double>(c[25], ofile, ln, 26), parse<double>(c[26], ofile, ln, 27)};
+      std::string why;
+      const auto code = leaflet_shape_code(shape, &why);
+      if (!code) throw std::runtime_error(fmt::format("{}:{}: {}", ofile, ln, why));
+      if (*code != 0 && r.prototype != PrototypeKind::leaflet)
+        throw std::runtime_error(fmt::format("{}:{}: a {} has no bend, cup or fold (only leaflets curve)", ofile, ln, c[7]));
+      r.shape = *code;
+    }
     if (r.plant < 0 || static_cast<std::size_t>(r.plant) >= s.plants.size() || r.parent >= static_cast<std::int32_t>(id))
       throw std::runtime_error(fmt::format("{}:{}: plant or parent out of range", ofile, ln));
     s.params.push_back({parse<float>(c[8], ofile, ln, 9), parse<float>(c[9], ofile, ln, 10)});

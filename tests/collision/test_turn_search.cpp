@@ -32,7 +32,7 @@ struct Setup {
   explicit Setup(Stand s) : stand(std::move(s)), joints(stand) {
     for (std::size_t k = 0; k < stand.organ_count(); ++k) {
       const OrganRecord& r = stand.organs[k];
-      boxes.push_back(make_obb(stand.transforms[k], lib.get(r.prototype, r.lod).box, 0));
+      boxes.push_back(make_obb(stand.transforms[k], lib.get(r).box, 0));
     }
     DetectRequest req;
     req.clearance = 0;

@@ -6,6 +6,7 @@
 #include "lsystem/turtle.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -184,4 +185,36 @@ TEST_CASE("a non-finite position or rotation, a level of detail out of range, ne
   r = req;
   r.plants[1].steps = -2;
   CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("plant 1: its derivation steps must be at least 0 (got -2)"), std::invalid_argument);
+}
+
+TEST_CASE("a leaflet's trailing parameters give its curvature; zeros give the flat leaflet") {
+  const TurtleResult flat = turtle("I(1, 0.1) L(0.1, 0.05)");
+  const TurtleResult zeros = turtle("I(1, 0.1) L(0.1, 0.05, 0, 0, 0)");
+  REQUIRE(flat.organs.size() == 2);
+  REQUIRE(zeros.organs.size() == 2);
+  CHECK(zeros.organs[1].shape == 0);
+  CHECK(std::memcmp(&zeros.organs[1].transform, &flat.organs[1].transform, sizeof(Affine3f)) == 0);
+  CHECK(zeros.organs[1].params[0] == flat.organs[1].params[0]);
+  CHECK(zeros.organs[1].params[1] == flat.organs[1].params[1]);
+  // Rounded to the steps (bend 10, cup 15, fold 10 degrees); those left out are 0.
+  const LeafletShape s = leaflet_shape(turtle("L(0.1, 0.05, -43, -8, 12)").organs.at(0).shape);
+  CHECK(s.bend_deg == -40);
+  CHECK(s.cup_deg == -15);
+  CHECK(s.fold_deg == 10);
+  const LeafletShape b = leaflet_shape(turtle("L(0.1, 0.05, 21)").organs.at(0).shape);
+  CHECK(b.bend_deg == 20);
+  CHECK(b.cup_deg == 0);
+  CHECK(b.fold_deg == 0);
+  // The transform is the flat leaflet's: the shape lives in the mesh.
+  CHECK(std::memcmp(&turtle("L(0.1, 0.05, -43, -8, 12)").organs.at(0).transform, &turtle("L(0.1, 0.05)").organs.at(0).transform,
+                    sizeof(Affine3f)) == 0);
+  // An angle past its range is refused, naming the module.
+  try {
+    turtle("L(0.1, 0.05, -95)");
+    FAIL("no error");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()).find("leaflet bend must lie in [-80, 70] degrees (got -95)") != std::string::npos);
+    CHECK(std::string(e.what()).find("L(0.1,0.05,-95)") != std::string::npos);
+  }
+  CHECK_THROWS_WITH(turtle("L(0.1, 0.05, 0, 0, 45)"), doctest::Contains("leaflet fold must lie in [0, 30] degrees (got 45)"));
 }

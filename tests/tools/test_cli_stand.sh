@@ -107,7 +107,7 @@ expect_error() {  # expect_error NAME PATTERN ARGS...
 printf 'axiom: I(1, 0.1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\norgans:\n  I: {prototype: cylinder, kind: internode}\n' > "$tmp/neg.yaml"
 expect_error "negative length" "module 0 'I(-1,0.1)': cylinder parameter 1 must not be negative" "$tmp/neg.yaml"
 printf 'axiom: L(1)\norgans:\n  L: {prototype: leaflet, kind: leaflet}\n' > "$tmp/arity.yaml"
-expect_error "organ arity" "arity.yaml:1:8: organ 'L' is a leaflet and takes 2 parameter(s), but is used with 1" "$tmp/arity.yaml"
+expect_error "organ arity" "arity.yaml:1:8: organ 'L' is a leaflet and takes 2 to 5 parameters, but is used with 1" "$tmp/arity.yaml"
 printf 'x,y,seed\n0,0,1\n' > "$tmp/pos.csv"
 expect_error "positions columns" "pos.csv:1: missing column 'rotation'" "$src/grammars/tomato.yaml" --positions "$tmp/pos.csv"
 printf 'x,y,rotation,seed\n0,zero,0,1\n' > "$tmp/pos2.csv"
