@@ -70,6 +70,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   std::vector<std::uint8_t> carried(s.organ_count(), 0), moved_now(s.organ_count(), 0);
   std::map<std::size_t, std::string> why;
   std::vector<std::uint32_t> changed;  // organs moved by the last round (the runner is told next round)
+  std::vector<std::int64_t> bend_counts(4, 0);  // this process's turns bent, their joints, kinks, unbent
   const AttemptRunner* told = nullptr;  // the runner that has seen every organ
   std::size_t best = left;
   int best_round = 0;
@@ -125,6 +126,11 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
       std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });
+    // Large turns of chain segments bend their chains (within one plant: the owner's business).
+    SpreadStats spread;
+    plan.turns = spread_turns(search, plan.turns, threads, &spread);
+    bend_counts[0] += spread.spread, bend_counts[1] += spread.joints, bend_counts[2] += spread.kinked, bend_counts[3] += spread.dropped;
+    times.lap(PhaseTimes::apply);
     rr.plan_s = now() - t;
     const auto planned = static_cast<std::size_t>(total({static_cast<std::int64_t>(plan.turns.size())})[0]);
     if (planned == 0) {
@@ -211,15 +217,22 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     if (a <= 0) continue;
     ++moved_joints;
     angle_units += std::llround(std::ldexp(a, 32));
-    out.max_turn_deg = std::max(out.max_turn_deg, a);
+    out.max_joint_deg = std::max(out.max_joint_deg, a);
   }
+  // The turn each organ carries: the rotation from its grown pose to its current one.
+  for (std::size_t k = 0; k < s.organ_count(); ++k)
+    if (carried[k] && mine(s.organs[k].plant))
+      out.max_turn_deg = std::max(out.max_turn_deg, rotation_angle_deg(joints.motion(static_cast<std::uint32_t>(k)).r));
   for (std::size_t k = 0; k < s.organ_count(); ++k)
     if (mine(s.organs[k].plant)) ++owned_organs, carried_organs += carried[k];
   const std::vector<std::int64_t> sums = total({moved_joints, angle_units, owned_organs, carried_organs, owned_turned});
-  if (part) out.max_turn_deg = part->max(out.max_turn_deg);
+  if (part) out.max_turn_deg = part->max(out.max_turn_deg), out.max_joint_deg = part->max(out.max_joint_deg);
   out.organs_moved = static_cast<std::size_t>(sums[0]);
   if (out.organs_moved) out.mean_turn_deg = std::ldexp(static_cast<double>(sums[1]), -32) / static_cast<double>(out.organs_moved);
   out.organs_carried = static_cast<std::size_t>(sums[3]);
+  const std::vector<std::int64_t> bent = total(bend_counts);
+  out.bends = static_cast<std::size_t>(bent[0]), out.bend_joints = static_cast<std::size_t>(bent[1]);
+  out.kinks = static_cast<std::size_t>(bent[2]), out.unbent = static_cast<std::size_t>(bent[3]);
   out.joint_bytes = Joints::bytes_for(static_cast<std::size_t>(sums[2]), static_cast<std::size_t>(sums[4]));
   out.seconds = now() - t0;
   return out;
