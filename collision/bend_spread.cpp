@@ -44,18 +44,20 @@ bool touched(const ContactGraph& g, std::int32_t x, std::int32_t y) {
   return false;
 }
 
-/// Whether the chain c (proximal first) turned by `deg` about `axis` at each joint leaves every
+Mat3d turn_by(const Vec3d& axis, double deg) { return axis_angle(axis, std::cos(deg / kDeg), std::sin(deg / kDeg)); }
+
+/// Whether the chain c (proximal first) turned by deg[i] about `axis` at joint c[i] leaves every
 /// pair it moves as the header says: the organs of k's subtree clear of all, the others meeting
 /// only what they met before.
-bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, const Vec3d& axis, double deg, ExactScratch& scratch) {
+bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, const Vec3d& axis, const std::vector<double>& deg,
+                 ExactScratch& scratch) {
   const Stand& s = ts.stand;
   const std::uint32_t first = c.front(), end = ts.joints.subtree_end(first), k = c.back();
-  const Mat3d r = axis_angle(axis, std::cos(deg / kDeg), std::sin(deg / kDeg));
   // The motion of each level: the turns of the joints above it, distal first.
   std::vector<Motion> level(c.size());
   Motion m;
   for (std::size_t i = 0; i < c.size(); ++i) {
-    m = compose(m, rotation_about(to_double(s.transforms[c[i]].t), r));
+    m = compose(m, rotation_about(to_double(s.transforms[c[i]].t), turn_by(axis, deg[i])));
     level[i] = m;
   }
   const std::int32_t plant = s.organs[first].plant;
@@ -149,24 +151,38 @@ std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& tu
       std::reverse(chain.begin(), chain.end());  // proximal first
       const int len = static_cast<int>(chain.size());
       const int want = std::clamp(static_cast<int>(std::ceil(rot->deg / cfg.bend_step_deg)), 2, std::max(2, len));
-      // About bend_step_deg a joint first, then more joints (smaller angles, for the limits), then fewer.
+      // The turn at each of the last m joints of the chain, each within its limit, if the bent
+      // pose passes.
+      const auto attempt = [&](int m, const std::vector<double>& deg) {
+        const std::vector<std::uint32_t> c(chain.end() - m, chain.end());
+        std::vector<Turn> bent;
+        for (int j = 0; j < m; ++j) {
+          const Mat3d q = Joints::local_after(ts.joints.joint_frame(c[static_cast<std::size_t>(j)]), turn_by(rot->axis, deg[static_cast<std::size_t>(j)]));
+          if (rotation_angle_deg(q) > s.joint_limit_deg[c[static_cast<std::size_t>(j)]]) return false;
+          bent.push_back(Turn{c[static_cast<std::size_t>(j)], q, deg[static_cast<std::size_t>(j)]});
+        }
+        if (!bend_passes(ts, c, rot->axis, deg, scratch)) return false;
+        out[i] = std::move(bent);
+        kinked[i] = 0;
+        return true;
+      };
+      // Evenly, about bend_step_deg a joint first, then over more joints (smaller angles, for the
+      // limits), then fewer.
       std::vector<int> counts;
       for (int m = want; m <= len; ++m) counts.push_back(m);
       for (int m = std::min(want, len + 1) - 1; m >= 2; --m) counts.push_back(m);
-      for (int m : counts) {
-        const std::vector<std::uint32_t> c(chain.end() - m, chain.end());
-        const double deg = rot->deg / m;
-        const Mat3d r = axis_angle(rot->axis, std::cos(deg / kDeg), std::sin(deg / kDeg));
-        std::vector<Turn> bent;
-        for (std::uint32_t j : c) {
-          const Mat3d q = Joints::local_after(ts.joints.joint_frame(j), r);
-          if (rotation_angle_deg(q) > s.joint_limit_deg[j]) break;
-          bent.push_back(Turn{j, q, deg});
+      bool done = false;
+      for (int m : counts)
+        if ((done = attempt(m, std::vector<double>(static_cast<std::size_t>(m), rot->deg / m)))) break;
+      // A turn past the mover's own limit: as near the search's pose as the limits let it, the
+      // mover at the most its joint takes, the rest spread evenly above it.
+      if (!done && !own) {
+        const double room = std::max(0.0, s.joint_limit_deg[t.organ] - ts.joints.angle_deg(t.organ));
+        for (int m = 2; m <= len && !done; ++m) {
+          std::vector<double> deg(static_cast<std::size_t>(m), (rot->deg - room) / (m - 1));
+          deg.back() = room;
+          done = attempt(m, deg);
         }
-        if (bent.size() != c.size() || !bend_passes(ts, c, rot->axis, deg, scratch)) continue;
-        out[i] = std::move(bent);
-        kinked[i] = 0;
-        break;
       }
       // Past the mover's own limit and not spread: the turn is not made.
       if (kinked[i] == 2) out[i].clear();
@@ -177,7 +193,7 @@ std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& tu
   std::vector<Turn> all;
   std::vector<std::uint8_t> taken(s.organ_count(), 0);
   for (std::size_t i = 0; i < turns.size(); ++i) {
-    if (stats && kinked[i] == 2) ++stats->dropped;
+    if (kinked[i] == 2 && stats) stats->unbent.push_back(turns[i].organ);
     if (out[i].size() > 1) {
       const bool free = std::none_of(out[i].begin(), out[i].end(), [&](const Turn& t) { return taken[t.organ] != 0; });
       if (free) {
@@ -186,7 +202,7 @@ std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& tu
         const bool own = rotation_angle_deg(turns[i].local) <= s.joint_limit_deg[turns[i].organ];
         out[i] = own ? std::vector<Turn>{turns[i]} : std::vector<Turn>{};
         kinked[i] = own ? 1 : 2;
-        if (stats && !own) ++stats->dropped;
+        if (stats && !own) stats->unbent.push_back(turns[i].organ);
       }
     }
     if (stats && out[i].size() > 1) ++stats->spread, stats->joints += out[i].size();

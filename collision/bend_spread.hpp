@@ -21,13 +21,15 @@ struct SpreadStats {
   std::size_t spread = 0;   // turns spread over several joints
   std::size_t joints = 0;   // joints those turns became
   std::size_t kinked = 0;   // turns above the bend step left at one joint (no spread passed)
-  std::size_t dropped = 0;  // turns past their joint's own limit that no spread could take
+  std::vector<std::uint32_t> unbent;  // movers of turns past their own limit that no spread could take
 };
 
 /// `turns` (one round's plan) with each turn of more than config.bend_step_deg spread over its
 /// chain where a spread passes the checks above. A turn the search found only because its chain
 /// could take it (past the mover's own limit, TurnSearch::Candidate::chain_deg) is dropped
-/// where no spread passes: its contacts wait for the next round.
+/// where no spread passes (its mover listed in SpreadStats::unbent): resolution then searches
+/// that mover within its own limit (TurnSearch::unbendable), and its contacts wait for the next
+/// round.
 std::vector<Turn> spread_turns(const TurnSearch& search, const std::vector<Turn>& turns, int threads, SpreadStats* stats = nullptr);
 
 }  // namespace canopy

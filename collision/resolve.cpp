@@ -54,8 +54,9 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   for (std::size_t k = 0; k < s.organ_count(); ++k) fit(k);
   Neighbourhood near(s, boxes, threads);
   ContactGraph touching;
+  std::vector<std::uint8_t> unbendable(s.organ_count(), 0);
   const TurnSearch search{s, joints, lib, cfg, dreq.collide, near, boxes, touching,
-                          static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance};
+                          static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance, &unbendable};
 
   std::vector<Contact> contacts = initial.pairs;
   const ResolvePartition* part = req.partition;
@@ -129,7 +130,11 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     // Large turns of chain segments bend their chains (within one plant: the owner's business).
     SpreadStats spread;
     plan.turns = spread_turns(search, plan.turns, threads, &spread);
-    bend_counts[0] += spread.spread, bend_counts[1] += spread.joints, bend_counts[2] += spread.kinked, bend_counts[3] += spread.dropped;
+    bend_counts[0] += spread.spread, bend_counts[1] += spread.joints, bend_counts[2] += spread.kinked;
+    bend_counts[3] += static_cast<std::int64_t>(spread.unbent.size());
+    // A mover no spread could take is searched within its own limit from now on; the mark travels
+    // with the turns (an angle below 0, no turn) so that every process plans with it.
+    for (std::uint32_t k : spread.unbent) plan.turns.push_back(Turn{k, Mat3d{}, -1});
     times.lap(PhaseTimes::apply);
     rr.plan_s = now() - t;
     const auto planned = static_cast<std::size_t>(total({static_cast<std::int64_t>(plan.turns.size())})[0]);
@@ -144,6 +149,10 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     }
     std::vector<std::uint32_t> turned;
     for (const Turn& turn : plan.turns) {
+      if (turn.angle_deg < 0) {
+        unbendable[turn.organ] = 1;
+        continue;
+      }
       joints.set_local(turn.organ, turn.local);
       turned.push_back(turn.organ);
     }
@@ -185,7 +194,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     for (std::size_t p = 0; p < active.size(); ++p) redetected += active[p] && mine(static_cast<std::int32_t>(p));
     const std::vector<std::int64_t> sums = total({owned_contacts(), redetected});
     left = static_cast<std::size_t>(sums[0]);
-    rr.turned = planned;
+    rr.turned = static_cast<std::size_t>(total({static_cast<std::int64_t>(turned.size())})[0]);
     rr.plants_redetected = static_cast<std::size_t>(sums[1]);
     out.per_round.push_back(rr);
     out.rounds = round;

@@ -126,7 +126,7 @@ void TurnSearch::prepare(Candidate& c, std::uint32_t mover, const MetPairs& met_
   c.frame = joints.joint_frame(mover);
   c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
   c.angle_now_deg = joints.angle_deg(mover);
-  c.chain_deg = chain_reach_deg(s, joints, config, mover);
+  c.chain_deg = unbendable && (*unbendable)[mover] ? 0.0 : chain_reach_deg(s, joints, config, mover);
   c.reach_deg = std::min(180.0, std::max<double>(s.joint_limit_deg[mover] + c.angle_now_deg, c.chain_deg));
 
   for (std::uint32_t k = mover; k < end; ++k)

@@ -59,6 +59,9 @@ struct TurnSearch {
   const ContactGraph& touching;   // contacts at the start of the round
   float clearance = 0;         // separation from the organs met (the larger of both clearances)
   float detect_clearance = 0;  // what detection counts as a contact: neighbours must stay this far
+  /// Per organ, where given: a chain mover whose turn past its own limit no spread could take
+  /// (collision/bend_spread.hpp); it is searched within its own limit from then on.
+  const std::vector<std::uint8_t>* unbendable = nullptr;
 
   /// Organ pairs (moving organ, kept organ) that some turn about the joint could bring together
   /// (the sphere of x sweeps a shell about the joint): keep indices for moving[i] in

@@ -346,3 +346,27 @@ TEST_CASE("with one bend joint every turn stays at its joint, as before") {
   CHECK(ra.bend_joints == 0);
   CHECK(ra.organs_moved > 0);
 }
+
+TEST_CASE("a chain segment may be asked for what its chain's joints can take together") {
+  Stand s = row_stand(4);
+  Joints j(s);
+  ResolveConfig cfg;
+  std::uint32_t k = 0;  // the last rachis segment of the first compound leaf
+  while (s.organs[k].kind != OrganKind::rachis || s.organs[k + 1].kind == OrganKind::rachis ||
+         s.organs[static_cast<std::size_t>(s.organs[k].parent)].kind != OrganKind::rachis)
+    ++k;
+  const std::vector<std::uint32_t> chain = bend_chain(s, cfg, k, cfg.bend_joints);
+  REQUIRE(chain.size() >= 3);
+  for (std::size_t i = 1; i < chain.size(); ++i) CHECK(chain[i] == static_cast<std::uint32_t>(s.organs[chain[i - 1]].parent));
+  CHECK(chain_reach_deg(s, j, cfg, k) == doctest::Approx(60.0 * static_cast<double>(chain.size())));
+  // A joint turned by 50 of its 60 degrees leaves 10 of room: m joints through it take m x 10
+  // (the mover's own joint alone is the search's own limit, not a spread).
+  j.set_local(chain[1], j.local_after(chain[1], axis_angle(Vec3d{0, 0, 1}, 50 * std::numbers::pi / 180)));
+  CHECK(chain_reach_deg(s, j, cfg, k) == doctest::Approx(10.0 * static_cast<double>(chain.size())).epsilon(1e-9));
+  // No chain for a leaflet, nor with one bend joint.
+  std::uint32_t leaflet = 0;
+  while (s.organs[leaflet].kind != OrganKind::leaflet) ++leaflet;
+  CHECK(chain_reach_deg(s, j, cfg, leaflet) == 0);
+  cfg.bend_joints = 1;
+  CHECK(chain_reach_deg(s, j, cfg, k) == 0);
+}
