@@ -22,7 +22,7 @@ Camera fit_camera(Vec3d lo, Vec3d hi, View view, int width, int height) {
   Camera c;
   c.width = width, c.height = height;
   c.centre = (lo + hi) * 0.5;
-  c.dir = view == View::top ? Vec3d{0, 0, -1} : normalized(Vec3d{0.45, 1.0, -0.75});
+  c.dir = view == View::top ? Vec3d{0, 0, -1} : view == View::side ? Vec3d{0, 1, 0} : normalized(Vec3d{0.45, 1.0, -0.75});
   c.right = view == View::top ? Vec3d{1, 0, 0} : normalized(cross(c.dir, Vec3d{0, 0, 1}));
   c.up = cross(c.right, c.dir);
   double mu = 1e-6, mv = 1e-6;
