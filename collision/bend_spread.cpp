@@ -14,8 +14,8 @@ namespace {
 
 constexpr double kDeg = 180 / std::numbers::pi;
 
-/// The rotation of a turn (in the plant frame) and its axis and angle: the joint's rotation
-/// after the turn is P R P^T's conjugate applied to the one before (Joints::local_after), so
+/// The rotation of a turn in the plant frame, its axis and angle: Joints::local_after makes the
+/// joint's rotation Q_after = P^T R P Q_before (P its parent's rotation), so
 /// R = P Q_after Q_before^T P^T.
 struct Rotation {
   Vec3d axis;
