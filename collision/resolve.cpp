@@ -137,7 +137,11 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     for (std::uint32_t k : spread.unbent) plan.turns.push_back(Turn{k, Mat3d{}, -1});
     times.lap(PhaseTimes::apply);
     rr.plan_s = now() - t;
-    const auto planned = static_cast<std::size_t>(total({static_cast<std::int64_t>(plan.turns.size())})[0]);
+    // This process's own turns and marks (the halo's come from their owners below).
+    const auto counts = total({static_cast<std::int64_t>(plan.turns.size()),
+                               static_cast<std::int64_t>(std::count_if(plan.turns.begin(), plan.turns.end(),
+                                                                       [](const Turn& turn) { return turn.angle_deg >= 0; }))});
+    const auto planned = static_cast<std::size_t>(counts[0]);
     if (planned == 0) {
       out.stop = "no turn within the joint limits separates the contacts left";
       out.per_round.push_back(rr);
@@ -194,7 +198,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     for (std::size_t p = 0; p < active.size(); ++p) redetected += active[p] && mine(static_cast<std::int32_t>(p));
     const std::vector<std::int64_t> sums = total({owned_contacts(), redetected});
     left = static_cast<std::size_t>(sums[0]);
-    rr.turned = static_cast<std::size_t>(total({static_cast<std::int64_t>(turned.size())})[0]);
+    rr.turned = static_cast<std::size_t>(counts[1]);
     rr.plants_redetected = static_cast<std::size_t>(sums[1]);
     out.per_round.push_back(rr);
     out.rounds = round;
