@@ -9,7 +9,7 @@
 ///         positive: the margins curl up (cupping), negative: down (rolling)
 ///   fold  the angle each half of the blade rises from the midrib (a crease along it)
 /// Each is rounded to the nearest multiple of its step; a value outside its range is refused.
-/// Code 0 is the flat leaflet, whose mesh is today's flat blade.
+/// Code 0 is the flat leaflet, whose mesh is the flat blade's, byte for byte.
 #include "geometry/hd.hpp"
 
 #include <cmath>
