@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A/B timing on one machine: the command lines given run in turn, ROUNDS times, so that each sees
-# the same stretch of the machine (the hosts lent for GPU runs differ by up to a third from one to
+# the same stretch of the machine (GPU machines of one kind differ by up to a third from one to
 # the next, and drift within one). Run from the repository root; on a GPU machine the bundle of
 # scripts/device_bundle.sh (.devbin/) is carried and its environment sourced first.
 #
