@@ -91,7 +91,8 @@ describe_machine() {
 # section kept), and the sections of machines that no CSV names any more left out.
 update_machine_txt() {
   local f=$out/machine.txt named
-  named=" $(cat "$out"/*.csv "$out"/experiment/*.csv 2>/dev/null | awk -F, '$NF != "machine" {print $NF}' | sort -u | paste -sd' ') "
+  named=" $({ cat "$out"/*.csv "$out"/experiment/*.csv 2>/dev/null || true; } | awk -F, '$NF != "machine" {print $NF}' |
+             sort -u | paste -sd' ') "
   {
     if [ -f "$f" ]; then
       awk -v m="## $MACHINE" -v named="$named" '
@@ -109,6 +110,26 @@ update_machine_txt() {
     fi
   } > "$work/machine.txt"
   mv "$work/machine.txt" "$f"
+}
+
+# stamp NEW NAME: out/NAME becomes NEW's header and rows with commit,date,machine added, after the
+# rows of other machines that out/NAME held (kept only where its columns are NEW's).
+stamp() {
+  local new=$1 dest=$out/$2 header
+  header="$(head -1 "$new" | tr -d '\r'),commit,date,machine"
+  {
+    echo "$header"
+    if [ -f "$dest" ]; then
+      if [ "$(head -1 "$dest")" = "$header" ]; then
+        tail -n +2 "$dest" | awk -F, -v m="$MACHINE" '$NF != m'
+      else
+        echo "bench/run.sh: $2's columns changed; the rows of other machines are dropped" >&2
+      fi
+    fi
+    tail -n +2 "$new" | grep -v '^#' | sed "s/\$/,$COMMIT,$DATE,$MACHINE/"
+  } > "$work/stamped.csv"
+  mv "$work/stamped.csv" "$dest"
+  echo "bench/run.sh: wrote $dest ($(($(wc -l < "$dest") - 1)) rows)"
 }
 
 # stamp_rows FILE: commit,date,machine added to every row of FILE (a folder made afresh).
