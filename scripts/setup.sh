@@ -4,6 +4,7 @@ set -euo pipefail
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libyaml-cpp-dev libfmt-dev doctest-dev libcli11-dev
           nlohmann-json3-dev libtinygltf-dev clang-14 libclang-rt-14-dev assimp-utils python3 libcgal-dev libfcl-dev
           libembree-dev libpng-dev gnuplot-nox pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib
+          python3-venv python3-setuptools python3-wheel
           libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
