@@ -33,7 +33,7 @@ run() {  # run NAME COLLIDE CLEAN STAND_ARGS...   (COLLIDE default: no --collide
 }
 run row default 1 --rows 2 --per-row 4 --steps 14 --random-rotation --jitter 0.02
 run row_narrowed leaflet,petiole,rachis,internode,peduncle 1 --rows 2 --per-row 4 --steps 14 --random-rotation --jitter 0.02
-run dense default 0 --rows 3 --per-row 3 --row-spacing 0.25 --plant-spacing 0.25 --steps 12 --random-rotation --seed 5
+run dense default 1 --rows 3 --per-row 3 --row-spacing 0.25 --plant-spacing 0.25 --steps 12 --random-rotation --seed 5
 run crowded default 1 --rows 1 --per-row 3 --steps 14 --set phyllotaxis=15 --set internode_min=0.015 --set internode_max=0.02
 printf 'x,y,rotation,seed\n0,0,0,7\n0,0,0,7\n0.2,0.1,45,8\n' > "$tmp/same.csv"
 run same_spot default 0 --positions "$tmp/same.csv" --steps 10
