@@ -26,7 +26,7 @@ class FallbackRunner : public AttemptRunner {
   void bind(AttemptRunner* first) {
     if (first != first_) told_ = false;  // a runner of its own that has not seen every organ
     first_ = first;
-    if (!host_) host_.emplace(lib_, omp_get_max_threads(), first->lanes());
+    if (!host_ || host_->lanes() != first->lanes()) host_.emplace(lib_, omp_get_max_threads(), first->lanes());
   }
 
   void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed, bool all) override {
