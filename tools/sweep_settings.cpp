@@ -38,7 +38,9 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
           {"level", o.detect.level},
           {"clearance", o.detect.clearance},
           {"collide", kinds},
-          {"resolve", resolve}};
+          {"resolve", resolve},
+          {"light", o.no_light ? nlohmann::ordered_json(nullptr)
+                               : nlohmann::ordered_json{{"sun", o.sun}, {"sky", o.sky}, {"sky_directions", o.sky_directions}, {"error", o.light_error}}}};
 }
 
 void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& settings, std::size_t finished_runs) {
