@@ -77,7 +77,7 @@ check "--set in another order resumes" "1" "$(grep -c '^sweep: 0 runs made now' 
 one --set nodes=13 --set phyllotaxis=137 >"$tmp/o" 2>"$tmp/e"
 check "--set other value refused" "1" "$(grep -c 'set {"nodes":12.0,"phyllotaxis":137.0} -> {"nodes":13.0,"phyllotaxis":137.0}' "$tmp/e")"
 one --sun 40,90 >"$tmp/o" 2>"$tmp/e"
-check "--sun other value refused" "1" "$(grep -c 'light {"error":0.002,"sky":"soc","sky_directions":46,"sun":"60,180"} -> ' "$tmp/e")"
+check "--sun other value refused" "1" "$(grep -c 'light {"sun":"60,180","sky":"soc","sky_directions":46,"error":0.002} -> {"sun":"40,90"' "$tmp/e")"
 "$canopy" sweep "$g" --plant-spacing 0.45 --steps 10 --seeds 1 --rows 1 --per-row 2 --backend cpu --no-light -o "$tmp/nl" >/dev/null 2>&1
 check "--no-light leaves the light columns empty" "|" "$(python3 -c "
 import csv; r=list(csv.DictReader(open('$tmp/nl/runs.csv'))); print(r[0]['direct_before'] + '|' + r[0]['light_s'])")"
