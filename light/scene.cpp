@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <array>
@@ -30,7 +31,8 @@ bool flat(PrototypeKind k) { return k == PrototypeKind::leaflet || k == Prototyp
 }  // namespace
 
 Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>()) {
-  impl_->device = rtcNewDevice(nullptr);
+  // Embree's build threads: as many as the run's OpenMP team (--threads N means N throughout).
+  impl_->device = rtcNewDevice(fmt::format("threads={}", std::max(1, omp_get_max_threads())).c_str());
   if (!impl_->device) throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   RTCDevice dev = impl_->device;
   impl_->prototypes.assign(4 * (kMaxLod + 1), nullptr);

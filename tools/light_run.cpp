@@ -161,11 +161,10 @@ LightOutcome run_light(LightOptions o, bool print) {
   } else {
     o.stand.grammar = o.source;
     o.stand.detect.threads = o.threads;
-    StandOptions probe = o.stand;
-    const StandPlan plan = plan_stand(probe);
-    if (o.stand.positions.empty()) layout = plan.layout;
     run_stand(o.stand, print, {}, &stand);
     out.dir = o.stand.out;
+    // The layout as run (a target chooses its plant spacing), from the report just written.
+    layout = folder_layout(out.dir);
   }
   if (!o.tile.empty()) layout.reset();
   std::vector<SunSpec> suns;
