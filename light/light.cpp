@@ -132,6 +132,16 @@ struct Run {
   /// grows the count at most kFirstStep times; later steps take the exponent the last two passes
   /// show, within [0.5, 0.75].
   static constexpr double kFirstStep = 16;
+  static constexpr std::uint64_t kRounds = 16;  // passes grow at least 1.2 times: the limit stops them first
+
+  /// Refuses at once errors that even the fastest decay (rays^-0.75) would reach only past the
+  /// ray limit, from a pass of n rays that is r times off.
+  static void check_reachable(double n, double r) {
+    const double need = n * std::pow(std::max(r, 1.0), 1 / 0.75);
+    if (need > kMaxRaysPerDirection)
+      throw std::invalid_argument(fmt::format("the errors asked for need more than {:.3g} rays in one direction (the limit is {:.3g}): ask "
+                                              "for a larger --error or --plant-error", need, kMaxRaysPerDirection));
+  }
   static double decay(double n0, double r0, double n1, double r1) {
     if (!(n1 > 1.05 * n0) || !(r0 > 0) || !(r1 > 0)) return 0.5;
     return std::clamp(std::log(r0 / r1) / std::log(n1 / n0), 0.5, 0.75);
@@ -143,7 +153,8 @@ struct Run {
     if (cfg.rays_per_m2) return trace(toward, *cfg.rays_per_m2 * region(toward).area(), id << 8);
     DirectionLight d = trace(toward, cfg.pilot_rays, id << 8);
     double r = shortfall(d.fraction.se, plant_rms(d.plant)), n_prev = 0, r_prev = 0;
-    for (std::uint64_t round = 1; round < 6 && r > 1; ++round) {
+    check_reachable(static_cast<double>(d.rays), r);
+    for (std::uint64_t round = 1; round < kRounds && r > 1; ++round) {
       const double n = static_cast<double>(d.rays);
       const double a = n_prev > 0 ? decay(n_prev, r_prev, n, r) : 0.5;
       const double grow = std::max(1.2, 1.1 * std::pow(r, 1 / a));
@@ -195,7 +206,8 @@ struct Run {
     for (std::size_t i = 0; i < sky.size(); ++i) d[i] = trace(to[i], cfg.sky_pilot_rays, (first_id + i) << 8);
     DirectionLight c = combine(d, sky);
     double r = shortfall(c.fraction.se, plant_rms(c.plant)), n_prev = 0, r_prev = 0;
-    for (std::uint64_t round = 1; round < 6 && r > 1; ++round) {
+    check_reachable(static_cast<double>(cfg.sky_pilot_rays) * static_cast<double>(sky.size()), r);
+    for (std::uint64_t round = 1; round < kRounds && r > 1; ++round) {
       double n_all = 0;
       for (const DirectionLight& x : d) n_all += static_cast<double>(x.rays);
       const double a = n_prev > 0 ? decay(n_prev, r_prev, n_all, r) : 0.5;
