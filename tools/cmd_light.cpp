@@ -5,6 +5,10 @@
 #include "tools/cli_common.hpp"
 #include "tools/light_run.hpp"
 
+#include <fmt/format.h>
+
+#include <filesystem>
+
 namespace canopy::cli {
 
 Command add_light(CLI::App& root) {
@@ -49,8 +53,15 @@ Command add_light(CLI::App& root) {
   layout->add_option("--seed", s.rows.seed, "Stand seed")->check(kSeed);
   layout->add_option("--positions", s.positions, "CSV with columns x,y,rotation,seed (give --tile for a periodic field)");
   add_target_options(*app, s.target);
-  return {app, [o]() {
+  return {app, [o, app]() {
             o->threads = o->stand.detect.threads;
+            // A folder holds its stand: the options that grow one would be ignored, so say so.
+            if (std::filesystem::is_directory(o->source))
+              for (const char* name : {"--out", "--steps", "--set", "--lod", "--formats", "--max-modules", "--rows", "--per-row", "--row-spacing",
+                                       "--plant-spacing", "--double-rows", "--jitter", "--random-rotation", "--seed", "--positions",
+                                       "--target-lai", "--target-ground-cover", "--no-resolve"})
+                if (app->count(name) > 0)
+                  throw std::invalid_argument(fmt::format("{} grows a stand from a grammar: {} is a folder that holds one", name, o->source));
             run_light(*o);
             return 0;
           }};

@@ -112,12 +112,11 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   return j;
 }
 
-std::string light_csv(const light::LightResult& r, const Stand& s, const std::vector<SunSpec>& suns) {
+std::string light_csv(const light::LightResult& r, const Stand& s) {
   std::string out = "plant,x,y,leaf_area,ground_cover,ground_cover_se";
   for (std::size_t i = 0; i < r.direct.size(); ++i) out += fmt::format(",sun{0}_fraction,sun{0}_se,sun{0}_share", i + 1);
   if (r.diffuse) out += ",diffuse_fraction,diffuse_se,diffuse_share,star,star_se";
   out += "\n";
-  (void)suns;
   const double n = static_cast<double>(s.plant_count());
   // A plant's share of the stand's interception: its fraction over the sum of all plants'.
   const auto share = [n](const light::DirectionLight& d, std::size_t p) {

@@ -172,7 +172,7 @@ LightOutcome run_light(LightOptions o, bool print) {
   PrototypeLibrary lib;
   const light::LightResult r = light::compute_light(stand, lib, cfg);
   out.json = light_json(r, stand, o, suns);
-  out.csv = light_csv(r, stand, suns);
+  out.csv = light_csv(r, stand);
   OutputSet files(out.dir);
   files.open("light.json").write(out.json.dump(2) + "\n");
   files.open("light.csv").write(out.csv);

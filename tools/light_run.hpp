@@ -73,7 +73,7 @@ light::LightConfig light_config(const LightOptions& o, const Stand& stand, const
 /// light.json's content and light.csv's text.
 nlohmann::ordered_json light_json(const light::LightResult& r, const Stand& stand, const LightOptions& o,
                                   const std::vector<SunSpec>& suns);
-std::string light_csv(const light::LightResult& r, const Stand& stand, const std::vector<SunSpec>& suns);
+std::string light_csv(const light::LightResult& r, const Stand& stand);
 #endif
 
 }  // namespace canopy::cli

@@ -93,7 +93,7 @@ void bind_light(py::module_& m) {
           PrototypeLibrary lib;
           const light::LightResult r = light::compute_light(s.stand, lib, cfg);
           j = cli::light_json(r, s.stand, o, suns);
-          csv = cli::light_csv(r, s.stand, suns);
+          csv = cli::light_csv(r, s.stand);
         }
         py::dict out = json_to_py(j);
         out["per_plant"] = csv_columns(csv);
