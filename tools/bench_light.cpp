@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
   double sun_e = 60, sun_a = 180;
   std::string csv = "bench/results/light.csv";
   bool append = false;
-  for (int i = 1; i < argc; ++i) {
+  for (int i = 1; i < argc; ++i) try {
     if (!std::strcmp(argv[i], "--plants") && i + 1 < argc) plants = numbers(argv[++i]);
     else if (!std::strcmp(argv[i], "--errors") && i + 1 < argc) errors = numbers(argv[++i]);
     else if (!std::strcmp(argv[i], "--plant-errors") && i + 1 < argc) plant_errors = numbers(argv[++i]);
@@ -99,7 +99,10 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--sky-directions") && i + 1 < argc) sky = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--sun") && i + 1 < argc) {
       const std::vector<double> s = numbers(argv[++i]);
-      if (s.size() != 2) return help_or_refuse("bench_light", argv[i], "--sun takes ELEVATION,AZIMUTH\n");
+      if (s.size() != 2) {
+        std::fprintf(stderr, "bench_light: --sun takes ELEVATION,AZIMUTH, got %s\n", argv[i]);
+        return 2;
+      }
       sun_e = s[0], sun_a = s[1];
     } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
     else if (!std::strcmp(argv[i], "--append")) append = true;
@@ -109,6 +112,9 @@ int main(int argc, char** argv) {
                             "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--csv FILE] [--append]\n"
                             "  the default stand of each size; per error: a direct beam and the sky's directions to that standard\n"
                             "  error of the stand's fractions (--errors) or of each plant's, root mean square (--plant-errors)\n");
+  } catch (const std::exception&) {
+    std::fprintf(stderr, "bench_light: %s: not a number or list of numbers\n", argv[i]);
+    return 2;
   }
   const ThreadLimit thread_limit(threads);
   const int used_threads = omp_get_max_threads();

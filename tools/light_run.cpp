@@ -148,9 +148,24 @@ LightOutcome run_light(LightOptions o, bool print) {
   throw std::invalid_argument("canopy light: this build has no ray caster (Embree was not found: apt-get install libembree-dev, then build again)");
 #else
   const ThreadLimit thread_limit(o.threads);
-  (void)parse_suns(o);  // bad options fail before any work
-  (void)light::parse_sky(o.sky);
-  if (!o.tile.empty()) (void)parse_tile(o.tile);
+  {
+    // Bad options fail before any work (from a grammar: before the stand is grown and written).
+    light::LightConfig v;
+    for (const SunSpec& x : parse_suns(o)) v.suns.push_back({x.elevation_deg, x.azimuth_deg});
+    v.sky = light::parse_sky(o.sky), v.sky_directions = o.sky_directions, v.error = o.error, v.plant_error = o.plant_error;
+    v.rays_per_m2 = o.rays_per_m2, v.layer_m = o.layer, v.tile = {0, 0, 1, 1};
+    if (!o.tile.empty()) (void)parse_tile(o.tile);
+    light::check_config(v);
+    if (!std::filesystem::is_directory(o.source) && o.tile.empty() && !o.no_periodic) {
+      if (!o.stand.positions.empty())
+        throw std::invalid_argument("a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
+      StandOptions probe = o.stand;
+      probe.grammar = o.source;
+      RowLayout l = plan_stand(probe).layout;
+      if (o.stand.target.set()) l.plant_spacing = 1;  // chosen later: any spacing above 0
+      (void)lattice_tile(l);
+    }
+  }
   Stand stand;
   std::optional<RowLayout> layout;
   LightOutcome out;

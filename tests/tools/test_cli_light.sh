@@ -89,6 +89,13 @@ bad "grammar options on a folder" "\-\-rows grows a stand from a grammar" --rows
 "$canopy" light "$tmp/nowhere" >"$tmp/o" 2>"$tmp/e"
 check "missing source exit" "1" "$([ $? -ne 0 ] && echo 1 || echo 0)"
 
+# From a grammar, a bad light option fails before the stand is grown: no folder.
+"$canopy" light "$g" --rows 3 --per-row 3 --steps 12 --double-rows 0.3 --backend cpu --sky-directions 0 --error 0.01 -o "$tmp/dr" >"$tmp/o" 2>"$tmp/e"
+check "odd double rows refused" "2 1" "$? $(grep -c 'double rows repeat by pairs, and the stand has 3 rows' "$tmp/e")"
+check "odd double rows: no folder" "0" "$([ -e "$tmp/dr" ] && echo 1 || echo 0)"
+"$canopy" light "$g" "${rows[@]}" --sun 95,0 -o "$tmp/bs" >"$tmp/o" 2>"$tmp/e"
+check "bad sun from a grammar: no folder" "2 0" "$? $([ -e "$tmp/bs" ] && echo 1 || echo 0)"
+
 # A stand to a target: LAI exactly (the spacing found gives the same files as asking for it), and
 # ground cover within its standard error (canopy light on the folder sees the same estimate).
 "$canopy" stand "$g" --rows 3 --per-row 3 --steps 12 --random-rotation --backend cpu --target-lai 1.5 -o "$tmp/t" >"$tmp/log" 2>&1
