@@ -97,14 +97,6 @@ struct Run {
     return r;
   }
 
-  /// The exponent a of error ~ rays^-a. Independent rays fall at 0.5 and a jittered grid over
-  /// smooth outlines at 0.75 (the default stand's plants measured 0.66-0.69 in bench_light), so
-  /// the first step from a first pass takes 0.5, which overshoots rather than falls short, but
-  /// grows the count at most kFirstStep times; later steps take the exponent the last two passes
-  /// show, within [0.5, 0.75].
-  static constexpr double kFirstStep = 16;
-  static constexpr std::uint64_t kRounds = 16;  // passes grow at least 1.2 times: the limit stops them first
-
   /// Refuses at once errors that even the fastest decay (rays^-0.75) would reach only past the
   /// ray limit, from a pass of n rays that is r times off.
   static void check_reachable(double n, double r) {
@@ -113,6 +105,14 @@ struct Run {
       throw std::invalid_argument(fmt::format("the errors asked for need more than {:.3g} rays in one direction (the limit is {:.3g}): ask "
                                               "for a larger --error or --plant-error", need, kMaxRaysPerDirection));
   }
+
+  /// The exponent a of error ~ rays^-a. Independent rays fall at 0.5 and a jittered grid over
+  /// smooth outlines at 0.75 (the default stand's plants measured 0.66-0.69 in bench_light), so
+  /// the first step from a first pass takes 0.5, which overshoots rather than falls short, but
+  /// grows the count at most kFirstStep times; later steps take the exponent the last two passes
+  /// show, within [0.5, 0.75].
+  static constexpr double kFirstStep = 16;
+  static constexpr std::uint64_t kRounds = 16;  // passes grow at least 1.2 times: the limit stops them first
   static double decay(double n0, double r0, double n1, double r1) {
     if (!(n1 > 1.05 * n0) || !(r0 > 0) || !(r1 > 0)) return 0.5;
     return std::clamp(std::log(r0 / r1) / std::log(n1 / n0), 0.5, 0.75);
