@@ -51,6 +51,8 @@ std::vector<SunSpec> parse_suns(const LightOptions& o) {
       SunSpec x;
       x.elevation_deg = p.elevation_deg, x.azimuth_deg = p.azimuth_deg, x.hour = h, x.from_hours = true;
       out.push_back(x);
+#else
+      (void)h;  // no ray caster: run_light refuses before any beam is used
 #endif
     }
   }
