@@ -41,6 +41,7 @@ bool light_option(cli::LightOptions& o, const std::string& k, py::handle v) {
   return true;
 }
 
+#ifdef CANOPY_HAVE_LIGHT
 /// light.csv's columns as NumPy arrays (float64), keyed by name.
 py::dict csv_columns(const std::string& csv) {
   std::istringstream in(csv);
@@ -65,6 +66,7 @@ py::dict csv_columns(const std::string& csv) {
   for (std::size_t c = 0; c < names.size(); ++c) out[py::str(names[c])] = py::array_t<double>(static_cast<py::ssize_t>(cols[c].size()), cols[c].data());
   return out;
 }
+#endif
 
 }  // namespace
 
