@@ -110,6 +110,14 @@ StandPlan plan_stand(StandOptions& o) {
   return plan;
 }
 
+void check_target(const StandOptions& o) {
+  if (!o.positions.empty()) throw std::invalid_argument("--target-lai and --target-ground-cover choose a row layout's plant spacing: not with --positions");
+  if (o.rows.plant_spacing)
+    throw std::invalid_argument("--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
+  if (o.target.lai && o.target.ground_cover) throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
+  if (!(o.target.error >= 1e-5 && o.target.error <= 0.5)) throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", o.target.error));
+}
+
 void check_plan_fits(const StandPlan& plan, std::size_t plants) {
   GrowRequest first = plan.request;
   if (first.plants.empty()) {
@@ -157,7 +165,7 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);
 }
 
-StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
+StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress, Stand* keep) {
   const auto t_start = std::chrono::steady_clock::now();
   const ThreadLimit thread_limit(o.detect.threads);
   const std::set<std::string> formats = parse_formats(o.formats);
@@ -173,11 +181,18 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     check_plan_fits(plan, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
     req.plants = row_layout(layout);
   }
+  if (o.target.set()) check_target(o);
   const auto t_grow = std::chrono::steady_clock::now();
   GrowTimings gt;
   Stand stand = grow_stand(req, &gt);
   StandReport rep;
   rep.timings["generate"] = seconds_since(t_grow);
+  std::optional<SpacingChoice> target;
+  if (o.target.set()) {
+    const auto t_target = std::chrono::steady_clock::now();
+    target = reach_target(stand, plan.layout, o.target);
+    rep.timings["target"] = seconds_since(t_target);
+  }
 
   // Detection at the level asked for; contacts.csv and contacts_before come from it.
   const auto t_detect = std::chrono::steady_clock::now();
@@ -216,12 +231,18 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   rep.timings["export"] = seconds_since(t_export);
   describe_run(rep, o, formats, plan);
+  if (target) rep.config["target"] = target_json(o.target, *target);
+  rep.leaf_angles = leaf_angles_json(leaf_angles(leaf_angle_sums(stand, lib)));
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
   files.commit_all();
   const std::vector<std::string> stale = remove_stale_meshes(o.out, formats);
   if (print) {
     print_stale_removed(stale);
+    if (target)
+      fmt::print("target {} {}: plant spacing {} m ({} {:.4f}{})\n", o.target.lai ? "LAI" : "ground cover",
+                 o.target.lai ? *o.target.lai : *o.target.ground_cover, target->plant_spacing, o.target.lai ? "LAI" : "ground cover",
+                 target->reached, o.target.lai ? std::string() : fmt::format(" +- {:.4f}", target->standard_error));
     print_summary(stand, lib, rep, o.out);
     if (o.positions.empty()) fmt::print("{}\n", layout_line(plan.layout, plan.layout_sources));
     print_contacts_table(contacts, backend_note);
@@ -232,6 +253,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   out.report = report_json(stand, lib, rep);
   out.contacts_before = contacts.pairs.size();
   out.contacts_after = after.pairs.size();
+  if (keep) *keep = std::move(stand);
   return out;
 }
 
