@@ -31,6 +31,7 @@ struct StandOptions {
   StandSpec rows;               // row options given on the command line
   bool random_rotation = false;  // folded into `rows` once parsed
   std::string positions;
+  bool any_grammar_path = false;  // a positions file's grammar cells may name any file
   DetectOptions detect;
   ResolveOptions resolve;
 };
