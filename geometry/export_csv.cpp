@@ -24,6 +24,9 @@ constexpr const char* kOrganHeader =
     "hx,hy,hz,lx,ly,lz,ux,uy,uz,tx,ty,tz\n";
 constexpr const char* kPlantHeader = "id,x,y,rotation,seed,grammar,steps\n";
 
+/// A header as a message quotes it, on the message's one line.
+std::string_view without_newline(std::string_view header) { return header.substr(0, header.size() - 1); }
+
 /// Splits a CSV line without quoting (canopy never writes commas inside cells).
 std::vector<std::string_view> cells(std::string_view line) {
   std::vector<std::string_view> out;
@@ -152,7 +155,7 @@ Stand read_stand(const std::string& dir) {
   std::string line;
   std::map<std::string, int> grammar_index;
   if (!pin->next_line(line) || line + "\n" != kPlantHeader)
-    throw std::runtime_error(fmt::format("{}:1: expected the header {}", pfile, kPlantHeader));
+    throw std::runtime_error(fmt::format("{}:1: expected the header {}", pfile, without_newline(kPlantHeader)));
   while (pin->next_line(line)) {
     const int ln = pin->line_number();
     const auto c = cells(line);
@@ -177,7 +180,7 @@ Stand read_stand(const std::string& dir) {
     s.plants.push_back(pr);
   }
   if (!oin->next_line(line) || line + "\n" != kOrganHeader)
-    throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, kOrganHeader));
+    throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
   // Organs come plant by plant; within a plant a compound leaf takes the next id when its first
   // organ appears (as the turtle numbers them), so the plants' leaf ranges follow each other.
   std::int32_t plant = -1;
