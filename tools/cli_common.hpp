@@ -37,7 +37,8 @@ inline const CLI::Validator kSeed(
 
 /// Range checks that say their bounds as written: CLI11's Range prints them with std::to_string,
 /// so NonNegativeNumber's upper bound came out as a 309-digit number. A whole-number check also
-/// rewrites the value as an integer, so `--steps 1e3` reads as 1000 rather than failing to convert.
+/// rewrites the value as an integer, so `--steps 1e3` reads as 1000 rather than failing to convert:
+/// register it with ->transform() (->check() hands validators a copy).
 CLI::Validator whole_in(long long lo, long long hi);
 /// A finite number of at least `lo`.
 CLI::Validator at_least(double lo);

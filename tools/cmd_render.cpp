@@ -79,16 +79,16 @@ Command add_render(CLI::App& root) {
   app->add_option("SOURCE", o->source, "A folder written by canopy stand, or a grammar file to grow a stand from")->required();
   app->add_option("-o,--out", o->out, "PNG file to write (default stand.png)");
   app->add_option("--size", o->size, "Picture size WIDTHxHEIGHT in pixels (default 1920x1080)");
-  app->add_option("--rows", o->rows.rows, "From a grammar: rows")->check(whole_in(1, INT32_MAX));
-  app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")->check(whole_in(1, INT32_MAX));
+  app->add_option("--rows", o->rows.rows, "From a grammar: rows")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")->transform(whole_in(1, INT32_MAX));
   app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")->check(kFinite)->check(at_least(0));
   app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")->check(kFinite)->check(at_least(0));
   app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")->check(kFinite)->check(at_least(0));
   app->add_flag("--random-rotation", o->random_rotation, "From a grammar: turn each plant at random");
   app->add_option("--seed", o->rows.seed, "From a grammar: stand seed")->check(kSeed);
-  app->add_option("--steps", o->steps, "From a grammar: derivation steps")->check(whole_in(0, kMaxSteps));
+  app->add_option("--steps", o->steps, "From a grammar: derivation steps")->transform(whole_in(0, kMaxSteps));
   app->add_option("--set", o->set, "From a grammar: override a constant NAME=VALUE (repeatable)");
-  app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")->check(whole_in(1, kMaxLod));
+  app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() -> int {

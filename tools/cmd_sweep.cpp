@@ -273,14 +273,14 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--row-spacing", o->row_spacing, "Metres between rows: list or range (default 1.0)");
   app->add_option("--density", o->density, "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x row spacing)");
   app->add_option("--steps", o->steps, "Plant ages in derivation steps: list or range (default: the grammar's)");
-  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->check(whole_in(1, INT32_MAX));
-  app->add_option("--rows", o->rows, "Rows per stand (default 3)")->check(whole_in(1, INT32_MAX));
-  app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->check(whole_in(1, INT32_MAX));
+  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--rows", o->rows, "Rows per stand (default 3)")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->transform(whole_in(1, INT32_MAX));
   app->add_option("--jitter", o->jitter, "Jitter radius in metres (default 0.02; plants are turned at random)")->check(kFinite)->check(at_least(0));
-  app->add_option("--lod", o->lod, "Level of detail (default 2)")->check(whole_in(1, kMaxLod));
+  app->add_option("--lod", o->lod, "Level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")
-      ->check(whole_in(1, INT64_MAX));
+      ->transform(whole_in(1, INT64_MAX));
   app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
   o->detect.add_to(*app);
   o->resolve.add_to(*app);

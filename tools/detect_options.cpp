@@ -19,7 +19,7 @@ void DetectOptions::add_to(CLI::App& app) {
                  "Organ kinds that take part, comma separated, or all (default leaflet,petiole,rachis,internode,peduncle)");
   app.add_option("--backend", backend, "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
-  app.add_option("--threads", threads, "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")->check(thread_count());
+  app.add_option("--threads", threads, "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")->transform(thread_count());
   app.add_option("--max-device-memory", max_device_memory,
                  "CUDA: device memory detection may use, e.g. 512M or 2G (default: what is free); lists that would not fit "
                  "are made in batches");
