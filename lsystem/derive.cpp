@@ -1,8 +1,8 @@
 #include "lsystem/derive.hpp"
 
 #include <cstring>
-#include <stdexcept>
 #include <limits>
+#include <stdexcept>
 
 namespace canopy {
 namespace {

@@ -12,15 +12,16 @@
 
 namespace canopy::fuzz {
 
-/// This process's scratch folder.
+/// This process's scratch folder. Its name is never destroyed: the exit handler that removes the
+/// folder runs after static objects made before it are gone.
 inline const std::string& scratch() {
-  static const std::string dir = [] {
-    std::string t = (std::filesystem::temp_directory_path() / "canopy-fuzz-XXXXXX").string();
-    if (!mkdtemp(t.data())) std::abort();
+  static const std::string* dir = [] {
+    auto* t = new std::string((std::filesystem::temp_directory_path() / "canopy-fuzz-XXXXXX").string());
+    if (!mkdtemp(t->data())) std::abort();
     std::atexit([] { std::filesystem::remove_all(scratch()); });
     return t;
   }();
-  return dir;
+  return *dir;
 }
 
 /// Writes `bytes` to scratch()/name and returns its path.

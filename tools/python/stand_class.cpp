@@ -227,6 +227,7 @@ void bind_stand(py::module_& m) {
             for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
             const auto fs = cli::parse_formats(list);
             py::gil_scoped_release nogil;
+            const ThreadLimit thread_limit(0);  // refuses an OMP_NUM_THREADS past canopy's maximum
             prepare_output_dir(dir);
             PrototypeLibrary lib;
             OutputSet files(dir);
