@@ -2,6 +2,8 @@
 
 #include "geometry/input_file.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <charconv>
 #include <cmath>
 #include <vector>
@@ -21,6 +23,9 @@ std::string read_grammar_file(const std::string& path) {
 YAML::Node parse_yaml_document(const std::string& text, const std::string& file) {
   try {
     return YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp stops nesting at a bound of its own and says only "bad file".
+    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: lists and maps nested too deeply");
   } catch (const YAML::Exception& e) {
     throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);
   }

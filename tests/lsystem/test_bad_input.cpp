@@ -148,3 +148,10 @@ TEST_CASE("grammar files that are not regular files are refused before reading")
   CHECK(grammar_error([] { load_grammar(source("grammars")); }) == source("grammars") + ": the grammar file is a folder, not a file");
   CHECK_THROWS_AS(load_grammar(source("grammars/no-such-file.yaml")), GrammarFileError);
 }
+
+TEST_CASE("YAML nested past yaml-cpp's bound says so") {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const std::string message = error_of("axiom: F\nmodules: " + deep + "\n");  // was "malformed YAML: bad file"
+  CHECK(message.starts_with("test.yaml:2:"));
+  CHECK(message.ends_with(": malformed YAML: lists and maps nested too deeply"));
+}
