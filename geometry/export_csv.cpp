@@ -2,6 +2,7 @@
 #include "geometry/export.hpp"
 #include "geometry/atomic_file.hpp"
 #include "geometry/organ_mesh.hpp"
+#include "geometry/staged_folder.hpp"
 #include "geometry/text_out.hpp"
 
 #include <fmt/format.h>
@@ -118,7 +119,8 @@ Stand read_stand(const std::string& dir) {
   Stand s;
   const std::string pfile = (std::filesystem::path(dir) / "plants.csv").string();
   const std::string ofile = (std::filesystem::path(dir) / "organs.csv").string();
-  std::ifstream pin(pfile), oin(ofile);
+  std::ifstream pin, oin;
+  open_in_one_set(dir, {&pin, &oin}, {pfile, ofile});  // never plants of one run and organs of another
   if (!pin) throw std::runtime_error(fmt::format("{}: cannot open (is {} a canopy stand folder?)", pfile, dir));
   if (!oin) throw std::runtime_error(fmt::format("{}: cannot open (is {} a canopy stand folder?)", ofile, dir));
   std::string line;

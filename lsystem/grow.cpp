@@ -117,6 +117,10 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     if (!std::isfinite(pl.x) || !std::isfinite(pl.y) || !std::isfinite(pl.rotation_deg))
       throw std::invalid_argument(
           fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y, pl.rotation_deg));
+    if (std::fabs(pl.x) > kMaxPlantCoordinate || std::fabs(pl.y) > kMaxPlantCoordinate)
+      throw std::invalid_argument(fmt::format("plant {}: its position (x {:g}, y {:g}) is farther from the origin than "
+                                              "the {:g} m plants may stand",
+                                              p, pl.x, pl.y, kMaxPlantCoordinate));
   }
   std::vector<GrownPlant> grown(n);
   for (std::size_t p = 0; p < n; ++p) {

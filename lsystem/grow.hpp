@@ -33,7 +33,7 @@ struct GrowTimings {
 
 /// Throws GrammarError for grammar problems, std::invalid_argument for a level of detail outside
 /// 1..kMaxLod, negative steps or threads, and naming the plant for a position or rotation that is
-/// not finite, std::runtime_error naming the plant for turtle
+/// not finite or a position past kMaxPlantCoordinate, std::runtime_error naming the plant for turtle
 /// problems and for a stand too large for memory (said before growing it).
 Stand grow_stand(const GrowRequest& request, GrowTimings* timings = nullptr);
 

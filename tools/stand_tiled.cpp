@@ -67,7 +67,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     plan = plan_stand(o);
     dreq = o.detect.request();
     backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());
-    if (rank == 0) prepare_output_dir(o.out);
+    if (rank == 0) check_output_dir(o.out);  // made only once the files are complete
     placements = o.positions.empty() ? row_layout(plan.layout) : plan.request.plants;
   });
   const std::size_t n = placements.size();
@@ -214,7 +214,7 @@ void run_stand_tiled(StandOptions o) {
     for (std::size_t i = 0; i < all.size(); i += 2) counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
     for (std::size_t p = 0; p < n; ++p) counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
   }
-  mpi::SharedOutputSet files(o.out, ts.ids, n);
+  mpi::SharedOutputSet files(o.out, stand_folder_files(), ts.ids, n);
   try {
     write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); });
     write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
@@ -230,7 +230,7 @@ void run_stand_tiled(StandOptions o) {
   }
   files.commit_all();
   if (rank == 0) {
-    print_stale_removed(remove_stale_meshes(o.out, ts.formats));
+    print_folder_changes(*files.folder(), files.committed());
     print_summary(counts, rep, o.out);
     fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,
                ts.tiling.axis == 0 ? "x" : "y", ts.halo, ts.reach, t.region.size());
