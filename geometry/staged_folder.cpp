@@ -125,13 +125,15 @@ std::string output_folder(const std::string& dir) {
   return p.string();
 }
 
-void check_output_dir(const std::string& dir) {
-  const fs::path p = output_folder(dir);
+namespace {
+
+/// Where the staging folder for output folder `p` (`dir` as named) can be made: `p`'s parent, or
+/// its nearest existing ancestor for a new folder. Throws when `p` cannot be replaced as a whole.
+fs::path staging_place(const fs::path& p, const std::string& dir) {
   const auto refuse = [&](const std::string& reason) {
     throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, reason));
   };
   struct stat st;
-  fs::path writable;  // where the staging folder will be made
   if (::lstat(p.c_str(), &st) == 0) {
     if (!S_ISDIR(st.st_mode)) refuse("it exists and is not a folder");
     struct stat here, parent;
@@ -140,14 +142,22 @@ void check_output_dir(const std::string& dir) {
              "removed folder); name a folder inside it or beside it");
     if (::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev)
       refuse("it is a mount point, which cannot be replaced as a whole; name a folder inside it");
-    writable = p.parent_path();
-  } else if (errno == ENOENT || errno == ENOTDIR) {
-    writable = p.parent_path();
-    while (::lstat(writable.c_str(), &st) != 0 && writable != writable.root_path()) writable = writable.parent_path();
-    if (::stat(writable.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) refuse(fmt::format("{} is not a folder", writable.string()));
-  } else {
-    refuse(why());
+    return p.parent_path();
   }
+  if (errno != ENOENT && errno != ENOTDIR) refuse(why());
+  fs::path at = p.parent_path();
+  while (::lstat(at.c_str(), &st) != 0 && at != at.root_path()) at = at.parent_path();
+  if (::stat(at.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) refuse(fmt::format("{} is not a folder", at.string()));
+  return at;
+}
+
+}  // namespace
+
+void check_output_dir(const std::string& dir) {
+  const fs::path writable = staging_place(output_folder(dir), dir);
+  const auto refuse = [&](const std::string& reason) {
+    throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, reason));
+  };
   // A folder made and removed again: what the staging folder will need.
   const fs::path probe = writable / fmt::format(".canopy-probe-{}", process_tag());
   if (::mkdir(probe.c_str(), 0700) != 0) refuse(fmt::format("cannot make a folder in {}: {}", writable.string(), why()));
@@ -168,6 +178,7 @@ StagedFolder::StagedFolder(const std::string& dir, std::vector<std::string> repl
 void StagedFolder::open(const std::string& dir) {
   dir_ = output_folder(dir);
   const fs::path p(dir_);
+  staging_place(p, dir);
   parent_ = p.parent_path().string();
   name_ = p.filename().string();
   // The folders missing above the output, made now and removed again if the run fails.

@@ -1,5 +1,6 @@
 #include "lsystem/grow.hpp"
 
+#include "geometry/available_memory.hpp"
 #include "geometry/prototype.hpp"
 #include "lsystem/turtle.hpp"
 
@@ -81,15 +82,7 @@ void check_stand_fits(const GrowRequest& req, std::size_t plants) {
   check_fits(first, plants, req.memory_limit);
 }
 
-std::size_t available_memory() {
-  std::ifstream in("/proc/meminfo");
-  std::string key;
-  std::size_t kb = 0;
-  std::string unit;
-  while (in >> key >> kb >> unit)
-    if (key == "MemAvailable:") return kb * 1024;
-  return 0;
-}
+std::size_t available_memory() { return memory_available(); }
 
 Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   Stand stand;

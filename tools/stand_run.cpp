@@ -90,7 +90,7 @@ void print_folder_changes(const StagedFolder& folder, const StagedFolder::Commit
     if (std::find(committed.dropped.begin(), committed.dropped.end(), n) != committed.dropped.end())
       (n.starts_with("stand.") ? meshes : others).push_back(n);
   if (!meshes.empty()) fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list(meshes));
-  if (!others.empty()) fmt::print("removed {} of the earlier stand (this run does not write them again)\n", list(others));
+  if (!others.empty()) fmt::print("removed {}, which described the earlier stand\n", list(others));
   if (!folder.leftovers_removed().empty())
     fmt::print("removed what interrupted runs left beside {}: {}\n", folder.dir(), list(folder.leftovers_removed()));
   for (const std::string& note : folder.leftover_notes()) fmt::print(stderr, "canopy: note: {}\n", note);
