@@ -112,9 +112,9 @@ bool remove_flat_folder(const std::string& path) {
   return ::rmdir(path.c_str()) == 0 || errno == ENOENT;
 }
 
-std::vector<std::string> remove_run_paths_for_exit() {
+std::vector<std::string> remove_run_paths() {
   Registry& r = registry();
-  r.mutex.lock();  // kept: the process ends after this
+  std::lock_guard lock(r.mutex);
   std::vector<std::string> removed;
   for (const Entry& e : r.entries)
     if (e.kind == RunPath::file && ::unlink(e.path.c_str()) == 0) removed.push_back(e.path);

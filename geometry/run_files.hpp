@@ -42,9 +42,9 @@ void rename_run_path(std::uint64_t id, std::string path);
 std::unique_lock<std::recursive_mutex> lock_run_paths();
 
 /// Removes every registered path (files, then staging folders' files and the folders, then
-/// created folders that are empty, newest first) and returns the paths removed. For the signal
-/// handler: it takes the registry's lock and keeps it, since the process ends right after.
-std::vector<std::string> remove_run_paths_for_exit();
+/// created folders that are empty, newest first), forgets them and returns the paths removed.
+/// The signal thread holds lock_run_paths() across it and keeps it: the process ends after.
+std::vector<std::string> remove_run_paths();
 
 /// Removes the entries of folder `path` that are not folders, then the folder itself when that
 /// leaves it empty; never descends into a folder (what it holds may be the user's). Returns

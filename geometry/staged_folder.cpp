@@ -14,6 +14,7 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <stdexcept>
+#include <tuple>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -88,9 +89,11 @@ std::atomic<unsigned> g_staging_count{0};
 }  // namespace
 
 void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files, const std::vector<std::string>& paths) {
+  // The change time too: a folder made after the one read may get its inode number.
   const auto identity = [&] {
-    struct stat st;
-    return ::stat(dir.c_str(), &st) == 0 ? std::pair<dev_t, ino_t>(st.st_dev, st.st_ino) : std::pair<dev_t, ino_t>(0, 0);
+    struct stat st{};
+    if (::stat(dir.c_str(), &st) != 0) return std::tuple<dev_t, ino_t, time_t, long>(0, 0, 0, 0);
+    return std::tuple<dev_t, ino_t, time_t, long>(st.st_dev, st.st_ino, st.st_ctim.tv_sec, st.st_ctim.tv_nsec);
   };
   for (int attempt = 0; attempt < 16; ++attempt) {
     const auto before = identity();
