@@ -16,26 +16,30 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Field 22 of /proc/PID/stat (the start time in clock ticks since boot), or 0.
-std::uint64_t start_time(const std::string& pid) {
+/// What /proc/PID/stat says of a process: its state (field 3; 0 when unread) and its start time
+/// in clock ticks since boot (field 22; 0 when unread).
+struct ProcStat {
+  char state = 0;
+  std::uint64_t start = 0;
+};
+
+ProcStat proc_stat(const std::string& pid) {
+  ProcStat out;
   std::ifstream in("/proc/" + pid + "/stat");
   std::string line;
-  if (!std::getline(in, line)) return 0;
+  if (!std::getline(in, line)) return out;
   // The command name (field 2) is in parentheses and may hold spaces and parentheses itself.
   const std::size_t close = line.rfind(')');
-  if (close == std::string::npos) return 0;
+  if (close == std::string::npos) return out;
   std::size_t at = close + 1;
   for (int field = 3; field <= 22; ++field) {
     while (at < line.size() && line[at] == ' ') ++at;
     const std::size_t end = std::min(line.find(' ', at), line.size());
-    if (field == 22) {
-      std::uint64_t v = 0;
-      std::from_chars(line.data() + at, line.data() + end, v);
-      return v;
-    }
+    if (field == 3 && at < end) out.state = line[at];
+    if (field == 22) std::from_chars(line.data() + at, line.data() + end, out.start);
     at = end;
   }
-  return 0;
+  return out;
 }
 
 struct Entry {
@@ -65,7 +69,7 @@ bool parse_number(std::string_view s, std::uint64_t& v) {
 const std::string& process_tag() {
   static const std::string tag = [] {
     const std::string pid = std::to_string(::getpid());
-    return pid + "-" + std::to_string(start_time("self"));
+    return pid + "-" + std::to_string(proc_stat("self").start);
   }();
   return tag;
 }
@@ -76,10 +80,11 @@ bool tag_is_dead(std::string_view tag) {
   if (!parse_number(tag.substr(0, dash), pid) || pid == 0 || pid > 0x3fffffff) return false;
   if (dash != std::string_view::npos && !parse_number(tag.substr(dash + 1), start)) return false;
   if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return true;
-  // The pid is in use: by the same process unless it started at another time.
-  if (start == 0) return false;
-  const std::uint64_t now = start_time(std::to_string(pid));
-  return now != 0 && now != start;
+  // The pid is in use: by the same process unless it started at another time, or has ended and
+  // waits to be reaped (a zombie: its parent was killed with it, as `timeout -s KILL` does).
+  const ProcStat now = proc_stat(std::to_string(pid));
+  if (now.state == 'Z' || now.state == 'X') return true;
+  return start != 0 && now.start != 0 && now.start != start;
 }
 
 std::uint64_t register_run_path(std::string path, RunPath kind) {

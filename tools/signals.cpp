@@ -17,12 +17,15 @@ namespace {
 std::atomic<bool> g_thread_started{false};
 std::atomic<std::atomic<bool>*> g_soft{nullptr};  // SoftInterrupt's flag while one lives
 
+/// The signals taken: those not ignored when the program started (a shell runs a script's
+/// background jobs with SIGINT ignored, nohup ignores SIGHUP: left as they were).
 sigset_t handled() {
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGHUP);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction now {};
+    if (sigaction(sig, nullptr, &now) == 0 && now.sa_handler != SIG_IGN) sigaddset(&set, sig);
+  }
   return set;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// SIGINT, SIGTERM and SIGHUP for the canopy command (docs/design.md "Output folders and
-/// failures"). They are blocked in every thread and taken by one thread of their own with
+/// failures"). Those not ignored at the start (a script's background jobs ignore SIGINT; nohup,
+/// SIGHUP) are blocked in every thread and taken by one thread of their own with
 /// sigwait, so the clean-up runs as ordinary code, never inside a signal handler: it removes what
 /// the run has on disk that is not in place (geometry/run_files.hpp: temporary files, the staging
 /// folder, folders made for the output), says so on standard error, and ends the process by the
