@@ -226,7 +226,6 @@ void bind_stand(py::module_& m) {
             for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
             const auto fs = cli::parse_formats(list);
             py::gil_scoped_release nogil;
-            check_output_dir(dir);
             PrototypeLibrary lib;
             // The folder's earlier stand is replaced as a set, as canopy stand does.
             OutputSet files(dir, cli::stand_folder_files());
