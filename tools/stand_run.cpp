@@ -72,9 +72,9 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
 }
 
 const std::vector<std::string>& stand_folder_files() {
-  static const std::vector<std::string> names{kGlbFile,      kObjFile,         kMtlFile,           kPlyFile,
-                                              "organs.csv",  "plants.csv",     "contacts.csv",     "contacts_after.csv",
-                                              "report.json", "light.csv",      "light.json"};
+  static const std::vector<std::string> names{kGlbFile,       kObjFile,     kMtlFile,       kPlyFile,
+                                              "organs.csv",   "plants.csv", "contacts.csv", "contacts_after.csv",
+                                              "report.json",  "light.csv",  "light.json"};
   return names;
 }
 
