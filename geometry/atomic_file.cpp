@@ -104,6 +104,9 @@ void AtomicFile::commit() {
 OutputSet::OutputSet(const std::string& dir, std::vector<std::string> replaces) : folder_(dir, std::move(replaces)) {}
 
 AtomicFile& OutputSet::open(const std::string& name) {
+  // Under the registry's lock: once a signal's clean-up holds it, no file appears in the staging
+  // folder behind its back.
+  const auto lock = lock_run_paths();
   files_.push_back(std::make_unique<AtomicFile>(folder_.path(name), AtomicFile::Direct{}));
   return *files_.back();
 }
