@@ -300,6 +300,11 @@ StagedFolder::Committed StagedFolder::commit() {
       if (::renameat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str()) == 0) moved.push_back(n);
       else stuck = true;
     }
+    // The folder keeps what the user set on it: its permissions, and its owner where this process may.
+    ::fchmod(new_fd.fd, st.st_mode & 07777);
+    if (::fchown(new_fd.fd, st.st_uid, st.st_gid) != 0) {
+      // not the owner's to give: the new folder is this user's
+    }
     const auto put_back = [&] {
       for (const std::string& n : moved) ::renameat(new_fd.fd, n.c_str(), old_fd.fd, n.c_str());
     };

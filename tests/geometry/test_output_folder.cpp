@@ -93,6 +93,7 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   fs::create_directories(dir / "renders" / "deep");
   put(dir / "renders" / "deep" / "a.png", "picture");
   const ino_t notes = inode(dir / "notes.txt");
+  fs::permissions(dir, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec);  // 0750, kept
   StagedFolder::Committed c;
   {
     OutputSet set(dir.string(), kStand);
@@ -103,6 +104,7 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv", "renders"});
   CHECK(slurp(dir / "organs.csv") == "new");
   CHECK(inode(dir / "notes.txt") == notes);  // the same file, never copied
+  CHECK(fs::status(dir).permissions() == (fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec));
   CHECK(slurp(dir / "renders" / "deep" / "a.png") == "picture");
   CHECK(std::set<std::string>(c.dropped.begin(), c.dropped.end()) == std::set<std::string>{"light.csv", "report.json", "stand.ply"});
   CHECK(c.notes.empty());
