@@ -38,9 +38,11 @@ case "$mode" in
       echo "== python (sanitized)"
       # The interpreter is not instrumented: the runtime is loaded first; its own allocations
       # are not canopy's leaks.
+      # The interpreter the module was built for, as the python suite takes it.
+      py=$(sed -n 's/^_\{0,1\}Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt" | head -1)
       LD_PRELOAD="$(g++ -print-file-name=libasan.so)" ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
         PYTHONPATH="$build/python" CANOPY="$build/tools/canopy" CANOPY_SOURCE_DIR="$src" \
-        python3 -m pytest -q -p no:cacheprovider "$src/tests/python" || failed=1
+        "${py:-python3}" -m pytest -q -p no:cacheprovider "$src/tests/python" || failed=1
     fi
     exit $failed
     ;;
