@@ -36,11 +36,12 @@ case "$mode" in
     done
     if [ -f "$build/python/canopy/__init__.py" ]; then
       echo "== python (sanitized)"
-      # The interpreter is not instrumented: the runtime is loaded first; its own allocations
-      # are not canopy's leaks.
+      # The interpreter is not instrumented: the runtime is loaded first, and libstdc++ with it
+      # (else ASan finds no __cxa_throw to wrap and aborts at the first C++ exception); the
+      # interpreter's own allocations are not canopy's leaks.
       # The interpreter the module was built for, as the python suite takes it.
       py=$(sed -n 's/^_\{0,1\}Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt" | head -1)
-      LD_PRELOAD="$(g++ -print-file-name=libasan.so)" ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
+      LD_PRELOAD="$(g++ -print-file-name=libasan.so) $(g++ -print-file-name=libstdc++.so)" ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 \
         PYTHONPATH="$build/python" CANOPY="$build/tools/canopy" CANOPY_SOURCE_DIR="$src" \
         "${py:-python3}" -m pytest -q -p no:cacheprovider "$src/tests/python" || failed=1
     fi
