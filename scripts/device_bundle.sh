@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Assembles .devbin/ (ignored) for a GPU machine that has the CUDA driver but neither canopy's
 # libraries nor MPI: the binaries of a CUDA build without the renderer, the non-system shared
-# libraries they link, and OpenMPI (Debian's, relocated there with OPAL_PREFIX).
+# libraries they link, OpenMPI (Debian's, relocated there with OPAL_PREFIX), and the commit they
+# were built from (.devbin/commit, which bench/run.sh records where there is no git).
 # Usage: scripts/device_bundle.sh [BUILD_DIR]   (default build-dev, configured and built here:
 #   cmake -G Ninja -S . -B build-dev -DCANOPY_RENDER=OFF -DCANOPY_PYTHON=OFF -DCANOPY_CHECKS=OFF
 #   ninja -C build-dev canopy bench_scale test_cuda bench_resolve bench_detect_cuda)
-# On the GPU machine, from the repository root:  source .devbin/env.sh; mpirun -np 2 ...
+# On the GPU machine, from the repository root: bash scripts/device_check.sh, bash
+# scripts/device_ab.sh ..., or source .devbin/env.sh; mpirun -np 2 ... (docs/testing.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build-dev}
@@ -41,4 +43,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_pml=ob1 OMPI_MCA_btl=self,vader,tcp OMPI_MCA_osc=pt2pt,sm,rdma OMPI_MCA_io=ompio
 export PMIX_MCA_pcompress_base_silence_warning=1 CANOPY_SOURCE_DIR=$PWD
 ENV
+c=$(git rev-parse --short=7 HEAD 2>/dev/null || echo unknown)
+[ -z "$(git status --porcelain --untracked-files=no -- . ':(exclude)bench/results' 2>/dev/null)" ] || c+=-dirty
+echo "$c" > .devbin/commit
 du -sh .devbin

@@ -3,6 +3,7 @@
 #include "tools/cli_common.hpp"
 #include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
+#include "tools/signals.hpp"
 
 #include <fmt/format.h>
 
@@ -23,6 +24,8 @@ int main(int argc, char** argv) {
   // that runs itself again is not what its launcher started; not tried there).
   if (!under_mpi) canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")), argv);
   canopy::keep_freed_memory();
+  // Before any thread starts: SIGINT and SIGTERM are taken by a thread that cleans up.
+  canopy::cli::start_signal_thread();
 #ifdef CANOPY_WITH_MPI
   // Under mpirun every rank runs the same command; MPI is started only there.
   std::optional<canopy::mpi::Session> mpi;
@@ -32,12 +35,16 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(CANOPY_VERSION));
   std::vector<canopy::cli::Command> commands{canopy::cli::add_derive(app), canopy::cli::add_stand(app), canopy::cli::add_detect(app),
-                                                canopy::cli::add_sweep(app), canopy::cli::add_render(app),
+                                                canopy::cli::add_sweep(app), canopy::cli::add_render(app), canopy::cli::add_light(app),
                                                 canopy::cli::add_info(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version print and exit 0 as CLI11 does; a bad command line is one line in
+    // the form of every other error, with CLI11's exit code.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    fmt::print(stderr, "{}\n", canopy::cli::parse_error_line(e));
+    return e.get_exit_code();
   }
   try {
     for (auto& c : commands)

@@ -2,6 +2,7 @@
 // triangles of an exported stand.obj, against the exact rows of contacts.csv. Organ pairs that
 // disagree are allowed only where the organs come within 1 um of each other (DESIGN.md: closer
 // than that either answer is allowed; the OBJ itself is rounded to 0.1 um).
+// Every organ kind is checked unless --collide narrows them (to the kinds a run was narrowed to).
 // Usage: check_cgal DIR [--collide KINDS] [--contacts FILE]   (FILE in DIR, default contacts.csv;
 // contacts_after.csv checks a resolved stand: only what resolution reported left may meet)
 #include "collision/contacts.hpp"
@@ -93,11 +94,11 @@ double min_distance2(const OrganGeometry& a, const OrganGeometry& b) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS]\n");
+    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE]\n");
     return 2;
   }
   const std::string dir = argv[1];
-  KindMask collide = default_collide_kinds();
+  KindMask collide = parse_collide_kinds("all");  // every organ in the file, fruit and flowers included
   std::string contacts_file = "contacts.csv";
   for (int i = 2; i + 1 < argc; ++i)
     if (!std::strcmp(argv[i], "--collide")) collide = parse_collide_kinds(argv[++i]);

@@ -8,7 +8,9 @@
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/resolve_options.hpp"
+#include "tools/signals.hpp"
 #include "tools/sweep_spec.hpp"
+#include "tools/sweep_light.hpp"
 #include "tools/sweep_run.hpp"
 #include "tools/sweep_settings.hpp"
 #include "tools/sweep_table.hpp"
@@ -23,7 +25,9 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
+#include <optional>
 #include <filesystem>
 #include <set>
 
@@ -31,12 +35,6 @@ namespace canopy::cli {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-extern "C" void on_interrupt(int) {
-  g_interrupted = true;
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C stops at once
-}
-
-
 
 double since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -51,8 +49,8 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   layout.per_row = o.per_row;
   layout.plant_spacing = cell.plant_spacing;
   layout.row_spacing = cell.row_spacing;
-  layout.jitter = o.jitter;
-  layout.random_rotation = true;
+  layout.jitter = o.jitter.value();  // filled in by run_sweep
+  layout.random_rotation = o.random_rotation.value();
   layout.seed = static_cast<std::uint64_t>(seed);
   GrowRequest req = grow_request(o.grammar, o.set, cell.steps, o.lod, o.detect.threads, o.max_modules);
   req.plants = row_layout(layout);
@@ -66,6 +64,7 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   row["organs"] = std::to_string(stand.organ_count());
   row["lai"] = fmt::format("{:.5f}", lai.lai);
   row["lai_plants"] = std::to_string(lai.plants);
+  double light_s = o.no_light ? 0.0 : light_columns(stand, layout, o, "before", row);
   DetectRequest dreq = o.detect.request();
   dreq.level = ContactLevel::exact;
   t = std::chrono::steady_clock::now();
@@ -94,14 +93,17 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
     // What is left, at the exact level: resolution's own list when it resolved at that level,
     // else a detection from scratch.
     row["residual_contacts"] = std::to_string(rc.level == ContactLevel::exact ? r.contacts_after : backend.detect(stand, dreq).pairs.size());
+    if (!o.no_light) light_s += light_columns(stand, layout, o, "after", row);
   }
+  if (!o.no_light) row["light_s"] = fmt::format("{:.4f}", light_s);
   row["status"] = "ok";
   return row;
 }
 
 }  // namespace
 
-SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& after_run, const SweepRanks* ranks) {
+SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallback& after_run, const SweepRanks* ranks) {
+  SweepOptions o = given;
   const ThreadLimit thread_limit(o.detect.threads);
   const int me = ranks ? ranks->rank : 0, team = ranks ? ranks->size : 1;
   print = print && me == 0;
@@ -116,16 +118,26 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
     steps.clear();
     for (double s : parse_number_list("--steps", o.steps, 0, false)) {
       if (s != std::floor(s)) throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
+      if (s > kMaxSteps) throw std::invalid_argument(fmt::format("--steps: {} is more than the {} steps a plant may grow", s, kMaxSteps));
       steps.push_back(static_cast<int>(s));
     }
   }
   (void)o.detect.request();
+  check_sweep_light(o);
   const LoadOptions load = [&] {
     LoadOptions l;
     for (const auto& s : o.set) l.overrides.push_back(parse_override(s));
     return l;
   }();
   const Grammar g = load_grammar(o.grammar, load);
+  // Jitter and rotation: the options', else the grammar's stand entry's, else the default stand's.
+  const StandSpec entry = g.stand.value_or(StandSpec{});
+  const char* jitter_from = o.jitter ? "command line" : entry.jitter ? "grammar" : "default";
+  const char* rotation_from = o.random_rotation ? "command line" : entry.random_rotation ? "grammar" : "default";
+  if (!o.jitter) o.jitter = entry.jitter.value_or(0.02);
+  if (!o.random_rotation) o.random_rotation = entry.random_rotation.value_or(true);
+  if (!(*o.jitter >= 0) || !std::isfinite(*o.jitter))
+    throw std::invalid_argument(fmt::format("--jitter must be a finite number of metres, at least 0 (got {})", *o.jitter));
   const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
   auto backend = make_backend(o.detect.backend, note, ranks ? ranks->local_rank : 0);
 
@@ -164,13 +176,16 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
 
   const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
   if (print)
-    fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants, {} already done; backend {}\n", cells.size(), o.seeds,
-               total, o.rows, o.per_row, finished.size(), note);
+    fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants (jitter {} m from the {}, random rotation {} from the {}), "
+               "{} already done; backend {}\n",
+               cells.size(), o.seeds, total, o.rows, o.per_row, *o.jitter, jitter_from, *o.random_rotation ? "on" : "off",
+               rotation_from, finished.size(), note);
   const bool tty = print && isatty(fileno(stderr));
   g_interrupted = false;
   // Ctrl-C ends the sweep after the run in progress (the command line only: a host program such
   // as Python keeps its own handler).
-  if (print) std::signal(SIGINT, on_interrupt);
+  std::optional<SoftInterrupt> soft;
+  if (print) soft.emplace(g_interrupted);  // a second Ctrl-C stops at once
   std::exception_ptr stopped;
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t ran = 0, failed = 0;
@@ -238,14 +253,14 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
                                             : "failed: " + row.at("message"));
     }
   }
-  if (print) std::signal(SIGINT, SIG_DFL);
+  soft.reset();
   if (tty) fmt::print(stderr, "\r{:100}\r", "");
   if (ranks) ranks->gather("");  // every row is in runs.csv before rank 0 reads it back
   const std::vector<RunRow> all = me == 0 ? read_runs(runs_path) : std::vector<RunRow>{};
   if (me == 0) {
-    OutputSet files(o.out);
-    files.open("summary.csv").write(summary_csv(all));
-    files.commit_all();
+    AtomicFile summary(o.out + "/summary.csv");
+    summary.write(summary_csv(all));
+    summary.commit();
   }
   if (print)
     fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,
@@ -272,15 +287,23 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--row-spacing", o->row_spacing, "Metres between rows: list or range (default 1.0)");
   app->add_option("--density", o->density, "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x row spacing)");
   app->add_option("--steps", o->steps, "Plant ages in derivation steps: list or range (default: the grammar's)");
-  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->check(CLI::PositiveNumber);
-  app->add_option("--rows", o->rows, "Rows per stand (default 3)")->check(CLI::PositiveNumber);
-  app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->check(CLI::PositiveNumber);
-  app->add_option("--jitter", o->jitter, "Jitter radius in metres (default 0.02; plants are turned at random)")->check(kFinite)->check(CLI::NonNegativeNumber);
-  app->add_option("--lod", o->lod, "Level of detail (default 2)")->check(CLI::Range(1, kMaxLod));
+  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--rows", o->rows, "Rows per stand (default 3)")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--jitter", o->jitter,
+                  "Jitter radius in metres (default: the grammar's stand entry, else 0.02; plants are turned at random unless "
+                  "the grammar's stand entry says otherwise)")
+      ->check(kFinite)->check(at_least(0));
+  app->add_option("--lod", o->lod, "Level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_in(1, INT64_MAX));
   app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
+  app->add_option("--sun", o->sun, "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
+  app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");
+  app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")->check(CLI::Range(1, 10000));
+  app->add_option("--light-error", o->light_error, "Light columns: standard error asked of the stand's fractions (default 0.002)")->check(kFinite);
+  app->add_flag("--no-light", o->no_light, "Leave the light columns empty");
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() {

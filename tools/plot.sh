@@ -2,7 +2,9 @@
 # Plots with gnuplot (Debian gnuplot-nox), each as PNG and SVG.
 #   tools/plot.sh sweep DIR            from DIR/summary.csv (canopy sweep): contacts per plant and
 #                                      mean turn against density, one curve per age; leaf area
-#                                      index against density
+#                                      index against density; intercepted fraction of the direct
+#                                      beam and of the diffuse sky against density, per age, after
+#                                      resolution (solid) and before it (dashed)
 #   tools/plot.sh bench [RESULTS] [OUT]  from bench/results: detection time against false
 #                                      positives per level (speed against error), and detection
 #                                      time against plant count per backend
@@ -47,13 +49,48 @@ sweep() {
   render "$dir/contacts_vs_density" "$common set ylabel 'organ contacts per plant before resolution (exact)'; plot ${plots_c%, }"
   render "$dir/turn_vs_density" "$common set ylabel 'mean turn after resolution (degrees)'; plot ${plots_t%, }"
   render "$dir/lai_vs_density" "$common set ylabel 'leaf area index (inner plants)'; plot ${plots_l%, }"
+  light_plots "$dir" "$sum" "$cd" "$cs"
+}
+
+# light_plots DIR SUMMARY DENSITY_COL STEPS_COL: interception against density per age (sweeps
+# made with their light columns; skipped when the columns are empty).
+light_plots() {
+  local dir=$1 sum=$2 cd=$3 cs=$4 data=$1/plot_data
+  local cols="" name
+  for name in direct_before direct_after diffuse_before diffuse_after; do
+    local c m; m=$(column "$sum" "${name}_mean"); [ -n "$m" ] || return 0
+    c=$(column "$sum" "${name}_sd"); cols+="$m $c "
+  done
+  [ -n "$(tail -n +2 "$sum" | awk -F, -v c="${cols%% *}" '$c != ""')" ] || return 0
+  rm -f "$data"/light_*.dat
+  # One file per age: density, then mean and sd of direct before, after, diffuse before, after
+  # (NaN where a run had no resolution).
+  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v cols="$cols" -v out="$data" \
+    'BEGIN { n = split(cols, c, " ") } { f = out "/light_" $s ".dat"; line = $d;
+      for (i = 1; i <= n; i++) line = line " " ($c[i] == "" ? "NaN" : $c[i]); print line > f }'
+  local pd="" pf="" k=0
+  for f in $(ls "$data"/light_*.dat | sort -t_ -k3n); do
+    local age; age=$(basename "$f" .dat); age=${age#light_}; k=$((k + 1))
+    pd+="'$f' using 1:4:5 with yerrorlines lc $k pt 7 title 'age $age steps, resolved', '' using 1:2 with lines lc $k dt 2 title 'as grown', "
+    pf+="'$f' using 1:8:9 with yerrorlines lc $k pt 7 title 'age $age steps, resolved', '' using 1:6 with lines lc $k dt 2 title 'as grown', "
+  done
+  local common="set key right bottom; set grid; set offsets graph 0.03, graph 0.03, graph 0.08, graph 0.08; set xlabel 'density (plants per m^2)';"
+  render "$dir/interception_direct_vs_density" "$common set ylabel 'intercepted fraction of the direct beam (periodic)'; plot ${pd%, }"
+  render "$dir/interception_diffuse_vs_density" "$common set ylabel 'intercepted fraction of the diffuse sky (periodic)'; plot ${pf%, }"
+}
+
+# first_machine CSV: the CSV's header and the rows of the machine of its first row, where it has a
+# machine column (bench/run.sh keeps the latest run of each machine in one file); else all of it.
+first_machine() {
+  awk -F, 'NR == 1 {by = ($NF == "machine"); print; next} NR == 2 {m = $NF} !by || $NF == m' "$1"
 }
 
 bench() {
   local res=${1:-bench/results} out=${2:-bench/results}
-  local cpu=$res/detect_cpu.csv gpu=$res/detect_cuda.csv
-  [ -f "$cpu" ] || { echo "plot.sh: no $cpu" >&2; exit 1; }
+  [ -f "$res/detect_cpu.csv" ] || { echo "plot.sh: no $res/detect_cpu.csv" >&2; exit 1; }
   mkdir -p "$out/plot_data"
+  local cpu=$out/plot_data/detect_cpu.csv gpu=$res/detect_cuda.csv
+  first_machine "$res/detect_cpu.csv" > "$cpu"
   # Speed against error: per level, seconds against false positives, two threads, largest stand.
   local n; n=$(awk -F, 'NR>1 && $4==2 && $5=="mbvt" {print $1}' "$cpu" | sort -n | tail -1)
   awk -F, -v n="$n" 'NR>1 && $1==n && $4==2 && $5=="mbvt" && $6 ~ /^to / {sub(/^to /, "", $6); print $7, ($9 < 1 ? 1 : $9), $6}' "$cpu" \
@@ -61,14 +98,20 @@ bench() {
   render "$out/speed_vs_error" "set grid; set logscale y; set xlabel 'detection time to the level, s ($n plants, 2 CPU threads)';
     set ylabel 'false positives against the exact level (organ pairs, log; 0 drawn at 1)'; set offsets 0.05, 0.05, 0, 0;
     plot '$out/plot_data/speed_error.dat' using 1:2 with linespoints pt 7 notitle, '' using 1:2:3 with labels offset 2,1 notitle"
-  # Time against plant count per backend: CPU (2 threads, this machine) and the GPU file's rows.
+  # Time against plant count per backend: CPU (2 threads) and each GPU of the GPU file with its host's CPU.
   awk -F, 'NR>1 && $4==2 && $5=="mbvt" && $6=="to exact" {print $1, $7}' "$cpu" | sort -n > "$out/plot_data/cpu_exact.dat"
-  local plots="'$out/plot_data/cpu_exact.dat' using 1:2 with linespoints pt 7 title 'CPU, 2 threads (this machine)'"
+  local plots="'$out/plot_data/cpu_exact.dat' using 1:2 with linespoints pt 7 title 'CPU, 2 threads'"
   if [ -f "$gpu" ]; then
-    local cp cl ct cc; cp=$(column "$gpu" plants); cl=$(column "$gpu" level); ct=$(column "$gpu" gpu_detect_s); cc=$(column "$gpu" cpu_total_s)
-    awk -F, -v p="$cp" -v l="$cl" -v t="$ct" -v c="$cc" 'NR>1 && $l=="exact" {print $p, $t, $c}' "$gpu" | sort -n > "$out/plot_data/gpu_exact.dat"
-    local dev; dev=$(awk -F, 'NR==2 {print $1}' "$gpu")
-    plots+=", '$out/plot_data/gpu_exact.dat' using 1:2 with linespoints pt 5 title 'CUDA, $dev (stand on the device: box fit + stages)', '' using 1:3 with linespoints pt 9 title 'CPU, 16 cores of the $dev host'"
+    local cp cl ct cc cdv dev i=0
+    cp=$(column "$gpu" plants); cl=$(column "$gpu" level); ct=$(column "$gpu" gpu_detect_s); cc=$(column "$gpu" cpu_total_s)
+    cdv=$(column "$gpu" device)
+    while IFS= read -r dev; do
+      i=$((i + 1))
+      awk -F, -v p="$cp" -v l="$cl" -v t="$ct" -v c="$cc" -v d="$cdv" -v dev="$dev" 'NR>1 && $l=="exact" && $d==dev {print $p, $t, $c}' "$gpu" |
+        sort -n > "$out/plot_data/gpu_exact_$i.dat"
+      plots+=", '$out/plot_data/gpu_exact_$i.dat' using 1:2 with linespoints pt $((3 + 2 * i)) title 'CUDA, $dev (stand on the device: box fit + stages)'"
+      plots+=", '' using 1:3 with linespoints pt $((4 + 2 * i)) title 'CPU, every core of the $dev host'"
+    done < <(awk -F, -v d="$cdv" 'NR>1 && !seen[$d]++ {print $d}' "$gpu")
   fi
   render "$out/time_vs_plants" "set grid; set logscale xy; set key left top; set xlabel 'plants (default stand)';
     set ylabel 'detection time to the exact level, s'; plot $plots"

@@ -1,6 +1,7 @@
 #pragma once
 /// report.json (DESIGN.md "Exports") and the terminal summary of a run.
 #include "geometry/atomic_file.hpp"
+#include "geometry/leaf_angles.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
 
@@ -16,10 +17,19 @@ struct StandReport {
   std::string grammar;
   nlohmann::ordered_json seed;
   std::map<std::string, double> timings;  // seconds per stage
+  /// The backend and device that ran, taken after the last detection (a backend that fell back
+  /// half-way names the one that finished, and its device says what failed), and how the
+  /// backend was chosen (make_backend's note: asked for, or what auto found).
   std::string backend = "none";
   nlohmann::ordered_json device = nullptr;
+  std::string backend_choice;
   nlohmann::ordered_json contacts_before = nullptr, contacts_after = nullptr, resolution = nullptr;
+  nlohmann::ordered_json leaf_angles = nullptr;  // of the stand as exported (leaf_angles_json)
 };
+
+/// The leaf angle distribution as report.json and light.json give it: leaflet area, 5-degree
+/// inclination bins (area and fraction), mean inclination, G at a few zenith angles.
+nlohmann::ordered_json leaf_angles_json(const LeafAngles& a);
 
 /// Triangles of each plant at its organs' levels of detail.
 std::vector<std::size_t> triangles_per_plant(const Stand& stand, PrototypeLibrary& lib);

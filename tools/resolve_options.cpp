@@ -10,41 +10,42 @@ namespace canopy::cli {
 void ResolveOptions::add_to(CLI::App& app) {
   app.add_flag("--no-resolve", no_resolve, "Export the stand as grown, without turning organs out of contact");
   app.add_option("--max-rounds", max_rounds, "Resolution: detection rounds before giving up (default 30)")
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_in(1, INT32_MAX));
   app.add_option("--resolve-clearance", clearance,
                  "Resolution: metres left between a turned organ and what it met (default 0.0001)")
-      ->check(kFinite)->check(CLI::NonNegativeNumber)->check(metres_note("--resolve-clearance"));
+      ->check(kFinite)->check(at_least(0))->check(metres_note("--resolve-clearance"));
   app.add_option("--resolve-level", level,
                  "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
                  "turns organs that never touched)")
       ->check(CLI::IsMember({"exact", "organ"}));
   app.add_option("--resolve-candidates", candidates,
                  fmt::format("Resolution: organs per contact that may turn, in policy order (default {})", candidates))
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_in(1, INT32_MAX));
   app.add_option("--resolve-axes", axis_fan,
                  fmt::format("Resolution: axes tried across an organ's width-normal plane besides the away axis (default {})", axis_fan))
-      ->check(CLI::Range(4, 64));
+      ->transform(whole_in(4, 64));
   app.add_option("--resolve-step", scan_step,
                  fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
-      ->check(kFinite)->check(CLI::Range(0.5, 30.0));
+      ->check(kFinite)->check(number_in(0.5, 30));
   app.add_option("--bend-joints", bend_joints,
                  fmt::format("Resolution: joints of a petiole, rachis or peduncle chain a turn may be spread over, so that it "
                              "bends instead of kinking (default {}; 1: never)",
                              bend_joints))
-      ->check(CLI::Range(1, 32));
+      ->transform(whole_in(1, 32));
   app.add_option("--bend-step", bend_step,
                  fmt::format("Resolution: degrees per joint a turn is spread to (default {})", bend_step))
-      ->check(kFinite)->check(CLI::Range(0.5, 60.0));
+      ->check(kFinite)->check(number_in(0.5, 60));
   app.add_flag("--resolve-host-search", host_search,
-               "Resolution: with --backend cuda, search candidate by candidate on the host's cores instead of running each "
-               "level's attempts on the device in lanes of batches (the same turns; slower on the 16-core GPU machines)");
+               "Resolution: on a GPU (--backend cuda, or auto with a GPU), search candidate by candidate on the host's cores "
+               "instead of running each level's attempts on the device in lanes of batches (the same turns; slower on the "
+               "16-core GPU machines)");
   app.add_flag_callback("--resolve-device-search", [this] { host_search = false; },
-                        "Resolution: each level's attempts on the device with --backend cuda (the default there)");
+                        "Resolution: each level's attempts on the device on a GPU (--backend cuda or auto; the default there)");
   app.add_option("--resolve-lanes", lanes,
                  fmt::format("Resolution: with the device's attempts, batches of contacts planned at once, each on a thread and "
                              "stream of its own (default {}; 1 to 8; the same turns for any number)",
                              lanes))
-      ->check(CLI::Range(1, 8));
+      ->transform(whole_in(1, 8));
 }
 
 ResolveConfig ResolveOptions::config() const {
@@ -70,7 +71,9 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
           {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
           {"candidates", c.candidates},    {"axis_fan", c.axis_fan},
           {"bend_joints", c.bend_joints},  {"bend_step_deg", c.bend_step_deg},
-          {"search", host_search ? "host" : "device"},  // device: the backend's runner where it has one (CUDA)
+          // Asked for: auto, the backend's bulk attempts where it has them (the device's on CUDA), the
+          // host search otherwise; "resolution" says what planned.
+          {"search", host_search ? "host" : "auto"},
           {"lanes", lanes},
           {"movable_rank", order},         {"outer_first", c.outer_first}};
 }
@@ -105,7 +108,8 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
                       {"turned", x.turned},
                       {"plants_redetected", x.plants_redetected},
                       {"plan_s", x.plan_s},
-                      {"detect_s", x.detect_s}});
+                      {"detect_s", x.detect_s},
+                      {"planning", x.planning}});
   nlohmann::ordered_json left = nlohmann::ordered_json::array();
   for (const UnresolvedContact& u : r.unresolved)
     left.push_back({{"organ_a", u.contact.organ_a},
@@ -131,6 +135,8 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
           {"remaining", left},
           {"joint_bytes", r.joint_bytes},
           {"planning", r.planning},
+          {"search", r.search},
+          {"lanes", r.lanes},
           {"rounds", rounds}};
 }
 
@@ -142,7 +148,7 @@ void print_resolution(const ResolveResult& r) {
   if (r.bends || r.kinks || r.unbent)
     fmt::print("  {} turns bent over {} joints of their chains, {} left at one joint, {} past a joint's limit that no bend could take\n",
                r.bends, r.bend_joints, r.kinks, r.unbent);
-  fmt::print("  planned with the {}\n", r.planning);
+  fmt::print("  planned with: {}\n", r.planning);
   fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s", "detect s");
   for (const ResolveRound& x : r.per_round)
     fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9.3f} {:>9.3f}\n", x.round, x.contacts, x.turned, x.plants_redetected, x.plan_s,

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <filesystem>
@@ -41,7 +42,7 @@ std::set<std::string> parse_formats(const std::string& list) {
 
 namespace {
 
-// The mesh files' names, written by write_stand_files and looked for by remove_stale_meshes.
+// The mesh files' names, written by write_stand_files and replaced as a set (stand_folder_files).
 constexpr const char* kGlbFile = "stand.glb";
 constexpr const char* kObjFile = "stand.obj";
 constexpr const char* kMtlFile = "stand.mtl";  // the OBJ's material library, beside it
@@ -70,40 +71,60 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
                     [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); });
 }
 
-std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats) {
-  std::vector<std::string> removed;
-  const std::pair<const char*, const char*> files[] = {{"glb", kGlbFile}, {"obj", kObjFile}, {"obj", kMtlFile}, {"ply", kPlyFile}};
-  for (const auto& [format, name] : files) {
-    if (formats.count(format)) continue;
-    std::error_code ec;
-    if (std::filesystem::remove(std::filesystem::path(dir) / name, ec)) removed.emplace_back(name);
-  }
-  return removed;
+const std::vector<std::string>& stand_folder_files() {
+  static const std::vector<std::string> names{kGlbFile,       kObjFile,     kMtlFile,       kPlyFile,
+                                              "organs.csv",   "plants.csv", "contacts.csv", "contacts_after.csv",
+                                              "report.json",  "light.csv",  "light.json"};
+  return names;
 }
 
-void print_stale_removed(const std::vector<std::string>& removed) {
-  if (removed.empty()) return;
-  std::string list;
-  for (const std::string& name : removed) list += (list.empty() ? "" : ", ") + name;
-  fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list);
+void print_folder_changes(const StagedFolder& folder, const StagedFolder::Committed& committed) {
+  const auto list = [](const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+  };
+  // In stand_folder_files()'s order: stand.obj before stand.mtl.
+  std::vector<std::string> meshes, others;
+  for (const std::string& n : stand_folder_files())
+    if (std::find(committed.dropped.begin(), committed.dropped.end(), n) != committed.dropped.end())
+      (n.starts_with("stand.") ? meshes : others).push_back(n);
+  if (!meshes.empty()) fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list(meshes));
+  if (!others.empty()) fmt::print("removed {}, which described the earlier stand\n", list(others));
+  if (!folder.leftovers_removed().empty())
+    fmt::print("removed what interrupted runs left beside {}: {}\n", folder.dir(), list(folder.leftovers_removed()));
+  for (const std::string& note : folder.leftover_notes()) fmt::print(stderr, "canopy: note: {}\n", note);
+  for (const std::string& note : committed.notes) fmt::print(stderr, "canopy: note: {}\n", note);
 }
 
 StandPlan plan_stand(StandOptions& o) {
+  if (o.random_rotation && o.no_random_rotation)
+    throw std::invalid_argument("--random-rotation and --no-random-rotation cannot be combined");
   if (o.random_rotation) o.rows.random_rotation = true;
+  if (o.no_random_rotation) o.rows.random_rotation = false;
   if (!o.positions.empty() && any_row_option(o.rows))
     throw std::invalid_argument("--positions cannot be combined with row options");
   StandPlan plan;
   plan.request = grow_request(o.grammar, o.set, o.steps, o.lod, o.detect.threads, o.max_modules);
   plan.grammar = load_grammar(o.grammar, plan.request.load);
   if (!o.positions.empty()) {
-    plan.request.plants = read_positions(o.positions);
+    plan.request.plants = read_positions(o.positions, o.any_grammar_path);
     plan.request.relative_to = std::filesystem::path(o.positions).parent_path().string();
   } else {
-    // Command-line row options replace the grammar's stand entry as a whole.
-    plan.from_grammar = !any_row_option(o.rows) && plan.grammar.stand.has_value();
-    plan.layout = to_row_layout(plan.from_grammar ? *plan.grammar.stand : o.rows);
+    // Command-line row options override the grammar's stand entry field by field.
+    LayoutChoice choice = choose_layout(o.rows, plan.grammar.stand);
+    plan.layout = choice.layout;
+    plan.layout_sources = std::move(choice.sources);
   }
   return plan;
+}
+
+void check_target(const StandOptions& o) {
+  if (!o.positions.empty()) throw std::invalid_argument("--target-lai and --target-ground-cover choose a row layout's plant spacing: not with --positions");
+  if (o.rows.plant_spacing)
+    throw std::invalid_argument("--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
+  if (o.target.lai && o.target.ground_cover) throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
+  if (!(o.target.error >= 1e-5 && o.target.error <= 0.5)) throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", o.target.error));
 }
 
 void check_plan_fits(const StandPlan& plan, std::size_t plants) {
@@ -119,7 +140,6 @@ void check_plan_fits(const StandPlan& plan, std::size_t plants) {
 
 void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan) {
   const RowLayout& layout = plan.layout;
-  const bool from_grammar = plan.from_grammar;
   nlohmann::ordered_json config;
   config["grammar"] = o.grammar;
   config["steps"] = o.steps ? nlohmann::ordered_json(*o.steps) : nlohmann::ordered_json(nullptr);
@@ -136,23 +156,26 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   config["resolve"] = o.resolve.config_json();
   if (!o.positions.empty()) {
     config["layout"] = {{"positions", o.positions}};
+    if (o.any_grammar_path) config["layout"]["any_grammar_path"] = true;
   } else {
-    config["layout"] = {{"source", from_grammar ? "grammar" : "command line"},
-                        {"rows", layout.rows},
+    nlohmann::ordered_json sources;
+    for (const auto& [field, source] : plan.layout_sources) sources[field] = source;
+    config["layout"] = {{"rows", layout.rows},
                         {"per_row", layout.per_row},
                         {"row_spacing", layout.row_spacing},
                         {"plant_spacing", layout.plant_spacing},
                         {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
                         {"jitter", layout.jitter},
                         {"random_rotation", layout.random_rotation},
-                        {"seed", layout.seed}};
+                        {"seed", layout.seed},
+                        {"sources", sources}};  // per field: command line, grammar or default
   }
   rep.config = config;
   rep.grammar = plan.grammar.name.empty() ? o.grammar : plan.grammar.name;
   rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);
 }
 
-StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
+StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress, Stand* keep) {
   const auto t_start = std::chrono::steady_clock::now();
   const ThreadLimit thread_limit(o.detect.threads);
   const std::set<std::string> formats = parse_formats(o.formats);
@@ -160,7 +183,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const DetectRequest dreq = o.detect.request();  // bad options fail before any work
   std::string backend_note;
   auto backend = make_backend(o.detect.backend, backend_note);
-  prepare_output_dir(o.out);
+  // The staging folder beside the output (dead runs' leftovers removed first): the files go
+  // there and the folder is swapped in once they are complete; a failed or interrupted run
+  // removes it, so the output folder is as it was (none made when it had none).
+  OutputSet files(o.out, stand_folder_files());
   GrowRequest& req = plan.request;
   const RowLayout& layout = plan.layout;
   if (o.positions.empty()) {
@@ -168,18 +194,24 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     check_plan_fits(plan, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
     req.plants = row_layout(layout);
   }
+  if (o.target.set()) check_target(o);
   const auto t_grow = std::chrono::steady_clock::now();
   GrowTimings gt;
   Stand stand = grow_stand(req, &gt);
   StandReport rep;
   rep.timings["generate"] = seconds_since(t_grow);
+  std::optional<SpacingChoice> target;
+  if (o.target.set()) {
+    const auto t_target = std::chrono::steady_clock::now();
+    target = reach_target(stand, plan.layout, o.target);
+    rep.timings["target"] = seconds_since(t_target);
+  }
 
   // Detection at the level asked for; contacts.csv and contacts_before come from it.
   const auto t_detect = std::chrono::steady_clock::now();
   const Contacts contacts = backend->detect(stand, dreq);
   rep.timings["detect"] = seconds_since(t_detect);
-  rep.backend = backend->name();
-  rep.device = backend->device();
+  const std::string first_backend = backend->name();
   rep.contacts_before = counts_json(contacts);
 
   // Resolution, then detection from scratch at the same level for contacts_after.
@@ -200,29 +232,39 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     rep.resolution = resolution_json(*resolved);
   }
   rep.contacts_after = counts_json(after);
+  rep.backend = backend->name();  // what ran to the end (auto may have fallen back)
+  rep.device = backend->device();
+  rep.backend_choice = backend_note;
 
   PrototypeLibrary lib;
-  OutputSet files(o.out);
   const auto t_export = std::chrono::steady_clock::now();
   write_stand_files(stand, lib, formats, o.glb_instancing, files);
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));
   write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   rep.timings["export"] = seconds_since(t_export);
   describe_run(rep, o, formats, plan);
+  if (target) rep.config["target"] = target_json(o.target, *target);
+  rep.leaf_angles = leaf_angles_json(leaf_angles(leaf_angle_sums(stand, lib)));
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
-  files.commit_all();
-  const std::vector<std::string> stale = remove_stale_meshes(o.out, formats);
+  const StagedFolder::Committed committed = files.commit_all();
   if (print) {
-    print_stale_removed(stale);
+    print_folder_changes(files.folder(), committed);
+    if (target)
+      fmt::print("target {} {}: plant spacing {} m ({} {:.4f}{})\n", o.target.lai ? "LAI" : "ground cover",
+                 o.target.lai ? *o.target.lai : *o.target.ground_cover, target->plant_spacing, o.target.lai ? "LAI" : "ground cover",
+                 target->reached, o.target.lai ? std::string() : fmt::format(" +- {:.4f}", target->standard_error));
     print_summary(stand, lib, rep, o.out);
+    if (o.positions.empty()) fmt::print("{}\n", layout_line(plan.layout, plan.layout_sources));
     print_contacts_table(contacts, backend_note);
+    if (rep.backend != first_backend) fmt::print("backend: the run ended on {}: {}\n", rep.backend, rep.device.get<std::string>());
     if (resolved) print_resolution(*resolved);
   }
   StandOutcome out;
   out.report = report_json(stand, lib, rep);
   out.contacts_before = contacts.pairs.size();
   out.contacts_after = after.pairs.size();
+  if (keep) *keep = std::move(stand);
   return out;
 }
 

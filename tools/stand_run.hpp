@@ -9,6 +9,7 @@
 #include "tools/detect_options.hpp"
 #include "tools/report.hpp"
 #include "tools/resolve_options.hpp"
+#include "tools/stand_target.hpp"
 
 #include <functional>
 #include <optional>
@@ -28,11 +29,14 @@ struct StandOptions {
   std::string formats = "glb";
   bool glb_instancing = false;
   std::size_t max_modules = kDefaultMaxModules;
-  StandSpec rows;               // row options given on the command line
-  bool random_rotation = false;  // folded into `rows` once parsed
+  StandSpec rows;                   // row options given on the command line
+  bool random_rotation = false;     // folded into `rows` once parsed
+  bool no_random_rotation = false;  // the same, to turn off the grammar entry's rotation
   std::string positions;
+  bool any_grammar_path = false;  // a positions file's grammar cells may name any file
   DetectOptions detect;
   ResolveOptions resolve;
+  TargetOptions target;          // --target-lai / --target-ground-cover choose the plant spacing
 };
 
 struct StandOutcome {
@@ -41,14 +45,18 @@ struct StandOutcome {
 };
 
 /// What a stand is grown from: the grammar, the grow request (placements filled in for a
-/// positions file; row layouts are placed by the caller with row_layout(layout)), the layout.
+/// positions file; row layouts are placed by the caller with row_layout(layout)), the layout
+/// (the command line's row options over the grammar's stand entry, field by field) and where
+/// each of its values came from.
 struct StandPlan {
   GrowRequest request;
   Grammar grammar;
   RowLayout layout;
-  bool from_grammar = false;  // the layout is the grammar's stand entry
+  LayoutSources layout_sources;  // empty with a positions file
 };
 StandPlan plan_stand(StandOptions& o);
+/// Throws std::invalid_argument when --target-lai / --target-ground-cover cannot apply to `o`.
+void check_target(const StandOptions& o);
 /// Throws before growing when `plants` plants like the plan's first would not fit in memory.
 void check_plan_fits(const StandPlan& plan, std::size_t plants);
 /// report.json's "config" (every option echoed), "grammar" and "seed".
@@ -67,15 +75,20 @@ void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const st
 void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
                        OutputSet& files);
 
-/// After a run's files are in place in `dir`: removes the mesh files an earlier run left there in
-/// formats this run did not write (stand.glb, stand.obj with stand.mtl, stand.ply), so the folder
-/// holds one stand; returns their names. Only those names are touched.
-std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats);
-/// Says on standard output which files remove_stale_meshes removed (nothing when none).
-void print_stale_removed(const std::vector<std::string>& removed);
+/// The files of a stand folder that a run replaces as a set (StagedFolder's `replaces`): the
+/// meshes, tables and report canopy stand writes, and light.csv, light.json (computed from a
+/// stand, so they go with it). Everything else in the folder is kept. Every stand writer (the
+/// command line, tiled runs, the Python module) replaces these.
+const std::vector<std::string>& stand_folder_files();
+/// Says on standard output which files of the earlier stand the swap dropped (a mesh format not
+/// asked for this time, light tables) and which dead runs' leftovers were removed, and on
+/// standard error what was kept against the plan (nothing when all went as planned).
+void print_folder_changes(const StagedFolder& folder, const StagedFolder::Committed& committed);
 
 /// Runs `canopy stand` with `o`: writes the files into o.out, prints the summary when `print`.
 /// `progress`, when set, is called once per resolution round (instead of the terminal line).
-StandOutcome run_stand(StandOptions o, bool print = true, std::function<void(const ResolveProgress&)> progress = {});
+/// `keep`, when set, receives the stand as exported.
+StandOutcome run_stand(StandOptions o, bool print = true, std::function<void(const ResolveProgress&)> progress = {},
+                       Stand* keep = nullptr);
 
 }  // namespace canopy::cli

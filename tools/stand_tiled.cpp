@@ -67,7 +67,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     plan = plan_stand(o);
     dreq = o.detect.request();
     backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());
-    if (rank == 0) prepare_output_dir(o.out);
+    if (rank == 0) check_output_dir(o.out);  // made only once the files are complete
     placements = o.positions.empty() ? row_layout(plan.layout) : plan.request.plants;
   });
   const std::size_t n = placements.size();
@@ -148,8 +148,6 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     Contacts full;
     before = detect_owned(*backend, t, dreq, dreq.level, lower_levels, &full);
     rep.timings["detect"] = seconds_since(t_detect);
-    rep.backend = backend->name();
-    rep.device = backend->device();
     rep.contacts_before = counts_json(before);
     after = before;
     if (!o.resolve.no_resolve) {
@@ -184,6 +182,9 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
       rep.resolution = resolution_json(*resolved);
     }
     rep.contacts_after = counts_json(after);
+    rep.backend = backend->name();  // what ran to the end (auto may have fallen back)
+    rep.device = backend->device();
+    rep.backend_choice = backend_note;
   } catch (const std::exception& e) {
     mpi::abort(e.what());
   }
@@ -214,7 +215,20 @@ void run_stand_tiled(StandOptions o) {
     for (std::size_t i = 0; i < all.size(); i += 2) counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
     for (std::size_t p = 0; p < n; ++p) counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
   }
-  mpi::SharedOutputSet files(o.out, ts.ids, n);
+  {
+    // The leaf angles of the owned plants, gathered and summed in plant order as one process does.
+    struct Owned {
+      std::int64_t plant;
+      LeafAngleSums sums;
+    };
+    const std::vector<LeafAngleSums> local = leaf_angle_sums(t.stand, lib);
+    std::vector<Owned> mine;
+    for (std::uint32_t p : scope.plants) mine.push_back({static_cast<std::int64_t>(t.region[p]), local[p]});
+    std::vector<LeafAngleSums> per_plant(n);
+    for (const Owned& x : mpi::allgather(mine)) per_plant[static_cast<std::size_t>(x.plant)] = x.sums;
+    rep.leaf_angles = leaf_angles_json(leaf_angles(per_plant));
+  }
+  mpi::SharedOutputSet files(o.out, stand_folder_files(), ts.ids, n);
   try {
     write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); });
     write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
@@ -230,8 +244,9 @@ void run_stand_tiled(StandOptions o) {
   }
   files.commit_all();
   if (rank == 0) {
-    print_stale_removed(remove_stale_meshes(o.out, ts.formats));
+    print_folder_changes(*files.folder(), files.committed());
     print_summary(counts, rep, o.out);
+    if (o.positions.empty()) fmt::print("{}\n", layout_line(ts.plan.layout, ts.plan.layout_sources));
     fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,
                ts.tiling.axis == 0 ? "x" : "y", ts.halo, ts.reach, t.region.size());
     print_contacts_table(ts.before, ts.backend_note);

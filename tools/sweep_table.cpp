@@ -1,8 +1,14 @@
 #include "tools/sweep_table.hpp"
 
+#include "geometry/input_file.hpp"
+#include "geometry/atomic_file.hpp"
+
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -14,6 +20,20 @@ namespace {
 
 const std::vector<std::string> kKey{"plant_spacing", "row_spacing", "steps", "seed"};
 const std::vector<std::string> kText{"status", "message"};
+
+/// The columns summary.csv averages: every column but the run's key, status and text.
+bool is_metric(const std::string& c) {
+  return c != "run" && c != "seed" && c != "backend" && c != "plant_spacing" && c != "row_spacing" && c != "steps" &&
+         c != "density" && c != "status" && c != "message";
+}
+
+/// A cell as a finite number, the whole cell.
+std::optional<double> finite_number(const std::string& s) {
+  double v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
 
 /// Splits one CSV line (quoted fields with doubled quotes); false when a quote is left open.
 bool split_csv(const std::string& line, std::vector<std::string>& out) {
@@ -62,7 +82,9 @@ const std::vector<std::string>& run_columns() {
       "plant_between_per_plant", "plant_within_per_plant", "leaf_between_per_plant", "leaf_within_per_plant",
       "organ_between_per_plant", "organ_within_per_plant", "exact_between_per_plant", "exact_within_per_plant",
       "organs_turned", "organs_turned_per_plant", "mean_turn_deg", "max_turn_deg", "rounds", "residual_contacts",
-      "generate_s", "detect_s", "resolve_s", "backend", "message"};
+      "ground_cover_before", "direct_before", "diffuse_before", "star_before", "mean_inclination_before", "light_se_before",
+      "ground_cover_after", "direct_after", "diffuse_after", "star_after", "mean_inclination_after", "light_se_after",
+      "generate_s", "detect_s", "resolve_s", "light_s", "backend", "message"};
   return c;
 }
 
@@ -80,32 +102,56 @@ std::string run_key(const RunRow& r) {
 }
 
 std::vector<RunRow> read_runs(const std::string& path) {
-  std::ifstream in(path);
   std::vector<RunRow> rows;
-  if (!in) return rows;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path))) return rows;
+  InputFile in(path, "sweep's runs.csv", kMaxRunsCsvBytes);
   std::string line;
-  if (!std::getline(in, line)) return rows;
+  if (!in.next_line(line)) return rows;
   if (line + "\n" != header())
     throw std::invalid_argument(fmt::format("{}: not a runs.csv of this canopy version (header differs); use another -o", path));
   std::vector<std::string> f;
-  while (std::getline(in, line)) {
+  while (in.next_line(line)) {
     if (!split_csv(line, f) || f.size() != run_columns().size()) continue;  // a torn last line
     RunRow r;
-    for (std::size_t i = 0; i < f.size(); ++i) r[run_columns()[i]] = f[i];
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const std::string& column = run_columns()[i];
+      // summary.csv averages these: a value that is not a number is not from canopy sweep.
+      if (is_metric(column) && !f[i].empty() && !finite_number(f[i]))
+        throw std::invalid_argument(fmt::format("{}:{}: column '{}' needs a number, got '{}' (not a runs.csv written by canopy sweep; "
+                                                "use another -o)",
+                                                path, in.line_number(), column, f[i]));
+      r[column] = f[i];
+    }
     rows.push_back(std::move(r));
   }
   return rows;
 }
 
-void write_runs(const std::string& path, const std::vector<RunRow>& rows) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << header();
-    for (const RunRow& r : rows) out << line_of(r);
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp));
+nlohmann::ordered_json read_sweep_settings(const std::string& path) {
+  const std::string text = read_input_file(path, "sweep's settings", kMaxSweepJsonBytes);
+  try {
+    // Nesting is bounded while parsing: comparing and printing a parsed value recurse once per
+    // level, and a file of 100,000 '[' would overflow the stack there.
+    const auto bounded = [](int depth, nlohmann::ordered_json::parse_event_t, nlohmann::ordered_json&) {
+      if (depth > 16) throw std::invalid_argument("nested more than 16 levels deep");
+      return true;
+    };
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text, bounded);
+    if (!j.is_object()) throw std::invalid_argument("not a JSON object");
+    return j;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(fmt::format("{}: not a sweep's settings ({})", path, e.what()));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("{}: not a sweep's settings ({})", path, e.what()));
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error(fmt::format("cannot rename {} to {}", tmp, path));
+}
+
+void write_runs(const std::string& path, const std::vector<RunRow>& rows) {
+  AtomicFile out(path);  // synced and renamed into place: a kill leaves the earlier table whole
+  std::string text = header();
+  for (const RunRow& r : rows) text += line_of(r);
+  out.write(text);
+  out.commit();
 }
 
 void append_run(const std::string& path, const RunRow& row) {
@@ -120,9 +166,7 @@ void append_run(const std::string& path, const RunRow& row) {
 std::string summary_csv(const std::vector<RunRow>& rows) {
   std::vector<std::string> metrics;
   for (const std::string& c : run_columns())
-    if (c != "run" && c != "seed" && c != "backend" && c != "plant_spacing" && c != "row_spacing" && c != "steps" &&
-        c != "density" && c != "status" && c != "message")
-      metrics.push_back(c);
+    if (is_metric(c)) metrics.push_back(c);
   struct Cell {
     RunRow first;
     std::size_t runs = 0, failed = 0;
@@ -140,7 +184,7 @@ std::string summary_csv(const std::vector<RunRow>& rows) {
       continue;
     }
     for (const std::string& m : metrics)
-      if (!r.at(m).empty()) c.values[m].push_back(std::stod(r.at(m)));
+      if (const auto v = finite_number(r.at(m))) c.values[m].push_back(*v);
   }
   std::string out = "plant_spacing,row_spacing,density,steps,runs,failed";
   for (const std::string& m : metrics) out += "," + m + "_mean," + m + "_sd";

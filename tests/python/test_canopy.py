@@ -149,7 +149,7 @@ def test_errors_carry_the_located_message(tmp_path):
         canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, float("inf"), 1]]), steps=5)
     with pytest.raises(ValueError, match="the level of detail must lie in 1..16"):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, lod=0)
-    with pytest.raises(ValueError, match="the derivation steps must be at least 0"):
+    with pytest.raises(ValueError, match="the derivation steps must lie in 0..100000"):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=-1)
     with pytest.raises(ValueError, match="the thread count must be at least 0"):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, threads=-3)
@@ -202,3 +202,78 @@ def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
     assert len(canopy.sweep_rows(tmp_path / "w", summary=True)) == 2
     with pytest.raises(ValueError, match=r"holds 2 run\(s\) made with other settings \(rows 1 -> 2\)"):
         canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=2, per_row=2, backend="cpu")
+
+
+def test_row_options_override_the_grammar_entry_field_by_field(tmp_path):
+    """A row keyword changes only that field of the grammar's stand entry, as on the command line;
+    every organ kind takes part by default."""
+    one = canopy.Stand.grow(TOMATO, per_row=4, steps=6).plants
+    full = canopy.Stand.grow(TOMATO, rows=1, per_row=4, row_spacing=1.0, plant_spacing=0.4, jitter=0.02,
+                             random_rotation=True, seed=1, steps=6).plants
+    assert np.array_equal(one, full)
+    assert np.any(one["rotation"] != 0)
+    flat = canopy.Stand.grow(TOMATO, per_row=4, steps=6, random_rotation=False).plants
+    assert np.all(flat["rotation"] == 0) and np.any(flat["y"] != 0)
+    rep = canopy.stand(TOMATO, tmp_path, per_row=4, steps=6, no_resolve=True, backend="cpu")
+    sources = rep["config"]["layout"]["sources"]
+    assert sources["per_row"] == "command line" and sources["rows"] == sources["jitter"] == sources["seed"] == "grammar"
+    assert rep["config"]["collide"] == "all"
+    cli_run = cli("stand", TOMATO, "--per-row", "4", "--steps", "6", "--no-resolve", "--backend", "cpu", "-o", str(tmp_path / "c"))
+    assert cli_run.returncode == 0, cli_run.stderr
+    assert filecmp.cmp(tmp_path / "plants.csv", tmp_path / "c" / "plants.csv", shallow=False)
+
+
+def test_light_equals_the_command_line(cli_stand, tmp_path):
+    # canopy light on the folder (a copy: light.json is written beside the stand) against
+    # Stand.read(...).light and canopy.light on the same folder: the same rays, the same figures.
+    import shutil
+
+    folder = tmp_path / "stand"
+    shutil.copytree(cli_stand, folder)
+    r = cli("light", str(folder), "--sun", "55,200", "--sky-directions", "12", "--error", "0.004")
+    assert r.returncode == 0, r.stderr
+    want = json.load(open(folder / "light.json"))
+    got = canopy.Stand.read(folder).light(suns=[(55, 200)], sky_directions=12, error=0.004)
+    for key in ["tile", "lai", "ground_cover", "ground_cover_standard_error", "star", "direct", "leaf_angles"]:
+        assert got[key] == want[key], key
+    assert got["diffuse"]["intercepted_fraction"] == want["diffuse"]["intercepted_fraction"]
+    csv = np.genfromtxt(folder / "light.csv", delimiter=",", names=True)
+    assert np.array_equal(got["per_plant"]["sun1_fraction"], csv["sun1_fraction"])
+    assert np.isclose(got["per_plant"]["sun1_share"].sum(), 1.0)
+    again = canopy.light(folder, suns=[(55, 200)], sky_directions=12, error=0.004)
+    assert again["direct"] == want["direct"]
+    # A grown stand knows its rows: the same tile as the folder's report says.
+    grown = canopy.Stand.grow(TOMATO, **ROWS).light(sky_directions=0)
+    assert grown["tile"] == want["tile"]
+    with pytest.raises(ValueError, match="--sun"):
+        canopy.Stand.read(folder).light(suns=[(-5, 10)])
+    with pytest.raises(ValueError, match="unknown option"):
+        canopy.Stand.read(folder).light(sunz=[(5, 10)])
+
+
+def test_an_export_replaces_the_stand_and_keeps_the_rest(tmp_path):
+    out = tmp_path / "out"
+    canopy.stand(TOMATO, out, rows=1, per_row=2, steps=10, backend="cpu")
+    (out / "notes.txt").write_text("mine")
+    (out / "renders").mkdir()
+    (out / "renders" / "a.png").write_text("picture")
+    s = canopy.Stand.grow(TOMATO, rows=1, per_row=3, steps=10)
+    s.export(out, formats=["obj"])
+    # The earlier stand goes as a set: its report and contacts described it, not this one.
+    assert sorted(p.name for p in out.iterdir()) == ["notes.txt", "organs.csv", "plants.csv", "renders", "stand.mtl", "stand.obj"]
+    assert (out / "notes.txt").read_text() == "mine" and (out / "renders" / "a.png").read_text() == "picture"
+    assert sum(1 for _ in open(out / "plants.csv")) == 4
+    assert [p.name for p in tmp_path.iterdir()] == ["out"]  # nothing left beside it
+
+
+def test_a_failed_run_leaves_the_file_system_as_it_was(tmp_path):
+    neg = tmp_path / "neg.yaml"
+    neg.write_text("axiom: I(1, 0.1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\norgans:\n"
+                   "  I: {prototype: cylinder, kind: internode}\n")
+    with pytest.raises((RuntimeError, ValueError)):  # an organ of negative length, found while growing
+        canopy.stand(str(neg), tmp_path / "made" / "out")
+    with pytest.raises(ValueError, match="plants may stand at most 1e\\+08 m from the origin"):
+        canopy.stand(TOMATO, tmp_path / "far", rows=1, per_row=2, steps=8, plant_spacing=1e300)
+    with pytest.raises(ValueError, match="farther from the origin than the 1e\\+08 m plants may stand"):
+        canopy.Stand.grow(TOMATO, positions=np.array([[1e57, 0, 0, 1]]), steps=5)
+    assert [p.name for p in tmp_path.iterdir()] == ["neg.yaml"]

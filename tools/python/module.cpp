@@ -82,6 +82,7 @@ PYBIND11_MODULE(_canopy, m) {
       "The derived string (canopy derive), or with stats=True its module counts as a dict.");
 
   bind_stand(m);
+  bind_light(m);
 
   m.def(
       "stand",
@@ -104,9 +105,10 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "plant_spacing") o.rows.plant_spacing = v.cast<double>();
           else if (k == "double_rows") o.rows.double_rows = v.cast<double>();
           else if (k == "jitter") o.rows.jitter = v.cast<double>();
-          else if (k == "random_rotation") o.random_rotation = v.cast<bool>();
+          else if (k == "random_rotation") o.rows.random_rotation = v.cast<bool>();  // False too: over the grammar's entry
           else if (k == "seed") o.rows.seed = v.cast<std::uint64_t>();
           else if (k == "positions") o.positions = path_of(v);
+          else if (k == "any_grammar_path") o.any_grammar_path = v.cast<bool>();
           else if (k == "level") o.detect.level = v.cast<std::string>();
           else if (k == "clearance") o.detect.clearance = v.cast<double>();
           else if (k == "collide") o.detect.collide = v.cast<std::string>();
@@ -116,6 +118,9 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "max_rounds") o.resolve.max_rounds = v.cast<int>();
           else if (k == "resolve_clearance") o.resolve.clearance = v.cast<double>();
           else if (k == "resolve_level") o.resolve.level = v.cast<std::string>();
+          else if (k == "target_lai") o.target.lai = v.cast<double>();
+          else if (k == "target_ground_cover") o.target.ground_cover = v.cast<double>();
+          else if (k == "target_error") o.target.error = v.cast<double>();
           else throw std::invalid_argument(fmt::format("stand: unknown option '{}'", k));
         }
         if (!parse_contact_level(o.detect.level)) throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", o.detect.level));
@@ -157,6 +162,7 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "rows") o.rows = v.cast<int>();
           else if (k == "per_row") o.per_row = v.cast<int>();
           else if (k == "jitter") o.jitter = v.cast<double>();
+          else if (k == "random_rotation") o.random_rotation = v.cast<bool>();
           else if (k == "lod") o.lod = v.cast<int>();
           else if (k == "set") o.set = overrides(v.cast<std::map<std::string, double>>());
           else if (k == "retry_failed") o.retry_failed = v.cast<bool>();
@@ -166,6 +172,11 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "collide") o.detect.collide = v.cast<std::string>();
           else if (k == "no_resolve") o.resolve.no_resolve = v.cast<bool>();
           else if (k == "max_rounds") o.resolve.max_rounds = v.cast<int>();
+          else if (k == "sun") o.sun = list(v);
+          else if (k == "sky") o.sky = v.cast<std::string>();
+          else if (k == "sky_directions") o.sky_directions = v.cast<int>();
+          else if (k == "light_error") o.light_error = v.cast<double>();
+          else if (k == "no_light") o.no_light = v.cast<bool>();
           else throw std::invalid_argument(fmt::format("sweep: unknown option '{}'", k));
         }
         if (o.seeds < 1 || o.rows < 1 || o.per_row < 1) throw std::invalid_argument("sweep: seeds, rows and per_row must be at least 1");

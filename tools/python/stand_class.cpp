@@ -5,6 +5,7 @@
 #include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/stand_run.hpp"
@@ -43,11 +44,13 @@ void bind_stand(py::module_& m) {
                 p.seed = static_cast<std::uint64_t>(a(i, 3));
                 req.plants.push_back(p);
               }
-            } else {
-              const Grammar g = load_grammar(grammar, req.load);
-              req.plants = row_layout(cli::to_row_layout(!cli::any_row_option(spec) && g.stand ? *g.stand : spec));
             }
             auto out = std::make_shared<PyStand>();
+            if (!positions) {
+              const Grammar g = load_grammar(grammar, req.load);
+              out->layout = cli::choose_layout(spec, g.stand).layout;  // field by field over the grammar's entry
+              req.plants = row_layout(*out->layout);
+            }
             out->grammar = grammar;
             {
               py::gil_scoped_release nogil;
@@ -61,7 +64,8 @@ void bind_stand(py::module_& m) {
           py::arg("jitter") = py::none(), py::arg("random_rotation") = py::none(), py::arg("seed") = py::none(),
           py::arg("positions") = py::none(), py::arg("steps") = py::none(), py::arg("set") = std::map<std::string, double>{},
           py::arg("lod") = kDefaultLod, py::arg("threads") = 0, py::arg("max_modules") = kDefaultMaxModules,
-          "Grows a stand: rows (as canopy stand's layout options; none given: the grammar's stand entry) or an N x 4 array "
+          "Grows a stand: rows (as canopy stand's layout options, each given overriding that field of the grammar's stand "
+          "entry) or an N x 4 array "
           "of positions x, y, rotation (degrees), seed.")
       .def_static(
           "read",
@@ -70,6 +74,7 @@ void bind_stand(py::module_& m) {
             auto out = std::make_shared<PyStand>();
             py::gil_scoped_release nogil;
             out->stand = read_stand(dir);
+            out->layout = cli::folder_layout(dir);
             return out;
           },
           py::arg("dir"), "Reads a stand back from a folder written by canopy stand.")
@@ -91,29 +96,30 @@ void bind_stand(py::module_& m) {
                                                  py::make_tuple("leaf", "<i4"), py::make_tuple("kind", "u1"),
                                                  py::make_tuple("prototype", "u1"), py::make_tuple("lod", "u1"),
                                                  py::make_tuple("reserved", "u1"))));
-            return py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
-                             std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))}, s.stand.organs.data(), self);
+            return read_only(py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
+                                       std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))}, s.stand.organs.data(),
+                                       self));
           },
-          "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records (no copy).")
+          "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records (no copy; read-only).")
       .def_property_readonly(
           "transforms",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
             const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
-            return py::array_t<float>({n, py::ssize_t{4}, py::ssize_t{3}},
-                                      {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{12}, py::ssize_t{4}},
-                                      reinterpret_cast<const float*>(s.stand.transforms.data()), self);
+            return read_only(py::array_t<float>({n, py::ssize_t{4}, py::ssize_t{3}},
+                                                {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{12}, py::ssize_t{4}},
+                                                reinterpret_cast<const float*>(s.stand.transforms.data()), self));
           },
-          "float32 array (organs, 4, 3) viewing the plant-frame transforms: rows H*size, L*size, U*size, joint.")
+          "float32 array (organs, 4, 3) viewing the plant-frame transforms: rows H*size, L*size, U*size, joint (read-only).")
       .def_property_readonly(
           "base_points",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
             const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
-            return py::array_t<float>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{4}},
-                                      reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self);
+            return read_only(py::array_t<float>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{4}},
+                                                reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self));
           },
-          "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame.")
+          "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame (read-only).")
       .def_property_readonly("area",
                              [](PyStand& s) {
                                PrototypeLibrary lib;
@@ -158,25 +164,27 @@ void bind_stand(py::module_& m) {
             const DetectRequest req = detect_request(level, clearance, collide, threads);
             std::string note;
             Contacts c;
-            std::string name;
+            std::string name, device;
             {
               py::gil_scoped_release nogil;
               const ThreadLimit thread_limit(threads);
               auto b = backend_named(backend, note);
               c = b->detect(s.stand, req);
-              name = b->name();
+              name = b->name(), device = b->device();
             }
             py::dict out;
             out["contacts"] = contacts_array(c.pairs);
             out["counts"] = json_to_py(cli::counts_json(c));
             out["backend"] = name;
+            out["device"] = device;
             out["note"] = note;
             s.last = std::move(c);
             return out;
           },
           py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0,
-          py::arg("collide") = "leaflet,petiole,rachis,internode,peduncle", py::arg("backend") = "auto", py::arg("threads") = 0,
-          "Detects contacts: {'contacts': structured array, 'counts': per level, 'backend': name}.")
+          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("backend") = "auto", py::arg("threads") = 0,
+          "Detects contacts (every organ kind unless collide narrows them): {'contacts': structured array, 'counts': per "
+          "level, 'backend': name, 'device', 'note': how the backend was chosen}.")
       .def(
           "resolve",
           [](PyStand& s, const std::string& level, double clearance, double resolve_clearance, const std::string& collide,
@@ -193,10 +201,10 @@ void bind_stand(py::module_& m) {
             Callback cb(std::move(progress));
             ResolveResult r;
             Contacts after;
+            std::string name, device, note;
             try {
               py::gil_scoped_release nogil;
               const ThreadLimit thread_limit(threads);
-              std::string note;
               auto b = backend_named(backend, note);
               DetectRequest at = dreq;
               at.level = ro.config().level;
@@ -205,19 +213,24 @@ void bind_stand(py::module_& m) {
               if (cb.set()) hook = [&](const ResolveProgress& p) { cb(p.round, p.contacts, p.seconds); };
               r = cli::run_resolution(s.stand, *b, dreq, ro, start, hook);
               after = b->detect(s.stand, dreq);
+              name = b->name(), device = b->device();  // what ran to the end
             } catch (const CallbackRaised&) {
               cb.rethrow();
             }
             py::dict out = json_to_py(cli::resolution_json(r));
             out["contacts_after"] = contacts_array(after.pairs);
+            out["backend"] = name;
+            out["device"] = device;
+            out["note"] = note;
             s.last = std::move(after);
             return out;
           },
           py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0, py::arg("resolve_clearance") = 1e-4,
-          py::arg("collide") = "leaflet,petiole,rachis,internode,peduncle", py::arg("max_rounds") = 30,
+          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("max_rounds") = 30,
           py::arg("backend") = "auto", py::arg("threads") = 0, py::arg("progress") = py::none(),
           "Turns organs out of contact (canopy stand's resolution); progress(round, contacts_left, seconds) is called each "
-          "round, and raising from it stops the run. Returns report.json's 'resolution' and 'contacts_after'.")
+          "round, and raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and 'search' say "
+          "what planned the rounds) with 'contacts_after', 'backend', 'device' and 'note'.")
       .def(
           "export",
           [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing) {
@@ -226,13 +239,13 @@ void bind_stand(py::module_& m) {
             for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
             const auto fs = cli::parse_formats(list);
             py::gil_scoped_release nogil;
-            prepare_output_dir(dir);
+            const ThreadLimit thread_limit(0);  // refuses an OMP_NUM_THREADS past canopy's maximum
             PrototypeLibrary lib;
-            OutputSet files(dir);
+            // The folder's earlier stand is replaced as a set, as canopy stand does.
+            OutputSet files(dir, cli::stand_folder_files());
             cli::write_stand_files(s.stand, lib, fs, glb_instancing, files);
             if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
             files.commit_all();
-            cli::remove_stale_meshes(dir, fs);
           },
           py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("glb_instancing") = false,
           "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv of the last "
