@@ -49,9 +49,21 @@ constexpr const char* kPlyFile = "stand.ply";
 
 }  // namespace
 
+GlbForm glb_form(bool instancing, bool compact, double resolve_clearance) {
+  if (instancing && compact) throw std::invalid_argument("--glb-instancing and --glb-compact are two forms of stand.glb: choose one");
+  GlbForm g{instancing, compact, {}};
+  if (resolve_clearance > 0) g.compact_config.max_step = resolve_clearance / 2;
+  return g;
+}
+
+GlbForm glb_form(const StandOptions& o) { return glb_form(o.glb_instancing, o.glb_compact, o.resolve.clearance); }
+
 void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
-                       const OpenChunks& open) {
-  if (formats.count("glb")) write_glb(scope, lib, open(kGlbFile));
+                       const OpenChunks& open, const GlbForm& glb) {
+  if (formats.count("glb")) {
+    if (glb.compact) write_glb_compact(scope, lib, open(kGlbFile), glb.compact_config);
+    else write_glb(scope, lib, open(kGlbFile));
+  }
   if (formats.count("obj")) {
     ChunkWriter& obj = open(kObjFile);
     write_obj(scope, lib, obj, open(kMtlFile), kMtlFile);
@@ -61,13 +73,14 @@ void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const st
   write_plants_csv(scope, open("plants.csv"));
 }
 
-void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
+void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, const GlbForm& glb,
                        OutputSet& files) {
   std::set<std::string> chunked = formats;
-  if (glb_instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open(kGlbFile));
+  if (glb.instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open(kGlbFile));
   std::deque<ChunkFile> opened;
-  write_stand_files(ExportScope::whole(stand), lib, chunked,
-                    [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); });
+  write_stand_files(
+      ExportScope::whole(stand), lib, chunked, [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); },
+      glb);
 }
 
 std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats) {
@@ -127,6 +140,7 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   config["lod"] = o.lod;
   config["formats"] = std::vector<std::string>(formats.begin(), formats.end());
   config["glb_instancing"] = o.glb_instancing;
+  config["glb_compact"] = o.glb_compact;
   config["max_modules"] = o.max_modules;
   config["level"] = o.detect.level;
   config["clearance"] = o.detect.clearance;
@@ -156,6 +170,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const auto t_start = std::chrono::steady_clock::now();
   const ThreadLimit thread_limit(o.detect.threads);
   const std::set<std::string> formats = parse_formats(o.formats);
+  const GlbForm glb = glb_form(o);
   StandPlan plan = plan_stand(o);
   const DetectRequest dreq = o.detect.request();  // bad options fail before any work
   std::string backend_note;
@@ -173,6 +188,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   Stand stand = grow_stand(req, &gt);
   StandReport rep;
   rep.timings["generate"] = seconds_since(t_grow);
+  if (glb.compact && formats.count("glb")) check_glb_compact(ExportScope::whole(stand));  // refuse before the work
 
   // Detection at the level asked for; contacts.csv and contacts_before come from it.
   const auto t_detect = std::chrono::steady_clock::now();
@@ -204,7 +220,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   PrototypeLibrary lib;
   OutputSet files(o.out);
   const auto t_export = std::chrono::steady_clock::now();
-  write_stand_files(stand, lib, formats, o.glb_instancing, files);
+  write_stand_files(stand, lib, formats, glb, files);
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));
   write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   rep.timings["export"] = seconds_since(t_export);
