@@ -189,7 +189,9 @@ PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLa
     return nview++;
   };
   const std::size_t vpos = view(offset, L.pos_bytes(), L.stride(), 34962);
-  const std::size_t vid = view(offset + L.id_offset(), L.pos_bytes() - L.id_offset(), L.stride(), 34962);
+  // The ids' view is as long as the positions' (its last bytes are the next view's first): readers
+  // such as three.js take whole strides from a view.
+  const std::size_t vid = view(offset + L.id_offset(), L.pos_bytes(), L.stride(), 34962);
   offset += L.pos_bytes();
   const std::size_t vnrm = view(offset, 4 * L.vertices, 4, 34962);
   offset += 4 * L.vertices;
