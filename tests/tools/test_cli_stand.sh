@@ -56,6 +56,18 @@ if [ -d "$src/tests/tools/node/node_modules/three" ]; then
 else
   check "three.js installed (run scripts/setup.sh)" "yes" "no"
 fi
+# Blender's own importer, where Blender is installed (Debian's blender; not required).
+if command -v blender >/dev/null; then
+  for d in cd cc; do
+    timeout 300 blender -b --factory-startup --python "$src/tests/tools/blender_counts.py" -- "$tmp/$d/stand.glb" 2>&1 |
+      sed -n 's/^BLENDER //p' >"$tmp/blender_$d"
+  done
+  check "blender reads the compact glb as the default one" "ok" "$(python3 -c "
+import json; a, b = (json.load(open('$tmp/blender_' + d)) for d in ('cd', 'cc'))
+same = all(a[k] == b[k] for k in ('meshes', 'vertices', 'triangles')) and a['meshes'] > 0
+near = all(abs(x - y) <= 2.6e-5 for k in ('min', 'max') for x, y in zip(a[k], b[k]))
+print('ok' if same and near else (a, b))" 2>&1)"
+fi
 cstand --glb-compact --threads 1 -o "$tmp/cc1" >/dev/null 2>&1
 check "compact: threads 1 and default identical" "same" "$(cmp -s "$tmp/cc/stand.glb" "$tmp/cc1/stand.glb" && echo same || echo different)"
 if command -v assimp >/dev/null; then
