@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -28,7 +29,29 @@ AtomicFile::~AtomicFile() {
   if (!committed_ && !direct_) std::remove(tmp_.c_str());
 }
 
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
 void AtomicFile::write(const void* data, std::size_t n) {
+  const auto t = std::chrono::steady_clock::now();
+  write_raw(data, n);
+  const double s = seconds_since(t);
+  times_.busy_s += s, times_.waited_s += s;
+}
+
+void AtomicFile::write_behind(std::string_view text) {
+  const auto t = std::chrono::steady_clock::now();
+  write_raw(text.data(), text.size());
+  times_.busy_s += seconds_since(t);
+}
+
+void AtomicFile::write_raw(const void* data, std::size_t n) {
+  times_.bytes += n;
   if (n >= (std::size_t(1) << 16)) {
     // Large blocks go straight to the kernel: no second copy through stdio's buffer.
     if (std::fflush(f_) != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
@@ -48,8 +71,11 @@ void AtomicFile::write(const void* data, std::size_t n) {
 
 void AtomicFile::close() {
   if (!f_) return;
+  const auto t = std::chrono::steady_clock::now();
   const bool bad = std::ferror(f_) != 0;
   const int rc = std::fclose(f_);
+  const double s = seconds_since(t);
+  times_.busy_s += s, times_.waited_s += s;
   f_ = nullptr;
   if (bad || rc != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
 }
@@ -67,6 +93,12 @@ OutputSet::OutputSet(std::string dir) : dir_(std::move(dir)) {}
 AtomicFile& OutputSet::open(const std::string& name) {
   files_.push_back(std::make_unique<AtomicFile>((std::filesystem::path(dir_) / name).string()));
   return *files_.back();
+}
+
+WriteTimes OutputSet::times() const {
+  WriteTimes sum;
+  for (const auto& f : files_) sum += f->times();
+  return sum;
 }
 
 void OutputSet::commit_all() {

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <filesystem>
@@ -187,6 +188,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   GrowTimings gt;
   Stand stand = grow_stand(req, &gt);
   StandReport rep;
+  // Before growing: options, the grammar, the backend (a device's start), the output folder.
+  rep.timings["startup"] = std::chrono::duration<double>(t_grow - t_start).count();
   rep.timings["generate"] = seconds_since(t_grow);
   if (glb.compact && formats.count("glb")) check_glb_compact(ExportScope::whole(stand));  // refuse before the work
 
@@ -194,6 +197,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const auto t_detect = std::chrono::steady_clock::now();
   const Contacts contacts = backend->detect(stand, dreq);
   rep.timings["detect"] = seconds_since(t_detect);
+  rep.timings["detect_build"] = contacts.build_s;  // parts of "detect": the bounding volumes,
+  rep.timings["detect_upload"] = contacts.load_s;  // the stand's trip to the device
   rep.backend = backend->name();
   rep.device = backend->device();
   rep.contacts_before = counts_json(contacts);
@@ -224,10 +229,17 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));
   write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   rep.timings["export"] = seconds_since(t_export);
+  // The export's bytes are made on all threads while a writer thread writes the previous ones:
+  // formatting is the time it did not wait for writes, writing the time spent in them.
+  const WriteTimes written = files.times();
+  rep.timings["export_format"] = std::max(0.0, rep.timings["export"] - written.waited_s);
+  rep.timings["export_write"] = written.busy_s;
   describe_run(rep, o, formats, plan);
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
+  const auto t_commit = std::chrono::steady_clock::now();
   files.commit_all();
+  const double commit_s = seconds_since(t_commit);
   const std::vector<std::string> stale = remove_stale_meshes(o.out, formats);
   if (print) {
     print_stale_removed(stale);
@@ -239,6 +251,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   out.report = report_json(stand, lib, rep);
   out.contacts_before = contacts.pairs.size();
   out.contacts_after = after.pairs.size();
+  out.export_bytes = written.bytes;
+  out.commit_s = commit_s;
   return out;
 }
 

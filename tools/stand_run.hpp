@@ -38,8 +38,10 @@ struct StandOptions {
 };
 
 struct StandOutcome {
-  nlohmann::ordered_json report;  // report.json as written
+  nlohmann::ordered_json report;  // report.json as written (its timings_s per stage)
   std::size_t contacts_before = 0, contacts_after = 0;
+  std::uint64_t export_bytes = 0;  // the mesh and table files (report.json aside)
+  double commit_s = 0;             // the files closed and put in place, after report.json
 };
 
 /// What a stand is grown from: the grammar, the grow request (placements filled in for a
