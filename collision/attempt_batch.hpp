@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace canopy {
@@ -94,7 +95,10 @@ class AttemptRunner {
   /// and, on the device, its own stream): one lane's host work then overlaps another's device
   /// work. A lane's calls come from one thread at a time, different lanes' from different
   /// threads; update_organs is never called while lanes work.
-  virtual std::size_t lanes() const { return 1; }
+  virtual std::size_t lanes() const = 0;
+  /// Where the attempts run, as the report says it ("device", "host"): pure, like every member,
+  /// so a runner that wraps another says what it does with each.
+  virtual std::string hardware() const = 0;
   /// A new batch on `lane`: its tables start empty.
   virtual void clear(std::size_t lane) = 0;
   /// Per group, bit i set where a pair touches when turned about axis i of the group's mask

@@ -17,6 +17,7 @@ class HostAttemptRunner : public AttemptRunner {
     stand_ = &stand, boxes_ = boxes;
   }
   std::size_t lanes() const override { return lanes_; }
+  std::string hardware() const override { return "host"; }
   void clear(std::size_t) override {}
   std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;

@@ -3,6 +3,7 @@
 /// implementation lives here; the CUDA one in cuda/ implements the same interface, and the
 /// command line (or a small factory) picks one, so collision/ never includes cuda/.
 #include "collision/attempt_batch.hpp"
+#include "collision/backend_failure.hpp"
 #include "collision/contacts.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/stand.hpp"
@@ -58,10 +59,9 @@ class DetectionBackend {
   virtual Contacts redetect(const Stand& stand, const DetectRequest& request, const std::vector<std::uint32_t>& moved) = 0;
   /// Resolution's turn-search attempts in bulk on this backend's hardware, for `stand` as the
   /// last detect() or redetect() saw it; null where the host's own search is the better choice.
-  virtual AttemptRunner* attempt_runner(const Stand& stand) {
-    (void)stand;
-    return nullptr;
-  }
+  /// Every member is pure, this one too: a backend that wraps another (collision/auto_backend.hpp)
+  /// must say what it does with each, so none of the wrapped backend's paths is dropped unseen.
+  virtual AttemptRunner* attempt_runner(const Stand& stand) = 0;
 };
 
 /// The CPU backend: MBVT, grid broad phase, parallel over plant pairs (OpenMP), results

@@ -24,8 +24,7 @@ void fit_plant(Mbvt& m, PlantBound& pb) { fit_plant_bound(m.nodes.data(), m.clus
 
 KindMask default_collide_kinds() {
   KindMask k{};
-  for (OrganKind o : {OrganKind::leaflet, OrganKind::petiole, OrganKind::rachis, OrganKind::internode, OrganKind::peduncle})
-    k[static_cast<std::size_t>(o)] = true;
+  k.fill(true);
   return k;
 }
 

@@ -19,8 +19,9 @@
 
 namespace canopy {
 
-/// Organ kinds that take part in detection: leaflet, petiole, rachis, internode, peduncle by
-/// default; fruit and flower on request (DESIGN.md "Organ kinds by role").
+/// Organ kinds that take part in detection: every kind by default, fruit and flowers included,
+/// so that a resolved stand is penetration-free for every organ in its files; `--collide`
+/// narrows them (DESIGN.md "Organ kinds by role").
 using KindMask = std::array<bool, 7>;
 KindMask default_collide_kinds();
 /// Parses "leaflet,fruit,..." (or "all"); throws std::invalid_argument naming a bad kind.

@@ -115,13 +115,14 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     if (const std::size_t lanes = runner ? std::min(req.bulk_lanes, runner->lanes()) : 1; lanes > 1 && !lane_threads)
       lane_threads.emplace(lanes);
     preq.lanes = runner && lane_threads ? &*lane_threads : nullptr;
-    if (runner)
-      out.planning = fmt::format("{} attempts, {} lane{}", req.attempts ? "runner" : "device", lane_threads ? lane_threads->lanes() : 1,
-                                 lane_threads ? "s" : "");
     preq.batch_contacts = req.batch_contacts;
     preq.pools = &pools;
     preq.tables = &tables;
     Plan plan = plan_round(s, joints, contacts, touching, search, preq, times);
+    // Asked after planning: a runner that fell back to the host half-way says so.
+    rr.lanes = preq.lanes ? preq.lanes->lanes() : 1;
+    rr.search = runner ? runner->hardware() : "host";
+    rr.planning = runner ? fmt::format("{} attempts, {} lane{}", rr.search, rr.lanes, rr.lanes > 1 ? "s" : "") : "host search";
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
       std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });
@@ -186,6 +187,16 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     why.clear();  // reasons belong to the list they were found on
   }
   times.lap(PhaseTimes::merge);
+  // What planned, as it ran: each change between rounds said in order.
+  const auto joined = [&](auto field) {
+    std::string all;
+    for (const ResolveRound& x : out.per_round)
+      if (all.empty() || !all.ends_with(x.*field)) all += (all.empty() ? "" : "; then ") + x.*field;
+    return all.empty() ? std::string("none") : all;
+  };
+  out.planning = joined(&ResolveRound::planning);
+  out.search = joined(&ResolveRound::search);
+  for (const ResolveRound& x : out.per_round) out.lanes = std::max(out.lanes, x.lanes);
   // The candidates and the lanes' tables go on a thread of their own (collision/
   // background_release.hpp), and the lanes' threads end: every turn is made, the caller goes on.
   lane_threads.reset();

@@ -80,6 +80,11 @@ struct ResolveRound {
   std::size_t turned = 0;     // joints turned in the round
   std::size_t plants_redetected = 0;
   double plan_s = 0, detect_s = 0;
+  /// What planned the round, as it ran: "host search" (candidate by candidate on the host's
+  /// cores) or "<hardware> attempts, N lanes" (a runner's bulk attempts, the device's on CUDA);
+  /// `search` is "host" or the runner's hardware, `lanes` the batches planned at once.
+  std::string planning, search;
+  std::size_t lanes = 0;
 };
 
 struct UnresolvedContact {
@@ -98,9 +103,12 @@ struct ResolveResult {
   std::vector<ResolveRound> per_round;
   std::vector<UnresolvedContact> unresolved;  // what is left, with why
   std::size_t joint_bytes = 0;
-  /// How the rounds were planned: "host search", or "device attempts, N lanes" (through the
-  /// backend's runner; "runner attempts" for one handed in with `attempts`).
-  std::string planning = "host search";
+  /// How the rounds were planned, as they ran (never what was asked): the rounds' `planning`,
+  /// and `search` ("device" or "host"), joined with "; then " where they changed between rounds
+  /// (a backend that fell back to the CPU); "none" when no round was planned. `lanes`: the most
+  /// batches any round planned at once (0 with no round).
+  std::string planning = "none", search = "none";
+  std::size_t lanes = 0;
   double seconds = 0;
 };
 

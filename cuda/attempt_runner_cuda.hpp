@@ -28,6 +28,7 @@ class CudaAttemptRunner : public AttemptRunner {
   /// or scatters the changed organs' boxes. The transforms are the device stand's.
   void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed, bool all) override;
   std::size_t lanes() const override { return kLanes; }
+  std::string hardware() const override { return "device"; }
   void clear(std::size_t lane) override;
   std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;

@@ -1,6 +1,8 @@
 #pragma once
 /// The one CUDA check: every runtime call and launch goes through it and throws with context.
 /// Kept free of fmt so that nvcc-compiled files can include it.
+#include "collision/backend_failure.hpp"
+
 #include <cuda_runtime.h>
 
 #include <stdexcept>
@@ -8,9 +10,10 @@
 
 namespace canopy::cuda {
 
-class CudaError : public std::runtime_error {
+/// A failure of the device (BackendFailure: `--backend auto` goes on with the CPU).
+class CudaError : public BackendFailure {
  public:
-  using std::runtime_error::runtime_error;
+  using BackendFailure::BackendFailure;
 };
 
 /// Throws CudaError naming the call, the place and the runtime's message.

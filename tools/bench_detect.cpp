@@ -11,6 +11,7 @@
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
 #include "tools/bench_usage.hpp"
+#include "tools/detect_options.hpp"
 #include "tools/fcl/fcl_reference.hpp"
 #include "tools/process_memory.hpp"
 
@@ -85,7 +86,8 @@ int main(int argc, char** argv) {
   if (!out) return 1;
   fmt::print(out, "plants,organs_per_plant,triangles_per_plant,threads,method,stage,seconds,pairs,false_positives,missed\n");
   const int all = omp_get_max_threads();
-  auto cpu = make_cpu_backend();
+  std::string note;
+  auto cpu = cli::make_backend("cpu", note);  // the command line's factory, as `canopy stand --backend cpu`
   fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9} {:>10} {:>12} {:>8}\n", "plants", "thr", "method", "stage", "seconds", "pairs",
              "false pos.", "missed");
   for (int n : sizes) {

@@ -10,10 +10,10 @@
 // the device name. Prints a table, writes CSV.
 // Usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]
 #include "collision/backend.hpp"
-#include "cuda/detect_cuda.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
 #include "tools/bench_usage.hpp"
+#include "tools/detect_options.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -41,8 +41,10 @@ int main(int argc, char** argv) {
       return help_or_refuse("bench_detect_cuda", argv[i], "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
     }
   }
-  auto gpu = cuda::make_cuda_backend();
-  auto cpu = make_cpu_backend();
+  // From the command line's factory, as `canopy stand --backend cuda` and `--backend cpu` get them.
+  std::string note;
+  auto gpu = cli::make_backend("cuda", note);
+  auto cpu = cli::make_backend("cpu", note);
   std::FILE* out = std::fopen(csv.c_str(), "w");
   if (!out) return 1;
   fmt::print(out, "device,plants,organs_per_plant,triangles_per_plant,level,gpu_load_s,gpu_fit_s,gpu_stage_s,gpu_kernel_s,"

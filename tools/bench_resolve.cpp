@@ -3,7 +3,7 @@
 // afterwards, with detection at the exact level and at the organ level (faster per round, but it
 // turns organs whose boxes met without touching: organs_moved shows how many more), on the CPU
 // and, in a CUDA build on a machine with a GPU, on the GPU. Prints a table, writes CSV.
-// Usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]
+// Usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda,auto]
 //                      [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG]
 //                      [--csv FILE] [--append] [--host-search] [--lanes N] [--batch N] [--host-runner]
 //        (`--help` says what the last four do)
@@ -12,12 +12,9 @@
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
 #include "tools/bench_usage.hpp"
+#include "tools/detect_options.hpp"
 #include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
-#ifdef CANOPY_HAVE_CUDA
-#include "cuda/detect_cuda.hpp"
-#include "cuda/device.hpp"
-#endif
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -77,7 +74,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--batch") && i + 1 < argc) batch = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else {
       return help_or_refuse("bench_resolve", argv[i], fmt::format(
-                   "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda]\n"
+                   "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda,auto]\n"
                    "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
                    "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"
                    "                            attempts on the device, the default)\n"
@@ -95,8 +92,6 @@ int main(int argc, char** argv) {
   if (!out) return 1;
   const std::string config =
       fmt::format("candidates={} axes={} step={} heap={}", base.candidates, base.axis_fan, base.scan_step_deg, heap_pages_in_use());
-  // How the CUDA backend plans (the CPU backend always searches candidate by candidate).
-  const std::string cuda_search = device_search ? fmt::format(" device-search lanes={} batch={}", lanes, batch) : " host-search";
   if (!append)
     fmt::print(out,
              "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
@@ -106,15 +101,16 @@ int main(int argc, char** argv) {
              "before", "rounds", "turned", "mean°", "max°", "residual", "detect s", "resolve s", "plan s");
   const std::vector<Spacing> spacings{{"default", 0.4, 1.0}, {"dense", 0.25, 0.6}};
   for (const std::string& bname : backends) {
+    // From the command line's factory: cpu, cuda or auto as `canopy stand --backend` gets them.
     std::unique_ptr<DetectionBackend> backend;
-    if (bname == "cpu") backend = make_cpu_backend();
-#ifdef CANOPY_HAVE_CUDA
-    else if (bname == "cuda" && !cuda::query_devices().devices.empty()) backend = cuda::make_cuda_backend();
-#endif
-    if (!backend) {
-      fmt::print("backend {}: not available here, skipped\n", bname);
+    std::string note;
+    try {
+      backend = cli::make_backend(bname, note);
+    } catch (const std::invalid_argument& e) {
+      fmt::print("backend {}: not available here, skipped ({})\n", bname, e.what());
       continue;
     }
+    fmt::print("backend {}: {}\n", bname, note);
     for (const Spacing& sp : spacings)
       for (int n : sp.name == "default" ? sizes : dense_sizes)
         for (const std::string& lname : levels) {
@@ -150,8 +146,12 @@ int main(int argc, char** argv) {
           fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7.2f} {:>7.2f} {:>9} {:>9.3f} {:>9.3f} {:>7.3f}\n", bname, sp.name,
                      n, lname, before_exact, r.rounds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, residual, detect_s,
                      resolve_s, plan);
-          fmt::print(out, "{}{},{},", config, bname == "cuda" ? cuda_search : "", threads);
-          fmt::print(out, "{},{},{},{},{},{},{:.1f},{},{},{},{},{},{},{:.4f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n", bname,
+          // How the rounds were planned, as they ran (nothing added for the CPU backend's host search).
+          const std::string planned = r.search == "device" ? fmt::format(" device-search lanes={} batch={}", r.lanes, batch)
+                                      : r.search == "host" && backend->name() == "cpu" ? std::string()
+                                                                                       : fmt::format(" {}-search", r.search);
+          fmt::print(out, "{}{},{},", config, planned, threads);
+          fmt::print(out, "{},{},{},{},{},{},{:.1f},{},{},{},{},{},{},{:.4f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n", backend->name(),
                      backend->device(), sp.name, sp.plant, sp.row, n, static_cast<double>(s.organ_count()) / n, lname,
                      before_exact, first.pairs.size(), r.rounds, r.organs_moved, r.organs_carried, r.mean_turn_deg,
                      r.max_turn_deg, residual, r.contacts_after, detect_s, resolve_s, plan, redetect);

@@ -118,6 +118,7 @@ int main(int argc, char** argv) {
     fmt::print("{:>5} {:>9} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>6} {:>8.3f} {:>10.4f} {:>9} {:>7} {:>12.0f}\n", ranks,
                n, n / ranks, largest, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds, comm,
                rounds ? comm / rounds : 0.0, before, after, rate);
+    if (ts.resolved) fmt::print("      resolution planned with: {} ({} on {})\n", ts.resolved->planning, r.backend, device);
     fmt::print(out, "{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{:.5f},{},{},{:.1f},{},\"{}\"\n", ranks, n, n / ranks, largest,
                organs, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds, comm,
                rounds ? comm / rounds : 0.0, before, after, rate, r.backend, device);

@@ -4,6 +4,7 @@
 // each other (DESIGN.md: closer than that either answer is allowed; the OBJ itself is rounded to
 // 0.1 um). With --glb the triangles are the file's own, decoded: on a compact glb that checks the
 // quantized positions themselves.
+// Every organ kind is checked unless --collide narrows them (to the kinds a run was narrowed to).
 // Usage: check_cgal DIR [--collide KINDS] [--contacts FILE] [--glb] [--strict]   (FILE in DIR,
 // default contacts.csv; contacts_after.csv checks a resolved stand: only what resolution reported
 // left may meet; --strict: every pair that meets must be listed, however close, as a mesh whose
@@ -91,11 +92,11 @@ double min_distance2(const OrganGeometry& a, const OrganGeometry& b) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS] [--contacts FILE] [--glb] [--strict]\n");
+    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE] [--glb] [--strict]\n");
     return 2;
   }
   const std::string dir = argv[1];
-  KindMask collide = default_collide_kinds();
+  KindMask collide = parse_collide_kinds("all");  // every organ in the file, fruit and flowers included
   std::string contacts_file = "contacts.csv";
   bool glb = false, strict = false;
   for (int i = 2; i < argc; ++i)

@@ -1,6 +1,8 @@
 // Shared pieces of the canopy subcommands.
 #include "tools/cli_common.hpp"
 
+#include <fmt/format.h>
+
 namespace canopy::cli {
 
 bool any_row_option(const StandSpec& s) {
@@ -20,6 +22,45 @@ RowLayout to_row_layout(const StandSpec& s) {
   l.random_rotation = s.random_rotation.value_or(false);
   l.seed = s.seed.value_or(1);
   return l;
+}
+
+LayoutChoice choose_layout(const StandSpec& given, const std::optional<StandSpec>& grammar) {
+  const StandSpec none;
+  const StandSpec& g = grammar ? *grammar : none;
+  StandSpec merged;
+  LayoutChoice out;
+  // One field: the command line's, else the grammar's; its source named either way.
+  const auto take = [&](const char* name, auto member) {
+    const auto& mine = given.*member;
+    const auto& theirs = g.*member;
+    merged.*member = mine ? mine : theirs;
+    out.sources.emplace_back(name, mine ? "command line" : theirs ? "grammar" : "default");
+  };
+  take("rows", &StandSpec::rows);
+  take("per_row", &StandSpec::per_row);
+  take("row_spacing", &StandSpec::row_spacing);
+  take("plant_spacing", &StandSpec::plant_spacing);
+  take("double_rows", &StandSpec::double_rows);
+  take("jitter", &StandSpec::jitter);
+  take("random_rotation", &StandSpec::random_rotation);
+  take("seed", &StandSpec::seed);
+  out.layout = to_row_layout(merged);
+  return out;
+}
+
+std::string layout_line(const RowLayout& l, const LayoutSources& sources) {
+  const std::string values[] = {std::to_string(l.rows),
+                                std::to_string(l.per_row),
+                                fmt::format("{} m", l.row_spacing),
+                                fmt::format("{} m", l.plant_spacing),
+                                l.double_rows ? fmt::format("{} m", *l.double_rows) : "none",
+                                fmt::format("{} m", l.jitter),
+                                l.random_rotation ? "yes" : "no",
+                                std::to_string(l.seed)};
+  std::string line = "layout:";
+  for (std::size_t i = 0; i < sources.size(); ++i)
+    line += fmt::format("{} {} {} ({})", i ? "," : "", sources[i].first, values[i], sources[i].second);
+  return line;
 }
 
 GrowRequest grow_request(const std::string& grammar, const std::vector<std::string>& set, std::optional<int> steps, int lod,

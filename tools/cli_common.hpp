@@ -69,6 +69,24 @@ bool any_row_option(const StandSpec& s);
 /// A row layout from a stand entry (the grammar's or the command line's); unset keys take
 /// DESIGN.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
 RowLayout to_row_layout(const StandSpec& s);
+
+/// Per field of a row layout, in RowLayout's order (rows, per_row, row_spacing, plant_spacing,
+/// double_rows, jitter, random_rotation, seed), where its value came from: "command line",
+/// "grammar" or "default".
+using LayoutSources = std::vector<std::pair<std::string, std::string>>;
+/// The row layout a run uses and where each of its values came from.
+struct LayoutChoice {
+  RowLayout layout;
+  LayoutSources sources;
+};
+/// The layout options override the grammar's stand entry field by field, not as a whole
+/// (DESIGN.md "Layout"): each field is the command line's where it gives one, else the grammar
+/// entry's, else to_row_layout's default. `--rows 100 --per-row 100` keeps the entry's spacing,
+/// rotation, jitter and seed. `given` comes from the command line (or the Python module's keyword
+/// arguments, named "command line" too).
+LayoutChoice choose_layout(const StandSpec& given, const std::optional<StandSpec>& grammar);
+/// One line for the terminal: "layout: 10 x 100 plants (rows, per_row: command line), ...".
+std::string layout_line(const RowLayout& layout, const LayoutSources& sources);
 /// A grow request for `grammar` with the command line's --set, --steps, --lod, --threads and
 /// --max-modules (plants still to be placed).
 GrowRequest grow_request(const std::string& grammar, const std::vector<std::string>& set, std::optional<int> steps, int lod,

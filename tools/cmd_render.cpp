@@ -114,7 +114,7 @@ Command add_render(CLI::App& root) {
               GrowRequest req = grow_request(o->source, o->set, o->steps, o->lod, o->detect.threads, kDefaultMaxModules);
               if (o->random_rotation) o->rows.random_rotation = true;
               const Grammar g = load_grammar(o->source, req.load);
-              req.plants = row_layout(to_row_layout(!any_row_option(o->rows) && g.stand ? *g.stand : o->rows));
+              req.plants = row_layout(choose_layout(o->rows, g.stand).layout);  // field by field over the grammar's entry
               Stand stand = grow_stand(req);
               organs = stand.organ_count();
               std::string note;

@@ -28,15 +28,18 @@ Command add_stand(CLI::App& root) {
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation")->check(CLI::PositiveNumber);
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
-  auto* layout = app->add_option_group("layout", "Rows (any of these replaces the grammar's stand entry) or a positions file");
+  auto* layout = app->add_option_group(
+      "layout", "Rows (each option given overrides that field of the grammar's stand entry; the others keep the entry's) or a "
+                "positions file");
   layout->add_option("--rows", o->rows.rows, "Number of rows (along +X, spaced along +Y)")->check(CLI::PositiveNumber);
   layout->add_option("--per-row", o->rows.per_row, "Plants per row")->check(CLI::PositiveNumber);
-  layout->add_option("--row-spacing", o->rows.row_spacing, "Metres between rows (default 1.0)")->check(kFinite)->check(CLI::NonNegativeNumber);
-  layout->add_option("--plant-spacing", o->rows.plant_spacing, "Metres between plants in a row (default 0.4)")->check(kFinite)->check(CLI::NonNegativeNumber);
+  layout->add_option("--row-spacing", o->rows.row_spacing, "Metres between rows (default: the grammar's stand entry, else 1.0)")->check(kFinite)->check(CLI::NonNegativeNumber);
+  layout->add_option("--plant-spacing", o->rows.plant_spacing, "Metres between plants in a row (default: the grammar's stand entry, else 0.4)")->check(kFinite)->check(CLI::NonNegativeNumber);
   layout->add_option("--double-rows", o->rows.double_rows, "Rows in pairs GAP metres apart; pairs --row-spacing apart")->check(kFinite)->check(CLI::NonNegativeNumber);
   layout->add_option("--jitter", o->rows.jitter, "Radius in metres of a uniform disc around each position")->check(kFinite)->check(CLI::NonNegativeNumber);
   layout->add_flag("--random-rotation", o->random_rotation, "Turn each plant by a random angle about Z");
-  layout->add_option("--seed", o->rows.seed, "Stand seed: plant seeds, jitter and rotations derive from it (default 1)")->check(kSeed);
+  layout->add_flag("--no-random-rotation", o->no_random_rotation, "Every plant facing the same way (overrides the grammar's stand entry)");
+  layout->add_option("--seed", o->rows.seed, "Stand seed: plant seeds, jitter and rotations derive from it (default: the grammar's stand entry, else 1)")->check(kSeed);
   layout->add_option("--positions", o->positions, "CSV with columns x,y,rotation,seed and optional grammar,steps");
   return {app, [o]() {
 #ifdef CANOPY_WITH_MPI

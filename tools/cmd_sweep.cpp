@@ -23,6 +23,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <filesystem>
 #include <set>
@@ -51,8 +52,8 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   layout.per_row = o.per_row;
   layout.plant_spacing = cell.plant_spacing;
   layout.row_spacing = cell.row_spacing;
-  layout.jitter = o.jitter;
-  layout.random_rotation = true;
+  layout.jitter = o.jitter.value();  // filled in by run_sweep
+  layout.random_rotation = o.random_rotation.value();
   layout.seed = static_cast<std::uint64_t>(seed);
   GrowRequest req = grow_request(o.grammar, o.set, cell.steps, o.lod, o.detect.threads, o.max_modules);
   req.plants = row_layout(layout);
@@ -101,7 +102,8 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
 
 }  // namespace
 
-SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& after_run, const SweepRanks* ranks) {
+SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallback& after_run, const SweepRanks* ranks) {
+  SweepOptions o = given;
   const ThreadLimit thread_limit(o.detect.threads);
   const int me = ranks ? ranks->rank : 0, team = ranks ? ranks->size : 1;
   print = print && me == 0;
@@ -126,6 +128,14 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
     return l;
   }();
   const Grammar g = load_grammar(o.grammar, load);
+  // Jitter and rotation: the options', else the grammar's stand entry's, else the default stand's.
+  const StandSpec entry = g.stand.value_or(StandSpec{});
+  const char* jitter_from = o.jitter ? "command line" : entry.jitter ? "grammar" : "default";
+  const char* rotation_from = o.random_rotation ? "command line" : entry.random_rotation ? "grammar" : "default";
+  if (!o.jitter) o.jitter = entry.jitter.value_or(0.02);
+  if (!o.random_rotation) o.random_rotation = entry.random_rotation.value_or(true);
+  if (!(*o.jitter >= 0) || !std::isfinite(*o.jitter))
+    throw std::invalid_argument(fmt::format("--jitter must be a finite number of metres, at least 0 (got {})", *o.jitter));
   const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
   auto backend = make_backend(o.detect.backend, note, ranks ? ranks->local_rank : 0);
 
@@ -164,8 +174,10 @@ SweepOutcome run_sweep(const SweepOptions& o, bool print, const SweepCallback& a
 
   const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
   if (print)
-    fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants, {} already done; backend {}\n", cells.size(), o.seeds,
-               total, o.rows, o.per_row, finished.size(), note);
+    fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants (jitter {} m from the {}, random rotation {} from the {}), "
+               "{} already done; backend {}\n",
+               cells.size(), o.seeds, total, o.rows, o.per_row, *o.jitter, jitter_from, *o.random_rotation ? "on" : "off",
+               rotation_from, finished.size(), note);
   const bool tty = print && isatty(fileno(stderr));
   g_interrupted = false;
   // Ctrl-C ends the sweep after the run in progress (the command line only: a host program such
@@ -275,7 +287,10 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->check(CLI::PositiveNumber);
   app->add_option("--rows", o->rows, "Rows per stand (default 3)")->check(CLI::PositiveNumber);
   app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->check(CLI::PositiveNumber);
-  app->add_option("--jitter", o->jitter, "Jitter radius in metres (default 0.02; plants are turned at random)")->check(kFinite)->check(CLI::NonNegativeNumber);
+  app->add_option("--jitter", o->jitter,
+                  "Jitter radius in metres (default: the grammar's stand entry, else 0.02; plants are turned at random unless "
+                  "the grammar's stand entry says otherwise)")
+      ->check(kFinite)->check(CLI::NonNegativeNumber);
   app->add_option("--lod", o->lod, "Level of detail (default 2)")->check(CLI::Range(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")

@@ -1,9 +1,9 @@
 #include "tools/detect_options.hpp"
+#include "collision/auto_backend.hpp"
 #include "tools/sweep_spec.hpp"
 
 #include <fmt/format.h>
 #ifdef CANOPY_HAVE_CUDA
-#include "cuda/check.hpp"
 #include "cuda/detect_cuda.hpp"
 #include "cuda/device.hpp"
 #endif
@@ -16,7 +16,8 @@ void DetectOptions::add_to(CLI::App& app) {
   app.add_option("--clearance", clearance, "Organs closer than this many metres count as a contact (default 0)")
       ->check(kFinite)->check(CLI::NonNegativeNumber)->check(metres_note("--clearance"));
   app.add_option("--collide", collide,
-                 "Organ kinds that take part, comma separated, or all (default leaflet,petiole,rachis,internode,peduncle)");
+                 "Organ kinds that take part, comma separated (internode, petiole, rachis, leaflet, peduncle, fruit, flower), "
+                 "or all (default all: every organ of the stand's files)");
   app.add_option("--backend", backend, "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
   app.add_option("--threads", threads, "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")->check(CLI::NonNegativeNumber);
@@ -43,71 +44,35 @@ DetectRequest DetectOptions::request() const {
   return r;
 }
 
-#ifdef CANOPY_HAVE_CUDA
-namespace {
-
-/// `--backend auto` on a GPU: the CUDA backend, and the CPU backend from the first CUDA failure
-/// on (out of device memory, a lost device), said once on stderr. Contacts are the same either way.
-class AutoBackend : public DetectionBackend {
- public:
-  explicit AutoBackend(std::unique_ptr<DetectionBackend> gpu) : gpu_(std::move(gpu)) {}
-  std::string name() const override { return cpu_ ? cpu_->name() : gpu_->name(); }
-  std::string device() const override { return cpu_ ? cpu_->device() : gpu_->device(); }
-  Contacts detect(const Stand& s, const DetectRequest& r) override {
-    if (!cpu_) {
-      try {
-        return gpu_->detect(s, r);
-      } catch (const cuda::CudaError& e) {
-        fall_back(e.what());
-      }
-    }
-    return cpu_->detect(s, r);
-  }
-  Contacts redetect(const Stand& s, const DetectRequest& r, const std::vector<std::uint32_t>& moved) override {
-    if (!cpu_) {
-      try {
-        return gpu_->redetect(s, r, moved);
-      } catch (const cuda::CudaError& e) {
-        fall_back(e.what());
-        return cpu_->detect(s, r);  // the CPU has no tree yet: build it
-      }
-    }
-    return cpu_->redetect(s, r, moved);
-  }
-
- private:
-  void fall_back(const std::string& why) {
-    fmt::print(stderr, "canopy: note: the CUDA backend failed ({}); going on with the CPU backend\n", why);
-    cpu_ = make_cpu_backend();
-  }
-  std::unique_ptr<DetectionBackend> gpu_, cpu_;
-};
-
-}  // namespace
-#endif
-
 std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note, int device_hint) {
   if (name == "cpu") {
-    note = "cpu (asked for)";
-    return make_cpu_backend();
+    auto cpu = make_cpu_backend();
+    note = fmt::format("cpu on {} (asked for)", cpu->device());
+    return cpu;
   }
 #ifdef CANOPY_HAVE_CUDA
   const auto report = cuda::query_devices();
+  std::string why = report.unavailable_reason;
   if (!report.devices.empty()) {
     const int device = device_hint % static_cast<int>(report.devices.size());
     note = fmt::format("cuda on {} ({})", report.devices[static_cast<std::size_t>(device)].name,
                        name == "cuda" ? "asked for" : "auto: a GPU is present");
-    if (name == "auto") return std::make_unique<AutoBackend>(cuda::make_cuda_backend(device));
-    return cuda::make_cuda_backend(device);
+    if (name == "cuda") return cuda::make_cuda_backend(device);
+    // auto: the CUDA backend whole (its device attempts too), the CPU's from a CUDA failure on.
+    try {
+      return make_auto_backend(cuda::make_cuda_backend(device), make_cpu_backend);
+    } catch (const BackendFailure& e) {
+      why = e.what();
+    }
   }
-  const std::string why = report.unavailable_reason;
 #else
   (void)device_hint;
   const std::string why = "this build has no CUDA backend";
 #endif
   if (name == "cuda") throw std::invalid_argument(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
-  note = fmt::format("cpu (auto: no usable GPU: {})", why);
-  return make_cpu_backend();
+  auto cpu = make_cpu_backend();
+  note = fmt::format("cpu on {} (auto: no usable GPU: {})", cpu->device(), why);
+  return cpu;
 }
 
 nlohmann::ordered_json counts_json(const Contacts& c) {

@@ -13,7 +13,7 @@ namespace canopy::cli {
 struct DetectOptions {
   std::string level = "exact";
   double clearance = 0;
-  std::string collide = "leaflet,petiole,rachis,internode,peduncle";
+  std::string collide = "all";  // every organ kind the grammar emits, fruit and flowers included
   std::string backend = "auto";
   int threads = 0;
   std::string max_device_memory;  // "", bytes, or with K, M, G
@@ -22,8 +22,10 @@ struct DetectOptions {
   DetectRequest request() const;
 };
 
-/// The backend `name` asks for: cpu, cuda, or auto (CUDA where a GPU is present, else the CPU);
-/// `note` says what auto picked and why. With several GPUs, `device_hint` modulo their count picks
+/// The backend `name` asks for: cpu, cuda, or auto (where a GPU is present the CUDA backend whole,
+/// its device attempts included, with the CPU's from a CUDA failure on; else the CPU's: collision/
+/// auto_backend.hpp); `note` says what was picked and why. The command line, the Python module and
+/// the benchmark programs all get their backend here. With several GPUs, `device_hint` modulo their count picks
 /// one (a rank's local rank: one GPU per rank).
 std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note, int device_hint = 0);
 

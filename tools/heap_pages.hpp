@@ -83,7 +83,7 @@ inline bool command_runs_on_gpu(int argc, char** argv, std::string_view default_
     }
   }
   if (backend.find("cuda") != std::string_view::npos) return true;
-  return backend == "auto" && gpu_device_files();
+  return backend.find("auto") != std::string_view::npos && gpu_device_files();  // auto, or a list naming it
 }
 
 }  // namespace canopy

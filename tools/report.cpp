@@ -43,6 +43,7 @@ nlohmann::ordered_json report_json(const StandCounts& c, const StandReport& r) {
   j["timings_s"] = t;
   j["backend"] = r.backend;
   j["device"] = r.device;
+  j["backend_choice"] = r.backend_choice;
   j["contacts_before"] = r.contacts_before;
   j["contacts_after"] = r.contacts_after;
   j["resolution"] = r.resolution;

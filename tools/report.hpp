@@ -16,8 +16,12 @@ struct StandReport {
   std::string grammar;
   nlohmann::ordered_json seed;
   std::map<std::string, double> timings;  // seconds per stage
+  /// The backend and device that ran, taken after the last detection (a backend that fell back
+  /// half-way names the one that finished, and its device says what failed), and how the
+  /// backend was chosen (make_backend's note: asked for, or what auto found).
   std::string backend = "none";
   nlohmann::ordered_json device = nullptr;
+  std::string backend_choice;
   nlohmann::ordered_json contacts_before = nullptr, contacts_after = nullptr, resolution = nullptr;
 };
 

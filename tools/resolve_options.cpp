@@ -28,10 +28,11 @@ void ResolveOptions::add_to(CLI::App& app) {
                  fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
       ->check(kFinite)->check(CLI::Range(0.5, 30.0));
   app.add_flag("--resolve-host-search", host_search,
-               "Resolution: with --backend cuda, search candidate by candidate on the host's cores instead of running each "
-               "level's attempts on the device in lanes of batches (the same turns; slower on the 16-core GPU machines)");
+               "Resolution: on a GPU (--backend cuda, or auto with a GPU), search candidate by candidate on the host's cores "
+               "instead of running each level's attempts on the device in lanes of batches (the same turns; slower on the "
+               "16-core GPU machines)");
   app.add_flag_callback("--resolve-device-search", [this] { host_search = false; },
-                        "Resolution: each level's attempts on the device with --backend cuda (the default there)");
+                        "Resolution: each level's attempts on the device on a GPU (--backend cuda or auto; the default there)");
   app.add_option("--resolve-lanes", lanes,
                  fmt::format("Resolution: with the device's attempts, batches of contacts planned at once, each on a thread and "
                              "stream of its own (default {}; 1 to 8; the same turns for any number)",
@@ -59,7 +60,9 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
           {"max_rounds", c.max_rounds},    {"clearance", c.clearance},
           {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
           {"candidates", c.candidates},    {"axis_fan", c.axis_fan},
-          {"search", host_search ? "host" : "device"},  // device: the backend's runner where it has one (CUDA)
+          // Asked for: auto, the backend's bulk attempts where it has them (the device's on CUDA), the
+          // host search otherwise; "resolution" says what planned.
+          {"search", host_search ? "host" : "auto"},
           {"lanes", lanes},
           {"movable_rank", order},         {"outer_first", c.outer_first}};
 }
@@ -94,7 +97,8 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
                       {"turned", x.turned},
                       {"plants_redetected", x.plants_redetected},
                       {"plan_s", x.plan_s},
-                      {"detect_s", x.detect_s}});
+                      {"detect_s", x.detect_s},
+                      {"planning", x.planning}});
   nlohmann::ordered_json left = nlohmann::ordered_json::array();
   for (const UnresolvedContact& u : r.unresolved)
     left.push_back({{"organ_a", u.contact.organ_a},
@@ -115,6 +119,8 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
           {"remaining", left},
           {"joint_bytes", r.joint_bytes},
           {"planning", r.planning},
+          {"search", r.search},
+          {"lanes", r.lanes},
           {"rounds", rounds}};
 }
 
@@ -123,7 +129,7 @@ void print_resolution(const ResolveResult& r) {
              "{} organs moved with them; {}\n",
              r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg,
              r.organs_carried, r.stop);
-  fmt::print("  planned with the {}\n", r.planning);
+  fmt::print("  planned with: {}\n", r.planning);
   fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s", "detect s");
   for (const ResolveRound& x : r.per_round)
     fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9.3f} {:>9.3f}\n", x.round, x.contacts, x.turned, x.plants_redetected, x.plan_s,

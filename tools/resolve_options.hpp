@@ -20,7 +20,7 @@ struct ResolveOptions {
   double scan_step = ResolveConfig{}.scan_step_deg;
   bool progress = true;
   /// Plan with the host's candidate-by-candidate search even where the backend runs attempts in
-  /// bulk (CUDA: on the device, the default there). The turns are the same either way.
+  /// bulk (CUDA, or auto on a GPU: on the device, the default there). The turns are the same either way.
   bool host_search = false;
   /// Batches of contacts planned at once with the device's attempts (collision/plan_round.hpp).
   int lanes = static_cast<int>(ResolveRequest{}.bulk_lanes);

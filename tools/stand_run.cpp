@@ -103,7 +103,10 @@ void print_stale_removed(const std::vector<std::string>& removed) {
 }
 
 StandPlan plan_stand(StandOptions& o) {
+  if (o.random_rotation && o.no_random_rotation)
+    throw std::invalid_argument("--random-rotation and --no-random-rotation cannot be combined");
   if (o.random_rotation) o.rows.random_rotation = true;
+  if (o.no_random_rotation) o.rows.random_rotation = false;
   if (!o.positions.empty() && any_row_option(o.rows))
     throw std::invalid_argument("--positions cannot be combined with row options");
   StandPlan plan;
@@ -113,9 +116,10 @@ StandPlan plan_stand(StandOptions& o) {
     plan.request.plants = read_positions(o.positions);
     plan.request.relative_to = std::filesystem::path(o.positions).parent_path().string();
   } else {
-    // Command-line row options replace the grammar's stand entry as a whole.
-    plan.from_grammar = !any_row_option(o.rows) && plan.grammar.stand.has_value();
-    plan.layout = to_row_layout(plan.from_grammar ? *plan.grammar.stand : o.rows);
+    // Command-line row options override the grammar's stand entry field by field.
+    LayoutChoice choice = choose_layout(o.rows, plan.grammar.stand);
+    plan.layout = choice.layout;
+    plan.layout_sources = std::move(choice.sources);
   }
   return plan;
 }
@@ -133,7 +137,6 @@ void check_plan_fits(const StandPlan& plan, std::size_t plants) {
 
 void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan) {
   const RowLayout& layout = plan.layout;
-  const bool from_grammar = plan.from_grammar;
   nlohmann::ordered_json config;
   config["grammar"] = o.grammar;
   config["steps"] = o.steps ? nlohmann::ordered_json(*o.steps) : nlohmann::ordered_json(nullptr);
@@ -152,15 +155,17 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   if (!o.positions.empty()) {
     config["layout"] = {{"positions", o.positions}};
   } else {
-    config["layout"] = {{"source", from_grammar ? "grammar" : "command line"},
-                        {"rows", layout.rows},
+    nlohmann::ordered_json sources;
+    for (const auto& [field, source] : plan.layout_sources) sources[field] = source;
+    config["layout"] = {{"rows", layout.rows},
                         {"per_row", layout.per_row},
                         {"row_spacing", layout.row_spacing},
                         {"plant_spacing", layout.plant_spacing},
                         {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
                         {"jitter", layout.jitter},
                         {"random_rotation", layout.random_rotation},
-                        {"seed", layout.seed}};
+                        {"seed", layout.seed},
+                        {"sources", sources}};  // per field: command line, grammar or default
   }
   rep.config = config;
   rep.grammar = plan.grammar.name.empty() ? o.grammar : plan.grammar.name;
@@ -199,8 +204,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   rep.timings["detect"] = seconds_since(t_detect);
   rep.timings["detect_build"] = contacts.build_s;  // parts of "detect": the bounding volumes,
   rep.timings["detect_upload"] = contacts.load_s;  // the stand's trip to the device
-  rep.backend = backend->name();
-  rep.device = backend->device();
+  const std::string first_backend = backend->name();
   rep.contacts_before = counts_json(contacts);
 
   // Resolution, then detection from scratch at the same level for contacts_after.
@@ -221,6 +225,9 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     rep.resolution = resolution_json(*resolved);
   }
   rep.contacts_after = counts_json(after);
+  rep.backend = backend->name();  // what ran to the end (auto may have fallen back)
+  rep.device = backend->device();
+  rep.backend_choice = backend_note;
 
   PrototypeLibrary lib;
   OutputSet files(o.out);
@@ -244,7 +251,9 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   if (print) {
     print_stale_removed(stale);
     print_summary(stand, lib, rep, o.out);
+    if (o.positions.empty()) fmt::print("{}\n", layout_line(plan.layout, plan.layout_sources));
     print_contacts_table(contacts, backend_note);
+    if (rep.backend != first_backend) fmt::print("backend: the run ended on {}: {}\n", rep.backend, rep.device.get<std::string>());
     if (resolved) print_resolution(*resolved);
   }
   StandOutcome out;

@@ -30,8 +30,9 @@ struct StandOptions {
   bool glb_instancing = false;
   bool glb_compact = false;
   std::size_t max_modules = kDefaultMaxModules;
-  StandSpec rows;               // row options given on the command line
-  bool random_rotation = false;  // folded into `rows` once parsed
+  StandSpec rows;                   // row options given on the command line
+  bool random_rotation = false;     // folded into `rows` once parsed
+  bool no_random_rotation = false;  // the same, to turn off the grammar entry's rotation
   std::string positions;
   DetectOptions detect;
   ResolveOptions resolve;
@@ -45,12 +46,14 @@ struct StandOutcome {
 };
 
 /// What a stand is grown from: the grammar, the grow request (placements filled in for a
-/// positions file; row layouts are placed by the caller with row_layout(layout)), the layout.
+/// positions file; row layouts are placed by the caller with row_layout(layout)), the layout
+/// (the command line's row options over the grammar's stand entry, field by field) and where
+/// each of its values came from.
 struct StandPlan {
   GrowRequest request;
   Grammar grammar;
   RowLayout layout;
-  bool from_grammar = false;  // the layout is the grammar's stand entry
+  LayoutSources layout_sources;  // empty with a positions file
 };
 StandPlan plan_stand(StandOptions& o);
 /// Throws before growing when `plants` plants like the plan's first would not fit in memory.

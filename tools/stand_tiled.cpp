@@ -148,8 +148,6 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     Contacts full;
     before = detect_owned(*backend, t, dreq, dreq.level, lower_levels, &full);
     rep.timings["detect"] = seconds_since(t_detect);
-    rep.backend = backend->name();
-    rep.device = backend->device();
     rep.contacts_before = counts_json(before);
     after = before;
     if (!o.resolve.no_resolve) {
@@ -184,6 +182,9 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
       rep.resolution = resolution_json(*resolved);
     }
     rep.contacts_after = counts_json(after);
+    rep.backend = backend->name();  // what ran to the end (auto may have fallen back)
+    rep.device = backend->device();
+    rep.backend_choice = backend_note;
   } catch (const std::exception& e) {
     mpi::abort(e.what());
   }
@@ -232,6 +233,7 @@ void run_stand_tiled(StandOptions o) {
   if (rank == 0) {
     print_stale_removed(remove_stale_meshes(o.out, ts.formats));
     print_summary(counts, rep, o.out);
+    if (o.positions.empty()) fmt::print("{}\n", layout_line(ts.plan.layout, ts.plan.layout_sources));
     fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,
                ts.tiling.axis == 0 ? "x" : "y", ts.halo, ts.reach, t.region.size());
     print_contacts_table(ts.before, ts.backend_note);

@@ -7,6 +7,7 @@
 #include "tools/sweep_table.hpp"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,11 @@ struct SweepOptions {
   std::string grammar, out = "sweep";
   std::string plant_spacing = "0.4", row_spacing = "1.0", density, steps;
   int seeds = 3, rows = 3, per_row = 5;
-  double jitter = 0.02;
+  /// Jitter radius (metres) and whether plants are turned at random: unset, the grammar's stand
+  /// entry's, else 0.02 and turned (DESIGN.md's default stand). Rows, plants per row, the
+  /// spacings and the seed are the sweep's own.
+  std::optional<double> jitter;
+  std::optional<bool> random_rotation;
   int lod = kDefaultLod;
   std::vector<std::string> set;
   bool retry_failed = false;

@@ -27,18 +27,21 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
   nlohmann::ordered_json resolve = o.resolve.config_json();
   resolve.erase("search");  // the same turns either way, and for any number of lanes
   resolve.erase("lanes");
-  return {{"grammar", o.grammar},
+  nlohmann::ordered_json out = {{"grammar", o.grammar},
           {"grammar_digest", grammar_digest(o.grammar)},
           {"set", constants},
           {"rows", o.rows},
           {"per_row", o.per_row},
-          {"jitter", o.jitter},
+          {"jitter", o.jitter.value_or(0.02)},
           {"lod", o.lod},
           {"max_modules", o.max_modules},
           {"level", o.detect.level},
           {"clearance", o.detect.clearance},
           {"collide", kinds},
           {"resolve", resolve}};
+  // Only when off: sweeps before it turned every plant, and their sweep.json has no such key.
+  if (!o.random_rotation.value_or(true)) out["random_rotation"] = false;
+  return out;
 }
 
 void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& settings, std::size_t finished_runs) {

@@ -113,8 +113,8 @@ TEST_CASE("batched turn search: batches planned at once on several lanes give th
     same(host, one);
     same(host, three);
     CHECK(host.result.planning == "host search");
-    CHECK(one.result.planning == "runner attempts, 1 lane");
-    CHECK(three.result.planning == "runner attempts, 3 lanes");
+    CHECK(one.result.planning == "host attempts, 1 lane");
+    CHECK(three.result.planning == "host attempts, 3 lanes");
     CHECK(host.result.contacts_before > 3 * 7);  // more batches than lanes
   }
   INFO("crowded: the relaxed pass and the last resort after lanes");

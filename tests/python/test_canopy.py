@@ -216,3 +216,22 @@ def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
     assert len(canopy.sweep_rows(tmp_path / "w", summary=True)) == 2
     with pytest.raises(ValueError, match=r"holds 2 run\(s\) made with other settings \(rows 1 -> 2\)"):
         canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=2, per_row=2, backend="cpu")
+
+
+def test_row_options_override_the_grammar_entry_field_by_field(tmp_path):
+    """A row keyword changes only that field of the grammar's stand entry, as on the command line;
+    every organ kind takes part by default."""
+    one = canopy.Stand.grow(TOMATO, per_row=4, steps=6).plants
+    full = canopy.Stand.grow(TOMATO, rows=1, per_row=4, row_spacing=1.0, plant_spacing=0.4, jitter=0.02,
+                             random_rotation=True, seed=1, steps=6).plants
+    assert np.array_equal(one, full)
+    assert np.any(one["rotation"] != 0)
+    flat = canopy.Stand.grow(TOMATO, per_row=4, steps=6, random_rotation=False).plants
+    assert np.all(flat["rotation"] == 0) and np.any(flat["y"] != 0)
+    rep = canopy.stand(TOMATO, tmp_path, per_row=4, steps=6, no_resolve=True, backend="cpu")
+    sources = rep["config"]["layout"]["sources"]
+    assert sources["per_row"] == "command line" and sources["rows"] == sources["jitter"] == sources["seed"] == "grammar"
+    assert rep["config"]["collide"] == "all"
+    cli_run = cli("stand", TOMATO, "--per-row", "4", "--steps", "6", "--no-resolve", "--backend", "cpu", "-o", str(tmp_path / "c"))
+    assert cli_run.returncode == 0, cli_run.stderr
+    assert filecmp.cmp(tmp_path / "plants.csv", tmp_path / "c" / "plants.csv", shallow=False)

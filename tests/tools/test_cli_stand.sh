@@ -128,6 +128,30 @@ check "leaf level rows have no organs" "0" "$(tail -n +2 "$tmp/lf/contacts.csv" 
 # The grammar's stand entry applies without layout options.
 "$canopy" stand "$src/grammars/sunflower.yaml" --steps 4 -o "$tmp/g" >/dev/null 2>&1
 check "grammar stand entry" "41" "$(wc -l < "$tmp/g/plants.csv" | tr -d ' ')"
+# A row option changes only that field of the grammar's stand entry (tomato.yaml: one row of 100,
+# 1.0 m x 0.4 m, random rotation, 2 cm jitter, seed 1): the plants of the entry with every field
+# written out but that one, and report.json and the terminal say where each value came from.
+entry() {  # the tomato entry's fields as options, with one replaced: entry FIELD VALUE...
+  local -A f=([--rows]=1 [--per-row]=100 [--row-spacing]=1.0 [--plant-spacing]=0.4 [--jitter]=0.02 [--seed]=1)
+  f[$1]=$2
+  for k in "${!f[@]}"; do printf '%s %s ' "$k" "${f[$k]}"; done
+  echo --random-rotation
+}
+for field in "--per-row 5" "--seed 7" "--jitter 0.05" "--plant-spacing 0.3"; do
+  read -r opt val <<<"$field"
+  rm -rf "$tmp/one" "$tmp/all"
+  "$canopy" stand "$src/grammars/tomato.yaml" --steps 6 --no-resolve --level organ $field -o "$tmp/one" >"$tmp/one.log" 2>&1
+  # shellcheck disable=SC2046
+  "$canopy" stand "$src/grammars/tomato.yaml" --steps 6 --no-resolve --level organ $(entry "$opt" "$val") -o "$tmp/all" >/dev/null 2>&1
+  check "$opt alone: plants as the entry with that field changed" "$(cat "$tmp/all/plants.csv")" "$(cat "$tmp/one/plants.csv" 2>&1)"
+  key=$(tr -- - _ <<<"${opt#--}")
+  check "$opt alone: report sources" "$key:command line" "$(report "$tmp/one" "','.join(k+':'+v for k, v in r['config']['layout']['sources'].items() if v != 'grammar' and k != 'double_rows')")"
+  check "$opt alone: terminal" "1" "$(grep -c "^layout: .*$key $val[ m]* (command line)" "$tmp/one.log")"
+done
+check "rotation from the entry" "1" "$(awk -F, 'NR > 1 && $4 != 0' "$tmp/one/plants.csv" | wc -l | awk '{print ($1 > 0)}')"
+"$canopy" stand "$src/grammars/tomato.yaml" --steps 6 --no-resolve --level organ --per-row 5 --no-random-rotation -o "$tmp/norot" >/dev/null 2>&1
+check "--no-random-rotation over the entry" "0" "$(awk -F, 'NR > 1 && $4 != 0' "$tmp/norot/plants.csv" | wc -l | tr -d ' ')"
+check "--no-random-rotation keeps the entry's jitter" "1" "$(awk -F, 'NR > 1 && $3 != 0' "$tmp/norot/plants.csv" | wc -l | awk '{print ($1 > 0)}')"
 
 # A plant with seed s derives exactly what canopy derive --seed s prints: its organs, counted.
 seed=$(sed -n '4p' "$out/plants.csv" | cut -d, -f5)
@@ -220,7 +244,8 @@ done
 # Help lines for every option.
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
-           --double-rows --jitter --random-rotation --seed --positions --max-modules --glb-instancing --glb-compact \
+           --double-rows --jitter --random-rotation --no-random-rotation --seed --positions --max-modules --glb-instancing \
+           --glb-compact \
            --level --clearance --collide --backend --no-resolve --max-rounds --resolve-clearance --resolve-level \
            --max-device-memory; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"

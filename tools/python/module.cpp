@@ -105,7 +105,7 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "plant_spacing") o.rows.plant_spacing = v.cast<double>();
           else if (k == "double_rows") o.rows.double_rows = v.cast<double>();
           else if (k == "jitter") o.rows.jitter = v.cast<double>();
-          else if (k == "random_rotation") o.random_rotation = v.cast<bool>();
+          else if (k == "random_rotation") o.rows.random_rotation = v.cast<bool>();  // False too: over the grammar's entry
           else if (k == "seed") o.rows.seed = v.cast<std::uint64_t>();
           else if (k == "positions") o.positions = path_of(v);
           else if (k == "level") o.detect.level = v.cast<std::string>();
@@ -158,6 +158,7 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "rows") o.rows = v.cast<int>();
           else if (k == "per_row") o.per_row = v.cast<int>();
           else if (k == "jitter") o.jitter = v.cast<double>();
+          else if (k == "random_rotation") o.random_rotation = v.cast<bool>();
           else if (k == "lod") o.lod = v.cast<int>();
           else if (k == "set") o.set = overrides(v.cast<std::map<std::string, double>>());
           else if (k == "retry_failed") o.retry_failed = v.cast<bool>();

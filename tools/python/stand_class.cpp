@@ -45,7 +45,7 @@ void bind_stand(py::module_& m) {
               }
             } else {
               const Grammar g = load_grammar(grammar, req.load);
-              req.plants = row_layout(cli::to_row_layout(!cli::any_row_option(spec) && g.stand ? *g.stand : spec));
+              req.plants = row_layout(cli::choose_layout(spec, g.stand).layout);  // field by field over the grammar's entry
             }
             auto out = std::make_shared<PyStand>();
             out->grammar = grammar;
@@ -61,7 +61,8 @@ void bind_stand(py::module_& m) {
           py::arg("jitter") = py::none(), py::arg("random_rotation") = py::none(), py::arg("seed") = py::none(),
           py::arg("positions") = py::none(), py::arg("steps") = py::none(), py::arg("set") = std::map<std::string, double>{},
           py::arg("lod") = kDefaultLod, py::arg("threads") = 0, py::arg("max_modules") = kDefaultMaxModules,
-          "Grows a stand: rows (as canopy stand's layout options; none given: the grammar's stand entry) or an N x 4 array "
+          "Grows a stand: rows (as canopy stand's layout options, each given overriding that field of the grammar's stand "
+          "entry) or an N x 4 array "
           "of positions x, y, rotation (degrees), seed.")
       .def_static(
           "read",
@@ -158,25 +159,27 @@ void bind_stand(py::module_& m) {
             const DetectRequest req = detect_request(level, clearance, collide, threads);
             std::string note;
             Contacts c;
-            std::string name;
+            std::string name, device;
             {
               py::gil_scoped_release nogil;
               const ThreadLimit thread_limit(threads);
               auto b = backend_named(backend, note);
               c = b->detect(s.stand, req);
-              name = b->name();
+              name = b->name(), device = b->device();
             }
             py::dict out;
             out["contacts"] = contacts_array(c.pairs);
             out["counts"] = json_to_py(cli::counts_json(c));
             out["backend"] = name;
+            out["device"] = device;
             out["note"] = note;
             s.last = std::move(c);
             return out;
           },
           py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0,
-          py::arg("collide") = "leaflet,petiole,rachis,internode,peduncle", py::arg("backend") = "auto", py::arg("threads") = 0,
-          "Detects contacts: {'contacts': structured array, 'counts': per level, 'backend': name}.")
+          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("backend") = "auto", py::arg("threads") = 0,
+          "Detects contacts (every organ kind unless collide narrows them): {'contacts': structured array, 'counts': per "
+          "level, 'backend': name, 'device', 'note': how the backend was chosen}.")
       .def(
           "resolve",
           [](PyStand& s, const std::string& level, double clearance, double resolve_clearance, const std::string& collide,
@@ -193,10 +196,10 @@ void bind_stand(py::module_& m) {
             Callback cb(std::move(progress));
             ResolveResult r;
             Contacts after;
+            std::string name, device, note;
             try {
               py::gil_scoped_release nogil;
               const ThreadLimit thread_limit(threads);
-              std::string note;
               auto b = backend_named(backend, note);
               DetectRequest at = dreq;
               at.level = ro.config().level;
@@ -205,19 +208,24 @@ void bind_stand(py::module_& m) {
               if (cb.set()) hook = [&](const ResolveProgress& p) { cb(p.round, p.contacts, p.seconds); };
               r = cli::run_resolution(s.stand, *b, dreq, ro, start, hook);
               after = b->detect(s.stand, dreq);
+              name = b->name(), device = b->device();  // what ran to the end
             } catch (const CallbackRaised&) {
               cb.rethrow();
             }
             py::dict out = json_to_py(cli::resolution_json(r));
             out["contacts_after"] = contacts_array(after.pairs);
+            out["backend"] = name;
+            out["device"] = device;
+            out["note"] = note;
             s.last = std::move(after);
             return out;
           },
           py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0, py::arg("resolve_clearance") = 1e-4,
-          py::arg("collide") = "leaflet,petiole,rachis,internode,peduncle", py::arg("max_rounds") = 30,
+          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("max_rounds") = 30,
           py::arg("backend") = "auto", py::arg("threads") = 0, py::arg("progress") = py::none(),
           "Turns organs out of contact (canopy stand's resolution); progress(round, contacts_left, seconds) is called each "
-          "round, and raising from it stops the run. Returns report.json's 'resolution' and 'contacts_after'.")
+          "round, and raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and 'search' say "
+          "what planned the rounds) with 'contacts_after', 'backend', 'device' and 'note'.")
       .def(
           "export",
           [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing, bool glb_compact) {
