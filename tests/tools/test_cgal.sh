@@ -47,13 +47,21 @@ run same_spot default 0 --positions "$tmp/same.csv" --steps 10
 # Default resolution leaves no intersecting non-adjacent organ pair of any kind: seeded dense
 # stands of 12 plants at the grammar's age (fruit hanging among the leaves), 0.3 m apart both ways
 # with the grammar entry's jitter and rotation, resolved with every default. CGAL's exact
-# predicates on stand.obj, every organ kind, must find no pair meeting (and resolution none left).
+# predicates on stand.obj, every organ kind, must find no pair meeting (and resolution none left);
+# nor on the quantized triangles of the compact stand.glb.
 for seed in 1 2 3; do
   name=fruit_$seed
-  checks=$((checks + 1))
+  checks=$((checks + 2))
   if ! "$CANOPY" stand "$src/grammars/tomato.yaml" --rows 3 --per-row 4 --row-spacing 0.3 --plant-spacing 0.3 --seed "$seed" \
-       --formats obj -o "$tmp/$name" >/dev/null 2>"$tmp/err"; then
-    echo "FAIL $name: canopy stand: $(cat "$tmp/err")"; failures=$((failures + 1)); continue; fi
+       --formats obj,glb --glb-compact -o "$tmp/$name" >/dev/null 2>"$tmp/err"; then
+    echo "FAIL $name: canopy stand: $(cat "$tmp/err")"; failures=$((failures + 2)); continue; fi
+  # The compact glb's quantized triangles: no pair meets either.
+  if ! "$CHECK_CGAL" "$tmp/$name" --contacts contacts_after.csv --glb --strict >"$tmp/cgal_glb" 2>&1 ||
+     [ "$(sed -n 's/.* \([0-9]*\) meet by CGAL.*/\1/p' "$tmp/cgal_glb")" != 0 ]; then
+    echo "FAIL $name: compact glb: $(tail -1 "$tmp/cgal_glb")"; failures=$((failures + 1))
+  else
+    echo "$name: compact glb: $(tail -1 "$tmp/cgal_glb")"
+  fi
   fruit=$(awk -F, '$4=="fruit"' "$tmp/$name/organs.csv" | wc -l)
   left=$(($(wc -l < "$tmp/$name/contacts_after.csv") - 1))
   "$CHECK_CGAL" "$tmp/$name" --contacts contacts_after.csv >"$tmp/cgal" 2>&1
