@@ -116,9 +116,9 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, dou
 }
 
 /// The plant's binary block: positions with ids, normals, UVs, indices (each primitive in turn).
-void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLibrary& lib, std::string& out) {
-  out.assign(L.bytes(), '\0');
-  char* pos = out.data();
+/// (L.bytes() at `out`, zeros where nothing is written: the padding.)
+void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLibrary& lib, char* out) {
+  char* pos = out;
   char* nrm = pos + L.pos_bytes();
   char* uvp = nrm + 4 * L.vertices;
   char* idx = uvp + 4 * L.uv_vertices;
@@ -327,9 +327,9 @@ void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter&
   if (bin_bytes) {
     out.fixed(glb_bin_header(bin_bytes));
     out.plants(n, 1, [&](std::size_t i, std::string& buf) {
-      std::string one;
-      fill_plant(s, e.plants[i], plan[i], lib, one);
-      buf += one;
+      const std::size_t at = buf.size();
+      buf.resize(at + plan[i].bytes());  // zeros, made in place at the end of the chunk
+      fill_plant(s, e.plants[i], plan[i], lib, buf.data() + at);
     });
   }
 }
