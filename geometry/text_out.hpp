@@ -3,7 +3,10 @@
 #include "geometry/shortest_number.hpp"
 
 #include <charconv>
+#include <cstring>
 #include <string>
+#include <string_view>
+#include <type_traits>
 
 namespace canopy {
 
@@ -40,6 +43,18 @@ inline void append_number(std::string& out, float v) {
 inline void append_number(std::string& out, double v) {
   char buf[64];
   out.append(buf, shortest_chars(buf, v));
+}
+
+/// The same text written at `p` (room for 64 characters), for a line made in a local buffer and
+/// appended once: integers by std::to_chars, floats and doubles by shortest_chars.
+template <typename T>
+inline char* put_number(char* p, T v) {
+  if constexpr (std::is_floating_point_v<T>) return shortest_chars(p, v);
+  else return std::to_chars(p, p + 64, v).ptr;
+}
+inline char* put_text(char* p, std::string_view s) {
+  std::memcpy(p, s.data(), s.size());
+  return p + s.size();
 }
 
 }  // namespace canopy
