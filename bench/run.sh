@@ -12,6 +12,7 @@
 #   detect_cuda  CUDA detection up to 100,000 plants (needs a GPU)              detect_cuda.csv
 #   resolve      resolution, CPU; on a GPU also CUDA (device and host search)   resolve.csv
 #   scale        tiled runs on 1 and 2 MPI ranks, weak and strong scaling       scale.csv
+#   light        light interception: rays/s, time against standard error      light.csv
 #   render       canopy render of 1,000 and 10,000 plants at 1920x1080          render.csv
 #   experiment   the density sweep of docs/experiments.md and its plots        experiment/
 #   plots        tools/plot.sh bench: speed_vs_error.png, time_vs_plants.png
@@ -208,6 +209,15 @@ step_scale() {
   stamp "$work/scale.csv" scale.csv
 }
 
+step_light() {
+  if [ "$quick" = 1 ]; then "$BIN/bench_light" --plants 1000 --errors 0.01 --plant-errors 0.05 --csv "$work/light.csv"
+  else
+    "$BIN/bench_light" --plants 1000 --errors 0.01,0.005,0.002,0.001 --plant-errors 0.05,0.02,0.01 --csv "$work/light.csv"
+    "$BIN/bench_light" --plants 10000 --errors 0.01,0.002 --plant-errors 0.05 --csv "$work/light.csv" --append
+  fi
+  stamp "$work/light.csv" light.csv
+}
+
 step_render() {
   local n rows per line csv=$work/render.csv
   echo "plants,organs,width,height,render_s,peak_rss_gb,cpu_threads" > "$csv"
@@ -239,13 +249,14 @@ step_plots() {
   rm -rf "$out/plot_data" "$out"/*.svg
 }
 
-all=(derive generate stand detect detect_cuda resolve scale render experiment plots)
+all=(derive generate stand detect detect_cuda resolve scale light render experiment plots)
 if [ ${#steps[@]} -eq 0 ]; then
   for s in "${all[@]}"; do
     case $s in
       detect_cuda) has_gpu || { echo "bench/run.sh: no GPU here: detect_cuda.csv kept as it is" >&2; continue; } ;;
       scale) command -v mpirun >/dev/null && [ -x "$BIN/bench_scale" ] ||
                { echo "bench/run.sh: no mpirun or bench_scale: scale.csv kept as it is" >&2; continue; } ;;
+      light) [ -x "$BIN/bench_light" ] || { echo "bench/run.sh: no bench_light (no Embree): light.csv kept as it is" >&2; continue; } ;;
       render) "$BIN/canopy" info | grep -q '^render: Embree' ||
                 { echo "bench/run.sh: canopy render not built: render.csv kept as it is" >&2; continue; } ;;
     esac

@@ -222,7 +222,8 @@ int main(int argc, char** argv) {
     const nlohmann::json& t = j["timings"];
     const double startup = num(j, "main_s") + num(t, "startup"), build = num(t, "detect_build"), upload = num(t, "detect_upload");
     const double detect = num(t, "detect") - build - upload, exp = num(t, "export"), commit = num(j, "commit_s");
-    const double staged = num(t, "startup") + num(t, "generate") + num(t, "detect") + num(t, "resolve") + num(t, "detect_after") + exp;
+    const double staged = num(t, "startup") + num(t, "generate") + num(t, "target") + num(t, "detect") + num(t, "resolve") +
+                          num(t, "detect_after") + exp;
     const double end = c.wall_s - num(j, "main_s") - staged - commit;
     const double gb = num(j, "export_bytes") / 1e9, gbs = exp > 0 ? gb / exp : 0;
     const double organs = num(j, "organs"), tris = num(j, "triangles");

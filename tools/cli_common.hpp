@@ -63,6 +63,7 @@ Command add_stand(CLI::App& root);
 Command add_detect(CLI::App& root);
 Command add_sweep(CLI::App& root);
 Command add_render(CLI::App& root);
+Command add_light(CLI::App& root);
 
 /// Whether any row option is set in a stand entry.
 bool any_row_option(const StandSpec& s);

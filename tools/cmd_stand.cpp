@@ -41,9 +41,11 @@ Command add_stand(CLI::App& root) {
   layout->add_flag("--no-random-rotation", o->no_random_rotation, "Every plant facing the same way (overrides the grammar's stand entry)");
   layout->add_option("--seed", o->rows.seed, "Stand seed: plant seeds, jitter and rotations derive from it (default: the grammar's stand entry, else 1)")->check(kSeed);
   layout->add_option("--positions", o->positions, "CSV with columns x,y,rotation,seed and optional grammar,steps");
+  add_target_options(*app, o->target);
   return {app, [o]() {
 #ifdef CANOPY_WITH_MPI
             if (mpi::launched()) {
+              if (o->target.set()) throw std::invalid_argument("--target-lai and --target-ground-cover: not under mpirun (run them in one process)");
               run_stand_tiled(*o);
               return 0;
             }

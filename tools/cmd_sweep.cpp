@@ -9,6 +9,7 @@
 #include "tools/detect_options.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/sweep_spec.hpp"
+#include "tools/sweep_light.hpp"
 #include "tools/sweep_run.hpp"
 #include "tools/sweep_settings.hpp"
 #include "tools/sweep_table.hpp"
@@ -67,6 +68,7 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   row["organs"] = std::to_string(stand.organ_count());
   row["lai"] = fmt::format("{:.5f}", lai.lai);
   row["lai_plants"] = std::to_string(lai.plants);
+  double light_s = o.no_light ? 0.0 : light_columns(stand, layout, o, "before", row);
   DetectRequest dreq = o.detect.request();
   dreq.level = ContactLevel::exact;
   t = std::chrono::steady_clock::now();
@@ -95,7 +97,9 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
     // What is left, at the exact level: resolution's own list when it resolved at that level,
     // else a detection from scratch.
     row["residual_contacts"] = std::to_string(rc.level == ContactLevel::exact ? r.contacts_after : backend.detect(stand, dreq).pairs.size());
+    if (!o.no_light) light_s += light_columns(stand, layout, o, "after", row);
   }
+  if (!o.no_light) row["light_s"] = fmt::format("{:.4f}", light_s);
   row["status"] = "ok";
   return row;
 }
@@ -122,6 +126,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     }
   }
   (void)o.detect.request();
+  check_sweep_light(o);
   const LoadOptions load = [&] {
     LoadOptions l;
     for (const auto& s : o.set) l.overrides.push_back(parse_override(s));
@@ -296,6 +301,11 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")
       ->check(CLI::PositiveNumber);
   app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
+  app->add_option("--sun", o->sun, "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
+  app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");
+  app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")->check(CLI::Range(1, 10000));
+  app->add_option("--light-error", o->light_error, "Light columns: standard error asked of the stand's fractions (default 0.002)")->check(kFinite);
+  app->add_flag("--no-light", o->no_light, "Leave the light columns empty");
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() {

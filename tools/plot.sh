@@ -2,7 +2,9 @@
 # Plots with gnuplot (Debian gnuplot-nox), each as PNG and SVG.
 #   tools/plot.sh sweep DIR            from DIR/summary.csv (canopy sweep): contacts per plant and
 #                                      mean turn against density, one curve per age; leaf area
-#                                      index against density
+#                                      index against density; intercepted fraction of the direct
+#                                      beam and of the diffuse sky against density, per age, after
+#                                      resolution (solid) and before it (dashed)
 #   tools/plot.sh bench [RESULTS] [OUT]  from bench/results: detection time against false
 #                                      positives per level (speed against error), and detection
 #                                      time against plant count per backend
@@ -47,6 +49,34 @@ sweep() {
   render "$dir/contacts_vs_density" "$common set ylabel 'organ contacts per plant before resolution (exact)'; plot ${plots_c%, }"
   render "$dir/turn_vs_density" "$common set ylabel 'mean turn after resolution (degrees)'; plot ${plots_t%, }"
   render "$dir/lai_vs_density" "$common set ylabel 'leaf area index (inner plants)'; plot ${plots_l%, }"
+  light_plots "$dir" "$sum" "$cd" "$cs"
+}
+
+# light_plots DIR SUMMARY DENSITY_COL STEPS_COL: interception against density per age (sweeps
+# made with their light columns; skipped when the columns are empty).
+light_plots() {
+  local dir=$1 sum=$2 cd=$3 cs=$4 data=$1/plot_data
+  local cols="" name
+  for name in direct_before direct_after diffuse_before diffuse_after; do
+    local c m; m=$(column "$sum" "${name}_mean"); [ -n "$m" ] || return 0
+    c=$(column "$sum" "${name}_sd"); cols+="$m $c "
+  done
+  [ -n "$(tail -n +2 "$sum" | awk -F, -v c="${cols%% *}" '$c != ""')" ] || return 0
+  rm -f "$data"/light_*.dat
+  # One file per age: density, then mean and sd of direct before, after, diffuse before, after
+  # (NaN where a run had no resolution).
+  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v cols="$cols" -v out="$data" \
+    'BEGIN { n = split(cols, c, " ") } { f = out "/light_" $s ".dat"; line = $d;
+      for (i = 1; i <= n; i++) line = line " " ($c[i] == "" ? "NaN" : $c[i]); print line > f }'
+  local pd="" pf="" k=0
+  for f in $(ls "$data"/light_*.dat | sort -t_ -k3n); do
+    local age; age=$(basename "$f" .dat); age=${age#light_}; k=$((k + 1))
+    pd+="'$f' using 1:4:5 with yerrorlines lc $k pt 7 title 'age $age steps, resolved', '' using 1:2 with lines lc $k dt 2 title 'as grown', "
+    pf+="'$f' using 1:8:9 with yerrorlines lc $k pt 7 title 'age $age steps, resolved', '' using 1:6 with lines lc $k dt 2 title 'as grown', "
+  done
+  local common="set key right bottom; set grid; set offsets graph 0.03, graph 0.03, graph 0.08, graph 0.08; set xlabel 'density (plants per m^2)';"
+  render "$dir/interception_direct_vs_density" "$common set ylabel 'intercepted fraction of the direct beam (periodic)'; plot ${pd%, }"
+  render "$dir/interception_diffuse_vs_density" "$common set ylabel 'intercepted fraction of the diffuse sky (periodic)'; plot ${pf%, }"
 }
 
 # first_machine CSV: the CSV's header and the rows of the machine of its first row, where it has a

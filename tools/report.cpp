@@ -47,6 +47,25 @@ nlohmann::ordered_json report_json(const StandCounts& c, const StandReport& r) {
   j["contacts_before"] = r.contacts_before;
   j["contacts_after"] = r.contacts_after;
   j["resolution"] = r.resolution;
+  j["leaf_angles"] = r.leaf_angles;
+  return j;
+}
+
+nlohmann::ordered_json leaf_angles_json(const LeafAngles& a) {
+  nlohmann::ordered_json j;
+  j["leaf_area"] = a.leaf_area;
+  j["bin_deg"] = kLeafAngleBinDeg;
+  nlohmann::ordered_json bins = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < a.area.size(); ++i)
+    bins.push_back({{"from_deg", kLeafAngleBinDeg * static_cast<double>(i)},
+                    {"to_deg", kLeafAngleBinDeg * static_cast<double>(i + 1)},
+                    {"area", a.area[i]},
+                    {"fraction", a.fraction[i]}});
+  j["bins"] = bins;
+  j["mean_inclination_deg"] = a.mean_inclination_deg;
+  nlohmann::ordered_json g = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < kGZenithsDeg.size(); ++k) g.push_back({{"zenith_deg", kGZenithsDeg[k]}, {"g", a.g[k]}});
+  j["g"] = g;
   return j;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// report.json (DESIGN.md "Exports") and the terminal summary of a run.
 #include "geometry/atomic_file.hpp"
+#include "geometry/leaf_angles.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
 
@@ -23,7 +24,12 @@ struct StandReport {
   nlohmann::ordered_json device = nullptr;
   std::string backend_choice;
   nlohmann::ordered_json contacts_before = nullptr, contacts_after = nullptr, resolution = nullptr;
+  nlohmann::ordered_json leaf_angles = nullptr;  // of the stand as exported (leaf_angles_json)
 };
+
+/// The leaf angle distribution as report.json and light.json give it: leaflet area, 5-degree
+/// inclination bins (area and fraction), mean inclination, G at a few zenith angles.
+nlohmann::ordered_json leaf_angles_json(const LeafAngles& a);
 
 /// Triangles of each plant at its organs' levels of detail.
 std::vector<std::size_t> triangles_per_plant(const Stand& stand, PrototypeLibrary& lib);

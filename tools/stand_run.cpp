@@ -124,6 +124,14 @@ StandPlan plan_stand(StandOptions& o) {
   return plan;
 }
 
+void check_target(const StandOptions& o) {
+  if (!o.positions.empty()) throw std::invalid_argument("--target-lai and --target-ground-cover choose a row layout's plant spacing: not with --positions");
+  if (o.rows.plant_spacing)
+    throw std::invalid_argument("--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
+  if (o.target.lai && o.target.ground_cover) throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
+  if (!(o.target.error >= 1e-5 && o.target.error <= 0.5)) throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", o.target.error));
+}
+
 void check_plan_fits(const StandPlan& plan, std::size_t plants) {
   GrowRequest first = plan.request;
   if (first.plants.empty()) {
@@ -172,7 +180,7 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);
 }
 
-StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress) {
+StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress, Stand* keep) {
   const auto t_start = std::chrono::steady_clock::now();
   const ThreadLimit thread_limit(o.detect.threads);
   const std::set<std::string> formats = parse_formats(o.formats);
@@ -189,6 +197,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     check_plan_fits(plan, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
     req.plants = row_layout(layout);
   }
+  if (o.target.set()) check_target(o);
   const auto t_grow = std::chrono::steady_clock::now();
   GrowTimings gt;
   Stand stand = grow_stand(req, &gt);
@@ -197,6 +206,12 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   rep.timings["startup"] = std::chrono::duration<double>(t_grow - t_start).count();
   rep.timings["generate"] = seconds_since(t_grow);
   if (glb.compact && formats.count("glb")) check_glb_compact(ExportScope::whole(stand));  // refuse before the work
+  std::optional<SpacingChoice> target;
+  if (o.target.set()) {
+    const auto t_target = std::chrono::steady_clock::now();
+    target = reach_target(stand, plan.layout, o.target);
+    rep.timings["target"] = seconds_since(t_target);
+  }
 
   // Detection at the level asked for; contacts.csv and contacts_before come from it.
   const auto t_detect = std::chrono::steady_clock::now();
@@ -242,6 +257,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   rep.timings["export_format"] = std::max(0.0, rep.timings["export"] - written.waited_s);
   rep.timings["export_write"] = written.busy_s;
   describe_run(rep, o, formats, plan);
+  if (target) rep.config["target"] = target_json(o.target, *target);
+  rep.leaf_angles = leaf_angles_json(leaf_angles(leaf_angle_sums(stand, lib)));
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
   const auto t_commit = std::chrono::steady_clock::now();
@@ -250,6 +267,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const std::vector<std::string> stale = remove_stale_meshes(o.out, formats);
   if (print) {
     print_stale_removed(stale);
+    if (target)
+      fmt::print("target {} {}: plant spacing {} m ({} {:.4f}{})\n", o.target.lai ? "LAI" : "ground cover",
+                 o.target.lai ? *o.target.lai : *o.target.ground_cover, target->plant_spacing, o.target.lai ? "LAI" : "ground cover",
+                 target->reached, o.target.lai ? std::string() : fmt::format(" +- {:.4f}", target->standard_error));
     print_summary(stand, lib, rep, o.out);
     if (o.positions.empty()) fmt::print("{}\n", layout_line(plan.layout, plan.layout_sources));
     print_contacts_table(contacts, backend_note);
@@ -262,6 +283,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   out.contacts_after = after.pairs.size();
   out.export_bytes = written.bytes;
   out.commit_s = commit_s;
+  if (keep) *keep = std::move(stand);
   return out;
 }
 

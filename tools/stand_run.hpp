@@ -10,6 +10,7 @@
 #include "tools/detect_options.hpp"
 #include "tools/report.hpp"
 #include "tools/resolve_options.hpp"
+#include "tools/stand_target.hpp"
 
 #include <functional>
 #include <optional>
@@ -36,6 +37,7 @@ struct StandOptions {
   std::string positions;
   DetectOptions detect;
   ResolveOptions resolve;
+  TargetOptions target;          // --target-lai / --target-ground-cover choose the plant spacing
 };
 
 struct StandOutcome {
@@ -56,6 +58,8 @@ struct StandPlan {
   LayoutSources layout_sources;  // empty with a positions file
 };
 StandPlan plan_stand(StandOptions& o);
+/// Throws std::invalid_argument when --target-lai / --target-ground-cover cannot apply to `o`.
+void check_target(const StandOptions& o);
 /// Throws before growing when `plants` plants like the plan's first would not fit in memory.
 void check_plan_fits(const StandPlan& plan, std::size_t plants);
 /// report.json's "config" (every option echoed), "grammar" and "seed".
@@ -95,6 +99,8 @@ void print_stale_removed(const std::vector<std::string>& removed);
 
 /// Runs `canopy stand` with `o`: writes the files into o.out, prints the summary when `print`.
 /// `progress`, when set, is called once per resolution round (instead of the terminal line).
-StandOutcome run_stand(StandOptions o, bool print = true, std::function<void(const ResolveProgress&)> progress = {});
+/// `keep`, when set, receives the stand as exported.
+StandOutcome run_stand(StandOptions o, bool print = true, std::function<void(const ResolveProgress&)> progress = {},
+                       Stand* keep = nullptr);
 
 }  // namespace canopy::cli

@@ -215,6 +215,19 @@ void run_stand_tiled(StandOptions o) {
     for (std::size_t i = 0; i < all.size(); i += 2) counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
     for (std::size_t p = 0; p < n; ++p) counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
   }
+  {
+    // The leaf angles of the owned plants, gathered and summed in plant order as one process does.
+    struct Owned {
+      std::int64_t plant;
+      LeafAngleSums sums;
+    };
+    const std::vector<LeafAngleSums> local = leaf_angle_sums(t.stand, lib);
+    std::vector<Owned> mine;
+    for (std::uint32_t p : scope.plants) mine.push_back({static_cast<std::int64_t>(t.region[p]), local[p]});
+    std::vector<LeafAngleSums> per_plant(n);
+    for (const Owned& x : mpi::allgather(mine)) per_plant[static_cast<std::size_t>(x.plant)] = x.sums;
+    rep.leaf_angles = leaf_angles_json(leaf_angles(per_plant));
+  }
   mpi::SharedOutputSet files(o.out, ts.ids, n);
   try {
     write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); }, glb_form(o));

@@ -29,6 +29,12 @@ struct SweepOptions {
   std::size_t max_modules = kDefaultMaxModules;
   DetectOptions detect;
   ResolveOptions resolve;
+  // Light of each run before and after resolution (tools/sweep_light.hpp).
+  std::string sun = "60,180";  // ELEVATION,AZIMUTH of the direct beam
+  std::string sky = "soc";
+  int sky_directions = 46;
+  double light_error = 0.002;
+  bool no_light = false;
 };
 
 struct SweepOutcome {

@@ -38,7 +38,9 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
           {"level", o.detect.level},
           {"clearance", o.detect.clearance},
           {"collide", kinds},
-          {"resolve", resolve}};
+          {"resolve", resolve},
+          {"light", o.no_light ? nlohmann::ordered_json(nullptr)
+                               : nlohmann::ordered_json{{"sun", o.sun}, {"sky", o.sky}, {"sky_directions", o.sky_directions}, {"error", o.light_error}}}};
   // Only when off: sweeps before it turned every plant, and their sweep.json has no such key.
   if (!o.random_rotation.value_or(true)) out["random_rotation"] = false;
   return out;

@@ -62,7 +62,9 @@ const std::vector<std::string>& run_columns() {
       "plant_between_per_plant", "plant_within_per_plant", "leaf_between_per_plant", "leaf_within_per_plant",
       "organ_between_per_plant", "organ_within_per_plant", "exact_between_per_plant", "exact_within_per_plant",
       "organs_turned", "organs_turned_per_plant", "mean_turn_deg", "max_turn_deg", "rounds", "residual_contacts",
-      "generate_s", "detect_s", "resolve_s", "backend", "message"};
+      "ground_cover_before", "direct_before", "diffuse_before", "star_before", "mean_inclination_before", "light_se_before",
+      "ground_cover_after", "direct_after", "diffuse_after", "star_after", "mean_inclination_after", "light_se_after",
+      "generate_s", "detect_s", "resolve_s", "light_s", "backend", "message"};
   return c;
 }
 

@@ -235,3 +235,31 @@ def test_row_options_override_the_grammar_entry_field_by_field(tmp_path):
     cli_run = cli("stand", TOMATO, "--per-row", "4", "--steps", "6", "--no-resolve", "--backend", "cpu", "-o", str(tmp_path / "c"))
     assert cli_run.returncode == 0, cli_run.stderr
     assert filecmp.cmp(tmp_path / "plants.csv", tmp_path / "c" / "plants.csv", shallow=False)
+
+
+def test_light_equals_the_command_line(cli_stand, tmp_path):
+    # canopy light on the folder (a copy: light.json is written beside the stand) against
+    # Stand.read(...).light and canopy.light on the same folder: the same rays, the same figures.
+    import shutil
+
+    folder = tmp_path / "stand"
+    shutil.copytree(cli_stand, folder)
+    r = cli("light", str(folder), "--sun", "55,200", "--sky-directions", "12", "--error", "0.004")
+    assert r.returncode == 0, r.stderr
+    want = json.load(open(folder / "light.json"))
+    got = canopy.Stand.read(folder).light(suns=[(55, 200)], sky_directions=12, error=0.004)
+    for key in ["tile", "lai", "ground_cover", "ground_cover_standard_error", "star", "direct", "leaf_angles"]:
+        assert got[key] == want[key], key
+    assert got["diffuse"]["intercepted_fraction"] == want["diffuse"]["intercepted_fraction"]
+    csv = np.genfromtxt(folder / "light.csv", delimiter=",", names=True)
+    assert np.array_equal(got["per_plant"]["sun1_fraction"], csv["sun1_fraction"])
+    assert np.isclose(got["per_plant"]["sun1_share"].sum(), 1.0)
+    again = canopy.light(folder, suns=[(55, 200)], sky_directions=12, error=0.004)
+    assert again["direct"] == want["direct"]
+    # A grown stand knows its rows: the same tile as the folder's report says.
+    grown = canopy.Stand.grow(TOMATO, **ROWS).light(sky_directions=0)
+    assert grown["tile"] == want["tile"]
+    with pytest.raises(ValueError, match="--sun"):
+        canopy.Stand.read(folder).light(suns=[(-5, 10)])
+    with pytest.raises(ValueError, match="unknown option"):
+        canopy.Stand.read(folder).light(sunz=[(5, 10)])

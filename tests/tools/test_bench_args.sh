@@ -13,7 +13,7 @@ cd "$src" || exit 1
 csv=$tmp/kept.csv
 earlier=$'earlier,rows\n1,2'  # what the CSV holds before each run, and must hold after it
 kept() { printf '%s\n' "$earlier" > "$csv"; }
-for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale bench_stand; do
+for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale bench_light bench_stand; do
   [ -x "$dir/$prog" ] || { echo "skip $prog (not built here)"; continue; }
   kept
   out=$(timeout 60 "$dir/$prog" --csv "$csv" --help 2>/dev/null); rc=$?
@@ -25,6 +25,12 @@ for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale b
   check "$prog unknown option exit" "2" "$rc"
   check "$prog unknown option leaves the CSV" "$earlier" "$(cat "$csv")"
 done
+if [ -x "$dir/bench_light" ]; then
+  kept
+  timeout 60 "$dir/bench_light" --plants 10,abc --csv "$csv" >/dev/null 2>&1; rc=$?
+  check "bench_light bad number exit" "2" "$rc"
+  check "bench_light bad number leaves the CSV" "$earlier" "$(cat "$csv")"
+fi
 if [ -x "$dir/bench_derive" ]; then
   kept
   timeout 60 "$dir/bench_derive" grammars/classic/abop_1_24a.yaml "$tmp/missing.yaml" --repeats 1 --csv "$csv" >/dev/null 2>"$tmp/err"; rc=$?

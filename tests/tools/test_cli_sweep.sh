@@ -28,12 +28,21 @@ import csv; r={(x['plant_spacing'],x['steps']):float(x['lai_mean']) for x in csv
 print(r[('0.3','12')] > r[('0.45','12')] and r[('0.3','10')] > r[('0.45','10')])")"
 check "resolved: nothing left" "0 0 0 0 0 0 0 0" "$(col "$tmp/s/runs.csv" residual_contacts)"
 check "summary runs" "2 2 2 2" "$(col "$tmp/s/summary.csv" runs)"
+# Light before and after resolution: fractions in (0, 1), the fractions' errors at most the
+# default 0.002 (STAR's may be larger), denser stands intercepting more.
+check "light columns" "True" "$(python3 -c "
+import csv; r=list(csv.DictReader(open('$tmp/s/runs.csv')))
+ok=all(0 < float(x[c+w]) < 1 for x in r for c in ('ground_cover_','direct_','diffuse_','star_') for w in ('before','after'))
+print(ok and all(0 < float(x['mean_inclination_after']) < 90 and float(x['light_s']) > 0 for x in r))")"
+check "denser intercepts more" "True" "$(python3 -c "
+import csv; r={(x['plant_spacing'],x['steps']):x for x in csv.DictReader(open('$tmp/s/summary.csv'))}
+print(all(float(r[('0.3',a)][c]) > float(r[('0.45',a)][c]) for a in ('10','12') for c in ('direct_after_mean','diffuse_after_mean','ground_cover_after_mean')))")"
 
 # Plots of the sweep (gnuplot): PNG and SVG of each curve.
 if command -v gnuplot >/dev/null; then
   bash "$src/tools/plot.sh" sweep "$tmp/s" >/dev/null 2>&1
   check "plot exit" "0" "$?"
-  for f in contacts_vs_density turn_vs_density lai_vs_density; do
+  for f in contacts_vs_density turn_vs_density lai_vs_density interception_direct_vs_density interception_diffuse_vs_density; do
     check "plot $f.png" "PNG" "$(head -c 4 "$tmp/s/$f.png" 2>/dev/null | tail -c 3)"
     check "plot $f.svg" "1" "$(grep -c '<svg' "$tmp/s/$f.svg" 2>/dev/null | sed 's/[2-9]/1/')"
   done
@@ -67,6 +76,11 @@ one --set phyllotaxis=137.0 --set nodes=12 >"$tmp/o" 2>&1
 check "--set in another order resumes" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/o")"
 one --set nodes=13 --set phyllotaxis=137 >"$tmp/o" 2>"$tmp/e"
 check "--set other value refused" "1" "$(grep -c 'set {"nodes":12.0,"phyllotaxis":137.0} -> {"nodes":13.0,"phyllotaxis":137.0}' "$tmp/e")"
+one --sun 40,90 >"$tmp/o" 2>"$tmp/e"
+check "--sun other value refused" "1" "$(grep -c 'light {"sun":"60,180","sky":"soc","sky_directions":46,"error":0.002} -> {"sun":"40,90"' "$tmp/e")"
+"$canopy" sweep "$g" --plant-spacing 0.45 --steps 10 --seeds 1 --rows 1 --per-row 2 --backend cpu --no-light -o "$tmp/nl" >/dev/null 2>&1
+check "--no-light leaves the light columns empty" "|" "$(python3 -c "
+import csv; r=list(csv.DictReader(open('$tmp/nl/runs.csv'))); print(r[0]['direct_before'] + '|' + r[0]['light_s'])")"
 
 # The grammar is compared as a document: a comment or blank line added resumes, a value changed is
 # refused, and a sweep.json of an earlier canopy (the digest of the file's bytes) still resumes.
@@ -123,9 +137,13 @@ bad "zero step" "step of '0.3:0.5:0' must be positive" --row-spacing 0.3:0.5:0
 bad "not a number" "'abc' is not a number" --density 2,abc
 bad "empty item" "empty item in '0.3,,0.4'" --plant-spacing 0.3,,0.4
 bad "fractional steps" "10.5 is not a whole number" --steps 10.5
+bad "sun below the horizon" "elevation -5 is not above the horizon" --sun -5,10
+bad "sun not a pair" "'60' is not ELEVATION,AZIMUTH" --sun 60
+bad "light error" "\-\-light-error: 0 is not in" --light-error 0
 
 help=$("$canopy" sweep --help)
-for opt in --plant-spacing --row-spacing --density --steps --seeds --rows --per-row --jitter --retry-failed --no-resolve; do
+for opt in --plant-spacing --row-spacing --density --steps --seeds --rows --per-row --jitter --retry-failed --no-resolve --sun --sky \
+  --sky-directions --light-error --no-light; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
 done
 echo "$pass passed, $failures failed"

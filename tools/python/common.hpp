@@ -64,6 +64,7 @@ struct PyStand {
   Stand stand;
   std::string grammar;
   std::optional<Contacts> last;  // the last detection (for export)
+  std::optional<RowLayout> layout;  // the rows it was grown in (its lattice is light's tile)
 };
 
 /// A path from str or os.PathLike.
@@ -103,6 +104,8 @@ inline std::unique_ptr<DetectionBackend> backend_named(const std::string& name, 
 
 /// Registers canopy.Stand.
 void bind_stand(py::module_& m);
+/// Registers Stand.light and canopy.light (after bind_stand).
+void bind_light(py::module_& m);
 
 }  // namespace canopy::python
 #pragma GCC visibility pop

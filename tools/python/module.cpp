@@ -82,6 +82,7 @@ PYBIND11_MODULE(_canopy, m) {
       "The derived string (canopy derive), or with stats=True its module counts as a dict.");
 
   bind_stand(m);
+  bind_light(m);
 
   m.def(
       "stand",
@@ -117,6 +118,9 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "max_rounds") o.resolve.max_rounds = v.cast<int>();
           else if (k == "resolve_clearance") o.resolve.clearance = v.cast<double>();
           else if (k == "resolve_level") o.resolve.level = v.cast<std::string>();
+          else if (k == "target_lai") o.target.lai = v.cast<double>();
+          else if (k == "target_ground_cover") o.target.ground_cover = v.cast<double>();
+          else if (k == "target_error") o.target.error = v.cast<double>();
           else throw std::invalid_argument(fmt::format("stand: unknown option '{}'", k));
         }
         if (!parse_contact_level(o.detect.level)) throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", o.detect.level));
@@ -168,6 +172,11 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "collide") o.detect.collide = v.cast<std::string>();
           else if (k == "no_resolve") o.resolve.no_resolve = v.cast<bool>();
           else if (k == "max_rounds") o.resolve.max_rounds = v.cast<int>();
+          else if (k == "sun") o.sun = list(v);
+          else if (k == "sky") o.sky = v.cast<std::string>();
+          else if (k == "sky_directions") o.sky_directions = v.cast<int>();
+          else if (k == "light_error") o.light_error = v.cast<double>();
+          else if (k == "no_light") o.no_light = v.cast<bool>();
           else throw std::invalid_argument(fmt::format("sweep: unknown option '{}'", k));
         }
         if (o.seeds < 1 || o.rows < 1 || o.per_row < 1) throw std::invalid_argument("sweep: seeds, rows and per_row must be at least 1");

@@ -5,6 +5,7 @@
 #include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/stand_run.hpp"
@@ -43,11 +44,13 @@ void bind_stand(py::module_& m) {
                 p.seed = static_cast<std::uint64_t>(a(i, 3));
                 req.plants.push_back(p);
               }
-            } else {
-              const Grammar g = load_grammar(grammar, req.load);
-              req.plants = row_layout(cli::choose_layout(spec, g.stand).layout);  // field by field over the grammar's entry
             }
             auto out = std::make_shared<PyStand>();
+            if (!positions) {
+              const Grammar g = load_grammar(grammar, req.load);
+              out->layout = cli::choose_layout(spec, g.stand).layout;  // field by field over the grammar's entry
+              req.plants = row_layout(*out->layout);
+            }
             out->grammar = grammar;
             {
               py::gil_scoped_release nogil;
@@ -71,6 +74,7 @@ void bind_stand(py::module_& m) {
             auto out = std::make_shared<PyStand>();
             py::gil_scoped_release nogil;
             out->stand = read_stand(dir);
+            out->layout = cli::folder_layout(dir);
             return out;
           },
           py::arg("dir"), "Reads a stand back from a folder written by canopy stand.")

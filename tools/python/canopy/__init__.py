@@ -12,6 +12,8 @@ The same operations as the ``canopy`` command line, on the same C++ library:
 >>> stand.export("out", formats=["glb"])
 >>> canopy.stand("grammars/tomato.yaml", "out2", rows=2, per_row=5)   # canopy stand, returns report.json
 >>> canopy.sweep("grammars/tomato.yaml", "sweep", density=[2, 3], steps=[16, 22], seeds=2)
+>>> lit = stand.light(suns=[(60, 180)])                # canopy light: light.json as a dict, per_plant arrays
+>>> canopy.light("out2", suns=[(60, 180)])             # on a folder (or a grammar with out=DIR)
 
 Errors arrive as ValueError (bad grammar, option or list, with the command line's located
 message ``FILE:LINE:COL: ...``) or FileNotFoundError (a grammar or positions file that cannot be
@@ -20,10 +22,11 @@ exception propagates.
 """
 from ._canopy import ModuleCapError, Stand, __version__
 from ._canopy import derive as _derive
+from ._canopy import light as _light
 from ._canopy import stand as _stand
 from ._canopy import sweep as _sweep
 
-__all__ = ["Stand", "derive", "stand", "sweep", "sweep_rows", "ModuleCapError", "KINDS", "__version__"]
+__all__ = ["Stand", "derive", "stand", "light", "sweep", "sweep_rows", "ModuleCapError", "KINDS", "__version__"]
 
 #: Organ kinds in the order of the ``kind`` codes of ``Stand.organs``.
 KINDS = ("internode", "petiole", "rachis", "leaflet", "peduncle", "fruit", "flower")
@@ -46,6 +49,15 @@ def stand(grammar, out, progress=None, **options):
     files and returns report.json as a dict. ``progress(round, contacts_left, seconds)`` is called
     each resolution round."""
     return _stand(str(grammar), str(out), options, progress)
+
+
+def light(source, **options):
+    """``canopy light SOURCE``: light interception of a stand folder (or of a grammar grown with
+    canopy stand's options, ``out=DIR``). ``suns=[(elevation, azimuth), ...]``, ``latitude=``,
+    ``day=``, ``hours=[...]``, ``sky="soc"``, ``sky_directions=46``, ``tile=(xmin, ymin, xmax,
+    ymax)``, ``periodic=True``, ``error=0.002``, ``plant_error=``, ``rays_per_m2=``. Writes
+    light.json and light.csv into the folder and returns light.json as a dict."""
+    return _light(str(source), options)
 
 
 def sweep(grammar, out, progress=None, **options):

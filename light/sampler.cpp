@@ -1,0 +1,76 @@
+#include "light/sampler.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace canopy::light {
+namespace {
+
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+double unit(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+OrganIndex::OrganIndex(const Stand& s) : plant(s.organ_count()), kind(s.organ_count()) {
+  for (std::size_t i = 0; i < s.organ_count(); ++i) plant[i] = s.organs[i].plant, kind[i] = static_cast<std::uint8_t>(s.organs[i].kind);
+}
+
+Grid make_grid(const Box2d& region, double rays) {
+  Grid g;
+  g.region = region;
+  const double n = std::max(2.0, rays);
+  const double aspect = region.height() > 0 ? region.width() / region.height() : 1.0;
+  const double half = std::max(1.0, std::round(std::sqrt(n * aspect) / 2));
+  g.nx = 2 * static_cast<std::uint64_t>(half);
+  g.ny = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(n / static_cast<double>(g.nx))));
+  return g;
+}
+
+Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t plants, const DirectionJob& job) {
+  Tally total(plants, job.layers);
+  const Grid& g = job.grid;
+  const Vec3d s = job.toward, d{-s.x, -s.y, -s.z};
+  const double top = scene.hi().z + 1e-3;  // rays start above everything
+  const double t_max = top / s.z;          // distance from the start to the ground
+  const double cw = g.region.width() / static_cast<double>(g.nx), ch = g.region.height() / static_cast<double>(g.ny);
+  const std::uint64_t base = mix(job.seed ^ mix(job.stream * 0xd1b54a32d192ed03ULL));
+  const std::int32_t last_layer = static_cast<std::int32_t>(job.layers) - 1;
+  const auto outcome = [&](std::uint64_t i, std::uint64_t j) {
+    const std::uint64_t h = mix(base ^ mix(j * 0x9e3779b97f4a7c15ULL ^ mix(i)));
+    const Vec3d ground{g.region.x0 + (static_cast<double>(i) + unit(h)) * cw, g.region.y0 + (static_cast<double>(j) + unit(mix(h))) * ch, 0};
+    const Vec3d org = ground + s * t_max;
+    const Hit hit = scene.trace(org, d, t_max);
+    Outcome o;
+    if (hit.organ < 0) return o;
+    const auto k = static_cast<std::size_t>(hit.organ);
+    o.plant = organs.plant[k];
+    o.kind = organs.kind[k];
+    o.leaflet = o.kind == static_cast<std::uint8_t>(OrganKind::leaflet);
+    const double z = org.z + d.z * hit.t;
+    o.layer = std::clamp(static_cast<std::int32_t>(std::floor(z / job.layer_m)), 0, last_layer);
+    return o;
+  };
+#pragma omp parallel
+  {
+    Tally mine(plants, job.layers);
+#pragma omp for schedule(dynamic, 1) nowait
+    for (std::uint64_t j = 0; j < g.ny; ++j)
+      for (std::uint64_t i = 0; i < g.nx; i += 2) {
+        const Outcome a = outcome(i, j), b = outcome(i + 1, j);
+        mine.add(a), mine.add(b), mine.add_pair(a, b);
+      }
+#pragma omp critical
+    total += mine;
+  }
+  return total;
+}
+
+}  // namespace canopy::light

@@ -1,0 +1,56 @@
+#pragma once
+// Stands for the light suites: single hand-placed organs with analytic shadows, and the
+// turbid-medium test grammars of grammars/test/.
+#include "geometry/stand.hpp"
+#include "light/light.hpp"
+#include "lsystem/grow.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <string>
+
+namespace canopy::test {
+
+inline std::string source(const std::string& relative) {
+  if (const char* e = std::getenv("CANOPY_SOURCE_DIR")) return std::string(e) + "/" + relative;
+  return std::string(CANOPY_SOURCE_DIR) + "/" + relative;
+}
+
+/// A stand of one plant at the origin holding one organ with transform `t`.
+inline Stand one_organ(PrototypeKind proto, OrganKind kind, int lod, const Affine3f& t) {
+  Stand s;
+  OrganRecord r;
+  r.plant = 0, r.kind = kind, r.prototype = proto, r.lod = static_cast<std::uint8_t>(lod);
+  s.organs.push_back(r), s.transforms.push_back(t), s.params.push_back({1, 1}), s.joint_limit_deg.push_back(60);
+  PlantRecord p;
+  p.organ_count = 1;
+  s.plants.push_back(p);
+  return s;
+}
+
+/// A turbid-medium test canopy (grammars/test/NAME.yaml) of one plant, level of detail 1,
+/// constants overridden by `set` ("radius=0.001").
+inline Stand turbid(const std::string& name, const std::vector<std::string>& set = {}) {
+  GrowRequest req;
+  req.grammar = source("grammars/test/" + name + ".yaml");
+  for (const auto& s : set) req.load.overrides.push_back(parse_override(s));
+  req.lod = 1;
+  PlantPlacement p;
+  p.seed = 7;
+  req.plants.push_back(p);
+  return grow_stand(req);
+}
+
+/// A configuration with no sky, periodic or not over `tile`, to standard error `error`.
+inline light::LightConfig beams(std::vector<light::Beam> suns, light::Box2d tile, bool periodic, double error) {
+  light::LightConfig c;
+  c.suns = std::move(suns);
+  c.sky_directions = 0;
+  c.tile = tile;
+  c.periodic = periodic;
+  c.error = error;
+  return c;
+}
+
+}  // namespace canopy::test

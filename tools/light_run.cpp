@@ -1,0 +1,220 @@
+// canopy light's run: the stand (a folder or a grammar), the tile, the light, the files.
+#include "tools/light_run.hpp"
+
+#include "geometry/export.hpp"
+#include "geometry/thread_limit.hpp"
+#include "tools/cli_common.hpp"
+#include "tools/sweep_spec.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace canopy::cli {
+namespace {
+
+/// "a,b" -> {a, b}; throws naming `option`.
+std::pair<double, double> number_pair(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  const double a = leading_number(text, used);
+  if (used == 0 || used >= text.size() || text[used] != ',')
+    throw std::invalid_argument(fmt::format("{}: '{}' is not ELEVATION,AZIMUTH", option, text));
+  const std::string rest = text.substr(used + 1);
+  std::size_t used2 = 0;
+  const double b = leading_number(rest, used2);
+  if (used2 == 0 || used2 != rest.size() || !std::isfinite(a) || !std::isfinite(b))
+    throw std::invalid_argument(fmt::format("{}: '{}' is not ELEVATION,AZIMUTH", option, text));
+  return {a, b};
+}
+
+}  // namespace
+
+std::vector<SunSpec> parse_suns(const LightOptions& o) {
+  std::vector<SunSpec> out;
+  for (const std::string& s : o.suns) {
+    const auto [e, a] = number_pair("--sun", s);
+    SunSpec x;
+    x.elevation_deg = e, x.azimuth_deg = a;
+    out.push_back(x);
+  }
+  const bool solar = o.latitude || o.day || !o.hours.empty();
+  if (solar) {
+    if (!o.latitude || !o.day || o.hours.empty()) throw std::invalid_argument("--latitude, --day and --hours go together");
+    for (double h : parse_number_list("--hours", o.hours, 0, false)) {
+#ifdef CANOPY_HAVE_LIGHT
+      const light::SunPosition p = light::solar_position(*o.latitude, *o.day, h);
+      if (!(p.elevation_deg > 0))
+        throw std::invalid_argument(fmt::format("--hours: at {} h the sun is {:.1f} degrees below the horizon (latitude {}, day {})", h,
+                                                -p.elevation_deg, *o.latitude, *o.day));
+      SunSpec x;
+      x.elevation_deg = p.elevation_deg, x.azimuth_deg = p.azimuth_deg, x.hour = h, x.from_hours = true;
+      out.push_back(x);
+#else
+      (void)h;  // no ray caster: run_light refuses before any beam is used
+#endif
+    }
+  }
+  return out;
+}
+
+std::array<double, 4> parse_tile(const std::string& text) {
+  std::array<double, 4> t{};
+  std::size_t at = 0;
+  for (int k = 0; k < 4; ++k) {
+    std::size_t used = 0;
+    const std::string rest = text.substr(std::min(at, text.size()));
+    t[static_cast<std::size_t>(k)] = leading_number(rest, used);
+    const bool last = k == 3;
+    if (used == 0 || !std::isfinite(t[static_cast<std::size_t>(k)]) || (last ? used != rest.size() : (used >= rest.size() || rest[used] != ',')))
+      throw std::invalid_argument(fmt::format("--tile: '{}' is not XMIN,YMIN,XMAX,YMAX (metres)", text));
+    at += used + 1;
+  }
+  if (!(t[2] > t[0] && t[3] > t[1])) throw std::invalid_argument(fmt::format("--tile: '{}' has XMAX <= XMIN or YMAX <= YMIN", text));
+  return t;
+}
+
+std::array<double, 4> lattice_tile(const RowLayout& l) {
+  const double ps = l.plant_spacing, rs = l.row_spacing;
+  if (!(ps > 0) || !(rs > 0))
+    throw std::invalid_argument("the layout's lattice has no area (plant or row spacing 0): give --tile XMIN,YMIN,XMAX,YMAX or --no-periodic");
+  if (l.double_rows) {
+    if (l.rows % 2 != 0)
+      throw std::invalid_argument(fmt::format("double rows repeat by pairs, and the stand has {} rows: give an even --rows, --tile or --no-periodic", l.rows));
+    const double mid = *l.double_rows / 2;
+    return {-ps / 2, mid - rs / 2, (l.per_row - 0.5) * ps, mid + (l.rows / 2 - 0.5) * rs};
+  }
+  return {-ps / 2, -rs / 2, (l.per_row - 0.5) * ps, (l.rows - 0.5) * rs};
+}
+
+std::optional<RowLayout> folder_layout(const std::string& dir) {
+  const std::string path = dir + "/report.json";
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument(fmt::format("{}: cannot be read (a folder written by canopy stand holds it)", path));
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+    const auto& l = j.at("config").at("layout");
+    if (l.contains("positions")) return std::nullopt;
+    RowLayout r;
+    r.rows = l.at("rows").get<int>();
+    r.per_row = l.at("per_row").get<int>();
+    r.row_spacing = l.at("row_spacing").get<double>();
+    r.plant_spacing = l.at("plant_spacing").get<double>();
+    if (!l.at("double_rows").is_null()) r.double_rows = l.at("double_rows").get<double>();
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(fmt::format("{}: no layout in its config ({})", path, e.what()));
+  }
+}
+
+#ifdef CANOPY_HAVE_LIGHT
+light::LightConfig light_config(const LightOptions& o, const Stand& s, const std::optional<RowLayout>& layout, std::vector<SunSpec>& suns) {
+  light::LightConfig c;
+  suns = parse_suns(o);
+  for (const SunSpec& x : suns) c.suns.push_back({x.elevation_deg, x.azimuth_deg});
+  c.sky = light::parse_sky(o.sky);
+  c.sky_directions = o.sky_directions;
+  c.periodic = !o.no_periodic;
+  c.error = o.error;
+  c.plant_error = o.plant_error;
+  c.rays_per_m2 = o.rays_per_m2;
+  c.layer_m = o.layer;
+  c.seed = o.ray_seed;
+  std::array<double, 4> t{};
+  if (!o.tile.empty()) {
+    t = parse_tile(o.tile);
+  } else if (layout) {
+    t = lattice_tile(*layout);
+  } else if (o.no_periodic) {
+    // An isolated stand from a positions file: its plants' footprint (plant origins, widened by
+    // the mean distance to a neighbour's share, i.e. half the side of each plant's square).
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const PlantRecord& p : s.plants) x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+    const double pad = s.plant_count() > 1 ? 0.5 * std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(s.plant_count())) : 0.5;
+    t = {x0 - std::max(pad, 0.05), y0 - std::max(pad, 0.05), x1 + std::max(pad, 0.05), y1 + std::max(pad, 0.05)};
+  } else {
+    throw std::invalid_argument("a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
+  }
+  const Vec3d org = s.stand_origin;
+  c.tile = {t[0] - org.x, t[1] - org.y, t[2] - org.x, t[3] - org.y};
+  light::check_config(c);
+  return c;
+}
+#endif
+
+LightOutcome run_light(LightOptions o, bool print) {
+#ifndef CANOPY_HAVE_LIGHT
+  (void)o, (void)print;
+  throw std::invalid_argument("canopy light: this build has no ray caster (Embree was not found: apt-get install libembree-dev, then build again)");
+#else
+  const ThreadLimit thread_limit(o.threads);
+  {
+    // Bad options fail before any work (from a grammar: before the stand is grown and written).
+    light::LightConfig v;
+    for (const SunSpec& x : parse_suns(o)) v.suns.push_back({x.elevation_deg, x.azimuth_deg});
+    v.sky = light::parse_sky(o.sky), v.sky_directions = o.sky_directions, v.error = o.error, v.plant_error = o.plant_error;
+    v.rays_per_m2 = o.rays_per_m2, v.layer_m = o.layer, v.tile = {0, 0, 1, 1};
+    if (!o.tile.empty()) (void)parse_tile(o.tile);
+    light::check_config(v);
+    if (!std::filesystem::is_directory(o.source) && o.tile.empty() && !o.no_periodic) {
+      if (!o.stand.positions.empty())
+        throw std::invalid_argument("a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
+      StandOptions probe = o.stand;
+      probe.grammar = o.source;
+      RowLayout l = plan_stand(probe).layout;
+      if (o.stand.target.set()) l.plant_spacing = 1;  // chosen later: any spacing above 0
+      (void)lattice_tile(l);
+    }
+  }
+  Stand stand;
+  std::optional<RowLayout> layout;
+  LightOutcome out;
+  if (std::filesystem::is_directory(o.source)) {
+    stand = read_stand(o.source);
+    layout = folder_layout(o.source);
+    out.dir = o.source;
+  } else {
+    o.stand.grammar = o.source;
+    o.stand.detect.threads = o.threads;
+    run_stand(o.stand, print, {}, &stand);
+    out.dir = o.stand.out;
+    // The layout as run (a target chooses its plant spacing), from the report just written.
+    layout = folder_layout(out.dir);
+  }
+  if (!o.tile.empty()) layout.reset();
+  std::vector<SunSpec> suns;
+  const light::LightConfig cfg = light_config(o, stand, layout, suns);
+  PrototypeLibrary lib;
+  const light::LightResult r = light::compute_light(stand, lib, cfg);
+  out.json = light_json(r, stand, o, suns);
+  out.csv = light_csv(r, stand);
+  OutputSet files(out.dir);
+  files.open("light.json").write(out.json.dump(2) + "\n");
+  files.open("light.csv").write(out.csv);
+  files.commit_all();
+  if (print) {
+    const auto pm = [](const light::Estimate& e) { return fmt::format("{:.4f} +- {:.4f}", e.value, e.se); };
+    fmt::print("light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n", stand.plant_count(),
+               r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai, r.rays, r.trace_s, r.scene_s);
+    fmt::print("  {:<34} {}  ({} rays)\n", "ground cover", pm(r.ground.fraction), r.ground.rays);
+    for (std::size_t i = 0; i < r.direct.size(); ++i)
+      fmt::print("  {:<34} {}  ({} rays)\n",
+                 fmt::format("sun at {:.1f} deg, azimuth {:.1f}{}", r.direct[i].elevation_deg, r.direct[i].azimuth_deg,
+                             suns[i].from_hours ? fmt::format(" ({} h)", suns[i].hour) : std::string()),
+                 pm(r.direct[i].fraction), r.direct[i].rays);
+    if (r.diffuse) {
+      fmt::print("  {:<34} {}  ({} rays)\n", fmt::format("diffuse ({} sky, {} directions)", light::sky_name(r.sky), r.sky_directions.size()),
+                 pm(r.diffuse->fraction), r.diffuse->rays);
+      fmt::print("  {:<34} {}\n", "STAR (leaflets, over the sky)", pm(r.diffuse->star));
+    }
+    fmt::print("  {:<34} {:.1f} deg\n", "mean leaflet inclination", r.leaf_angles.mean_inclination_deg);
+    if (r.organs_skipped) fmt::print("  note: {} organs flattened to nothing were left out\n", r.organs_skipped);
+    fmt::print("wrote {}/light.json and {}/light.csv\n", out.dir, out.dir);
+  }
+  return out;
+#endif
+}
+
+}  // namespace canopy::cli
