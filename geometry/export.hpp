@@ -54,7 +54,11 @@ void check_glb_compact(const ExportScope& scope);
 void write_organs_csv(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
 void write_plants_csv(const ExportScope& scope, ChunkWriter& out);
 
-/// Reads a stand back from DIR/organs.csv and DIR/plants.csv (bit-exact transforms).
+/// Reads a stand back from DIR/organs.csv and DIR/plants.csv (bit-exact transforms). Only what
+/// canopy writes is read: std::runtime_error names file, line and column for a missing header,
+/// a cell that is not a finite number or is out of range (sizes and transform entries within
+/// kMaxOrganExtent), a parent that is not an earlier organ of the same plant, or compound-leaf
+/// ids out of the order the turtle numbers them; InputFile's limits apply to both files.
 Stand read_stand(const std::string& dir);
 
 /// glTF's Y-up frame from canopy's Z-up one: (x, y, z) -> (x, z, -y).

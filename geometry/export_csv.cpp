@@ -1,15 +1,19 @@
 // organs.csv and plants.csv, and reading a stand back from them.
 #include "geometry/export.hpp"
 #include "geometry/atomic_file.hpp"
+#include "geometry/input_file.hpp"
+#include "geometry/layout.hpp"
+#include "geometry/organ_extent.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/text_out.hpp"
 
 #include <fmt/format.h>
 
 #include <charconv>
+#include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
+#include <memory>
 #include <stdexcept>
 
 namespace canopy {
@@ -19,6 +23,9 @@ constexpr const char* kOrganHeader =
     "id,plant,parent,kind,leaf,area,length,prototype,p0,p1,lod,joint_limit,"
     "hx,hy,hz,lx,ly,lz,ux,uy,uz,tx,ty,tz\n";
 constexpr const char* kPlantHeader = "id,x,y,rotation,seed,grammar,steps\n";
+
+/// A header as a message quotes it, on the message's one line.
+std::string_view without_newline(std::string_view header) { return header.substr(0, header.size() - 1); }
 
 /// Splits a CSV line without quoting (canopy never writes commas inside cells).
 std::vector<std::string_view> cells(std::string_view line) {
@@ -36,8 +43,26 @@ template <typename T>
 T parse(std::string_view cell, const std::string& file, int line, int column) {
   T v{};
   const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
-  if (cell.empty() || r.ec != std::errc() || r.ptr != cell.data() + cell.size())
+  const bool whole_cell = !cell.empty() && r.ptr == cell.data() + cell.size();
+  if (whole_cell && r.ec == std::errc::result_out_of_range)
+    throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range", file, line, column, cell));
+  if (!whole_cell || r.ec != std::errc())
     throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is not a valid number", file, line, column, cell));
+  return v;
+}
+
+/// `v` when finite (from_chars reads "nan" and "inf" as numbers).
+template <typename T>
+T finite(T v, std::string_view cell, const std::string& file, int line, int column) {
+  if (!std::isfinite(v)) throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is not a finite number", file, line, column, cell));
+  return v;
+}
+
+/// A prototype parameter: finite, not negative, at most kMaxOrganExtent.
+float size(float v, std::string_view cell, const std::string& file, int line, int column) {
+  finite(v, cell, file, line, column);
+  if (!(v >= 0 && v <= kMaxOrganExtent))
+    throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range (a size from 0 to {} m)", file, line, column, cell, kMaxOrganExtent));
   return v;
 }
 
@@ -123,25 +148,29 @@ Stand read_stand(const std::string& dir) {
   Stand s;
   const std::string pfile = (std::filesystem::path(dir) / "plants.csv").string();
   const std::string ofile = (std::filesystem::path(dir) / "organs.csv").string();
-  std::ifstream pin(pfile), oin(ofile);
-  if (!pin) throw std::runtime_error(fmt::format("{}: cannot open (is {} a canopy stand folder?)", pfile, dir));
-  if (!oin) throw std::runtime_error(fmt::format("{}: cannot open (is {} a canopy stand folder?)", ofile, dir));
+  auto open = [&](const std::string& file, const char* what, std::uint64_t limit) {
+    try {
+      return std::make_unique<InputFile>(file, what, limit);
+    } catch (const FileNotFound&) {
+      throw std::runtime_error(fmt::format("{}: cannot open (is {} a canopy stand folder?)", file, dir));
+    }
+  };
+  const auto pin = open(pfile, "plants table", kMaxPlantsCsvBytes);
+  const auto oin = open(ofile, "organs table", kMaxOrgansCsvBytes);
   std::string line;
   std::map<std::string, int> grammar_index;
-  int ln = 0;
-  while (std::getline(pin, line)) {
-    if (++ln == 1) {
-      if (line + "\n" != kPlantHeader) throw std::runtime_error(fmt::format("{}:1: expected the header {}", pfile, kPlantHeader));
-      continue;
-    }
+  if (!pin->next_line(line) || line + "\n" != kPlantHeader)
+    throw std::runtime_error(fmt::format("{}:1: expected the header {}", pfile, without_newline(kPlantHeader)));
+  while (pin->next_line(line)) {
+    const int ln = pin->line_number();
     const auto c = cells(line);
     if (c.size() != 7) throw std::runtime_error(fmt::format("{}:{}: expected 7 cells, got {}", pfile, ln, c.size()));
     PlantRecord pr;
     if (parse<std::size_t>(c[0], pfile, ln, 1) != s.plants.size())
       throw std::runtime_error(fmt::format("{}:{}: plant ids must run 0, 1, 2, ...", pfile, ln));
-    pr.x = parse<double>(c[1], pfile, ln, 2);
-    pr.y = parse<double>(c[2], pfile, ln, 3);
-    pr.rotation_deg = parse<double>(c[3], pfile, ln, 4);
+    pr.x = finite(parse<double>(c[1], pfile, ln, 2), c[1], pfile, ln, 2);
+    pr.y = finite(parse<double>(c[2], pfile, ln, 3), c[2], pfile, ln, 3);
+    pr.rotation_deg = finite(parse<double>(c[3], pfile, ln, 4), c[3], pfile, ln, 4);
     pr.seed = parse<std::uint64_t>(c[4], pfile, ln, 5);
     const std::string g(c[5]);
     auto it = grammar_index.find(g);
@@ -151,18 +180,23 @@ Stand read_stand(const std::string& dir) {
     }
     pr.grammar = it->second;
     pr.steps = parse<int>(c[6], pfile, ln, 7);
+    if (pr.steps < 0 || pr.steps > kMaxSteps)
+      throw std::runtime_error(fmt::format("{}:{}: column 7 (steps) must lie in 0..{}, got {}", pfile, ln, kMaxSteps, pr.steps));
     s.plants.push_back(pr);
   }
-  ln = 0;
-  while (std::getline(oin, line)) {
-    if (++ln == 1) {
-      if (line + "\n" != kOrganHeader) throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, kOrganHeader));
-      continue;
-    }
+  if (!oin->next_line(line) || line + "\n" != kOrganHeader)
+    throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
+  // Organs come plant by plant; within a plant a compound leaf takes the next id when its first
+  // organ appears (as the turtle numbers them), so the plants' leaf ranges follow each other.
+  std::int32_t plant = -1;
+  std::uint32_t next_leaf = 0;
+  while (oin->next_line(line)) {
+    const int ln = oin->line_number();
     const auto c = cells(line);
     if (c.size() != 24) throw std::runtime_error(fmt::format("{}:{}: expected 24 cells, got {}", ofile, ln, c.size()));
     const std::size_t id = parse<std::size_t>(c[0], ofile, ln, 1);
     if (id != s.organs.size()) throw std::runtime_error(fmt::format("{}:{}: organ ids must run 0, 1, 2, ...", ofile, ln));
+    if (id >= static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error(fmt::format("{}:{}: too many organs", ofile, ln));
     OrganRecord r;
     r.plant = parse<std::int32_t>(c[1], ofile, ln, 2);
     r.parent = parse<std::int32_t>(c[2], ofile, ln, 3);
@@ -173,34 +207,49 @@ Stand read_stand(const std::string& dir) {
     const auto proto = parse_prototype(c[7]);
     if (!proto) throw std::runtime_error(fmt::format("{}:{}: unknown prototype '{}'", ofile, ln, c[7]));
     r.prototype = *proto;
-    r.lod = static_cast<std::uint8_t>(parse<int>(c[10], ofile, ln, 11));
-    if (r.lod < 1 || r.lod > kMaxLod) throw std::runtime_error(fmt::format("{}:{}: lod must lie in 1..{}", ofile, ln, kMaxLod));
-    if (r.plant < 0 || static_cast<std::size_t>(r.plant) >= s.plants.size() || r.parent >= static_cast<std::int32_t>(id))
-      throw std::runtime_error(fmt::format("{}:{}: plant or parent out of range", ofile, ln));
-    s.params.push_back({parse<float>(c[8], ofile, ln, 9), parse<float>(c[9], ofile, ln, 10)});
-    s.joint_limit_deg.push_back(parse<float>(c[11], ofile, ln, 12));
+    const int lod = parse<int>(c[10], ofile, ln, 11);
+    if (lod < 1 || lod > kMaxLod) throw std::runtime_error(fmt::format("{}:{}: lod must lie in 1..{}", ofile, ln, kMaxLod));
+    r.lod = static_cast<std::uint8_t>(lod);
+    if (r.plant < 0 || static_cast<std::size_t>(r.plant) >= s.plants.size())
+      throw std::runtime_error(fmt::format("{}:{}: plant {} is not in {}", ofile, ln, r.plant, pfile));
+    if (r.plant < plant) throw std::runtime_error(fmt::format("{}: organs must be grouped plant by plant", ofile));
+    PlantRecord& pr = s.plants[static_cast<std::size_t>(r.plant)];
+    if (r.plant != plant) {
+      pr.first_organ = static_cast<std::uint32_t>(id);
+      pr.first_leaf = next_leaf;
+      plant = r.plant;
+    }
+    ++pr.organ_count;
+    // A parent is an earlier organ of the same plant.
+    if (r.parent < -1 || r.parent >= static_cast<std::int32_t>(id) || (r.parent >= 0 && r.parent < static_cast<std::int32_t>(pr.first_organ)))
+      throw std::runtime_error(fmt::format("{}:{}: parent {} is not an earlier organ of plant {}", ofile, ln, r.parent, r.plant));
+    if (r.leaf < -1 || (r.leaf >= 0 && (static_cast<std::uint32_t>(r.leaf) < pr.first_leaf ||
+                                       static_cast<std::uint32_t>(r.leaf) > pr.first_leaf + pr.leaf_count)))
+      throw std::runtime_error(fmt::format("{}:{}: leaf {} is out of order (plant {}'s compound leaves are numbered from {} as they "
+                                           "first appear)",
+                                           ofile, ln, r.leaf, r.plant, pr.first_leaf));
+    if (r.leaf >= 0 && static_cast<std::uint32_t>(r.leaf) == pr.first_leaf + pr.leaf_count) ++pr.leaf_count, ++next_leaf;
+    const float p0 = size(parse<float>(c[8], ofile, ln, 9), c[8], ofile, ln, 9);
+    const float p1 = size(parse<float>(c[9], ofile, ln, 10), c[9], ofile, ln, 10);
+    s.params.push_back({p0, p1});
+    const float joint = finite(parse<float>(c[11], ofile, ln, 12), c[11], ofile, ln, 12);
+    if (!(joint >= 0 && joint <= 180)) throw std::runtime_error(fmt::format("{}:{}: column 12 (joint_limit) must lie in [0, 180], got {}", ofile, ln, c[11]));
+    s.joint_limit_deg.push_back(joint);
     float v[12];
-    for (int k = 0; k < 12; ++k) v[k] = parse<float>(c[static_cast<std::size_t>(12 + k)], ofile, ln, 13 + k);
+    for (int k = 0; k < 12; ++k) {
+      const auto cell = c[static_cast<std::size_t>(12 + k)];
+      v[k] = finite(parse<float>(cell, ofile, ln, 13 + k), cell, ofile, ln, 13 + k);
+      if (!(std::fabs(v[k]) <= kMaxOrganExtent))
+        throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range (at most {} m)", ofile, ln, 13 + k, cell, kMaxOrganExtent));
+    }
     s.transforms.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, {v[9], v[10], v[11]}});
     s.organs.push_back(r);
   }
-  // Organ ranges and leaf ranges per plant, from the organs' plant and leaf columns.
-  std::int32_t prev = -1;
-  for (std::size_t id = 0; id < s.organs.size(); ++id) {
-    const OrganRecord& r = s.organs[id];
-    if (r.plant < prev) throw std::runtime_error(fmt::format("{}: organs must be grouped plant by plant", ofile));
-    PlantRecord& pr = s.plants[static_cast<std::size_t>(r.plant)];
-    if (r.plant != prev) pr.first_organ = static_cast<std::uint32_t>(id);
-    ++pr.organ_count;
-    prev = r.plant;
-  }
-  std::uint32_t next_leaf = 0;
+  // A plant without organs has its (empty) leaf range where the next plant's begins.
+  std::uint32_t leaf = 0;
   for (PlantRecord& pr : s.plants) {
-    std::int32_t hi = -1;
-    for (std::uint32_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) hi = std::max(hi, s.organs[id].leaf);
-    pr.first_leaf = next_leaf;
-    pr.leaf_count = hi < 0 ? 0 : static_cast<std::uint32_t>(hi + 1) - next_leaf;
-    next_leaf += pr.leaf_count;
+    if (pr.organ_count == 0) pr.first_leaf = leaf;
+    leaf = pr.first_leaf + pr.leaf_count;
   }
   if (!s.plants.empty()) s.stand_origin = {s.plants[0].x, s.plants[0].y, 0};
   return s;

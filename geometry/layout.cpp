@@ -1,11 +1,13 @@
 #include "geometry/layout.hpp"
 
+#include "geometry/input_file.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <filesystem>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -30,6 +32,23 @@ std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
   while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
   return s;
+}
+
+/// Why a positions file's grammar cell may not be read without --any-grammar-path, or nullptr:
+/// the rule is lexical (an absolute path, or one whose '..' climbs above the positions file's
+/// folder), so it says the same on every machine and before any file is opened.
+const char* grammar_cell_refusal(std::string_view cell) {
+  const std::filesystem::path p{std::string(cell)};
+  if (p.is_absolute() || p.has_root_name() || p.has_root_directory()) return "is an absolute path";
+  int depth = 0;
+  for (const auto& part : p) {
+    if (part == "..") {
+      if (--depth < 0) return "leaves the positions file's folder";
+    } else if (part != "." && !part.empty()) {
+      ++depth;
+    }
+  }
+  return nullptr;
 }
 
 std::vector<std::pair<std::string_view, int>> split(std::string_view line) {
@@ -60,8 +79,14 @@ std::optional<std::uint64_t> parse_seed(std::string_view text) {
 
 std::vector<PlantPlacement> row_layout(const RowLayout& l) {
   if (l.rows < 1 || l.per_row < 1) throw std::invalid_argument(fmt::format("--rows and --per-row must be at least 1 (got {} and {})", l.rows, l.per_row));
-  if (!(l.row_spacing >= 0) || !(l.plant_spacing >= 0) || !(l.jitter >= 0) || (l.double_rows && !(*l.double_rows >= 0)))
-    throw std::invalid_argument("--row-spacing, --plant-spacing, --double-rows and --jitter must be finite and not negative");
+  // Each named: an infinite jitter used to surface as plant 0's position not being finite.
+  const std::pair<const char*, double> lengths[] = {{"row spacing", l.row_spacing},
+                                                    {"plant spacing", l.plant_spacing},
+                                                    {"double-row gap", l.double_rows.value_or(0)},
+                                                    {"jitter", l.jitter}};
+  for (const auto& [name, v] : lengths)
+    if (!(v >= 0) || !std::isfinite(v))
+      throw std::invalid_argument(fmt::format("the {} must be a finite number of metres, not negative (got {})", name, v));
   std::vector<PlantPlacement> out;
   out.reserve(static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.per_row));
   LayoutStream rng{mix(l.seed ^ 0x6c61796f7574ULL)};
@@ -99,22 +124,20 @@ std::vector<PlantPlacement> default_stand_layout(int plants) {
   return p;
 }
 
-std::vector<PlantPlacement> read_positions(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FileNotFound(fmt::format("{}: cannot open the positions file", path));
+std::vector<PlantPlacement> read_positions(const std::string& path, bool any_grammar_path) {
+  InputFile in(path, "positions file", kMaxPositionsBytes);
   std::string line;
-  int line_no = 0;
   std::map<std::string, int> col;
   std::vector<PlantPlacement> out;
   std::size_t ncols = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
+  while (in.next_line(line)) {
+    const int line_no = in.line_number();
     // A spreadsheet's "CSV UTF-8" export starts with a byte-order mark: not part of the header.
     if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     const auto cells = split(line);
     if (col.empty()) {
-      for (std::size_t i = 0; i < cells.size(); ++i) col[std::string(cells[i].first)] = static_cast<int>(i);
+      for (std::size_t i = 0; i < cells.size(); ++i) col.emplace(std::string(cells[i].first), static_cast<int>(i));
       for (const char* need : {"x", "y", "rotation", "seed"})
         if (!col.count(need)) {
           // A spreadsheet set to a decimal comma separates its "CSV" cells with ';'.
@@ -123,6 +146,17 @@ std::vector<PlantPlacement> read_positions(const std::string& path) {
                                                   path, line_no, need,
                                                   other_separator ? "; the cells are separated by ';' or tabs, and positions files use commas" : ""));
         }
+      // A misspelt column ("Steps") would otherwise be passed over and its values never used.
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        const auto& [name, column] = cells[i];
+        const std::size_t first = static_cast<std::size_t>(col.at(std::string(name)));
+        if (first != i)
+          throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' appears twice in the header (cells {} and {})", path,
+                                                  line_no, column, name, first + 1, i + 1));
+        if (name != "x" && name != "y" && name != "rotation" && name != "seed" && name != "grammar" && name != "steps")
+          throw std::invalid_argument(fmt::format("{}:{}:{}: unknown column '{}' (the header has x,y,rotation,seed and may add grammar,steps)",
+                                                  path, line_no, column, name));
+      }
       ncols = cells.size();
       continue;
     }
@@ -132,15 +166,12 @@ std::vector<PlantPlacement> read_positions(const std::string& path) {
       const auto& [cell, column] = cells[static_cast<std::size_t>(col[name])];
       double v = 0;
       const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
-      if (cell.empty() || r.ec != std::errc() || r.ptr != cell.data() + cell.size() || !std::isfinite(v))
+      const bool whole_cell = r.ptr == cell.data() + cell.size();
+      if (!cell.empty() && whole_cell && r.ec == std::errc::result_out_of_range)
+        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}', which is out of range", path,
+                                                line_no, column, name, cell));
+      if (cell.empty() || r.ec != std::errc() || !whole_cell || !std::isfinite(v))
         throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}'", path, line_no, column, name, cell));
-      return v;
-    };
-    auto whole = [&](const char* name, double lo) {
-      const double v = number(name);
-      const auto& [cell, column] = cells[static_cast<std::size_t>(col[name])];
-      if (v != std::floor(v) || v < lo || v > 9.2e18)
-        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a whole number of at least {}, got '{}'", path, line_no, column, name, lo, cell));
       return v;
     };
     PlantPlacement p;
@@ -154,9 +185,24 @@ std::vector<PlantPlacement> read_positions(const std::string& path) {
         throw std::invalid_argument(fmt::format("{}:{}:{}: column 'seed' needs a whole number, got '{}'", path, line_no, column, cell));
       p.seed = *seed;
     }
-    if (col.count("grammar")) p.grammar = std::string(cells[static_cast<std::size_t>(col["grammar"])].first);
-    if (col.count("steps") && !cells[static_cast<std::size_t>(col["steps"])].first.empty())
-      p.steps = static_cast<int>(whole("steps", 0));
+    if (col.count("grammar")) {
+      const auto& [cell, column] = cells[static_cast<std::size_t>(col["grammar"])];
+      if (!any_grammar_path) {
+        if (const char* why = grammar_cell_refusal(cell))
+          throw std::invalid_argument(fmt::format("{}:{}:{}: column 'grammar': '{}' {}; a grammar cell names a file in the positions "
+                                                  "file's folder or below it (--any-grammar-path allows others)",
+                                                  path, line_no, column, cell, why));
+      }
+      p.grammar = std::string(cell);
+    }
+    if (col.count("steps") && !cells[static_cast<std::size_t>(col["steps"])].first.empty()) {
+      const auto& [cell, column] = cells[static_cast<std::size_t>(col["steps"])];
+      const double v = number("steps");
+      if (v != std::floor(v) || v < 0 || v > kMaxSteps)
+        throw std::invalid_argument(
+            fmt::format("{}:{}:{}: column 'steps' needs a whole number from 0 to {}, got '{}'", path, line_no, column, kMaxSteps, cell));
+      p.steps = static_cast<int>(v);
+    }
     out.push_back(p);
   }
   if (col.empty()) throw std::invalid_argument(fmt::format("{}: empty positions file (expected a header x,y,rotation,seed)", path));

@@ -16,6 +16,11 @@ class FileNotFound : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+/// The most derivation steps a plant may grow, wherever they are given (a grammar's `steps`, a
+/// positions `steps` cell, --steps, Python's steps=): a hundred thousand parallel rewriting steps
+/// are far past any plant's age yet still end in seconds for a grammar that does not grow.
+inline constexpr int kMaxSteps = 100'000;
+
 struct PlantPlacement {
   double x = 0, y = 0;
   double rotation_deg = 0;
@@ -52,7 +57,11 @@ std::vector<PlantPlacement> row_layout(const RowLayout& layout);
 std::optional<std::uint64_t> parse_seed(std::string_view text);
 
 /// Reads a CSV with a header naming at least x,y,rotation,seed (and optionally grammar, steps),
-/// in any column order. Errors name file, line and column.
-std::vector<PlantPlacement> read_positions(const std::string& path);
+/// in any column order; another column, or one named twice, is refused by name. A `grammar` cell
+/// names a file relative to the positions file's folder, in it or below it, unless
+/// `any_grammar_path` (--any-grammar-path) allows absolute paths and '..' above it; a `steps` cell
+/// is a whole number from 0 to kMaxSteps. Errors name file, line and column; the file is read
+/// with InputFile's limits (a regular file of at most kMaxPositionsBytes).
+std::vector<PlantPlacement> read_positions(const std::string& path, bool any_grammar_path = false);
 
 }  // namespace canopy

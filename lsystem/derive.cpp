@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 
 namespace canopy {
 namespace {
@@ -73,8 +74,18 @@ void ContextIndex::build(const Grammar& g, const ModuleString& s) {
   }
 }
 
-void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
-             std::size_t max_modules) {
+namespace {
+
+/// Where each module of a string was written: the axiom's or a successor's module.
+using Origins = PodBuffer<const SuccessorModule*>;
+
+/// One rewriting step; with Track, also the origin of every module written (`in_origin` for
+/// `in`, `out_origin` for `out`): the slow path that locates an error found after derivation.
+/// Both forms draw the same numbers, so the tracked run derives the same string.
+template <bool Track>
+void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
+                  std::size_t max_modules, const Origins* in_origin, Origins* out_origin) {
+  if constexpr (Track) out_origin->clear();
   out.symbols.clear();
   out.params.clear();
   out.symbols.reserve(in.size() + in.size() / 2 + 16);
@@ -101,6 +112,7 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
       while (j < n && (sym[j] >= nsym || table.mode[sym[j]] == RewriteMode::copy)) q += static_cast<std::size_t>(arity[sym[j++]]);
       out.symbols.append(sym + i, j - i);
       out.params.append(par + p, q - p);
+      if constexpr (Track) out_origin->append(in_origin->data() + i, j - i);
       i = j - 1;
       p = q;
       if (out.symbols.size() > max_modules) cap_exceeded(max_modules, 0);
@@ -109,6 +121,8 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
       const Successor& sc = table.groups[table.by_symbol[x][0]].successors[0];
       out.symbols.append(sc.constant_symbols.data(), sc.constant_symbols.size());
       out.params.append(sc.constant_params.data(), sc.constant_params.size());
+      if constexpr (Track)
+        for (const SuccessorModule& m : sc.modules) out_origin->push_back(&m);
     } else {
       bool matched = false;
       for (int gi : table.by_symbol[x]) {
@@ -137,6 +151,8 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
             if (u < cand.cumulative) break;
           }
         }
+        if constexpr (Track)
+          for (const SuccessorModule& m : sc->modules) out_origin->push_back(&m);
         if (sc->constant) {
           out.symbols.append(sc->constant_symbols.data(), sc->constant_symbols.size());
           out.params.append(sc->constant_params.data(), sc->constant_params.size());
@@ -152,6 +168,7 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
       if (!matched) {
         out.symbols.push_back(x);
         if (ar) out.params.append(par + p, static_cast<std::size_t>(ar));
+        if constexpr (Track) out_origin->push_back((*in_origin)[i]);
       }
     }
     p += static_cast<std::size_t>(ar);
@@ -159,8 +176,17 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
   }
 }
 
+}  // namespace
+
+void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
+             std::size_t max_modules) {
+  rewrite_step<false>(g, table, in, out, rng, max_modules, nullptr, nullptr);
+}
+
 ModuleString derive(const Grammar& g, const DeriveRequest& req) {
   const int steps = req.steps.value_or(g.steps);
+  if (steps < 0 || steps > kMaxSteps)
+    throw std::invalid_argument(fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, steps));
   Rng rng(req.seed.value_or(g.seed));
   ModuleString cur = evaluate_axiom(g, rng);
   if (cur.size() > req.max_modules) cap_exceeded(req.max_modules, 0);
@@ -177,13 +203,48 @@ ModuleString derive(const Grammar& g, const DeriveRequest& req) {
   return cur;
 }
 
+namespace {
+
+Rng interpretation_stream(std::uint64_t seed) {
+  std::uint64_t s = seed;
+  return Rng(Rng::splitmix64(s) ^ 0x696e746572707265ULL);  // "interpre": a stream apart from derivation's
+}
+
+}  // namespace
+
 ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint64_t seed, std::size_t max_modules) {
   if (g.interpretation.empty()) return derived;
-  std::uint64_t s = seed;
-  Rng rng(Rng::splitmix64(s) ^ 0x696e746572707265ULL);  // "interpre": a stream apart from derivation's
+  Rng rng = interpretation_stream(seed);
   ModuleString out;
   rewrite(g, g.interpretation, derived, out, rng, max_modules);
   return out;
+}
+
+std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& req, bool interpreted, std::size_t module,
+                                       int parameter) {
+  const int steps = req.steps.value_or(g.steps);
+  const std::uint64_t seed = req.seed.value_or(g.seed);
+  Rng rng(seed);
+  ModuleString cur = evaluate_axiom(g, rng);
+  Origins origin, next_origin;
+  for (const SuccessorModule& m : g.axiom) origin.push_back(&m);
+  ModuleString next;
+  if (!g.productions.empty())
+    for (int step = 1; step <= steps; ++step) {
+      rewrite_step<true>(g, g.productions, cur, next, rng, req.max_modules, &origin, &next_origin);
+      std::swap(cur, next);
+      std::swap(origin, next_origin);
+    }
+  if (interpreted && !g.interpretation.empty()) {
+    Rng irng = interpretation_stream(seed);
+    rewrite_step<true>(g, g.interpretation, cur, next, irng, req.max_modules, &origin, &next_origin);
+    std::swap(origin, next_origin);
+  }
+  if (module >= origin.size() || !origin[module]) return std::nullopt;
+  const SuccessorModule& m = *origin[module];
+  if (parameter >= 0 && static_cast<std::size_t>(parameter) < m.args.size() && m.args[static_cast<std::size_t>(parameter)].pos().line > 0)
+    return m.args[static_cast<std::size_t>(parameter)].pos();
+  return m.pos;
 }
 
 }  // namespace canopy

@@ -1,6 +1,7 @@
 #pragma once
 /// Derivation: parallel rewriting of the module string (ABOP ch. 1), with context matching that
 /// skips branches (ABOP §1.8) and stochastic groups drawn from the plant's own seeded stream.
+#include "geometry/layout.hpp"
 #include "lsystem/grammar.hpp"
 #include "lsystem/module_string.hpp"
 #include "lsystem/rng.hpp"
@@ -15,19 +16,28 @@ namespace canopy {
 inline constexpr std::size_t kDefaultMaxModules = 40'000'000;
 
 struct DeriveRequest {
-  std::optional<int> steps;           // default: the grammar's `steps`
+  std::optional<int> steps;           // default: the grammar's `steps`; 0..kMaxSteps
   std::optional<std::uint64_t> seed;  // default: the grammar's `seed`
   std::size_t max_modules = kDefaultMaxModules;
 };
 
 /// The string after `steps` rewriting steps, before interpretation. Throws ModuleCapError when the
-/// string would exceed the cap and GrammarError when an expression fails.
+/// string would exceed the cap, GrammarError when an expression fails and std::invalid_argument
+/// for steps outside 0..kMaxSteps.
 ModuleString derive(const Grammar& g, const DeriveRequest& request = {});
 
 /// The interpretation (homomorphism) applied once to a derived string, as the turtle sees it.
 /// It draws from a second stream of the same seed, so it never shifts the derivation's draws.
 ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint64_t seed,
                        std::size_t max_modules = kDefaultMaxModules);
+
+/// Where module `module` of the string derive(g, req) gives (after interpretation when
+/// `interpreted`) was written in the grammar file: the axiom's or a successor's module, or the
+/// expression of its parameter `parameter` (0-based; -1: the module itself). Derives again while
+/// tracking every module, so it is for messages about a string already derived; nothing when the
+/// place is unknown.
+std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& req, bool interpreted, std::size_t module,
+                                       int parameter = -1);
 
 /// One parallel rewriting step of `in` by `table` into `out`.
 void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,

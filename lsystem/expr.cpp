@@ -11,6 +11,12 @@ namespace {
 
 constexpr int kMaxStack = 64;
 
+/// How deeply parentheses, unary operators, function calls and right-associated '^' may nest in
+/// one expression. The parser recurses once per level (three frames of a few hundred bytes), so
+/// a bound far below what any stack holds turns 30,000 '(' into a located error instead of a
+/// stack overflow; no grammar written by hand comes near it.
+constexpr int kMaxNesting = 256;
+
 struct Function {
   std::string_view name;
   Op op;
@@ -83,7 +89,18 @@ class ExprParser {
     return nullptr;
   }
 
+  /// Counts one level of nesting while it lives (see kMaxNesting).
+  struct Nest {
+    ExprParser& p;
+    Nest(ExprParser& parser, std::size_t at) : p(parser) {
+      if (++p.nesting_ > kMaxNesting)
+        p.error(at, "expression nested too deeply (more than {} levels of parentheses, unary operators or calls)", kMaxNesting);
+    }
+    ~Nest() { --p.nesting_; }
+  };
+
   void binary(int min_prec) {
+    const Nest nest(*this, i_);
     unary();
     for (;;) {
       const BinOp* b = peek_binop();
@@ -199,6 +216,7 @@ class ExprParser {
   std::string_view s_;
   std::size_t i_ = 0;
   int depth_ = 0;
+  int nesting_ = 0;
   SourcePos pos_;
   const NameResolver& resolve_;
   Expr& out_;

@@ -1,4 +1,6 @@
 // Reads a grammar file (DESIGN.md "Grammar file") into a compiled Grammar.
+#include "geometry/layout.hpp"
+#include "geometry/prototype.hpp"
 #include "lsystem/grammar.hpp"
 #include "lsystem/production_syntax.hpp"
 #include "lsystem/rule_builder.hpp"
@@ -15,6 +17,16 @@ constexpr std::string_view kTopKeys =
     "name seed steps angle step constants axiom productions interpretation ignore organs "
     "compound_leaf tropism stand modules";
 
+bool is_top_key(std::string_view key) {
+  for (std::size_t i = 0; i < kTopKeys.size();) {
+    std::size_t j = kTopKeys.find(' ', i);
+    if (j == std::string_view::npos) j = kTopKeys.size();
+    if (kTopKeys.substr(i, j - i) == key) return true;
+    i = j + 1;
+  }
+  return false;
+}
+
 bool is_identifier(std::string_view s) {
   if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
   for (char c : s)
@@ -29,10 +41,16 @@ class Loader {
   Grammar load(const YAML::Node& root) {
     g_.file = src_.file();
     if (!root.IsMap()) fail_at(src_.at(root), "a grammar file is a YAML map with keys such as axiom and productions");
+    // A file that has none of a grammar's keys is not a grammar with a typo: it may be any file
+    // (a path in a positions file, a wrong argument), and its text is not quoted back.
+    bool any_known = false;
+    for (const auto& kv : root)
+      if (kv.first.IsScalar() && is_top_key(kv.first.Scalar())) any_known = true;
+    if (!any_known) fail_at(src_.at(root), "not a grammar file (none of its keys is a grammar's, such as axiom or productions)");
     src_.check_map(root, "the grammar", kTopKeys);
     if (root["name"]) g_.name = src_.string(root["name"], "name");
     if (root["seed"]) g_.seed = static_cast<std::uint64_t>(src_.integer(root["seed"], "seed", 0, INT64_MAX));
-    if (root["steps"]) g_.steps = static_cast<int>(src_.integer(root["steps"], "steps", 0, 100000));
+    if (root["steps"]) g_.steps = static_cast<int>(src_.integer(root["steps"], "steps", 0, kMaxSteps));
     if (root["angle"]) g_.angle = src_.number(root["angle"], "angle");
     if (root["step"]) g_.step = src_.number(root["step"], "step");
     read_constants(root["constants"]);
@@ -162,7 +180,7 @@ class Loader {
         if (organ.joint_limit_deg < 0 || organ.joint_limit_deg > 180)
           fail_at(src_.at(e["joint_limit"]), "joint_limit must lie in [0, 180] degrees, got {}", organ.joint_limit_deg);
       }
-      if (e["lod"]) organ.lod = static_cast<int>(src_.integer(e["lod"], "lod", 1, 1024));
+      if (e["lod"]) organ.lod = static_cast<int>(src_.integer(e["lod"], "lod", 1, kMaxLod));
       const Symbol sym = g_.symbols.intern(name);
       const int want = arity_of(organ.prototype);
       if (const SourcePos* used = builder.first_use(sym); used && g_.symbols.arity(sym) != want)

@@ -1,9 +1,11 @@
 #include "lsystem/grow.hpp"
 
 #include "geometry/prototype.hpp"
+#include "geometry/thread_limit.hpp"
 #include "lsystem/turtle.hpp"
 
 #include <chrono>
+#include <exception>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -55,17 +57,25 @@ std::string grammar_path(const GrowRequest& req, const std::string& name) {
 
 /// Derives, interprets and runs the turtle for plant `index` (its `steps` already chosen).
 void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& req, std::size_t index, GrownPlant& out) {
-  const ModuleString s = derive(g, DeriveRequest{out.steps, pl.seed, req.max_modules});
+  const DeriveRequest dreq{out.steps, pl.seed, req.max_modules};
+  const ModuleString s = derive(g, dreq);
   TurtleConfig tc;
   tc.lod = req.lod;
   tc.where = fmt::format("plant {} (seed {})", index, pl.seed);
-  if (g.interpretation.empty()) {  // no copy of the string when there is nothing to interpret
-    out.modules = s.size();
-    out.turtle = run_turtle(g, s, tc);
-  } else {
-    const ModuleString t = interpret(g, s, pl.seed, req.max_modules);
-    out.modules = t.size();
-    out.turtle = run_turtle(g, t, tc);
+  try {
+    if (g.interpretation.empty()) {  // no copy of the string when there is nothing to interpret
+      out.modules = s.size();
+      out.turtle = run_turtle(g, s, tc);
+    } else {
+      const ModuleString t = interpret(g, s, pl.seed, req.max_modules);
+      out.modules = t.size();
+      out.turtle = run_turtle(g, t, tc);
+    }
+  } catch (const TurtleError& e) {
+    // Every grammar error names file, line and column: the place that wrote the module (or its
+    // parameter), found by deriving again while tracking where each module came from.
+    if (const auto pos = module_source(g, dreq, true, e.module(), e.parameter())) throw GrammarError(*pos, e.detail());
+    throw;
   }
 }
 
@@ -108,12 +118,13 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   // Every entry point (the command line, a positions file, the Python module) comes through here.
   if (req.lod < 1 || req.lod > kMaxLod)
     throw std::invalid_argument(fmt::format("the level of detail must lie in 1..{} (got {})", kMaxLod, req.lod));
-  if (req.threads < 0) throw std::invalid_argument(fmt::format("the thread count must be at least 0 (0: all cores; got {})", req.threads));
-  if (req.steps && *req.steps < 0) throw std::invalid_argument(fmt::format("the derivation steps must be at least 0 (got {})", *req.steps));
+  const int threads = checked_threads(req.threads);
+  if (req.steps && (*req.steps < 0 || *req.steps > kMaxSteps))
+    throw std::invalid_argument(fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, *req.steps));
   for (std::size_t p = 0; p < n; ++p) {
     const PlantPlacement& pl = req.plants[p];
-    if (pl.steps && *pl.steps < 0)
-      throw std::invalid_argument(fmt::format("plant {}: its derivation steps must be at least 0 (got {})", p, *pl.steps));
+    if (pl.steps && (*pl.steps < 0 || *pl.steps > kMaxSteps))
+      throw std::invalid_argument(fmt::format("plant {}: its derivation steps must lie in 0..{} (got {})", p, kMaxSteps, *pl.steps));
     if (!std::isfinite(pl.x) || !std::isfinite(pl.y) || !std::isfinite(pl.rotation_deg))
       throw std::invalid_argument(
           fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y, pl.rotation_deg));
@@ -125,7 +136,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     grown[p].steps = req.plants[p].steps.value_or(req.steps.value_or(g.steps));
   }
 
-  std::vector<std::string> errors(n);
+  std::vector<std::exception_ptr> errors(n);
   auto grow_one = [&](std::size_t p) {
     grow_plant(*grammars[static_cast<std::size_t>(grown[p].grammar)], req.plants[p], req, p, grown[p]);
   };
@@ -135,17 +146,16 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     grow_one(0);
     check_fits(grown[0], n, req.memory_limit);
   }
-  const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (std::size_t p = 1; p < n; ++p) {
     try {
       grow_one(p);
-    } catch (const std::exception& e) {
-      errors[p] = e.what();
+    } catch (...) {
+      errors[p] = std::current_exception();
     }
   }
   for (const auto& e : errors)
-    if (!e.empty()) throw std::runtime_error(e);  // the first failing plant, in plant order
+    if (e) std::rethrow_exception(e);  // the first failing plant, in plant order, as it was thrown
   const double t1 = now();
 
   // Place: global ids plant by plant, then in string order.

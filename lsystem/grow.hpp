@@ -31,10 +31,12 @@ struct GrowTimings {
   double derive_s = 0, turtle_s = 0, place_s = 0;
 };
 
-/// Throws GrammarError for grammar problems, std::invalid_argument for a level of detail outside
-/// 1..kMaxLod, negative steps or threads, and naming the plant for a position or rotation that is
-/// not finite, std::runtime_error naming the plant for turtle
-/// problems and for a stand too large for memory (said before growing it).
+/// Throws GrammarError for grammar problems (an organ's parameter out of range located at the
+/// expression that wrote it), std::invalid_argument for a level of detail outside 1..kMaxLod,
+/// steps outside 0..kMaxSteps, a thread count past max_threads() (or OMP_NUM_THREADS past it when
+/// none is given), and naming the plant for a position or rotation that is not finite,
+/// std::runtime_error for a stand too large for memory (said before growing it). A failing plant's
+/// exception is thrown as it was, the first in plant order.
 Stand grow_stand(const GrowRequest& request, GrowTimings* timings = nullptr);
 
 /// Grows the first plant of `request` alone and throws, before anything large is allocated, when

@@ -72,12 +72,16 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
   std::vector<int> leaf_ids;
   std::vector<const OrganEntry*> organ_of(g.symbols.size(), nullptr);
   for (const auto& [sym, entry] : g.organs) organ_of[sym] = &entry;
-  const auto fail = [&](std::size_t i, std::size_t p, const std::string& what) {
+  const auto fail = [&](std::size_t i, std::size_t p, const std::string& what, int parameter = -1) {
     ModuleString one;
     one.symbols.push_back(s.symbols[i]);
     const int ar = std::max(0, g.symbols.arity(s.symbols[i]));
     one.params.append(s.params.data() + p, static_cast<std::size_t>(ar));
-    throw std::runtime_error(fmt::format("{}: {}, module {} '{}': {}", g.file, config.where, i, format_modules(g, one), what));
+    throw TurtleError(g.file, fmt::format("{}, module {} '{}': {}", config.where, i, format_modules(g, one), what), i, parameter);
+  };
+  // An organ farther than kMaxOrganExtent from the plant's origin along an axis.
+  const auto too_far = [](const Vec3d& v) {
+    return !(std::fabs(v.x) <= kMaxOrganExtent && std::fabs(v.y) <= kMaxOrganExtent && std::fabs(v.z) <= kMaxOrganExtent);
   };
   std::size_t p = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -86,15 +90,21 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
     const double* a = s.params.data() + p;
     const auto arg = [&](double dflt) { return ar > 0 ? a[0] : dflt; };
     for (int k = 0; k < ar; ++k)
-      if (!std::isfinite(a[k])) fail(i, p, "a parameter is not finite");
+      if (!std::isfinite(a[k])) fail(i, p, fmt::format("parameter {} is not finite", k + 1), k);
     if (const OrganEntry* organ = organ_of[x]) {
       OrganInstance o;
       o.kind = organ->kind;
       o.prototype = organ->prototype;
       for (int k = 0; k < ar && k < 2; ++k) {
-        if (a[k] < 0) fail(i, p, fmt::format("{} parameter {} must not be negative", name_of(o.prototype), k + 1));
+        if (a[k] < 0) fail(i, p, fmt::format("{} parameter {} must not be negative", name_of(o.prototype), k + 1), k);
+        if (a[k] > kMaxOrganExtent)
+          fail(i, p, fmt::format("{} parameter {} is {} m, more than the {} m an organ may measure", name_of(o.prototype), k + 1, a[k],
+                                 kMaxOrganExtent),
+               k);
         o.params[k] = static_cast<float>(a[k]);
       }
+      if (too_far(st.f.position))
+        fail(i, p, fmt::format("the organ lies farther than {} m from its plant's origin", kMaxOrganExtent));
       o.parent = st.last_organ;
       if (st.leaf_slot >= 0) {
         int& id = leaf_ids[static_cast<std::size_t>(st.leaf_slot)];
@@ -127,8 +137,10 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
           case 'F':
           case 'f': {
             const double l = arg(g.step);
-            if (l < 0) fail(i, p, "a step length must not be negative");
+            if (l < 0) fail(i, p, "a step length must not be negative", 0);
             st.f.position = st.f.position + st.f.heading * l;
+            if (too_far(st.f.position))
+              fail(i, p, fmt::format("the step takes the turtle farther than {} m from the plant's origin", kMaxOrganExtent), 0);
             if (n[0] == 'F' && g.tropism) apply_tropism(st.f, *g.tropism);
             break;
           }

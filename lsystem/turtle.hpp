@@ -4,11 +4,14 @@
 /// compound-leaf ids. Initial frame H = +Z, L = -Y, U = +X; `+` turns left about U (R_U),
 /// `&` pitches down about L (R_L), `\` rolls left about H (R_H), as ABOP's matrices.
 #include "geometry/organ_kind.hpp"
+#include "geometry/organ_extent.hpp"
 #include "geometry/vec.hpp"
 #include "lsystem/grammar.hpp"
 #include "lsystem/module_string.hpp"
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace canopy {
@@ -42,8 +45,27 @@ struct TurtleConfig {
   std::string where = "the plant";
 };
 
-/// Throws GrammarError-like std::runtime_error naming the plant and module when a length or
-/// radius is negative or not finite.
+/// A problem with one module of the string the turtle runs: what() is "FILE: WHERE, module I
+/// 'TEXT': WHAT"; `detail()` is the part after "FILE: ", for a message located elsewhere.
+class TurtleError : public std::runtime_error {
+ public:
+  TurtleError(const std::string& file, std::string detail, std::size_t module, int parameter)
+      : std::runtime_error(file + ": " + detail), detail_(std::move(detail)), module_(module), parameter_(parameter) {}
+  const std::string& detail() const { return detail_; }
+  /// The module's index in the string.
+  std::size_t module() const { return module_; }
+  /// The parameter at fault (0-based), or -1 for the module as a whole.
+  int parameter() const { return parameter_; }
+
+ private:
+  std::string detail_;
+  std::size_t module_;
+  int parameter_;
+};
+
+/// Throws TurtleError naming the plant and module when a parameter is not finite, a length or
+/// radius is negative or larger than kMaxOrganExtent, or an organ lies farther than that from the
+/// plant's origin.
 TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleConfig& config);
 
 /// The organ transform for `prototype` with `params` at `frame` (DESIGN.md "Organs").

@@ -1,24 +1,31 @@
 #include "lsystem/yaml_source.hpp"
 
+#include "geometry/input_file.hpp"
+
+#include <yaml-cpp/depthguard.h>
+
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 namespace canopy {
 
 std::string read_grammar_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw GrammarFileError({path, 0, 0}, "cannot open the grammar file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  try {
+    return read_input_file(path, "grammar file", kMaxGrammarBytes);
+  } catch (const FileNotFound&) {
+    throw GrammarFileError({path, 0, 0}, "cannot open the grammar file");
+  } catch (const InputRefused& e) {
+    throw GrammarError({path, e.line(), e.line() > 0 ? 1 : 0}, e.reason());
+  }
 }
 
 YAML::Node parse_yaml_document(const std::string& text, const std::string& file) {
   try {
     return YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // yaml-cpp stops nesting at a bound of its own and says only "bad file".
+    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: lists and maps nested too deeply");
   } catch (const YAML::Exception& e) {
     throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);
   }

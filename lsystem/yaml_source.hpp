@@ -11,7 +11,8 @@
 namespace canopy {
 
 /// A grammar file's text; throws GrammarFileError ("cannot open the grammar file") when it cannot
-/// be read.
+/// be opened, and GrammarError naming the file when it is not a regular file or is larger than
+/// kMaxGrammarBytes (geometry/input_file.hpp).
 std::string read_grammar_file(const std::string& path);
 /// The YAML document in `text`; throws GrammarError at the parser's place ("malformed YAML: ...")
 /// naming `file`.

@@ -1,9 +1,72 @@
 // Shared pieces of the canopy subcommands.
 #include "tools/cli_common.hpp"
 
+#include "geometry/thread_limit.hpp"
+
 #include <fmt/format.h>
 
 namespace canopy::cli {
+
+namespace {
+
+/// `in` as a finite number, or nothing.
+std::optional<double> finite_number(const std::string& in) {
+  double v = 0;
+  if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+}  // namespace
+
+CLI::Validator whole_in(long long lo, long long hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& in) {
+        const auto v = finite_number(in);
+        // 2^63 and up do not fit a long long, though INT64_MAX as a double rounds up to 2^63.
+        if (!v || *v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi) || *v >= 0x1p63)
+          return fmt::format("needs a whole number from {} to {}, got {}", lo, hi, in);
+        in = fmt::format("{}", static_cast<long long>(*v));
+        return std::string();
+      },
+      fmt::format("{}..{}", lo, hi), "whole number");
+}
+
+CLI::Validator at_least(double lo) {
+  return CLI::Validator(
+      [lo](std::string& in) {
+        const auto v = finite_number(in);
+        return v && *v >= lo ? std::string() : fmt::format("needs a finite number of at least {}, got {}", lo, in);
+      },
+      "", "at least");
+}
+
+CLI::Validator above(double lo) {
+  return CLI::Validator(
+      [lo](std::string& in) {
+        const auto v = finite_number(in);
+        return v && *v > lo ? std::string() : fmt::format("needs a finite number greater than {}, got {}", lo, in);
+      },
+      "", "above");
+}
+
+CLI::Validator number_in(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& in) {
+        const auto v = finite_number(in);
+        return v && *v >= lo && *v <= hi ? std::string() : fmt::format("needs a number from {} to {}, got {}", lo, hi, in);
+      },
+      fmt::format("{}..{}", lo, hi), "number in");
+}
+
+CLI::Validator thread_count() { return whole_in(0, max_threads()); }
+
+std::string parse_error_line(const CLI::Error& e) {
+  std::string m = e.what();
+  for (char& c : m)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!m.empty() && m.back() == ' ') m.pop_back();
+  return "canopy: error: " + m;
+}
 
 bool any_row_option(const StandSpec& s) {
   return s.rows || s.per_row || s.row_spacing || s.plant_spacing || s.double_rows || s.jitter || s.random_rotation || s.seed;

@@ -35,6 +35,24 @@ inline const CLI::Validator kSeed(
     },
     "", "seed");
 
+/// Range checks that say their bounds as written: CLI11's Range prints them with std::to_string,
+/// so NonNegativeNumber's upper bound came out as a 309-digit number. A whole-number check also
+/// rewrites the value as an integer, so `--steps 1e3` reads as 1000 rather than failing to convert:
+/// register it with ->transform() (->check() hands validators a copy).
+CLI::Validator whole_in(long long lo, long long hi);
+/// A finite number of at least `lo`.
+CLI::Validator at_least(double lo);
+/// A finite number greater than `lo`.
+CLI::Validator above(double lo);
+/// A finite number from `lo` to `hi`.
+CLI::Validator number_in(double lo, double hi);
+/// --threads: 0 (all cores) up to canopy's maximum (geometry/thread_limit.hpp).
+CLI::Validator thread_count();
+
+/// The one-line form of a command-line parse error: `canopy: error: ...` (CLI11's own text, its
+/// line breaks joined, without the "Run with --help" line).
+std::string parse_error_line(const CLI::Error& e);
+
 /// A distance in metres that is rarely meant above 0.1 m (a clearance): a larger value runs as
 /// asked, with a note on stderr saying what it means, since millimetres typed where metres are
 /// read (`--clearance 0.5` for half a millimetre) make most organ pairs of a stand a contact.

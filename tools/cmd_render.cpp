@@ -3,6 +3,7 @@
 // contacts it still has. From a grammar: the stand grown, before resolution and after it, side by
 // side.
 #include "geometry/export.hpp"
+#include "geometry/input_file.hpp"
 #include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
@@ -38,10 +39,11 @@ struct RenderOptions {
 /// Organs of the organ-level rows of a contacts file, flagged.
 std::vector<std::uint8_t> flags_from_csv(const std::string& path, std::size_t organs) {
   std::vector<std::uint8_t> f(organs, 0);
-  std::ifstream in(path);
+  if (!std::filesystem::exists(path)) return f;
+  InputFile in(path, "contacts table", kMaxOrgansCsvBytes);
   std::string line;
-  std::getline(in, line);
-  while (std::getline(in, line)) {
+  in.next_line(line);
+  while (in.next_line(line)) {
     long a = -1, b = -1;
     if (std::sscanf(line.c_str(), "%ld,%ld", &a, &b) != 2) continue;
     for (long k : {a, b})
@@ -77,16 +79,16 @@ Command add_render(CLI::App& root) {
   app->add_option("SOURCE", o->source, "A folder written by canopy stand, or a grammar file to grow a stand from")->required();
   app->add_option("-o,--out", o->out, "PNG file to write (default stand.png)");
   app->add_option("--size", o->size, "Picture size WIDTHxHEIGHT in pixels (default 1920x1080)");
-  app->add_option("--rows", o->rows.rows, "From a grammar: rows")->check(CLI::PositiveNumber);
-  app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")->check(CLI::PositiveNumber);
-  app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")->check(kFinite)->check(CLI::NonNegativeNumber);
-  app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")->check(kFinite)->check(CLI::NonNegativeNumber);
-  app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")->check(kFinite)->check(CLI::NonNegativeNumber);
+  app->add_option("--rows", o->rows.rows, "From a grammar: rows")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")->check(kFinite)->check(at_least(0));
+  app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")->check(kFinite)->check(at_least(0));
+  app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")->check(kFinite)->check(at_least(0));
   app->add_flag("--random-rotation", o->random_rotation, "From a grammar: turn each plant at random");
   app->add_option("--seed", o->rows.seed, "From a grammar: stand seed")->check(kSeed);
-  app->add_option("--steps", o->steps, "From a grammar: derivation steps")->check(CLI::NonNegativeNumber);
+  app->add_option("--steps", o->steps, "From a grammar: derivation steps")->transform(whole_in(0, kMaxSteps));
   app->add_option("--set", o->set, "From a grammar: override a constant NAME=VALUE (repeatable)");
-  app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")->check(CLI::Range(1, kMaxLod));
+  app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() -> int {

@@ -122,6 +122,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     steps.clear();
     for (double s : parse_number_list("--steps", o.steps, 0, false)) {
       if (s != std::floor(s)) throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
+      if (s > kMaxSteps) throw std::invalid_argument(fmt::format("--steps: {} is more than the {} steps a plant may grow", s, kMaxSteps));
       steps.push_back(static_cast<int>(s));
     }
   }
@@ -289,17 +290,17 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--row-spacing", o->row_spacing, "Metres between rows: list or range (default 1.0)");
   app->add_option("--density", o->density, "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x row spacing)");
   app->add_option("--steps", o->steps, "Plant ages in derivation steps: list or range (default: the grammar's)");
-  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->check(CLI::PositiveNumber);
-  app->add_option("--rows", o->rows, "Rows per stand (default 3)")->check(CLI::PositiveNumber);
-  app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->check(CLI::PositiveNumber);
+  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--rows", o->rows, "Rows per stand (default 3)")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->transform(whole_in(1, INT32_MAX));
   app->add_option("--jitter", o->jitter,
                   "Jitter radius in metres (default: the grammar's stand entry, else 0.02; plants are turned at random unless "
                   "the grammar's stand entry says otherwise)")
-      ->check(kFinite)->check(CLI::NonNegativeNumber);
-  app->add_option("--lod", o->lod, "Level of detail (default 2)")->check(CLI::Range(1, kMaxLod));
+      ->check(kFinite)->check(at_least(0));
+  app->add_option("--lod", o->lod, "Level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_in(1, INT64_MAX));
   app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
   app->add_option("--sun", o->sun, "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
   app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");

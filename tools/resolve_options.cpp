@@ -10,23 +10,23 @@ namespace canopy::cli {
 void ResolveOptions::add_to(CLI::App& app) {
   app.add_flag("--no-resolve", no_resolve, "Export the stand as grown, without turning organs out of contact");
   app.add_option("--max-rounds", max_rounds, "Resolution: detection rounds before giving up (default 30)")
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_in(1, INT32_MAX));
   app.add_option("--resolve-clearance", clearance,
                  "Resolution: metres left between a turned organ and what it met (default 0.0001)")
-      ->check(kFinite)->check(CLI::NonNegativeNumber)->check(metres_note("--resolve-clearance"));
+      ->check(kFinite)->check(at_least(0))->check(metres_note("--resolve-clearance"));
   app.add_option("--resolve-level", level,
                  "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
                  "turns organs that never touched)")
       ->check(CLI::IsMember({"exact", "organ"}));
   app.add_option("--resolve-candidates", candidates,
                  fmt::format("Resolution: organs per contact that may turn, in policy order (default {})", candidates))
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_in(1, INT32_MAX));
   app.add_option("--resolve-axes", axis_fan,
                  fmt::format("Resolution: axes tried across an organ's width-normal plane besides the away axis (default {})", axis_fan))
-      ->check(CLI::Range(4, 64));
+      ->transform(whole_in(4, 64));
   app.add_option("--resolve-step", scan_step,
                  fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
-      ->check(kFinite)->check(CLI::Range(0.5, 30.0));
+      ->check(kFinite)->check(number_in(0.5, 30));
   app.add_flag("--resolve-host-search", host_search,
                "Resolution: on a GPU (--backend cuda, or auto with a GPU), search candidate by candidate on the host's cores "
                "instead of running each level's attempts on the device in lanes of batches (the same turns; slower on the "
@@ -37,7 +37,7 @@ void ResolveOptions::add_to(CLI::App& app) {
                  fmt::format("Resolution: with the device's attempts, batches of contacts planned at once, each on a thread and "
                              "stream of its own (default {}; 1 to 8; the same turns for any number)",
                              lanes))
-      ->check(CLI::Range(1, 8));
+      ->transform(whole_in(1, 8));
 }
 
 ResolveConfig ResolveOptions::config() const {

@@ -113,7 +113,7 @@ StandPlan plan_stand(StandOptions& o) {
   plan.request = grow_request(o.grammar, o.set, o.steps, o.lod, o.detect.threads, o.max_modules);
   plan.grammar = load_grammar(o.grammar, plan.request.load);
   if (!o.positions.empty()) {
-    plan.request.plants = read_positions(o.positions);
+    plan.request.plants = read_positions(o.positions, o.any_grammar_path);
     plan.request.relative_to = std::filesystem::path(o.positions).parent_path().string();
   } else {
     // Command-line row options override the grammar's stand entry field by field.
@@ -162,6 +162,7 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   config["resolve"] = o.resolve.config_json();
   if (!o.positions.empty()) {
     config["layout"] = {{"positions", o.positions}};
+    if (o.any_grammar_path) config["layout"]["any_grammar_path"] = true;
   } else {
     nlohmann::ordered_json sources;
     for (const auto& [field, source] : plan.layout_sources) sources[field] = source;

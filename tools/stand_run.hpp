@@ -35,6 +35,7 @@ struct StandOptions {
   bool random_rotation = false;     // folded into `rows` once parsed
   bool no_random_rotation = false;  // the same, to turn off the grammar entry's rotation
   std::string positions;
+  bool any_grammar_path = false;  // a positions file's grammar cells may name any file
   DetectOptions detect;
   ResolveOptions resolve;
   TargetOptions target;          // --target-lai / --target-ground-cover choose the plant spacing

@@ -1,4 +1,5 @@
 #include "tools/sweep_settings.hpp"
+#include "tools/sweep_table.hpp"
 
 #include "collision/mbvt.hpp"
 #include "geometry/atomic_file.hpp"
@@ -7,7 +8,6 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <stdexcept>
 
@@ -49,21 +49,15 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
 void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& settings, std::size_t finished_runs) {
   const std::string path = (std::filesystem::path(dir) / "sweep.json").string();
   if (finished_runs > 0 && std::filesystem::exists(path)) {
-    nlohmann::ordered_json before;
-    try {
-      std::ifstream in(path);
-      before = nlohmann::ordered_json::parse(in);
-    } catch (const nlohmann::json::exception& e) {
-      throw std::invalid_argument(fmt::format("{}: not a sweep's settings ({})", path, e.what()));
-    }
+    const nlohmann::ordered_json before = read_sweep_settings(path);
     std::string differs;
     for (const auto& [key, value] : settings.items()) {
       if (key == "grammar") continue;  // the file's document is compared, not the path naming it
       // A sweep begun by a canopy of before grammar_digest kept the digest of the file's bytes.
-      if (key == "grammar_digest" && before.contains(key) && before[key] == grammar_text_digest(settings["grammar"].get<std::string>()))
+      if (key == "grammar_digest" && before.contains(key) && before.at(key) == grammar_text_digest(settings["grammar"].get<std::string>()))
         continue;
-      if (!before.contains(key) || before[key] != value)
-        differs += fmt::format("{}{} {} -> {}", differs.empty() ? "" : "; ", key, before.contains(key) ? before[key].dump() : "(none)",
+      if (!before.contains(key) || before.at(key) != value)
+        differs += fmt::format("{}{} {} -> {}", differs.empty() ? "" : "; ", key, before.contains(key) ? before.at(key).dump() : "(none)",
                                value.dump());
     }
     if (!differs.empty())

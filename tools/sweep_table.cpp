@@ -1,8 +1,13 @@
 #include "tools/sweep_table.hpp"
 
+#include "geometry/input_file.hpp"
+
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
+#include <filesystem>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -14,6 +19,20 @@ namespace {
 
 const std::vector<std::string> kKey{"plant_spacing", "row_spacing", "steps", "seed"};
 const std::vector<std::string> kText{"status", "message"};
+
+/// The columns summary.csv averages: every column but the run's key, status and text.
+bool is_metric(const std::string& c) {
+  return c != "run" && c != "seed" && c != "backend" && c != "plant_spacing" && c != "row_spacing" && c != "steps" &&
+         c != "density" && c != "status" && c != "message";
+}
+
+/// A cell as a finite number, the whole cell.
+std::optional<double> finite_number(const std::string& s) {
+  double v = 0;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
 
 /// Splits one CSV line (quoted fields with doubled quotes); false when a quote is left open.
 bool split_csv(const std::string& line, std::vector<std::string>& out) {
@@ -82,21 +101,48 @@ std::string run_key(const RunRow& r) {
 }
 
 std::vector<RunRow> read_runs(const std::string& path) {
-  std::ifstream in(path);
   std::vector<RunRow> rows;
-  if (!in) return rows;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path))) return rows;
+  InputFile in(path, "sweep's runs.csv", kMaxRunsCsvBytes);
   std::string line;
-  if (!std::getline(in, line)) return rows;
+  if (!in.next_line(line)) return rows;
   if (line + "\n" != header())
     throw std::invalid_argument(fmt::format("{}: not a runs.csv of this canopy version (header differs); use another -o", path));
   std::vector<std::string> f;
-  while (std::getline(in, line)) {
+  while (in.next_line(line)) {
     if (!split_csv(line, f) || f.size() != run_columns().size()) continue;  // a torn last line
     RunRow r;
-    for (std::size_t i = 0; i < f.size(); ++i) r[run_columns()[i]] = f[i];
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const std::string& column = run_columns()[i];
+      // summary.csv averages these: a value that is not a number is not from canopy sweep.
+      if (is_metric(column) && !f[i].empty() && !finite_number(f[i]))
+        throw std::invalid_argument(fmt::format("{}:{}: column '{}' needs a number, got '{}' (not a runs.csv written by canopy sweep; "
+                                                "use another -o)",
+                                                path, in.line_number(), column, f[i]));
+      r[column] = f[i];
+    }
     rows.push_back(std::move(r));
   }
   return rows;
+}
+
+nlohmann::ordered_json read_sweep_settings(const std::string& path) {
+  const std::string text = read_input_file(path, "sweep's settings", kMaxSweepJsonBytes);
+  try {
+    // Nesting is bounded while parsing: comparing and printing a parsed value recurse once per
+    // level, and a file of 100,000 '[' would overflow the stack there.
+    const auto bounded = [](int depth, nlohmann::ordered_json::parse_event_t, nlohmann::ordered_json&) {
+      if (depth > 16) throw std::invalid_argument("nested more than 16 levels deep");
+      return true;
+    };
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text, bounded);
+    if (!j.is_object()) throw std::invalid_argument("not a JSON object");
+    return j;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(fmt::format("{}: not a sweep's settings ({})", path, e.what()));
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("{}: not a sweep's settings ({})", path, e.what()));
+  }
 }
 
 void write_runs(const std::string& path, const std::vector<RunRow>& rows) {
@@ -122,9 +168,7 @@ void append_run(const std::string& path, const RunRow& row) {
 std::string summary_csv(const std::vector<RunRow>& rows) {
   std::vector<std::string> metrics;
   for (const std::string& c : run_columns())
-    if (c != "run" && c != "seed" && c != "backend" && c != "plant_spacing" && c != "row_spacing" && c != "steps" &&
-        c != "density" && c != "status" && c != "message")
-      metrics.push_back(c);
+    if (is_metric(c)) metrics.push_back(c);
   struct Cell {
     RunRow first;
     std::size_t runs = 0, failed = 0;
@@ -142,7 +186,7 @@ std::string summary_csv(const std::vector<RunRow>& rows) {
       continue;
     }
     for (const std::string& m : metrics)
-      if (!r.at(m).empty()) c.values[m].push_back(std::stod(r.at(m)));
+      if (const auto v = finite_number(r.at(m))) c.values[m].push_back(*v);
   }
   std::string out = "plant_spacing,row_spacing,density,steps,runs,failed";
   for (const std::string& m : metrics) out += "," + m + "_mean," + m + "_sd";

@@ -97,3 +97,61 @@ TEST_CASE("grammars that grow exponentially stop at the module cap, not out of m
   const Grammar g = grammar("axiom: A\nsteps: 200\nproductions:\n  - A -> A A\n");
   CHECK_THROWS_AS(derive(g), ModuleCapError);
 }
+
+TEST_CASE("expressions nested deeper than the parser's bound are a located error, not a stack overflow") {
+  const auto nested = [](const std::string& open, int n, const std::string& close) {
+    std::string s;
+    for (int i = 0; i < n; ++i) s += open;
+    s += "1";
+    for (int i = 0; i < n; ++i) s += close;
+    return s;
+  };
+  const std::string deep = "expression nested too deeply (more than 256 levels of parentheses, unary operators or calls)";
+  // Each of these crashed the recursive parser (a signal, not an error) past about 10,000 levels.
+  for (const std::string& e : {nested("(", 30000, ")"), nested("-", 100000, ""), nested("!", 100000, ""), nested("abs(", 50000, ")")}) {
+    const std::string message = error_of("axiom: A(" + e + ")\n");
+    CHECK(message.starts_with("test.yaml:1:"));
+    CHECK(message.ends_with(deep));
+  }
+  CHECK(error_of("constants: {k: \"" + nested("(", 30000, ")") + "\"}\naxiom: A(k)\n").ends_with(deep));
+  // '^' associates to the right: each level waits with an operand, so the operand bound speaks first.
+  CHECK(error_of("axiom: A(" + nested("2^", 30000, "") + ")\n") == "test.yaml:1:138: expression nested too deeply (more than 64 operands)");
+  // Nesting of any depth written by hand stays well inside the bound.
+  CHECK(error_of("axiom: A(" + nested("(", 200, ")") + " + " + nested("-", 200, "") + ")\n") == "");
+}
+
+TEST_CASE("steps outside 0..100000 are refused wherever they come from") {
+  const Grammar g = grammar("axiom: A\nproductions:\n  - A -> A\n");
+  for (const int steps : {-3, kMaxSteps + 1})
+    CHECK_THROWS_WITH_AS(derive(g, DeriveRequest{steps, 1, kDefaultMaxModules}),
+                         fmt::format("the derivation steps must lie in 0..100000 (got {})", steps).c_str(), std::invalid_argument);
+  CHECK(derived(g, kMaxSteps) == "A");
+  CHECK(error_of("steps: 100001\naxiom: A\n") == "test.yaml:1:8: steps must be between 0 and 100000, got 100001");
+}
+
+TEST_CASE("an organ's level of detail has the stand's range, 1..16, with its place") {
+  CHECK(error_of("axiom: L(1, 1)\norgans:\n  L: {prototype: leaflet, kind: leaflet, lod: 17}\n") ==
+        "test.yaml:3:47: lod must be between 1 and 16, got 17");
+  CHECK(error_of("axiom: L(1, 1)\norgans:\n  L: {prototype: leaflet, kind: leaflet, lod: 16}\n") == "");
+}
+
+TEST_CASE("a file with none of a grammar's keys is not quoted back") {
+  CHECK(error_of("root:x:0:0: secret\nbin: x\n") == "test.yaml:1:1: not a grammar file (none of its keys is a grammar's, such as axiom or "
+                                                     "productions)");
+  // A grammar with a misspelt key is still told which key.
+  CHECK(error_of("axiom: F\nproduction: []\n").starts_with("test.yaml:2:1: unknown key 'production' in the grammar"));
+}
+
+TEST_CASE("grammar files that are not regular files are refused before reading") {
+  // /dev/zero was read until memory ran out; a folder read as an empty grammar.
+  CHECK(grammar_error([] { load_grammar("/dev/zero"); }) == "/dev/zero: the grammar file is not a regular file (a device, pipe or socket)");
+  CHECK(grammar_error([] { load_grammar(source("grammars")); }) == source("grammars") + ": the grammar file is a folder, not a file");
+  CHECK_THROWS_AS(load_grammar(source("grammars/no-such-file.yaml")), GrammarFileError);
+}
+
+TEST_CASE("YAML nested past yaml-cpp's bound says so") {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const std::string message = error_of("axiom: F\nmodules: " + deep + "\n");  // was "malformed YAML: bad file"
+  CHECK(message.starts_with("test.yaml:2:"));
+  CHECK(message.ends_with(": malformed YAML: lists and maps nested too deeply"));
+}

@@ -6,8 +6,11 @@
 #include "lsystem/turtle.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <unistd.h>
 
 using namespace canopy;
 using namespace canopy::test;
@@ -178,10 +181,64 @@ TEST_CASE("a non-finite position or rotation, a level of detail out of range, ne
   GrowRequest r = req;
   r.threads = -1;
   CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the thread count must be at least 0"), std::invalid_argument);
-  r = req;
-  r.steps = -1;
-  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the derivation steps must be at least 0 (got -1)"), std::invalid_argument);
-  r = req;
-  r.plants[1].steps = -2;
-  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("plant 1: its derivation steps must be at least 0 (got -2)"), std::invalid_argument);
+  r.threads = 100000;  // libgomp crashed starting a team this large
+  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the thread count 100000 is more than the"), std::invalid_argument);
+  for (const int steps : {-1, kMaxSteps + 1}) {
+    r = req;
+    r.steps = steps;
+    const std::string all = fmt::format("the derivation steps must lie in 0..100000 (got {})", steps);
+    CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains(all.c_str()), std::invalid_argument);
+    r = req;
+    r.plants[1].steps = steps;
+    const std::string one = fmt::format("plant 1: its derivation steps must lie in 0..100000 (got {})", steps);
+    CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains(one.c_str()), std::invalid_argument);
+  }
+}
+
+namespace {
+
+/// The message of what growing one plant of `yaml` (written to a file) throws, "" for none.
+std::string grow_error(const std::string& yaml) {
+  char name[] = "/tmp/canopy-turtle-XXXXXX";
+  const int fd = mkstemp(name);
+  REQUIRE(fd >= 0);
+  REQUIRE(write(fd, yaml.data(), yaml.size()) == static_cast<ssize_t>(yaml.size()));
+  close(fd);
+  GrowRequest req;
+  req.grammar = name;
+  req.plants.resize(1);
+  req.plants[0].seed = 1;
+  std::string what;
+  try {
+    grow_stand(req);
+  } catch (const std::exception& e) {
+    what = e.what();
+    if (what.starts_with(name)) what = "FILE" + what.substr(std::string(name).size());
+  }
+  std::remove(name);
+  return what;
+}
+
+}  // namespace
+
+TEST_CASE("organ parameter errors name the file, line and column of the expression that wrote them") {
+  const std::string organs = "organs:\n  L: {prototype: leaflet, kind: leaflet}\n  I: {prototype: cylinder, kind: internode}\n";
+  // In the axiom: the parameter's own column.
+  CHECK(grow_error(organs + "axiom: L(-1,-0.5)\n") ==
+        "FILE:4:10: plant 0 (seed 1), module 0 'L(-1,-0.5)': leaflet parameter 1 must not be negative");
+  CHECK(grow_error(organs + "axiom: L(1, -0.5)\n") ==
+        "FILE:4:13: plant 0 (seed 1), module 0 'L(1,-0.5)': leaflet parameter 2 must not be negative");
+  // Computed by a production some steps on, after modules copied unchanged and a constant successor.
+  CHECK(grow_error(organs + "steps: 3\naxiom: F A(1)\nproductions:\n  - F -> F F\n  - A(x) -> I(1, 0.1) A(x - 1)\n"
+                            "interpretation:\n  - A(x) -> L(x, 0.2)\n") ==
+        "FILE:10:15: plant 0 (seed 1), module 11 'L(-2,0.2)': leaflet parameter 1 must not be negative");
+  // Sizes that fit a double but not a float were written as inf and NaN.
+  CHECK(grow_error(organs + "axiom: L(1e300,1e300)\n") ==
+        "FILE:4:10: plant 0 (seed 1), module 0 'L(1e+300,1e+300)': leaflet parameter 1 is 1e+300 m, more than the 1000000 m an organ "
+        "may measure");
+  CHECK(grow_error(organs + "axiom: F(1e300) L(1, 1)\n") ==
+        "FILE:4:10: plant 0 (seed 1), module 0 'F(1e+300)': the step takes the turtle farther than 1000000 m from the plant's origin");
+  CHECK(grow_error(organs + "axiom: I(1e6, 1) I(1e6, 1) L(1, 1)\n") ==
+        "FILE:4:28: plant 0 (seed 1), module 2 'L(1,1)': the organ lies farther than 1000000 m from its plant's origin");
+  CHECK(grow_error(organs + "axiom: L(1e6, 1e6)\n") == "");  // the bound itself is allowed
 }

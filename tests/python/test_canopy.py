@@ -149,7 +149,7 @@ def test_errors_carry_the_located_message(tmp_path):
         canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, float("inf"), 1]]), steps=5)
     with pytest.raises(ValueError, match="the level of detail must lie in 1..16"):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, lod=0)
-    with pytest.raises(ValueError, match="the derivation steps must be at least 0"):
+    with pytest.raises(ValueError, match="the derivation steps must lie in 0..100000"):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=-1)
     with pytest.raises(ValueError, match="the thread count must be at least 0"):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, threads=-3)

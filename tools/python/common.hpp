@@ -67,8 +67,17 @@ struct PyStand {
   std::optional<RowLayout> layout;  // the rows it was grown in (its lattice is light's tile)
 };
 
-/// A path from str or os.PathLike.
-inline std::string path_of(py::handle h) { return py::str(py::module_::import("os").attr("fspath")(h)); }
+/// A path from str, bytes or os.PathLike (bytes as they are: a file name need not be UTF-8).
+/// (py::str of bytes is their repr, "b'...'", which named a file that does not exist.)
+inline std::string path_of(py::handle h) { return py::module_::import("os").attr("fspath")(h).cast<std::string>(); }
+
+/// A NumPy view of a stand's memory that NumPy may not write: the stand's arrays change only
+/// through canopy's calls, which check what they are given (a NaN written into a transform was
+/// used by detect() as it was).
+inline py::array read_only(py::array a) {
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
 
 inline std::vector<std::string> overrides(const std::map<std::string, double>& set) {
   std::vector<std::string> v;

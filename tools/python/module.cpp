@@ -109,6 +109,7 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "random_rotation") o.rows.random_rotation = v.cast<bool>();  // False too: over the grammar's entry
           else if (k == "seed") o.rows.seed = v.cast<std::uint64_t>();
           else if (k == "positions") o.positions = path_of(v);
+          else if (k == "any_grammar_path") o.any_grammar_path = v.cast<bool>();
           else if (k == "level") o.detect.level = v.cast<std::string>();
           else if (k == "clearance") o.detect.clearance = v.cast<double>();
           else if (k == "collide") o.detect.collide = v.cast<std::string>();

@@ -96,29 +96,30 @@ void bind_stand(py::module_& m) {
                                                  py::make_tuple("leaf", "<i4"), py::make_tuple("kind", "u1"),
                                                  py::make_tuple("prototype", "u1"), py::make_tuple("lod", "u1"),
                                                  py::make_tuple("reserved", "u1"))));
-            return py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
-                             std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))}, s.stand.organs.data(), self);
+            return read_only(py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
+                                       std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))}, s.stand.organs.data(),
+                                       self));
           },
-          "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records (no copy).")
+          "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records (no copy; read-only).")
       .def_property_readonly(
           "transforms",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
             const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
-            return py::array_t<float>({n, py::ssize_t{4}, py::ssize_t{3}},
-                                      {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{12}, py::ssize_t{4}},
-                                      reinterpret_cast<const float*>(s.stand.transforms.data()), self);
+            return read_only(py::array_t<float>({n, py::ssize_t{4}, py::ssize_t{3}},
+                                                {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{12}, py::ssize_t{4}},
+                                                reinterpret_cast<const float*>(s.stand.transforms.data()), self));
           },
-          "float32 array (organs, 4, 3) viewing the plant-frame transforms: rows H*size, L*size, U*size, joint.")
+          "float32 array (organs, 4, 3) viewing the plant-frame transforms: rows H*size, L*size, U*size, joint (read-only).")
       .def_property_readonly(
           "base_points",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
             const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
-            return py::array_t<float>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{4}},
-                                      reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self);
+            return read_only(py::array_t<float>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{4}},
+                                                reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self));
           },
-          "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame.")
+          "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame (read-only).")
       .def_property_readonly("area",
                              [](PyStand& s) {
                                PrototypeLibrary lib;
@@ -240,6 +241,7 @@ void bind_stand(py::module_& m) {
             const cli::GlbForm glb = cli::glb_form(glb_instancing, glb_compact, 0);
             if (glb.compact && fs.count("glb")) check_glb_compact(ExportScope::whole(s.stand));
             py::gil_scoped_release nogil;
+            const ThreadLimit thread_limit(0);  // refuses an OMP_NUM_THREADS past canopy's maximum
             prepare_output_dir(dir);
             PrototypeLibrary lib;
             OutputSet files(dir);

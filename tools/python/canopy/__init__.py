@@ -32,6 +32,14 @@ __all__ = ["Stand", "derive", "stand", "light", "sweep", "sweep_rows", "ModuleCa
 KINDS = ("internode", "petiole", "rachis", "leaflet", "peduncle", "fruit", "flower")
 
 
+def _path(p):
+    """A path as the C++ side takes it: str, bytes (a name need not be UTF-8) or os.PathLike;
+    anything else is refused with TypeError (str() made b'x' of bytes and a path of any object)."""
+    import os
+
+    return os.fspath(p)
+
+
 def derive(grammar, *, steps=None, seed=None, stats=False, interpreted=False, max_modules=40_000_000, set=None,
            **constants):
     """The string a grammar derives (``canopy derive``), or with ``stats=True`` its module counts
@@ -48,7 +56,7 @@ def stand(grammar, out, progress=None, **options):
     ``--per-row 5``, ``set={"name": value}`` for ``--set``, ``no_resolve=True``...). Writes the
     files and returns report.json as a dict. ``progress(round, contacts_left, seconds)`` is called
     each resolution round."""
-    return _stand(str(grammar), str(out), options, progress)
+    return _stand(_path(grammar), _path(out), options, progress)
 
 
 def light(source, **options):
@@ -65,7 +73,7 @@ def sweep(grammar, out, progress=None, **options):
     (``steps="16:22:3"``). ``progress(index, total, row)`` is called after each run (its row
     already in OUT/runs.csv); raising from it stops the sweep, which resumes where it stopped
     when called again. Returns the counts; the rows are read by :func:`sweep_rows`."""
-    return _sweep(str(grammar), str(out), options, progress)
+    return _sweep(_path(grammar), _path(out), options, progress)
 
 
 def sweep_rows(out, summary=False):

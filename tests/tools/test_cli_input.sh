@@ -1,0 +1,152 @@
+#!/usr/bin/env bash
+# Bad input to every reader and option of canopy: a one-line located `canopy: error:` with a clear
+# bound, never a crash, a hang, an unbounded read or a silent default (docs/cli.md, "Limits and
+# refusals"). Cases that crashed or ran for ever run under `timeout`, so a regression fails here
+# instead of stalling the suite. Usage: CANOPY=path/to/canopy test_cli_input.sh SOURCE_DIR
+set -u
+src=$1
+canopy=${CANOPY:?set CANOPY to the canopy binary}
+source "$(dirname "$0")/check.sh"
+g="$src/grammars/tomato.yaml"
+cd "$tmp"
+# run NAME ARGS...: runs canopy (at most 60 s), keeps the exit status in $rc and stderr in $tmp/err.
+run() { timeout 60 "$canopy" "$@" >"$tmp/out" 2>"$tmp/err"; rc=$?; }
+err() { cat "$tmp/err"; }
+lines() { wc -l < "$tmp/err" | tr -d ' '; }
+
+# Expressions nested past the parser's bound: a located error (30,000 '(' was a stack overflow).
+python3 -c "print('axiom: A(' + '('*30000 + '1' + ')'*30000 + ')')" > deep.yaml
+run derive deep.yaml
+check "deep parentheses" "1:canopy: error: deep.yaml:1:266: expression nested too deeply (more than 256 levels of parentheses, unary operators or calls)" "$rc:$(err)"
+python3 -c "print('constants:\n  k: ' + '-'*100000 + '1\naxiom: A(k)')" > deep_constant.yaml
+run derive deep_constant.yaml
+check "deep unary minus in a constant" "1:1" "$rc:$(grep -c '^canopy: error: deep_constant.yaml:2:.*nested too deeply' "$tmp/err")"
+
+# Files that are not regular files are refused at once (/dev/zero was read until memory ran out).
+(ulimit -v 4000000; run derive /dev/zero; echo "$rc:$(err)" > devzero)
+check "derive /dev/zero" "1:canopy: error: /dev/zero: the grammar file is not a regular file (a device, pipe or socket)" \
+  "$(cat devzero)"
+run derive "$src/grammars"
+check "derive a folder" "1:canopy: error: $src/grammars: the grammar file is a folder, not a file" "$rc:$(err)"
+
+# Steps: 0..100,000 everywhere (a billion ran for many minutes).
+run derive "$g" --steps 1000000000
+check "derive --steps 1e9" "105:canopy: error: --steps: needs a whole number from 0 to 100000, got 1000000000" "$rc:$(err)"
+run derive "$g" --steps -3
+check "derive --steps -3: one readable line" "105:canopy: error: --steps: needs a whole number from 0 to 100000, got -3" "$rc:$(err)"
+run stand "$g" --steps 1000000000 -o s
+check "stand --steps 1e9" "105:canopy: error: --steps: needs a whole number from 0 to 100000, got 1000000000" "$rc:$(err)"
+run sweep "$g" --steps 1000000000 -o sw
+check "sweep --steps 1e9" "2:canopy: error: --steps: 1000000000 is more than the 100000 steps a plant may grow" "$rc:$(err)"
+run derive "$g" --steps 1e3 --stats
+check "derive --steps 1e3 reads as 1000" "0" "$rc"
+
+# Range errors say their bound as written, on one line (NonNegativeNumber printed 309 digits).
+run stand "$g" --jitter -1 -o s
+check "--jitter -1" "105:canopy: error: --jitter: needs a finite number of at least 0, got -1:1" "$rc:$(err):$(lines)"
+run stand "$g" --lod 17 -o s
+check "--lod 17" "105:canopy: error: --lod: needs a whole number from 1 to 16, got 17" "$rc:$(err)"
+run stand "$g" --rows 0 -o s
+check "--rows 0" "105:canopy: error: --rows: needs a whole number from 1 to 2147483647, got 0" "$rc:$(err)"
+run stand "$g" --no-such-option -o s
+check "unknown option: one line" "109:1:1" "$rc:$(grep -c '^canopy: error: ' "$tmp/err"):$(lines)"
+
+# Thread counts: refused past the maximum instead of crashing in libgomp.
+run stand "$g" --steps 4 --threads 100000 -o s
+check "stand --threads 100000" "105:canopy: error: --threads: needs a whole number from 0 to 1024, got 100000" "$rc:$(err)"
+OMP_NUM_THREADS=100000 timeout 60 "$canopy" stand "$g" --steps 4 --backend cpu -o s >/dev/null 2>"$tmp/err"; rc=$?
+check "OMP_NUM_THREADS=100000" "2:canopy: error: OMP_NUM_THREADS asks for 100000 threads, more than the 1024 canopy runs at most; set it lower or give a thread count" "$rc:$(err)"
+OMP_NUM_THREADS=100000 timeout 60 "$canopy" stand "$g" --steps 4 --backend cpu --threads 2 -o s2 >/dev/null 2>"$tmp/err"; rc=$?
+check "OMP_NUM_THREADS=100000 with --threads 2" "0" "$rc"
+
+# Organ parameters: non-finite, negative or past float range are errors at the expression that
+# wrote them (1e300 was written as inf and NaN into organs.csv and the meshes, and exit 0).
+organs=$'organs:\n  L: {prototype: leaflet, kind: leaflet}\n'
+printf '%saxiom: L(1e300,1e300)\n' "$organs" > huge.yaml
+run stand huge.yaml --backend cpu -o huge
+check "float overflow refused" "1:canopy: error: huge.yaml:3:10: plant 0 (seed 3395948882924712079), module 0 'L(1e+300,1e+300)': leaflet parameter 1 is 1e+300 m, more than the 1000000 m an organ may measure" "$rc:$(err)"
+check "float overflow: no organs.csv" "no" "$([ -e huge/organs.csv ] && echo yes || echo no)"
+printf '%saxiom: L(-1,-0.5)\n' "$organs" > negative.yaml
+run stand negative.yaml --backend cpu -o neg
+check "negative size located" "1:canopy: error: negative.yaml:3:10: plant 0 (seed 3395948882924712079), module 0 'L(-1,-0.5)': leaflet parameter 1 must not be negative" "$rc:$(err)"
+printf 'axiom: L(1,0.5)\norgans:\n  L: {prototype: leaflet, kind: leaflet, lod: 17}\n' > lod.yaml
+run stand lod.yaml --backend cpu -o lod
+check "grammar lod 17 located" "1:canopy: error: lod.yaml:3:47: lod must be between 1 and 16, got 17" "$rc:$(err)"
+
+# Positions files: columns by name, cells in range, grammar cells inside the file's folder.
+mkdir -p pos/sub
+cp "$g" pos/sub/t.yaml
+p() { printf "$1" > pos/p.csv; run stand "$g" --positions pos/p.csv --steps 4 --backend cpu "${@:2}" -o ps; }
+p 'x,y,rotation,seed,Steps\n0,0,0,1,3\n'
+check "positions unknown column" "2:canopy: error: pos/p.csv:1:19: unknown column 'Steps' (the header has x,y,rotation,seed and may add grammar,steps)" "$rc:$(err)"
+p 'x,y,rotation,seed,x\n0,0,0,1,3\n'
+check "positions duplicate column" "2:canopy: error: pos/p.csv:1:19: column 'x' appears twice in the header (cells 1 and 5)" "$rc:$(err)"
+p 'x,y,rotation,seed,steps\n0,0,0,1,1e9\n'
+check "positions steps 1e9" "2:canopy: error: pos/p.csv:2:9: column 'steps' needs a whole number from 0 to 100000, got '1e9'" "$rc:$(err)"
+p 'x,y,rotation,seed\n1e400,0,0,1\n'
+check "positions out of range" "2:canopy: error: pos/p.csv:2:1: column 'x' needs a finite number, got '1e400', which is out of range" "$rc:$(err)"
+printf 'a secret first line\nand a second\n' > not_a_grammar
+p 'x,y,rotation,seed,grammar\n0,0,0,1,../not_a_grammar\n'
+check "positions grammar above the folder" "2:canopy: error: pos/p.csv:2:9: column 'grammar': '../not_a_grammar' leaves the positions file's folder; a grammar cell names a file in the positions file's folder or below it (--any-grammar-path allows others)" "$rc:$(err)"
+p "x,y,rotation,seed,grammar\n0,0,0,1,$tmp/not_a_grammar\n"
+check "positions grammar absolute" "2:1" "$rc:$(grep -c "is an absolute path" "$tmp/err")"
+p 'x,y,rotation,seed,grammar\n0,0,0,1,../not_a_grammar\n' --any-grammar-path
+check "--any-grammar-path reads it" "1:canopy: error: pos/../not_a_grammar:1:1: a grammar file is a YAML map with keys such as axiom and productions" "$rc:$(err)"
+check "its content is not quoted" "0" "$(grep -c secret "$tmp/err")"
+printf 'root: x\nsecret: y\n' > not_a_grammar
+p 'x,y,rotation,seed,grammar\n0,0,0,1,../not_a_grammar\n' --any-grammar-path
+check "a YAML map that is not a grammar" "1:canopy: error: pos/../not_a_grammar:1:1: not a grammar file (none of its keys is a grammar's, such as axiom or productions)" "$rc:$(err)"
+p 'x,y,rotation,seed,grammar,steps\n0,0,0,1,sub/t.yaml,4\n0.5,0,0,2,,4\n'
+check "a grammar below the folder" "0" "$rc"
+p 'x,y,rotation,seed\n0,0,0,1\n'
+mkfifo pos/fifo
+run stand "$g" --positions pos/fifo --steps 4 -o ps
+check "positions from a pipe" "2:canopy: error: pos/fifo: the positions file is not a regular file (a device, pipe or socket)" "$rc:$(err)"
+
+# canopy detect reads back only what canopy writes.
+run stand "$g" --rows 1 --per-row 2 --steps 6 --backend cpu -o st
+check "stand for detect" "0" "$rc"
+edit() {  # edit DIR LINE COLUMN VALUE: a copy of st with one organs.csv cell replaced
+  rm -rf "$1"; cp -r st "$1"
+  python3 -c "
+import sys; f='$1/organs.csv'; l=open(f).read().split('\n'); c=l[$2-1].split(','); c[$3-1]='$4'; l[$2-1]=','.join(c); open(f,'w').write('\n'.join(l))"
+}
+edit nan 2 13 nan
+run detect nan --backend cpu
+check "detect: NaN transform" "1:canopy: error: nan/organs.csv:2: column 13 'nan' is not a finite number" "$rc:$(err)"
+edit big 2 13 1e300
+run detect big --backend cpu
+check "detect: 1e300 out of range" "1:canopy: error: big/organs.csv:2: column 13 '1e300' is out of range" "$rc:$(err)"
+edit parent 3 3 -7
+run detect parent --backend cpu
+check "detect: parent out of range" "1:canopy: error: parent/organs.csv:3: parent -7 is not an earlier organ of plant 0" "$rc:$(err)"
+rm -rf empty; cp -r st empty; : > empty/organs.csv
+run detect empty --backend cpu
+check "detect: empty organs.csv" "1:1" "$rc:$(grep -c '^canopy: error: empty/organs.csv:1: expected the header id,plant,parent,' "$tmp/err")"
+run detect st --backend cpu --threads 100000
+check "detect --threads 100000" "105:canopy: error: --threads: needs a whole number from 0 to 1024, got 100000" "$rc:$(err)"
+run detect st --backend cpu
+check "detect: the stand as written" "0" "$rc"
+
+# A sweep resumed from files canopy did not write: refused with the file named, never a crash.
+sweep() { run sweep "$g" --plant-spacing 0.4 --steps 4 --rows 1 --per-row 2 --backend cpu -o sw "$@"; }
+rm -rf sw
+sweep --seeds 1
+check "sweep" "0" "$rc"
+cp sw/runs.csv runs.good
+python3 -c "
+import csv; r=list(csv.reader(open('sw/runs.csv'))); i=r[0].index('lai'); r[1][i]='abc'
+csv.writer(open('sw/runs.csv','w'), lineterminator='\n').writerows(r)"
+sweep --seeds 2
+check "runs.csv with a word for a number" "2:canopy: error: sw/runs.csv:2: column 'lai' needs a number, got 'abc' (not a runs.csv written by canopy sweep; use another -o)" "$rc:$(err)"
+cp runs.good sw/runs.csv
+# Printing the differing setting recursed once per level: a stack overflow.
+python3 -c "print('{\"rows\": ' + '[' * 100000 + ']' * 100000 + '}')" > sw/sweep.json
+sweep --seeds 2
+check "sweep.json nested 100,000 deep" "2:1" "$rc:$(grep -c "^canopy: error: sw/sweep.json: not a sweep's settings (nested more than 16 levels deep)" "$tmp/err")"
+echo '[1, 2]' > sw/sweep.json
+sweep --seeds 2
+check "sweep.json not an object" "2:canopy: error: sw/sweep.json: not a sweep's settings (not a JSON object)" "$rc:$(err)"
+
+echo "$pass passed, $failures failed"
+[ "$failures" -eq 0 ]
