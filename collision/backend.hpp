@@ -30,6 +30,9 @@ struct DetectRequest {
   /// CUDA: device memory the detection may use, bytes (0: what the device has free). Stage
   /// lists that would not fit are made in batches of plant pairs.
   std::size_t max_device_bytes = 0;
+  /// Host memory the contact lists may take, bytes (0: what the machine has available when the
+  /// detection starts); collision/memory_budget.hpp.
+  std::size_t memory_limit = 0;
 };
 
 /// Throws std::invalid_argument naming what is wrong when a request cannot be met: a clearance

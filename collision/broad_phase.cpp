@@ -11,10 +11,14 @@ bool plant_bounds_overlap(const Stand& s, const Mbvt& m, std::size_t p, std::siz
   return plant_bounds_meet(m.plants[p], m.plants[q], s.plants[q].x - s.plants[p].x, s.plants[q].y - s.plants[p].y);
 }
 
-std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, const Mbvt& m) {
-  std::vector<std::pair<std::int32_t, std::int32_t>> out;
+namespace {
+
+/// Calls `visit(p, q)` for the plant pairs (p < q) whose bounds overlap, in no set order, while it
+/// returns true.
+template <typename Visit>
+void visit_plant_pairs(const Stand& s, const Mbvt& m, Visit&& visit) {
   const std::size_t n = s.plant_count();
-  if (n < 2) return out;
+  if (n < 2) return;
   // Each plant's cell, the plants sorted by cell (row of cells, then cell in the row, then
   // plant): the cells a plant's bound may reach, a 3 x 3 block around its own, are three runs of
   // that order, one per row of cells. Taking the plants in that order, where each run starts
@@ -39,12 +43,28 @@ std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, c
       while (k < n && sorted[k] < Placed{iy, at.ix - 1, -1}) ++k;
       for (std::size_t j = k; j < n && sorted[j].iy == iy && sorted[j].ix <= at.ix + 1; ++j) {
         const auto q = static_cast<std::size_t>(sorted[j].plant);
-        if (q > p && plant_bounds_overlap(s, m, p, q)) out.emplace_back(at.plant, sorted[j].plant);
+        if (q > p && plant_bounds_overlap(s, m, p, q) && !visit(at.plant, sorted[j].plant)) return;
       }
     }
   }
+}
+
+}  // namespace
+
+std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& s, const Mbvt& m) {
+  std::vector<std::pair<std::int32_t, std::int32_t>> out;
+  visit_plant_pairs(s, m, [&](std::int32_t p, std::int32_t q) {
+    out.emplace_back(p, q);
+    return true;
+  });
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::uint64_t count_plant_pairs(const Stand& s, const Mbvt& m, std::uint64_t stop_after) {
+  std::uint64_t count = 0;
+  visit_plant_pairs(s, m, [&](std::int32_t, std::int32_t) { return ++count <= stop_after; });
+  return count;
 }
 
 std::vector<std::uint8_t> plants_with_free_pairs(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>* only) {

@@ -16,6 +16,9 @@ bool plant_bounds_overlap(const Stand& stand, const Mbvt& m, std::size_t p, std:
 
 /// Plant pairs (p < q) whose bounds overlap, sorted.
 std::vector<std::pair<std::int32_t, std::int32_t>> plant_pairs(const Stand& stand, const Mbvt& m);
+/// How many plant pairs plant_pairs would give, counted without a list; counting stops at
+/// `stop_after` + 1 (for a check against a bound, collision/memory_budget.hpp).
+std::uint64_t count_plant_pairs(const Stand& stand, const Mbvt& m, std::uint64_t stop_after = UINT64_MAX);
 
 /// A flag per plant: it holds a pair of organs taking part that are not adjacent, so it meets
 /// itself at the plant level (the tree's shape alone decides). With `only`, unflagged plants

@@ -8,6 +8,7 @@
 #include "collision/broad_phase.hpp"
 #include "collision/exact.hpp"
 #include "collision/lcd_descent.hpp"
+#include "collision/memory_budget.hpp"
 #include "collision/mbvt_fit.hpp"
 #include "collision/obb_lanes.hpp"
 #include "collision/organ_rows.hpp"
@@ -17,6 +18,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -183,7 +185,11 @@ class CpuBackend : public DetectionBackend {
     double t = now();
     const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
 
-    // Plant level: pairs of plants whose bounds meet, and each plant with itself.
+    // Plant level: pairs of plants whose bounds meet, and each plant with itself; counted first
+    // where they might not fit in memory (collision/memory_budget.hpp).
+    const std::size_t budget = memory_budget(req.memory_limit);
+    if (budget && !req.active_plants)
+      if (const std::uint64_t most = most_plant_pairs(budget); count_plant_pairs(s, m, most) > most) refuse_plant_pairs(most, budget);
     LevelCount plant_count;
     std::vector<Work>& work = work_;
     work.clear();
@@ -225,14 +231,21 @@ class CpuBackend : public DetectionBackend {
       col.moved = req.moved_organs;
       for (ObbBatch& b : col.batch) b.size = 0;
     }
+    // The lists stop where they would outgrow the memory (collision/memory_budget.hpp): plants
+    // on or near one spot make contacts as the square of their number.
+    const std::size_t most = budget ? static_cast<std::size_t>(static_cast<double>(budget) / kBytesPerContact) : SIZE_MAX;
+    std::atomic<std::size_t> listed{0}, done{0};
+    std::atomic<bool> over{false};
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (std::size_t w = 0; w < work.size(); ++w) {
+      if (over.load(std::memory_order_relaxed)) continue;
       const auto [p, q] = work[w];
       if (w + 2 < work.size() && work[w + 2].q != q) prefetch_plant(s, m, work[w + 2].q);
       const PlantBound& pa = m.plants[static_cast<std::size_t>(p)];
       const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
       const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
       Collector& col = per[static_cast<std::size_t>(omp_get_thread_num())];
+      const std::size_t held = col.leaf.size() + col.organ.size();
       // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the other
       // plant's box (8 of p's clusters at a time), then each cluster's.
       lane_clusters_meeting_moved(m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
@@ -265,7 +278,15 @@ class CpuBackend : public DetectionBackend {
             descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset, block);
         });
       });
+      done.fetch_add(1, std::memory_order_relaxed);
+      if (const std::size_t grown = col.leaf.size() + col.organ.size() - held)
+        if (listed.fetch_add(grown, std::memory_order_relaxed) + grown > most) over.store(true, std::memory_order_relaxed);
     }
+    if (over)
+      throw std::runtime_error(fmt::format(
+          "detection stopped after {} of {} plant pairs: its contact lists (over {} pairs) outgrew the {:.1f} GB of memory "
+          "available (plants on or near one spot?); spread the plants out or use fewer",
+          done.load(), work.size(), listed.load(), static_cast<double>(budget) / 1e9));
     for (Collector& c : per) c.test_waiting();
     std::vector<Contact> leaf;
     std::vector<Contact>& organ = organ_;

@@ -1,6 +1,7 @@
 #include "collision/resolve.hpp"
 
 #include "collision/background_release.hpp"
+#include "collision/memory_budget.hpp"
 #include "collision/neighbourhood.hpp"
 #include "collision/plan_round.hpp"
 #include "collision/turn_search.hpp"
@@ -37,6 +38,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   if (initial.level != cfg.level)
     throw std::invalid_argument(fmt::format("resolution at the {} level was given contacts of the {} level", name_of(cfg.level),
                                             name_of(initial.level)));
+  // Said before any round: resolution's working memory grows with the contacts it starts from.
+  check_resolution_fits(initial.pairs.size(), req.detect.memory_limit);
   ResolveResult out;
   DetectRequest dreq = req.detect;
   dreq.level = cfg.level;

@@ -1,5 +1,6 @@
 #include "cuda/plant_level.hpp"
 
+#include "collision/memory_budget.hpp"
 #include "cuda/device_lists.hpp"
 #include "cuda/grid_kernels.hpp"
 
@@ -35,6 +36,9 @@ std::vector<std::uint64_t> PlantLevel::work(const StandOnDevice& dev, const Dete
   Counters host{};
   const std::size_t nw = collect(pair_keys_, counters, host, 8 * std::size_t{np} + 64, kMaxItems, tight, timer,
                                  [&](std::uint64_t* o, unsigned long long cap) { launch_plant_pairs(g, o, cap, counters.get()); });
+  // The host holds the list too, and what detection and resolution make of it (collision/memory_budget.hpp).
+  if (const std::size_t budget = memory_budget(req.memory_limit); budget && !req.active_plants && host.between > most_plant_pairs(budget))
+    refuse_plant_pairs(most_plant_pairs(budget), budget);
   if (nw > kMaxItems) throw CudaError(fmt::format("{} plant pairs: more than one launch can list", nw));
   count = LevelCount{static_cast<std::size_t>(host.between), static_cast<std::size_t>(host.within)};
   work_keys_.fit(nw, tight), work.fit(nw, tight);

@@ -1,20 +1,20 @@
 #include "distributed/mpi_files.hpp"
 
 #include "distributed/mpi_comm.hpp"
+#include "geometry/run_files.hpp"
 
 #include <fmt/format.h>
 #include <mpi.h>
 #include <omp.h>
 
 #include <algorithm>
+#include <exception>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 
 namespace canopy::mpi {
 namespace {
-
-std::string temp_name(const std::string& path) { return path + ".tmp-mpi"; }
 
 /// Every rank's (id, k values) pairs laid out by global id: the whole stand's table.
 std::vector<std::uint64_t> by_global_id(const std::vector<std::int64_t>& ids, const std::vector<std::uint64_t>& values, int k,
@@ -45,10 +45,9 @@ void RankScan::exclusive(std::vector<std::uint64_t>& values, int k, std::vector<
 SharedFile::SharedFile(const std::string& path, const std::vector<std::int64_t>& ids, std::uint64_t plants_total)
     : path_(path), ids_(ids), plants_total_(plants_total) {
   MPI_File fh;
-  const std::string tmp = temp_name(path_);
-  const int rc = MPI_File_open(MPI_COMM_WORLD, tmp.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
-  if (rc != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot write {} (MPI_File_open failed)", tmp));
-  if (MPI_File_set_size(fh, 0) != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot truncate {}", tmp));
+  const int rc = MPI_File_open(MPI_COMM_WORLD, path_.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
+  if (rc != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot write {} (MPI_File_open failed)", path_));
+  if (MPI_File_set_size(fh, 0) != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot truncate {}", path_));
   handle_ = fh;
 }
 
@@ -63,7 +62,7 @@ void SharedFile::close() {
   if (!handle_) return;
   MPI_File fh = static_cast<MPI_File>(handle_);
   handle_ = nullptr;
-  if (MPI_File_close(&fh) != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot close {}", temp_name(path_)));
+  if (MPI_File_close(&fh) != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot close {}", path_));
 }
 
 void SharedFile::write_at(std::uint64_t at, const char* data, std::size_t n) {
@@ -72,7 +71,7 @@ void SharedFile::write_at(std::uint64_t at, const char* data, std::size_t n) {
     const std::size_t piece = std::min<std::size_t>(n, std::size_t(1) << 30);
     MPI_Status status;
     if (MPI_File_write_at(fh, static_cast<MPI_Offset>(at), data, static_cast<int>(piece), MPI_BYTE, &status) != MPI_SUCCESS)
-      throw std::runtime_error(fmt::format("cannot write {} bytes at offset {} of {}", piece, at, temp_name(path_)));
+      throw std::runtime_error(fmt::format("cannot write {} bytes at offset {} of {}", piece, at, path_));
     at += piece, data += piece, n -= piece;
   }
 }
@@ -98,22 +97,34 @@ void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<vo
   const std::size_t batches = (n + batch - 1) / batch;
   const std::size_t wave = 4 * static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   std::vector<std::uint64_t> sizes(n, 0);
-  const std::string spill_path = fmt::format("{}.rank{}", temp_name(path_), rank());
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> spill(std::fopen(spill_path.c_str(), "w+b"), &std::fclose);
-  if (!spill) throw std::runtime_error(fmt::format("cannot write {}", spill_path));
+  const std::string spill_path = fmt::format("{}.spill-rank{}", path_, rank());
+  const std::uint64_t registered = register_run_path(spill_path, RunPath::file);  // a signal removes it
   struct Remove {
     const std::string& path;
-    ~Remove() { std::remove(path.c_str()); }
-  } remove_spill{spill_path};
+    std::uint64_t id;
+    ~Remove() {
+      std::remove(path.c_str());
+      unregister_run_path(id);
+    }
+  } remove_spill{spill_path, registered};
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> spill(std::fopen(spill_path.c_str(), "w+b"), &std::fclose);
+  if (!spill) throw std::runtime_error(fmt::format("cannot write {}", spill_path));
   for (std::size_t w0 = 0; w0 < batches; w0 += wave) {
     std::vector<std::string> text(std::min(wave, batches - w0));
+    std::exception_ptr failed;  // thrown after the region: an exception must not leave it
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t b = 0; b < text.size(); ++b)
-      for (std::size_t i = (w0 + b) * batch; i < std::min(n, (w0 + b + 1) * batch); ++i) {
-        const std::size_t before = text[b].size();
-        make(i, text[b]);
-        sizes[i] = text[b].size() - before;
+      try {
+        for (std::size_t i = (w0 + b) * batch; i < std::min(n, (w0 + b + 1) * batch); ++i) {
+          const std::size_t before = text[b].size();
+          make(i, text[b]);
+          sizes[i] = text[b].size() - before;
+        }
+      } catch (...) {
+#pragma omp critical(canopy_spill_plants)
+        if (!failed) failed = std::current_exception();
       }
+    if (failed) std::rethrow_exception(failed);
     for (const std::string& t : text)
       if (std::fwrite(t.data(), 1, t.size(), spill.get()) != t.size())
         throw std::runtime_error(fmt::format("cannot write {} bytes to {}", t.size(), spill_path));
@@ -141,24 +152,34 @@ void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<vo
   offset_ += totals[0];
 }
 
-SharedOutputSet::SharedOutputSet(std::string dir, std::vector<std::int64_t> ids, std::uint64_t plants_total)
-    : dir_(std::move(dir)), ids_(std::move(ids)), plants_total_(plants_total) {}
+SharedOutputSet::SharedOutputSet(const std::string& dir, std::vector<std::string> replaces, std::vector<std::int64_t> ids,
+                                 std::uint64_t plants_total)
+    : ids_(std::move(ids)), plants_total_(plants_total) {
+  std::string error;
+  if (rank() == 0) {
+    try {
+      folder_ = std::make_unique<StagedFolder>(dir, std::move(replaces));
+      staging_ = folder_->staging();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  agree(error);
+  std::vector<std::size_t> starts;
+  const std::vector<char> all = allgather_bytes(staging_.data(), staging_.size(), &starts);
+  staging_.assign(all.data(), starts[1]);  // rank 0's
+}
 
 SharedOutputSet::~SharedOutputSet() {
-  if (committed_) return;
-  std::vector<std::string> names;
-  for (const auto& f : files_) names.push_back(temp_name(f.first));
-  files_.clear();
-  if (rank() == 0)
-    for (const std::string& t : names) std::remove(t.c_str());
+  files_.clear();  // closed before rank 0's StagedFolder removes what is not committed
 }
 
 void SharedOutputSet::remove_temporaries() const {
-  for (const auto& f : files_) std::remove(temp_name(f.first).c_str());
+  if (!staging_.empty()) remove_flat_folder(staging_);
 }
 
 SharedFile& SharedOutputSet::open(const std::string& name) {
-  const std::string path = (std::filesystem::path(dir_) / name).string();
+  const std::string path = staging_ + "/" + name;
   files_.emplace_back(path, std::make_unique<SharedFile>(path, ids_, plants_total_));
   return *files_.back().second;
 }
@@ -173,14 +194,15 @@ void SharedOutputSet::commit_all(const std::string& local_error) {
     }
   }
   agree(error);
-  std::string rename_error;
-  if (rank() == 0)
-    for (const auto& f : files_) {
-      std::error_code ec;
-      std::filesystem::rename(temp_name(f.first), f.first, ec);
-      if (ec && rename_error.empty()) rename_error = fmt::format("cannot rename {}: {}", temp_name(f.first), ec.message());
+  std::string swap_error;
+  if (rank() == 0) {
+    try {
+      committed_set_ = folder_->commit();
+    } catch (const std::exception& e) {
+      swap_error = e.what();
     }
-  agree(rename_error);
+  }
+  agree(swap_error);
   committed_ = true;
 }
 

@@ -2,8 +2,10 @@
 /// The stand's files written by every rank into one set of files with MPI-IO: each rank writes
 /// the chunks of the plants it owns at their global offsets (prefix sums of every rank's chunk
 /// sizes, in global plant order), rank 0 the fixed text; no rank ever holds the whole file.
-/// Files are written under temporary names and renamed together once every rank has succeeded.
+/// Files are written into rank 0's staging folder and swapped in as one set once every rank has
+/// succeeded (geometry/staged_folder.hpp), as one process does.
 #include "geometry/chunked_output.hpp"
+#include "geometry/staged_folder.hpp"
 
 #include <memory>
 #include <string>
@@ -45,23 +47,31 @@ class SharedFile final : public ChunkWriter {
   void* handle_ = nullptr;  // MPI_File
 };
 
-/// The files of one tiled run in `dir`.
+/// The files of one tiled run in `dir`: collective. Rank 0 makes the staging folder (replacing
+/// `replaces` of the earlier folder, see StagedFolder) and tells the others where it is.
 class SharedOutputSet {
  public:
-  SharedOutputSet(std::string dir, std::vector<std::int64_t> ids, std::uint64_t plants_total);
-  ~SharedOutputSet();  // removes the temporary files unless committed
+  SharedOutputSet(const std::string& dir, std::vector<std::string> replaces, std::vector<std::int64_t> ids,
+                  std::uint64_t plants_total);
+  ~SharedOutputSet();  // rank 0 removes the staging folder unless committed
   SharedFile& open(const std::string& name);
-  /// Collective: closes every file, checks that every rank wrote without error, renames all.
+  /// Collective: closes every file, checks that every rank wrote without error, then rank 0
+  /// swaps the set in; every rank throws the first failure.
   void commit_all(const std::string& local_error = {});
   const std::vector<std::int64_t>& ids() const { return ids_; }
-  /// Removes every temporary file of the set (any rank; before an abort).
+  /// Removes the staging folder's files and the folder (any rank; before an abort).
   void remove_temporaries() const;
+  /// Rank 0: the folder and what its swap did (for print_folder_changes); null elsewhere.
+  const StagedFolder* folder() const { return folder_.get(); }
+  const StagedFolder::Committed& committed() const { return committed_set_; }
 
  private:
-  std::string dir_;
+  std::unique_ptr<StagedFolder> folder_;  // rank 0
+  std::string staging_;                   // every rank
   std::vector<std::int64_t> ids_;
   std::uint64_t plants_total_;
   std::vector<std::pair<std::string, std::unique_ptr<SharedFile>>> files_;
+  StagedFolder::Committed committed_set_;
   bool committed_ = false;
 };
 

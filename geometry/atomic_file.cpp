@@ -1,20 +1,47 @@
 #include "geometry/atomic_file.hpp"
 
+#include "geometry/run_files.hpp"
+
 #include <fmt/format.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <stdexcept>
 #include <unistd.h>
 
 namespace canopy {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Removes "NAME.tmp-TAG" beside `path` where TAG names a process that has ended.
+void remove_dead_temporaries(const std::string& path) {
+  const fs::path p(path);
+  const std::string prefix = p.filename().string() + ".tmp-";
+  std::error_code ec;
+  const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.starts_with(prefix) && is_dead_temporary(name)) fs::remove(it->path(), ec);
+  }
+}
+
+}  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  tmp_ = fmt::format("{}.tmp-{}", path_, ::getpid());
+  remove_dead_temporaries(path_);
+  tmp_ = fmt::format("{}.tmp-{}", path_, process_tag());
+  const auto lock = lock_run_paths();  // registered before it exists: a signal's clean-up sees it
+  registered_ = register_run_path(tmp_, RunPath::file);
   f_ = std::fopen(tmp_.c_str(), "wb");
-  if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", tmp_, std::strerror(errno)));
+  if (!f_) {
+    const std::string reason = std::strerror(errno);
+    unregister_run_path(registered_);
+    throw std::runtime_error(fmt::format("cannot write {}: {}", tmp_, reason));
+  }
   std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
 }
 
@@ -27,6 +54,7 @@ AtomicFile::AtomicFile(std::string path, Direct) : path_(std::move(path)), direc
 AtomicFile::~AtomicFile() {
   if (f_) std::fclose(f_);
   if (!committed_ && !direct_) std::remove(tmp_.c_str());
+  unregister_run_path(registered_);
 }
 
 namespace {
@@ -72,12 +100,15 @@ void AtomicFile::write_raw(const void* data, std::size_t n) {
 void AtomicFile::close() {
   if (!f_) return;
   const auto t = std::chrono::steady_clock::now();
-  const bool bad = std::ferror(f_) != 0;
+  bool bad = std::fflush(f_) != 0 || std::ferror(f_) != 0;
+  // A file renamed into place is synced first, so a crash after the rename finds it whole.
+  if (!direct_ && !bad) bad = ::fsync(fileno(f_)) != 0;
+  const int err = errno;
   const int rc = std::fclose(f_);
   const double s = seconds_since(t);
   times_.busy_s += s, times_.waited_s += s;
   f_ = nullptr;
-  if (bad || rc != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
+  if (bad || rc != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(bad ? err : errno)));
 }
 
 void AtomicFile::commit() {
@@ -86,32 +117,37 @@ void AtomicFile::commit() {
   if (std::rename(tmp_.c_str(), path_.c_str()) != 0)
     throw std::runtime_error(fmt::format("cannot rename {} to {}: {}", tmp_, path_, std::strerror(errno)));
   committed_ = true;
+  unregister_run_path(registered_);
+  registered_ = 0;
+  const fs::path folder = fs::path(path_).parent_path();
+  const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
 }
 
-OutputSet::OutputSet(std::string dir) : dir_(std::move(dir)) {}
+OutputSet::OutputSet(const std::string& dir, std::vector<std::string> replaces) : folder_(dir, std::move(replaces)) {}
 
 AtomicFile& OutputSet::open(const std::string& name) {
-  files_.push_back(std::make_unique<AtomicFile>((std::filesystem::path(dir_) / name).string()));
+  // Under the registry's lock: once a signal's clean-up holds it, no file appears in the staging
+  // folder behind its back.
+  const auto lock = lock_run_paths();
+  files_.push_back(std::make_unique<AtomicFile>(folder_.path(name), AtomicFile::Direct{}));
   return *files_.back();
 }
 
 WriteTimes OutputSet::times() const {
-  WriteTimes sum;
+  WriteTimes sum = closed_;
   for (const auto& f : files_) sum += f->times();
   return sum;
 }
 
-void OutputSet::commit_all() {
-  for (auto& f : files_) f->close();  // every file complete before any is renamed
-  for (auto& f : files_) f->commit();
-}
-
-void prepare_output_dir(const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, ec.message()));
-  AtomicFile probe((std::filesystem::path(dir) / ".canopy-write-test").string());
-  probe.close();  // destroyed uncommitted: removed
+StagedFolder::Committed OutputSet::commit_all() {
+  for (auto& f : files_) f->close();  // every file complete before the folder is swapped in
+  for (const auto& f : files_) closed_ += f->times();
+  files_.clear();
+  return folder_.commit();
 }
 
 }  // namespace canopy

@@ -1,7 +1,13 @@
 #pragma once
-/// Files written under a temporary name in their final folder and renamed into place only when
-/// every file of a run is complete, so a failed run leaves no half file (DESIGN.md "Exports").
+/// Files written whole or not at all (DESIGN.md "Exports"). A single file (a sweep's tables, a
+/// CSV named with --csv) is written under a temporary name beside its final one, synced and
+/// renamed into place. The files of a stand are an OutputSet: written into a staging folder and
+/// swapped in together (geometry/staged_folder.hpp). Temporary names carry the writing process
+/// (geometry/run_files.hpp): a signal's clean-up removes this run's, a later run a dead run's.
+#include "geometry/staged_folder.hpp"
+
 #include <cstdint>
+
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -23,8 +29,10 @@ struct WriteTimes {
 
 class AtomicFile {
  public:
+  /// Written as "PATH.tmp-PID-START" (what dead runs left under that name removed first).
   explicit AtomicFile(std::string path);
-  /// A file written in place, with no temporary name (for /dev/null in benchmarks).
+  /// A file written in place, with no temporary name (/dev/null in benchmarks, a file of a
+  /// staging folder).
   struct Direct {};
   AtomicFile(std::string path, Direct);
   ~AtomicFile();  // removes the temporary file unless committed
@@ -42,35 +50,42 @@ class AtomicFile {
   const WriteTimes& times() const { return times_; }
   /// Flushes and closes; throws on a write error. The file is not yet in place.
   void close();
-  /// Renames the closed temporary file to its final name.
+  /// Syncs the closed temporary file, renames it to its final name and syncs the folder.
   void commit();
   const std::string& path() const { return path_; }
 
  private:
   std::string path_, tmp_;
   std::FILE* f_ = nullptr;
+  std::uint64_t registered_ = 0;
   bool committed_ = false;
   bool direct_ = false;
   WriteTimes times_;
   void write_raw(const void* data, std::size_t n);
 };
 
-/// The files of one run: each written in full, then all renamed into place together.
+/// The files of one stand: each written in full into a staging folder, then swapped in together,
+/// replacing the folder's earlier files named in `replaces` (see StagedFolder).
 class OutputSet {
  public:
-  explicit OutputSet(std::string dir);
+  explicit OutputSet(const std::string& dir, std::vector<std::string> replaces = {});
   AtomicFile& open(const std::string& name);
-  void commit_all();
-  const std::string& dir() const { return dir_; }
-  /// The files' write times and bytes, summed.
+  /// Closes every file (throwing on a write error), then StagedFolder::commit.
+  StagedFolder::Committed commit_all();
+  /// The final folder.
+  const std::string& dir() const { return folder_.dir(); }
+  const StagedFolder& folder() const { return folder_; }
+  /// The files' write times and bytes, summed (those already committed included).
   WriteTimes times() const;
 
  private:
-  std::string dir_;
+  StagedFolder folder_;
   std::vector<std::unique_ptr<AtomicFile>> files_;
+  WriteTimes closed_;
 };
 
-/// Creates `dir` if needed and checks that a file can be written there; throws with the reason.
-void prepare_output_dir(const std::string& dir);
+/// Checks that a run can later write its folder `dir`, changing nothing (check_output_dir); the
+/// folder itself is made only when the run's files are complete, so a failed run leaves none.
+inline void prepare_output_dir(const std::string& dir) { check_output_dir(dir); }
 
 }  // namespace canopy

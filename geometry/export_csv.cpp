@@ -5,6 +5,7 @@
 #include "geometry/layout.hpp"
 #include "geometry/organ_extent.hpp"
 #include "geometry/organ_mesh.hpp"
+#include "geometry/staged_folder.hpp"
 #include "geometry/text_out.hpp"
 
 #include <fmt/format.h>
@@ -155,8 +156,11 @@ Stand read_stand(const std::string& dir) {
       throw std::runtime_error(fmt::format("{}: cannot open (is {} a canopy stand folder?)", file, dir));
     }
   };
-  const auto pin = open(pfile, "plants table", kMaxPlantsCsvBytes);
-  const auto oin = open(ofile, "organs table", kMaxOrgansCsvBytes);
+  std::unique_ptr<InputFile> pin, oin;
+  open_in_one_set(dir, [&] {  // never plants of one run and organs of another
+    pin = open(pfile, "plants table", kMaxPlantsCsvBytes);
+    oin = open(ofile, "organs table", kMaxOrgansCsvBytes);
+  });
   std::string line;
   std::map<std::string, int> grammar_index;
   if (!pin->next_line(line) || line + "\n" != kPlantHeader)

@@ -64,6 +64,29 @@ std::vector<std::pair<std::string_view, int>> split(std::string_view line) {
   return cells;
 }
 
+/// Refuses a row layout whose spacings or jitter place a plant farther than kMaxPlantCoordinate
+/// from the origin, naming the options (before any placement is made).
+void check_reach(const RowLayout& l) {
+  const std::pair<const char*, double> options[] = {{"--plant-spacing", l.plant_spacing}, {"--row-spacing", l.row_spacing},
+                                                    {"--double-rows", l.double_rows.value_or(0)}, {"--jitter", l.jitter}};
+  for (const auto& [name, v] : options)
+    if (v > kMaxPlantCoordinate)
+      throw std::invalid_argument(fmt::format("{} {:g} m: plants may stand at most {:g} m from the origin", name, v, kMaxPlantCoordinate));
+  const double x = (l.per_row - 1) * l.plant_spacing + l.jitter;
+  if (x > kMaxPlantCoordinate)
+    throw std::invalid_argument(fmt::format("--per-row {} x --plant-spacing {:g} m (+ --jitter {:g} m) reaches x = {:g} m: plants may "
+                                            "stand at most {:g} m from the origin",
+                                            l.per_row, l.plant_spacing, l.jitter, x, kMaxPlantCoordinate));
+  double y = (l.rows - 1) * l.row_spacing;
+  if (l.double_rows)
+    for (int r = std::max(0, l.rows - 2); r < l.rows; ++r) y = std::max(y, (r / 2) * l.row_spacing + (r % 2) * *l.double_rows);
+  if (y + l.jitter > kMaxPlantCoordinate)
+    throw std::invalid_argument(fmt::format("--rows {} x --row-spacing {:g} m{} (+ --jitter {:g} m) reaches y = {:g} m: plants may "
+                                            "stand at most {:g} m from the origin",
+                                            l.rows, l.row_spacing, l.double_rows ? fmt::format(" with --double-rows {:g} m", *l.double_rows) : "",
+                                            l.jitter, y + l.jitter, kMaxPlantCoordinate));
+}
+
 }  // namespace
 
 std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant) {
@@ -87,6 +110,7 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
   for (const auto& [name, v] : lengths)
     if (!(v >= 0) || !std::isfinite(v))
       throw std::invalid_argument(fmt::format("the {} must be a finite number of metres, not negative (got {})", name, v));
+  check_reach(l);
   std::vector<PlantPlacement> out;
   out.reserve(static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.per_row));
   LayoutStream rng{mix(l.seed ^ 0x6c61796f7574ULL)};
@@ -174,9 +198,19 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
         throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}'", path, line_no, column, name, cell));
       return v;
     };
+    // A coordinate past the bound cannot be written faithfully or kept to the plant frame's precision.
+    auto coordinate = [&](const char* name) {
+      const double v = number(name);
+      if (std::fabs(v) > kMaxPlantCoordinate) {
+        const auto& [cell, column] = cells[static_cast<std::size_t>(col[name])];
+        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' is {} m: plants may stand at most {:g} m from the origin", path,
+                                                line_no, column, name, cell, kMaxPlantCoordinate));
+      }
+      return v;
+    };
     PlantPlacement p;
-    p.x = number("x");
-    p.y = number("y");
+    p.x = coordinate("x");
+    p.y = coordinate("y");
     p.rotation_deg = number("rotation");
     {
       const auto& [cell, column] = cells[static_cast<std::size_t>(col["seed"])];

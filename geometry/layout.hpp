@@ -21,6 +21,14 @@ class FileNotFound : public std::invalid_argument {
 /// are far past any plant's age yet still end in seconds for a grammar that does not grow.
 inline constexpr int kMaxSteps = 100'000;
 
+/// How far from the origin a plant may stand, metres, in x and in y (positions files, row layouts
+/// and their spacings and jitter, the Python module). Within it a double keeps 1.5e-8 m, finer
+/// than the float plant frame's 6e-8 m for organ coordinates of half a metre and more, so world
+/// coordinates (stand.obj) lose nothing of the plant frame; stand.obj's numbers stay within 17
+/// digits; float offsets from stand_origin (stand.ply, stand.glb) and the detection grid's cell
+/// keys stay finite. Any field on Earth fits (UTM and ECEF coordinates are below 1e7 m).
+inline constexpr double kMaxPlantCoordinate = 1e8;
+
 struct PlantPlacement {
   double x = 0, y = 0;
   double rotation_deg = 0;
@@ -49,7 +57,8 @@ std::vector<PlantPlacement> default_stand_layout(int plants);
 /// Plant p's seed: a hash of the stand seed and p, so plants differ and the stand is reproducible.
 std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant);
 
-/// Positions in row-major order. Throws std::invalid_argument on a negative spacing or count.
+/// Positions in row-major order. Throws std::invalid_argument on a negative spacing or count, and
+/// naming the option for a spacing, jitter or row that reaches past kMaxPlantCoordinate.
 std::vector<PlantPlacement> row_layout(const RowLayout& layout);
 
 /// A seed as written in a positions file or on the command line: a whole number from 0 to
@@ -61,7 +70,8 @@ std::optional<std::uint64_t> parse_seed(std::string_view text);
 /// names a file relative to the positions file's folder, in it or below it, unless
 /// `any_grammar_path` (--any-grammar-path) allows absolute paths and '..' above it; a `steps` cell
 /// is a whole number from 0 to kMaxSteps. Errors name file, line and column; the file is read
-/// with InputFile's limits (a regular file of at most kMaxPositionsBytes).
+/// with InputFile's limits (a regular file of at most kMaxPositionsBytes); an x or y past
+/// kMaxPlantCoordinate is refused.
 std::vector<PlantPlacement> read_positions(const std::string& path, bool any_grammar_path = false);
 
 }  // namespace canopy

@@ -1,5 +1,6 @@
 #include "lsystem/grow.hpp"
 
+#include "geometry/available_memory.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/thread_limit.hpp"
 #include "lsystem/turtle.hpp"
@@ -91,15 +92,7 @@ void check_stand_fits(const GrowRequest& req, std::size_t plants) {
   check_fits(first, plants, req.memory_limit);
 }
 
-std::size_t available_memory() {
-  std::ifstream in("/proc/meminfo");
-  std::string key;
-  std::size_t kb = 0;
-  std::string unit;
-  while (in >> key >> kb >> unit)
-    if (key == "MemAvailable:") return kb * 1024;
-  return 0;
-}
+std::size_t available_memory() { return memory_available(); }
 
 Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   Stand stand;
@@ -128,6 +121,10 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     if (!std::isfinite(pl.x) || !std::isfinite(pl.y) || !std::isfinite(pl.rotation_deg))
       throw std::invalid_argument(
           fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y, pl.rotation_deg));
+    if (std::fabs(pl.x) > kMaxPlantCoordinate || std::fabs(pl.y) > kMaxPlantCoordinate)
+      throw std::invalid_argument(fmt::format("plant {}: its position (x {:g}, y {:g}) is farther from the origin than "
+                                              "the {:g} m plants may stand",
+                                              p, pl.x, pl.y, kMaxPlantCoordinate));
   }
   std::vector<GrownPlant> grown(n);
   for (std::size_t p = 0; p < n; ++p) {

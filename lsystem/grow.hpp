@@ -34,7 +34,8 @@ struct GrowTimings {
 /// Throws GrammarError for grammar problems (an organ's parameter out of range located at the
 /// expression that wrote it), std::invalid_argument for a level of detail outside 1..kMaxLod,
 /// steps outside 0..kMaxSteps, a thread count past max_threads() (or OMP_NUM_THREADS past it when
-/// none is given), and naming the plant for a position or rotation that is not finite,
+/// none is given), and naming the plant for a position or rotation that is not finite or a position past
+/// kMaxPlantCoordinate,
 /// std::runtime_error for a stand too large for memory (said before growing it). A failing plant's
 /// exception is thrown as it was, the first in plant order.
 Stand grow_stand(const GrowRequest& request, GrowTimings* timings = nullptr);

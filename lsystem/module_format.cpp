@@ -4,6 +4,7 @@
 
 #include <charconv>
 #include <map>
+#include <stdexcept>
 #include <unordered_map>
 
 namespace canopy {
@@ -66,6 +67,7 @@ void emit(Writer& w, const Grammar& g, const ModuleString& s) {
       for (int k = 0; k < ar; ++k) {
         if (k) w.put(',');
         const auto r = std::to_chars(num, num + sizeof num, s.params[p + static_cast<std::size_t>(k)]);
+        if (r.ec != std::errc()) throw std::range_error("a module parameter does not fit its number field");  // never: 24 characters at most
         w.put(std::string_view(num, static_cast<std::size_t>(r.ptr - num)));
       }
       w.put(')');
@@ -79,6 +81,7 @@ void emit(Writer& w, const Grammar& g, const ModuleString& s) {
 std::string format_number(double v) {
   char num[64];
   const auto r = std::to_chars(num, num + sizeof num, v);
+  if (r.ec != std::errc()) throw std::range_error("a number does not fit its field");  // never: 24 characters at most
   return std::string(num, r.ptr);
 }
 

@@ -3,6 +3,7 @@
 #include "tools/cli_common.hpp"
 #include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
+#include "tools/signals.hpp"
 
 #include <fmt/format.h>
 
@@ -23,6 +24,8 @@ int main(int argc, char** argv) {
   // that runs itself again is not what its launcher started; not tried there).
   if (!under_mpi) canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")), argv);
   canopy::keep_freed_memory();
+  // Before any thread starts: SIGINT and SIGTERM are taken by a thread that cleans up.
+  canopy::cli::start_signal_thread();
 #ifdef CANOPY_WITH_MPI
   // Under mpirun every rank runs the same command; MPI is started only there.
   std::optional<canopy::mpi::Session> mpi;

@@ -8,6 +8,7 @@
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/resolve_options.hpp"
+#include "tools/signals.hpp"
 #include "tools/sweep_spec.hpp"
 #include "tools/sweep_light.hpp"
 #include "tools/sweep_run.hpp"
@@ -26,6 +27,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <optional>
 #include <filesystem>
 #include <set>
 
@@ -33,12 +35,6 @@ namespace canopy::cli {
 namespace {
 
 std::atomic<bool> g_interrupted{false};
-extern "C" void on_interrupt(int) {
-  g_interrupted = true;
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C stops at once
-}
-
-
 
 double since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -188,7 +184,8 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   g_interrupted = false;
   // Ctrl-C ends the sweep after the run in progress (the command line only: a host program such
   // as Python keeps its own handler).
-  if (print) std::signal(SIGINT, on_interrupt);
+  std::optional<SoftInterrupt> soft;
+  if (print) soft.emplace(g_interrupted);  // a second Ctrl-C stops at once
   std::exception_ptr stopped;
   const auto t0 = std::chrono::steady_clock::now();
   std::size_t ran = 0, failed = 0;
@@ -256,14 +253,14 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
                                             : "failed: " + row.at("message"));
     }
   }
-  if (print) std::signal(SIGINT, SIG_DFL);
+  soft.reset();
   if (tty) fmt::print(stderr, "\r{:100}\r", "");
   if (ranks) ranks->gather("");  // every row is in runs.csv before rank 0 reads it back
   const std::vector<RunRow> all = me == 0 ? read_runs(runs_path) : std::vector<RunRow>{};
   if (me == 0) {
-    OutputSet files(o.out);
-    files.open("summary.csv").write(summary_csv(all));
-    files.commit_all();
+    AtomicFile summary(o.out + "/summary.csv");
+    summary.write(summary_csv(all));
+    summary.commit();
   }
   if (print)
     fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,

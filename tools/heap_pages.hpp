@@ -14,8 +14,10 @@
 /// the CPU backend's 1,000-plant resolutions were 10-40 % slower.
 /// Hence the default: large pages where the run uses the GPU, small ones otherwise.
 /// CANOPY_HEAP_PAGES=large or =small in the environment overrides the choice.
+#include <gnu/libc-version.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -35,12 +37,26 @@ inline HeapPages heap_pages_for(bool gpu_run) {
   return gpu_run ? HeapPages::large : HeapPages::small;
 }
 
+/// Whether this machine can give the heap large pages, the three things use_heap_pages needs:
+/// the kernel offers transparent huge pages (its setting can be read and is not [never]; where
+/// /sys is not mounted it cannot, and the pages stay small), glibc reads the tunable (2.35 and
+/// later), and the program can run itself again (/proc/self/exe). tests/tools/test_cli_stand.sh
+/// asks the same three questions, so program and test decide alike on any machine.
+inline bool heap_pages_possible() {
+  int major = 0, minor = 0;
+  if (std::sscanf(gnu_get_libc_version(), "%d.%d", &major, &minor) != 2 || major < 2 || (major == 2 && minor < 35)) return false;
+  if (access("/proc/self/exe", X_OK) != 0) return false;
+  std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string modes;
+  return std::getline(thp, modes) && modes.find("[never]") == std::string::npos;
+}
+
 /// Whether the machine has an NVIDIA GPU's device files: what `--backend auto` would run on.
 inline bool gpu_device_files() { return access("/dev/nvidiactl", F_OK) == 0; }
 
 /// With HeapPages::large, runs this program again (the same arguments, the same environment
-/// plus glibc.malloc.hugetlb=1) unless that is set already, the kernel offers no transparent
-/// huge pages, the run is under valgrind, or this process is such a rerun. Returns only when it
+/// plus glibc.malloc.hugetlb=1) unless that is set already, the machine cannot give large pages
+/// (heap_pages_possible), the run is under valgrind, or this process is such a rerun. Returns only when it
 /// does not run itself again (the exec failing included: the run goes on in small pages).
 /// Call first thing in main, before threads, MPI or the GPU are started.
 inline void use_heap_pages(HeapPages pages, char** argv) {
@@ -49,11 +65,7 @@ inline void use_heap_pages(HeapPages pages, char** argv) {
   const std::string before = tunables ? tunables : "";
   if (before.find("glibc.malloc.hugetlb") != std::string::npos) return;
   if (const char* preload = std::getenv("LD_PRELOAD"); preload && std::strstr(preload, "vgpreload")) return;
-  {
-    std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
-    std::string modes;
-    if (!std::getline(thp, modes) || modes.find("[never]") != std::string::npos) return;
-  }
+  if (!heap_pages_possible()) return;
   const std::string after = before.empty() ? "glibc.malloc.hugetlb=1" : before + ":glibc.malloc.hugetlb=1";
   setenv("GLIBC_TUNABLES", after.c_str(), 1);
   setenv("CANOPY_HEAP_RERUN", "1", 1);
@@ -64,10 +76,11 @@ inline void use_heap_pages(HeapPages pages, char** argv) {
   unsetenv("CANOPY_HEAP_RERUN");
 }
 
-/// "large" where this process runs with glibc.malloc.hugetlb=1, else "small" (for reports).
+/// "large" where this process runs with glibc.malloc.hugetlb=1 on a machine that can give them,
+/// else "small" (for reports).
 inline const char* heap_pages_in_use() {
   const char* t = std::getenv("GLIBC_TUNABLES");
-  return t && std::strstr(t, "glibc.malloc.hugetlb=1") ? "large" : "small";
+  return t && std::strstr(t, "glibc.malloc.hugetlb=1") && heap_pages_possible() ? "large" : "small";
 }
 
 /// Whether a command line runs on the GPU: a backend option ("--backend X", "--backend=X",

@@ -42,7 +42,7 @@ std::set<std::string> parse_formats(const std::string& list) {
 
 namespace {
 
-// The mesh files' names, written by write_stand_files and looked for by remove_stale_meshes.
+// The mesh files' names, written by write_stand_files and replaced as a set (stand_folder_files).
 constexpr const char* kGlbFile = "stand.glb";
 constexpr const char* kObjFile = "stand.obj";
 constexpr const char* kMtlFile = "stand.mtl";  // the OBJ's material library, beside it
@@ -84,22 +84,30 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
       glb);
 }
 
-std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats) {
-  std::vector<std::string> removed;
-  const std::pair<const char*, const char*> files[] = {{"glb", kGlbFile}, {"obj", kObjFile}, {"obj", kMtlFile}, {"ply", kPlyFile}};
-  for (const auto& [format, name] : files) {
-    if (formats.count(format)) continue;
-    std::error_code ec;
-    if (std::filesystem::remove(std::filesystem::path(dir) / name, ec)) removed.emplace_back(name);
-  }
-  return removed;
+const std::vector<std::string>& stand_folder_files() {
+  static const std::vector<std::string> names{kGlbFile,       kObjFile,     kMtlFile,       kPlyFile,
+                                              "organs.csv",   "plants.csv", "contacts.csv", "contacts_after.csv",
+                                              "report.json",  "light.csv",  "light.json"};
+  return names;
 }
 
-void print_stale_removed(const std::vector<std::string>& removed) {
-  if (removed.empty()) return;
-  std::string list;
-  for (const std::string& name : removed) list += (list.empty() ? "" : ", ") + name;
-  fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list);
+void print_folder_changes(const StagedFolder& folder, const StagedFolder::Committed& committed) {
+  const auto list = [](const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+  };
+  // In stand_folder_files()'s order: stand.obj before stand.mtl.
+  std::vector<std::string> meshes, others;
+  for (const std::string& n : stand_folder_files())
+    if (std::find(committed.dropped.begin(), committed.dropped.end(), n) != committed.dropped.end())
+      (n.starts_with("stand.") ? meshes : others).push_back(n);
+  if (!meshes.empty()) fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list(meshes));
+  if (!others.empty()) fmt::print("removed {}, which described the earlier stand\n", list(others));
+  if (!folder.leftovers_removed().empty())
+    fmt::print("removed what interrupted runs left beside {}: {}\n", folder.dir(), list(folder.leftovers_removed()));
+  for (const std::string& note : folder.leftover_notes()) fmt::print(stderr, "canopy: note: {}\n", note);
+  for (const std::string& note : committed.notes) fmt::print(stderr, "canopy: note: {}\n", note);
 }
 
 StandPlan plan_stand(StandOptions& o) {
@@ -190,7 +198,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const DetectRequest dreq = o.detect.request();  // bad options fail before any work
   std::string backend_note;
   auto backend = make_backend(o.detect.backend, backend_note);
-  prepare_output_dir(o.out);
+  // The staging folder beside the output (dead runs' leftovers removed first): the files go
+  // there and the folder is swapped in once they are complete; a failed or interrupted run
+  // removes it, so the output folder is as it was (none made when it had none).
+  OutputSet files(o.out, stand_folder_files());
   GrowRequest& req = plan.request;
   const RowLayout& layout = plan.layout;
   if (o.positions.empty()) {
@@ -246,7 +257,6 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   rep.backend_choice = backend_note;
 
   PrototypeLibrary lib;
-  OutputSet files(o.out);
   const auto t_export = std::chrono::steady_clock::now();
   write_stand_files(stand, lib, formats, glb, files);
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));
@@ -263,11 +273,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
   const auto t_commit = std::chrono::steady_clock::now();
-  files.commit_all();
+  const StagedFolder::Committed committed = files.commit_all();
   const double commit_s = seconds_since(t_commit);
-  const std::vector<std::string> stale = remove_stale_meshes(o.out, formats);
   if (print) {
-    print_stale_removed(stale);
+    print_folder_changes(files.folder(), committed);
     if (target)
       fmt::print("target {} {}: plant spacing {} m ({} {:.4f}{})\n", o.target.lai ? "LAI" : "ground cover",
                  o.target.lai ? *o.target.lai : *o.target.ground_cover, target->plant_spacing, o.target.lai ? "LAI" : "ground cover",

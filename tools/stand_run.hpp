@@ -91,12 +91,15 @@ void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const st
 void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, const GlbForm& glb,
                        OutputSet& files);
 
-/// After a run's files are in place in `dir`: removes the mesh files an earlier run left there in
-/// formats this run did not write (stand.glb, stand.obj with stand.mtl, stand.ply), so the folder
-/// holds one stand; returns their names. Only those names are touched.
-std::vector<std::string> remove_stale_meshes(const std::string& dir, const std::set<std::string>& formats);
-/// Says on standard output which files remove_stale_meshes removed (nothing when none).
-void print_stale_removed(const std::vector<std::string>& removed);
+/// The files of a stand folder that a run replaces as a set (StagedFolder's `replaces`): the
+/// meshes, tables and report canopy stand writes, and light.csv, light.json (computed from a
+/// stand, so they go with it). Everything else in the folder is kept. Every stand writer (the
+/// command line, tiled runs, the Python module) replaces these.
+const std::vector<std::string>& stand_folder_files();
+/// Says on standard output which files of the earlier stand the swap dropped (a mesh format not
+/// asked for this time, light tables) and which dead runs' leftovers were removed, and on
+/// standard error what was kept against the plan (nothing when all went as planned).
+void print_folder_changes(const StagedFolder& folder, const StagedFolder::Committed& committed);
 
 /// Runs `canopy stand` with `o`: writes the files into o.out, prints the summary when `print`.
 /// `progress`, when set, is called once per resolution round (instead of the terminal line).

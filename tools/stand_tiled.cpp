@@ -67,7 +67,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     plan = plan_stand(o);
     dreq = o.detect.request();
     backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());
-    if (rank == 0) prepare_output_dir(o.out);
+    if (rank == 0) check_output_dir(o.out);  // made only once the files are complete
     placements = o.positions.empty() ? row_layout(plan.layout) : plan.request.plants;
   });
   const std::size_t n = placements.size();
@@ -228,7 +228,7 @@ void run_stand_tiled(StandOptions o) {
     for (const Owned& x : mpi::allgather(mine)) per_plant[static_cast<std::size_t>(x.plant)] = x.sums;
     rep.leaf_angles = leaf_angles_json(leaf_angles(per_plant));
   }
-  mpi::SharedOutputSet files(o.out, ts.ids, n);
+  mpi::SharedOutputSet files(o.out, stand_folder_files(), ts.ids, n);
   try {
     write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); }, glb_form(o));
     write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
@@ -244,7 +244,7 @@ void run_stand_tiled(StandOptions o) {
   }
   files.commit_all();
   if (rank == 0) {
-    print_stale_removed(remove_stale_meshes(o.out, ts.formats));
+    print_folder_changes(*files.folder(), files.committed());
     print_summary(counts, rep, o.out);
     if (o.positions.empty()) fmt::print("{}\n", layout_line(ts.plan.layout, ts.plan.layout_sources));
     fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,

@@ -1,6 +1,7 @@
 #include "tools/sweep_table.hpp"
 
 #include "geometry/input_file.hpp"
+#include "geometry/atomic_file.hpp"
 
 #include <fmt/format.h>
 
@@ -146,14 +147,11 @@ nlohmann::ordered_json read_sweep_settings(const std::string& path) {
 }
 
 void write_runs(const std::string& path, const std::vector<RunRow>& rows) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << header();
-    for (const RunRow& r : rows) out << line_of(r);
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp));
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error(fmt::format("cannot rename {} to {}", tmp, path));
+  AtomicFile out(path);  // synced and renamed into place: a kill leaves the earlier table whole
+  std::string text = header();
+  for (const RunRow& r : rows) text += line_of(r);
+  out.write(text);
+  out.commit();
 }
 
 void append_run(const std::string& path, const RunRow& row) {

@@ -77,6 +77,39 @@ TEST_CASE("bad row layouts") {
   CHECK_THROWS_AS(row_layout(l), std::invalid_argument);
 }
 
+TEST_CASE("row layouts that reach past the bound on plant positions name the option") {
+  const auto message = [](const RowLayout& l) {
+    try {
+      row_layout(l);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  RowLayout l;
+  l.per_row = 2;
+  l.plant_spacing = 1e300;  // wrote uninitialised memory into stand.obj
+  CHECK(message(l).starts_with("--plant-spacing 1e+300 m: plants may stand at most 1e+08 m from the origin"));
+  l.plant_spacing = 6e7;
+  l.per_row = 3;  // 1.2e8 m for the third plant
+  CHECK(message(l).starts_with("--per-row 3 x --plant-spacing 6e+07 m (+ --jitter 0 m) reaches x = 1.2e+08 m"));
+  l.per_row = 1;
+  l.jitter = 2e8;
+  CHECK(message(l).starts_with("--jitter 2e+08 m:"));
+  l.jitter = 0;
+  l.rows = 4;
+  l.row_spacing = 2e7;
+  l.double_rows = 7e7;  // rows at 0, 7e7, 2e7, 9e7: within
+  CHECK(message(l).empty());
+  l.double_rows = 9e7;  // the second row of the second pair at 1.1e8
+  CHECK(message(l).starts_with("--rows 4 x --row-spacing 2e+07 m with --double-rows 9e+07 m (+ --jitter 0 m) reaches y = 1.1e+08 m"));
+  // At the bound itself: accepted.
+  RowLayout edge;
+  edge.per_row = 2;
+  edge.plant_spacing = kMaxPlantCoordinate;
+  CHECK(row_layout(edge).back().x == kMaxPlantCoordinate);
+}
+
 namespace {
 std::string write_temp(const std::string& text) {
   char name[] = "/tmp/canopy-positions-XXXXXX";
@@ -137,6 +170,13 @@ TEST_CASE("positions files: missing columns and bad cells name the place") {
   CHECK(error_of("x;y;rotation;seed\n0,5;1;0;4\n") ==
         ":1: missing column 'x' (the header needs x,y,rotation,seed and may add grammar,steps); the cells are separated by ';' or tabs, and positions files use commas");
   CHECK(error_of("") == ": empty positions file (expected a header x,y,rotation,seed)");
+}
+
+TEST_CASE("positions past the bound on plant positions name file, line and column") {
+  CHECK(error_of("x,y,rotation,seed\n1e57,0,0,1\n") == ":2:1: column 'x' is 1e57 m: plants may stand at most 1e+08 m from the origin");
+  CHECK(error_of("x,y,rotation,seed\n0,0,0,1\n3,-1.5e8,0,2\n") ==
+        ":3:3: column 'y' is -1.5e8 m: plants may stand at most 1e+08 m from the origin");
+  CHECK(positions_of("x,y,rotation,seed\n-1e8,1e8,0,1\n").size() == 1);
 }
 
 TEST_CASE("seeds as written: whole numbers from 0 to 2^64 - 1 in decimal, nothing else") {

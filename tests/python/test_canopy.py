@@ -263,3 +263,31 @@ def test_light_equals_the_command_line(cli_stand, tmp_path):
         canopy.Stand.read(folder).light(suns=[(-5, 10)])
     with pytest.raises(ValueError, match="unknown option"):
         canopy.Stand.read(folder).light(sunz=[(5, 10)])
+
+
+def test_an_export_replaces_the_stand_and_keeps_the_rest(tmp_path):
+    out = tmp_path / "out"
+    canopy.stand(TOMATO, out, rows=1, per_row=2, steps=10, backend="cpu")
+    (out / "notes.txt").write_text("mine")
+    (out / "renders").mkdir()
+    (out / "renders" / "a.png").write_text("picture")
+    s = canopy.Stand.grow(TOMATO, rows=1, per_row=3, steps=10)
+    s.export(out, formats=["obj"])
+    # The earlier stand goes as a set: its report and contacts described it, not this one.
+    assert sorted(p.name for p in out.iterdir()) == ["notes.txt", "organs.csv", "plants.csv", "renders", "stand.mtl", "stand.obj"]
+    assert (out / "notes.txt").read_text() == "mine" and (out / "renders" / "a.png").read_text() == "picture"
+    assert sum(1 for _ in open(out / "plants.csv")) == 4
+    assert [p.name for p in tmp_path.iterdir()] == ["out"]  # nothing left beside it
+
+
+def test_a_failed_run_leaves_the_file_system_as_it_was(tmp_path):
+    neg = tmp_path / "neg.yaml"
+    neg.write_text("axiom: I(1, 0.1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\norgans:\n"
+                   "  I: {prototype: cylinder, kind: internode}\n")
+    with pytest.raises((RuntimeError, ValueError)):  # an organ of negative length, found while growing
+        canopy.stand(str(neg), tmp_path / "made" / "out")
+    with pytest.raises(ValueError, match="plants may stand at most 1e\\+08 m from the origin"):
+        canopy.stand(TOMATO, tmp_path / "far", rows=1, per_row=2, steps=8, plant_spacing=1e300)
+    with pytest.raises(ValueError, match="farther from the origin than the 1e\\+08 m plants may stand"):
+        canopy.Stand.grow(TOMATO, positions=np.array([[1e57, 0, 0, 1]]), steps=5)
+    assert [p.name for p in tmp_path.iterdir()] == ["neg.yaml"]

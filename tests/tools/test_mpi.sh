@@ -107,6 +107,8 @@ mpi 2 stand "$g" --positions "$tmp/bad.csv" -o "$tmp/failed" >"$tmp/failed.log" 
 check "failing rank: exit code" "nonzero" "$([ $? -ne 0 ] && echo nonzero || echo zero)"
 check "failing rank: every rank reports it" "2" "$(grep -c 'rank 1 of 2 failed: .*bad.yaml:4:1' "$tmp/failed.log")"
 check "failing rank: no files" "" "$(ls -A "$tmp/failed" 2>/dev/null)"
+# Tiled runs swap their folder in as one process does: nothing of theirs is left beside it.
+check "no staging folders left" "0" "$(ls -A "$tmp" | grep -c '\.canopy-')"
 
 # Sweeps: runs spread over the ranks give the rows one process gives (times aside), and a sweep
 # resumed under mpirun with more seeds makes only the new runs.

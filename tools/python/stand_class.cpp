@@ -242,13 +242,12 @@ void bind_stand(py::module_& m) {
             if (glb.compact && fs.count("glb")) check_glb_compact(ExportScope::whole(s.stand));
             py::gil_scoped_release nogil;
             const ThreadLimit thread_limit(0);  // refuses an OMP_NUM_THREADS past canopy's maximum
-            prepare_output_dir(dir);
             PrototypeLibrary lib;
-            OutputSet files(dir);
+            // The folder's earlier stand is replaced as a set, as canopy stand does.
+            OutputSet files(dir, cli::stand_folder_files());
             cli::write_stand_files(s.stand, lib, fs, glb, files);
             if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
             files.commit_all();
-            cli::remove_stale_meshes(dir, fs);
           },
           py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("glb_instancing") = false,
           py::arg("glb_compact") = false,

@@ -1,0 +1,363 @@
+#include "geometry/staged_folder.hpp"
+
+#include "geometry/run_files.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <dirent.h>
+#include <fcntl.h>
+#include <filesystem>
+#include <stdexcept>
+#include <tuple>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace canopy {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kStagingMark = ".canopy-";
+
+std::string why() { return std::strerror(errno); }
+
+/// An open folder, closed on scope exit.
+struct Fd {
+  int fd = -1;
+  explicit Fd(const std::string& path, int flags = O_RDONLY | O_DIRECTORY | O_CLOEXEC) : fd(::open(path.c_str(), flags)) {}
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+};
+
+/// The names in folder `path` ("." and ".." left out); empty when it cannot be read.
+std::vector<std::string> names_in(const std::string& path) {
+  std::vector<std::string> out;
+  if (DIR* d = ::opendir(path.c_str())) {
+    while (const dirent* e = ::readdir(d))
+      if (std::strcmp(e->d_name, ".") && std::strcmp(e->d_name, "..")) out.emplace_back(e->d_name);
+    ::closedir(d);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool is_folder_at(int dirfd, const std::string& name) {
+  struct stat st;
+  return ::fstatat(dirfd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode);
+}
+
+bool exists_at(int dirfd, const std::string& name) {
+  struct stat st;
+  return ::fstatat(dirfd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
+}
+
+bool same_file_at(int dira, int dirb, const std::string& name) {
+  struct stat a, b;
+  return ::fstatat(dira, name.c_str(), &a, AT_SYMLINK_NOFOLLOW) == 0 && ::fstatat(dirb, name.c_str(), &b, AT_SYMLINK_NOFOLLOW) == 0 &&
+         a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
+void sync_folder(const std::string& path) {
+  Fd d(path);
+  if (d.fd >= 0) ::fsync(d.fd);
+}
+
+/// The part after ".NAME.canopy-" of a staging name: "PID-START-K" or "PID-START-K-old"; the
+/// tag ("PID-START") when it is one, else empty.
+std::string staging_tag(std::string_view rest) {
+  if (rest.ends_with("-old")) rest.remove_suffix(4);
+  int dashes = 0;
+  for (char c : rest) {
+    if (c == '-') ++dashes;
+    else if (c < '0' || c > '9') return {};
+  }
+  if (dashes != 2 || rest.front() == '-' || rest.back() == '-' || rest.find("--") != std::string_view::npos) return {};
+  return std::string(rest.substr(0, rest.rfind('-')));
+}
+
+std::atomic<unsigned> g_staging_count{0};
+
+}  // namespace
+
+void open_in_one_set(const std::string& dir, const std::function<void()>& open_all) {
+  // The change time too: a folder made after the one read may get its inode number.
+  const auto identity = [&] {
+    struct stat st{};
+    if (::stat(dir.c_str(), &st) != 0) return std::tuple<dev_t, ino_t, time_t, long>(0, 0, 0, 0);
+    return std::tuple<dev_t, ino_t, time_t, long>(st.st_dev, st.st_ino, st.st_ctim.tv_sec, st.st_ctim.tv_nsec);
+  };
+  for (int attempt = 0; attempt < 16; ++attempt) {
+    const auto before = identity();
+    open_all();
+    if (identity() == before) return;
+  }
+}
+
+void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files, const std::vector<std::string>& paths) {
+  open_in_one_set(dir, [&] {
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      files[i]->close();
+      files[i]->clear();
+      files[i]->open(paths[i], std::ios::binary);
+    }
+  });
+}
+
+bool is_dead_temporary(const std::string& name) {
+  if (name == ".canopy-write-test") return true;  // an earlier version's probe
+  // An earlier version's MPI files: "X.tmp-mpi" and its ranks' spill files "X.tmp-mpi.rankN".
+  if (name.find(".tmp-mpi") != std::string::npos) return true;
+  const std::size_t at = name.rfind(".tmp-");
+  return at != std::string::npos && at > 0 && tag_is_dead(std::string_view(name).substr(at + 5));
+}
+
+std::string output_folder(const std::string& dir) {
+  if (dir.empty()) throw std::runtime_error("cannot create the output folder: no folder named");
+  fs::path p = fs::absolute(dir).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();
+  std::error_code ec;
+  if (fs::is_symlink(p, ec)) {
+    const fs::path target = fs::canonical(p, ec);
+    if (!ec && fs::is_directory(target, ec)) p = target;
+  }
+  if (p == p.root_path() || p.filename().empty() || p.filename() == "..")
+    throw std::runtime_error(fmt::format("cannot create the output folder {}: the file system's root cannot be replaced", dir));
+  return p.string();
+}
+
+namespace {
+
+/// Where the staging folder for output folder `p` (`dir` as named) can be made: `p`'s parent, or
+/// its nearest existing ancestor for a new folder. Throws when `p` cannot be replaced as a whole.
+fs::path staging_place(const fs::path& p, const std::string& dir) {
+  const auto refuse = [&](const std::string& reason) {
+    throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, reason));
+  };
+  struct stat st;
+  if (::lstat(p.c_str(), &st) == 0) {
+    if (!S_ISDIR(st.st_mode)) refuse("it exists and is not a folder");
+    struct stat here, parent;
+    if (::stat(".", &here) == 0 && here.st_dev == st.st_dev && here.st_ino == st.st_ino)
+      refuse("it is the working folder, and a run replaces its output folder as a whole (which would leave this shell in a "
+             "removed folder); name a folder inside it or beside it");
+    if (::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev)
+      refuse("it is a mount point, which cannot be replaced as a whole; name a folder inside it");
+    return p.parent_path();
+  }
+  if (errno != ENOENT && errno != ENOTDIR) refuse(why());
+  fs::path at = p.parent_path();
+  while (::lstat(at.c_str(), &st) != 0 && at != at.root_path()) at = at.parent_path();
+  if (::stat(at.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) refuse(fmt::format("{} is not a folder", at.string()));
+  return at;
+}
+
+}  // namespace
+
+void check_output_dir(const std::string& dir) {
+  const fs::path writable = staging_place(output_folder(dir), dir);
+  const auto refuse = [&](const std::string& reason) {
+    throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, reason));
+  };
+  // A folder made and removed again: what the staging folder will need.
+  const fs::path probe = writable / fmt::format(".canopy-probe-{}", process_tag());
+  if (::mkdir(probe.c_str(), 0700) != 0) refuse(fmt::format("cannot make a folder in {}: {}", writable.string(), why()));
+  ::rmdir(probe.c_str());
+}
+
+StagedFolder::StagedFolder(const std::string& dir, std::vector<std::string> replaces) : replaces_(std::move(replaces)) {
+  try {
+    open(dir);
+  } catch (...) {
+    // No destructor runs for a constructor that throws: the folders made so far go here.
+    for (auto it = created_.rbegin(); it != created_.rend(); ++it) ::rmdir(it->c_str());
+    for (std::uint64_t id : created_ids_) unregister_run_path(id);
+    throw;
+  }
+}
+
+void StagedFolder::open(const std::string& dir) {
+  dir_ = output_folder(dir);
+  const fs::path p(dir_);
+  staging_place(p, dir);
+  parent_ = p.parent_path().string();
+  name_ = p.filename().string();
+  // The folders missing above the output, made now and removed again if the run fails.
+  std::vector<fs::path> missing;
+  for (fs::path a = p.parent_path(); !fs::exists(fs::symlink_status(a)) && a != a.root_path(); a = a.parent_path()) missing.push_back(a);
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    const auto lock = lock_run_paths();
+    if (::mkdir(it->c_str(), 0777) == 0) {
+      created_.push_back(it->string());
+      created_ids_.push_back(register_run_path(it->string(), RunPath::created_folder));
+    } else if (errno != EEXIST) {
+      throw std::runtime_error(fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, it->string(), why()));
+    }
+  }
+  remove_leftovers();
+  const auto lock = lock_run_paths();
+  staging_ = fmt::format("{}/.{}{}{}-{}", parent_, name_, kStagingMark, process_tag(), g_staging_count++);
+  if (::mkdir(staging_.c_str(), 0777) != 0)
+    throw std::runtime_error(fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, staging_, why()));
+  staging_id_ = register_run_path(staging_, RunPath::staging);
+}
+
+StagedFolder::~StagedFolder() {
+  if (committed_) return;
+  const auto lock = lock_run_paths();
+  if (!staging_.empty()) remove_flat_folder(staging_);
+  unregister_run_path(staging_id_);
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) ::rmdir(it->c_str());
+  for (std::uint64_t id : created_ids_) unregister_run_path(id);
+}
+
+void StagedFolder::remove_leftovers() {
+  // ".NAME.canopy-TAG-K" of a process that has ended: an unfinished new set (the run died before
+  // its swap; things of the user's it carried across are put back), or the earlier set after the
+  // swap; "...-old" the earlier folder where renames stood in for the exchange.
+  const std::string prefix = "." + name_ + kStagingMark;
+  std::vector<std::string> dead;
+  for (const std::string& e : names_in(parent_)) {
+    if (!e.starts_with(prefix)) continue;
+    const std::string tag = staging_tag(std::string_view(e).substr(prefix.size()));
+    if (!tag.empty() && tag_is_dead(tag)) dead.push_back(e);
+  }
+  // An earlier folder moved aside goes back first when the folder itself is missing.
+  std::stable_partition(dead.begin(), dead.end(), [](const std::string& e) { return e.ends_with("-old"); });
+  for (const std::string& e : dead) {
+    const std::string path = parent_ + "/" + e;
+    struct stat st;
+    if (e.ends_with("-old") && ::lstat(dir_.c_str(), &st) != 0 && ::rename(path.c_str(), dir_.c_str()) == 0) {
+      leftovers_.push_back(e + " (put back as " + name_ + ")");
+      continue;
+    }
+    Fd from(path), to(dir_);
+    std::vector<std::string> kept;
+    for (const std::string& n : names_in(path)) {
+      const bool folder = is_folder_at(from.fd, n);
+      const bool ours = !folder && (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end() || is_dead_temporary(n));
+      if (ours || (to.fd >= 0 && same_file_at(from.fd, to.fd, n))) {
+        ::unlinkat(from.fd, n.c_str(), 0);
+      } else if (to.fd >= 0 && !exists_at(to.fd, n) && ::renameat(from.fd, n.c_str(), to.fd, n.c_str()) == 0) {
+        // carried across by that run and not yet in place: back where it was
+      } else {
+        kept.push_back(n);
+      }
+    }
+    if (::rmdir(path.c_str()) == 0) leftovers_.push_back(e);
+    else
+      leftover_notes_.push_back(fmt::format("kept {}, left by a run that ended before it finished: it holds {} (not canopy's, and not "
+                                            "the same as in {})",
+                                            path, fmt::join(kept, ", "), dir_));
+  }
+}
+
+StagedFolder::Committed StagedFolder::commit() {
+  Committed out;
+  // Every file's data on disk, then the folder's entries: a crash after the swap finds whole files.
+  for (const std::string& n : names_in(staging_)) {
+    const std::string f = path(n);
+    struct stat st;
+    if (::lstat(f.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
+    Fd file(f, O_RDONLY | O_CLOEXEC);
+    if (file.fd < 0 || ::fsync(file.fd) != 0) throw std::runtime_error(fmt::format("cannot sync {}: {}", f, why()));
+  }
+  sync_folder(staging_);
+
+  auto lock = lock_run_paths();  // a signal now waits until the folder is swapped and registered as such
+  struct stat st;
+  const bool earlier = ::lstat(dir_.c_str(), &st) == 0;
+  std::string old_path;  // where the earlier folder is once the new one is in place
+  if (!earlier) {
+    if (::rename(staging_.c_str(), dir_.c_str()) != 0)
+      throw std::runtime_error(fmt::format("cannot move {} to {}: {}", staging_, dir_, why()));
+    unregister_run_path(staging_id_);
+    staging_id_ = 0;
+  } else {
+    if (!S_ISDIR(st.st_mode)) throw std::runtime_error(fmt::format("cannot replace {}: it is not a folder", dir_));
+    Fd old_fd(dir_), new_fd(staging_);
+    if (old_fd.fd < 0 || new_fd.fd < 0) throw std::runtime_error(fmt::format("cannot open {} or {}: {}", dir_, staging_, why()));
+    // The earlier folder's other entries carried across: files linked (present in both until the
+    // swap), folders moved (absent from the earlier folder for the instant before the swap).
+    std::vector<std::string> moved;
+    bool stuck = false;  // an entry of the user's that could be neither linked nor moved
+    for (const std::string& n : names_in(dir_)) {
+      if (exists_at(new_fd.fd, n)) continue;  // the new set's file of that name wins
+      if (is_folder_at(old_fd.fd, n)) {
+        if (::renameat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str()) == 0) moved.push_back(n);
+        else stuck = true;
+        continue;
+      }
+      if (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end()) {
+        out.dropped.push_back(n);
+        continue;
+      }
+      if (is_dead_temporary(n)) continue;
+      if (::linkat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str(), 0) == 0) continue;
+      // A file that cannot be linked (another user's, where links are protected): moved.
+      if (::renameat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str()) == 0) moved.push_back(n);
+      else stuck = true;
+    }
+    // The folder keeps what the user set on it: its permissions, and its owner where this process may.
+    ::fchmod(new_fd.fd, st.st_mode & 07777);
+    if (::fchown(new_fd.fd, st.st_uid, st.st_gid) != 0) {
+      // not the owner's to give: the new folder is this user's
+    }
+    const auto put_back = [&] {
+      for (const std::string& n : moved) ::renameat(new_fd.fd, n.c_str(), old_fd.fd, n.c_str());
+    };
+    if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) == 0) {
+      old_path = staging_;
+    } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP) {
+      // A file system without the exchange: two renames, the folder absent (never mixed) between.
+      old_path = staging_ + "-old";
+      if (::rename(dir_.c_str(), old_path.c_str()) != 0) {
+        const std::string reason = why();
+        put_back();
+        throw std::runtime_error(fmt::format("cannot replace {}: {}", dir_, reason));
+      }
+      if (::rename(staging_.c_str(), dir_.c_str()) != 0) {
+        const std::string reason = why();
+        ::rename(old_path.c_str(), dir_.c_str());
+        put_back();
+        throw std::runtime_error(fmt::format("cannot replace {}: {}", dir_, reason));
+      }
+    } else {
+      const std::string reason = why();
+      put_back();
+      throw std::runtime_error(fmt::format("cannot replace {}: {}", dir_, reason));
+    }
+    // A signal from here on finishes the removal, unless something of the user's is left there.
+    if (stuck) unregister_run_path(staging_id_);
+    else rename_run_path(staging_id_, old_path);
+  }
+  committed_ = true;
+  sync_folder(parent_);
+  for (std::uint64_t id : created_ids_) unregister_run_path(id);
+  lock.unlock();
+  if (!old_path.empty()) {
+    // Only what the new folder has too (linked), the earlier set and dead runs' temporaries go.
+    Fd old_fd(old_path), new_fd(dir_);
+    for (const std::string& n : names_in(old_path)) {
+      if (is_folder_at(old_fd.fd, n)) continue;
+      if (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end() || is_dead_temporary(n) ||
+          same_file_at(old_fd.fd, new_fd.fd, n))
+        ::unlinkat(old_fd.fd, n.c_str(), 0);
+    }
+    if (::rmdir(old_path.c_str()) != 0)
+      out.notes.push_back(fmt::format("kept the earlier folder as {}: it holds {} that could not be moved into {}", old_path,
+                                      fmt::join(names_in(old_path), ", "), dir_));
+  }
+  unregister_run_path(staging_id_);
+  return out;
+}
+
+}  // namespace canopy

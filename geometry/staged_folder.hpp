@@ -1,0 +1,87 @@
+#pragma once
+/// A folder whose set of files is replaced as one unit (DESIGN.md "Exports": a run replaces the
+/// folder's stand as one unit; docs/design.md "Output folders and failures"). The files are
+/// written into a staging folder beside it, ".NAME.canopy-PID-START-K" (geometry/run_files.hpp),
+/// synced with the folder, and swapped in with one renameat2(RENAME_EXCHANGE) (one rename when
+/// the folder is new); the earlier folder, now at the staging name, is then removed. A reader
+/// that opens the folder sees the earlier set or the new one, never a mix.
+///
+/// What a replaced folder keeps: every entry of the earlier folder except the files named in
+/// `replaces` (the earlier set, dropped whether the new set has them or not) and dead runs'
+/// temporary files. Other files (the user's, a sweep's tables) are hard-linked into the new folder
+/// before the swap, so they are never absent; other folders are moved into it just before the
+/// swap. Nothing is ever removed recursively: a folder that cannot be carried across keeps the
+/// earlier folder in place under its staging name, and commit() says so.
+#include <cstdint>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace canopy {
+
+/// The folder a staged run replaces: `dir` made absolute and normal, a symbolic link to a folder
+/// followed (the link stays, its target is replaced). Throws std::runtime_error for "/".
+std::string output_folder(const std::string& dir);
+
+/// Checks, leaving nothing behind, that a StagedFolder can later replace `dir`: an existing `dir`
+/// is a folder, not the working folder (the shell would be left in a removed folder) and not a
+/// mount point (those cannot be renamed); a folder can be made beside it, or in its nearest
+/// existing ancestor when it is new. Throws std::runtime_error "cannot create the output folder
+/// DIR: why".
+void check_output_dir(const std::string& dir);
+
+class StagedFolder {
+ public:
+  /// Makes the folders missing above `dir` and the staging folder beside it; first removes what
+  /// dead runs left beside `dir` (their staging folders), putting back into `dir` anything of
+  /// the user's that such a run had carried across. `replaces`: see above.
+  StagedFolder(const std::string& dir, std::vector<std::string> replaces);
+  /// Not committed: removes the staging folder and the folders made for it.
+  ~StagedFolder();
+  StagedFolder(const StagedFolder&) = delete;
+  StagedFolder& operator=(const StagedFolder&) = delete;
+
+  const std::string& dir() const { return dir_; }
+  const std::string& staging() const { return staging_; }
+  /// A file of the staging folder.
+  std::string path(const std::string& name) const { return staging_ + "/" + name; }
+
+  struct Committed {
+    std::vector<std::string> dropped;   // names in `replaces` the earlier folder had and the new set has not
+    std::vector<std::string> notes;     // what was not done as planned (an earlier folder kept), a line each
+  };
+  /// Syncs every file of the staging folder and the folder, carries the earlier folder's other
+  /// entries across, swaps, syncs the parent, removes the earlier folder. Throws, with `dir` as it
+  /// was, when the swap cannot be made.
+  Committed commit();
+
+  /// Names of dead runs' leftovers removed by the constructor, and notes on those it kept.
+  const std::vector<std::string>& leftovers_removed() const { return leftovers_; }
+  const std::vector<std::string>& leftover_notes() const { return leftover_notes_; }
+
+ private:
+  void open(const std::string& dir);
+  void remove_leftovers();
+  std::string dir_, parent_, name_, staging_;
+  std::vector<std::string> replaces_;
+  std::uint64_t staging_id_ = 0;
+  std::vector<std::uint64_t> created_ids_;
+  std::vector<std::string> created_;
+  std::vector<std::string> leftovers_, leftover_notes_;
+  bool committed_ = false;
+};
+
+/// Opens `files[i]` on `paths[i]` (files of folder `dir`) so that all come from one set: the
+/// folder's identity is read before and after they are opened, and they are opened again when a
+/// run swapped the folder in between. Once open, a file reads whole whatever replaces it.
+void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files, const std::vector<std::string>& paths);
+/// The same rule for any way of opening: `open_all` (which replaces what it opened before) is
+/// called again until the folder was not swapped while it ran.
+void open_in_one_set(const std::string& dir, const std::function<void()>& open_all);
+
+/// Whether `name` is a temporary file of a canopy run that has ended ("X.tmp-PID[-START]" with
+/// that process gone) or a temporary name of an earlier canopy version: safe to remove.
+bool is_dead_temporary(const std::string& name);
+
+}  // namespace canopy

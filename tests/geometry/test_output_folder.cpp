@@ -1,0 +1,273 @@
+// Output folders replaced as one unit, temporary names of dead runs, checked number formatting.
+#include "geometry/atomic_file.hpp"
+#include "geometry/run_files.hpp"
+#include "geometry/staged_folder.hpp"
+#include "geometry/text_out.hpp"
+
+#include <doctest/doctest.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+using namespace canopy;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A pid above any the kernel hands out (pid_max is at most 2^22): a process that has ended.
+const std::string kDeadTag = "1073741000-5";
+
+std::string temp_dir() {
+  char name[] = "/tmp/canopy-folder-XXXXXX";
+  REQUIRE(mkdtemp(name) != nullptr);
+  return name;
+}
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void put(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+std::set<std::string> names(const fs::path& dir) {
+  std::set<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.insert(e.path().filename().string());
+  return out;
+}
+
+ino_t inode(const fs::path& p) {
+  struct stat st;
+  REQUIRE(::lstat(p.c_str(), &st) == 0);
+  return st.st_ino;
+}
+
+const std::vector<std::string> kStand{"organs.csv", "plants.csv", "report.json", "stand.ply", "light.csv"};
+
+void write_set(const std::string& dir, const std::string& tag, std::vector<std::string> files = {"organs.csv", "plants.csv"}) {
+  OutputSet set(dir, kStand);
+  for (const std::string& f : files) set.open(f).write(tag);
+  set.commit_all();
+}
+
+}  // namespace
+
+TEST_CASE("a new folder: made only when the set is complete, nothing left beside it") {
+  const fs::path root = temp_dir();
+  const std::string dir = (root / "a" / "b" / "out").string();
+  {
+    OutputSet set(dir, kStand);
+    set.open("organs.csv").write("1");
+    CHECK_FALSE(fs::exists(dir));  // the files are in the staging folder until the swap
+    set.commit_all();
+  }
+  CHECK(names(dir) == std::set<std::string>{"organs.csv"});
+  CHECK(names(root / "a" / "b") == std::set<std::string>{"out"});
+  // Not committed (a failed run): the folder, and the folders made above it, are not there.
+  const std::string other = (root / "c" / "d" / "out").string();
+  {
+    OutputSet set(other, kStand);
+    set.open("organs.csv").write("partial");
+  }
+  CHECK_FALSE(fs::exists(root / "c"));
+  CHECK(names(root) == std::set<std::string>{"a"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("a replaced folder keeps the user's files and folders, drops the earlier set") {
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  write_set(dir.string(), "old", {"organs.csv", "plants.csv", "report.json", "stand.ply"});
+  put(dir / "notes.txt", "mine");
+  put(dir / "light.csv", "light of the old stand");
+  put(dir / ("stand.glb.tmp-" + kDeadTag), "debris of a dead run");
+  fs::create_directories(dir / "renders" / "deep");
+  put(dir / "renders" / "deep" / "a.png", "picture");
+  const ino_t notes = inode(dir / "notes.txt");
+  fs::permissions(dir, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec);  // 0750, kept
+  StagedFolder::Committed c;
+  {
+    OutputSet set(dir.string(), kStand);
+    set.open("organs.csv").write("new");
+    set.open("plants.csv").write("new");
+    c = set.commit_all();
+  }
+  CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv", "renders"});
+  CHECK(slurp(dir / "organs.csv") == "new");
+  CHECK(inode(dir / "notes.txt") == notes);  // the same file, never copied
+  CHECK(fs::status(dir).permissions() == (fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec));
+  CHECK(slurp(dir / "renders" / "deep" / "a.png") == "picture");
+  CHECK(std::set<std::string>(c.dropped.begin(), c.dropped.end()) == std::set<std::string>{"light.csv", "report.json", "stand.ply"});
+  CHECK(c.notes.empty());
+  CHECK(names(root) == std::set<std::string>{"out"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("a symbolic link to the folder stays, its target is replaced") {
+  const fs::path root = temp_dir();
+  write_set((root / "real").string(), "old");
+  fs::create_directory_symlink("real", root / "link");
+  write_set((root / "link").string(), "new");
+  CHECK(fs::is_symlink(root / "link"));
+  CHECK(slurp(root / "link" / "organs.csv") == "new");
+  CHECK(names(root) == std::set<std::string>{"link", "real"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("what dead runs left beside the folder is removed, the user's things put back") {
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  write_set(dir.string(), "old");
+  put(dir / "notes.txt", "mine");
+  // A run killed between carrying the earlier folder's entries across and its swap: its new set,
+  // a link to the user's file, the user's folder moved in.
+  const fs::path dead = root / (".out.canopy-" + kDeadTag + "-0");
+  fs::create_directory(dead);
+  put(dead / "organs.csv", "unfinished");
+  fs::create_hard_link(dir / "notes.txt", dead / "notes.txt");
+  fs::create_directories(dead / "renders");
+  put(dead / "renders" / "a.png", "picture");
+  // A live process's staging folder is left alone (this process's tag, another count).
+  const fs::path live = root / (".out.canopy-" + process_tag() + "-999");
+  fs::create_directory(live);
+  std::vector<std::string> removed;
+  {
+    StagedFolder f(dir.string(), kStand);
+    removed = f.leftovers_removed();
+    CHECK(f.leftover_notes().empty());
+  }
+  CHECK(removed == std::vector<std::string>{dead.filename().string()});
+  CHECK_FALSE(fs::exists(dead));
+  CHECK(fs::exists(live));
+  CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv", "renders"});
+  CHECK(slurp(dir / "renders" / "a.png") == "picture");
+  CHECK(slurp(dir / "organs.csv") == "old");
+  // Where renames stood in for the exchange and the run died between them: the earlier folder,
+  // moved aside, goes back.
+  fs::remove(live);
+  const fs::path aside = root / (".out.canopy-" + kDeadTag + "-1-old");
+  fs::rename(dir, aside);
+  { StagedFolder f(dir.string(), kStand); }
+  CHECK(slurp(dir / "organs.csv") == "old");
+  CHECK(names(root) == std::set<std::string>{"out"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("readers never see a mix of two sets") {
+  // A writer replaces a folder's two files, both naming the same run, while a reader reads them
+  // as canopy detect and canopy render do (read_stand: open_in_one_set).
+  const fs::path root = temp_dir();
+  const std::string dir = (root / "out").string();
+  write_set(dir, "run 0");
+  std::atomic<bool> stop{false};
+  std::thread writer([&] {
+    for (int k = 1; k <= 300; ++k) write_set(dir, "run " + std::to_string(k));
+    stop = true;
+  });
+  int mixed = 0, reads = 0;
+  while (!stop) {
+    std::ifstream a, b;
+    open_in_one_set(dir, {&a, &b}, {dir + "/organs.csv", dir + "/plants.csv"});
+    if (!a || !b) continue;  // between a swap and the earlier folder's removal the files may be gone
+    std::ostringstream sa, sb;
+    sa << a.rdbuf(), sb << b.rdbuf();
+    ++reads;
+    if (sa.str() != sb.str()) ++mixed;
+  }
+  writer.join();
+  CHECK(reads > 0);
+  CHECK(mixed == 0);
+  CHECK(names(root) == std::set<std::string>{"out"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("output folders that cannot be replaced as a whole are refused up front") {
+  const fs::path root = temp_dir();
+  put(root / "file", "x");
+  CHECK_THROWS_WITH_AS(check_output_dir((root / "file").string()), doctest::Contains("it exists and is not a folder"),
+                       std::runtime_error);
+  CHECK_THROWS_WITH_AS(check_output_dir("/"), doctest::Contains("the file system's root cannot be replaced"), std::runtime_error);
+  CHECK_THROWS_AS(check_output_dir("/proc/canopy-cannot-write-here"), std::runtime_error);
+  const fs::path here = fs::current_path();
+  fs::current_path(root);
+  CHECK_THROWS_WITH_AS(check_output_dir("."), doctest::Contains("it is the working folder"), std::runtime_error);
+  CHECK_NOTHROW(check_output_dir("sub/new"));
+  fs::current_path(here);
+  CHECK(names(root) == std::set<std::string>{"file"});  // the checks leave nothing behind
+  fs::remove_all(root);
+}
+
+TEST_CASE("temporary names carry their process; a dead one's are removed, a live one's kept") {
+  CHECK(tag_is_dead(kDeadTag));
+  CHECK(tag_is_dead("1073741000"));  // as earlier versions named them: a pid alone
+  CHECK_FALSE(tag_is_dead(process_tag()));
+  CHECK_FALSE(tag_is_dead("abc"));
+  CHECK_FALSE(tag_is_dead(""));
+  if (!process_tag().ends_with("-0"))  // the start time could be read: a reused pid is told apart
+    CHECK(tag_is_dead(std::to_string(::getpid()) + "-1"));
+  CHECK(is_dead_temporary("stand.glb.tmp-" + kDeadTag));
+  CHECK(is_dead_temporary("stand.glb.tmp-mpi.rank3"));
+  CHECK_FALSE(is_dead_temporary("stand.glb.tmp-" + process_tag()));
+  CHECK_FALSE(is_dead_temporary("notes.tmp-draft"));
+
+  const fs::path root = temp_dir();
+  put(root / ("summary.csv.tmp-" + kDeadTag), "debris");
+  put(root / ("summary.csv.tmp-" + process_tag()), "");  // about to be reused by the file below
+  put(root / "summary.csv.tmp-1", "pid 1 lives");
+  {
+    AtomicFile f((root / "summary.csv").string());
+    f.write("whole");
+    f.commit();
+  }
+  CHECK(names(root) == std::set<std::string>{"summary.csv", "summary.csv.tmp-1"});
+  CHECK(slurp(root / "summary.csv") == "whole");
+  {
+    AtomicFile f((root / "summary.csv").string());
+    f.write("torn");
+  }  // not committed: the earlier file stays, the temporary goes
+  CHECK(slurp(root / "summary.csv") == "whole");
+  CHECK(names(root) == std::set<std::string>{"summary.csv", "summary.csv.tmp-1"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("registered paths are what a signal's clean-up removes") {
+  const fs::path root = temp_dir();
+  std::uint64_t a = 0, b = 0;
+  {
+    StagedFolder f((root / "x" / "out").string(), kStand);
+    put(f.path("organs.csv"), "unfinished");
+    a = register_run_path((root / "loose.tmp").string(), RunPath::file);
+    put(root / "loose.tmp", "");
+    b = register_run_path((root / "kept").string(), RunPath::file);
+    unregister_run_path(b);
+    put(root / "kept", "");
+    const std::vector<std::string> removed = remove_run_paths();
+    CHECK(removed.size() == 3);  // the file, the staging folder, the folder made above it
+    CHECK(names(root) == std::set<std::string>{"kept"});
+  }
+  unregister_run_path(a);
+  fs::remove_all(root);
+}
+
+TEST_CASE("number formatting checks every conversion") {
+  std::string out;
+  append_fixed(out, 123.25, 7);
+  append_fixed(out, -0.0, 7);
+  CHECK(out == "123.250");
+  // A number past the field's 64 characters was appended from a buffer never written (1e57 in
+  // stand.obj: 860 bytes of stack memory); it is an error now.
+  CHECK_THROWS_WITH_AS(append_fixed(out, 1e57, 7), doctest::Contains("cannot write the number 1.000000e+57 with 7 fixed decimals"),
+                       std::range_error);
+  CHECK(out == "123.250");
+  append_number(out, 1e300);
+  CHECK(out == "123.2501e+300");
+}

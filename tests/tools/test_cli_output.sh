@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# Output folders and failures (docs/design.md): positions past the bound refused by name, a
+# failed run leaves the file system as it was, a run replaces a folder's stand as one unit and
+# keeps the rest, SIGINT and SIGTERM clean up and say so, a dead run's leftovers go with the next
+# run, plants on one spot refused before their contact lists outgrow memory.
+# Usage: CANOPY=path/to/canopy test_cli_output.sh SOURCE_DIR
+set -u
+src=$(cd "$1" && pwd)
+canopy=${CANOPY:?set CANOPY to the canopy binary}
+source "$(dirname "$0")/check.sh"
+g=$src/grammars/tomato.yaml
+small=(--rows 1 --per-row 3 --steps 10 --backend cpu)
+hidden() { ls -A "$1" | grep -c '\.canopy-'; }  # staging folders and probes beside an output
+
+# Positions, spacings and jitter that the exports cannot write faithfully: refused by name, up
+# front (1e57 wrote 860 bytes of stack memory into stand.obj and exited 0).
+printf 'x,y,rotation,seed\n1e57,0,0,1\n' >"$tmp/far.csv"
+"$canopy" stand "$g" --positions "$tmp/far.csv" --steps 8 -o "$tmp/far" >"$tmp/o" 2>"$tmp/e"
+check "far position exit" "2" "$?"
+check "far position message" "canopy: error: $tmp/far.csv:2:1: column 'x' is 1e57 m: plants may stand at most 1e+08 m from the origin" "$(cat "$tmp/e")"
+check "far position no folder" "no" "$([ -e "$tmp/far" ] && echo yes || echo no)"
+"$canopy" stand "$g" --rows 1 --per-row 2 --plant-spacing 1e300 --steps 8 -o "$tmp/far" >"$tmp/o" 2>"$tmp/e"
+check "far spacing exit" "2" "$?"
+check "far spacing message" "1" "$(grep -c -- '^canopy: error: --plant-spacing 1e+300 m: plants may stand at most 1e+08 m' "$tmp/e")"
+"$canopy" stand "$g" --rows 1 --per-row 1 --jitter 1e9 --steps 8 -o "$tmp/far" >"$tmp/o" 2>"$tmp/e"
+check "far jitter message" "1" "$(grep -c -- '^canopy: error: --jitter 1e+09 m:' "$tmp/e")"
+# At 10^7 m the OBJ holds the coordinates as text, nothing else.
+printf 'x,y,rotation,seed\n1e7,-1e7,0,1\n' >"$tmp/utm.csv"
+"$canopy" stand "$g" --positions "$tmp/utm.csv" --steps 8 --formats obj --backend cpu -o "$tmp/utm" >/dev/null 2>&1
+check "far stand exit" "0" "$?"
+check "far stand obj is text" "0" "$(LC_ALL=C grep -c '[^[:print:][:space:]]' "$tmp/utm/stand.obj")"
+check "far stand obj coordinates" "1" "$(grep -m1 '^v ' "$tmp/utm/stand.obj" | awk '{print ($2 > 9999998 && $2 < 10000002 && $3 < -9999998 && $3 > -10000002)}')"
+
+# A failed run leaves the file system as it was: no empty output folder, no folder above it.
+printf 'axiom: I(1, 0.1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\norgans:\n  I: {prototype: cylinder, kind: internode}\n' >"$tmp/neg.yaml"
+"$canopy" stand "$tmp/neg.yaml" -o "$tmp/made/above/out" >/dev/null 2>"$tmp/e"
+check "failed run exit" "1" "$?"
+check "failed run: no folder made" "no" "$([ -e "$tmp/made" ] && echo yes || echo no)"
+check "failed run: nothing beside" "0" "$(hidden "$tmp")"
+
+# A replaced stand folder: the earlier stand's files go as a set (meshes in formats not written
+# again, light tables computed from it), the user's files (the same inode) and folders stay.
+out=$tmp/keep
+"$canopy" stand "$g" "${small[@]}" --formats glb,ply -o "$out" >/dev/null 2>&1
+echo mine >"$out/notes.txt"
+mkdir -p "$out/renders/old" && echo png >"$out/renders/old/a.png"
+echo 0.5 >"$out/light.csv" && echo '{}' >"$out/light.json"
+inode=$(stat -c %i "$out/notes.txt")
+"$canopy" stand "$g" "${small[@]}" --seed 7 -o "$out" >"$tmp/o" 2>&1
+check "replace exit" "0" "$?"
+check "replace: files" "contacts.csv contacts_after.csv notes.txt organs.csv plants.csv renders report.json stand.glb" "$(LC_ALL=C ls "$out" | tr '\n' ' ' | sed 's/ $//')"
+check "replace: user file the same" "$inode" "$(stat -c %i "$out/notes.txt")"
+check "replace: user folder" "png" "$(cat "$out/renders/old/a.png")"
+check "replace: meshes named" "1" "$(grep -c '^removed stand.ply left by an earlier run (a format not asked for this time)' "$tmp/o")"
+check "replace: light named" "1" "$(grep -c '^removed light.csv, light.json, which described the earlier stand' "$tmp/o")"
+check "replace: new seed" "7" "$(python3 -c "import json;print(json.load(open('$out/report.json'))['seed'])")"
+check "replace: nothing beside" "0" "$(hidden "$tmp")"
+# The folder named as the working folder is refused (the shell would be left in a removed one).
+(cd "$out" && "$canopy" stand "$g" "${small[@]}" -o . >/dev/null 2>"$tmp/e")
+check "working folder refused" "1" "$(grep -c 'it is the working folder' "$tmp/e")"
+
+# SIGINT and SIGTERM during a run: this run's files removed, said on stderr, the earlier stand
+# untouched; exit by the signal. (Job control on: a script's background jobs ignore SIGINT.)
+set -m
+sums() { (cd "$1" && md5sum organs.csv plants.csv report.json stand.glb); }
+before=$(sums "$out")
+for sig in INT TERM; do
+  "$canopy" stand "$g" --rows 2 --per-row 10 --backend cpu --formats glb,obj,ply -o "$out" >/dev/null 2>"$tmp/e$sig" &
+  pid=$!
+  for _ in $(seq 1 500); do [ "$(hidden "$tmp")" -gt 0 ] && break; sleep 0.01; done
+  kill -$sig $pid
+  wait $pid
+  rc=$?
+  check "SIG$sig exit" "$([ $sig = INT ] && echo 130 || echo 143)" "$rc"
+  check "SIG$sig said" "1" "$(grep -c "^canopy: stopped by SIG$sig: removed this run's unfinished output: $tmp/.keep.canopy-" "$tmp/e$sig")"
+  check "SIG$sig nothing beside" "0" "$(hidden "$tmp")"
+  check "SIG$sig earlier stand whole" "$before" "$(sums "$out")"
+done
+# SIGKILL cannot be caught: its leftovers are removed by the next run into the folder.
+"$canopy" stand "$g" --rows 2 --per-row 10 --backend cpu -o "$out" >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 500); do [ "$(hidden "$tmp")" -gt 0 ] && break; sleep 0.01; done
+kill -KILL $pid
+wait $pid 2>/dev/null
+check "SIGKILL leaves its staging folder" "1" "$(hidden "$tmp")"
+"$canopy" stand "$g" "${small[@]}" -o "$out" >"$tmp/o" 2>&1
+check "next run exit" "0" "$?"
+check "next run removes it" "0" "$(hidden "$tmp")"
+check "next run says so" "1" "$(grep -c "^removed what interrupted runs left beside $out: .keep.canopy-" "$tmp/o")"
+set +m
+
+# Killed at any moment, a folder holds one whole stand: its tables agree with its report.
+for delay in 0.2 0.5 0.9 1.4 2.0 0.05 0.35 0.7; do
+  per=$((3 + 10#${delay//[^0-9]/} % 4))
+  timeout -s KILL "$delay" "$canopy" stand "$g" --rows 1 --per-row $per --steps 12 --backend cpu --formats glb,obj -o "$tmp/mix" >/dev/null 2>&1
+  if [ -d "$tmp/mix" ]; then
+    whole=$(python3 - "$tmp/mix" <<'EOF'
+import json, sys
+d = sys.argv[1]
+r = json.load(open(d + "/report.json"))
+plants = sum(1 for _ in open(d + "/plants.csv")) - 1
+organs = sum(1 for _ in open(d + "/organs.csv")) - 1
+print(plants == r["counts"]["plants"] and organs == r["counts"]["organs"])
+EOF
+)
+    check "killed after $delay s: one whole stand" "True" "$whole"
+  fi
+done
+"$canopy" stand "$g" "${small[@]}" -o "$tmp/mix" >/dev/null 2>&1
+check "after the kills: nothing beside" "0" "$(hidden "$tmp")"
+
+# Plants on one spot: refused before their contact lists outgrow memory (100,000 took the
+# machine's memory; 200 already make 2.1 million contacts).
+# Checked where 100,000 plants' 5e9 pairs outgrow the memory (below 320 GB available).
+if [ "$(awk '/^MemAvailable:/ {print ($2 < 300e6)}' /proc/meminfo)" = 1 ]; then
+python3 -c "
+print('x,y,rotation,seed')
+for i in range(100000): print(f'0,0,{i * 7 % 360},{i + 1}')" >"$tmp/spot.csv"
+timeout 600 "$canopy" stand "$g" --positions "$tmp/spot.csv" --steps 3 --backend cpu -o "$tmp/spot" >/dev/null 2>"$tmp/e"
+check "one spot exit" "1" "$?"
+check "one spot message" "1" "$(grep -c "^canopy: error: the plants' bounds meet in more than .* pairs (plants on or near one spot?)" "$tmp/e")"
+check "one spot no folder" "no" "$([ -e "$tmp/spot" ] && echo yes || echo no)"
+fi
+
+echo "$pass passed, $failures failed"
+[ "$failures" -eq 0 ]
