@@ -206,8 +206,8 @@ int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a,
                           const Affine3f& pose_b, float clearance, const Witness& w, int skip) {
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
-  const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
-  const PrototypeMesh& mb = lib.get(rb.prototype, rb.lod);
+  const PrototypeMesh& ma = lib.get(ra);
+  const PrototypeMesh& mb = lib.get(rb);
   const std::size_t ta = ma.triangle_count(), tb = mb.triangle_count();
   const Vec3f d = frame_offset(s, rb.plant, ra.plant);
   // Newest first, the six vertices made as organ_vertices makes them. The newest pair is the
@@ -253,7 +253,7 @@ const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int
   if (&way[w].pose == keep) w ^= 1;
   Entry& e = way[w];
   const OrganRecord& r = s.organs[static_cast<std::size_t>(organ)];
-  e.pose.pose(s, lib.get(r.prototype, r.lod), organ, t, r.plant, frame, made);
+  e.pose.pose(s, lib.get(r), organ, t, r.plant, frame, made);
   e.stand = &s;
   e.at = t;
   e.used = clock_;

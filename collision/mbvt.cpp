@@ -244,7 +244,7 @@ void fit_obbs8(Mbvt& m, const Stand& s, PrototypeLibrary& lib, IdOf&& id_of, int
     const std::size_t id = id_of(t);
     const OrganRecord& r = s.organs[id];
     transform[t] = &s.transforms[id];
-    local[t] = &lib.get(r.prototype, r.lod).box;
+    local[t] = &lib.get(r).box;
     out[t] = &m.obbs[id];
   }
   make_obbs8(transform, local, count, m.config.clearance, out);

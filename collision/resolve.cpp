@@ -51,14 +51,15 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   std::vector<Obb, FirstTouchAllocator<Obb>> boxes(s.organ_count());
   const auto fit = [&](std::size_t k) {
     const OrganRecord& r = s.organs[k];
-    boxes[k] = make_obb(s.transforms[k], lib.get(r.prototype, r.lod).box, 0);
+    boxes[k] = make_obb(s.transforms[k], lib.get(r).box, 0);
   };
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (std::size_t k = 0; k < s.organ_count(); ++k) fit(k);
   Neighbourhood near(s, boxes, threads);
   ContactGraph touching;
+  std::vector<std::uint8_t> unbendable(s.organ_count(), 0);
   const TurnSearch search{s, joints, lib, cfg, dreq.collide, near, boxes, touching,
-                          static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance};
+                          static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance, &unbendable};
 
   std::vector<Contact> contacts = initial.pairs;
   const ResolvePartition* part = req.partition;
@@ -73,6 +74,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   std::vector<std::uint8_t> carried(s.organ_count(), 0), moved_now(s.organ_count(), 0);
   std::map<std::size_t, std::string> why;
   std::vector<std::uint32_t> changed;  // organs moved by the last round (the runner is told next round)
+  std::vector<std::int64_t> bend_counts(4, 0);  // this process's turns bent, their joints, kinks, unbent
   const AttemptRunner* told = nullptr;  // the runner that has seen every organ
   std::size_t best = left;
   int best_round = 0;
@@ -129,8 +131,21 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     why = std::move(plan.why);
     if (part)  // each process turns its own organs; the halo's turns come from their owners
       std::erase_if(plan.turns, [&](const Turn& turn) { return !mine(s.organs[turn.organ].plant); });
+    // Large turns of chain segments bend their chains (within one plant: the owner's business).
+    SpreadStats spread;
+    plan.turns = spread_turns(search, plan.turns, threads, &spread);
+    bend_counts[0] += spread.spread, bend_counts[1] += spread.joints, bend_counts[2] += spread.kinked;
+    bend_counts[3] += static_cast<std::int64_t>(spread.unbent.size());
+    // A mover no spread could take is searched within its own limit from now on; the mark travels
+    // with the turns (an angle below 0, no turn) so that every process plans with it.
+    for (std::uint32_t k : spread.unbent) plan.turns.push_back(Turn{k, Mat3d{}, -1});
+    times.lap(PhaseTimes::apply);
     rr.plan_s = now() - t;
-    const auto planned = static_cast<std::size_t>(total({static_cast<std::int64_t>(plan.turns.size())})[0]);
+    // This process's own turns and marks (the halo's come from their owners below).
+    const auto counts = total({static_cast<std::int64_t>(plan.turns.size()),
+                               static_cast<std::int64_t>(std::count_if(plan.turns.begin(), plan.turns.end(),
+                                                                       [](const Turn& turn) { return turn.angle_deg >= 0; }))});
+    const auto planned = static_cast<std::size_t>(counts[0]);
     if (planned == 0) {
       out.stop = "no turn within the joint limits separates the contacts left";
       out.per_round.push_back(rr);
@@ -142,6 +157,10 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     }
     std::vector<std::uint32_t> turned;
     for (const Turn& turn : plan.turns) {
+      if (turn.angle_deg < 0) {
+        unbendable[turn.organ] = 1;
+        continue;
+      }
       joints.set_local(turn.organ, turn.local);
       turned.push_back(turn.organ);
     }
@@ -183,7 +202,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     for (std::size_t p = 0; p < active.size(); ++p) redetected += active[p] && mine(static_cast<std::int32_t>(p));
     const std::vector<std::int64_t> sums = total({owned_contacts(), redetected});
     left = static_cast<std::size_t>(sums[0]);
-    rr.turned = planned;
+    rr.turned = static_cast<std::size_t>(counts[1]);
     rr.plants_redetected = static_cast<std::size_t>(sums[1]);
     out.per_round.push_back(rr);
     out.rounds = round;
@@ -225,15 +244,22 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     if (a <= 0) continue;
     ++moved_joints;
     angle_units += std::llround(std::ldexp(a, 32));
-    out.max_turn_deg = std::max(out.max_turn_deg, a);
+    out.max_joint_deg = std::max(out.max_joint_deg, a);
   }
+  // The turn each organ carries: the rotation from its grown pose to its current one.
+  for (std::size_t k = 0; k < s.organ_count(); ++k)
+    if (carried[k] && mine(s.organs[k].plant))
+      out.max_turn_deg = std::max(out.max_turn_deg, rotation_angle_deg(joints.motion(static_cast<std::uint32_t>(k)).r));
   for (std::size_t k = 0; k < s.organ_count(); ++k)
     if (mine(s.organs[k].plant)) ++owned_organs, carried_organs += carried[k];
   const std::vector<std::int64_t> sums = total({moved_joints, angle_units, owned_organs, carried_organs, owned_turned});
-  if (part) out.max_turn_deg = part->max(out.max_turn_deg);
+  if (part) out.max_turn_deg = part->max(out.max_turn_deg), out.max_joint_deg = part->max(out.max_joint_deg);
   out.organs_moved = static_cast<std::size_t>(sums[0]);
   if (out.organs_moved) out.mean_turn_deg = std::ldexp(static_cast<double>(sums[1]), -32) / static_cast<double>(out.organs_moved);
   out.organs_carried = static_cast<std::size_t>(sums[3]);
+  const std::vector<std::int64_t> bent = total(bend_counts);
+  out.bends = static_cast<std::size_t>(bent[0]), out.bend_joints = static_cast<std::size_t>(bent[1]);
+  out.kinks = static_cast<std::size_t>(bent[2]), out.unbent = static_cast<std::size_t>(bent[3]);
   out.joint_bytes = Joints::bytes_for(static_cast<std::size_t>(sums[2]), static_cast<std::size_t>(sums[4]));
   out.seconds = now() - t0;
   return out;

@@ -6,6 +6,7 @@
 /// its turns against the poses at the start of the round (in parallel, the same for any thread
 /// count), then applies them together; several contacts on one organ make one combined turn.
 #include "collision/attempt_batch.hpp"
+#include "collision/bend_spread.hpp"
 #include "collision/backend.hpp"
 #include "collision/joints.hpp"
 #include "collision/plan_round.hpp"
@@ -99,7 +100,14 @@ struct ResolveResult {
   std::string stop;                // why the loop ended
   std::size_t organs_moved = 0;    // joints turned (organs carried along not counted)
   std::size_t organs_carried = 0;  // organs whose transform changed
-  double mean_turn_deg = 0, max_turn_deg = 0;  // final joint angles of the turned joints
+  /// The mean of the turned joints' final angles; the largest turn an organ carries from its
+  /// grown orientation (a bent chain's whole bend, a kink's joint angle); the largest single
+  /// joint angle.
+  double mean_turn_deg = 0, max_turn_deg = 0, max_joint_deg = 0;
+  /// Turns spread over several joints of their chain, the joints they became, turns above the
+  /// bend step left at one joint, and turns past their joint's own limit that no spread could
+  /// take (not made) (collision/bend_spread.hpp), over every round.
+  std::size_t bends = 0, bend_joints = 0, kinks = 0, unbent = 0;
   std::vector<ResolveRound> per_round;
   std::vector<UnresolvedContact> unresolved;  // what is left, with why
   std::size_t joint_bytes = 0;

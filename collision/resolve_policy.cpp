@@ -19,6 +19,8 @@ void ResolveConfig::check() const {
     throw std::invalid_argument(fmt::format("resolution: the clearance must be a finite number of metres, at least 0 (got {})", clearance));
   positive("the angle tolerance (degrees)", angle_tolerance_deg);
   positive("the scan step (degrees)", scan_step_deg);
+  positive("the bend step (degrees)", bend_step_deg);
+  if (bend_joints < 1) throw std::invalid_argument(fmt::format("resolution: bend joints must be at least 1 (got {})", bend_joints));
   for (std::size_t k = 0; k < kind_weight.size(); ++k)
     if (movable[k]) positive(fmt::format("the {} weight", kOrganKindNames[k]).c_str(), kind_weight[k]);
   if (max_rounds < 1 || candidates < 1 || axis_fan < 0 || stall_rounds < 1)

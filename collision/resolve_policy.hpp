@@ -36,11 +36,17 @@ struct ResolveConfig {
   std::array<double, 7> kind_weight = default_kind_weight();
   int candidates = 10;                // movers per contact scanned together (policy order)
   bool outer_first = true;
+  /// A turn of a petiole, rachis or peduncle segment by more than bend_step_deg is spread over up
+  /// to bend_joints joints of its chain, about bend_step_deg each, where the bent pose passes the
+  /// search's checks (collision/bend_spread.hpp); 1: every turn stays at one joint.
+  int bend_joints = 6;
+  double bend_step_deg = 4;
 
   /// Throws std::invalid_argument naming the setting that cannot be met: a clearance that is
   /// negative or not finite, an angle step or tolerance or a kind weight that is not a finite
   /// positive number (a NaN step never reaches the joint's reach: the scan would not end), fewer
-  /// than one round or candidate.
+  /// than one round or candidate, a bend step that is not a finite positive number or fewer than
+  /// one bend joint.
   void check() const;
 
   static KindMask default_movable_kinds();

@@ -21,7 +21,7 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   const bool limit_near = near_limit(c, deg);
   if (limit_near) {
     local = Joints::local_after(c.frame, r);
-    if (rotation_angle_deg(local) > s.joint_limit_deg[c.mover]) return false;
+    if (rotation_angle_deg(local) > s.joint_limit_deg[c.mover] && !(deg <= c.chain_deg)) return false;
   }
   const Motion turn = rotation_about(c.joint, r);
   // Organ i of `moving` at this pose, made once per attempt when first needed.
@@ -143,7 +143,7 @@ bool TurnSearch::near_limit(const Candidate& c, double deg) const {
 }
 
 bool TurnSearch::within_limit(Candidate& c, const Vec3d& a, double deg) const {
-  return !near_limit(c, deg) || rotation_angle_deg(local_after(c, a, deg)) <= stand.joint_limit_deg[c.mover];
+  return deg <= c.chain_deg || !near_limit(c, deg) || rotation_angle_deg(local_after(c, a, deg)) <= stand.joint_limit_deg[c.mover];
 }
 
 Mat3d TurnSearch::local_after(Candidate& c, const Vec3d& a, double deg) const {

@@ -3,6 +3,7 @@
 // turn_attempt.cpp).
 #include "collision/turn_search.hpp"
 
+#include "collision/bend_chain.hpp"
 #include "collision/contacts.hpp"
 
 #include <algorithm>
@@ -125,7 +126,8 @@ void TurnSearch::prepare(Candidate& c, std::uint32_t mover, const MetPairs& met_
   c.frame = joints.joint_frame(mover);
   c.weight = config.kind_weight[static_cast<std::size_t>(s.organs[mover].kind)];
   c.angle_now_deg = joints.angle_deg(mover);
-  c.reach_deg = std::min(180.0, s.joint_limit_deg[mover] + c.angle_now_deg);
+  c.chain_deg = unbendable && (*unbendable)[mover] ? 0.0 : chain_reach_deg(s, joints, config, mover);
+  c.reach_deg = std::min(180.0, std::max<double>(s.joint_limit_deg[mover] + c.angle_now_deg, c.chain_deg));
 
   for (std::uint32_t k = mover; k < end; ++k)
     if (collide[static_cast<std::size_t>(s.organs[k].kind)]) c.moving.push_back(static_cast<std::int32_t>(k));

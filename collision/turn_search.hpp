@@ -3,7 +3,9 @@
 /// the organs it met. Candidates (several movers, each on several axes) are scanned together in
 /// order of cost, cost = angle x the mover's kind weight (ResolveConfig::kind_weight), so the
 /// cheapest separating turn is found first: a leaflet turns unless its rachis or petiole can do
-/// it for a fraction of the angle. Axes: the one that swings the contact organs straight away
+/// it for a fraction of the angle. A petiole, rachis or peduncle segment may be asked for as much
+/// as a turn spread over its chain could take (Candidate::chain_deg). Axes: the one that swings
+/// the contact organs straight away
 /// from what they met, then a fan across the mover's width-normal plane and its own long axis
 /// both ways. The angle found is refined by bisection to ResolveConfig::angle_tolerance_deg and
 /// never takes the joint past its limit.
@@ -57,6 +59,9 @@ struct TurnSearch {
   const ContactGraph& touching;   // contacts at the start of the round
   float clearance = 0;         // separation from the organs met (the larger of both clearances)
   float detect_clearance = 0;  // what detection counts as a contact: neighbours must stay this far
+  /// Per organ, where given: a chain mover whose turn past its own limit no spread could take
+  /// (collision/bend_spread.hpp); it is searched within its own limit from then on.
+  const std::vector<std::uint8_t>* unbendable = nullptr;
 
   /// Organ pairs (moving organ, kept organ) that some turn about the joint could bring together
   /// (the sphere of x sweeps a shell about the joint): keep indices for moving[i] in
@@ -74,6 +79,10 @@ struct TurnSearch {
     Vec3d joint;
     Joints::JointFrame frame;
     double weight = 1, reach_deg = 0, angle_now_deg = 0;
+    /// How far a turn of a petiole, rachis or peduncle segment may go when it is spread over its
+    /// chain (collision/bend_chain.hpp): turns up to this pass the joint limit whatever the
+    /// mover's own joint says (the plan spreads them, collision/bend_spread.hpp); 0: no chain.
+    double chain_deg = 0;
     std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;
     /// Per keep organ: its OBB grown by the clearance it must keep (made by attempt, the host's

@@ -30,7 +30,7 @@ struct StandView {
   const PlantBound* plants;
   const Vec3f* mesh_positions;
   const std::uint32_t* mesh_indices;
-  const MeshRef* meshes;  // by prototype * (kMaxLod + 1) + lod
+  const MeshRef* meshes;  // by mesh_slot(prototype, lod, shape)
   const PlantOrigin* origins;
 };
 

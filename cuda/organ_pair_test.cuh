@@ -213,8 +213,8 @@ __device__ inline bool one_inside_other(const StandView& v, const OrganRecord& r
 __device__ inline bool witness_touches(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
                                        const Affine3f& tb, std::uint32_t witness, float clearance) {
   const OrganRecord ra = v.organs[a], rb = v.organs[b];
-  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
-  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
+  const MeshRef ma = v.meshes[mesh_slot(ra.prototype, ra.lod, ra.shape)];
+  const MeshRef mb = v.meshes[mesh_slot(rb.prototype, rb.lod, rb.shape)];
   const std::uint32_t i = witness >> 16, j = witness & 0xffffu;
   if (i >= ma.triangle_count || j >= mb.triangle_count) return false;
   const Vec3f zero{0, 0, 0}, db = offset_between(v, ra.plant, rb.plant);
@@ -242,8 +242,8 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
                                          const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr,
                                          std::uint32_t* found = nullptr) {
   const OrganRecord ra = v.organs[a], rb = v.organs[b];
-  const MeshRef ma = v.meshes[static_cast<int>(ra.prototype) * (kMaxLod + 1) + ra.lod];
-  const MeshRef mb = v.meshes[static_cast<int>(rb.prototype) * (kMaxLod + 1) + rb.lod];
+  const MeshRef ma = v.meshes[mesh_slot(ra.prototype, ra.lod, ra.shape)];
+  const MeshRef mb = v.meshes[mesh_slot(rb.prototype, rb.lod, rb.shape)];
   const Vec3f zero{0, 0, 0};
   const Vec3f db = offset_between(v, ra.plant, rb.plant);
   // The host rejects two solids whose capsules lie apart before posing them (solids_apart,

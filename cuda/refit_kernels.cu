@@ -15,7 +15,7 @@ __global__ void refit_organs_kernel(TreeView v, const std::uint32_t* organs, std
   if (k >= n) return;
   const std::uint32_t id = organs ? organs[k] : k;
   const OrganRecord r = v.organs[id];
-  v.obbs[id] = make_obb(v.transforms[id], v.boxes[static_cast<int>(r.prototype) * (kMaxLod + 1) + r.lod], clearance);
+  v.obbs[id] = make_obb(v.transforms[id], v.boxes[mesh_slot(r.prototype, r.lod, r.shape)], clearance);
 }
 
 __global__ void refit_clusters_kernel(TreeView v, const std::uint32_t* clusters, std::uint32_t n) {

@@ -14,7 +14,7 @@ namespace canopy::cuda {
 struct TreeView {
   const Affine3f* transforms;
   const OrganRecord* organs;
-  const Box3f* boxes;  // prototype boxes, by prototype * (kMaxLod + 1) + lod
+  const Box3f* boxes;  // prototype boxes, by mesh_slot(prototype, lod, shape)
   const std::uint32_t* cluster_organs;
   Cluster* clusters;  // their axis-aligned boxes are refitted with the plant bounds
   Obb* obbs;

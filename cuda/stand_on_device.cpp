@@ -8,15 +8,15 @@
 namespace canopy::cuda {
 
 void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, const std::vector<std::uint8_t>& self) {
-  std::vector<MeshRef> meshes(4 * (kMaxLod + 1));
-  std::vector<Box3f> boxes(4 * (kMaxLod + 1));
+  std::vector<MeshRef> meshes(kMeshSlots);
+  std::vector<Box3f> boxes(kMeshSlots);
   std::vector<Vec3f> positions;
   std::vector<std::uint32_t> indices;
   for (const OrganRecord& r : s.organs) {
-    const std::size_t slot = static_cast<std::size_t>(r.prototype) * (kMaxLod + 1) + r.lod;
+    const std::size_t slot = static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape));
     MeshRef& ref = meshes[slot];
     if (ref.vertex_count) continue;
-    const PrototypeMesh& pm = lib.get(r.prototype, r.lod);
+    const PrototypeMesh& pm = lib.get(r);
     ref = {static_cast<std::uint32_t>(positions.size()), static_cast<std::uint32_t>(pm.positions.size()),
            static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(pm.triangle_count())};
     boxes[slot] = pm.box;

@@ -23,6 +23,9 @@ namespace {
 constexpr const char* kOrganHeader =
     "id,plant,parent,kind,leaf,area,length,prototype,p0,p1,lod,joint_limit,"
     "hx,hy,hz,lx,ly,lz,ux,uy,uz,tx,ty,tz\n";
+/// A stand with a curved leaflet has three more columns, its angles (geometry/leaflet_shape.hpp;
+/// 0 for every other organ); a stand without one keeps the columns above, byte for byte.
+constexpr const char* kShapeColumns = ",bend,cup,fold";
 constexpr const char* kPlantHeader = "id,x,y,rotation,seed,grammar,steps\n";
 
 /// A header as a message quotes it, on the message's one line.
@@ -71,7 +74,16 @@ float size(float v, std::string_view cell, const std::string& file, int line, in
 
 void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   const Stand& s = e.stand;
-  out.fixed(kOrganHeader);
+  // Whether any process writes a curved leaflet (the same answer on every process).
+  std::vector<std::uint64_t> curved(e.plants.size(), 0), totals;
+  for (std::size_t i = 0; i < e.plants.size(); ++i) {
+    const PlantRecord& pr = s.plants[e.plants[i]];
+    for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) curved[i] += s.organs[id].shape != 0;
+  }
+  e.exclusive(curved, 1, totals);
+  const bool shapes = totals[0] > 0;
+  const std::string_view header(kOrganHeader);
+  out.fixed(shapes ? std::string(header.substr(0, header.size() - 1)) + kShapeColumns + "\n" : std::string(header));
   make_meshes(s, lib);
   out.plants(e.plants.size(), 16, [&](std::size_t i, std::string& t) {
     const PlantRecord& pr = s.plants[e.plants[i]];
@@ -112,6 +124,13 @@ void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& 
         p = put_number(p, c.y);
         *p++ = ',';
         p = put_number(p, c.z);
+      }
+      if (shapes) {
+        const LeafletShape shape = leaflet_shape(r.shape);
+        for (double a : {shape.bend_deg, shape.cup_deg, shape.fold_deg}) {
+          *p++ = ',';
+          p = put_number(p, a);
+        }
       }
       *p++ = '\n';
       t.append(row, p);
@@ -188,7 +207,12 @@ Stand read_stand(const std::string& dir) {
       throw std::runtime_error(fmt::format("{}:{}: column 7 (steps) must lie in 0..{}, got {}", pfile, ln, kMaxSteps, pr.steps));
     s.plants.push_back(pr);
   }
-  if (!oin->next_line(line) || line + "\n" != kOrganHeader)
+  const std::string_view plain(kOrganHeader);
+  const std::string with_shapes = std::string(plain.substr(0, plain.size() - 1)) + kShapeColumns + "\n";
+  std::size_t columns = 24;
+  if (!oin->next_line(line)) throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
+  if (line + "\n" == with_shapes) columns = 27;
+  else if (line + "\n" != plain)
     throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
   // Organs come plant by plant; within a plant a compound leaf takes the next id when its first
   // organ appears (as the turtle numbers them), so the plants' leaf ranges follow each other.
@@ -197,7 +221,7 @@ Stand read_stand(const std::string& dir) {
   while (oin->next_line(line)) {
     const int ln = oin->line_number();
     const auto c = cells(line);
-    if (c.size() != 24) throw std::runtime_error(fmt::format("{}:{}: expected 24 cells, got {}", ofile, ln, c.size()));
+    if (c.size() != columns) throw std::runtime_error(fmt::format("{}:{}: expected {} cells, got {}", ofile, ln, columns, c.size()));
     const std::size_t id = parse<std::size_t>(c[0], ofile, ln, 1);
     if (id != s.organs.size()) throw std::runtime_error(fmt::format("{}:{}: organ ids must run 0, 1, 2, ...", ofile, ln));
     if (id >= static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error(fmt::format("{}:{}: too many organs", ofile, ln));
@@ -214,6 +238,15 @@ Stand read_stand(const std::string& dir) {
     const int lod = parse<int>(c[10], ofile, ln, 11);
     if (lod < 1 || lod > kMaxLod) throw std::runtime_error(fmt::format("{}:{}: lod must lie in 1..{}", ofile, ln, kMaxLod));
     r.lod = static_cast<std::uint8_t>(lod);
+    if (columns == 27) {
+      const LeafletShape shape{parse<double>(c[24], ofile, ln, 25), parse<double>(c[25], ofile, ln, 26), parse<double>(c[26], ofile, ln, 27)};
+      std::string why;
+      const auto code = leaflet_shape_code(shape, &why);
+      if (!code) throw std::runtime_error(fmt::format("{}:{}: {}", ofile, ln, why));
+      if (*code != 0 && r.prototype != PrototypeKind::leaflet)
+        throw std::runtime_error(fmt::format("{}:{}: a {} has no bend, cup or fold (only leaflets curve)", ofile, ln, c[7]));
+      r.shape = *code;
+    }
     if (r.plant < 0 || static_cast<std::size_t>(r.plant) >= s.plants.size())
       throw std::runtime_error(fmt::format("{}:{}: plant {} is not in {}", ofile, ln, r.plant, pfile));
     if (r.plant < plant) throw std::runtime_error(fmt::format("{}: organs must be grouped plant by plant", ofile));

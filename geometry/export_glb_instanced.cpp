@@ -75,10 +75,12 @@ void append(std::string& bin, const void* p, std::size_t n) { bin.append(static_
 }  // namespace
 
 void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
-  // Shared meshes: one per (prototype, lod, kind) that occurs.
-  std::map<std::tuple<int, int, int>, int> mesh_of;
-  for (const OrganRecord& r : s.organs)
-    mesh_of.emplace(std::make_tuple(static_cast<int>(r.prototype), static_cast<int>(r.lod), static_cast<int>(r.kind)), 0);
+  // Shared meshes: one per (prototype, lod, kind, leaflet shape) that occurs.
+  const auto key_of = [](const OrganRecord& r) {
+    return std::make_tuple(static_cast<int>(r.prototype), static_cast<int>(r.lod), static_cast<int>(r.kind), static_cast<int>(r.shape));
+  };
+  std::map<std::tuple<int, int, int, int>, int> mesh_of;
+  for (const OrganRecord& r : s.organs) mesh_of.emplace(key_of(r), 0);
   std::string bin, views, accessors, meshes, materials, nodes, children;
   std::array<int, 7> material_of{};
   material_of.fill(-1);
@@ -101,8 +103,8 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     return nacc++;
   };
   for (auto& [key, index] : mesh_of) {
-    const auto [proto, lod, kind] = key;
-    const PrototypeMesh& pm = lib.get(static_cast<PrototypeKind>(proto), lod);
+    const auto [proto, lod, kind, shape] = key;
+    const PrototypeMesh& pm = lib.get(static_cast<PrototypeKind>(proto), lod, static_cast<std::uint8_t>(shape));
     if (material_of[static_cast<std::size_t>(kind)] < 0) {
       material_of[static_cast<std::size_t>(kind)] = nmat++;
       sep(materials);
@@ -120,9 +122,9 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
       attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(view(pm.uvs.data(), 8 * pm.uvs.size(), 0, 34962), 5126, pm.uvs.size(), "VEC2"));
     const int aidx = accessor(view(pm.indices.data(), 4 * pm.indices.size(), 0, 34963), 5125, pm.indices.size(), "SCALAR");
     sep(meshes);
-    meshes += fmt::format("{{\"name\":\"{}_{}_lod{}\",\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}]}}",
+    meshes += fmt::format("{{\"name\":\"{}_{}_lod{}{}\",\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}]}}",
                           kOrganKindNames[static_cast<std::size_t>(kind)], kPrototypeNames[static_cast<std::size_t>(proto)], lod,
-                          attrs, aidx, material_of[static_cast<std::size_t>(kind)]);
+                          shape ? fmt::format("_shape{}", shape) : std::string(), attrs, aidx, material_of[static_cast<std::size_t>(kind)]);
     index = nmesh++;
   }
   // Plants: a node each, translated to its origin relative to stand_origin (Z up: the root turns
@@ -134,7 +136,7 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     std::map<int, std::vector<std::uint32_t>> by_mesh;
     for (std::uint32_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
       const OrganRecord& r = s.organs[id];
-      by_mesh[mesh_of.at(std::make_tuple(static_cast<int>(r.prototype), static_cast<int>(r.lod), static_cast<int>(r.kind)))].push_back(id);
+      by_mesh[mesh_of.at(key_of(r))].push_back(id);
     }
     std::string kids;
     for (const auto& [mesh, ids] : by_mesh) {

@@ -36,7 +36,7 @@ void write_obj(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& obj, Ch
   for (std::size_t i = 0; i < n; ++i) {
     const PlantRecord& pr = stand.plants[e.plants[i]];
     for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
-      const PrototypeMesh& pm = lib.get(stand.organs[id].prototype, stand.organs[id].lod);
+      const PrototypeMesh& pm = lib.get(stand.organs[id]);
       base[2 * i] += pm.positions.size();
       base[2 * i + 1] += pm.uvs.size();
     }

@@ -19,7 +19,7 @@ void write_ply(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   for (std::size_t i = 0; i < n; ++i) {
     const PlantRecord& pr = stand.plants[e.plants[i]];
     for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
-      const PrototypeMesh& pm = lib.get(stand.organs[id].prototype, stand.organs[id].lod);
+      const PrototypeMesh& pm = lib.get(stand.organs[id]);
       base[2 * i] += pm.positions.size();
       base[2 * i + 1] += pm.triangle_count();
     }
@@ -61,7 +61,7 @@ void write_ply(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
     auto v0 = static_cast<std::int32_t>(base[2 * i]);
     const auto plant = static_cast<std::int32_t>(e.plant(p));
     for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
-      const PrototypeMesh& pm = lib.get(stand.organs[id].prototype, stand.organs[id].lod);
+      const PrototypeMesh& pm = lib.get(stand.organs[id]);
       const auto organ = static_cast<std::int32_t>(e.organ(static_cast<std::int64_t>(id)));
       std::size_t w = buf.size();
       buf.resize(w + 21 * pm.triangle_count());

@@ -28,7 +28,7 @@ Vec3f transform_normal(const Affine3f& m, const Affine3f& cof, Vec3f n) {
 void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out, bool positions_only) {
   const OrganRecord& r = stand.organs[id];
   const Affine3f& m = stand.transforms[id];
-  out.prototype = &library.get(r.prototype, r.lod);
+  out.prototype = &library.get(r);
   const auto& pm = *out.prototype;
   out.positions.resize(pm.positions.size());
   for (std::size_t i = 0; i < pm.positions.size(); ++i) out.positions[i] = apply(m, pm.positions[i]);
@@ -88,33 +88,37 @@ void write_ordered(AtomicFile& out, std::size_t n, std::size_t chunk,
 
 void make_meshes(const Stand& s, PrototypeLibrary& lib, int threads) {
   const int t = threads > 0 ? threads : omp_get_max_threads();
-  std::array<std::array<bool, kMaxLod + 1>, kPrototypeNames.size()> used{};
-  bool odd_lod = false;
-#pragma omp parallel num_threads(t) reduction(|| : odd_lod)
+  // Which (prototype, lod, shape) slots occur; an organ the library would refuse (a level of
+  // detail out of range, a shape on another prototype than the leaflet) is left to it.
+  std::vector<std::uint8_t> used(kMeshSlots, 0);
+  bool odd = false;
+#pragma omp parallel num_threads(t) reduction(|| : odd)
   {
-    std::array<std::array<bool, kMaxLod + 1>, kPrototypeNames.size()> mine{};
+    std::vector<std::uint8_t> mine(kMeshSlots, 0);
 #pragma omp for schedule(static) nowait
     for (std::size_t k = 0; k < s.organ_count(); ++k) {
       const OrganRecord& r = s.organs[k];
-      if (r.lod >= 1 && r.lod <= kMaxLod) mine[static_cast<std::size_t>(r.prototype)][static_cast<std::size_t>(r.lod)] = true;
-      else odd_lod = true;
+      if (r.lod >= 1 && r.lod <= kMaxLod && (r.shape == 0 || r.prototype == PrototypeKind::leaflet))
+        mine[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))] = 1;
+      else odd = true;
     }
 #pragma omp critical
-    for (std::size_t p = 0; p < used.size(); ++p)
-      for (std::size_t l = 0; l < used[p].size(); ++l) used[p][l] = used[p][l] || mine[p][l];
+    for (std::size_t i = 0; i < used.size(); ++i) used[i] = used[i] | mine[i];
   }
-  if (odd_lod) {  // the library reports it, at the first such organ
-    for (const OrganRecord& r : s.organs) lib.get(r.prototype, r.lod);
+  if (odd) {  // the library reports it, at the first such organ
+    for (const OrganRecord& r : s.organs) lib.get(r);
     return;
   }
-  for (std::size_t p = 0; p < used.size(); ++p)
+  for (std::size_t p = 0; p < kPrototypeNames.size(); ++p)
     for (int l = 1; l <= kMaxLod; ++l)
-      if (used[p][static_cast<std::size_t>(l)]) lib.get(static_cast<PrototypeKind>(p), l);
+      for (int shape = 0; shape < (p == static_cast<std::size_t>(PrototypeKind::leaflet) ? kShapeCount : 1); ++shape)
+        if (used[static_cast<std::size_t>(mesh_slot(static_cast<PrototypeKind>(p), l, shape))])
+          lib.get(static_cast<PrototypeKind>(p), l, static_cast<std::uint8_t>(shape));
 }
 
 double organ_area(const Stand& stand, std::size_t id, PrototypeLibrary& library) {
   const OrganRecord& r = stand.organs[id];
-  return transformed_area(library.get(r.prototype, r.lod), stand.transforms[id]);
+  return transformed_area(library.get(r), stand.transforms[id]);
 }
 
 double organ_length(const Stand& stand, std::size_t id) {

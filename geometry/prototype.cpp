@@ -1,9 +1,12 @@
 #include "geometry/prototype.hpp"
 
+#include "geometry/leaflet_mesh.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace canopy {
 namespace {
@@ -156,12 +159,14 @@ double leaflet_outline_area() {
   return 2 * leaflet_norm() * beta;
 }
 
-PrototypeMesh make_prototype(PrototypeKind kind, int lod) {
+PrototypeMesh make_prototype(PrototypeKind kind, int lod, std::uint8_t shape) {
   if (lod < 1 || lod > kMaxLod) throw std::invalid_argument("level of detail must lie in 1..16");
+  if (shape != 0 && kind != PrototypeKind::leaflet)
+    throw std::invalid_argument(std::string("a ") + std::string(name_of(kind)) + " has no shape (only leaflets curve)");
   PrototypeMesh m;
   switch (kind) {
     case PrototypeKind::cylinder: m = cylinder(lod); break;
-    case PrototypeKind::leaflet: m = leaflet(lod); break;
+    case PrototypeKind::leaflet: m = shape ? curved_leaflet(lod, leaflet_shape(shape)) : leaflet(lod); break;
     case PrototypeKind::sphere: m = sphere(lod); break;
     case PrototypeKind::disk: m = disk(lod); break;
   }
@@ -169,12 +174,14 @@ PrototypeMesh make_prototype(PrototypeKind kind, int lod) {
   return m;
 }
 
-const PrototypeMesh& PrototypeLibrary::make(PrototypeKind kind, int lod) {
+const PrototypeMesh& PrototypeLibrary::make(PrototypeKind kind, int lod, std::uint8_t shape) {
   if (lod < 1 || lod > kMaxLod) throw std::invalid_argument("level of detail must lie in 1..16");
-  auto& slot = made_[static_cast<std::size_t>(kind)][static_cast<std::size_t>(lod)];
+  if (shape != 0 && kind != PrototypeKind::leaflet)
+    throw std::invalid_argument(std::string("a ") + std::string(name_of(kind)) + " has no shape (only leaflets curve)");
+  auto& slot = made_[static_cast<std::size_t>(mesh_slot(kind, lod, shape))];
   std::lock_guard<std::mutex> lock(mutex_);
   if (const PrototypeMesh* m = slot.load(std::memory_order_relaxed)) return *m;
-  owned_.push_back(std::make_unique<PrototypeMesh>(make_prototype(kind, lod)));
+  owned_.push_back(std::make_unique<PrototypeMesh>(make_prototype(kind, lod, shape)));
   slot.store(owned_.back().get(), std::memory_order_release);
   return *owned_.back();
 }

@@ -20,7 +20,7 @@ struct OrganRecord {
   OrganKind kind = OrganKind::internode;
   PrototypeKind prototype = PrototypeKind::cylinder;
   std::uint8_t lod = 2;
-  std::uint8_t reserved = 0;
+  std::uint8_t shape = 0;    // a curved leaflet's shape code (geometry/leaflet_shape.hpp), 0: flat
 };
 static_assert(sizeof(OrganRecord) == 16);
 static_assert(sizeof(Affine3f) == 48);

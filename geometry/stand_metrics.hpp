@@ -27,4 +27,17 @@ LeafAreaIndex leaf_area_index(const Stand& stand, PrototypeLibrary& lib, int row
 /// One-sided leaflet area of each plant, m2 (the exported meshes' areas).
 std::vector<double> leaflet_area_per_plant(const Stand& stand, PrototypeLibrary& lib);
 
+/// The leaf inclination distribution: the angle of each leaflet triangle's normal from the
+/// vertical (0: a horizontal blade, 90: an upright one), weighted by the triangle's area, in
+/// `bins` classes of 90 / bins degrees (fractions summing to 1), and its area-weighted mean.
+struct LeafInclination {
+  std::vector<double> fraction;
+  double mean_deg = 0;
+  double area = 0;  // m2 of leaflet blade counted
+};
+LeafInclination leaf_inclination(const Stand& stand, PrototypeLibrary& lib, int bins = 9);
+
+/// Each plant's height: the highest vertex of its organs above its origin, m.
+std::vector<double> plant_heights(const Stand& stand, PrototypeLibrary& lib);
+
 }  // namespace canopy

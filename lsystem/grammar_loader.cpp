@@ -182,10 +182,18 @@ class Loader {
       }
       if (e["lod"]) organ.lod = static_cast<int>(src_.integer(e["lod"], "lod", 1, kMaxLod));
       const Symbol sym = g_.symbols.intern(name);
-      const int want = arity_of(organ.prototype);
-      if (const SourcePos* used = builder.first_use(sym); used && g_.symbols.arity(sym) != want)
-        fail_at(*used, "organ '{}' is a {} and takes {} parameter(s), but is used with {}", name, proto, want,
-                g_.symbols.arity(sym));
+      // A leaflet takes 2 to 5 (its curvature trailing); the name keeps the count it is used with.
+      const int least = arity_of(organ.prototype), most = max_arity_of(organ.prototype);
+      int want = least;
+      if (const SourcePos* used = builder.first_use(sym)) {
+        const int n = g_.symbols.arity(sym);
+        if (n < least || n > most) {
+          if (least == most)
+            fail_at(*used, "organ '{}' is a {} and takes {} parameter(s), but is used with {}", name, proto, least, n);
+          fail_at(*used, "organ '{}' is a {} and takes {} to {} parameters, but is used with {}", name, proto, least, most, n);
+        }
+        want = n;
+      }
       g_.symbols.set_arity(sym, want);
       g_.organs[sym] = organ;
     }

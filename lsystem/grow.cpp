@@ -195,6 +195,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
       r.kind = o.kind;
       r.prototype = o.prototype;
       r.lod = static_cast<std::uint8_t>(o.lod);
+      r.shape = o.shape;
       stand.params[id] = {o.params[0], o.params[1]};
       stand.joint_limit_deg[id] = o.joint_limit_deg;
     }

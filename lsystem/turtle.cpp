@@ -1,5 +1,6 @@
 #include "lsystem/turtle.hpp"
 
+#include "geometry/leaflet_shape.hpp"
 #include "lsystem/module_format.hpp"
 
 #include <cmath>
@@ -102,6 +103,13 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
                                  kMaxOrganExtent),
                k);
         o.params[k] = static_cast<float>(a[k]);
+      }
+      if (o.prototype == PrototypeKind::leaflet && ar > 2) {
+        // bend, cup, fold (degrees), rounded to their steps; those left out are 0.
+        std::string why;
+        const auto code = leaflet_shape_code({a[2], ar > 3 ? a[3] : 0.0, ar > 4 ? a[4] : 0.0}, &why);
+        if (!code) fail(i, p, why);
+        o.shape = *code;
       }
       if (too_far(st.f.position))
         fail(i, p, fmt::format("the organ lies farther than {} m from its plant's origin", kMaxOrganExtent));

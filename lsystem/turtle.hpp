@@ -26,6 +26,7 @@ struct OrganInstance {
   OrganKind kind = OrganKind::internode;
   PrototypeKind prototype = PrototypeKind::cylinder;
   float params[2] = {0, 0};  // the prototype's parameters, in order
+  std::uint8_t shape = 0;   // a curved leaflet's shape (its parameters 3-5, geometry/leaflet_shape.hpp)
   int parent = -1;          // index in this plant, -1 at a root
   int leaf = -1;            // compound leaf in this plant, -1 outside one
   int lod = 2;

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
     const Stand s = default_stand(n);
     PrototypeLibrary lib;
     std::size_t tris = 0;
-    for (const OrganRecord& r : s.organs) tris += lib.get(r.prototype, r.lod).triangle_count();
+    for (const OrganRecord& r : s.organs) tris += lib.get(r).triangle_count();
     const double opp = static_cast<double>(s.organ_count()) / n, tpp = static_cast<double>(tris) / n;
     // The exact answer and the implied pairs of each level (one thread, outside the timings).
     DetectRequest req;

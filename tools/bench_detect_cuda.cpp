@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     const Stand s = grow_stand(req);
     PrototypeLibrary lib;
     std::size_t tris = 0;
-    for (const OrganRecord& r : s.organs) tris += lib.get(r.prototype, r.lod).triangle_count();
+    for (const OrganRecord& r : s.organs) tris += lib.get(r).triangle_count();
     std::size_t exact_pairs = 0;
     for (ContactLevel level : {ContactLevel::exact, ContactLevel::organ, ContactLevel::leaf, ContactLevel::plant}) {
       DetectRequest dr;

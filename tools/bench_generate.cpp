@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
       const double grow_s = since(t);
       PrototypeLibrary lib;
       std::size_t tris = 0;
-      for (const OrganRecord& r : stand.organs) tris += lib.get(r.prototype, r.lod).triangle_count();
+      for (const OrganRecord& r : stand.organs) tris += lib.get(r).triangle_count();
       row("layout", layout_s, stand.organ_count(), 0, 0);
       row("grow", grow_s, stand.organ_count(), tris, 0);
       if (!with_export) continue;

@@ -25,7 +25,7 @@ namespace canopy::cli {
 namespace {
 
 struct RenderOptions {
-  std::string source, out = "stand.png", size = "1920x1080";
+  std::string source, out = "stand.png", size = "1920x1080", view = "oblique";
   StandSpec rows;
   bool random_rotation = false;
   std::optional<int> steps;
@@ -60,11 +60,11 @@ std::vector<std::uint8_t> flags_from(const Contacts& c, std::size_t organs) {
   return f;
 }
 
-/// Oblique view over top view, in a panel of w x h.
-render::Image panel(const render::Scene& scene, const std::vector<std::uint8_t>& hot, int w, int h) {
+/// The upper view (oblique or side) over the top view, in a panel of w x h.
+render::Image panel(const render::Scene& scene, const std::vector<std::uint8_t>& hot, int w, int h, render::View upper) {
   render::Image img(w, h);
   const int h1 = h / 2;
-  img.paste(scene.render(render::fit_camera(scene.lo(), scene.hi(), render::View::oblique, w, h1), hot), 0, 0);
+  img.paste(scene.render(render::fit_camera(scene.lo(), scene.hi(), upper, w, h1), hot), 0, 0);
   img.paste(scene.render(render::fit_camera(scene.lo(), scene.hi(), render::View::top, w, h - h1), hot), 0, h1);
   return img;
 }
@@ -79,6 +79,8 @@ Command add_render(CLI::App& root) {
   app->add_option("SOURCE", o->source, "A folder written by canopy stand, or a grammar file to grow a stand from")->required();
   app->add_option("-o,--out", o->out, "PNG file to write (default stand.png)");
   app->add_option("--size", o->size, "Picture size WIDTHxHEIGHT in pixels (default 1920x1080)");
+  app->add_option("--view", o->view, "The upper view: oblique (default, from the front-left and above) or side (level, across the rows)")
+      ->check(CLI::IsMember({"oblique", "side"}));
   app->add_option("--rows", o->rows.rows, "From a grammar: rows")->transform(whole_in(1, INT32_MAX));
   app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")->transform(whole_in(1, INT32_MAX));
   app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")->check(kFinite)->check(at_least(0));
@@ -101,6 +103,7 @@ Command add_render(CLI::App& root) {
             throw std::invalid_argument("canopy render: this build has no renderer (Embree was not found: apt-get install libembree-dev, then build again)");
 #else
             const auto t0 = std::chrono::steady_clock::now();
+            const render::View upper = o->view == "side" ? render::View::side : render::View::oblique;
             render::Image picture(w, h);
             std::size_t organs = 0;
             if (std::filesystem::is_directory(o->source)) {
@@ -111,7 +114,7 @@ Command add_render(CLI::App& root) {
               if (!std::filesystem::exists(contacts)) contacts = o->source + "/contacts.csv";
               PrototypeLibrary lib;
               const render::Scene scene(stand, lib);
-              picture = panel(scene, flags_from_csv(contacts, stand.organ_count()), w, h);
+              picture = panel(scene, flags_from_csv(contacts, stand.organ_count()), w, h, upper);
             } else {
               GrowRequest req = grow_request(o->source, o->set, o->steps, o->lod, o->detect.threads, kDefaultMaxModules);
               if (o->random_rotation) o->rows.random_rotation = true;
@@ -127,7 +130,7 @@ Command add_render(CLI::App& root) {
               PrototypeLibrary lib;
               {
                 const render::Scene scene(stand, lib);
-                picture.paste(panel(scene, flags_from(before, organs), w / 2, h), 0, 0);
+                picture.paste(panel(scene, flags_from(before, organs), w / 2, h, upper), 0, 0);
               }
               const ResolveConfig rc = o->resolve.config();
               DetectRequest at = dreq;
@@ -136,7 +139,7 @@ Command add_render(CLI::App& root) {
               const ResolveResult r = run_resolution(stand, *backend, dreq, o->resolve, start);
               const Contacts after = backend->detect(stand, dreq);
               const render::Scene scene(stand, lib);
-              picture.paste(panel(scene, flags_from(after, organs), w - w / 2, h), w / 2, 0);
+              picture.paste(panel(scene, flags_from(after, organs), w - w / 2, h, upper), w / 2, 0);
               fmt::print("before (left): {} contacts; after (right): {} contacts, {} organs turned (mean {:.2f} deg)\n",
                          before.pairs.size(), after.pairs.size(), r.organs_moved, r.mean_turn_deg);
             }

@@ -8,7 +8,7 @@ namespace canopy::cli {
 
 std::vector<std::size_t> triangles_per_plant(const Stand& s, PrototypeLibrary& lib) {
   std::vector<std::size_t> t(s.plant_count(), 0);
-  for (const OrganRecord& r : s.organs) t[static_cast<std::size_t>(r.plant)] += lib.get(r.prototype, r.lod).triangle_count();
+  for (const OrganRecord& r : s.organs) t[static_cast<std::size_t>(r.plant)] += lib.get(r).triangle_count();
   return t;
 }
 

@@ -27,6 +27,14 @@ void ResolveOptions::add_to(CLI::App& app) {
   app.add_option("--resolve-step", scan_step,
                  fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
       ->check(kFinite)->check(number_in(0.5, 30));
+  app.add_option("--bend-joints", bend_joints,
+                 fmt::format("Resolution: joints of a petiole, rachis or peduncle chain a turn may be spread over, so that it "
+                             "bends instead of kinking (default {}; 1: never)",
+                             bend_joints))
+      ->transform(whole_in(1, 32));
+  app.add_option("--bend-step", bend_step,
+                 fmt::format("Resolution: degrees per joint a turn is spread to (default {})", bend_step))
+      ->check(kFinite)->check(number_in(0.5, 60));
   app.add_flag("--resolve-host-search", host_search,
                "Resolution: on a GPU (--backend cuda, or auto with a GPU), search candidate by candidate on the host's cores "
                "instead of running each level's attempts on the device in lanes of batches (the same turns; slower on the "
@@ -48,6 +56,8 @@ ResolveConfig ResolveOptions::config() const {
   c.candidates = candidates;
   c.axis_fan = axis_fan;
   c.scan_step_deg = scan_step;
+  c.bend_joints = bend_joints;
+  c.bend_step_deg = bend_step;
   return c;
 }
 
@@ -60,6 +70,7 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
           {"max_rounds", c.max_rounds},    {"clearance", c.clearance},
           {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
           {"candidates", c.candidates},    {"axis_fan", c.axis_fan},
+          {"bend_joints", c.bend_joints},  {"bend_step_deg", c.bend_step_deg},
           // Asked for: auto, the backend's bulk attempts where it has them (the device's on CUDA), the
           // host search otherwise; "resolution" says what planned.
           {"search", host_search ? "host" : "auto"},
@@ -115,6 +126,11 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
           {"organs_carried", r.organs_carried},
           {"mean_turn_deg", r.mean_turn_deg},
           {"max_turn_deg", r.max_turn_deg},
+          {"max_joint_deg", r.max_joint_deg},
+          {"bends", r.bends},
+          {"bend_joints", r.bend_joints},
+          {"kinks", r.kinks},
+          {"unbent", r.unbent},
           {"unresolvable", r.unresolved.size()},
           {"remaining", left},
           {"joint_bytes", r.joint_bytes},
@@ -125,10 +141,13 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
 }
 
 void print_resolution(const ResolveResult& r) {
-  fmt::print("resolution: {} -> {} contacts in {} rounds, {:.3f} s; {} organs turned (mean {:.2f} deg, max {:.2f} deg), "
-             "{} organs moved with them; {}\n",
+  fmt::print("resolution: {} -> {} contacts in {} rounds, {:.3f} s; {} organs turned (mean {:.2f} deg, max turn {:.2f} deg, "
+             "largest joint {:.2f} deg), {} organs moved with them; {}\n",
              r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg,
-             r.organs_carried, r.stop);
+             r.max_joint_deg, r.organs_carried, r.stop);
+  if (r.bends || r.kinks || r.unbent)
+    fmt::print("  {} turns bent over {} joints of their chains, {} left at one joint, {} past a joint's limit that no bend could take\n",
+               r.bends, r.bend_joints, r.kinks, r.unbent);
   fmt::print("  planned with: {}\n", r.planning);
   fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s", "detect s");
   for (const ResolveRound& x : r.per_round)

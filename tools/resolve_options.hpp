@@ -18,6 +18,8 @@ struct ResolveOptions {
   int candidates = ResolveConfig{}.candidates;
   int axis_fan = ResolveConfig{}.axis_fan;
   double scan_step = ResolveConfig{}.scan_step_deg;
+  int bend_joints = ResolveConfig{}.bend_joints;
+  double bend_step = ResolveConfig{}.bend_step_deg;
   bool progress = true;
   /// Plan with the host's candidate-by-candidate search even where the backend runs attempts in
   /// bulk (CUDA, or auto on a GPU: on the device, the default there). The turns are the same either way.

@@ -65,6 +65,31 @@ inline Stand row_stand(std::uint64_t seed) {
 }
 
 
+/// A seeded random small stand of curved-leaflet tomatoes (grammars/tomato_mature.yaml at a
+/// random age) whose leaflets take every bend, cup and fold the shape code holds, at level of
+/// detail `lod`: dense rows or a cluster, random rotations.
+inline Stand curved_stand(std::uint64_t seed, int lod) {
+  std::mt19937_64 g(seed * 104729);
+  std::uniform_real_distribution<double> u(0, 1);
+  GrowRequest req;
+  req.grammar = source("grammars/tomato_mature.yaml");
+  for (const char* o : {"bend_min=-80", "bend_max=70", "cup_min=-30", "cup_max=15", "fold_min=0", "fold_max=30"})
+    req.load.overrides.push_back(parse_override(o));
+  const int n = 3 + static_cast<int>(g() % 4);
+  const bool cluster = g() % 2;
+  for (int i = 0; i < n; ++i) {
+    PlantPlacement p;
+    p.x = cluster ? u(g) * 0.5 : (i % 3) * 0.3 + 0.02 * u(g);
+    p.y = cluster ? u(g) * 0.5 : (i / 3) * 0.5 + 0.02 * u(g);
+    p.rotation_deg = 360 * u(g);
+    p.seed = g() % 1000;
+    req.plants.push_back(p);
+  }
+  req.steps = 10 + static_cast<int>(g() % 7);
+  req.lod = lod;
+  return grow_stand(req);
+}
+
 /// All organ pairs (a < b) of kinds in `collide`, not adjacent, whose triangles meet (every
 /// triangle pair tested) or one inside the other's solid. The only filter is the organs' own
 /// vertex boxes, which any two meeting organs share.
@@ -75,7 +100,7 @@ inline std::vector<Contact> brute_force_exact(const Stand& s, const KindMask& co
   std::vector<std::array<double, 6>> box(n);
   for (std::size_t i = 0; i < n; ++i) {
     const OrganRecord& r = s.organs[i];
-    organ_vertices(s, lib.get(r.prototype, r.lod), static_cast<std::int32_t>(i), 0, verts[i]);
+    organ_vertices(s, lib.get(r), static_cast<std::int32_t>(i), 0, verts[i]);
     box[i] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (const Vec3f& v : verts[i]) {
       box[i][0] = std::min<double>(box[i][0], v.x), box[i][1] = std::min<double>(box[i][1], v.y), box[i][2] = std::min<double>(box[i][2], v.z);
@@ -96,8 +121,8 @@ inline std::vector<Contact> brute_force_exact(const Stand& s, const KindMask& co
       // Every triangle pair, in the frame of a's plant (as the detection computes them).
       const OrganRecord& ra = s.organs[a];
       const OrganRecord& rb = s.organs[b];
-      const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
-      const PrototypeMesh& mb = lib.get(rb.prototype, rb.lod);
+      const PrototypeMesh& ma = lib.get(ra);
+      const PrototypeMesh& mb = lib.get(rb);
       std::vector<Vec3f> va, vb;
       organ_vertices(s, ma, static_cast<std::int32_t>(a), ra.plant, va);
       organ_vertices(s, mb, static_cast<std::int32_t>(b), ra.plant, vb);

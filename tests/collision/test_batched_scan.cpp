@@ -108,14 +108,14 @@ TEST_CASE("batched turn search: batches planned at once on several lanes give th
     const Stand s = row_stand(seed);
     ResolveConfig cfg;
     const Outcome host = run(s, cfg, 0, false);
-    const Outcome one = run(s, cfg, 0, true, 1, 7);
-    const Outcome three = run(s, cfg, 0, true, 3, 7);
+    const Outcome one = run(s, cfg, 0, true, 1, 4);
+    const Outcome three = run(s, cfg, 0, true, 3, 4);
     same(host, one);
     same(host, three);
     CHECK(host.result.planning == "host search");
     CHECK(one.result.planning == "host attempts, 1 lane");
     CHECK(three.result.planning == "host attempts, 3 lanes");
-    CHECK(host.result.contacts_before > 3 * 7);  // more batches than lanes
+    CHECK(host.result.contacts_before > 3 * 4);  // more batches than lanes
   }
   INFO("crowded: the relaxed pass and the last resort after lanes");
   ResolveConfig cfg;

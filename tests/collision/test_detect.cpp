@@ -202,3 +202,23 @@ TEST_CASE("one backend detecting stand after stand gives each stand's own answer
     CHECK(reused->detect(s, req).pairs == make_cpu_backend()->detect(s, req).pairs);
   }
 }
+
+TEST_CASE("curved leaflets: the exact level equals brute force, between plants and within them") {
+  auto cpu = make_cpu_backend();
+  std::size_t between = 0, within = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const Stand s = curved_stand(seed, 1 + static_cast<int>(seed % 3));
+    DetectRequest req;
+    for (const KindMask& collide : {default_collide_kinds(), parse_collide_kinds("all")}) {
+      req.collide = collide;
+      const Contacts c = cpu->detect(s, req);
+      const std::vector<Contact> want = brute_force_exact(s, collide);
+      INFO("seed " << seed << " plants " << s.plant_count() << " organs " << s.organ_count());
+      CHECK_MESSAGE(c.pairs == want, describe(want, c.pairs));
+      for (const Contact& k : want) (k.plant_a == k.plant_b ? within : between)++;
+    }
+  }
+  MESSAGE("curved contacts checked: " << between << " between plants, " << within << " within");
+  CHECK(between > 50);
+  CHECK(within > 10);
+}

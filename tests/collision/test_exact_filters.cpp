@@ -66,7 +66,7 @@ TEST_CASE("the OBB filter rejects only triangles farther from the organ than the
       const auto id = static_cast<std::int32_t>(rng() % n);
       const OrganRecord& r = s.organs[static_cast<std::size_t>(id)];
       const std::int32_t frame = rng() % 2 ? r.plant : static_cast<std::int32_t>(rng() % s.plant_count());
-      const PrototypeMesh& mesh = lib.get(r.prototype, r.lod);
+      const PrototypeMesh& mesh = lib.get(r);
       PosedOrgan posed;
       posed.pose(s, mesh, id, s.transforms[static_cast<std::size_t>(id)], r.plant, frame);
       if (posed.vertices().empty()) continue;
@@ -235,7 +235,7 @@ TEST_CASE("the poses take the OBBs of a tree fit with no clearance: the same bit
     int differ = 0;
     for (std::size_t k = 0; k < s.organ_count(); ++k) {
       if (!m.takes_part[k]) continue;
-      const Obb want = make_obb(s.transforms[k], lib.get(s.organs[k].prototype, s.organs[k].lod).box, 0);
+      const Obb want = make_obb(s.transforms[k], lib.get(s.organs[k]).box, 0);
       differ += std::memcmp(&want, &m.obbs[k], sizeof want) != 0;
     }
     CHECK_MESSAGE(differ == 0, "seed ", seed);

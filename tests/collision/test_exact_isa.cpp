@@ -56,8 +56,8 @@ TEST_CASE("posing and the posed test give the same bits from the build target's 
       const std::int32_t a = c.organ_a, b = c.organ_b;
       const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
       const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
-      const PrototypeMesh& ma = lib.get(ra.prototype, ra.lod);
-      const PrototypeMesh& mb = lib.get(rb.prototype, rb.lod);
+      const PrototypeMesh& ma = lib.get(ra);
+      const PrototypeMesh& mb = lib.get(rb);
       for (const double deg : {0.0, 3.0}) {
         const Affine3f ta = s.transforms[static_cast<std::size_t>(a)];
         const Affine3f tb = turned(s.transforms[static_cast<std::size_t>(b)], deg);

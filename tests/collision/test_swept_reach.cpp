@@ -34,7 +34,7 @@ TEST_CASE("swept reach: no organ box leaves it under random turns of any size") 
     double worst = 0;  // the largest share of its bound a plant's box corner reaches
     for (std::size_t k = 0; k < s.organ_count(); ++k) {
       const OrganRecord& r = s.organs[k];
-      const Obb b = make_obb(s.transforms[k], lib.get(r.prototype, r.lod).box, 0);
+      const Obb b = make_obb(s.transforms[k], lib.get(r).box, 0);
       for (int c = 0; c < 8; ++c) {
         Vec3f q = b.centre;
         for (int a = 0; a < 3; ++a) q = q + b.axis[a] * (((c >> a) & 1) ? b.half[a] : -b.half[a]);

@@ -79,8 +79,8 @@ TEST_CASE("triangles near another organ, 8 at a time, are those the scalar box a
       const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
       const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
       PosedOrgan pa, pb;
-      pa.pose(s, lib.get(ra.prototype, ra.lod), a, s.transforms[static_cast<std::size_t>(a)], ra.plant, ra.plant);
-      pb.pose(s, lib.get(rb.prototype, rb.lod), b, s.transforms[static_cast<std::size_t>(b)], rb.plant, ra.plant);
+      pa.pose(s, lib.get(ra), a, s.transforms[static_cast<std::size_t>(a)], ra.plant, ra.plant);
+      pb.pose(s, lib.get(rb), b, s.transforms[static_cast<std::size_t>(b)], rb.plant, ra.plant);
       // Both sides, as posed_touch filters them: a's triangles against b's box and OBB, and b's
       // (posed in a's plant's frame, moved by the origin difference) against a's.
       for (const double c : {0.0, 1e-4, 0.013}) {
@@ -118,7 +118,7 @@ TEST_CASE("a box at a triangle's box, a float beyond it or a fraction of a float
     const auto a = static_cast<std::int32_t>(rng() % s.organ_count());
     const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
     PosedOrgan pa;
-    pa.pose(s, lib.get(ra.prototype, ra.lod), a, s.transforms[static_cast<std::size_t>(a)], ra.plant, ra.plant);
+    pa.pose(s, lib.get(ra), a, s.transforms[static_cast<std::size_t>(a)], ra.plant, ra.plant);
     const std::size_t i = rng() % pa.mesh->triangle_count();
     const int face = static_cast<int>(rng() % 6), axis = face % 3;
     const bool upper = face >= 3;  // the other box's hi on the triangle's lo, or its lo on the triangle's hi

@@ -32,7 +32,7 @@ struct Setup {
   explicit Setup(Stand s) : stand(std::move(s)), joints(stand) {
     for (std::size_t k = 0; k < stand.organ_count(); ++k) {
       const OrganRecord& r = stand.organs[k];
-      boxes.push_back(make_obb(stand.transforms[k], lib.get(r.prototype, r.lod).box, 0));
+      boxes.push_back(make_obb(stand.transforms[k], lib.get(r).box, 0));
     }
     DetectRequest req;
     req.clearance = 0;
@@ -42,9 +42,11 @@ struct Setup {
 };
 
 /// The oracle: whether turning `c`'s subtree by rotation r clears what the search asks for.
-bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candidate& c, const Mat3d& r, ExactScratch& scratch) {
+bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candidate& c, const Mat3d& r, double deg, ExactScratch& scratch) {
   const Stand& s = w.stand;
-  if (rotation_angle_deg(Joints::local_after(c.frame, r)) > s.joint_limit_deg[c.mover]) return false;
+  // Within the mover's joint limit, or (a chain segment) within what a spread over its chain can
+  // take (collision/bend_chain.hpp).
+  if (rotation_angle_deg(Joints::local_after(c.frame, r)) > s.joint_limit_deg[c.mover] && !(deg <= c.chain_deg)) return false;
   const Motion turn = rotation_about(c.joint, r);
   const auto met = c.keep.begin() + static_cast<std::ptrdiff_t>(c.met_count);
   for (std::int32_t x : c.moving) {
@@ -114,7 +116,7 @@ TEST_CASE("turn search: an attempt clears exactly what brute force over the whol
             axis = normalized(axis);
             Mat3d local;
             const bool got = search.attempt(c, axis, deg, local, scratch, own);
-            const bool want = brute_attempt(w, search, c, axis_angle(axis, deg * kRad), oracle_scratch);
+            const bool want = brute_attempt(w, search, c, axis_angle(axis, deg * kRad), deg, oracle_scratch);
             INFO("seed " << seed << " mover " << m << (strict ? " strict" : " relaxed") << " axis " << t << " at " << deg << " deg");
             CHECK(got == want);
             ++attempts;

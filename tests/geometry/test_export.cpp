@@ -105,7 +105,7 @@ TEST_CASE("glb reads back: nodes per plant, organ ids, counts, Y-up positions") 
     CHECK(vertices_of.size() == pr.organ_count);
     std::size_t want_tris = 0;
     for (std::uint32_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
-      const PrototypeMesh& pm = lib.get(s.organs[id].prototype, s.organs[id].lod);
+      const PrototypeMesh& pm = lib.get(s.organs[id]);
       CHECK(vertices_of[static_cast<int>(id)] == pm.positions.size());
       want_tris += pm.triangle_count();
     }
@@ -119,7 +119,7 @@ TEST_CASE("glb reads back: nodes per plant, organ ids, counts, Y-up positions") 
   const auto& ids = model.accessors[static_cast<std::size_t>(prim.attributes.at("_ORGAN"))];
   const auto& iview = model.bufferViews[static_cast<std::size_t>(ids.bufferView)];
   const std::size_t organ = static_cast<std::size_t>(*reinterpret_cast<const float*>(model.buffers[0].data.data() + iview.byteOffset + ids.byteOffset));
-  const Vec3f local = apply(s.transforms[organ], lib.get(s.organs[organ].prototype, s.organs[organ].lod).positions[0]);
+  const Vec3f local = apply(s.transforms[organ], lib.get(s.organs[organ]).positions[0]);
   CHECK(v[0] == doctest::Approx(local.x).epsilon(1e-6));
   CHECK(v[1] == doctest::Approx(local.z).epsilon(1e-6));
   CHECK(v[2] == doctest::Approx(-local.y).epsilon(1e-6));
@@ -149,7 +149,7 @@ TEST_CASE("obj and ply read back: groups, faces and ids per organ") {
   CHECK(plants == static_cast<int>(s.plant_count()));
   CHECK(faces.size() == s.organ_count());
   for (std::size_t id = 0; id < s.organ_count(); ++id)
-    CHECK(faces[static_cast<long>(id)] == lib.get(s.organs[id].prototype, s.organs[id].lod).triangle_count());
+    CHECK(faces[static_cast<long>(id)] == lib.get(s.organs[id]).triangle_count());
   CHECK(slurp(dir + "/stand.mtl").find("newmtl leaflet") != std::string::npos);
 
   const std::string ply = slurp(dir + "/stand.ply");
@@ -210,7 +210,7 @@ TEST_CASE("a stand 10^6 m from the origin keeps micrometres in the OBJ") {
   double x = 0, y = 0, z = 0;
   std::sscanf(line.c_str(), "v %lf %lf %lf", &x, &y, &z);
   PrototypeLibrary lib;
-  const Vec3f local = apply(s.transforms[0], lib.get(s.organs[0].prototype, s.organs[0].lod).positions[0]);
+  const Vec3f local = apply(s.transforms[0], lib.get(s.organs[0]).positions[0]);
   CHECK(std::fabs(x - (s.plants[0].x + static_cast<double>(local.x))) < 1e-6);
   CHECK(std::fabs(y - (s.plants[0].y + static_cast<double>(local.y))) < 1e-6);
   CHECK(s.stand_origin.x > 999999);
@@ -265,7 +265,7 @@ TEST_CASE("instanced glb: every organ's translation, rotation and scale give bac
       for (std::size_t i = 0; i < n; ++i, ++seen) {
         const std::size_t organ = static_cast<std::size_t>(id[i]);
         CHECK(static_cast<std::size_t>(s.organs[organ].plant) == p);
-        const PrototypeMesh& pm = lib.get(s.organs[organ].prototype, s.organs[organ].lod);
+        const PrototypeMesh& pm = lib.get(s.organs[organ]);
         REQUIRE(nv == pm.positions.size());
         for (std::size_t k = 0; k < nv; k += 5) {
           // S, then R (unit quaternion), then T: the plant-frame vertex.

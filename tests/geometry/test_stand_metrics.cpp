@@ -64,3 +64,31 @@ TEST_CASE("leaf area index equals the hand count on the inner plants") {
   CHECK(all.lai == doctest::Approx(6 * octagon / (3 * ps * rs)).epsilon(1e-6));
   CHECK_THROWS_AS(leaf_area_index(row, lib, 2, 3, ps, rs), std::invalid_argument);
 }
+
+TEST_CASE("leaf inclination: the area of leaflet blades by the angle of their normal from the vertical") {
+  // Three leaflet-kind disks of one radius: horizontal, turned 45 degrees about x, upright.
+  Stand s;
+  add_plant(s, 0, 0, 0, 0.1f);
+  const float c = std::cos(std::numbers::pi_v<float> / 4), r = 0.1f;
+  const Affine3f tilts[3] = {{{r, 0, 0}, {0, r, 0}, {0, 0, r}, {0, 0, 0.2f}},
+                             {{r, 0, 0}, {0, r * c, r * c}, {0, -r * c, r * c}, {0, 0, 0.4f}},
+                             {{r, 0, 0}, {0, 0, r}, {0, -r, 0}, {0, 0, 0.6f}}};
+  for (const Affine3f& t : tilts) {
+    OrganRecord leaf;
+    leaf.parent = 0;
+    leaf.kind = OrganKind::leaflet;
+    leaf.prototype = PrototypeKind::disk;
+    leaf.lod = 1;
+    s.organs.push_back(leaf), s.transforms.push_back(t), s.params.push_back({r, 0}), s.joint_limit_deg.push_back(60);
+  }
+  s.plants[0].organ_count = static_cast<std::uint32_t>(s.organ_count());
+  PrototypeLibrary lib;
+  const LeafInclination li = leaf_inclination(s, lib);
+  REQUIRE(li.fraction.size() == 9);
+  CHECK(li.fraction[0] == doctest::Approx(1.0 / 3));
+  CHECK(li.fraction[4] == doctest::Approx(1.0 / 3));  // 40-50 degrees
+  CHECK(li.fraction[8] == doctest::Approx(1.0 / 3));
+  CHECK(li.mean_deg == doctest::Approx(45).epsilon(1e-4));
+  // The upright disk reaches 0.1 above its centre at 0.6; the stem's top is at 0.5.
+  CHECK(plant_heights(s, lib).at(0) == doctest::Approx(0.7).epsilon(1e-6));
+}

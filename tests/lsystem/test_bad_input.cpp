@@ -45,7 +45,11 @@ TEST_CASE("parameter counts") {
         "parameter count");
   CHECK(error_of("axiom: A(1)\nproductions:\n  - A -> B\n").rfind("test.yaml:3:5: module 'A' is used with 0", 0) == 0);
   CHECK(error_of("axiom: L(1)\norgans:\n  L: {prototype: leaflet, kind: leaflet}\n") ==
-        "test.yaml:1:8: organ 'L' is a leaflet and takes 2 parameter(s), but is used with 1");
+        "test.yaml:1:8: organ 'L' is a leaflet and takes 2 to 5 parameters, but is used with 1");
+  CHECK(error_of("axiom: L(1, 1, 1, 1, 1, 1)\norgans:\n  L: {prototype: leaflet, kind: leaflet}\n") ==
+        "test.yaml:1:8: organ 'L' is a leaflet and takes 2 to 5 parameters, but is used with 6");
+  CHECK(error_of("axiom: I(1, 1, 1)\norgans:\n  I: {prototype: cylinder, kind: internode}\n") ==
+        "test.yaml:1:8: organ 'I' is a cylinder and takes 2 parameter(s), but is used with 3");
   CHECK(error_of("axiom: F(1, 2)\n") == "test.yaml:1:8: turtle symbol 'F' takes at most one parameter, got 2");
   CHECK(error_of("axiom: A(1,)\n") == "test.yaml:1:12: empty parameter in 'A'");
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <unistd.h>
@@ -241,4 +242,36 @@ TEST_CASE("organ parameter errors name the file, line and column of the expressi
   CHECK(grow_error(organs + "axiom: I(1e6, 1) I(1e6, 1) L(1, 1)\n") ==
         "FILE:4:28: plant 0 (seed 1), module 2 'L(1,1)': the organ lies farther than 1000000 m from its plant's origin");
   CHECK(grow_error(organs + "axiom: L(1e6, 1e6)\n") == "");  // the bound itself is allowed
+}
+
+TEST_CASE("a leaflet's trailing parameters give its curvature; zeros give the flat leaflet") {
+  const TurtleResult flat = turtle("I(1, 0.1) L(0.1, 0.05)");
+  const TurtleResult zeros = turtle("I(1, 0.1) L(0.1, 0.05, 0, 0, 0)");
+  REQUIRE(flat.organs.size() == 2);
+  REQUIRE(zeros.organs.size() == 2);
+  CHECK(zeros.organs[1].shape == 0);
+  CHECK(std::memcmp(&zeros.organs[1].transform, &flat.organs[1].transform, sizeof(Affine3f)) == 0);
+  CHECK(zeros.organs[1].params[0] == flat.organs[1].params[0]);
+  CHECK(zeros.organs[1].params[1] == flat.organs[1].params[1]);
+  // Rounded to the steps (bend 10, cup 15, fold 10 degrees); those left out are 0.
+  const LeafletShape s = leaflet_shape(turtle("L(0.1, 0.05, -43, -8, 12)").organs.at(0).shape);
+  CHECK(s.bend_deg == -40);
+  CHECK(s.cup_deg == -15);
+  CHECK(s.fold_deg == 10);
+  const LeafletShape b = leaflet_shape(turtle("L(0.1, 0.05, 21)").organs.at(0).shape);
+  CHECK(b.bend_deg == 20);
+  CHECK(b.cup_deg == 0);
+  CHECK(b.fold_deg == 0);
+  // The transform is the flat leaflet's: the shape lives in the mesh.
+  CHECK(std::memcmp(&turtle("L(0.1, 0.05, -43, -8, 12)").organs.at(0).transform, &turtle("L(0.1, 0.05)").organs.at(0).transform,
+                    sizeof(Affine3f)) == 0);
+  // An angle past its range is refused, naming the module.
+  try {
+    turtle("L(0.1, 0.05, -95)");
+    FAIL("no error");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()).find("leaflet bend must lie in [-80, 70] degrees (got -95)") != std::string::npos);
+    CHECK(std::string(e.what()).find("L(0.1,0.05,-95)") != std::string::npos);
+  }
+  CHECK_THROWS_WITH(turtle("L(0.1, 0.05, 0, 0, 45)"), doctest::Contains("leaflet fold must lie in [0, 30] degrees (got 45)"));
 }

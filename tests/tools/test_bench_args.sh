@@ -13,7 +13,7 @@ cd "$src" || exit 1
 csv=$tmp/kept.csv
 earlier=$'earlier,rows\n1,2'  # what the CSV holds before each run, and must hold after it
 kept() { printf '%s\n' "$earlier" > "$csv"; }
-for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale bench_light bench_stand; do
+for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale bench_light bench_stand bench_architecture; do
   [ -x "$dir/$prog" ] || { echo "skip $prog (not built here)"; continue; }
   kept
   out=$(timeout 60 "$dir/$prog" --csv "$csv" --help 2>/dev/null); rc=$?

@@ -22,7 +22,7 @@ Camera fit_camera(Vec3d lo, Vec3d hi, View view, int width, int height) {
   Camera c;
   c.width = width, c.height = height;
   c.centre = (lo + hi) * 0.5;
-  c.dir = view == View::top ? Vec3d{0, 0, -1} : normalized(Vec3d{0.45, 1.0, -0.75});
+  c.dir = view == View::top ? Vec3d{0, 0, -1} : view == View::side ? Vec3d{0, 1, 0} : normalized(Vec3d{0.45, 1.0, -0.75});
   c.right = view == View::top ? Vec3d{1, 0, 0} : normalized(cross(c.dir, Vec3d{0, 0, 1}));
   c.up = cross(c.right, c.dir);
   double mu = 1e-6, mv = 1e-6;
@@ -56,11 +56,11 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   RTCDevice dev = impl_->device;
-  impl_->prototypes.assign(4 * (kMaxLod + 1), nullptr);
-  const auto proto_scene = [&](PrototypeKind k, int lod) {
-    RTCScene& sc = impl_->prototypes[static_cast<std::size_t>(k) * (kMaxLod + 1) + static_cast<std::size_t>(lod)];
+  impl_->prototypes.assign(kMeshSlots, nullptr);
+  const auto proto_scene = [&](const OrganRecord& r) {
+    RTCScene& sc = impl_->prototypes[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
     if (sc) return sc;
-    const PrototypeMesh& m = lib.get(k, lod);
+    const PrototypeMesh& m = lib.get(r);
     sc = rtcNewScene(dev);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
@@ -87,13 +87,13 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
     const float xfm[12] = {t.c0.x, t.c0.y, t.c0.z, t.c1.x, t.c1.y, t.c1.z, t.c2.x, t.c2.y, t.c2.z,
                            static_cast<float>(t.t.x + off.x), static_cast<float>(t.t.y + off.y), static_cast<float>(t.t.z + off.z)};
     RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, proto_scene(r.prototype, r.lod));
+    rtcSetGeometryInstancedScene(inst, proto_scene(r));
     rtcSetGeometryTimeStepCount(inst, 1);
     rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
     rtcCommitGeometry(inst);
     rtcAttachGeometryByID(impl_->top, inst, static_cast<unsigned>(i));
     rtcReleaseGeometry(inst);
-    const Box3f& b = lib.get(r.prototype, r.lod).box;
+    const Box3f& b = lib.get(r).box;
     for (int k = 0; k < 8; ++k) {
       const Vec3f p = apply(t, Vec3f{(k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 4) ? b.hi.z : b.lo.z});
       const Vec3d w = to_double(p) + off;

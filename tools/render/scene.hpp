@@ -3,7 +3,7 @@
 /// each prototype mesh is one Embree scene, and each organ an instance of it carried by its
 /// transform (plant offset added), so a 10,000-plant stand costs a few hundred bytes per organ,
 /// not a copy of its 75 million triangles. Orthographic cameras: an oblique view from the
-/// front-left and a view from above; organs coloured by kind, Lambert-shaded from both sides,
+/// front-left, a view from above and a level view from the side; organs coloured by kind, Lambert-shaded from both sides,
 /// the highlighted organs (contacts) in magenta, the soil below.
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
@@ -15,7 +15,8 @@
 
 namespace canopy::render {
 
-enum class View { oblique, top };
+/// oblique: from the front-left and above; top: from above; side: level, along the rows' normal (+Y).
+enum class View { oblique, top, side };
 
 /// The colour of highlighted organs: magenta, far from every kind colour.
 inline constexpr float kContactColour[3] = {1.0f, 0.0f, 0.85f};
