@@ -6,6 +6,8 @@
 # Steps, in this order (default: every step this machine can run):
 #   derive       derivation speed, canopy beside the lindenmayer npm package    derive.csv
 #   generate     growing the default stand and writing its files                generate.csv
+#   stand        canopy stand end to end by stage, 1,000-100,000 plants; CPU     stand.csv
+#                backend, and on a GPU also the CUDA backend
 #   detect       CPU detection per level, the AABB-tree baseline and FCL        detect_cpu.csv
 #   detect_cuda  CUDA detection up to 100,000 plants (needs a GPU)              detect_cuda.csv
 #   resolve      resolution, CPU; on a GPU also CUDA (device and host search)   resolve.csv
@@ -159,6 +161,14 @@ step_generate() {
   stamp "$work/generate.csv" generate.csv
 }
 
+step_stand() {
+  local sizes=1000,10000,100000 csv=$work/stand.csv
+  [ "$quick" = 1 ] && sizes=100,1000
+  "$BIN/bench_stand" --backend cpu --sizes "$sizes" --csv "$csv"
+  has_gpu && "$BIN/bench_stand" --backend cuda --sizes "$sizes" --csv "$csv" --append
+  stamp "$csv" stand.csv
+}
+
 step_detect() {
   if [ "$quick" = 1 ]; then "$BIN/bench_detect" --sizes 200,1000 --repeats 3 --csv "$work/detect_cpu.csv"
   else "$BIN/bench_detect" --repeats 9 --csv "$work/detect_cpu.csv"; fi
@@ -239,7 +249,7 @@ step_plots() {
   rm -rf "$out/plot_data" "$out"/*.svg
 }
 
-all=(derive generate detect detect_cuda resolve scale light render experiment plots)
+all=(derive generate stand detect detect_cuda resolve scale light render experiment plots)
 if [ ${#steps[@]} -eq 0 ]; then
   for s in "${all[@]}"; do
     case $s in

@@ -3,11 +3,33 @@
 #include "cuda/check.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <utility>
 #include <vector>
 
 namespace canopy::cuda {
+
+/// Bytes held in this process's device buffers (DeviceBuffer, StreamBuffer), now and at most:
+/// the device memory a run needs beyond the CUDA context (bench_stand reports the peak).
+class DeviceBytes {
+ public:
+  void add(std::size_t n) {
+    const std::size_t now = now_.fetch_add(n) + n;
+    for (std::size_t p = peak_.load(); now > p && !peak_.compare_exchange_weak(p, now);) {
+    }
+  }
+  void sub(std::size_t n) { now_.fetch_sub(n); }
+  std::size_t now() const { return now_.load(); }
+  std::size_t peak() const { return peak_.load(); }
+
+ private:
+  std::atomic<std::size_t> now_{0}, peak_{0};
+};
+inline DeviceBytes& device_bytes() {
+  static DeviceBytes bytes;
+  return bytes;
+}
 
 template <typename T>
 class DeviceBuffer {
@@ -23,14 +45,24 @@ class DeviceBuffer {
     return *this;
   }
   ~DeviceBuffer() {
-    if (p_) cudaFree(p_);
+    if (p_) {
+      cudaFree(p_);
+      device_bytes().sub(n_ * sizeof(T));
+    }
   }
   void resize(std::size_t n) {
     if (n == n_) return;
-    if (p_) CANOPY_CUDA_CHECK(cudaFree(p_));
+    if (p_) {
+      CANOPY_CUDA_CHECK(cudaFree(p_));
+      device_bytes().sub(n_ * sizeof(T));
+    }
     p_ = nullptr;
+    n_ = 0;
+    if (n) {
+      CANOPY_CUDA_CHECK(cudaMalloc(&p_, n * sizeof(T)));
+      device_bytes().add(n * sizeof(T));
+    }
     n_ = n;
-    if (n) CANOPY_CUDA_CHECK(cudaMalloc(&p_, n * sizeof(T)));
   }
   /// Room for at least n items: reallocates only to grow (the contents are then lost).
   void grow(std::size_t n) {
@@ -70,7 +102,10 @@ class StreamBuffer {
   StreamBuffer(const StreamBuffer&) = delete;
   StreamBuffer& operator=(const StreamBuffer&) = delete;
   ~StreamBuffer() {
-    if (p_) cudaFreeAsync(p_, stream_);
+    if (p_) {
+      cudaFreeAsync(p_, stream_);
+      device_bytes().sub(n_ * sizeof(T));
+    }
   }
   /// Room for at least n items (the contents are then lost), at least half again the size.
   void grow(std::size_t n) { grow_keeping(n, 0); }
@@ -81,13 +116,18 @@ class StreamBuffer {
     const std::size_t m = std::max(n, n_ + n_ / 2);
     T* bigger = nullptr;
     CANOPY_CUDA_CHECK(cudaMallocAsync(reinterpret_cast<void**>(&bigger), m * sizeof(T), stream_));
+    device_bytes().add(m * sizeof(T));
     if (keep) {
       if (const cudaError_t e = cudaMemcpyAsync(bigger, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream_); e != cudaSuccess) {
         cudaFreeAsync(bigger, stream_);  // this buffer stays as it was
+        device_bytes().sub(m * sizeof(T));
         ::canopy::cuda::check(e, "cudaMemcpyAsync (keeping a stream buffer's entries as it grows)", __FILE__, __LINE__);
       }
     }
-    if (p_) CANOPY_CUDA_CHECK(cudaFreeAsync(p_, stream_));
+    if (p_) {
+      CANOPY_CUDA_CHECK(cudaFreeAsync(p_, stream_));
+      device_bytes().sub(n_ * sizeof(T));
+    }
     p_ = bigger;
     n_ = m;
   }

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
@@ -56,7 +57,29 @@ AtomicFile::~AtomicFile() {
   unregister_run_path(registered_);
 }
 
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
 void AtomicFile::write(const void* data, std::size_t n) {
+  const auto t = std::chrono::steady_clock::now();
+  write_raw(data, n);
+  const double s = seconds_since(t);
+  times_.busy_s += s, times_.waited_s += s;
+}
+
+void AtomicFile::write_behind(std::string_view text) {
+  const auto t = std::chrono::steady_clock::now();
+  write_raw(text.data(), text.size());
+  times_.busy_s += seconds_since(t);
+}
+
+void AtomicFile::write_raw(const void* data, std::size_t n) {
+  times_.bytes += n;
   if (n >= (std::size_t(1) << 16)) {
     // Large blocks go straight to the kernel: no second copy through stdio's buffer.
     if (std::fflush(f_) != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
@@ -76,11 +99,14 @@ void AtomicFile::write(const void* data, std::size_t n) {
 
 void AtomicFile::close() {
   if (!f_) return;
+  const auto t = std::chrono::steady_clock::now();
   bool bad = std::fflush(f_) != 0 || std::ferror(f_) != 0;
   // A file renamed into place is synced first, so a crash after the rename finds it whole.
   if (!direct_ && !bad) bad = ::fsync(fileno(f_)) != 0;
   const int err = errno;
   const int rc = std::fclose(f_);
+  const double s = seconds_since(t);
+  times_.busy_s += s, times_.waited_s += s;
   f_ = nullptr;
   if (bad || rc != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(bad ? err : errno)));
 }
@@ -111,8 +137,15 @@ AtomicFile& OutputSet::open(const std::string& name) {
   return *files_.back();
 }
 
+WriteTimes OutputSet::times() const {
+  WriteTimes sum = closed_;
+  for (const auto& f : files_) sum += f->times();
+  return sum;
+}
+
 StagedFolder::Committed OutputSet::commit_all() {
   for (auto& f : files_) f->close();  // every file complete before the folder is swapped in
+  for (const auto& f : files_) closed_ += f->times();
   files_.clear();
   return folder_.commit();
 }

@@ -6,6 +6,8 @@
 /// (geometry/run_files.hpp): a signal's clean-up removes this run's, a later run a dead run's.
 #include "geometry/staged_folder.hpp"
 
+#include <cstdint>
+
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -13,6 +15,17 @@
 #include <vector>
 
 namespace canopy {
+
+/// What writing a file cost (tools report export formatting apart from writing).
+struct WriteTimes {
+  std::uint64_t bytes = 0;
+  double busy_s = 0;    // in write calls and the final flush, on whichever thread made them
+  double waited_s = 0;  // of which the exporting thread waited (its own writes, or for a writer thread)
+  WriteTimes& operator+=(const WriteTimes& o) {
+    bytes += o.bytes, busy_s += o.busy_s, waited_s += o.waited_s;
+    return *this;
+  }
+};
 
 class AtomicFile {
  public:
@@ -29,6 +42,12 @@ class AtomicFile {
   std::FILE* get() const { return f_; }
   void write(const void* data, std::size_t n);
   void write(std::string_view s) { write(s.data(), s.size()); }
+  /// A write made by a writer thread while the exporting thread goes on (write_ordered): counted
+  /// as busy, not as waited.
+  void write_behind(std::string_view s);
+  /// The exporting thread waited `seconds` for a writer thread.
+  void add_waited(double seconds) { times_.waited_s += seconds; }
+  const WriteTimes& times() const { return times_; }
   /// Flushes and closes; throws on a write error. The file is not yet in place.
   void close();
   /// Syncs the closed temporary file, renames it to its final name and syncs the folder.
@@ -41,6 +60,8 @@ class AtomicFile {
   std::uint64_t registered_ = 0;
   bool committed_ = false;
   bool direct_ = false;
+  WriteTimes times_;
+  void write_raw(const void* data, std::size_t n);
 };
 
 /// The files of one stand: each written in full into a staging folder, then swapped in together,
@@ -54,10 +75,13 @@ class OutputSet {
   /// The final folder.
   const std::string& dir() const { return folder_.dir(); }
   const StagedFolder& folder() const { return folder_; }
+  /// The files' write times and bytes, summed (those already committed included).
+  WriteTimes times() const;
 
  private:
   StagedFolder folder_;
   std::vector<std::unique_ptr<AtomicFile>> files_;
+  WriteTimes closed_;
 };
 
 /// Checks that a run can later write its folder `dir`, changing nothing (check_output_dir); the

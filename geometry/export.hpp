@@ -18,6 +18,21 @@ void write_ply(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
 /// stand.glb: glTF 2.0, Y up, root node at stand_origin, one node and mesh per plant, one
 /// primitive per organ kind, `_ORGAN` vertex attribute, one material per kind, UVs on leaflets.
 void write_glb(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
+/// The compact stand.glb (KHR_mesh_quantization): see write_glb_compact.
+struct GlbCompactConfig {
+  /// The coarsest position step allowed (metres). Rounding moves a vertex by at most half a step
+  /// along each axis, so a step below half the resolution clearance keeps a resolved stand
+  /// penetration-free; a plant too large for 65,535 such steps keeps FLOAT positions.
+  double max_step = 5e-5;
+};
+/// A plant's organs are numbered from its first in 16 bits in the compact glb.
+inline constexpr std::uint32_t kCompactOrgansPerPlant = 65536;
+/// stand.glb with KHR_mesh_quantization: as write_glb (nodes, meshes, primitives, materials), but
+/// each plant node translated to its box's corner and scaled by its position step; positions
+/// UNSIGNED_SHORT steps, normals normalized BYTE, leaflet UVs normalized UNSIGNED_SHORT, indices
+/// UNSIGNED_SHORT below 65,536 vertices a primitive; organ id = node extras.first_organ +
+/// `_ORGAN` (UNSIGNED_SHORT). About half the size of write_glb's file.
+void write_glb_compact(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out, const GlbCompactConfig& config = {});
 /// stand.glb with one shared mesh per prototype, level of detail and kind, drawn per organ
 /// through EXT_mesh_gpu_instancing (translation, rotation, scale and `_ORGAN` per instance).
 void write_glb_instanced(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
@@ -32,6 +47,10 @@ void write_plants_csv(const Stand& stand, AtomicFile& out);
 void write_obj(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& obj, ChunkWriter& mtl, const std::string& mtl_name);
 void write_ply(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
 void write_glb(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
+void write_glb_compact(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out, const GlbCompactConfig& config = {});
+/// Throws std::invalid_argument naming a plant of the scope with more organs than the compact glb
+/// numbers (kCompactOrgansPerPlant), so a run can refuse before its work rather than at export.
+void check_glb_compact(const ExportScope& scope);
 void write_organs_csv(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
 void write_plants_csv(const ExportScope& scope, ChunkWriter& out);
 

@@ -87,48 +87,53 @@ void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& 
   make_meshes(s, lib);
   out.plants(e.plants.size(), 16, [&](std::size_t i, std::string& t) {
     const PlantRecord& pr = s.plants[e.plants[i]];
+    // Each row made in a buffer of its own and appended once (no check of the string's room for
+    // each of its 24 cells): at most 6 integers, 2 names, 2 doubles and 15 floats of 24 characters.
+    char row[1024];
     for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
       const OrganRecord& r = s.organs[id];
-      append_number(t, e.organ(static_cast<std::int64_t>(id)));
-      t += ',';
-      append_number(t, e.plant(static_cast<std::size_t>(r.plant)));
-      t += ',';
-      append_number(t, e.organ(r.parent));
-      t += ',';
-      t += name_of(r.kind);
-      t += ',';
-      append_number(t, e.leaf_of(id));
-      t += ',';
-      append_number(t, organ_area(s, id, lib));
-      t += ',';
-      append_number(t, organ_length(s, id));
-      t += ',';
-      t += name_of(r.prototype);
-      t += ',';
-      append_number(t, s.params[id][0]);
-      t += ',';
-      append_number(t, s.params[id][1]);
-      t += ',';
-      append_number(t, static_cast<int>(r.lod));
-      t += ',';
-      append_number(t, s.joint_limit_deg[id]);
+      char* p = row;
+      p = put_number(p, e.organ(static_cast<std::int64_t>(id)));
+      *p++ = ',';
+      p = put_number(p, e.plant(static_cast<std::size_t>(r.plant)));
+      *p++ = ',';
+      p = put_number(p, e.organ(r.parent));
+      *p++ = ',';
+      p = put_text(p, name_of(r.kind));
+      *p++ = ',';
+      p = put_number(p, e.leaf_of(id));
+      *p++ = ',';
+      p = put_number(p, organ_area(s, id, lib));
+      *p++ = ',';
+      p = put_number(p, organ_length(s, id));
+      *p++ = ',';
+      p = put_text(p, name_of(r.prototype));
+      *p++ = ',';
+      p = put_number(p, s.params[id][0]);
+      *p++ = ',';
+      p = put_number(p, s.params[id][1]);
+      *p++ = ',';
+      p = put_number(p, static_cast<int>(r.lod));
+      *p++ = ',';
+      p = put_number(p, s.joint_limit_deg[id]);
       const Affine3f& m = s.transforms[id];
       for (const Vec3f& c : {m.c0, m.c1, m.c2, m.t}) {
-        t += ',';
-        append_number(t, c.x);
-        t += ',';
-        append_number(t, c.y);
-        t += ',';
-        append_number(t, c.z);
+        *p++ = ',';
+        p = put_number(p, c.x);
+        *p++ = ',';
+        p = put_number(p, c.y);
+        *p++ = ',';
+        p = put_number(p, c.z);
       }
       if (shapes) {
         const LeafletShape shape = leaflet_shape(r.shape);
         for (double a : {shape.bend_deg, shape.cup_deg, shape.fold_deg}) {
-          t += ',';
-          append_number(t, a);
+          *p++ = ',';
+          p = put_number(p, a);
         }
       }
-      t += '\n';
+      *p++ = '\n';
+      t.append(row, p);
     }
   });
 }

@@ -75,11 +75,11 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
   return L;
 }
 
-/// The plant's binary block: positions, normals, UVs, organ ids, indices (each primitive in turn).
+/// The plant's binary block (L.bytes() at `out`): positions, normals, UVs, organ ids, indices
+/// (each primitive in turn).
 void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLibrary& lib, bool float_ids,
-                std::int64_t organ_shift, std::string& out) {
-  out.resize(L.bytes());
-  char* pos = out.data();
+                std::int64_t organ_shift, char* out) {
+  char* pos = out;
   char* nrm = pos + L.pos_bytes;
   char* uvp = nrm + L.pos_bytes;
   char* ids = uvp + L.uv_bytes;
@@ -253,9 +253,10 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   if (bin_bytes) {  // every block is a multiple of 4 bytes
     out.fixed(glb_bin_header(bin_bytes));
     out.plants(n, 1, [&](std::size_t i, std::string& buf) {
-      std::string one;
-      fill_plant(s, e.plants[i], plan[i], lib, float_ids, e.organ_shift[e.plants[i]], one);
-      buf += one;
+      // Made in place at the end of the chunk (no block of its own to copy).
+      const std::size_t at = buf.size();
+      buf.resize(at + plan[i].bytes());
+      fill_plant(s, e.plants[i], plan[i], lib, float_ids, e.organ_shift[e.plants[i]], buf.data() + at);
     });
   }
 }

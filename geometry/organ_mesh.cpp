@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <array>
+#include <chrono>
 #include <exception>
 #include <future>
 
@@ -37,6 +38,18 @@ void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, O
   for (std::size_t i = 0; i < pm.normals.size(); ++i) out.normals[i] = transform_normal(m, cof, pm.normals[i]);
 }
 
+namespace {
+
+// The exporting thread waits for the writer thread (the time is the file's, as waited).
+void wait(std::future<void>& writing, AtomicFile& out) {
+  if (!writing.valid()) return;
+  const auto t = std::chrono::steady_clock::now();
+  writing.get();
+  out.add_waited(std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count());
+}
+
+}  // namespace
+
 void write_ordered(AtomicFile& out, std::size_t n, std::size_t chunk,
                    const std::function<void(std::size_t, std::size_t, std::string&)>& write) {
   // Two sets of buffers: while one wave is written (by another thread), the next is formatted.
@@ -65,12 +78,12 @@ void write_ordered(AtomicFile& out, std::size_t n, std::size_t chunk,
       if (writing.valid()) writing.wait();
       std::rethrow_exception(failed);
     }
-    if (writing.valid()) writing.get();
+    wait(writing, out);
     writing = std::async(std::launch::async, [&out, &b, count = last - first] {
-      for (std::size_t k = 0; k < count; ++k) out.write(b[k]);
+      for (std::size_t k = 0; k < count; ++k) out.write_behind(b[k]);
     });
   }
-  if (writing.valid()) writing.get();
+  wait(writing, out);
 }
 
 void make_meshes(const Stand& s, PrototypeLibrary& lib, int threads) {

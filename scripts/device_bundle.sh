@@ -5,7 +5,7 @@
 # were built from (.devbin/commit, which bench/run.sh records where there is no git).
 # Usage: scripts/device_bundle.sh [BUILD_DIR]   (default build-dev, configured and built here:
 #   cmake -G Ninja -S . -B build-dev -DCANOPY_RENDER=OFF -DCANOPY_PYTHON=OFF -DCANOPY_CHECKS=OFF
-#   ninja -C build-dev canopy bench_scale test_cuda bench_resolve bench_detect_cuda)
+#   ninja -C build-dev canopy bench_scale test_cuda bench_resolve bench_detect_cuda bench_stand)
 # On the GPU machine, from the repository root: bash scripts/device_check.sh, bash
 # scripts/device_ab.sh ..., or source .devbin/env.sh; mpirun -np 2 ... (docs/testing.md).
 set -euo pipefail
@@ -14,7 +14,7 @@ build=${1:-build-dev}
 L=/usr/lib/x86_64-linux-gnu
 rm -rf .devbin
 mkdir -p .devbin/bin .devbin/lib .devbin/ompi/bin .devbin/ompi/lib/x86_64-linux-gnu/openmpi/lib/openmpi3 .devbin/ompi/share
-for b in tools/canopy tools/bench_scale tools/bench_resolve tools/bench_detect_cuda tests/test_cuda; do
+for b in tools/canopy tools/bench_scale tools/bench_resolve tools/bench_detect_cuda tools/bench_stand tests/test_cuda; do
   [ -f "$build/$b" ] && cp "$build/$b" .devbin/bin/
 done
 strip .devbin/bin/*

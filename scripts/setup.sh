@@ -27,6 +27,6 @@ if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
 fi
 cd "$(dirname "$0")/.."
-if [ ! -d tests/tools/node/node_modules/gltf-validator ]; then
+if [ ! -d tests/tools/node/node_modules/gltf-validator ] || [ ! -d tests/tools/node/node_modules/three ]; then
   (cd tests/tools/node && npm install --no-audit --no-fund --silent)
 fi

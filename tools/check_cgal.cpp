@@ -1,15 +1,19 @@
 // An end-to-end check that does not use canopy's predicates: CGAL's exact predicates on the
-// triangles of an exported stand.obj, against the exact rows of contacts.csv. Organ pairs that
-// disagree are allowed only where the organs come within 1 um of each other (DESIGN.md: closer
-// than that either answer is allowed; the OBJ itself is rounded to 0.1 um).
+// triangles of an exported stand.obj (or stand.glb with --glb), against the exact rows of
+// contacts.csv. Organ pairs that disagree are allowed only where the organs come within 1 um of
+// each other (DESIGN.md: closer than that either answer is allowed; the OBJ itself is rounded to
+// 0.1 um). With --glb the triangles are the file's own, decoded: on a compact glb that checks the
+// quantized positions themselves.
 // Every organ kind is checked unless --collide narrows them (to the kinds a run was narrowed to).
-// Usage: check_cgal DIR [--collide KINDS] [--contacts FILE]   (FILE in DIR, default contacts.csv;
-// contacts_after.csv checks a resolved stand: only what resolution reported left may meet)
+// Usage: check_cgal DIR [--collide KINDS] [--contacts FILE] [--glb] [--strict]   (FILE in DIR,
+// default contacts.csv; contacts_after.csv checks a resolved stand: only what resolution reported
+// left may meet; --strict: every pair that meets must be listed, however close, as a mesh whose
+// positions were rounded must not meet where the stand it came from did not)
 #include "collision/contacts.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/export.hpp"
+#include "tools/organ_triangles.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 #include <CGAL/squared_distance_3.h>
 #include <fmt/format.h>
@@ -17,21 +21,15 @@
 #include <cstring>
 #include <fstream>
 #include <set>
-#include <sstream>
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = canopy::check::Kernel;
 using Point = K::Point_3;
 using Triangle = K::Triangle_3;
 using Segment = K::Segment_3;
+using canopy::check::OrganGeometry;
 using namespace canopy;
 
 namespace {
-
-struct OrganGeometry {
-  std::vector<Point> v;
-  std::vector<std::array<int, 3>> f;
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-};
 
 /// A triangle that may be degenerate, as CGAL objects: a triangle, up to three segments, or a point.
 bool meet(const Point& a0, const Point& a1, const Point& a2, const Point& b0, const Point& b1, const Point& b2) {
@@ -94,49 +92,22 @@ double min_distance2(const OrganGeometry& a, const OrganGeometry& b) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE]\n");
+    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE] [--glb] [--strict]\n");
     return 2;
   }
   const std::string dir = argv[1];
   KindMask collide = parse_collide_kinds("all");  // every organ in the file, fruit and flowers included
   std::string contacts_file = "contacts.csv";
-  for (int i = 2; i + 1 < argc; ++i)
-    if (!std::strcmp(argv[i], "--collide")) collide = parse_collide_kinds(argv[++i]);
-    else if (!std::strcmp(argv[i], "--contacts")) contacts_file = argv[++i];
+  bool glb = false, strict = false;
+  for (int i = 2; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--glb")) glb = true;
+    else if (!std::strcmp(argv[i], "--strict")) strict = true;
+    else if (i + 1 < argc && !std::strcmp(argv[i], "--collide")) collide = parse_collide_kinds(argv[++i]);
+    else if (i + 1 < argc && !std::strcmp(argv[i], "--contacts")) contacts_file = argv[++i];
   const Stand s = read_stand(dir);
   std::vector<OrganGeometry> organs(s.organ_count());
-  {
-    std::ifstream obj(dir + "/stand.obj");
-    std::string line;
-    std::vector<Point> all;
-    long current = -1;
-    std::vector<long> owner;
-    while (std::getline(obj, line)) {
-      if (line.rfind("g organ_", 0) == 0) current = std::stol(line.substr(8));
-      else if (line.rfind("v ", 0) == 0) {
-        double x, y, z;
-        std::sscanf(line.c_str() + 2, "%lf %lf %lf", &x, &y, &z);
-        all.emplace_back(x, y, z);
-        owner.push_back(current);
-        OrganGeometry& g = organs[static_cast<std::size_t>(current)];
-        g.v.emplace_back(x, y, z);
-        const double c[3] = {x, y, z};
-        for (int k = 0; k < 3; ++k) g.lo[k] = std::min(g.lo[k], c[k]), g.hi[k] = std::max(g.hi[k], c[k]);
-      } else if (line.rfind("f ", 0) == 0) {
-        std::istringstream in(line.substr(2));
-        std::string t;
-        std::array<int, 3> f{};
-        for (int k = 0; k < 3 && (in >> t); ++k) {
-          const long global = std::stol(t.substr(0, t.find('/'))) - 1;
-          // Local index: vertices of an organ are contiguous in the file.
-          long first = global;
-          while (first > 0 && owner[static_cast<std::size_t>(first - 1)] == current) --first;
-          f[k] = static_cast<int>(global - first);
-        }
-        organs[static_cast<std::size_t>(current)].f.push_back(f);
-      }
-    }
-  }
+  if (glb) check::read_glb_organs(dir + "/stand.glb", organs);
+  else check::read_obj_organs(dir + "/stand.obj", organs);
   std::set<std::pair<int, int>> listed;
   {
     std::ifstream in(dir + "/" + contacts_file);
@@ -171,7 +142,7 @@ int main(int argc, char** argv) {
       found += hit;
       if (hit != in_list) {
         const double d = std::sqrt(min_distance2(ga, gb));
-        if (d <= 1e-6) ++near;
+        if (d <= 1e-6 && !(strict && hit)) ++near;
         else {
           ++bad;
           if (bad <= 10)
@@ -180,7 +151,7 @@ int main(int argc, char** argv) {
       }
     }
   }
-  fmt::print("CGAL check of {} against {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} disagree\n", dir,
-             contacts_file, tested, found, listed.size(), near, bad);
+  fmt::print("CGAL check of {} ({}) against {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} disagree\n", dir,
+             glb ? "stand.glb" : "stand.obj", contacts_file, tested, found, listed.size(), near, bad);
   return bad == 0 ? 0 : 1;
 }

@@ -21,6 +21,10 @@ Command add_stand(CLI::App& root) {
   app->add_flag("--glb-instancing", o->glb_instancing,
                 "Write stand.glb with one shared mesh per prototype drawn per organ (EXT_mesh_gpu_instancing): "
                 "about 20 times smaller; organ ids become a per-instance _ORGAN attribute");
+  app->add_flag("--glb-compact", o->glb_compact,
+                "Write stand.glb with quantized positions, normals, UVs and indices (KHR_mesh_quantization): about half "
+                "the size; positions in steps below half the resolution clearance; organ id = the plant node's "
+                "extras.first_organ + the _ORGAN attribute");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation")->transform(whole_in(1, INT64_MAX));
   o->detect.add_to(*app);
   o->resolve.add_to(*app);

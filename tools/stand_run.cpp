@@ -50,9 +50,21 @@ constexpr const char* kPlyFile = "stand.ply";
 
 }  // namespace
 
+GlbForm glb_form(bool instancing, bool compact, double resolve_clearance) {
+  if (instancing && compact) throw std::invalid_argument("--glb-instancing and --glb-compact are two forms of stand.glb: choose one");
+  GlbForm g{instancing, compact, {}};
+  if (resolve_clearance > 0) g.compact_config.max_step = resolve_clearance / 2;
+  return g;
+}
+
+GlbForm glb_form(const StandOptions& o) { return glb_form(o.glb_instancing, o.glb_compact, o.resolve.clearance); }
+
 void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
-                       const OpenChunks& open) {
-  if (formats.count("glb")) write_glb(scope, lib, open(kGlbFile));
+                       const OpenChunks& open, const GlbForm& glb) {
+  if (formats.count("glb")) {
+    if (glb.compact) write_glb_compact(scope, lib, open(kGlbFile), glb.compact_config);
+    else write_glb(scope, lib, open(kGlbFile));
+  }
   if (formats.count("obj")) {
     ChunkWriter& obj = open(kObjFile);
     write_obj(scope, lib, obj, open(kMtlFile), kMtlFile);
@@ -62,13 +74,14 @@ void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const st
   write_plants_csv(scope, open("plants.csv"));
 }
 
-void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
+void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, const GlbForm& glb,
                        OutputSet& files) {
   std::set<std::string> chunked = formats;
-  if (glb_instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open(kGlbFile));
+  if (glb.instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open(kGlbFile));
   std::deque<ChunkFile> opened;
-  write_stand_files(ExportScope::whole(stand), lib, chunked,
-                    [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); });
+  write_stand_files(
+      ExportScope::whole(stand), lib, chunked, [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); },
+      glb);
 }
 
 const std::vector<std::string>& stand_folder_files() {
@@ -147,6 +160,7 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   config["lod"] = o.lod;
   config["formats"] = std::vector<std::string>(formats.begin(), formats.end());
   config["glb_instancing"] = o.glb_instancing;
+  config["glb_compact"] = o.glb_compact;
   config["max_modules"] = o.max_modules;
   config["level"] = o.detect.level;
   config["clearance"] = o.detect.clearance;
@@ -179,6 +193,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const auto t_start = std::chrono::steady_clock::now();
   const ThreadLimit thread_limit(o.detect.threads);
   const std::set<std::string> formats = parse_formats(o.formats);
+  const GlbForm glb = glb_form(o);
   StandPlan plan = plan_stand(o);
   const DetectRequest dreq = o.detect.request();  // bad options fail before any work
   std::string backend_note;
@@ -199,7 +214,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   GrowTimings gt;
   Stand stand = grow_stand(req, &gt);
   StandReport rep;
+  // Before growing: options, the grammar, the backend (a device's start), the output folder.
+  rep.timings["startup"] = std::chrono::duration<double>(t_grow - t_start).count();
   rep.timings["generate"] = seconds_since(t_grow);
+  if (glb.compact && formats.count("glb")) check_glb_compact(ExportScope::whole(stand));  // refuse before the work
   std::optional<SpacingChoice> target;
   if (o.target.set()) {
     const auto t_target = std::chrono::steady_clock::now();
@@ -211,6 +229,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const auto t_detect = std::chrono::steady_clock::now();
   const Contacts contacts = backend->detect(stand, dreq);
   rep.timings["detect"] = seconds_since(t_detect);
+  rep.timings["detect_build"] = contacts.build_s;  // parts of "detect": the bounding volumes,
+  rep.timings["detect_upload"] = contacts.load_s;  // the stand's trip to the device
   const std::string first_backend = backend->name();
   rep.contacts_before = counts_json(contacts);
 
@@ -238,16 +258,23 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
 
   PrototypeLibrary lib;
   const auto t_export = std::chrono::steady_clock::now();
-  write_stand_files(stand, lib, formats, o.glb_instancing, files);
+  write_stand_files(stand, lib, formats, glb, files);
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));
   write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   rep.timings["export"] = seconds_since(t_export);
+  // The export's bytes are made on all threads while a writer thread writes the previous ones:
+  // formatting is the time it did not wait for writes, writing the time spent in them.
+  const WriteTimes written = files.times();
+  rep.timings["export_format"] = std::max(0.0, rep.timings["export"] - written.waited_s);
+  rep.timings["export_write"] = written.busy_s;
   describe_run(rep, o, formats, plan);
   if (target) rep.config["target"] = target_json(o.target, *target);
   rep.leaf_angles = leaf_angles_json(leaf_angles(leaf_angle_sums(stand, lib)));
   rep.timings["total"] = seconds_since(t_start);
   write_report(stand, lib, rep, files.open("report.json"));
+  const auto t_commit = std::chrono::steady_clock::now();
   const StagedFolder::Committed committed = files.commit_all();
+  const double commit_s = seconds_since(t_commit);
   if (print) {
     print_folder_changes(files.folder(), committed);
     if (target)
@@ -264,6 +291,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   out.report = report_json(stand, lib, rep);
   out.contacts_before = contacts.pairs.size();
   out.contacts_after = after.pairs.size();
+  out.export_bytes = written.bytes;
+  out.commit_s = commit_s;
   if (keep) *keep = std::move(stand);
   return out;
 }

@@ -3,6 +3,7 @@
 /// command line and the Python module (same code, same files).
 #include "collision/resolve.hpp"
 #include "geometry/atomic_file.hpp"
+#include "geometry/export.hpp"
 #include "geometry/prototype.hpp"
 #include "lsystem/grammar.hpp"
 #include "lsystem/grow.hpp"
@@ -28,6 +29,7 @@ struct StandOptions {
   int lod = kDefaultLod;
   std::string formats = "glb";
   bool glb_instancing = false;
+  bool glb_compact = false;
   std::size_t max_modules = kDefaultMaxModules;
   StandSpec rows;                   // row options given on the command line
   bool random_rotation = false;     // folded into `rows` once parsed
@@ -40,8 +42,10 @@ struct StandOptions {
 };
 
 struct StandOutcome {
-  nlohmann::ordered_json report;  // report.json as written
+  nlohmann::ordered_json report;  // report.json as written (its timings_s per stage)
   std::size_t contacts_before = 0, contacts_after = 0;
+  std::uint64_t export_bytes = 0;  // the mesh and table files (report.json aside)
+  double commit_s = 0;             // the files closed and put in place, after report.json
 };
 
 /// What a stand is grown from: the grammar, the grow request (placements filled in for a
@@ -62,6 +66,17 @@ void check_plan_fits(const StandPlan& plan, std::size_t plants);
 /// report.json's "config" (every option echoed), "grammar" and "seed".
 void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan);
 
+/// How stand.glb is written: a mesh per plant (the default), instanced, or compact.
+struct GlbForm {
+  bool instancing = false;
+  bool compact = false;
+  GlbCompactConfig compact_config;
+};
+/// The form the options ask for; the compact glb's step stays below half the resolution
+/// clearance (half the default clearance when it is 0). Throws when both forms are asked for.
+GlbForm glb_form(const StandOptions& o);
+GlbForm glb_form(bool instancing, bool compact, double resolve_clearance);
+
 /// "glb,obj" -> {glb, obj}; throws std::invalid_argument on an unknown format.
 std::set<std::string> parse_formats(const std::string& list);
 /// Opens a file of the stand folder by name as a ChunkWriter (one process: over an OutputSet's
@@ -69,10 +84,11 @@ std::set<std::string> parse_formats(const std::string& list);
 using OpenChunks = std::function<ChunkWriter&(const std::string& name)>;
 /// The mesh and table files of the scope's plants as `canopy stand` writes them (not the
 /// contacts or the report): stand.{glb,obj+mtl,ply} for `formats`, organs.csv, plants.csv.
+/// stand.glb compact when `glb.compact` (instancing is written by write_stand_files below only).
 void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
-                       const OpenChunks& open);
-/// The same for a whole stand in one process, stand.glb instanced when `glb_instancing`.
-void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, bool glb_instancing,
+                       const OpenChunks& open, const GlbForm& glb = {});
+/// The same for a whole stand in one process, stand.glb in the form `glb`.
+void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, const GlbForm& glb,
                        OutputSet& files);
 
 /// The files of a stand folder that a run replaces as a set (StagedFolder's `replaces`): the

@@ -230,7 +230,7 @@ void run_stand_tiled(StandOptions o) {
   }
   mpi::SharedOutputSet files(o.out, stand_folder_files(), ts.ids, n);
   try {
-    write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); });
+    write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); }, glb_form(o));
     write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
     write_contacts_csv(scope, ts.after.pairs, ts.after.level, files.open("contacts_after.csv"));
     rep.timings["export"] = seconds_since(t_export);

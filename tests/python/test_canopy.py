@@ -173,6 +173,20 @@ def test_positions_array_equals_a_positions_file(tmp_path):
         assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / "py" / f, shallow=False), f
 
 
+def test_compact_glb_equals_the_command_line(tmp_path):
+    args = ["--positions", str(tmp_path / "p.csv"), "--steps", "12", "--backend", "cpu", "--no-resolve"]
+    (tmp_path / "p.csv").write_text("x,y,rotation,seed\n0,0,30,7\n0.35,0.1,200,8\n")
+    assert cli("stand", TOMATO, *args, "--glb-compact", "-o", str(tmp_path / "cli")).returncode == 0
+    canopy.stand(TOMATO, tmp_path / "run", positions=str(tmp_path / "p.csv"), steps=12, backend="cpu", no_resolve=True,
+                 glb_compact=True)
+    s = canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, 30, 7], [0.35, 0.1, 200, 8]], dtype=float), steps=12)
+    s.export(tmp_path / "py", glb_compact=True)
+    for d in ["run", "py"]:
+        assert filecmp.cmp(tmp_path / "cli" / "stand.glb", tmp_path / d / "stand.glb", shallow=False), d
+    with pytest.raises(ValueError, match="choose one"):
+        s.export(tmp_path / "both", glb_compact=True, glb_instancing=True)
+
+
 def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
     s = canopy.Stand.grow(TOMATO, rows=1, per_row=4, plant_spacing=0.25, steps=16)
     calls = []

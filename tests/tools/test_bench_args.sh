@@ -13,7 +13,7 @@ cd "$src" || exit 1
 csv=$tmp/kept.csv
 earlier=$'earlier,rows\n1,2'  # what the CSV holds before each run, and must hold after it
 kept() { printf '%s\n' "$earlier" > "$csv"; }
-for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale bench_light bench_architecture; do
+for prog in bench_derive bench_generate bench_detect bench_resolve bench_scale bench_light bench_stand bench_architecture; do
   [ -x "$dir/$prog" ] || { echo "skip $prog (not built here)"; continue; }
   kept
   out=$(timeout 60 "$dir/$prog" --csv "$csv" --help 2>/dev/null); rc=$?
@@ -56,6 +56,25 @@ if [ -x "$dir/bench_detect" ]; then
   check "bench_detect on one thread exit" "0" "$rc"
   check "bench_detect on one thread: its query row" "1" "$(grep -c '^20,[^,]*,[^,]*,1,mbvt,query(exact),' "$csv")"
   check "bench_detect on one thread: no other thread count" "0" "$(grep -vc '^plants,\|^20,[^,]*,[^,]*,1,' "$csv")"
+fi
+if [ -x "$dir/bench_stand" ]; then
+  # A tiny run: one row of canopy stand's stages (times never asserted), in a folder of its own
+  # that it leaves as it found it; a size the default stand cannot have is refused.
+  kept
+  timeout 60 "$dir/bench_stand" --csv "$csv" --sizes 150 >/dev/null 2>"$tmp/err"; rc=$?
+  check "bench_stand odd size exit" "2" "$rc"
+  check "bench_stand odd size message" "1" "$(grep -c 'not a size of the default stand' "$tmp/err")"
+  check "bench_stand odd size leaves the CSV" "$earlier" "$(cat "$csv")"
+  mkdir -p "$tmp/stand"
+  timeout 300 "$dir/bench_stand" --sizes 3 --steps 8 --backend cpu --disk-mb 4 --dir "$tmp/stand" --csv "$csv" >"$tmp/out" 2>&1; rc=$?
+  check "bench_stand run exit" "0" "$rc"
+  check "bench_stand run rows" "2" "$(wc -l < "$csv" | tr -d ' ')"
+  check "bench_stand run header" "plants,organs_per_plant,triangles_per_plant,backend,device,threads,formats,end_to_end_s,startup_s" \
+    "$(head -1 "$csv" | cut -d, -f1-9)"
+  check "bench_stand run fields" "30 30" "$(awk -F, '{print NF}' "$csv" | paste -sd' ')"
+  check "bench_stand run row" "3,cpu,glb" "$(sed -n 2p "$csv" | cut -d, -f1,4,7)"
+  check "bench_stand run contacts after" "0" "$(sed -n 2p "$csv" | cut -d, -f25)"
+  check "bench_stand leaves its folder empty" "" "$(ls -A "$tmp/stand")"
 fi
 
 echo "$pass passed, $failures failed"

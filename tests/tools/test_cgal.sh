@@ -4,7 +4,8 @@
 # reported left), on a few small stands: a row, a dense random cluster, crowded plants, two plants
 # on one spot, with every organ kind taking part (the default) and the check counting every kind;
 # one row with --collide narrowed, checked over those kinds. Resolved rows and crowded plants must
-# come out clean. Then the default resolution of seeded dense stands with fruit must leave no
+# come out clean, and so must the quantized triangles of their compact stand.glb (nothing meets,
+# however close). Then the default resolution of seeded dense stands with fruit must leave no
 # intersecting non-adjacent organ pair of any kind in stand.obj.
 # Usage: CANOPY=... CHECK_CGAL=... test_cgal.sh SOURCE_DIR
 set -u
@@ -17,13 +18,18 @@ run() {  # run NAME COLLIDE CLEAN STAND_ARGS...   (COLLIDE default: no --collide
   local name=$1 collide=$2 clean=$3; shift 3
   local kinds=()
   [ "$collide" = default ] || kinds=(--collide "$collide")
-  checks=$((checks + 3))
+  checks=$((checks + 3 + clean))
   if ! "$CANOPY" stand "$src/grammars/tomato.yaml" --formats obj "${kinds[@]}" --no-resolve -o "$tmp/$name" "$@" >/dev/null 2>"$tmp/err"; then
-    echo "FAIL $name: canopy stand --no-resolve: $(cat "$tmp/err")"; failures=$((failures + 3)); return; fi
+    echo "FAIL $name: canopy stand --no-resolve: $(cat "$tmp/err")"; failures=$((failures + 3 + clean)); return; fi
   if ! "$CHECK_CGAL" "$tmp/$name" "${kinds[@]}"; then failures=$((failures + 1)); fi
-  if ! "$CANOPY" stand "$src/grammars/tomato.yaml" --formats obj "${kinds[@]}" -o "$tmp/$name.r" "$@" >/dev/null 2>"$tmp/err"; then
-    echo "FAIL $name: canopy stand: $(cat "$tmp/err")"; failures=$((failures + 2)); return; fi
+  if ! "$CANOPY" stand "$src/grammars/tomato.yaml" --formats obj,glb --glb-compact "${kinds[@]}" -o "$tmp/$name.r" "$@" \
+      >/dev/null 2>"$tmp/err"; then
+    echo "FAIL $name: canopy stand: $(cat "$tmp/err")"; failures=$((failures + 2 + clean)); return; fi
   if ! "$CHECK_CGAL" "$tmp/$name.r" "${kinds[@]}" --contacts contacts_after.csv; then failures=$((failures + 1)); fi
+  # A clean stand's compact glb, its own quantized triangles: nothing meets, however close. (Where
+  # contacts are left, rounding may move the organs that still meet by micrometres either way.)
+  if [ "$clean" = 1 ] && ! "$CHECK_CGAL" "$tmp/$name.r" "${kinds[@]}" --contacts contacts_after.csv --glb --strict; then
+    failures=$((failures + 1)); fi
   local left; left=$(($(wc -l < "$tmp/$name.r/contacts_after.csv") - 1))
   if [ "$clean" = 1 ] && [ "$left" -ne 0 ]; then
     echo "FAIL $name: $left contacts left after resolution"; failures=$((failures + 1))
@@ -45,13 +51,21 @@ run fruit_crowded default 0 --rows 3 --per-row 4 --row-spacing 0.3 --plant-spaci
 # jitter and rotation, resolved with every default. CGAL's exact predicates on stand.obj, every
 # organ kind, must find no pair meeting (and resolution none left). Closer still (0.3 m both ways,
 # 11 plants/m2) the grammar's 20-degree joint limits leave up to a dozen pairs of the 466 found:
-# the run fruit_crowded checks that what is left is reported, and only that.
+# the run fruit_crowded checks that what is left is reported, and only that. The quantized
+# triangles of the compact stand.glb must meet nowhere either.
 for seed in 1 2 3; do
   name=fruit_$seed
-  checks=$((checks + 1))
+  checks=$((checks + 2))
   if ! "$CANOPY" stand "$src/grammars/tomato.yaml" --rows 3 --per-row 4 --row-spacing 0.5 --plant-spacing 0.3 --seed "$seed" \
-       --formats obj -o "$tmp/$name" >/dev/null 2>"$tmp/err"; then
-    echo "FAIL $name: canopy stand: $(cat "$tmp/err")"; failures=$((failures + 1)); continue; fi
+       --formats obj,glb --glb-compact -o "$tmp/$name" >/dev/null 2>"$tmp/err"; then
+    echo "FAIL $name: canopy stand: $(cat "$tmp/err")"; failures=$((failures + 2)); continue; fi
+  # The compact glb's quantized triangles: no pair meets either.
+  if ! "$CHECK_CGAL" "$tmp/$name" --contacts contacts_after.csv --glb --strict >"$tmp/cgal_glb" 2>&1 ||
+     [ "$(sed -n 's/.* \([0-9]*\) meet by CGAL.*/\1/p' "$tmp/cgal_glb")" != 0 ]; then
+    echo "FAIL $name: compact glb: $(tail -1 "$tmp/cgal_glb")"; failures=$((failures + 1))
+  else
+    echo "$name: compact glb: $(tail -1 "$tmp/cgal_glb")"
+  fi
   fruit=$(awk -F, '$4=="fruit"' "$tmp/$name/organs.csv" | wc -l)
   left=$(($(wc -l < "$tmp/$name/contacts_after.csv") - 1))
   "$CHECK_CGAL" "$tmp/$name" --contacts contacts_after.csv >"$tmp/cgal" 2>&1

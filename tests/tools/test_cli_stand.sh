@@ -28,6 +28,48 @@ if [ -d "$src/tests/tools/node/node_modules/gltf-validator" ]; then
 else
   check "gltf validator installed (run scripts/setup.sh)" "yes" "no"
 fi
+
+# The compact glb (KHR_mesh_quantization): validator-clean, at least 2x smaller than the default
+# glb of the same stand (default level of detail), the other files unchanged, and three.js's
+# GLTFLoader reads the same meshes, organ ids and positions (within half the largest step,
+# 25 um, plus float rounding) as from the default glb.
+cstand() { "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 --steps 16 "$@"; }
+cstand -o "$tmp/cd" >/dev/null 2>&1
+cstand --glb-compact -o "$tmp/cc" >/dev/null 2>&1
+check "compact exit" "0" "$?"
+check "compact 2x smaller" "yes" "$(awk -v a="$(stat -c %s "$tmp/cd/stand.glb")" -v b="$(stat -c %s "$tmp/cc/stand.glb")" \
+  'BEGIN { print (b > 0 && 2 * b <= a) ? "yes" : "no (" a " / " b ")" }')"
+for f in organs.csv plants.csv contacts.csv contacts_after.csv; do
+  check "compact: $f as the default run's" "same" "$(cmp -s "$tmp/cd/$f" "$tmp/cc/$f" && echo same || echo different)"
+done
+check "compact: report config" "True" "$(python3 -c "import json;print(json.load(open('$tmp/cc/report.json'))['config']['glb_compact'])")"
+if [ -d "$src/tests/tools/node/node_modules/gltf-validator" ]; then
+  node "$validator" "$tmp/cc/stand.glb" >"$tmp/v" 2>&1
+  check "gltf validator (compact)" "0" "$?"
+  check "gltf validator (compact) no warnings" "1" "$(grep -c '^errors 0 warnings 0 ' "$tmp/v")"
+fi
+if [ -d "$src/tests/tools/node/node_modules/three" ]; then
+  node "$src/tests/tools/node/compare_three.mjs" "$tmp/cd/stand.glb" "$tmp/cc/stand.glb" 2.6e-5 >"$tmp/three" 2>&1
+  check "three.js reads the compact glb as the default one" "0" "$?"
+  grep -q '"ids_differ":0' "$tmp/three"
+  check "three.js: organ ids" "0" "$?"
+else
+  check "three.js installed (run scripts/setup.sh)" "yes" "no"
+fi
+# Blender's own importer, where Blender is installed (Debian's blender; not required).
+if command -v blender >/dev/null; then
+  for d in cd cc; do
+    timeout 300 blender -b --factory-startup --python "$src/tests/tools/blender_counts.py" -- "$tmp/$d/stand.glb" 2>&1 |
+      sed -n 's/^BLENDER //p' >"$tmp/blender_$d"
+  done
+  check "blender reads the compact glb as the default one" "ok" "$(python3 -c "
+import json; a, b = (json.load(open('$tmp/blender_' + d)) for d in ('cd', 'cc'))
+same = all(a[k] == b[k] for k in ('meshes', 'vertices', 'triangles')) and a['meshes'] > 0
+near = all(abs(x - y) <= 2.6e-5 for k in ('min', 'max') for x, y in zip(a[k], b[k]))
+print('ok' if same and near else (a, b))" 2>&1)"
+fi
+cstand --glb-compact --threads 1 -o "$tmp/cc1" >/dev/null 2>&1
+check "compact: threads 1 and default identical" "same" "$(cmp -s "$tmp/cc/stand.glb" "$tmp/cc1/stand.glb" && echo same || echo different)"
 if command -v assimp >/dev/null; then
   tris=$(python3 -c "import json;print(json.load(open('$out/report.json'))['counts']['triangles'])")
   for f in stand.obj stand.ply; do
@@ -141,6 +183,8 @@ expect_error "positions cell" "pos2.csv:2:3: column 'y' needs a finite number, g
 expect_error "too large" "needs about .* GB .* more than the .* GB available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
 expect_error "formats" "unknown format 'fbx'" "$src/grammars/tomato.yaml" --formats glb,fbx
 expect_error "collide" "unknown organ kind 'root'" "$src/grammars/tomato.yaml" --collide leaflet,root
+expect_error "two glb forms" "--glb-instancing and --glb-compact are two forms of stand.glb: choose one" \
+  "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --glb-instancing --glb-compact
 # A run into a folder of an earlier one in other formats: the earlier meshes go (the folder holds
 # one stand), and the run says so; a failed run removes nothing.
 rm -rf "$tmp/again"
@@ -215,6 +259,7 @@ done
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
            --double-rows --jitter --random-rotation --no-random-rotation --seed --positions --max-modules --glb-instancing \
+           --glb-compact \
            --level --clearance --collide --backend --no-resolve --max-rounds --resolve-clearance --resolve-level \
            --max-device-memory; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"

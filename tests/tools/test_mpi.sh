@@ -66,8 +66,9 @@ compare rows "1 2 4" "$g" --rows 2 --per-row 60 --plant-spacing 0.3 --jitter 0.0
 check "rows: contacts found" "yes" "$([ "$(contacts "$tmp/rows-1p")" -gt 500 ] && echo yes || echo no)"
 check "rows: tiles smaller than the field" "yes" \
   "$(grep -q 'tiles: 4 ranks, strips across x' "$tmp/rows-4.log" && ! grep -q '; 120 plants here' "$tmp/rows-4.log" && echo yes || echo no)"
-# Many short rows (strips across y), detection only, at the leaf level, with OBJ.
-compare leaf "2 4" "$g" --rows 16 --per-row 4 --row-spacing 0.5 --plant-spacing 0.35 --steps 16 --no-resolve --level leaf --formats obj
+# Many short rows (strips across y), detection only, at the leaf level, with OBJ and the compact glb.
+compare leaf "2 4" "$g" --rows 16 --per-row 4 --row-spacing 0.5 --plant-spacing 0.35 --steps 16 --no-resolve --level leaf \
+  --formats obj,glb --glb-compact
 # A clearance and organ-level resolution on 3 ranks.
 compare clear "3" "$g" --rows 1 --per-row 40 --plant-spacing 0.28 --steps 18 --clearance 0.002 --resolve-level organ --formats ply
 

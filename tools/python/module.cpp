@@ -98,6 +98,7 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "lod") o.lod = v.cast<int>();
           else if (k == "formats") o.formats = v.cast<std::string>();
           else if (k == "glb_instancing") o.glb_instancing = v.cast<bool>();
+          else if (k == "glb_compact") o.glb_compact = v.cast<bool>();
           else if (k == "max_modules") o.max_modules = v.cast<std::size_t>();
           else if (k == "rows") o.rows.rows = v.cast<int>();
           else if (k == "per_row") o.rows.per_row = v.cast<int>();

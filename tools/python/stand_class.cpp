@@ -233,23 +233,27 @@ void bind_stand(py::module_& m) {
           "what planned the rounds) with 'contacts_after', 'backend', 'device' and 'note'.")
       .def(
           "export",
-          [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing) {
+          [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing, bool glb_compact) {
             const std::string dir = path_of(dir_arg);
             std::string list;
             for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
             const auto fs = cli::parse_formats(list);
+            const cli::GlbForm glb = cli::glb_form(glb_instancing, glb_compact, 0);
+            if (glb.compact && fs.count("glb")) check_glb_compact(ExportScope::whole(s.stand));
             py::gil_scoped_release nogil;
             const ThreadLimit thread_limit(0);  // refuses an OMP_NUM_THREADS past canopy's maximum
             PrototypeLibrary lib;
             // The folder's earlier stand is replaced as a set, as canopy stand does.
             OutputSet files(dir, cli::stand_folder_files());
-            cli::write_stand_files(s.stand, lib, fs, glb_instancing, files);
+            cli::write_stand_files(s.stand, lib, fs, glb, files);
             if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
             files.commit_all();
           },
           py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("glb_instancing") = false,
+          py::arg("glb_compact") = false,
           "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv of the last "
-          "detection or resolution).");
+          "detection or resolution); glb_compact writes stand.glb quantized (KHR_mesh_quantization, positions in steps "
+          "of at most 50 um, half the default resolution clearance).");
 
 }
 
