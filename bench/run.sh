@@ -52,11 +52,13 @@ gpu_count() { nvidia-smi -L 2>/dev/null | grep -c '^GPU' || true; }
 # The code measured: the checked-out commit, "-dirty" where files other than results differ.
 commit_id() {
   if [ -n "${CANOPY_COMMIT:-}" ]; then echo "$CANOPY_COMMIT"; return; fi
+  # A bundle's binaries know the commit they were built from (scripts/device_bundle.sh); a copied
+  # tree's git may not be at it.
+  if [ -f "$BIN/../commit" ]; then cat "$BIN/../commit"; return; fi
   if git rev-parse --short=7 HEAD >/dev/null 2>&1; then
     local c; c=$(git rev-parse --short=7 HEAD)
     [ -z "$(git status --porcelain --untracked-files=no -- . ':(exclude)bench/results')" ] || c+=-dirty
     echo "$c"
-  elif [ -f "$BIN/../commit" ]; then cat "$BIN/../commit"   # a bundle (scripts/device_bundle.sh)
   else echo unknown; fi
 }
 

@@ -5,7 +5,7 @@
 # were built from (.devbin/commit, which bench/run.sh records where there is no git).
 # Usage: scripts/device_bundle.sh [BUILD_DIR]   (default build-dev, configured and built here:
 #   cmake -G Ninja -S . -B build-dev -DCANOPY_RENDER=OFF -DCANOPY_PYTHON=OFF -DCANOPY_CHECKS=OFF
-#   ninja -C build-dev canopy bench_scale test_cuda bench_resolve bench_detect_cuda bench_stand)
+#   ninja -C build-dev canopy bench_scale test_cuda bench_resolve bench_detect_cuda bench_stand bench_light)
 # On the GPU machine, from the repository root: bash scripts/device_check.sh, bash
 # scripts/device_ab.sh ..., or source .devbin/env.sh; mpirun -np 2 ... (docs/testing.md).
 set -euo pipefail
@@ -14,7 +14,7 @@ build=${1:-build-dev}
 L=/usr/lib/x86_64-linux-gnu
 rm -rf .devbin
 mkdir -p .devbin/bin .devbin/lib .devbin/ompi/bin .devbin/ompi/lib/x86_64-linux-gnu/openmpi/lib/openmpi3 .devbin/ompi/share
-for b in tools/canopy tools/bench_scale tools/bench_resolve tools/bench_detect_cuda tools/bench_stand tests/test_cuda; do
+for b in tools/canopy tools/bench_scale tools/bench_resolve tools/bench_detect_cuda tools/bench_stand tools/bench_light tests/test_cuda; do
   [ -f "$build/$b" ] && cp "$build/$b" .devbin/bin/
 done
 strip .devbin/bin/*
@@ -24,6 +24,10 @@ for f in libfmt.so.9 libyaml-cpp.so.0.7 libgomp.so.1 libmpi.so.40 libmpi_cxx.so.
   cp -L "$L/$f" .devbin/lib/
 done
 cp -L "$L/pmix2/lib/libpmix.so.2" .devbin/lib/
+# The light library's ray caster (Embree and its TBB), where the build has it.
+for f in libembree3.so.3 libtbb.so.12 libtbbmalloc.so.2; do
+  [ -e "$L/$f" ] && cp -L "$L/$f" .devbin/lib/
+done
 # OpenMPI's components, less those needing fabrics the GPU machine lacks (UCX, OFI, verbs, PSM).
 for f in "$L"/openmpi/lib/openmpi3/*.so; do
   case $(basename "$f") in
@@ -35,9 +39,14 @@ done
 cp /usr/bin/orterun /usr/bin/orted .devbin/ompi/bin/
 cp /usr/bin/orterun .devbin/ompi/bin/mpirun
 cp -r /usr/share/openmpi .devbin/ompi/share/
+# Libraries past 16 MB (Embree's, 44 MB) travel compressed: the device tool carries 64 MiB at most.
+for f in .devbin/lib/*; do
+  [ "$(stat -c %s "$f")" -gt 16000000 ] && xz -T0 -6 "$f"
+done
 cat >.devbin/env.sh <<'ENV'
 # Source on the GPU machine from the repository root: the carried OpenMPI, relocated.
 D=$PWD/.devbin
+for f in "$D"/lib/*.xz; do [ -e "$f" ] && [ ! -e "${f%.xz}" ] && xz -dk "$f"; done
 export OPAL_PREFIX=$D/ompi PATH=$D/ompi/bin:$PATH LD_LIBRARY_PATH=$D/lib:${LD_LIBRARY_PATH:-}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_pml=ob1 OMPI_MCA_btl=self,vader,tcp OMPI_MCA_osc=pt2pt,sm,rdma OMPI_MCA_io=ompio
