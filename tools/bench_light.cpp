@@ -83,12 +83,13 @@ double cpu_seconds() {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int bench_main(int argc, char** argv) {
   keep_freed_memory();
   std::vector<double> plants{1000, 10000}, errors{0.01, 0.005, 0.002, 0.001}, plant_errors{0.05, 0.02};
   int threads = 0, sky = 46;
   double sun_e = 60, sun_a = 180;
   std::string csv = "bench/results/light.csv";
+  std::string grammar = std::string(CANOPY_SOURCE_DIR) + "/grammars/tomato.yaml";
   bool append = false;
   for (int i = 1; i < argc; ++i) try {
     if (!std::strcmp(argv[i], "--plants") && i + 1 < argc) plants = numbers(argv[++i]);
@@ -104,11 +105,13 @@ int main(int argc, char** argv) {
       }
       sun_e = s[0], sun_a = s[1];
     } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+    else if (!std::strcmp(argv[i], "--grammar") && i + 1 < argc) grammar = argv[++i];
     else if (!std::strcmp(argv[i], "--append")) append = true;
     else
       return help_or_refuse("bench_light", argv[i],
                             "usage: bench_light [--plants 1000,10000] [--threads T] [--errors 0.01,0.005,0.002,0.001]\n"
-                            "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--csv FILE] [--append]\n"
+                            "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--grammar FILE] [--csv FILE]\n"
+                            "                   [--append]\n"
                             "  the default stand of each size; per error: a direct beam and the sky's directions to that standard\n"
                             "  error of the stand's fractions (--errors) or of each plant's, root mean square (--plant-errors)\n");
   } catch (const std::exception&) {
@@ -136,7 +139,7 @@ int main(int argc, char** argv) {
   for (double n_d : plants) {
     const int n = static_cast<int>(n_d);
     GrowRequest req;
-    req.grammar = std::string(CANOPY_SOURCE_DIR) + "/grammars/tomato.yaml";
+    req.grammar = grammar;
     req.plants = default_stand_layout(n);
     const Stand stand = grow_stand(req);
     PrototypeLibrary lib;
@@ -207,4 +210,13 @@ int main(int argc, char** argv) {
   std::fclose(f);
   fmt::print("wrote {}\n", csv);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return bench_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_light: error: %s\n", e.what());
+    return 1;
+  }
 }
