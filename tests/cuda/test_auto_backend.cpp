@@ -41,10 +41,11 @@ TEST_CASE("--backend auto on a GPU: the files of --backend cuda, planned with th
   struct Case {
     const char* name;
     int rows, per_row;
-    double spacing;  // 0: the grammar entry's
+    double row_spacing, plant_spacing;  // 0: the grammar entry's
   };
-  // 300 plants of the default stand, and 12 dense plants with fruit among the leaves.
-  for (const Case& k : {Case{"default stand", 3, 100, 0}, Case{"dense", 3, 4, 0.3}}) {
+  // 300 plants of the default stand, and 12 dense plants with fruit among the leaves (6.7 plants
+  // per m2, where the default resolution clears every contact: tests/tools/test_cgal.sh).
+  for (const Case& k : {Case{"default stand", 3, 100, 0, 0}, Case{"dense", 3, 4, 0.5, 0.3}}) {
     INFO(k.name);
     nlohmann::ordered_json reports[2];
     const char* backends[2] = {"cuda", "auto"};
@@ -54,7 +55,7 @@ TEST_CASE("--backend auto on a GPU: the files of --backend cuda, planned with th
       o.out = (root / backends[b]).string();
       o.formats = "glb,obj,ply";
       o.rows.rows = k.rows, o.rows.per_row = k.per_row;
-      if (k.spacing > 0) o.rows.row_spacing = o.rows.plant_spacing = k.spacing;
+      if (k.row_spacing > 0) o.rows.row_spacing = k.row_spacing, o.rows.plant_spacing = k.plant_spacing;
       o.detect.backend = backends[b];
       o.resolve.progress = false;
       reports[b] = cli::run_stand(o, false).report;
