@@ -38,6 +38,7 @@ CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
   // goes back at the next round's start (update_organs) and when the runner ends.
   int device = 0;
   CANOPY_CUDA_CHECK(cudaGetDevice(&device));
+  device_ = device;
   CANOPY_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool_, device));
   std::uint64_t keep = std::numeric_limits<std::uint64_t>::max();
   CANOPY_CUDA_CHECK(cudaMemPoolSetAttribute(pool_, cudaMemPoolAttrReleaseThreshold, &keep));
@@ -85,6 +86,10 @@ void CudaAttemptRunner::print_stats() {
 
 CudaAttemptRunner::Lane& CudaAttemptRunner::lane(std::size_t i) {
   if (i >= kLanes) throw std::out_of_range(fmt::format("bulk attempts: lane {} of {}", i, kLanes));
+  // The current device is a thread's own: a lane's thread starts on device 0, and a process
+  // given another GPU (a rank under mpirun) would send the lane's streams, buffers and
+  // kernels there, to memory of the backend's device.
+  CANOPY_CUDA_CHECK(cudaSetDevice(device_));
   if (!lanes_[i]) lanes_[i] = std::make_unique<Lane>();
   return *lanes_[i];
 }

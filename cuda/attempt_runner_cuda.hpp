@@ -83,6 +83,7 @@ class CudaAttemptRunner : public AttemptRunner {
   Stats stats_;  // of update_organs
   cudaEvent_t origin_{};  // with CANOPY_BULK_STATS: before every lane's work
   cudaMemPool_t pool_{};  // the device's default pool, which the lanes' StreamBuffers draw on
+  int device_ = 0;        // the backend's device, made current on every lane's thread
   /// With CANOPY_BULK_STATS: what the device did, and its kernels' busy time (the destructor).
   void print_stats();
 };

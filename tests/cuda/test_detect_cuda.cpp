@@ -205,6 +205,34 @@ TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the
   }
 }
 
+TEST_CASE("resolution's attempts on every GPU of the machine: the CPU's turns") {
+  // A process given another GPU than the first (a rank under mpirun) plans on that GPU from the
+  // lanes' own threads, which start on device 0: each GPU must give the CPU's turns.
+  GrowRequest g;
+  g.grammar = source("grammars/tomato.yaml");
+  g.plants = default_stand_layout(40);
+  for (PlantPlacement& p : g.plants) p.x *= 0.7;
+  const Stand grown = grow_stand(g);
+  Stand a = grown;
+  auto cpu = make_cpu_backend();
+  ResolveRequest req;
+  req.bulk_attempts = true;
+  const ResolveResult ra = resolve(a, *cpu, req, cpu->detect(a, req.detect));
+  const std::size_t devices = cuda::query_devices().devices.size();
+  if (devices < 2) MESSAGE("one GPU: the lanes' threads and the backend share device 0 (the case of a second GPU is not exercised)");
+  for (std::size_t d = 0; d < devices; ++d) {
+    INFO("device " << d);
+    Stand b = grown;
+    auto gpu = cuda::make_cuda_backend(static_cast<int>(d));
+    const ResolveResult rb = resolve(b, *gpu, req, gpu->detect(b, req.detect));
+    CHECK(rb.planning == "device attempts, " + std::to_string(ResolveRequest{}.bulk_lanes) + " lanes");
+    CHECK(ra.contacts_after == rb.contacts_after);
+    CHECK(ra.organs_moved == rb.organs_moved);
+    CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
+  }
+  CANOPY_CUDA_CHECK(cudaSetDevice(0));
+}
+
 TEST_CASE("resolution's attempts on the device: the host search's turns at the organ level, with clearances, crowded") {
   // Asked for bulk attempts, the CUDA backend runs each level's attempts on the device
   // (BatchedScan + CudaAttemptRunner); the CPU backend searches candidate by candidate on the host.
