@@ -84,6 +84,8 @@ void AtomicFile::write_raw(const void* data, std::size_t n) {
     // Large blocks go straight to the kernel: no second copy through stdio's buffer.
     if (std::fflush(f_) != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
     const char* p = static_cast<const char*>(data);
+    const std::size_t block = n;
+    const off_t at = ::lseek(fileno(f_), 0, SEEK_CUR);
     while (n > 0) {
       const ssize_t w = ::write(fileno(f_), p, n);
       if (w < 0 && errno == EINTR) continue;
@@ -91,6 +93,9 @@ void AtomicFile::write_raw(const void* data, std::size_t n) {
       p += w;
       n -= static_cast<std::size_t>(w);
     }
+    // The block's write-back starts now, while the next is formatted: the sync before the folder
+    // is swapped in then finds little left to write (a hint only; the sync decides).
+    if (at >= 0) ::sync_file_range(fileno(f_), at, static_cast<off_t>(block), SYNC_FILE_RANGE_WRITE);
     return;
   }
   if (n && std::fwrite(data, 1, n, f_) != n)
