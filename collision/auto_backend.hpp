@@ -1,5 +1,5 @@
 #pragma once
-/// `--backend auto` (DESIGN.md "Command line"): the preferred backend whole, every member
+/// `--backend auto` (docs/design.md "Command line"): the preferred backend whole, every member
 /// forwarded (its runner of resolution's bulk attempts too, so `auto` on a GPU plans on the
 /// device exactly as `--backend cuda` does), and from its first BackendFailure on a fallback
 /// backend made then (the CPU's), said once on stderr. The answers are the same either way: both

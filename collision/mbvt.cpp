@@ -260,9 +260,8 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   make_meshes(s, lib);
   m.obbs.resize(n);
   // Where the plants' organs follow one another and cover the stand (a grown stand's do), each
-  // plant's OBBs are made just before its clusters read them, while they are in the caches
-  // (the build at 1,000 plants on one thread about 2 ms less than all OBBs first, thirty-fifth
-  // session); otherwise all OBBs first.
+  // plant's OBBs are made just before its clusters read them, while they are in the caches;
+  // otherwise all OBBs first.
   const std::size_t np = m.plants.size();
   bool tiled = true;
   for (std::size_t p = 0, next = 0; tiled && p < np; next += s.plants[p].organ_count, ++p) tiled = s.plants[p].first_organ == next;

@@ -1,4 +1,4 @@
-// canopy light's speed against its error: on the default stand (DESIGN.md) of each size, the
+// canopy light's speed against its error: on the default stand (docs/design.md) of each size, the
 // scene's build time and memory, rays per second, and the time for a direct beam plus the sky's
 // directions to each standard error asked of the stand's fractions and of each plant's. Prints a
 // table, writes CSV (one row per run; bench/run.sh adds commit, date and machine).

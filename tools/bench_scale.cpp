@@ -1,4 +1,4 @@
-// Scaling of tiled runs over MPI: the default stand (DESIGN.md: rows of 100 plants, 1.0 m x 0.4 m,
+// Scaling of tiled runs over MPI: the default stand (docs/design.md: rows of 100 plants, 1.0 m x 0.4 m,
 // random rotation, 0.02 m jitter, seed 1) grown, detected to the exact level and resolved by
 // `mpirun -np P bench_scale`, exactly as `canopy stand` does under mpirun but without the files.
 // Per size: plants per rank, the largest tile with its halo, seconds per stage (rank 0's; the

@@ -1,6 +1,6 @@
 // An end-to-end check that does not use canopy's predicates: CGAL's exact predicates on the
 // triangles of an exported stand.obj, against the exact rows of contacts.csv. Organ pairs that
-// disagree are allowed only where the organs come within 1 um of each other (DESIGN.md: closer
+// disagree are allowed only where the organs come within 1 um of each other (docs/design.md: closer
 // than that either answer is allowed; the OBJ itself is rounded to 0.1 um).
 // Every organ kind is checked unless --collide narrows them (to the kinds a run was narrowed to).
 // Usage: check_cgal DIR [--collide KINDS] [--contacts FILE]   (FILE in DIR, default contacts.csv;
