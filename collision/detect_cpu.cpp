@@ -12,6 +12,7 @@
 #include "collision/mbvt_fit.hpp"
 #include "collision/obb_lanes.hpp"
 #include "collision/organ_rows.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
@@ -19,7 +20,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -27,8 +27,6 @@
 
 namespace canopy {
 namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 struct Work {
   std::int32_t p, q;  // plants, p <= q
@@ -132,7 +130,7 @@ class CpuBackend : public DetectionBackend {
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
-    const double t = now();
+    const double t = now_seconds();
     lib_ = std::make_unique<PrototypeLibrary>();
     // The last detection's tree is built anew in place: its arrays' memory kept (no page
     // faults for a stand no larger than the last); one that failed half-way is dropped.
@@ -143,16 +141,16 @@ class CpuBackend : public DetectionBackend {
       tree_.reset();
       throw;
     }
-    return run(s, req, now() - t);
+    return run(s, req, now_seconds() - t);
   }
 
   Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
     check_request(req);
     if (!tree_ || tree_->obbs.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
-    const double t = now();
+    const double t = now_seconds();
     refit_mbvt(*tree_, s, *lib_, moved, req.threads);
-    return run(s, req, now() - t);
+    return run(s, req, now_seconds() - t);
   }
 
   /// None: on the host the candidate-by-candidate search, which stops at the first touching
@@ -179,7 +177,7 @@ class CpuBackend : public DetectionBackend {
     out.build_s = build_s;
     const Mbvt& m = *tree_;
     PrototypeLibrary& lib = *lib_;
-    double t = now();
+    double t = now_seconds();
     const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
 
     // Plant level: pairs of plants whose bounds meet, and each plant with itself; counted first
@@ -192,7 +190,7 @@ class CpuBackend : public DetectionBackend {
     work.clear();
     for (const auto& [p, q] : plant_level(s, m, plant_count, req.active_plants)) work.push_back({p, q});
     out.counts[0] = plant_count;
-    out.seconds[0] = now() - t;
+    out.seconds[0] = now_seconds() - t;
     if (req.level == ContactLevel::plant) {
       for (const Work& w : work) out.pairs.push_back({-1, -1, w.p, w.q, -1, -1});
       std::sort(out.pairs.begin(), out.pairs.end());
@@ -202,7 +200,7 @@ class CpuBackend : public DetectionBackend {
     // Leaf and organ levels, plant pair by plant pair. Told which organs moved, cluster pairs of
     // which neither cluster holds one are passed over, and organ pairs of two unmoved organs are
     // left out (Collector::moved): the caller keeps its answer for those.
-    t = now();
+    t = now_seconds();
     std::vector<std::uint8_t> cluster_moved;
     if (req.moved_organs) {
       cluster_moved.assign(m.clusters.size(), 0);
@@ -299,7 +297,7 @@ class CpuBackend : public DetectionBackend {
       leaf_count.within += c.leaves.within;
     }
     out.counts[1] = leaf_count;
-    out.seconds[1] = now() - t;
+    out.seconds[1] = now_seconds() - t;
     if (req.level == ContactLevel::leaf) {
       out.pairs = std::move(leaf);
       std::sort(out.pairs.begin(), out.pairs.end());
@@ -317,7 +315,7 @@ class CpuBackend : public DetectionBackend {
 
     // Exact level, over the organ pairs in the order the pass found them: only the pairs that
     // touch are sorted (fewer than half of them on the default stand).
-    t = now();
+    t = now_seconds();
     std::vector<std::uint8_t>& hit = hit_;
     hit.assign(organ.size(), 0);
     // Every organ's mesh was made with the tree (fit_mbvt, before threads share the library).
@@ -351,7 +349,7 @@ class CpuBackend : public DetectionBackend {
     out.pairs = keep_hits(organ, hit);
     std::sort(out.pairs.begin(), out.pairs.end());
     out.counts[3] = count_pairs(out.pairs);
-    out.seconds[3] = now() - t;
+    out.seconds[3] = now_seconds() - t;
     return out;
   }
 };

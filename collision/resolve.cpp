@@ -5,6 +5,7 @@
 #include "collision/neighbourhood.hpp"
 #include "collision/plan_round.hpp"
 #include "collision/turn_search.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/first_touch.hpp"
 
@@ -13,7 +14,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -22,14 +22,8 @@
 #include <stdexcept>
 
 namespace canopy {
-namespace {
-
-double now() { return PhaseTimes::now(); }
-
-}  // namespace
-
 ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest& req, const Contacts& initial) {
-  const double t0 = now();
+  const double t0 = now_seconds();
   PhaseTimes times;
   const ResolveConfig& cfg = req.config;
   cfg.check();
@@ -97,11 +91,11 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
       out.stop = fmt::format("no progress in {} rounds (turns only trade contacts that cannot all be cleared)", cfg.stall_rounds);
       break;
     }
-    if (req.progress) req.progress({round, left, now() - t0, left});
+    if (req.progress) req.progress({round, left, now_seconds() - t0, left});
     ResolveRound rr;
     rr.round = round;
     rr.contacts = left;
-    double t = now();
+    double t = now_seconds();
     times.lap(PhaseTimes::merge);  // the loop's own checks
     touching.build(s.organ_count(), contacts);
     // The runner of bulk attempts, if any (asked each round: it holds the stand as detected last),
@@ -114,7 +108,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     PlanRequest preq;
     preq.threads = threads;
     if (req.progress)
-      preq.planning = [&](std::size_t pending) { req.progress({round, left, now() - t0, pending}); };
+      preq.planning = [&](std::size_t pending) { req.progress({round, left, now_seconds() - t0, pending}); };
     preq.plan_plants = part ? &part->plan : nullptr;
     preq.runner = runner;
     if (const std::size_t lanes = runner ? std::min(req.bulk_lanes, runner->lanes()) : 1; lanes > 1 && !lane_threads)
@@ -140,7 +134,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     // with the turns (an angle below 0, no turn) so that every process plans with it.
     for (std::uint32_t k : spread.unbent) plan.turns.push_back(Turn{k, Mat3d{}, -1});
     times.lap(PhaseTimes::apply);
-    rr.plan_s = now() - t;
+    rr.plan_s = now_seconds() - t;
     // This process's own turns and marks (the halo's come from their owners below).
     const auto counts = total({static_cast<std::int64_t>(plan.turns.size()),
                                static_cast<std::int64_t>(std::count_if(plan.turns.begin(), plan.turns.end(),
@@ -181,14 +175,14 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     for (std::size_t i = 0; i < moved.size(); ++i) fit(moved[i]);
     near.update(s, boxes, active, threads);
     times.lap(PhaseTimes::refit);
-    t = now();
+    t = now_seconds();
     dreq.active_plants = &active;
     dreq.moved_organs = &moved_now;
     Contacts again = backend.redetect(s, dreq, moved);
     times.lap(PhaseTimes::redetect);
     dreq.active_plants = nullptr;
     dreq.moved_organs = nullptr;
-    rr.detect_s = now() - t;
+    rr.detect_s = now_seconds() - t;
     // Pairs with a moved organ take the new answer; the others keep theirs (a backend may report
     // them again: the same pair twice is one contact).
     std::erase_if(contacts, [&](const Contact& c) {
@@ -261,7 +255,7 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
   out.bends = static_cast<std::size_t>(bent[0]), out.bend_joints = static_cast<std::size_t>(bent[1]);
   out.kinks = static_cast<std::size_t>(bent[2]), out.unbent = static_cast<std::size_t>(bent[3]);
   out.joint_bytes = Joints::bytes_for(static_cast<std::size_t>(sums[2]), static_cast<std::size_t>(sums[4]));
-  out.seconds = now() - t0;
+  out.seconds = now_seconds() - t0;
   return out;
 }
 
