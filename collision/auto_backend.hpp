@@ -8,8 +8,9 @@
 /// device attempts failed is answered on the host (HostAttemptRunner), later rounds by the
 /// fallback backend (the CPU's host search).
 ///
-/// DetectionBackend and AttemptRunner have no member with a default: a member added to either
-/// fails to compile here until this wrapper says what it does with it.
+/// DetectionBackend, AttemptSource and AttemptRunner have no member with a default: a member
+/// added to any of them fails to compile here until this wrapper says what it does with it.
+#include "collision/attempt_source.hpp"
 #include "collision/backend.hpp"
 
 #include <functional>

@@ -153,9 +153,6 @@ class CpuBackend : public DetectionBackend {
     return run(s, req, now_seconds() - t);
   }
 
-  /// None: on the host the candidate-by-candidate search, which stops at the first touching
-  /// pair, is faster than answering every attempt of a level in bulk.
-  AttemptRunner* attempt_runner(const Stand&) override { return nullptr; }
 
  private:
   std::optional<Mbvt> tree_;

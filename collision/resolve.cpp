@@ -100,7 +100,8 @@ ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest&
     touching.build(s.organ_count(), contacts);
     // The runner of bulk attempts, if any (asked each round: it holds the stand as detected last),
     // told which organs moved since it last looked.
-    AttemptRunner* runner = req.attempts ? req.attempts : req.bulk_attempts ? backend.attempt_runner(s) : nullptr;
+    AttemptSource* source = req.bulk_attempts ? attempt_source(backend) : nullptr;
+    AttemptRunner* runner = req.attempts ? req.attempts : source ? source->attempt_runner(s) : nullptr;
     if (runner) runner->update_organs(s, boxes, changed, runner != told), told = runner;
     // The witnesses serve the host's attempts, and a bulk scan's runner tests them first.
     if (cfg.level == ContactLevel::exact) touching.find_witnesses(s, lib, search.clearance, threads);

@@ -6,6 +6,7 @@
 /// its turns against the poses at the start of the round (in parallel, the same for any thread
 /// count), then applies them together; several contacts on one organ make one combined turn.
 #include "collision/attempt_batch.hpp"
+#include "collision/attempt_source.hpp"
 #include "collision/bend_spread.hpp"
 #include "collision/backend.hpp"
 #include "collision/joints.hpp"
@@ -55,10 +56,11 @@ struct ResolveRequest {
   /// Runs each level's turn-search attempts in bulk (collision/batched_scan.hpp) through this
   /// runner when set. The turns are the same either way.
   AttemptRunner* attempts = nullptr;
-  /// True (and `attempts` null): through the backend's runner where it has one (CUDA: on the
-  /// device, in lanes); the CPU backend has none and searches candidate by candidate. False: the
-  /// host's search on any backend. On a 16-core GPU machine the device's lanes resolve a
-  /// 10,000-plant stand faster than the host's search (bench_resolve: about 2x).
+  /// True (and `attempts` null): through the backend's runner where it has one (its
+  /// AttemptSource, collision/attempt_source.hpp; CUDA: on the device, in lanes); the CPU backend
+  /// has none and searches candidate by candidate. False: the host's search on any backend. On a
+  /// 16-core GPU machine the device's lanes resolve a 10,000-plant stand faster than the host's
+  /// search (bench_resolve: about 2x).
   bool bulk_attempts = true;
   /// Batches of contacts planned at once through the runner, each on a lane of its own (at most
   /// the runner's lanes): one lane's host work overlaps another's device work. The turns are the

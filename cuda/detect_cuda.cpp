@@ -1,5 +1,6 @@
 #include "cuda/detect_cuda.hpp"
 
+#include "collision/attempt_source.hpp"
 #include "collision/broad_phase.hpp"
 #include "cuda/attempt_runner_cuda.hpp"
 #include "cuda/detect_kernels.hpp"
@@ -29,7 +30,7 @@ constexpr std::size_t kOrganPairBytes = 2 * sizeof(std::uint64_t) + 1 + sizeof(C
 /// item twice (two sorts), its record.
 constexpr std::size_t kLeafPairBytes = sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t)) + sizeof(Contact);
 
-class CudaBackend : public DetectionBackend {
+class CudaBackend : public DetectionBackend, public AttemptSource {
  public:
   explicit CudaBackend(int device) : device_(device) {
     const DeviceReport r = query_devices();
