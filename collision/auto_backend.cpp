@@ -78,7 +78,7 @@ class FallbackRunner : public AttemptRunner {
   std::optional<HostAttemptRunner> host_;
 };
 
-class AutoBackend : public DetectionBackend {
+class AutoBackend : public DetectionBackend, public AttemptSource {
  public:
   AutoBackend(std::unique_ptr<DetectionBackend> preferred, BackendMaker fallback)
       : first_(std::move(preferred)), make_fallback_(std::move(fallback)), runner_([this](const std::string& why) { fall_back(why); }) {}
@@ -118,7 +118,8 @@ class AutoBackend : public DetectionBackend {
   AttemptRunner* attempt_runner(const Stand& s) override {
     if (!second_) {
       try {
-        if (AttemptRunner* first = first_->attempt_runner(s)) {
+        AttemptSource* source = attempt_source(*first_);
+        if (AttemptRunner* first = source ? source->attempt_runner(s) : nullptr) {
           runner_.bind(first);
           return &runner_;
         }
@@ -127,7 +128,8 @@ class AutoBackend : public DetectionBackend {
         fall_back(e.what());
       }
     }
-    return second_has_tree_ ? second_->attempt_runner(s) : nullptr;
+    AttemptSource* source = second_has_tree_ ? attempt_source(*second_) : nullptr;
+    return source ? source->attempt_runner(s) : nullptr;
   }
 
  private:

@@ -1,5 +1,5 @@
 #pragma once
-/// `--backend auto` (DESIGN.md "Command line"): the preferred backend whole, every member
+/// `--backend auto` (docs/design.md "Command line"): the preferred backend whole, every member
 /// forwarded (its runner of resolution's bulk attempts too, so `auto` on a GPU plans on the
 /// device exactly as `--backend cuda` does), and from its first BackendFailure on a fallback
 /// backend made then (the CPU's), said once on stderr. The answers are the same either way: both
@@ -8,8 +8,9 @@
 /// device attempts failed is answered on the host (HostAttemptRunner), later rounds by the
 /// fallback backend (the CPU's host search).
 ///
-/// DetectionBackend and AttemptRunner have no member with a default: a member added to either
-/// fails to compile here until this wrapper says what it does with it.
+/// DetectionBackend, AttemptSource and AttemptRunner have no member with a default: a member
+/// added to any of them fails to compile here until this wrapper says what it does with it.
+#include "collision/attempt_source.hpp"
 #include "collision/backend.hpp"
 
 #include <functional>

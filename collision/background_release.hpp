@@ -1,7 +1,7 @@
 #pragma once
 /// Memory a finished resolution hands over to be let go on a thread of its own: at 10,000 plants
-/// its candidate pools hold hundreds of thousands of lists, whose freeing took 0.04-0.08 s of a
-/// 1 s resolution on the 16-core H100 machine, after every turn was made. The caller goes on
+/// its candidate pools hold hundreds of thousands of lists, whose freeing is a noticeable share
+/// of a GPU resolution (bench_resolve: about 6 %), after every turn was made. The caller goes on
 /// (exporting, detecting again) while they go. One such thread at a time per process: a new
 /// hand-over first waits for the last one, and so does the process's exit.
 #include <functional>

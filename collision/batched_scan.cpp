@@ -1,10 +1,11 @@
 #include "collision/batched_scan.hpp"
 
+#include "geometry/clock.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <numbers>
@@ -22,13 +23,11 @@ constexpr std::size_t kParallelFrom = 2048;
 
 using Candidate = TurnSearch::Candidate;
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
 /// Adds the seconds of its scope to `sum` (CANOPY_BULK_STATS).
 struct Timed {
   double& sum;
-  double start = now();
-  ~Timed() { sum += now() - start; }
+  double start = now_seconds();
+  ~Timed() { sum += now_seconds() - start; }
 };
 
 }  // namespace

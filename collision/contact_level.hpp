@@ -1,5 +1,5 @@
 #pragma once
-/// Contact levels and detection backends (DESIGN.md "Contact levels", "Command line").
+/// Contact levels and detection backends (docs/design.md "Contact levels", "Command line").
 #include <array>
 #include <optional>
 #include <string_view>

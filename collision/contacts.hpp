@@ -1,5 +1,5 @@
 #pragma once
-/// Contacts (DESIGN.md "Contact levels", "contacts.csv"): organ pairs at the organ and exact
+/// Contacts (docs/design.md "Contact levels", "contacts.csv"): organ pairs at the organ and exact
 /// levels; plant pairs and cluster (compound-leaf) pairs, with organ ids -1, at the plant and
 /// leaf levels. Lists are sorted, so they are the same on every run, thread count and backend.
 #include "collision/contact_level.hpp"
@@ -64,7 +64,7 @@ CANOPY_HD inline bool parents_adjacent(std::int32_t parent_a, std::int32_t ia, s
 }
 
 /// Organs joined in the structure tree (parent and child, or two children of one parent, roots
-/// of one plant included) touch by construction and are never a contact (DESIGN.md "Adjacency").
+/// of one plant included) touch by construction and are never a contact (docs/design.md "Adjacency").
 CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const OrganRecord& b, std::int32_t ib) {
   return a.plant == b.plant && parents_adjacent(a.parent, ia, b.parent, ib);
 }

@@ -12,6 +12,7 @@
 #include "collision/mbvt_fit.hpp"
 #include "collision/obb_lanes.hpp"
 #include "collision/organ_rows.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
@@ -19,7 +20,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -27,8 +27,6 @@
 
 namespace canopy {
 namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 struct Work {
   std::int32_t p, q;  // plants, p <= q
@@ -44,8 +42,8 @@ struct Collector {
   /// Organ pairs waiting for their OBB test, 8 at a time (collision/obb_lanes.hpp), in two
   /// batches: a full batch is tested only once the next one is full too, so the OBBs it asked
   /// for when its pairs came have had eight pairs' time more to arrive (they are the tree's,
-  /// which stay in place until the test). At 1,000 plants, one thread (thirty-ninth session):
-  /// the first loads of the OBBs were half of the test's time when the batch was tested at once.
+  /// which stay in place until the test). Tested at once, a batch spent about half of its time
+  /// on the first loads of its OBBs (bench_detect, one thread).
   static constexpr int kBatches = 2;
   ObbBatch batch[kBatches];
   int filling = 0;  // the batch pairs are added to; the others are full or empty
@@ -79,15 +77,15 @@ struct Collector {
 
 /// `known_free`: the pair is known not to be adjacent (a cluster's own pair that its free_after
 /// mask let through), so the parents are left unread. Inlined where the pass finds its pairs:
-/// called, it cost the pass about 4 % at 1,000 plants, one thread (thirty-ninth session).
+/// a call costs the pass time (bench_detect: about 4 %, one thread).
 [[gnu::always_inline]] inline void organ_pair(const Mbvt& m, std::int32_t a, std::int32_t b, Vec3f offset_ab, Collector& out,
                                               std::int32_t plant_a, std::int32_t plant_b, bool known_free = false) {
   // offset_ab moves b into a's plant frame when a is the lower organ; callers pass organs of
   // one plant pair with the lower plant's organ first.
   if (out.moved && !(*out.moved)[static_cast<std::size_t>(a)] && !(*out.moved)[static_cast<std::size_t>(b)]) return;
   // Organs of two plants are never adjacent; of one plant, their parents decide (the tree's
-  // dense copy: a quarter of the records' bytes, and 0.8-1.0 ms less of the pass at 1,000
-  // plants than the records, prefetched or not, thirty-fifth session).
+  // dense copy: a quarter of the records' bytes, so a faster pass than reading the records,
+  // prefetched or not).
   if (plant_a == plant_b && !known_free &&
       parents_adjacent(m.parent_of[static_cast<std::size_t>(a)], a, m.parent_of[static_cast<std::size_t>(b)], b))
     return;
@@ -96,11 +94,9 @@ struct Collector {
 
 /// Asks for plant q's boxes, organ ids and lanes ahead of a work item that needs them (not its
 /// organs' parents, which the pass reads for few pairs):
-/// the pass waits on memory more than it computes (bench/results/README.md, thirty-first
-/// session), and the plant pairs come in an order that a prefetch two items ahead covers. Into
-/// the second-level cache, not the first: a plant's arrays (about 33 kB at the default level
-/// of detail) would push the item at hand's out of the first (measured: pass about 2 ms less at
-/// 1,000 plants, thirty-third session).
+/// the pass waits on memory more than it computes, and the plant pairs come in an order that a
+/// prefetch two items ahead covers. Into the second-level cache, not the first: a plant's arrays
+/// (about 33 kB at the default level of detail) would push the item at hand's out of the first.
 void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   const PlantRecord& pr = s.plants[static_cast<std::size_t>(q)];
   const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
@@ -134,7 +130,7 @@ class CpuBackend : public DetectionBackend {
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
-    const double t = now();
+    const double t = now_seconds();
     lib_ = std::make_unique<PrototypeLibrary>();
     // The last detection's tree is built anew in place: its arrays' memory kept (no page
     // faults for a stand no larger than the last); one that failed half-way is dropped.
@@ -145,32 +141,28 @@ class CpuBackend : public DetectionBackend {
       tree_.reset();
       throw;
     }
-    return run(s, req, now() - t);
+    return run(s, req, now_seconds() - t);
   }
 
   Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
     check_request(req);
     if (!tree_ || tree_->obbs.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
-    const double t = now();
+    const double t = now_seconds();
     refit_mbvt(*tree_, s, *lib_, moved, req.threads);
-    return run(s, req, now() - t);
+    return run(s, req, now_seconds() - t);
   }
 
-  /// None: on the host the candidate-by-candidate search, which stops at the first touching
-  /// pair, is faster than answering every attempt of a level in bulk.
-  AttemptRunner* attempt_runner(const Stand&) override { return nullptr; }
 
  private:
   std::optional<Mbvt> tree_;
   std::unique_ptr<PrototypeLibrary> lib_;
   std::vector<ExactScratch> scratch_;  // per thread
   // Kept from detection to detection, emptied at the start of each, so that their memory is
-  // warm: grown afresh every time (a collector's organ list to 18,141 pairs at 1,000 plants),
-  // they cost page faults and regrowth copies wherever the heap had handed its memory back
-  // (a harness holding nothing else: 27.4 -> 23.8 ms at 1,000 plants on one thread;
-  // bench_detect, whose heap FCL keeps large, unchanged; thirty-seventh session). The tests'
-  // backends reused across stands, levels and thread counts fail if one is left unemptied.
+  // warm: grown afresh every time (a collector's organ list to tens of thousands of pairs),
+  // they cost page faults and regrowth copies wherever the heap had handed its memory back (a
+  // process holding little else). The tests' backends reused across stands, levels and thread
+  // counts fail if one is left unemptied.
   std::vector<Work> work_;
   std::vector<Collector> per_;  // per thread
   std::vector<Contact> organ_;  // every thread's organ pairs
@@ -182,7 +174,7 @@ class CpuBackend : public DetectionBackend {
     out.build_s = build_s;
     const Mbvt& m = *tree_;
     PrototypeLibrary& lib = *lib_;
-    double t = now();
+    double t = now_seconds();
     const int threads = req.threads > 0 ? req.threads : omp_get_max_threads();
 
     // Plant level: pairs of plants whose bounds meet, and each plant with itself; counted first
@@ -195,7 +187,7 @@ class CpuBackend : public DetectionBackend {
     work.clear();
     for (const auto& [p, q] : plant_level(s, m, plant_count, req.active_plants)) work.push_back({p, q});
     out.counts[0] = plant_count;
-    out.seconds[0] = now() - t;
+    out.seconds[0] = now_seconds() - t;
     if (req.level == ContactLevel::plant) {
       for (const Work& w : work) out.pairs.push_back({-1, -1, w.p, w.q, -1, -1});
       std::sort(out.pairs.begin(), out.pairs.end());
@@ -205,7 +197,7 @@ class CpuBackend : public DetectionBackend {
     // Leaf and organ levels, plant pair by plant pair. Told which organs moved, cluster pairs of
     // which neither cluster holds one are passed over, and organ pairs of two unmoved organs are
     // left out (Collector::moved): the caller keeps its answer for those.
-    t = now();
+    t = now_seconds();
     std::vector<std::uint8_t> cluster_moved;
     if (req.moved_organs) {
       cluster_moved.assign(m.clusters.size(), 0);
@@ -302,7 +294,7 @@ class CpuBackend : public DetectionBackend {
       leaf_count.within += c.leaves.within;
     }
     out.counts[1] = leaf_count;
-    out.seconds[1] = now() - t;
+    out.seconds[1] = now_seconds() - t;
     if (req.level == ContactLevel::leaf) {
       out.pairs = std::move(leaf);
       std::sort(out.pairs.begin(), out.pairs.end());
@@ -319,9 +311,8 @@ class CpuBackend : public DetectionBackend {
     }
 
     // Exact level, over the organ pairs in the order the pass found them: only the pairs that
-    // touch are sorted (at 1,000 plants 7,458 of 18,141: 0.3-0.8 ms less than sorting all first,
-    // thirty-sixth session).
-    t = now();
+    // touch are sorted (fewer than half of them on the default stand).
+    t = now_seconds();
     std::vector<std::uint8_t>& hit = hit_;
     hit.assign(organ.size(), 0);
     // Every organ's mesh was made with the tree (fit_mbvt, before threads share the library).
@@ -339,9 +330,8 @@ class CpuBackend : public DetectionBackend {
       for (std::size_t i = 0; i < organ.size(); ++i) {
         // The records and transforms of the pair twelve on (both lines a 48-byte transform may
         // span): the pass before has pushed them out of the caches, and a pair's first organs
-        // are too far apart for the hardware to see a stream (at 1,000 plants, thirty-fourth
-        // session: b's alone 4 pairs on -> 12 pairs on, both lines, 0.1-0.2 ms less; a's too,
-        // 1.1 ms less).
+        // are too far apart for the hardware to see a stream. Both organs' lines, twelve pairs
+        // ahead: the distance bench_detect measured best.
         if (i + 12 < organ.size())
           for (const std::int32_t id : {organ[i + 12].organ_a, organ[i + 12].organ_b}) {
             const auto k = static_cast<std::size_t>(id);
@@ -356,7 +346,7 @@ class CpuBackend : public DetectionBackend {
     out.pairs = keep_hits(organ, hit);
     std::sort(out.pairs.begin(), out.pairs.end());
     out.counts[3] = count_pairs(out.pairs);
-    out.seconds[3] = now() - t;
+    out.seconds[3] = now_seconds() - t;
     return out;
   }
 };

@@ -326,8 +326,8 @@ namespace {
   // No surfaces meet: one organ may still lie wholly inside the other's solid, which its vertex
   // 0 tells. A vertex beyond the solid's OBB by the margin lies outside it (beyond_obb's
   // reasoning, the point taken as a triangle of three equal corners), so the solid's vertices
-  // are made only for a vertex within (thirty-ninth session: making them for every pair whose
-  // surfaces miss was about 1.5 % of the query at 1,000 plants).
+  // are made only for a vertex within (making them for every pair whose surfaces miss costs the
+  // query time: bench_detect, about 1.5 %).
   const auto inside = [margin](const PosedOrgan& solid, std::size_t solid_tris, const PosedOrgan& other) {
     const Vec3f p = other.first_vertex();
     const Vec3f point[3] = {p, p, p};

@@ -85,8 +85,8 @@ struct PosedOrgan {
   mutable bool v_made_ = false;
   mutable std::vector<TrianglePlane> plane_;
   /// plane_[i] was made for this pose where plane_stamp_[i] == stamp_: each pose takes a new
-  /// stamp instead of clearing a flag per triangle (a call to memset per pose: about 0.8 % of a
-  /// profile's samples at 1,000 plants, forty-first session).
+  /// stamp instead of clearing a flag per triangle (a call to memset per pose shows in profiles
+  /// of bench_detect: about 0.8 % of the samples).
   mutable std::vector<std::uint32_t> plane_stamp_;
   std::uint32_t stamp_ = 0;
 };
@@ -102,9 +102,8 @@ class PoseCache {
   static constexpr std::size_t kSearchSets = 64;
   /// Detection's: its organ pairs come in the pass's order, where the lower organ repeats over a
   /// row of pairs and the higher seldom comes back soon, so two poses find nearly as many as
-  /// 128 (19,965 poses made against 18,534 at 1,000 plants) while their memory stays in the
-  /// first-level cache: the exact stage 0.89-0.93 of its time with 128 at 200 and 1,000
-  /// plants, the query 0.95-0.97 (forty-second session, one thread, both orders in one process).
+  /// 128 while their memory stays in the first-level cache (bench_detect: the exact stage about
+  /// 9 % faster than with 128).
   static constexpr std::size_t kDetectionSets = 1;
   /// `sets` sets of two poses each (at least one; rounded up to a power of two, so that a set is
   /// found by a mask rather than a division on every lookup).

@@ -1,5 +1,5 @@
 #pragma once
-/// Which organ pairs of one cluster are not adjacent (DESIGN.md "Adjacency": a parent and its
+/// Which organ pairs of one cluster are not adjacent (docs/design.md "Adjacency": a parent and its
 /// child, and two children of one parent, touch by construction), as a bit mask per organ, made
 /// with the tree's shape (it depends on the stand's structure alone, never on poses): the CPU
 /// pass then offers a cluster's own pairs to the OBB test without reading their organ records.

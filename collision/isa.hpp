@@ -2,10 +2,9 @@
 /// Host code built twice: for the build's own target (-march, x86-64-v3 by default) and for
 /// x86-64-v4 (AVX-512), the second chosen at run time where the CPU has it. Only the exact
 /// stage's two hottest functions are (collision/exact.cpp: posing an organ, testing two posed
-/// organs): on this project's Zen 5 machine their x86-64-v4 code makes the exact stage 0.4-0.6 ms
-/// faster at 1,000 plants (7.99-8.13 -> 7.39-7.64 ms, one thread; CPU resolution within the
-/// noise), while the whole library built for x86-64-v4 makes the leaf and organ pass 1.5 ms
-/// slower (bench/results/README.md, thirty-sixth session). Both builds do the same operations in the same order (-ffp-contract=off, no
+/// organs): on a Zen 5 machine their x86-64-v4 code makes the exact stage faster (bench_detect:
+/// about 7 %), while the whole library built for x86-64-v4 makes the leaf and organ pass slower.
+/// Both builds do the same operations in the same order (-ffp-contract=off, no
 /// approximate instructions), so their answers are the same bit for bit:
 /// tests/collision/test_exact_isa.cpp compares them. Host only: nvcc never reads this file.
 

@@ -5,7 +5,7 @@
 /// grown frame, so the rigid motion that takes grown poses to current ones is
 ///   D_k = D_parent(k) o J_k,   J_k = rotation Q_k about j_k  (identity where k never turned),
 /// and the current transform is T_k = D_k o G_k (G the grown transform). The joint angle |Q_k|
-/// is what the joint limit bounds (DESIGN.md "Organs": at most joint_limit degrees from the
+/// is what the joint limit bounds (docs/design.md "Organs": at most joint_limit degrees from the
 /// grown orientation). Organs under no turned joint keep their grown transform bit for bit.
 #include "geometry/first_touch.hpp"
 #include "geometry/motion.hpp"

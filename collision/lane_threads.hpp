@@ -3,7 +3,8 @@
 /// for a whole resolution: each keeps its OpenMP team (the threads of a team are made when its
 /// first parallel region starts) and its candidates' memory from pass to pass and round to
 /// round (resolution then hands that memory to collision/background_release.hpp). Made afresh
-/// for every pass, lanes cost a 1,000-plant resolution on the H100 machine a third of its time.
+/// for every pass, lanes cost a GPU resolution much of its time (bench_resolve at 1,000 plants:
+/// about a third).
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>

@@ -12,9 +12,9 @@
 
 namespace canopy {
 
-/// Organs a side at or below which two nodes make one block. Measured on the default
-/// 1,000-plant stand (bench/results/README.md, thirty-first session): the flat organ-box tests of
-/// a whole 12-organ compound leaf against another cost less than descending to 4-organ leaves.
+/// Organs a side at or below which two nodes make one block: the flat organ-box tests of a whole
+/// 12-organ compound leaf against another cost less than descending to 4-organ leaves
+/// (bench_detect).
 inline constexpr std::uint32_t kBlockOrgans = 16;
 
 /// Calls on_block(node_a, node_b) for each pair of nodes, of at most kBlockOrgans organs a side

@@ -21,7 +21,7 @@ namespace canopy {
 
 /// Organ kinds that take part in detection: every kind by default, fruit and flowers included,
 /// so that a resolved stand is penetration-free for every organ in its files; `--collide`
-/// narrows them (DESIGN.md "Organ kinds by role").
+/// narrows them (docs/design.md "Organ kinds by role").
 using KindMask = std::array<bool, 7>;
 KindMask default_collide_kinds();
 /// Parses "leaflet,fruit,..." (or "all"); throws std::invalid_argument naming a bad kind.
@@ -32,9 +32,9 @@ struct MbvtConfig {
   float clearance = 0;     // every bound is inflated by it
   int leaf_chunk = 4;      // organs per LCD tree leaf
   /// Organs per cluster outside compound leaves: the most that still make one block of the pass
-  /// (kBlockOrgans, collision/lcd_descent.hpp). At 1,000 plants, one thread (thirty-sixth
-  /// session): the pass 0.6-0.8 ms less than with 8 (half as many stem clusters, so fewer
-  /// cluster pairs for a few more own pairs), 12 between, 20 and more slower (they descend).
+  /// (kBlockOrgans, collision/lcd_descent.hpp). Faster than 8 in bench_detect (half as many stem
+  /// clusters, so fewer cluster pairs for a few more own pairs), 20 and more slower (they
+  /// descend).
   int stem_cluster = 16;
 };
 

@@ -4,9 +4,9 @@
 /// multiply-add: -ffp-contract=off; sqrtf and the division are correctly rounded in lanes too),
 /// so each OBB is the scalar one bit for bit, as the CUDA backend, which fits with make_obb
 /// itself, must see it (tests/collision/test_obb_fit_lanes.cpp). A lane with a column of zero or
-/// undefined length (make_obb's completion of the frame) is made by make_obb itself. Measured
-/// on the default 1,000-plant stand (bench/results/README.md, thirty-fifth session): make_obb
-/// one organ at a time was about a quarter of the build. Host only: nvcc never reads this file.
+/// undefined length (make_obb's completion of the frame) is made by make_obb itself. make_obb
+/// one organ at a time is a large share of the build (bench_detect: about a quarter). Host only:
+/// nvcc never reads this file.
 #include "collision/lanes8.hpp"
 #include "geometry/obb.hpp"
 

@@ -4,10 +4,9 @@
 /// tests run together in lanes of 8 floats (GCC vector extensions), every separating axis
 /// computed for every lane and the answers joined at the end. Per lane these are obb_overlap's
 /// very operations in its very order (no fused multiply-add: -ffp-contract=off), so the answer
-/// is the same bit for bit; only the early exits are gone. Measured on the default 1,000-plant
-/// stand (bench/results/README.md, thirty-second session): one OBB test at a time cost about
-/// 100 ns, and computing fewer of its terms did not change that: its branches, taken one way or
-/// the other as the boxes come, cost more than its arithmetic.
+/// is the same bit for bit; only the early exits are gone. One OBB test at a time is slow
+/// (bench_detect: about 100 ns each), and computing fewer of its terms does not change that: its
+/// branches, taken one way or the other as the boxes come, cost more than its arithmetic.
 /// tests/collision/test_obb_lanes.cpp holds the two equal lane by lane. Host only: nvcc never
 /// reads this file.
 #include "collision/lanes8.hpp"
@@ -21,9 +20,8 @@ namespace canopy {
 /// Up to 8 OBB pairs (a, b moved by an offset into a's frame), kept as pointers to the tree's
 /// OBBs until the test: it loads the 8 OBBs of each side together, 64 bytes each, and turns them
 /// into lanes by component (an 8 x 8 transpose of registers), rather than copying every pair's
-/// 32 floats one by one into lanes as the pair comes (which waited on each OBB's load in turn:
-/// bench/results/README.md, thirty-third session). The OBBs must stay where they are until
-/// overlapping().
+/// 32 floats one by one into lanes as the pair comes (which waits on each OBB's load in turn).
+/// The OBBs must stay where they are until overlapping().
 struct ObbBatch {
   static constexpr int kLanes = 8;
   const Obb* a[kLanes] = {};

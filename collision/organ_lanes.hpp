@@ -16,8 +16,8 @@ struct Mbvt;
 
 /// Records of K float fields by lane, 8 lanes to a group, each group's K fields side by side (8
 /// floats each), so that a test of 8 lanes reads one run of memory from one pointer (with an array
-/// per field the hot loops kept one pointer each, which spilled to the stack:
-/// bench/results/README.md, fortieth session). The layout BoxLanes and LcdLanes share.
+/// per field the hot loops kept one pointer each, which spilled to the stack). The layout
+/// BoxLanes and LcdLanes share.
 template <std::size_t K>
 struct FieldLanes {
   static constexpr std::uint32_t kWidth = 8;
@@ -67,8 +67,7 @@ struct LcdLanes : FieldLanes<8> {
 
 /// What the CPU pass reads of a cluster, on one cache line (copies of Cluster's and the tree's
 /// fields, side by side): from a 52-byte record and three arrays a cluster pair's first loads
-/// waited on up to four lines; on one, the query 0.92-0.96 of its time, the pass 0.91-0.94
-/// (bench/results/README.md, forty-fourth session).
+/// waited on up to four lines (bench_detect: the pass about 7 % faster on one).
 struct alignas(64) PassCluster {
   Box3f box;                           // Cluster::box
   /// The box around its organs' boxes (their least lo and greatest hi, so an organ box that

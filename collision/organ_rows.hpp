@@ -126,8 +126,8 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
 /// lane_block_pairs for two whole clusters of at most 2 x 8 organs each (a tomato's compound
 /// leaves and stem runs): the same pairs, found with the sifts and rows held in 16-bit masks,
 /// so that a cluster pair costs two sifts and a row per organ left, with no loops over slices,
-/// groups and rows of groups and no array of rows (through lane_block_pairs a leaf pair took
-/// about 300 cycles at 1,000 plants; with this, the pass 0.92-0.95 of before, fortieth session).
+/// groups and rows of groups and no array of rows (bench_detect: the pass about 6 % faster than
+/// through lane_block_pairs).
 template <typename OnPair>
 inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const PassCluster& ca,
                                      const PassCluster& cb, Vec3f offset, OnPair&& on_pair) {
@@ -165,9 +165,8 @@ inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* c
 /// Calls on_cluster(j) for plant q's clusters j (global indices) from its local index `from` on
 /// whose boxes meet `box` (boxes_meet(box, cluster j's box, offset)) and whose roots' LCD boxes
 /// overlap `root` (lcd_overlap(root, roots[j], offset)), in order: the boxes 8 at a time, then,
-/// where any of the 8 meet, the LCD boxes 8 at a time (collision/lcd_lanes.hpp). At 1,000
-/// plants, one thread (thirty-ninth session): the pass about 1.3 % less than with an LCD test
-/// and a branch per cluster whose box meets.
+/// where any of the 8 meet, the LCD boxes 8 at a time (collision/lcd_lanes.hpp), rather than an
+/// LCD test and a branch per cluster whose box meets.
 template <typename OnCluster>
 inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb, std::uint32_t q, std::uint32_t from, const Box3f& box,
                                       const LcdCentred& root, Vec3f offset, OnCluster&& on_cluster) {
@@ -207,10 +206,9 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
   if (c.count <= 2 * kW) {
     // A cluster of one or two groups (every tomato cluster): each row against the groups whole,
     // with no branch per row or group (its free_after mask keeps the pairs wanted: bits above x,
-    // in the cluster, not adjacent), then the pairs, in the order of the rows below. At 1,000
-    // plants, one thread: the query 0.4-5.6 % less than with the rows below (thirty-eighth
-    // session, bench/results/README.md): their skips of rows and groups were mispredicted
-    // branches, dearer than the lane tests they saved.
+    // in the cluster, not adjacent), then the pairs, in the order of the rows below. The rows
+    // below skip rows and groups, and those skips are mispredicted branches, dearer than the
+    // lane tests they save.
     static_assert(2 * OrganLanes::kWidth <= kMaskOrgans, "the masks must hold these clusters' free pairs");
     unsigned hits[2 * kW];
     unsigned rows = 0;  // bit x set where row x has a pair

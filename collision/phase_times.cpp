@@ -3,12 +3,9 @@
 #include <fmt/format.h>
 #include <sys/resource.h>
 
-#include <chrono>
 #include <string>
 
 namespace canopy {
-
-double PhaseTimes::now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 PhaseTimes::Usage PhaseTimes::usage() {
   rusage u{};
@@ -19,7 +16,7 @@ PhaseTimes::Usage PhaseTimes::usage() {
 
 void PhaseTimes::lap(Phase p) {
   if (!on) return;
-  const double t = now();
+  const double t = now_seconds();
   const Usage u = usage();
   seconds[p] += t - mark, mark = t;
   cpu[p] += u.cpu - usage_mark.cpu, faults[p] += u.faults - usage_mark.faults, usage_mark = u;

@@ -1,5 +1,7 @@
 #pragma once
 /// Resolution's own stopwatch: wall and CPU seconds and page faults per phase over all rounds.
+#include "geometry/clock.hpp"
+
 #include <cstdlib>
 
 namespace canopy {
@@ -10,7 +12,7 @@ namespace canopy {
 struct PhaseTimes {
   enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
   bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
-  double seconds[count] = {}, scan_busy = 0, mark = now();
+  double seconds[count] = {}, scan_busy = 0, mark = now_seconds();
   /// The process's CPU seconds (all threads) and minor page faults so far (one getrusage).
   struct Usage {
     double cpu = 0;
@@ -21,7 +23,6 @@ struct PhaseTimes {
   Usage usage_mark = usage();
   void lap(Phase p);
   void print(int threads) const;
-  static double now();
   static Usage usage();
 };
 

@@ -1,6 +1,7 @@
 #include "collision/plan_batch.hpp"
 
 #include "collision/resolve_policy.hpp"
+#include "geometry/clock.hpp"
 
 #include <omp.h>
 
@@ -58,7 +59,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
   std::vector<CandidatePool>& pools = *lane.pools;
   for (CandidatePool& p : pools) p.used = 0;  // the last batch's candidates are free again
   if (lane.bulk) lane.bulk->clear();
-  const double batch_start = PhaseTimes::now();
+  const double batch_start = now_seconds();
   std::vector<std::size_t> chosen;
   // Bulk: the candidates found at the last level, refined in this level's calls (with its scan).
   // Their contacts are settled (a contact with a candidate found is resolved, whatever the
@@ -84,10 +85,10 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     // where the level is short, so that no thread waits long at its end.
     const int chunk = static_cast<int>(std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
     times.lap(PhaseTimes::bookkeeping);
-    const double prepare_start = PhaseTimes::now();
+    const double prepare_start = now_seconds();
 #pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
     for (std::size_t j = 0; j < scan.size(); ++j) {
-      const double started = times.on ? PhaseTimes::now() : 0;
+      const double started = times.on ? now_seconds() : 0;
       const std::size_t k = scan[j];
       const std::uint32_t m = movers[slots[k]];
       const auto me = static_cast<std::size_t>(omp_get_thread_num());
@@ -98,12 +99,12 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
         refined[k] = search.refine(*state[k], (*lane.scratches)[me]);
       open[k] = state[k]->searching();
       if (times.on) {
-        const double busy = PhaseTimes::now() - started;
+        const double busy = now_seconds() - started;
 #pragma omp atomic
         times.scan_busy += busy;
       }
     }
-    lane.prepare_s += PhaseTimes::now() - prepare_start;
+    lane.prepare_s += now_seconds() - prepare_start;
     const auto candidates = [&](const std::vector<std::size_t>& ks) {
       std::vector<TurnSearch::Candidate*> out;
       for (std::size_t k : ks) out.push_back(state[k]);
@@ -138,7 +139,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     times.lap(PhaseTimes::pick);
   }
   unplanned -= pending.size();  // left to the relaxed pass or the last resort
-  lane.batch_s += PhaseTimes::now() - batch_start;
+  lane.batch_s += now_seconds() - batch_start;
   Picks out;
   for (std::size_t k : chosen) out.emplace_back(slots[k], *refined[k]);
   return out;

@@ -70,7 +70,7 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   for (std::size_t l = 0; l < n_lanes; ++l) {
     Lane& lane = lanes[l];
     // Every lane on all threads: a lane waiting for the device leaves its cores to the others
-    // (4 lanes of 4 threads planned no faster on the 16-core H100 machine).
+    // (4 lanes of 4 threads each plan no faster on a 16-core GPU machine).
     lane.threads = threads;
     if (pools[l].size() < static_cast<std::size_t>(threads)) pools[l].resize(static_cast<std::size_t>(threads));
     lane.pools = &pools[l];

@@ -6,6 +6,7 @@
 /// its turns against the poses at the start of the round (in parallel, the same for any thread
 /// count), then applies them together; several contacts on one organ make one combined turn.
 #include "collision/attempt_batch.hpp"
+#include "collision/attempt_source.hpp"
 #include "collision/bend_spread.hpp"
 #include "collision/backend.hpp"
 #include "collision/joints.hpp"
@@ -55,23 +56,22 @@ struct ResolveRequest {
   /// Runs each level's turn-search attempts in bulk (collision/batched_scan.hpp) through this
   /// runner when set. The turns are the same either way.
   AttemptRunner* attempts = nullptr;
-  /// True (and `attempts` null): through the backend's runner where it has one (CUDA: on the
-  /// device, in lanes); the CPU backend has none and searches candidate by candidate. False: the
-  /// host's search on any backend. On the 16-core H100 machines the device's lanes resolve 10,000
-  /// plants in about half the host search's time (bench/results/README.md).
+  /// True (and `attempts` null): through the backend's runner where it has one (its
+  /// AttemptSource, collision/attempt_source.hpp; CUDA: on the device, in lanes); the CPU backend
+  /// has none and searches candidate by candidate. False: the host's search on any backend. On a
+  /// 16-core GPU machine the device's lanes resolve a 10,000-plant stand faster than the host's
+  /// search (bench_resolve: about 2x).
   bool bulk_attempts = true;
   /// Batches of contacts planned at once through the runner, each on a lane of its own (at most
   /// the runner's lanes): one lane's host work overlaps another's device work. The turns are the
-  /// same for any number (collision/plan_round.hpp). 6: at 10,000 plants on the 16-core H100 and
-  /// H200 machines, faster than 4 in 9 of 12 alternated runs, 0.04 s on average, once the lanes'
-  /// device buffers no longer synchronised the device as they grew (bench/results/resolve_session23.txt).
+  /// same for any number (collision/plan_round.hpp). 6: faster than 4 on 16-core GPU machines
+  /// (bench_resolve at 10,000 plants, alternated runs).
   std::size_t bulk_lanes = 6;
   /// Contacts per batch of planning: the search state held at once stays bounded whatever the
   /// stand's size; the turns do not depend on it. Batches come in whole multiples of the lanes,
   /// of one size, so 16,384 gives each of 6 lanes one batch of a 10,000-plant stand's 73,936
-  /// contacts: fewer levels one after another per lane than two batches each (8,192; 0.04 s
-  /// faster at 10,000 plants on an H100, 4 of 4 alternated, bench/results/resolve_session23.txt),
-  /// for 8 % more memory at the peak on the CPU backend (1.73 GB instead of 1.60 GB there).
+  /// contacts: fewer levels one after another per lane than two batches each (8,192; faster on a
+  /// GPU, bench_resolve at 10,000 plants), for more memory at the peak on the CPU backend (8 %).
   std::size_t batch_contacts = kDefaultBatchContacts;
 };
 

@@ -8,7 +8,7 @@
 ///      turn first: a leaflet before its rachis, a rachis segment before its petiole);
 ///   2. between plants, the organ farther out from its plant's stem first (`outer_first`);
 ///   3. the smaller subtree (fewer organs carried), then the higher id (the more distal organ).
-/// Internodes never turn (DESIGN.md "Organ kinds by role"). The first candidate that separates
+/// Internodes never turn (docs/design.md "Organ kinds by role"). The first candidate that separates
 /// the pair within its joint limit is used; a contact none can separate is unresolvable.
 #include "collision/contacts.hpp"
 #include "collision/joints.hpp"

@@ -122,8 +122,8 @@ inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const fl
       const F8 gap = max8(q_lo - p_hi, p_lo - q_hi);
       rejected |= (gap > 0) & (gap > margin * sqrt8(dot_u(a, a)));
     }
-    // A third of the calls have every wanted lane rejected by t's first edge's three axes, half
-    // by its first two edges' (the default 1,000-plant stand, fortieth session).
+    // On the default stand a third of the calls have every wanted lane rejected by t's first
+    // edge's three axes, half by its first two edges'.
     if (i < 2 && (wanted & ~bits8(rejected)) == 0) return bits8(rejected);
   }
   return bits8(rejected);

@@ -1,22 +1,16 @@
 #include "cuda/attempt_runner_cuda.hpp"
 
 #include "cuda/scatter.hpp"
+#include "geometry/clock.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
 namespace canopy::cuda {
-namespace {
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-}  // namespace
-
 void CudaAttemptRunner::Stats::add(const Stats& o) {
   calls += o.calls, groups += o.groups, box_tests += o.box_tests, witness_hits += o.witness_hits, exact_tests += o.exact_tests;
   exact_touches += o.exact_touches, uploaded_bytes += o.uploaded_bytes;
@@ -127,7 +121,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   if (groups.empty()) return out;
   Lane& l = lane(i);
   const cudaStream_t stream = l.stream.get();
-  const double t0 = now();
+  const double t0 = now_seconds();
   if (t.moving.size() < l.moving_sent || t.keep.size() < l.keep_sent || t.pairs.size() < l.pairs_sent ||
       t.axes.size() < l.axes_sent || t.witness.size() < l.witness_sent)
     throw std::logic_error("bulk attempts: the tables shrank without a clear()");
@@ -164,7 +158,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(), l.axes.get(), obbs, l.witness.get()};
   const auto n_groups = static_cast<std::uint32_t>(groups.size()), n_tasks = static_cast<std::uint32_t>(tasks);
   // The exact tests are listed with a capacity; a list that overflows is made again, larger.
-  const double t1 = now();  // the uploads queued (they run before the kernels, in the stream's order)
+  const double t1 = now_seconds();  // the uploads queued (they run before the kernels, in the stream's order)
   Counters host{};
   for (;;) {
     if (report_) l.busy.begin(stream);
@@ -179,7 +173,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
       throw std::length_error(fmt::format("bulk attempts: {} exact tests in one call (at most 2^32 - 1)", host.appended));
     l.exact.grow(host.appended + host.appended / 4);
   }
-  const double t2 = now();
+  const double t2 = now_seconds();
   if (report_) l.busy.begin(stream);
   launch_attempt_exact(dev_.view(), view, l.groups.get(), l.exact.get(), static_cast<std::uint32_t>(host.appended), l.touch.get(),
                        l.counters.get(), stream);
@@ -188,7 +182,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   // The exact kernel's count of touches, read back only for the report (a copy per call).
   if (report_) CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
   l.stream.synchronize();
-  const double t3 = now();
+  const double t3 = now_seconds();
   Stats& st = l.stats;
   st.upload_s += t1 - t0, st.box_s += t2 - t1, st.exact_s += t3 - t2;
   ++st.calls;
@@ -197,7 +191,7 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   st.witness_hits += host.witness_hits;
   st.exact_touches += host.exact_touches;
   st.exact_tests += host.appended;
-  st.seconds += now() - t0;
+  st.seconds += now_seconds() - t0;
   return out;
 }
 

@@ -1,5 +1,6 @@
 #include "cuda/detect_cuda.hpp"
 
+#include "collision/attempt_source.hpp"
 #include "collision/broad_phase.hpp"
 #include "cuda/attempt_runner_cuda.hpp"
 #include "cuda/detect_kernels.hpp"
@@ -10,11 +11,11 @@
 #include "cuda/keys.hpp"
 #include "cuda/plant_level.hpp"
 #include "cuda/stand_on_device.hpp"
+#include "geometry/clock.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -23,15 +24,13 @@
 namespace canopy::cuda {
 namespace {
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
 /// Device bytes per organ pair in a batch: its key, the sorted copy, its hit flag, its record.
 constexpr std::size_t kOrganPairBytes = 2 * sizeof(std::uint64_t) + 1 + sizeof(Contact);
 /// Device bytes per cluster pair when the leaf level is the last: the pair, its key and work
 /// item twice (two sorts), its record.
 constexpr std::size_t kLeafPairBytes = sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t)) + sizeof(Contact);
 
-class CudaBackend : public DetectionBackend {
+class CudaBackend : public DetectionBackend, public AttemptSource {
  public:
   explicit CudaBackend(int device) : device_(device) {
     const DeviceReport r = query_devices();
@@ -48,17 +47,17 @@ class CudaBackend : public DetectionBackend {
   /// (`load_s`); then every box fitted on the device (`build_s`) and the stages.
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
-    double t = now();
+    double t = now_seconds();
     lib_ = std::make_unique<PrototypeLibrary>();
     attempts_.reset();  // its tables belong to the stand held before
     tree_ = build_mbvt_topology(s, mbvt_config(req));
     dev_.load(s, *tree_, *lib_, plants_with_free_pairs(s, *tree_));
     plants_.reset();
-    const double load_s = now() - t;
-    t = now();
+    const double load_s = now_seconds() - t;
+    t = now_seconds();
     dev_.fit(req.clearance);
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
-    Contacts out = run(req, now() - t);
+    Contacts out = run(req, now_seconds() - t);
     out.load_s = load_s;
     return out;
   }
@@ -76,10 +75,10 @@ class CudaBackend : public DetectionBackend {
     check_request(req);
     if (!tree_ || tree_->takes_part.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
-    const double t = now();
+    const double t = now_seconds();
     dev_.refit(s, *tree_, moved);  // on the device: only the moved organs' transforms travel
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
-    return run(req, now() - t);
+    return run(req, now_seconds() - t);
   }
 
  private:
@@ -138,9 +137,9 @@ class CudaBackend : public DetectionBackend {
     out.build_s = build_s;
     const bool tight = req.max_device_bytes != 0;
     EventTimer plant_timer, leaf_timer, organ_timer, exact_timer;
-    double t = now();
+    double t = now_seconds();
     const std::vector<std::uint64_t> work = plants_.work(dev_, req, tight, keys_, counters_, plant_timer, out.counts[0], work_);
-    out.seconds[0] = now() - t;
+    out.seconds[0] = now_seconds() - t;
     out.device_seconds[0] = plant_timer.seconds();
     if (req.level == ContactLevel::plant) {
       for (std::uint64_t k : work) out.pairs.push_back({-1, -1, static_cast<std::int32_t>(key_hi(k)), static_cast<std::int32_t>(key_lo(k)), -1, -1});
@@ -161,7 +160,7 @@ class CudaBackend : public DetectionBackend {
         cluster_pairs_.resize(0), organ_keys_.resize(0), organ_sorted_.resize(0), hits_.resize(0), contacts_.resize(0);
         leaf_work_.resize(0), leaf_work_sorted_.resize(0), keys_.release();
       }
-      t = now();
+      t = now_seconds();
       Counters host{};
       const std::size_t pair_bytes = req.level == ContactLevel::leaf ? kLeafPairBytes : sizeof(ClusterPair);
       const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * std::size_t{n}, std::min(kMaxItems, budget / pair_bytes),
@@ -170,10 +169,10 @@ class CudaBackend : public DetectionBackend {
                                      });
       bool fits = nc * pair_bytes <= budget && (req.level != ContactLevel::leaf || nc * pair_bytes + KeyOps::scratch_bytes(nc) <= budget);
       const Counters leaf_counts = host;
-      t_leaf += now() - t;
+      t_leaf += now_seconds() - t;
       std::size_t no = 0;
       if (fits && req.level != ContactLevel::leaf) {
-        t = now();
+        t = now_seconds();
         // Cluster pairs in key order, so that neighbouring threads descend the same trees: an
         // optional step, left out under a memory budget or when its lists would not fit.
         const std::size_t sort_bytes = nc * (sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t))) + KeyOps::scratch_bytes(nc);
@@ -189,7 +188,7 @@ class CudaBackend : public DetectionBackend {
                        launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap, counters_.get());
                      });
         fits = no <= room && nc * sizeof(ClusterPair) + no * kOrganPairBytes + KeyOps::scratch_bytes(no) <= budget;
-        t_organ += now() - t;
+        t_organ += now_seconds() - t;
       }
       if (!fits) {
         if (n == 1)
@@ -202,13 +201,13 @@ class CudaBackend : public DetectionBackend {
       leaves.between += static_cast<std::size_t>(leaf_counts.between);
       leaves.within += static_cast<std::size_t>(leaf_counts.within);
       if (req.level == ContactLevel::leaf) {
-        t = now();
+        t = now_seconds();
         leaf_timer.start();
         download_cluster_contacts(batch, nc, tight, out.pairs);
         leaf_timer.stop();
-        t_leaf += now() - t;
+        t_leaf += now_seconds() - t;
       } else {
-        t = now();
+        t = now_seconds();
         // Sorted, without repeats (one organ pair can be reached through several node pairs).
         organ_sorted_.fit(no, tight);
         organ_timer.start();
@@ -221,16 +220,16 @@ class CudaBackend : public DetectionBackend {
         organs.between += static_cast<std::size_t>(host.between);
         organs.within += static_cast<std::size_t>(host.within);
         if (req.level == ContactLevel::organ) download_contacts(organ_keys_.get(), nu, tight, out.pairs);
-        t_organ += now() - t;
+        t_organ += now_seconds() - t;
         if (req.level == ContactLevel::exact) {
-          t = now();
+          t = now_seconds();
           hits_.fit(nu, tight);
           exact_timer.start();
           launch_exact(dev_.view(), organ_keys_.get(), static_cast<std::uint32_t>(nu), req.clearance, hits_.get());
           const std::size_t nh = keys_.select(organ_keys_.get(), hits_.get(), organ_sorted_.get(), nu);
           exact_timer.stop();
           download_contacts(organ_sorted_.get(), nh, tight, out.pairs);
-          t_exact += now() - t;
+          t_exact += now_seconds() - t;
         }
       }
       lo = hi;
@@ -244,14 +243,14 @@ class CudaBackend : public DetectionBackend {
     out.seconds[2] = t_organ;
     out.device_seconds[2] = organ_timer.seconds();
     // Each batch's pairs come sorted; batches of later plant pairs may hold lower organ ids.
-    t = now();
+    t = now_seconds();
     if (batches > 1) std::sort(out.pairs.begin(), out.pairs.end());
     if (req.level == ContactLevel::organ) {
-      out.seconds[2] += now() - t;
+      out.seconds[2] += now_seconds() - t;
       return out;
     }
     out.counts[3] = count_pairs(out.pairs);
-    out.seconds[3] = t_exact + (now() - t);
+    out.seconds[3] = t_exact + (now_seconds() - t);
     out.device_seconds[3] = exact_timer.seconds();
     return out;
   }

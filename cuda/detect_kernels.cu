@@ -25,8 +25,9 @@ __global__ void work_items_kernel(StandView v, const std::uint64_t* keys, std::u
   out[k] = WorkItem{p, q, offset_between(v, p, q)};
 }
 
-/// Threads per plant pair in the cluster-pairs kernel. Measured on the H200 at 10,000 plants
-/// (kernel time): 1 lane 0.85 ms, 4 lanes 0.60 ms, 8 lanes 0.66 ms, 16 lanes 0.81 ms, 32 lanes 1.09 ms.
+/// Threads per plant pair in the cluster-pairs kernel: fewer leave the GPU idle behind the
+/// busiest plant pairs, more give each thread too little to do (bench_detect_cuda: 4 about 1.4x
+/// faster than 1, and faster than 8, 16 and 32).
 constexpr int kClusterLanes = 4;
 
 /// kClusterLanes threads per plant pair: lane l takes the clusters l, l + kClusterLanes, ... of

@@ -248,8 +248,8 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
   const Vec3f db = offset_between(v, ra.plant, rb.plant);
   // The host rejects two solids whose capsules lie apart before posing them (solids_apart,
   // collision/exact.cpp); here, where the lanes share a pair's triangles, the same test in every
-  // lane made the exact kernels slower (10,000 plants on an H100: 4.55 -> 5.25 ms), so the device
-  // goes straight on. Same answers: the rejection is conservative.
+  // lane makes the exact kernels slower (bench_detect_cuda: about 15 %), so the device goes
+  // straight on. Same answers: the rejection is conservative.
   // Where no surfaces meet, one organ may still lie wholly inside the other's solid (tested on
   // the staged vertices where the meshes were staged: the same values as those made anew).
   if (stage && ma.vertex_count <= WarpStage::kVertices && mb.vertex_count <= WarpStage::kVertices &&

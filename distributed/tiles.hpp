@@ -1,5 +1,5 @@
 #pragma once
-/// Spatial tiles of a stand for several processes (DESIGN.md data flow, split across ranks): the
+/// Spatial tiles of a stand for several processes (docs/design.md "Data flow", split across ranks): the
 /// field is cut into strips along its longer horizontal extent, balanced by plant count (not by
 /// area); each tile owns its plants and also holds, as a halo, every plant within `halo` metres
 /// of its strip, so that what its own plants may touch (and what decides their turns) is always

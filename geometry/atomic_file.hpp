@@ -1,5 +1,5 @@
 #pragma once
-/// Files written whole or not at all (DESIGN.md "Exports"). A single file (a sweep's tables, a
+/// Files written whole or not at all (docs/design.md "Export files"). A single file (a sweep's tables, a
 /// CSV named with --csv) is written under a temporary name beside its final one, synced and
 /// renamed into place. The files of a stand are an OutputSet: written into a staging folder and
 /// swapped in together (geometry/staged_folder.hpp). Temporary names carry the writing process

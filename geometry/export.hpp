@@ -1,5 +1,5 @@
 #pragma once
-/// Mesh and table exports of a stand (DESIGN.md "Exports"). Meshes are streamed organ by organ
+/// Mesh and table exports of a stand (docs/design.md "Export files"). Meshes are streamed organ by organ
 /// from prototypes and transforms, so a large stand never holds all its triangles in memory.
 #include "geometry/atomic_file.hpp"
 #include "geometry/chunked_output.hpp"
@@ -43,7 +43,7 @@ void write_organs_csv(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out
 /// plants.csv: id,x,y,rotation,seed,grammar,steps.
 void write_plants_csv(const Stand& stand, AtomicFile& out);
 /// The same writers over an ExportScope (a tile's plants with global numbering) into
-/// ChunkWriters: the bytes of the whole stand's file that fall to those plants (DESIGN.md exports).
+/// ChunkWriters: the bytes of the whole stand's file that fall to those plants (docs/design.md "Export files").
 void write_obj(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& obj, ChunkWriter& mtl, const std::string& mtl_name);
 void write_ply(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
 void write_glb(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);

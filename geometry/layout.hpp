@@ -1,5 +1,5 @@
 #pragma once
-/// Where plants stand (DESIGN.md "Layout"): rows along +X spaced along +Y with the first plant at
+/// Where plants stand (docs/design.md "Layout"): rows along +X spaced along +Y with the first plant at
 /// the origin, or a positions file. Each plant gets its own seed from the stand seed.
 #include <cstdint>
 #include <optional>
@@ -50,7 +50,7 @@ struct RowLayout {
   std::uint64_t seed = 1;
 };
 
-/// DESIGN.md's default stand of n plants: rows of 100 (one row below 100), 1.0 m between rows,
+/// docs/design.md's default stand of n plants: rows of 100 (one row below 100), 1.0 m between rows,
 /// 0.4 m between plants, random rotation, 2 cm jitter, stand seed 1; exactly n placements.
 std::vector<PlantPlacement> default_stand_layout(int plants);
 

@@ -1,5 +1,5 @@
 #pragma once
-/// The shape of a curved leaflet (DESIGN.md "Organs": `leaflet(length, width, bend, cup, fold)`),
+/// The shape of a curved leaflet (docs/design.md "Organs": `leaflet(length, width, bend, cup, fold)`),
 /// kept in one byte of the organ's record so that detection still reads 64 bytes per organ and
 /// every organ of one shape and level of detail shares one mesh, as flat leaflets do (Helios'
 /// plant architecture model likewise instances a handful of leaf prototypes per plant type,

@@ -1,5 +1,5 @@
 #pragma once
-/// Organ kinds and prototypes (DESIGN.md "Organs"), with their names in grammar files and exports.
+/// Organ kinds and prototypes (docs/design.md "Organs"), with their names in grammar files and exports.
 #include "geometry/hd.hpp"
 
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-/// Prototype meshes in their own local frames (DESIGN.md "Organs"): x along the organ's heading H,
+/// Prototype meshes in their own local frames (docs/design.md "Organs"): x along the organ's heading H,
 /// y along its width direction L, z along its normal U. An organ is a prototype plus the 3x4
 /// transform whose columns are H, L, U scaled by the organ's parameters and whose translation is
 /// its joint, so every organ of a kind and level of detail shares one mesh.

@@ -3,7 +3,7 @@
 /// staging folder, the old stand folder being removed, folders created for the output), kept in
 /// one registry so that a run stopped by SIGINT or SIGTERM removes it (tools/signals.hpp), and
 /// named after the process that made it, so that a later run removes what a dead one left
-/// (SIGKILL, power loss). DESIGN.md "Exports"; docs/design.md "Output folders and failures".
+/// (SIGKILL, power loss). docs/design.md "Export files"; docs/design.md "Output folders and failures".
 #include <cstdint>
 #include <mutex>
 #include <string>

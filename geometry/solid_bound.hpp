@@ -6,7 +6,7 @@
 /// clearance plus a slack far above every rounding keep the organs so too. It changes no answer,
 /// only how many pairs are posed: on the default 1,000-plant stand half of the organ pairs whose
 /// OBBs overlap without touching are an internode beside a peduncle of the same plant, and every
-/// one of them is rejected here (bench/results/README.md).
+/// one of them is rejected here.
 ///
 /// Segment distance: Ericson, Real-Time Collision Detection §5.1.9, made a lower bound here (the
 /// least distance of two segments lies at an end of one of them unless both closest points are
@@ -97,7 +97,7 @@ CANOPY_HD inline bool solid_capsule(PrototypeKind k, const Affine3f& m, Vec3f d,
 }
 
 /// Relative and absolute slack of solids_apart: 1e-5 of the magnitudes the vertices come from
-/// (their float rounding is below 1e-6 of it) and 2 µm, above the 1 µm within which DESIGN.md
+/// (their float rounding is below 1e-6 of it) and 2 µm, above the 1 µm within which docs/design.md
 /// lets the exact answer go either way, so a pair rejected here is one the exact test rejects.
 inline constexpr double kSolidRelSlack = 1e-5;
 inline constexpr double kSolidAbsSlack = 2e-6;

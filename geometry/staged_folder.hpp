@@ -1,5 +1,5 @@
 #pragma once
-/// A folder whose set of files is replaced as one unit (DESIGN.md "Exports": a run replaces the
+/// A folder whose set of files is replaced as one unit (docs/design.md "Export files": a run replaces the
 /// folder's stand as one unit; docs/design.md "Output folders and failures"). The files are
 /// written into a staging folder beside it, ".NAME.canopy-PID-START-K" (geometry/run_files.hpp),
 /// synced with the folder, and swapped in with one renameat2(RENAME_EXCHANGE) (one rename when

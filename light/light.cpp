@@ -1,5 +1,6 @@
 #include "light/light.hpp"
 
+#include "geometry/clock.hpp"
 #include "geometry/stand_metrics.hpp"
 #include "light/leaf_layers.hpp"
 #include "light/sampler.hpp"
@@ -13,10 +14,6 @@
 
 namespace canopy::light {
 namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 double sq(double x) { return x * x; }
 
@@ -251,7 +248,7 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   if (cfg.periodic) scene.set_period(cfg.tile.width(), cfg.tile.height());
   r.organs_skipped = scene.skipped();
   const OrganIndex organs(stand);
-  r.scene_s = since(t_scene);
+  r.scene_s = seconds_since(t_scene);
   const double layers_d = std::ceil(std::max(scene.hi().z, 0.0) / cfg.layer_m);
   if (layers_d > static_cast<double>(kMaxLayers))
     throw std::invalid_argument(fmt::format("--layer: {} m cuts the stand into more than {} layers", cfg.layer_m, kMaxLayers));
@@ -277,7 +274,7 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
     }
     r.diffuse = run.combine(r.sky_directions, sky);
   }
-  r.trace_s = since(t_trace);
+  r.trace_s = seconds_since(t_trace);
   r.rays = run.rays;
   return r;
 }

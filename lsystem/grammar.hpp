@@ -1,5 +1,5 @@
 #pragma once
-/// A loaded grammar file (DESIGN.md "Grammar file"): symbols, compiled productions, organs.
+/// A loaded grammar file (docs/design.md "Grammar file"): symbols, compiled productions, organs.
 #include "geometry/organ_kind.hpp"
 #include "lsystem/error.hpp"
 #include "lsystem/expr.hpp"
@@ -78,7 +78,7 @@ struct Tropism {
   double strength = 0;
 };
 
-/// The grammar's default layout (DESIGN.md "Layout"); absent keys keep the command-line defaults.
+/// The grammar's default layout (docs/design.md "Layout"); absent keys keep the command-line defaults.
 struct StandSpec {
   std::optional<int> rows, per_row;
   std::optional<double> row_spacing, plant_spacing, double_rows, jitter;

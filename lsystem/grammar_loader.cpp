@@ -1,4 +1,4 @@
-// Reads a grammar file (DESIGN.md "Grammar file") into a compiled Grammar.
+// Reads a grammar file (docs/design.md "Grammar file") into a compiled Grammar.
 #include "geometry/layout.hpp"
 #include "geometry/prototype.hpp"
 #include "lsystem/grammar.hpp"

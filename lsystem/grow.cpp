@@ -1,11 +1,11 @@
 #include "lsystem/grow.hpp"
 
 #include "geometry/available_memory.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/thread_limit.hpp"
 #include "lsystem/turtle.hpp"
 
-#include <chrono>
 #include <exception>
 #include <cmath>
 #include <filesystem>
@@ -31,8 +31,6 @@ Affine3f rotate_z(const Affine3f& m, double deg) {
   const auto r = [&](Vec3f v) { return Vec3f{c * v.x - s * v.y, s * v.x + c * v.y, v.z}; };
   return {r(m.c0), r(m.c1), r(m.c2), r(m.t)};
 }
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit) {
   const std::size_t per_organ = sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) +
@@ -138,7 +136,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     grow_plant(*grammars[static_cast<std::size_t>(grown[p].grammar)], req.plants[p], req, p, grown[p]);
   };
 
-  const double t0 = now();
+  const double t0 = now_seconds();
   if (n > 0) {
     grow_one(0);
     check_fits(grown[0], n, req.memory_limit);
@@ -153,7 +151,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   }
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);  // the first failing plant, in plant order, as it was thrown
-  const double t1 = now();
+  const double t1 = now_seconds();
 
   // Place: global ids plant by plant, then in string order.
   std::size_t organs = 0;
@@ -203,7 +201,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   if (n > 0) stand.stand_origin = {stand.plants[0].x, stand.plants[0].y, 0};
   if (timings) {
     timings->derive_s = t1 - t0;  // derivation and turtle together, per plant in parallel
-    timings->place_s = now() - t1;
+    timings->place_s = now_seconds() - t1;
   }
   return stand;
 }

@@ -69,7 +69,7 @@ class TurtleError : public std::runtime_error {
 /// plant's origin.
 TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleConfig& config);
 
-/// The organ transform for `prototype` with `params` at `frame` (DESIGN.md "Organs").
+/// The organ transform for `prototype` with `params` at `frame` (docs/design.md "Organs").
 Affine3f organ_transform(PrototypeKind prototype, const float* params, const TurtleFrame& frame);
 
 }  // namespace canopy

@@ -1,5 +1,6 @@
 // Derivation speed: modules per second (all modules written over all steps / wall time) for the
 // grammars given, median of repeats, one thread. Prints a table and writes CSV.
+#include "geometry/clock.hpp"
 #include "lsystem/derive.hpp"
 #include "lsystem/grammar.hpp"
 #include "tools/bench_timing.hpp"
@@ -71,7 +72,7 @@ int main(int argc, char** argv) {
     for (;;) {
       const auto t0 = std::chrono::steady_clock::now();
       for (int l = 0; l < loops; ++l) derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
-      if (since(t0) > 0.05 || loops > (1 << 24)) break;
+      if (seconds_since(t0) > 0.05 || loops > (1 << 24)) break;
       loops *= 4;
     }
     std::vector<double> times;
@@ -81,7 +82,7 @@ int main(int argc, char** argv) {
         const ModuleString s = derive(g, DeriveRequest{steps, g.seed, kDefaultMaxModules});
         if (s.size() != final_size) throw std::runtime_error("nondeterministic derivation length");
       }
-      times.push_back(since(t0) / loops);
+      times.push_back(seconds_since(t0) / loops);
     }
     const double med = median(std::move(times));
     const double rate = static_cast<double>(written) / med;

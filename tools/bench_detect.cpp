@@ -8,6 +8,7 @@
 // Usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--csv FILE] [--repeats R]
 #include "collision/aabb_baseline.hpp"
 #include "collision/backend.hpp"
+#include "geometry/clock.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
 #include "tools/bench_usage.hpp"
@@ -168,17 +169,17 @@ int main(int argc, char** argv) {
         const auto time_fcl = [&] {
           const auto t0 = std::chrono::steady_clock::now();
           auto pairs = fcl.query();
-          f = since(t0);
+          f = seconds_since(t0);
           if (k > 0 && pairs != theirs) throw std::runtime_error("bench_detect: FCL's query gave different pairs on a repeat");
           theirs = std::move(pairs);
         };
         const auto time_ours = [&] {
           auto t0 = std::chrono::steady_clock::now();
           const bool same_built = cpu->detect(s, r).pairs == exact;
-          built = since(t0);
+          built = seconds_since(t0);
           t0 = std::chrono::steady_clock::now();
           const bool same_query = cpu->redetect(s, r, {}).pairs == exact;
-          query = since(t0);
+          query = seconds_since(t0);
           if (!same_built || !same_query) throw std::runtime_error("bench_detect: canopy's pairs changed beside FCL's");
         };
         if (k % 2) time_fcl(), time_ours();

@@ -10,6 +10,7 @@
 // the device name. Prints a table, writes CSV.
 // Usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]
 #include "collision/backend.hpp"
+#include "geometry/clock.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
 #include "tools/bench_usage.hpp"
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
       for (int r = 0; r < repeats; ++r) {
         auto t = std::chrono::steady_clock::now();
         c = gpu->detect(s, dr);
-        detect.push_back(since(t) - c.load_s);
+        detect.push_back(seconds_since(t) - c.load_s);
         load.push_back(c.load_s);
         fit.push_back(c.build_s);
         double st = 0;
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
         kernel.push_back(k);
         t = std::chrono::steady_clock::now();
         const Contacts d = gpu->redetect(s, dr, {});
-        again.push_back(since(t));
+        again.push_back(seconds_since(t));
         for (std::size_t l = 0; l < 4; ++l) level_s[l].push_back(d.seconds[l]), level_kernel_s[l].push_back(d.device_seconds[l]);
         if (d.pairs != c.pairs) {
           fmt::print(stderr, "redetect with nothing moved gave another list\n");
@@ -93,7 +94,7 @@ int main(int argc, char** argv) {
       for (int r = 0; r < std::max(1, repeats / 2); ++r) {
         auto t = std::chrono::steady_clock::now();
         cpu->detect(s, dr);
-        cpu_total.push_back(since(t));
+        cpu_total.push_back(seconds_since(t));
       }
       if (level == ContactLevel::exact) exact_pairs = c.pairs.size();
       const long long fp = level == ContactLevel::organ ? static_cast<long long>(c.pairs.size() - exact_pairs) : -1;

@@ -2,6 +2,7 @@
 // export format, for default stands of N plants, on one thread and on all; the disk's own write
 // speed measured the same way (buffered writes of a 1 GiB file, closed). Prints a table, writes CSV.
 // Usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]
+#include "geometry/clock.hpp"
 #include "geometry/export.hpp"
 #include "geometry/layout.hpp"
 #include "lsystem/grow.hpp"
@@ -33,7 +34,7 @@ double disk_write_mb_s(const std::string& dir, bool sync, std::size_t bytes = st
   std::fflush(f);
   if (sync) fdatasync(fileno(f));
   std::fclose(f);
-  const double s = since(t);
+  const double s = seconds_since(t);
   fs::remove(path);
   return static_cast<double>(bytes) / 1e6 / s;
 }
@@ -83,11 +84,11 @@ int main(int argc, char** argv) {
       GrowRequest req;
       req.grammar = grammar;
       req.plants = default_stand_layout(n);
-      const double layout_s = since(t);
+      const double layout_s = seconds_since(t);
       req.threads = threads;
       t = std::chrono::steady_clock::now();
       const Stand stand = grow_stand(req);
-      const double grow_s = since(t);
+      const double grow_s = seconds_since(t);
       PrototypeLibrary lib;
       std::size_t tris = 0;
       for (const OrganRecord& r : stand.organs) tris += lib.get(r).triangle_count();
@@ -106,7 +107,7 @@ int main(int argc, char** argv) {
           else write_organs_csv(stand, lib, f);
           f.close();
         }
-        const double compute_s = since(t);
+        const double compute_s = seconds_since(t);
         t = std::chrono::steady_clock::now();
         {
           // Written in place, as before files were synced: the disk row below is not synced either.
@@ -116,7 +117,7 @@ int main(int argc, char** argv) {
           else write_organs_csv(stand, lib, f);
           f.close();
         }
-        const double s = since(t);
+        const double s = seconds_since(t);
         const std::size_t bytes = fs::file_size(dir + "/" + name);
         fs::remove(dir + "/" + name);
         // The disk measured the same way right after, with a file of the same size: large files

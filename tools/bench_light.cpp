@@ -1,10 +1,12 @@
-// canopy light's speed against its error: on the default stand (DESIGN.md) of each size, the
+// canopy light's speed against its error: on the default stand (docs/design.md) of each size, the
 // scene's build time and memory, rays per second, and the time for a direct beam plus the sky's
 // directions to each standard error asked of the stand's fractions and of each plant's. Prints a
 // table, writes CSV (one row per run; bench/run.sh adds commit, date and machine).
 // Usage: bench_light [--plants 1000,10000] [--threads T] [--errors 0.01,0.005,0.002,0.001]
 //                    [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--csv FILE] [--append]
+#include "geometry/clock.hpp"
 #include "geometry/layout.hpp"
+#include "geometry/split_list.hpp"
 #include "geometry/thread_limit.hpp"
 #include "light/light.hpp"
 #include "lsystem/grow.hpp"
@@ -32,12 +34,7 @@ namespace {
 
 std::vector<double> numbers(const char* s) {
   std::vector<double> v;
-  std::string t(s);
-  for (std::size_t i = 0; i <= t.size();) {
-    const std::size_t j = std::min(t.find(',', i), t.size());
-    v.push_back(std::stod(t.substr(i, j - i)));
-    i = j + 1;
-  }
+  for (const std::string& item : split_list(s)) v.push_back(std::stod(item));
   return v;
 }
 
@@ -161,7 +158,7 @@ int bench_main(int argc, char** argv) {
       const double cpu0 = cpu_seconds();
       const auto t0 = std::chrono::steady_clock::now();
       const light::LightResult r = light::compute_light(stand, lib, c);
-      const double total = since(t0), cpu = cpu_seconds() - cpu0;
+      const double total = seconds_since(t0), cpu = cpu_seconds() - cpu0;
       const auto rms = [](const std::vector<light::Estimate>& v) {
         double s = 0;
         for (const auto& e : v) s += e.se * e.se;

@@ -9,6 +9,8 @@
 //        (`--help` says what the last four do)
 #include "collision/attempt_runner_host.hpp"
 #include "collision/resolve.hpp"
+#include "geometry/clock.hpp"
+#include "geometry/split_list.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
 #include "tools/bench_usage.hpp"
@@ -29,9 +31,10 @@ using namespace canopy;
 
 namespace {
 
-std::vector<std::string> split(char* s) {
-  std::vector<std::string> v;
-  for (char* t = std::strtok(s, ","); t; t = std::strtok(nullptr, ",")) v.emplace_back(t);
+/// A comma-separated option's items, empty ones skipped.
+std::vector<std::string> items(const char* s) {
+  std::vector<std::string> v = split_list(s);
+  std::erase(v, std::string());
   return v;
 }
 
@@ -55,13 +58,13 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const auto ints = [&](std::vector<int>& v) {
       v.clear();
-      for (const std::string& x : split(argv[++i])) v.push_back(std::stoi(x));
+      for (const std::string& x : items(argv[++i])) v.push_back(std::stoi(x));
     };
     if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) ints(sizes);
     else if (!std::strcmp(argv[i], "--dense-sizes") && i + 1 < argc) ints(dense_sizes);
-    else if (!std::strcmp(argv[i], "--backends") && i + 1 < argc) backends = split(argv[++i]);
-    else if (!std::strcmp(argv[i], "--levels") && i + 1 < argc) levels = split(argv[++i]);
+    else if (!std::strcmp(argv[i], "--backends") && i + 1 < argc) backends = items(argv[++i]);
+    else if (!std::strcmp(argv[i], "--levels") && i + 1 < argc) levels = items(argv[++i]);
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--candidates") && i + 1 < argc) base.candidates = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--axes") && i + 1 < argc) base.axis_fan = std::atoi(argv[++i]);
@@ -136,10 +139,10 @@ int main(int argc, char** argv) {
           at.level = req.config.level;
           auto t = std::chrono::steady_clock::now();
           const Contacts first = backend->detect(s, at);
-          const double detect_s = since(t);
+          const double detect_s = seconds_since(t);
           t = std::chrono::steady_clock::now();
           const ResolveResult r = resolve(s, *backend, req, first);
-          const double resolve_s = since(t);
+          const double resolve_s = seconds_since(t);
           double plan = 0, redetect = 0;
           for (const ResolveRound& x : r.per_round) plan += x.plan_s, redetect += x.detect_s;
           const std::size_t residual = fresh->detect(s, DetectRequest{}).pairs.size();

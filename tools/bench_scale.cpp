@@ -1,4 +1,4 @@
-// Scaling of tiled runs over MPI: the default stand (DESIGN.md: rows of 100 plants, 1.0 m x 0.4 m,
+// Scaling of tiled runs over MPI: the default stand (docs/design.md: rows of 100 plants, 1.0 m x 0.4 m,
 // random rotation, 0.02 m jitter, seed 1) grown, detected to the exact level and resolved by
 // `mpirun -np P bench_scale`, exactly as `canopy stand` does under mpirun but without the files.
 // Per size: plants per rank, the largest tile with its halo, seconds per stage (rank 0's; the
@@ -10,6 +10,7 @@
 // Detection runs at the exact level only unless --all-levels (canopy stand's report counts every
 // level up to the one asked for, one detection each).
 #include "distributed/mpi_comm.hpp"
+#include "geometry/split_list.hpp"
 #include "tools/bench_usage.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/stand_tiled.hpp"
@@ -27,14 +28,10 @@ using namespace canopy::cli;
 
 namespace {
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> v;
-  for (std::size_t i = 0; i <= s.size();) {
-    std::size_t j = s.find(',', i);
-    if (j == std::string::npos) j = s.size();
-    if (j > i) v.push_back(s.substr(i, j - i));
-    i = j + 1;
-  }
+/// A comma-separated option's items, empty ones skipped.
+std::vector<std::string> items(const std::string& s) {
+  std::vector<std::string> v = split_list(s);
+  std::erase(v, std::string());
   return v;
 }
 
@@ -56,7 +53,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool value = i + 1 < argc;  // an option's value follows
-    if (a == "--sizes" && value) sizes = split(argv[++i]);
+    if (a == "--sizes" && value) sizes = items(argv[++i]);
     else if (a == "--backend" && value) backend = argv[++i];
     else if (a == "--threads" && value) threads = std::stoi(argv[++i]);
     else if (a == "--grammar" && value) grammar = argv[++i];

@@ -2,15 +2,13 @@
 /// Timing helpers of the benchmark programs (tools/bench_*, the FCL reference): seconds since a
 /// time point, the median of repeated timings (the middle one after sorting, the upper of the
 /// two middle ones for an even count), and the thread counts a benchmark runs at.
+#include "geometry/clock.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <vector>
 
 namespace canopy {
-
-inline double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 /// The median of `times` (at least one).
 inline double median(std::vector<double> times) {
@@ -25,7 +23,7 @@ double median_time(int repeats, F&& f) {
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
     f();
-    t.push_back(since(t0));
+    t.push_back(seconds_since(t0));
   }
   return median(std::move(t));
 }

@@ -1,7 +1,7 @@
 // An end-to-end check that does not use canopy's predicates: CGAL's exact predicates on the
 // triangles of an exported stand.obj (or stand.glb with --glb), against the exact rows of
 // contacts.csv. Organ pairs that disagree are allowed only where the organs come within 1 um of
-// each other (DESIGN.md: closer than that either answer is allowed; the OBJ itself is rounded to
+// each other (docs/design.md: closer than that either answer is allowed; the OBJ itself is rounded to
 // 0.1 um). With --glb the triangles are the file's own, decoded: on a compact glb that checks the
 // quantized positions themselves.
 // Every organ kind is checked unless --collide narrows them (to the kinds a run was narrowed to).

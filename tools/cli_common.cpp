@@ -73,7 +73,7 @@ bool any_row_option(const StandSpec& s) {
 }
 
 /// A row layout from a stand entry (the grammar's or the command line's); unset keys take
-/// DESIGN.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
+/// docs/design.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
 RowLayout to_row_layout(const StandSpec& s) {
   RowLayout l;
   l.rows = s.rows.value_or(1);

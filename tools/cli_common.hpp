@@ -86,7 +86,7 @@ Command add_light(CLI::App& root);
 /// Whether any row option is set in a stand entry.
 bool any_row_option(const StandSpec& s);
 /// A row layout from a stand entry (the grammar's or the command line's); unset keys take
-/// DESIGN.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
+/// docs/design.md's defaults: 1 x 1 plants, 1.0 m rows, 0.4 m in the row, no jitter, no rotation, seed 1.
 RowLayout to_row_layout(const StandSpec& s);
 
 /// Per field of a row layout, in RowLayout's order (rows, per_row, row_spacing, plant_spacing,
@@ -99,7 +99,7 @@ struct LayoutChoice {
   LayoutSources sources;
 };
 /// The layout options override the grammar's stand entry field by field, not as a whole
-/// (DESIGN.md "Layout"): each field is the command line's where it gives one, else the grammar
+/// (docs/design.md "Layout"): each field is the command line's where it gives one, else the grammar
 /// entry's, else to_row_layout's default. `--rows 100 --per-row 100` keeps the entry's spacing,
 /// rotation, jitter and seed. `given` comes from the command line (or the Python module's keyword
 /// arguments, named "command line" too).

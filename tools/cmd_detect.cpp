@@ -1,5 +1,6 @@
 // canopy detect: detection alone on a stand written by canopy stand (organs.csv + plants.csv).
 #include "geometry/atomic_file.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/export.hpp"
 #include "geometry/thread_limit.hpp"
 #include "tools/cli_common.hpp"
@@ -26,7 +27,7 @@ Command add_detect(CLI::App& root) {
             const ThreadLimit thread_limit(o->detect.threads);
             const auto t0 = std::chrono::steady_clock::now();
             const Stand stand = read_stand(o->dir);
-            const double read_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const double read_s = seconds_since(t0);
             std::string note;
             auto backend = make_backend(o->detect.backend, note);
             const Contacts c = backend->detect(stand, o->detect.request());

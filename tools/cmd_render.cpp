@@ -2,6 +2,7 @@
 // contacts in magenta. From a folder written by canopy stand: the stand as exported, with the
 // contacts it still has. From a grammar: the stand grown, before resolution and after it, side by
 // side.
+#include "geometry/clock.hpp"
 #include "geometry/export.hpp"
 #include "geometry/input_file.hpp"
 #include "geometry/thread_limit.hpp"
@@ -147,7 +148,7 @@ Command add_render(CLI::App& root) {
             rusage ru{};
             getrusage(RUSAGE_SELF, &ru);
             fmt::print("wrote {} ({}x{}, {} organs) in {:.2f} s, peak memory {:.2f} GB\n", o->out, w, h, organs,
-                       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                       seconds_since(t0),
                        static_cast<double>(ru.ru_maxrss) / (1024.0 * 1024.0));
             return 0;
 #endif

@@ -1,6 +1,7 @@
 // canopy sweep: a spacing / density x age experiment, several seeds per cell, one CSV row per
 // run (resumable), and a summary per cell.
 #include "geometry/atomic_file.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/stand_metrics.hpp"
 #include "geometry/thread_limit.hpp"
@@ -36,10 +37,6 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 std::string num(double v) { return fmt::format("{}", v); }
 
 /// One run: grow, detect (every level up to the exact one), resolve; the row of runs.csv.
@@ -56,7 +53,7 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   req.plants = row_layout(layout);
   auto t = std::chrono::steady_clock::now();
   Stand stand = grow_stand(req);
-  row["generate_s"] = fmt::format("{:.4f}", since(t));
+  row["generate_s"] = fmt::format("{:.4f}", seconds_since(t));
   PrototypeLibrary lib;
   const LeafAreaIndex lai = leaf_area_index(stand, lib, o.rows, o.per_row, cell.plant_spacing, cell.row_spacing);
   const double n = static_cast<double>(stand.plant_count());
@@ -69,7 +66,7 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   dreq.level = ContactLevel::exact;
   t = std::chrono::steady_clock::now();
   const Contacts c = backend.detect(stand, dreq);
-  row["detect_s"] = fmt::format("{:.4f}", since(t));
+  row["detect_s"] = fmt::format("{:.4f}", seconds_since(t));
   for (std::size_t l = 0; l < 4; ++l) {
     const std::string level(kContactLevelNames[l]);
     row[level + "_between_per_plant"] = fmt::format("{:.4f}", static_cast<double>(c.counts[l]->between) / n);
@@ -84,7 +81,7 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
     const Contacts start = rc.level == ContactLevel::exact ? c : backend.detect(stand, at);
     t = std::chrono::steady_clock::now();
     const ResolveResult r = run_resolution(stand, backend, dreq, ro, start);
-    row["resolve_s"] = fmt::format("{:.4f}", since(t));
+    row["resolve_s"] = fmt::format("{:.4f}", seconds_since(t));
     row["organs_turned"] = std::to_string(r.organs_moved);
     row["organs_turned_per_plant"] = fmt::format("{:.4f}", static_cast<double>(r.organs_moved) / n);
     row["mean_turn_deg"] = fmt::format("{:.4f}", r.mean_turn_deg);
@@ -222,7 +219,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       Pending& p = pending[wave + static_cast<std::size_t>(me)];
       if (tty)
         fmt::print(stderr, "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
-                   p.index + 1, total, p.row["plant_spacing"], p.row["row_spacing"], p.row["steps"], p.seed, since(t0));
+                   p.index + 1, total, p.row["plant_spacing"], p.row["row_spacing"], p.row["steps"], p.seed, seconds_since(t0));
       try {
         p.row = run_one(o, *p.cell, p.seed, *backend, p.row);
       } catch (const std::exception& e) {
@@ -264,7 +261,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   }
   if (print)
     fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,
-               since(t0));
+               seconds_since(t0));
   if (stopped) std::rethrow_exception(stopped);
   SweepOutcome out;
   out.total = total, out.ran = ran, out.failed = failed;

@@ -6,13 +6,11 @@
 /// glibc.malloc.hugetlb=1 is set, which it reads only when a process starts: so a program that
 /// wants it sets the tunable and runs itself again, once, before doing anything else.
 ///
-/// Measured (bench/results/README.md, "The planning's page faults; the heap in large pages"): on
-/// the H100 and H200 machines' 16 host cores the planning's faults 189,000 -> 2,000 and the
-/// 10,000-plant CUDA resolution 0.68-0.97 -> 0.64-0.87 s (20 of 21 alternated pairs faster, a
-/// fresh machine's first run included); the CPU backend there alike or faster; but on the 2-core
-/// development machine (a VM whose huge-page faults cost twice the system time of the small ones)
-/// the CPU backend's 1,000-plant resolutions were 10-40 % slower.
-/// Hence the default: large pages where the run uses the GPU, small ones otherwise.
+/// On a 16-core GPU machine large pages take the planning's page faults from about 190,000 to
+/// a few thousand and make the 10,000-plant CUDA resolution faster (bench_resolve, alternated
+/// runs); the CPU backend there is alike or faster. On a small VM, whose huge-page faults cost
+/// more system time than small ones, the CPU backend's resolutions are slower. Hence the
+/// default: large pages where the run uses the GPU, small ones otherwise.
 /// CANOPY_HEAP_PAGES=large or =small in the environment overrides the choice.
 #include <gnu/libc-version.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-// light.json and light.csv of canopy light (DESIGN.md "Command line").
+// light.json and light.csv of canopy light (docs/design.md "Command line").
 #include "tools/light_run.hpp"
 
 #ifdef CANOPY_HAVE_LIGHT

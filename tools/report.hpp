@@ -1,5 +1,5 @@
 #pragma once
-/// report.json (DESIGN.md "Exports") and the terminal summary of a run.
+/// report.json (docs/design.md "Report") and the terminal summary of a run.
 #include "geometry/atomic_file.hpp"
 #include "geometry/leaf_angles.hpp"
 #include "geometry/prototype.hpp"

@@ -1,6 +1,8 @@
 // canopy stand's run: grow, detect, resolve, export, report.
+#include "geometry/clock.hpp"
 #include "geometry/export.hpp"
 #include "geometry/layout.hpp"
+#include "geometry/split_list.hpp"
 #include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
@@ -18,24 +20,12 @@
 #include <set>
 
 namespace canopy::cli {
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
-
 std::set<std::string> parse_formats(const std::string& list) {
   std::set<std::string> formats;
-  for (std::size_t i = 0; i <= list.size();) {
-    std::size_t j = list.find(',', i);
-    if (j == std::string::npos) j = list.size();
-    const std::string f = list.substr(i, j - i);
+  for (const std::string& f : split_list(list)) {
     if (f != "glb" && f != "obj" && f != "ply")
       throw std::invalid_argument(fmt::format("--formats: unknown format '{}' (expected glb, obj, ply)", f));
     formats.insert(f);
-    i = j + 1;
   }
   return formats;
 }

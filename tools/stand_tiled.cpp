@@ -15,6 +15,7 @@
 #include "distributed/mpi_files.hpp"
 #include "distributed/region.hpp"
 #include "distributed/tiles.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/export.hpp"
 #include "geometry/thread_limit.hpp"
 #include "tools/cli_common.hpp"
@@ -30,10 +31,6 @@
 
 namespace canopy::cli {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 /// Runs `work` on every rank; when it throws on any, every rank throws the first failure.
 template <typename F>

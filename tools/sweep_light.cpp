@@ -1,5 +1,6 @@
 #include "tools/sweep_light.hpp"
 
+#include "geometry/clock.hpp"
 #include "geometry/leaf_angles.hpp"
 #include "tools/light_run.hpp"
 
@@ -56,7 +57,7 @@ double light_columns(const Stand& stand, const RowLayout& layout, const SweepOpt
   row["star_" + when] = fmt::format("{:.5f}", r.diffuse->star.value);
   row["mean_inclination_" + when] = fmt::format("{:.4f}", r.leaf_angles.mean_inclination_deg);
   row["light_se_" + when] = fmt::format("{:.5f}", se);
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return seconds_since(t0);
 #else
   (void)stand, (void)layout, (void)o, (void)when, (void)row;
   return 0;

@@ -19,7 +19,7 @@ struct SweepOptions {
   std::string plant_spacing = "0.4", row_spacing = "1.0", density, steps;
   int seeds = 3, rows = 3, per_row = 5;
   /// Jitter radius (metres) and whether plants are turned at random: unset, the grammar's stand
-  /// entry's, else 0.02 and turned (DESIGN.md's default stand). Rows, plants per row, the
+  /// entry's, else 0.02 and turned (docs/design.md's default stand). Rows, plants per row, the
   /// spacings and the seed are the sweep's own.
   std::optional<double> jitter;
   std::optional<bool> random_rotation;

@@ -1,5 +1,7 @@
 #include "tools/sweep_spec.hpp"
 
+#include "geometry/split_list.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -43,14 +45,9 @@ std::vector<double> parse_number_list(const std::string& name, const std::string
     if (n > 100000) throw std::invalid_argument(fmt::format("{}: the range '{}' has more than 100,000 values", name, text));
     for (long k = 0; k <= n; ++k) out.push_back(a + static_cast<double>(k) * step);
   } else if (!text.empty()) {
-    std::size_t i = 0;
-    for (;;) {
-      const std::size_t j = text.find(',', i);
-      const std::string item = text.substr(i, j == std::string::npos ? std::string::npos : j - i);
+    for (const std::string& item : split_list(text)) {
       if (item.empty()) throw std::invalid_argument(fmt::format("{}: empty item in '{}'", name, text));
       out.push_back(number(name, item));
-      if (j == std::string::npos) break;
-      i = j + 1;
     }
   }
   if (out.empty()) throw std::invalid_argument(fmt::format("{}: no values given", name));

@@ -1,5 +1,5 @@
 #pragma once
-// DESIGN.md's hard cases, each with its answer worked out by hand: triangle pairs (coplanar,
+// docs/design.md's hard cases, each with its answer worked out by hand: triangle pairs (coplanar,
 // touching, degenerate, slivers) and small hand-built stands (containment in solids, organs of
 // zero thickness or length, leaflets at extreme scales). Shared by the CPU suite
 // (test_hard_cases.cpp) and the CUDA suite, which checks the device gives the same answers.

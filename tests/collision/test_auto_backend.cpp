@@ -30,7 +30,7 @@ class TestRunner : public HostAttemptRunner {
   int fail_at = -1;  // the call that throws (1 is the first); -1: none
 };
 
-class TestBackend : public DetectionBackend {
+class TestBackend : public DetectionBackend, public AttemptSource {
  public:
   explicit TestBackend(std::size_t lanes) : runner(lib, lanes) {}
   std::string name() const override { return "test"; }

@@ -1,4 +1,4 @@
-// DESIGN.md's hard cases, each with its answer worked out by hand.
+// docs/design.md's hard cases, each with its answer worked out by hand.
 #include "hard_cases.hpp"
 #include "helpers.hpp"
 

@@ -82,7 +82,7 @@ else
   check "assimp installed (run scripts/setup.sh)" "yes" "no"
 fi
 
-# Contacts: sorted, the header of DESIGN.md, and the report's exact count.
+# Contacts: sorted, the header of docs/design.md, and the report's exact count.
 check "contacts header" "organ_a,organ_b,plant_a,plant_b,level" "$(head -1 "$out/contacts.csv")"
 check "contacts sorted" "$(tail -n +2 "$out/contacts.csv" | sort -t, -k1,1n -k2,2n)" "$(tail -n +2 "$out/contacts.csv")"
 check "report exact" "$(($(wc -l < "$out/contacts.csv") - 1))" \

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tiled runs over MPI (issue: fields beyond one machine): `mpirun -np P canopy stand` on 1, 2
+# Tiled runs over MPI, for fields beyond one machine: `mpirun -np P canopy stand` on 1, 2
 # and 4 ranks (oversubscribed on this machine) writes the same files, byte for byte, as one
 # process (report.json compared without its timings and device); stands whose contacts cross
 # tile borders, with and without resolution; a tile with no plants; plants exactly on a border;

@@ -1,6 +1,7 @@
 #include "tools/fcl/fcl_reference.hpp"
 
 #include "collision/contacts.hpp"
+#include "geometry/clock.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "tools/bench_timing.hpp"
 
@@ -68,7 +69,7 @@ FclScene::FclScene(const Stand& stand, PrototypeLibrary& lib, const KindMask& co
   }
   impl_->manager.registerObjects(raw);
   impl_->manager.setup();
-  impl_->build_s = since(t);
+  impl_->build_s = seconds_since(t);
 }
 
 FclScene::~FclScene() = default;

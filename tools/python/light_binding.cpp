@@ -1,5 +1,6 @@
 // canopy.Stand.light and canopy.light: canopy light on a stand held by Python or on a folder or
 // grammar, returning light.json as a dict (with light.csv's columns as NumPy arrays for a Stand).
+#include "geometry/split_list.hpp"
 #include "geometry/thread_limit.hpp"
 #include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
@@ -47,20 +48,11 @@ py::dict csv_columns(const std::string& csv) {
   std::istringstream in(csv);
   std::string line;
   std::getline(in, line);
-  std::vector<std::string> names;
-  for (std::size_t i = 0; i <= line.size();) {
-    const std::size_t j = std::min(line.find(',', i), line.size());
-    names.push_back(line.substr(i, j - i));
-    i = j + 1;
-  }
+  const std::vector<std::string> names = split_list(line);
   std::vector<std::vector<double>> cols(names.size());
   while (std::getline(in, line)) {
-    std::size_t i = 0;
-    for (std::size_t c = 0; c < names.size(); ++c) {
-      const std::size_t j = std::min(line.find(',', i), line.size());
-      cols[c].push_back(std::stod(line.substr(i, j - i)));
-      i = j + 1;
-    }
+    const std::vector<std::string> cells = split_list(line);
+    for (std::size_t c = 0; c < names.size(); ++c) cols[c].push_back(std::stod(cells.at(c)));
   }
   py::dict out;
   for (std::size_t c = 0; c < names.size(); ++c) out[py::str(names[c])] = py::array_t<double>(static_cast<py::ssize_t>(cols[c].size()), cols[c].data());
