@@ -1,6 +1,6 @@
 // `canopy stand` as users run it, stage by stage. Each size runs in a process of its own (this
 // program started again, as a user starts canopy), which calls run_stand (tools/stand_run.cpp,
-// canopy stand's own code) with canopy stand's defaults on DESIGN.md's default stand: rows of
+// canopy stand's own code) with canopy stand's defaults on the default stand (docs/design.md): rows of
 // 100 plants 1.0 m apart, 0.4 m between plants, random rotation, 0.02 m jitter, seed 1, resolved,
 // `stand.glb` written (`stand.ply` above 10,000 plants, where a glb would pass the format's
 // 4 GiB). The stage times are the run's own (report.json's timings_s and StandOutcome); this
