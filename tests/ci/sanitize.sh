@@ -11,11 +11,11 @@
 #   cli    the command-line suites and the Python suite against the sanitized program and module.
 set -euo pipefail
 mode=$1 src=$2 build=$3
-if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
-    -DCANOPY_SANITIZE=ON -DCANOPY_CUDA=OFF -DCANOPY_MPI=OFF -DCANOPY_RENDER=OFF >"$build.configure.log" 2>&1 \
-    || { cat "$build.configure.log"; rm -f "$build/CMakeCache.txt"; exit 1; }
-fi
+# Configured every time with every option named (a no-op when nothing changed), so that a tree
+# configured otherwise before (without the program, say) is brought to this one.
+cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+  -DCANOPY_SANITIZE=ON -DCANOPY_CUDA=OFF -DCANOPY_MPI=OFF -DCANOPY_RENDER=OFF -DCANOPY_TOOLS=ON -DCANOPY_TESTS=ON \
+  >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; rm -f "$build/CMakeCache.txt"; exit 1; }
 targets=(test_lsystem test_collision canopy)
 # The Python module where this machine has pybind11, NumPy and Python's headers.
 if cmake --build "$build" --target help | grep -q '^_canopy:'; then targets+=(_canopy canopy_python_files); fi
