@@ -82,6 +82,23 @@ struct AttemptSettings {
   bool exact = true;    // false: the organ level (overlapping boxes touch)
 };
 
+/// What a runner did (ResolveRequest::statistics): its calls, the attempt groups and the box and
+/// exact tests they made, the bytes it sent, and the host's seconds in its calls (summed over
+/// lanes, which overlap): handing over the uploads, until the box tests' count was back, until the
+/// answers were. A runner counts what its hardware lets it count; the host's counts calls and
+/// groups.
+struct AttemptStats {
+  std::string hardware;  // AttemptRunner::hardware()
+  std::size_t lanes = 0;  // lanes that worked
+  std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
+  double call_s = 0, upload_s = 0, box_s = 0, exact_s = 0;
+  /// The device's own clock, where the runner kept it: from the first call's kernels to the
+  /// last's, how long some lane's kernels were queued or running, and the calls' spans summed.
+  bool timeline = false;
+  double kernels_span_s = 0, kernels_busy_s = 0, kernels_summed_s = 0;
+  std::string no_timeline;  // why the timeline could not be read, where it could not
+};
+
 class AttemptRunner {
  public:
   virtual ~AttemptRunner() = default;
@@ -105,6 +122,13 @@ class AttemptRunner {
   /// (the lane's tables as they stand now; entries appended since its last call are new).
   virtual std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                               const AttemptSettings& settings) = 0;
+  /// From now on, whether to keep what only the statistics need (on the device: an event pair
+  /// around every kernel and the exact tests' touches); off until asked. Never called while
+  /// lanes work.
+  virtual void keep_statistics(bool on) = 0;
+  /// What the runner did since the last call (since it was made, at the first); its counts start
+  /// again from zero. Never called while lanes work.
+  virtual AttemptStats take_statistics() = 0;
 };
 
 }  // namespace canopy

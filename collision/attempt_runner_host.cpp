@@ -9,6 +9,8 @@ namespace canopy {
 std::vector<std::uint32_t> HostAttemptRunner::touching(std::size_t, const AttemptTables& t, std::span<const AttemptGroup> groups,
                                                        const AttemptSettings& settings) {
   std::vector<std::uint32_t> out(groups.size(), 0);
+  calls_.fetch_add(1, std::memory_order_relaxed);
+  groups_.fetch_add(groups.size(), std::memory_order_relaxed);
 #pragma omp parallel num_threads(threads_)
   {
     ExactScratch scratch;
@@ -35,6 +37,13 @@ std::vector<std::uint32_t> HostAttemptRunner::touching(std::size_t, const Attemp
     }
   }
   return out;
+}
+
+AttemptStats HostAttemptRunner::take_statistics() {
+  AttemptStats s;
+  s.hardware = hardware();
+  s.calls = calls_.exchange(0), s.groups = groups_.exchange(0);
+  return s;
 }
 
 }  // namespace canopy

@@ -7,6 +7,8 @@
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
 
+#include <atomic>
+
 namespace canopy {
 
 class HostAttemptRunner : public AttemptRunner {
@@ -21,6 +23,9 @@ class HostAttemptRunner : public AttemptRunner {
   void clear(std::size_t) override {}
   std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
+  /// Nothing beyond its counts of calls and groups, which cost an atomic add per call.
+  void keep_statistics(bool) override {}
+  AttemptStats take_statistics() override;
 
  private:
   const Stand* stand_ = nullptr;
@@ -28,6 +33,7 @@ class HostAttemptRunner : public AttemptRunner {
   PrototypeLibrary& lib_;
   int threads_;
   std::size_t lanes_;
+  std::atomic<std::uint64_t> calls_{0}, groups_{0};  // lanes call from threads of their own
 };
 
 }  // namespace canopy

@@ -60,6 +60,26 @@ class FallbackRunner : public AttemptRunner {
     }
     return host_->touching(lane, tables, groups, settings);
   }
+  /// The preferred runner's; after a failure, nothing more is asked of it (the host runner's
+  /// counts are of the calls it took over).
+  void keep_statistics(bool on) override {
+    if (failed_) return;
+    try {
+      first_->keep_statistics(on);
+    } catch (const BackendFailure& e) {
+      fail(e.what());
+    }
+  }
+  AttemptStats take_statistics() override {
+    if (!failed_) {
+      try {
+        return first_->take_statistics();
+      } catch (const BackendFailure& e) {
+        fail(e.what());
+      }
+    }
+    return host_->take_statistics();
+  }
 
  private:
   /// Lanes fail on threads of their own: the first failure is said, every one switches.

@@ -2,12 +2,9 @@
 
 #include "geometry/clock.hpp"
 
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdlib>
 #include <numbers>
 #include <stdexcept>
 
@@ -23,7 +20,7 @@ constexpr std::size_t kParallelFrom = 2048;
 
 using Candidate = TurnSearch::Candidate;
 
-/// Adds the seconds of its scope to `sum` (CANOPY_BULK_STATS).
+/// Adds the seconds of its scope to `sum` (PlanLaneStats).
 struct Timed {
   double& sum;
   double start = now_seconds();
@@ -32,14 +29,9 @@ struct Timed {
 
 }  // namespace
 
-BatchedScan::~BatchedScan() {
-  if (std::getenv("CANOPY_BULK_STATS")) {
-    fmt::print(stderr, "batched scan (host, lane {}): scan and refine {:.3f} s, of which limits {:.3f} s, tables {:.3f} s, {} gathers {:.3f} s, runner {:.3f} s\n",
-               lane_, times_.scan, times_.limits, times_.tables, times_.gathers, times_.gather, times_.runner);
-    const auto mb = [](const auto& t) { return 1e-6 * static_cast<double>(t.capacity() * sizeof(t[0])); };
-    fmt::print(stderr, "batched scan tables (lane {}), MB held: moving {:.1f}, keep {:.1f}, pairs {:.1f}, witness {:.1f}, axes {:.1f}\n", lane_,
-               mb(tables_.moving), mb(tables_.keep), mb(tables_.pairs), mb(tables_.witness), mb(tables_.axes));
-  }
+void BatchedScan::add_stats(PlanLaneStats& to) const {
+  to.scan_s += times_.scan, to.limits_s += times_.limits, to.tables_s += times_.tables;
+  to.gather_s += times_.gather, to.runner_s += times_.runner, to.gathers += times_.gathers;
 }
 
 void BatchedScan::clear() {

@@ -13,6 +13,7 @@
 /// the candidates whose axes cleared the organs met, as the host search gathers them) and the
 /// picks; the runner does the box and triangle tests, which are nearly all the work.
 #include "collision/attempt_batch.hpp"
+#include "collision/resolve_stats.hpp"
 #include "collision/turn_search.hpp"
 
 #include <span>
@@ -29,9 +30,8 @@ class BatchedScan {
       : search_(search), runner_(runner), threads_(threads), lane_(lane), tables_(tables ? *tables : own_tables_) {}
   BatchedScan(const BatchedScan&) = delete;
   BatchedScan& operator=(const BatchedScan&) = delete;
-  /// With CANOPY_BULK_STATS set in the environment, prints where the host's time went and how
-  /// large the tables grew.
-  ~BatchedScan();
+  /// Adds where the host's time went (PlanLaneStats: scan_s to gathers) to `to`.
+  void add_stats(PlanLaneStats& to) const;
   /// A new batch of contacts: the tables start empty (candidates of the last batch are gone).
   void clear();
   /// TurnSearch::scan_level(c, level) for each candidate of `scan`, and TurnSearch::refine(c)

@@ -1,17 +1,19 @@
 #pragma once
 /// Resolution's own stopwatch: wall and CPU seconds and page faults per phase over all rounds.
+#include "collision/resolve_stats.hpp"
 #include "geometry/clock.hpp"
 
-#include <cstdlib>
+#include <vector>
 
 namespace canopy {
 
-/// Where resolution's time goes, phase by phase over all rounds, printed at its end when
-/// CANOPY_PLAN_STATS is set (off: one branch per phase); `scan_busy` sums the candidates'
+/// Where resolution's time goes, phase by phase over all rounds, when `on`
+/// (ResolveRequest::statistics; off: one branch per phase); `scan_busy` sums the candidates'
 /// scan times over the threads, so scan_busy / (threads x scan) is the scan's parallel share.
 struct PhaseTimes {
   enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
-  bool on = std::getenv("CANOPY_PLAN_STATS") != nullptr;
+  explicit PhaseTimes(bool on = false) : on(on) {}
+  bool on;
   double seconds[count] = {}, scan_busy = 0, mark = now_seconds();
   /// The process's CPU seconds (all threads) and minor page faults so far (one getrusage).
   struct Usage {
@@ -22,7 +24,8 @@ struct PhaseTimes {
   long faults[count] = {};  // per phase
   Usage usage_mark = usage();
   void lap(Phase p);
-  void print(int threads) const;
+  /// Every phase's sums, in the order of Phase.
+  std::vector<PhaseStat> phases() const;
   static Usage usage();
 };
 

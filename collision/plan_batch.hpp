@@ -28,7 +28,7 @@ struct Lane {
   std::vector<TurnSearch::Candidate*> state;
   std::vector<std::uint8_t> open, want;  // not made yet or still searching; wanted at this level
   std::vector<std::optional<Turn>> refined;
-  /// With CANOPY_BULK_STATS: seconds in batches, in the candidates' preparation and levels run.
+  /// Seconds in batches, in the candidates' preparation, and levels run (PlanLaneStats).
   double batch_s = 0, prepare_s = 0;
   std::size_t levels = 0;
 };

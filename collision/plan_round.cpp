@@ -65,7 +65,6 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   if (pools.size() < n_lanes) pools.resize(n_lanes);
   if (req.tables && req.tables->size() < n_lanes) req.tables->resize(n_lanes);
   PhaseTimes quiet;
-  quiet.on = false;
   std::vector<Lane> lanes(n_lanes);
   for (std::size_t l = 0; l < n_lanes; ++l) {
     Lane& lane = lanes[l];
@@ -113,11 +112,15 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       for (const auto& [g, turn] : list)
         if (!turn_of[g]) turn_of[g] = turn;
   }
-  if (std::getenv("CANOPY_BULK_STATS"))
-    for (std::size_t l = 0; l < lanes.size(); ++l)
-      fmt::print(stderr, "planning lane {}: {:.3f} s in batches, {} levels, candidates prepared in {:.3f} s\n", l, lanes[l].batch_s,
-                 lanes[l].levels, lanes[l].prepare_s);
-  lanes.clear();  // the batched scans print their statistics (CANOPY_BULK_STATS)
+  if (req.lane_stats) {
+    if (req.lane_stats->size() < lanes.size()) req.lane_stats->resize(lanes.size());
+    for (std::size_t l = 0; l < lanes.size(); ++l) {
+      PlanLaneStats& to = (*req.lane_stats)[l];
+      to.batch_s += lanes[l].batch_s, to.prepare_s += lanes[l].prepare_s, to.levels += lanes[l].levels;
+      if (lanes[l].bulk) lanes[l].bulk->add_stats(to);
+    }
+  }
+  lanes.clear();
   // Last resort, contact by contact: a turn that clears this one contact, by a mover not yet
   // turning this round (the first contact to claim a mover keeps it).
   std::vector<std::size_t> left;

@@ -12,9 +12,9 @@
 #include "collision/joints.hpp"
 #include "collision/lane_threads.hpp"
 #include "collision/phase_times.hpp"
+#include "collision/resolve_stats.hpp"
 #include "collision/turn_search.hpp"
 
-#include <cstdlib>
 #include <functional>
 #include <map>
 #include <memory>
@@ -61,6 +61,8 @@ struct PlanRequest {
   /// Per lane, the batched scan's tables (grown here; kept by the caller from round to round,
   /// null: made anew each round).
   std::vector<AttemptTables>* tables = nullptr;
+  /// Per lane, where the round's time went, added to (grown here; ResolveRequest::statistics).
+  std::vector<PlanLaneStats>* lane_stats = nullptr;
 };
 
 /// One round's turns, all planned against the poses at the start of the round. Each contact

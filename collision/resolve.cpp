@@ -26,11 +26,19 @@ ResolveResult Resolution::finish() {
   // The candidates and the lanes' tables go on a thread of their own (collision/
   // background_release.hpp), and the lanes' threads end: every turn is made, the caller goes on.
   lane_threads.reset();
+  if (req.statistics) {
+    const auto bytes = [](const auto& t) { return t.capacity() * sizeof(t[0]); };
+    for (std::size_t l = 0; l < tables.size() && l < lane_stats.size(); ++l) {
+      PlanLaneStats& to = lane_stats[l];
+      to.moving_bytes = bytes(tables[l].moving), to.keep_bytes = bytes(tables[l].keep), to.pair_bytes = bytes(tables[l].pairs);
+      to.witness_bytes = bytes(tables[l].witness), to.axis_bytes = bytes(tables[l].axes);
+    }
+  }
   auto gone = std::make_shared<std::pair<std::vector<std::vector<CandidatePool>>, std::vector<AttemptTables>>>(std::move(pools),
                                                                                                            std::move(tables));
   BackgroundRelease::instance().hand_over([gone] { gone->first.clear(), gone->second.clear(); });
   times.lap(PhaseTimes::release);
-  times.print(threads);
+  if (req.statistics) out.stats = statistics();
   out.contacts_after = left;
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     if (!mine(contacts[i].plant_a)) continue;

@@ -12,6 +12,7 @@
 #include "collision/joints.hpp"
 #include "collision/plan_round.hpp"
 #include "collision/resolve_policy.hpp"
+#include "collision/resolve_stats.hpp"
 #include "collision/turn_search.hpp"
 
 #include <functional>
@@ -73,6 +74,10 @@ struct ResolveRequest {
   /// contacts: fewer levels one after another per lane than two batches each (8,192; faster on a
   /// GPU, bench_resolve at 10,000 plants), for more memory at the peak on the CPU backend (8 %).
   std::size_t batch_contacts = kDefaultBatchContacts;
+  /// Collect ResolveResult::stats: where the time went phase by phase (wall, CPU, page faults),
+  /// lane by lane of planning, and what the runner of bulk attempts did (on the device, with a
+  /// pair of events around every kernel). Off: none of it is measured; the turns are the same.
+  bool statistics = false;
 };
 
 struct ResolveRound {
@@ -118,6 +123,9 @@ struct ResolveResult {
   std::string planning = "none", search = "none";
   std::size_t lanes = 0;
   double seconds = 0;
+  /// Where the time went, with ResolveRequest::statistics (`collected` false otherwise): this
+  /// process's own, over tiles too.
+  ResolveStats stats;
 };
 
 /// Resolves `stand` in place. `initial` holds the contacts at config.level that

@@ -84,6 +84,11 @@ Resolution::Round Resolution::prepare_round(int round) {
   // told which organs moved since it last looked.
   AttemptSource* source = req.bulk_attempts ? attempt_source(backend) : nullptr;
   w.runner = req.attempts ? req.attempts : source ? source->attempt_runner(s) : nullptr;
+  if (w.runner && req.statistics && w.runner != told) {
+    // What the runner did before this resolution is not its work; from here on it keeps all.
+    (void)w.runner->take_statistics();
+    w.runner->keep_statistics(true);
+  }
   if (w.runner) w.runner->update_organs(s, boxes, changed, w.runner != told), told = w.runner;
   // The witnesses serve the host's attempts, and a bulk scan's runner tests them first.
   if (cfg.level == ContactLevel::exact) touching.find_witnesses(s, lib, search.clearance, threads);
@@ -105,6 +110,7 @@ bool Resolution::plan_turns(Round& w) {
   preq.batch_contacts = req.batch_contacts;
   preq.pools = &pools;
   preq.tables = &tables;
+  preq.lane_stats = req.statistics ? &lane_stats : nullptr;
   w.plan = plan_round(s, joints, contacts, touching, search, preq, times);
   ResolveRound& rr = w.record;
   // Asked after planning: a runner that fell back to the host half-way says so.
@@ -199,6 +205,20 @@ void Resolution::record_round(Round& w) {
   out.per_round.push_back(w.record);
   out.rounds = w.record.round;
   why.clear();  // reasons belong to the list they were found on
+}
+
+ResolveStats Resolution::statistics() {
+  ResolveStats st;
+  st.collected = true;
+  st.threads = threads;
+  st.phases = times.phases();
+  st.scan_busy_s = times.scan_busy;
+  st.lanes = lane_stats;
+  if (told) {
+    st.attempts = told->take_statistics();
+    told->keep_statistics(false);
+  }
+  return st;
 }
 
 }  // namespace canopy::resolving

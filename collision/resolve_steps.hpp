@@ -67,6 +67,8 @@ struct Resolution {
   /// What planned, the memory handed over, the contacts left with why, and the turns summed
   /// over every process.
   ResolveResult finish();
+  /// ResolveResult::stats from the phase times, the lanes and the last runner (its counts taken).
+  ResolveStats statistics();
 
   /// Organ k's OBB (no clearance) at its current transform.
   Obb box_of(std::size_t k) { return make_obb(s.transforms[k], lib.get(s.organs[k]).box, 0); }
@@ -86,7 +88,7 @@ struct Resolution {
   DetectionBackend& backend;
   const ResolveRequest& req;
   const double t0 = now_seconds();
-  PhaseTimes times;
+  PhaseTimes times{req.statistics};
   const ResolveConfig& cfg;
   ResolveResult out;
   DetectRequest dreq;
@@ -105,12 +107,13 @@ struct Resolution {
   std::map<std::size_t, std::string> why;
   std::vector<std::uint32_t> changed;           // organs moved by the last round (the runner is told next round)
   std::vector<std::int64_t> bend_counts = std::vector<std::int64_t>(4, 0);  // this process's turns bent, their joints, kinks, unbent
-  const AttemptRunner* told = nullptr;          // the runner that has seen every organ
+  AttemptRunner* told = nullptr;                // the runner that has seen every organ
   std::size_t best;
   int best_round = 0;
   std::vector<std::vector<CandidatePool>> pools;  // per lane of planning, per thread
   std::vector<AttemptTables> tables;              // per lane of bulk planning
   std::optional<LaneThreads> lane_threads;        // made at the first round with a runner of several lanes
+  std::vector<PlanLaneStats> lane_stats;          // per lane of planning (ResolveRequest::statistics)
 };
 
 }  // namespace canopy::resolving

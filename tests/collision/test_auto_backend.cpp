@@ -129,3 +129,18 @@ TEST_CASE("auto backend: a failure in detection, the CPU backend's contacts and 
   CHECK(after.result.planning == host.result.planning);
   same_turns(host, after);
 }
+
+TEST_CASE("auto backend: the wrapped runner's statistics reach the result when asked") {
+  Stand s = row_stand(2);
+  auto test = std::make_unique<TestBackend>(2);
+  TestRunner& runner = test->runner;
+  auto wrapped = make_auto_backend(std::move(test), make_cpu_backend);
+  ResolveRequest req;
+  req.statistics = true;
+  const Contacts first = wrapped->detect(s, req.detect);
+  const ResolveResult r = resolve(s, *wrapped, req, first);
+  REQUIRE(r.stats.attempts);
+  CHECK(r.stats.attempts->hardware == "test");
+  CHECK(r.stats.attempts->calls > 0);
+  CHECK(r.stats.attempts->calls == static_cast<std::uint64_t>(runner.calls.load()));
+}

@@ -20,10 +20,12 @@ struct Outcome {
 };
 
 /// `lanes` > 1: batches of `batch` contacts, that many planned at once (each on a thread of its
-/// own, through the runner's lanes).
-Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::size_t lanes = 1, std::size_t batch = 8192) {
+/// own, through the runner's lanes). `stats`: ResolveRequest::statistics.
+Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::size_t lanes = 1, std::size_t batch = 8192,
+            bool stats = false) {
   auto cpu = make_cpu_backend();
   ResolveRequest req;
+  req.statistics = stats;
   req.config = cfg;
   req.detect.clearance = clearance;
   req.detect.level = cfg.level;
@@ -122,4 +124,41 @@ TEST_CASE("batched turn search: batches planned at once on several lanes give th
   cfg.max_rounds = 4;
   const Stand s = random_stand(11, 12);
   same(run(s, cfg, 0, false), run(s, cfg, 0, true, 4, 5));
+}
+
+TEST_CASE("resolution statistics: only when asked, every phase and lane and the runner's counts, the same turns") {
+  const Stand s = row_stand(1);
+  ResolveConfig cfg;
+  const Outcome quiet = run(s, cfg, 0, true, 3, 4);
+  const Outcome told = run(s, cfg, 0, true, 3, 4, true);
+  same(quiet, told);
+  CHECK_FALSE(quiet.result.stats.collected);
+  CHECK(quiet.result.stats.phases.empty());
+  CHECK(quiet.result.stats.lanes.empty());
+  CHECK_FALSE(quiet.result.stats.attempts);
+
+  const ResolveStats& st = told.result.stats;
+  CHECK(st.collected);
+  CHECK(st.threads > 0);
+  REQUIRE(st.phases.size() == 12);
+  CHECK(st.phases.front().name == "setup");
+  CHECK(st.phases[4].name == "scan");
+  CHECK(st.phases.back().name == "release");
+  REQUIRE(st.lanes.size() == 3);
+  std::size_t levels = 0, table_bytes = 0;
+  for (const PlanLaneStats& l : st.lanes) levels += l.levels, table_bytes += l.moving_bytes + l.pair_bytes;
+  CHECK(levels > 0);
+  CHECK(table_bytes > 0);
+  REQUIRE(st.attempts);
+  CHECK(st.attempts->hardware == "host");
+  CHECK(st.attempts->calls > 0);
+  CHECK(st.attempts->groups >= st.attempts->calls);
+
+  INFO("the host's search: its lane, no runner");
+  const Outcome host = run(s, cfg, 0, false, 1, 8192, true);
+  same(quiet, host);
+  REQUIRE(host.result.stats.lanes.size() == 1);
+  CHECK(host.result.stats.lanes[0].levels > 0);
+  CHECK(host.result.stats.lanes[0].moving_bytes == 0);
+  CHECK_FALSE(host.result.stats.attempts);
 }
