@@ -1,10 +1,10 @@
 #pragma once
-/// Resolution's bulk attempts on the device (collision/attempt_batch.hpp): the batch's tables
+/// Resolution's bulk attempts on the device (resolution/attempt_batch.hpp): the batch's tables
 /// kept on the device and appended to as the host appends, each call's groups expanded into
 /// (group, pair) box tests and exact tests by a warp per pair (cuda/attempt_kernels.hpp). The
 /// meshes, organ records and plant origins are the detection's (StandOnDevice), which stay
 /// fixed while a stand resolves.
-#include "collision/attempt_batch.hpp"
+#include "resolution/attempt_batch.hpp"
 #include "cuda/attempt_kernels.hpp"
 #include "cuda/busy_timeline.hpp"
 #include "cuda/device_buffer.hpp"

@@ -7,8 +7,8 @@
 //                      [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG]
 //                      [--csv FILE] [--append] [--host-search] [--lanes N] [--batch N] [--host-runner]
 //        (`--help` says what the last four do)
-#include "collision/attempt_runner_host.hpp"
-#include "collision/resolve.hpp"
+#include "resolution/attempt_runner_host.hpp"
+#include "resolution/resolve.hpp"
 #include "geometry/clock.hpp"
 #include "geometry/split_list.hpp"
 #include "lsystem/grow.hpp"

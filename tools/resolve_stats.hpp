@@ -1,7 +1,7 @@
 #pragma once
 /// The lines `--resolve-stats` prints on stderr after a resolution: where its time went
-/// (ResolveResult::stats, collision/resolve_stats.hpp).
-#include "collision/resolve_stats.hpp"
+/// (ResolveResult::stats, resolution/resolve_stats.hpp).
+#include "resolution/resolve_stats.hpp"
 
 #include <string>
 
