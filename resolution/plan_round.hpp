@@ -1,7 +1,7 @@
 #pragma once
 /// One round of resolution's planning (resolution/resolve.hpp): every contact's candidate movers
 /// scanned level by level of cost, in batches of contacts, each contact taking the cheapest
-/// separating turn among its candidates. With a runner of bulk attempts (collision/
+/// separating turn among its candidates. With a runner of bulk attempts (resolution/
 /// batched_scan.hpp) that has several lanes, several batches are planned at once, one per lane
 /// on a thread of its own (resolution/lane_threads.hpp): while one lane waits for the device,
 /// another does its host work.

@@ -23,7 +23,7 @@ ResolveResult Resolution::finish() {
   out.planning = joined(&ResolveRound::planning);
   out.search = joined(&ResolveRound::search);
   for (const ResolveRound& x : out.per_round) out.lanes = std::max(out.lanes, x.lanes);
-  // The candidates and the lanes' tables go on a thread of their own (collision/
+  // The candidates and the lanes' tables go on a thread of their own (resolution/
   // background_release.hpp), and the lanes' threads end: every turn is made, the caller goes on.
   lane_threads.reset();
   if (req.statistics) {
