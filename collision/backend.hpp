@@ -2,7 +2,7 @@
 /// The detection backend interface: `detect(stand, DetectRequest) -> Contacts`. The CPU
 /// implementation lives here; the CUDA one in cuda/ implements the same interface, and the
 /// command line (or a small factory) picks one, so collision/ never includes cuda/. Resolution's
-/// bulk attempts are a second interface a backend may offer (collision/attempt_source.hpp).
+/// bulk attempts are a second interface a backend may offer (resolution/attempt_source.hpp).
 #include "collision/backend_failure.hpp"
 #include "collision/contacts.hpp"
 #include "collision/mbvt.hpp"
@@ -60,7 +60,7 @@ class DetectionBackend {
   /// volumes kept from the last detect() or redetect() on this stand (a transform per organ, not
   /// a rebuild; on CUDA only the moved organs travel to the device) and detects again.
   virtual Contacts redetect(const Stand& stand, const DetectRequest& request, const std::vector<std::uint32_t>& moved) = 0;
-  // Every member is pure: a backend that wraps another (collision/auto_backend.hpp) must say
+  // Every member is pure: a backend that wraps another (resolution/auto_backend.hpp) must say
   // what it does with each, so none of the wrapped backend's paths is dropped unseen.
 };
 

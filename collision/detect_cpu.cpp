@@ -10,8 +10,8 @@
 #include "collision/lcd_descent.hpp"
 #include "collision/memory_budget.hpp"
 #include "collision/mbvt_fit.hpp"
-#include "collision/obb_lanes.hpp"
-#include "collision/organ_rows.hpp"
+#include "collision/lanes/obb_lanes.hpp"
+#include "collision/lanes/organ_rows.hpp"
 #include "geometry/clock.hpp"
 #include "geometry/organ_mesh.hpp"
 
@@ -39,7 +39,7 @@ struct Collector {
   /// Told which organs moved (a re-detection): pairs of two unmoved organs are left out here
   /// rather than tested and dropped afterwards.
   const std::vector<std::uint8_t>* moved = nullptr;
-  /// Organ pairs waiting for their OBB test, 8 at a time (collision/obb_lanes.hpp), in two
+  /// Organ pairs waiting for their OBB test, 8 at a time (collision/lanes/obb_lanes.hpp), in two
   /// batches: a full batch is tested only once the next one is full too, so the OBBs it asked
   /// for when its pairs came have had eight pairs' time more to arrive (they are the tree's,
   /// which stay in place until the test). Tested at once, a batch spent about half of its time

@@ -1,7 +1,7 @@
 #include "collision/exact.hpp"
 
-#include "collision/lanes8.hpp"
-#include "collision/triangle_lanes.hpp"
+#include "collision/lanes/lanes8.hpp"
+#include "collision/lanes/triangle_lanes.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/solid_bound.hpp"
 #include "geometry/triangle_distance.hpp"
@@ -82,7 +82,7 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
                   obbs ? &obbs[ib] : nullptr);
 }
 
-// The body of pose(), built into both builds (collision/isa.hpp).
+// The body of pose(), built into both builds (collision/lanes/isa.hpp).
 [[gnu::always_inline]] inline void PosedOrgan::pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
                                                          std::int32_t plant, std::int32_t frame_plant, const Obb* made) {
   organ = id, frame = frame_plant, mesh = &m;
@@ -262,7 +262,7 @@ const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int
 
 namespace {
 
-// The body of posed_touch, built into both builds (collision/isa.hpp).
+// The body of posed_touch, built into both builds (collision/lanes/isa.hpp).
 [[gnu::always_inline]] inline bool posed_touch_body(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
                                                     Witness* witness) {
   assert(pa.organ < pb.organ && pa.frame == pb.frame);

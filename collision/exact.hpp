@@ -5,7 +5,7 @@
 /// origin difference), filters of single triangles (the other organ's box, then its OBB) and of
 /// triangle pairs (box, planes, edge axes), then the shared closed triangle test; capped
 /// cylinders and spheres are solids, so an organ wholly inside one counts too.
-#include "collision/isa.hpp"
+#include "collision/lanes/isa.hpp"
 #include "geometry/line_aligned.hpp"
 #include "geometry/obb.hpp"
 #include "geometry/prototype.hpp"
@@ -28,7 +28,7 @@ struct PosedOrgan {
   std::int32_t organ = -1, frame = -1;  // which organ, in which plant's frame (-1: not posed)
   const PrototypeMesh* mesh = nullptr;
   bool solid = false;
-  /// The triangles by groups of 8 in lanes (collision/lanes8.hpp), made 8 at a time and tested
+  /// The triangles by groups of 8 in lanes (collision/lanes/lanes8.hpp), made 8 at a time and tested
   /// 8 at a time: per group 9 lanes of corner coordinates (first corner x y z, second, third),
   /// each corner apply(transform, vertex) + origin difference as organ_vertices makes it, and 6
   /// of the triangle's box (lo x y z, hi x y z); lanes past the last triangle are not used.
@@ -60,7 +60,7 @@ struct PosedOrgan {
   /// Vertex 0 alone, as vertices() makes it (the point a test of containment takes).
   Vec3f first_vertex() const { return apply(at_, mesh->positions[0]) + moved_; }
   /// Poses `organ` (mesh `m`) at transform `t` (plant-frame of its plant `plant`) in the frame of
-  /// plant `frame_plant`, with the fastest build this CPU runs (collision/isa.hpp).
+  /// plant `frame_plant`, with the fastest build this CPU runs (collision/lanes/isa.hpp).
   /// `made`, where given, is make_obb(t, m.box, 0) made before (the tree's OBB of the organ at
   /// the stand's pose, when the tree is not inflated): taken instead of made again.
   void pose(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
@@ -182,7 +182,7 @@ int witness_slot_touching(const Stand& stand, PrototypeLibrary& lib, std::int32_
                           const Affine3f& tb, float clearance, const Witness& witness, int skip = -1);
 /// The full test of two posed organs (a < b; b posed in a's plant's frame), remembering the
 /// touching triangles in `witness` when given; with the fastest build this CPU runs
-/// (collision/isa.hpp).
+/// (collision/lanes/isa.hpp).
 bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
 /// posed_touch with the given build (Isa::x86_64_v4 only where cpu_has_x86_64_v4()): the same
 /// answer and witness.

@@ -1,7 +1,7 @@
 #include "collision/mbvt.hpp"
 #include "collision/free_pairs.hpp"
 #include "collision/mbvt_fit.hpp"
-#include "collision/obb_fit_lanes.hpp"
+#include "collision/lanes/obb_fit_lanes.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/split_list.hpp"
 

@@ -6,7 +6,7 @@
 /// internodes, trusses, fruit), so those take part like any other organ. Bounds are in each
 /// plant's frame (origin excluded); tests between plants add the origin difference.
 #include "collision/contacts.hpp"
-#include "collision/organ_lanes.hpp"
+#include "collision/lanes/organ_lanes.hpp"
 #include "geometry/lcd.hpp"
 #include "geometry/first_touch.hpp"
 #include "geometry/obb.hpp"

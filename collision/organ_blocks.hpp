@@ -3,9 +3,9 @@
 /// itself) go on to the adjacency and OBB tests: those whose organs' axis-aligned boxes
 /// (obb_aabb) meet. This is the definition both backends keep, written once here (CANOPY_HD):
 /// the CPU backend runs the same box test on 8 pairs at once over boxes kept in lanes
-/// (collision/organ_rows.hpp), the CUDA organ-pairs kernel the same conjunction (boxes meet, not
+/// (collision/lanes/organ_rows.hpp), the CUDA organ-pairs kernel the same conjunction (boxes meet, not
 /// adjacent, OBBs overlap) with the boxes tested last, and the tests hold all of them to the same
-/// pairs (tests/collision/test_organ_rows.cpp, tests/cuda).
+/// pairs (tests/collision/lanes/test_organ_rows.cpp, tests/cuda).
 #include "collision/mbvt.hpp"
 #include "collision/mbvt_fit.hpp"
 #include "geometry/hd.hpp"

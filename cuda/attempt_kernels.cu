@@ -1,5 +1,5 @@
 // Resolution's bulk attempts on the device: the shared CANOPY_HD box test of a turned pair
-// (collision/attempt_batch.hpp) and the shared warp exact test (cuda/organ_pair_test.cuh),
+// (resolution/attempt_batch.hpp) and the shared warp exact test (cuda/organ_pair_test.cuh),
 // compiled with --fmad=false like the host's -ffp-contract=off, so the answers are the host's.
 #include "cuda/append.cuh"
 #include "cuda/attempt_kernels.hpp"

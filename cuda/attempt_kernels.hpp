@@ -1,8 +1,8 @@
 #pragma once
-/// The kernels of resolution's bulk attempts (collision/attempt_batch.hpp): the boxes of every
+/// The kernels of resolution's bulk attempts (resolution/attempt_batch.hpp): the boxes of every
 /// (group, pair) at every axis of the group's mask, then a warp per pair whose boxes meet for
 /// the exact test at the turned pose. Each group's answer is a mask of axes with a touching pair.
-#include "collision/attempt_batch.hpp"
+#include "resolution/attempt_batch.hpp"
 #include "cuda/detect_kernels.hpp"
 
 #include <cuda_runtime.h>

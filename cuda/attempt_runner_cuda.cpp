@@ -36,46 +36,55 @@ CudaAttemptRunner::CudaAttemptRunner(const StandOnDevice& dev) : dev_(dev) {
   CANOPY_CUDA_CHECK(cudaDeviceGetDefaultMemPool(&pool_, device));
   std::uint64_t keep = std::numeric_limits<std::uint64_t>::max();
   CANOPY_CUDA_CHECK(cudaMemPoolSetAttribute(pool_, cudaMemPoolAttrReleaseThreshold, &keep));
-  if (!report_) return;
-  CANOPY_CUDA_CHECK(cudaEventCreate(&origin_));
-  CANOPY_CUDA_CHECK(cudaEventRecord(origin_));
-  CANOPY_CUDA_CHECK(cudaEventSynchronize(origin_));
 }
 
 CudaAttemptRunner::~CudaAttemptRunner() {
-  if (report_) print_stats();
   // The lanes' buffers back to the pool (in their streams' order), then the pool's unused memory
   // back to the device, for whatever runs next.
   for (auto& l : lanes_) l.reset();
   if (cudaDeviceSynchronize() == cudaSuccess) cudaMemPoolTrimTo(pool_, 0);
+  if (origin_) cudaEventDestroy(origin_);
 }
 
-void CudaAttemptRunner::print_stats() {
+void CudaAttemptRunner::keep_statistics(bool on) {
+  if (on && !origin_) {
+    CANOPY_CUDA_CHECK(cudaEventCreate(&origin_));
+    CANOPY_CUDA_CHECK(cudaEventRecord(origin_));
+    CANOPY_CUDA_CHECK(cudaEventSynchronize(origin_));
+  }
+  detail_ = on;
+}
+
+AttemptStats CudaAttemptRunner::take_statistics() {
   Stats all = stats_;
-  std::size_t used = 0;
+  AttemptStats out;
+  out.hardware = hardware();
   for (const auto& l : lanes_)
-    if (l) all.add(l->stats), ++used;
-  fmt::print(stderr, "bulk attempts on the device ({} lanes): {} calls, {} groups, {} box tests, {} witness hits, {} exact tests ({} touching), {:.1f} MB up; {:.3f} s in calls ({:.3f} up, {:.3f} boxes, {:.3f} exact)\n",
-             used, all.calls, all.groups, all.box_tests, all.witness_hits, all.exact_tests, all.exact_touches, all.uploaded_bytes / 1e6,
-             all.seconds, all.upload_s, all.box_s, all.exact_s);
+    if (l && l->stats.calls) all.add(l->stats), ++out.lanes;
+  out.calls = all.calls, out.groups = all.groups, out.box_tests = all.box_tests, out.witness_hits = all.witness_hits;
+  out.exact_tests = all.exact_tests, out.exact_touches = all.exact_touches, out.uploaded_bytes = all.uploaded_bytes;
+  out.call_s = all.seconds, out.upload_s = all.upload_s, out.box_s = all.box_s, out.exact_s = all.exact_s;
   // The device's own clock: from the first call's kernels to the last's, and how much of that
   // some lane's kernels were queued or running.
   try {
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
     std::vector<std::pair<double, double>> spans;
     for (const auto& l : lanes_)
-      if (l) l->busy.intervals(origin_, spans);
+      if (l && origin_) l->busy.intervals(origin_, spans);
     if (!spans.empty()) {
       double first = spans.front().first, last = spans.front().second;
       for (auto [a, b] : spans) first = std::min(first, a), last = std::max(last, b);
       const auto [covered, summed] = BusyTimeline::covered(spans);
-      fmt::print(stderr, "bulk attempts' kernels: {:.3f} s from the first call's to the last's, some lane's queued or running {:.3f} s of it ({:.0f} %), the calls' spans summed {:.3f} s\n",
-                 last - first, covered, 100 * covered / std::max(last - first, 1e-9), summed);
+      out.timeline = true;
+      out.kernels_span_s = last - first, out.kernels_busy_s = covered, out.kernels_summed_s = summed;
     }
   } catch (const std::exception& e) {
-    fmt::print(stderr, "bulk attempts' kernels: no timeline ({})\n", e.what());
+    out.no_timeline = e.what();
   }
-  cudaEventDestroy(origin_);
+  stats_ = {};
+  for (auto& l : lanes_)
+    if (l) l->stats = {}, l->busy.clear();
+  return out;
 }
 
 CudaAttemptRunner::Lane& CudaAttemptRunner::lane(std::size_t i) {
@@ -161,11 +170,11 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   const double t1 = now_seconds();  // the uploads queued (they run before the kernels, in the stream's order)
   Counters host{};
   for (;;) {
-    if (report_) l.busy.begin(stream);
+    if (detail_) l.busy.begin(stream);
     CANOPY_CUDA_CHECK(cudaMemsetAsync(l.counters.get(), 0, sizeof(Counters), stream));
     launch_attempt_boxes(dev_.view(), view, l.groups.get(), l.task_first.get(), n_groups, n_tasks, settings, l.touch.get(),
                          l.exact.get(), l.exact.size(), l.counters.get(), stream);
-    if (report_) l.busy.end(stream);
+    if (detail_) l.busy.end(stream);
     CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
     l.stream.synchronize();
     if (host.appended <= l.exact.size()) break;
@@ -174,13 +183,13 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
     l.exact.grow(host.appended + host.appended / 4);
   }
   const double t2 = now_seconds();
-  if (report_) l.busy.begin(stream);
+  if (detail_) l.busy.begin(stream);
   launch_attempt_exact(dev_.view(), view, l.groups.get(), l.exact.get(), static_cast<std::uint32_t>(host.appended), l.touch.get(),
                        l.counters.get(), stream);
-  if (report_) l.busy.end(stream);
+  if (detail_) l.busy.end(stream);
   CANOPY_CUDA_CHECK(cudaMemcpyAsync(out.data(), l.touch.get(), groups.size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost, stream));
-  // The exact kernel's count of touches, read back only for the report (a copy per call).
-  if (report_) CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
+  // The exact kernel's count of touches, read back only for the statistics (a copy per call).
+  if (detail_) CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
   l.stream.synchronize();
   const double t3 = now_seconds();
   Stats& st = l.stats;

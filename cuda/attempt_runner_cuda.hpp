@@ -1,10 +1,10 @@
 #pragma once
-/// Resolution's bulk attempts on the device (collision/attempt_batch.hpp): the batch's tables
+/// Resolution's bulk attempts on the device (resolution/attempt_batch.hpp): the batch's tables
 /// kept on the device and appended to as the host appends, each call's groups expanded into
 /// (group, pair) box tests and exact tests by a warp per pair (cuda/attempt_kernels.hpp). The
 /// meshes, organ records and plant origins are the detection's (StandOnDevice), which stay
 /// fixed while a stand resolves.
-#include "collision/attempt_batch.hpp"
+#include "resolution/attempt_batch.hpp"
 #include "cuda/attempt_kernels.hpp"
 #include "cuda/busy_timeline.hpp"
 #include "cuda/device_buffer.hpp"
@@ -12,7 +12,6 @@
 
 #include <array>
 #include <cstddef>
-#include <cstdlib>
 #include <memory>
 
 namespace canopy::cuda {
@@ -32,12 +31,18 @@ class CudaAttemptRunner : public AttemptRunner {
   void clear(std::size_t lane) override;
   std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
+  /// On: from the next call, an event pair around every kernel of every lane (a timeline against
+  /// an origin event recorded now) and the exact tests' touches read back (a copy per call).
+  void keep_statistics(bool on) override;
+  /// The counts of every lane and of update_organs, and the kernels' timeline where kept; then
+  /// every count and the timeline start again.
+  AttemptStats take_statistics() override;
 
  private:
-  /// What the device did so far (printed with CANOPY_BULK_STATS): calls, box and exact tests,
-  /// bytes sent, seconds spent in calls (summed over lanes, which overlap): handing over the
-  /// uploads (a pageable copy returns once the driver holds the bytes), then until the box
-  /// kernel's count is back, then until the answers are.
+  /// What the device did since the last take_statistics: calls, box and exact tests, bytes
+  /// sent, seconds spent in calls (summed over lanes, which overlap): handing over the uploads (a
+  /// pageable copy returns once the driver holds the bytes), then until the box kernel's count is
+  /// back, then until the answers are.
   struct Stats {
     std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;
@@ -58,7 +63,7 @@ class CudaAttemptRunner : public AttemptRunner {
     StreamBuffer<ExactAttempt> exact{stream.get()};
     StreamBuffer<Counters> counters{stream.get()};
     Stats stats;
-    BusyTimeline busy;  // with CANOPY_BULK_STATS: when the device had this lane's kernels
+    BusyTimeline busy;  // with keep_statistics: when the device had this lane's kernels
     /// Sends `bytes` from `from` (pageable host memory) to device address `to` in the stream's
     /// order: the driver copies them into its own page-locked buffers before returning, as fast
     /// as a copy into page-locked memory of the lane's own was (which had to grow, at 1.7 GB/s,
@@ -75,17 +80,15 @@ class CudaAttemptRunner : public AttemptRunner {
   Lane& lane(std::size_t i);
 
   const StandOnDevice& dev_;
-  const bool report_ = std::getenv("CANOPY_BULK_STATS") != nullptr;  // print Stats when done
+  bool detail_ = false;  // keep_statistics(true): the timeline and the exact tests' touches
   DeviceBuffer<Obb> boxes_, staged_boxes_;  // a copy of the host's boxes, where the device's differ
   bool device_boxes_ = false;               // reading the device stand's own OBBs
   DeviceBuffer<std::uint32_t> staged_ids_;
   std::array<std::unique_ptr<Lane>, kLanes> lanes_;  // slot i touched only by lane i's thread
   Stats stats_;  // of update_organs
-  cudaEvent_t origin_{};  // with CANOPY_BULK_STATS: before every lane's work
+  cudaEvent_t origin_{};  // recorded by keep_statistics(true), before every lane's timed work
   cudaMemPool_t pool_{};  // the device's default pool, which the lanes' StreamBuffers draw on
   int device_ = 0;        // the backend's device, made current on every lane's thread
-  /// With CANOPY_BULK_STATS: what the device did, and its kernels' busy time (the destructor).
-  void print_stats();
 };
 
 }  // namespace canopy::cuda

@@ -1,5 +1,5 @@
 #pragma once
-/// When the device had a lane's work in hand (CANOPY_BULK_STATS): a pair of CUDA events per
+/// When the device had a lane's work in hand (the runner's statistics): a pair of CUDA events per
 /// kernel of a call, recorded in the lane's stream before it and after it, read once the work
 /// is done. The union of every lane's intervals is the time the device had kernels of
 /// some lane queued or running; against the host's wall time it says whether the scan waits
@@ -17,11 +17,14 @@ class BusyTimeline {
   BusyTimeline() = default;
   BusyTimeline(const BusyTimeline&) = delete;
   BusyTimeline& operator=(const BusyTimeline&) = delete;
-  ~BusyTimeline() {
+  ~BusyTimeline() { clear(); }
+  /// Every event let go: the timeline starts again.
+  void clear() {
     for (auto [a, b] : marks_) {
       if (a) cudaEventDestroy(a);
       if (b) cudaEventDestroy(b);
     }
+    marks_.clear();
   }
   /// Before a kernel in `stream`.
   void begin(cudaStream_t stream) {

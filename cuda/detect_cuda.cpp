@@ -1,6 +1,6 @@
 #include "cuda/detect_cuda.hpp"
 
-#include "collision/attempt_source.hpp"
+#include "resolution/attempt_source.hpp"
 #include "collision/broad_phase.hpp"
 #include "cuda/attempt_runner_cuda.hpp"
 #include "cuda/detect_kernels.hpp"

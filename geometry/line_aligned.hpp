@@ -1,7 +1,7 @@
 #pragma once
 /// Arrays that start on a cache line (64 bytes), for data the CPU backend reads in lanes of 8
 /// floats (32-byte loads): organ and cluster boxes and LCD boxes in lanes
-/// (collision/organ_lanes.hpp), a prototype's corners and a posed organ's triangles in lanes
+/// (collision/lanes/organ_lanes.hpp), a prototype's corners and a posed organ's triangles in lanes
 /// (geometry/prototype.hpp, collision/exact.hpp). From the heap's 16-byte alignment, every other
 /// 32-byte load of such an array crossed into a second line, and a 64-byte record (an OBB)
 /// spanned two.

@@ -2,12 +2,12 @@
 # Installs what canopy needs from Debian's packages (as root), only what is missing; safe to rerun.
 set -euo pipefail
 # Every package the build and the test suites use, a fresh Debian root included: clang-14 with its
-# sanitizer and fuzzer runtimes and its OpenMP (the fuzz tree, tests/ci/fuzz.sh), CA certificates
-# for npm's download of the glTF validator.
+# sanitizer and fuzzer runtimes and its OpenMP (the fuzz tree, tests/ci/fuzz.sh), clang-format-14
+# (the sources' .clang-format), CA certificates for npm's download of the glTF validator.
 packages=(cmake ninja-build g++ pkg-config libeigen3-dev libyaml-cpp-dev libfmt-dev doctest-dev libcli11-dev
           nlohmann-json3-dev libtinygltf-dev clang-14 libclang-rt-14-dev libomp-14-dev assimp-utils python3 libcgal-dev
           libfcl-dev libembree-dev libpng-dev gnuplot-nox pybind11-dev python3-dev python3-numpy python3-pytest
-          python3-matplotlib python3-venv python3-setuptools python3-wheel libopenmpi-dev openmpi-bin
+          python3-matplotlib python3-venv python3-setuptools python3-wheel libopenmpi-dev openmpi-bin clang-format-14
           ca-certificates)
 missing=()
 for p in "${packages[@]}"; do

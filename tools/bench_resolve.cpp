@@ -7,8 +7,8 @@
 //                      [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG]
 //                      [--csv FILE] [--append] [--host-search] [--lanes N] [--batch N] [--host-runner]
 //        (`--help` says what the last four do)
-#include "collision/attempt_runner_host.hpp"
-#include "collision/resolve.hpp"
+#include "resolution/attempt_runner_host.hpp"
+#include "resolution/resolve.hpp"
 #include "geometry/clock.hpp"
 #include "geometry/split_list.hpp"
 #include "lsystem/grow.hpp"
@@ -17,6 +17,7 @@
 #include "tools/detect_options.hpp"
 #include "tools/heap_pages.hpp"
 #include "tools/process_memory.hpp"
+#include "tools/resolve_stats.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;
-  bool append = false, device_search = true, host_runner = false;
+  bool append = false, device_search = true, host_runner = false, stats = false;
   std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts;
   ResolveConfig base;
   std::string csv = "bench/results/resolve.csv";
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--device-search")) device_search = true;  // the default
     else if (!std::strcmp(argv[i], "--host-search")) device_search = false;
     else if (!std::strcmp(argv[i], "--host-runner")) host_runner = true;
+    else if (!std::strcmp(argv[i], "--resolve-stats")) stats = true;
     else if (!std::strcmp(argv[i], "--lanes") && i + 1 < argc) lanes = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else if (!std::strcmp(argv[i], "--batch") && i + 1 < argc) batch = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else {
@@ -86,6 +88,7 @@ int main(int argc, char** argv) {
                    "       [--host-runner]     (the CPU backend plans as the device does, level by level in lanes,\n"
                    "                            with the host answering the attempts: the device path's host side\n"
                    "                            where there is no GPU, for profiling; the same turns)\n"
+                   "       [--resolve-stats]   (each resolution's statistics on stderr, as canopy stand --resolve-stats)\n"
                    "The heap is in large pages when --backends names cuda, else small (CANOPY_HEAP_PAGES=large|small\n"
                    "overrides; tools/heap_pages.hpp); the CSV's config column says which.\n",
                    ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts));
@@ -132,6 +135,7 @@ int main(int argc, char** argv) {
           if (host_runner && bname == "cpu") req.attempts = &runner;
           req.bulk_lanes = lanes;
           req.batch_contacts = batch;
+          req.statistics = stats;
           req.config.level = *parse_contact_level(lname);
           auto fresh = make_cpu_backend();  // the independent counts before and after
           const std::size_t before_exact = fresh->detect(s, DetectRequest{}).pairs.size();
@@ -143,6 +147,7 @@ int main(int argc, char** argv) {
           t = std::chrono::steady_clock::now();
           const ResolveResult r = resolve(s, *backend, req, first);
           const double resolve_s = seconds_since(t);
+          if (stats) fmt::print(stderr, "{}", cli::resolve_stats_text(r.stats));
           double plan = 0, redetect = 0;
           for (const ResolveRound& x : r.per_round) plan += x.plan_s, redetect += x.detect_s;
           const std::size_t residual = fresh->detect(s, DetectRequest{}).pairs.size();

@@ -1,5 +1,5 @@
 #include "tools/detect_options.hpp"
-#include "collision/auto_backend.hpp"
+#include "resolution/auto_backend.hpp"
 #include "tools/sweep_spec.hpp"
 
 #include <fmt/format.h>

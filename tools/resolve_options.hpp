@@ -1,7 +1,7 @@
 #pragma once
 /// The resolution options of `canopy stand`, the run itself with its progress line, and its part
 /// of report.json and of the terminal summary.
-#include "collision/resolve.hpp"
+#include "resolution/resolve.hpp"
 #include "tools/cli_common.hpp"
 
 #include <nlohmann/json.hpp>
@@ -24,8 +24,10 @@ struct ResolveOptions {
   /// Plan with the host's candidate-by-candidate search even where the backend runs attempts in
   /// bulk (CUDA, or auto on a GPU: on the device, the default there). The turns are the same either way.
   bool host_search = false;
-  /// Batches of contacts planned at once with the device's attempts (collision/plan_round.hpp).
+  /// Batches of contacts planned at once with the device's attempts (resolution/plan_round.hpp).
   int lanes = static_cast<int>(ResolveRequest{}.bulk_lanes);
+  /// Print where resolution's time went on stderr when it ends (ResolveRequest::statistics).
+  bool stats = false;
 
   void add_to(CLI::App& app);
   ResolveConfig config() const;
@@ -33,7 +35,8 @@ struct ResolveOptions {
 };
 
 /// Runs resolution with a progress line on stderr when it is a terminal (quiet otherwise).
-/// `progress`, when set, replaces the terminal line.
+/// `progress`, when set, replaces the terminal line. With `o.stats`, prints the statistics on
+/// stderr at the end (tools/resolve_stats.hpp; over tiles, each process its own).
 ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
                              const Contacts& initial, std::function<void(const ResolveProgress&)> progress = {},
                              const ResolvePartition* partition = nullptr);

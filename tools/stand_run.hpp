@@ -1,7 +1,7 @@
 #pragma once
 /// `canopy stand` as a library call: grow, detect, resolve, export and report, shared by the
 /// command line and the Python module (same code, same files).
-#include "collision/resolve.hpp"
+#include "resolution/resolve.hpp"
 #include "geometry/atomic_file.hpp"
 #include "geometry/export.hpp"
 #include "geometry/prototype.hpp"

@@ -10,7 +10,7 @@
 // vertical-axis boxes around the swept disc) plus both clearances. Only the contacts of plants
 // within one hop are planned (they make every decision an own turn depends on); the rest of the
 // halo supplies their candidates' contacts and surroundings.
-#include "collision/swept_reach.hpp"
+#include "resolution/swept_reach.hpp"
 #include "distributed/mpi_comm.hpp"
 #include "distributed/mpi_files.hpp"
 #include "distributed/region.hpp"

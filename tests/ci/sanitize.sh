@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # AddressSanitizer + UndefinedBehaviorSanitizer: one build tree (CUDA, MPI, render and benchmarks
-# left out) with two unit suites, the canopy program and the Python module, at -O1 -g1 (a third of
+# left out) with three unit suites, the canopy program and the Python module, at -O1 -g1 (a third of
 # -O2 -g's compile time; what the sanitizers' authors advise). The output folders' code runs
 # under the sanitizers through the command-line suites (cli_output above all).
 # Usage: sanitize.sh build|unit|cli SOURCE_DIR BUILD_DIR
 #   build  configure (once) and build the tree: scripts/test.sh does it before ctest, so the
 #          suites below only run (ctest builds it itself when it is missing or stale);
-#   unit   the grammar engine's suite, the collision suite's resolution (the batched turn search
-#          too), hard-case and memory-bound tests;
+#   unit   the grammar engine's suite, the collision suite's hard-case and memory-bound tests, the
+#          resolution suite's resolution tests (the batched turn search too);
 #   cli    the command-line suites and the Python suite against the sanitized program and module.
 set -euo pipefail
 mode=$1 src=$2 build=$3
@@ -16,7 +16,7 @@ mode=$1 src=$2 build=$3
 cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
   -DCANOPY_SANITIZE=ON -DCANOPY_CUDA=OFF -DCANOPY_MPI=OFF -DCANOPY_RENDER=OFF -DCANOPY_TOOLS=ON -DCANOPY_TESTS=ON \
   >"$build.configure.log" 2>&1 || { cat "$build.configure.log"; rm -f "$build/CMakeCache.txt"; exit 1; }
-targets=(test_lsystem test_collision canopy)
+targets=(test_lsystem test_collision test_resolution canopy)
 # The Python module where this machine has pybind11, NumPy and Python's headers.
 if cmake --build "$build" --target help | grep -q '^_canopy:'; then targets+=(_canopy canopy_python_files); fi
 cmake --build "$build" --target "${targets[@]}"
@@ -26,7 +26,10 @@ export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktra
 case "$mode" in
   unit)
     "$build/tests/test_lsystem"
-    "$build/tests/test_collision" -tc="*resol*,*batched*,joints*,*hard*,*coplanar*,*touching*,*sliver*,*inside*,*zero*,*hundred*,*same spot*,*parallel*,*memory*,*counted without*"
+    # The same filter on both suites: their test cases split as the source folders do.
+    filter="*resol*,*batched*,joints*,*hard*,*coplanar*,*touching*,*sliver*,*inside*,*zero*,*hundred*,*same spot*,*parallel*,*memory*,*counted without*"
+    "$build/tests/test_collision" -tc="$filter"
+    "$build/tests/test_resolution" -tc="$filter"
     ;;
   cli)
     failed=0

@@ -8,7 +8,10 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <functional>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 namespace canopy::test {
 
@@ -141,6 +144,30 @@ inline std::vector<Contact> brute_force_exact(const Stand& s, const KindMask& co
     }
   }
   return out;
+}
+
+/// `n` plants on one spot, turned apart.
+inline Stand on_one_spot(int n, int steps = 10) {
+  GrowRequest req;
+  req.grammar = source("grammars/tomato.yaml");
+  for (int i = 0; i < n; ++i) {
+    PlantPlacement p;
+    p.rotation_deg = 37.0 * i;
+    p.seed = static_cast<std::uint64_t>(i + 1);
+    req.plants.push_back(p);
+  }
+  req.steps = steps;
+  req.lod = 1;
+  return grow_stand(req);
+}
+
+inline std::string failure(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace canopy::test

@@ -1,4 +1,4 @@
-// The exact stage's two functions built twice (collision/isa.hpp): posing an organ and testing
+// The exact stage's two functions built twice (collision/lanes/isa.hpp): posing an organ and testing
 // two posed organs give the same bits from the build target's code and from x86-64-v4's, on every
 // organ pair of seeded random stands whose OBBs overlap (and on every such pair a few degrees
 // turned, and with clearances), with and without witnesses. Where the CPU has no AVX-512 only

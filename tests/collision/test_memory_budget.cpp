@@ -1,45 +1,13 @@
 // The contact lists bounded by memory: plant pairs counted before the list is made, the CPU
-// pass's lists stopped where they outgrow it, resolution refused where its contacts would.
+// pass's lists stopped where they outgrow it (resolution's bound: tests/resolution/test_resolve.cpp).
 #include "collision/broad_phase.hpp"
 #include "collision/memory_budget.hpp"
-#include "collision/resolve.hpp"
 #include "tests/collision/helpers.hpp"
 
 #include <doctest/doctest.h>
-#include <fmt/format.h>
-
-#include <functional>
 
 using namespace canopy;
 using namespace canopy::test;
-
-namespace {
-
-/// `n` plants on one spot, turned apart.
-Stand on_one_spot(int n, int steps = 10) {
-  GrowRequest req;
-  req.grammar = source("grammars/tomato.yaml");
-  for (int i = 0; i < n; ++i) {
-    PlantPlacement p;
-    p.rotation_deg = 37.0 * i;
-    p.seed = static_cast<std::uint64_t>(i + 1);
-    req.plants.push_back(p);
-  }
-  req.steps = steps;
-  req.lod = 1;
-  return grow_stand(req);
-}
-
-std::string failure(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST_CASE("plant pairs counted without a list: as many as the list holds, stopping past a bound") {
   for (std::uint64_t seed = 50; seed <= 53; ++seed) {
@@ -71,12 +39,4 @@ TEST_CASE("detection refuses plant pairs or contact lists past its memory, with 
   // The same answer as with no bound at all (the machine's memory).
   req.memory_limit = 0;
   CHECK(cpu->detect(s, req).pairs == c.pairs);
-
-  // Resolution: kResolutionBytesPerContact for each contact it starts from.
-  Stand t = s;
-  ResolveRequest rr;
-  rr.detect.memory_limit = static_cast<std::size_t>(static_cast<double>(c.pairs.size()) * kResolutionBytesPerContact) - 1;
-  rr.config.max_rounds = 1;
-  CHECK(failure([&] { resolve(t, *cpu, rr, cpu->detect(t, DetectRequest{})); })
-            .starts_with(fmt::format("resolving {} contacts needs about", c.pairs.size())));
 }

@@ -3,7 +3,7 @@
 // on 1,000- and 10,000-plant default stands. (Skipped without a GPU: see test_device.cpp.)
 #include "../collision/hard_cases.hpp"
 #include "../collision/helpers.hpp"
-#include "collision/resolve.hpp"
+#include "resolution/resolve.hpp"
 #include "cuda/check.hpp"
 #include "cuda/detect_cuda.hpp"
 #include "cuda/device.hpp"

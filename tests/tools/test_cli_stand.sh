@@ -255,13 +255,27 @@ for f in organs.csv contacts.csv contacts_after.csv stand.obj; do
   check "heap pages same $f" "same" "$(cmp -s "$tmp/heap_small/$f" "$tmp/heap_large/$f" && echo same || echo different)"
 done
 
+# --resolve-stats: where resolution's time went, on stderr, phase by phase and lane by lane (the
+# library collects, the tool prints); the files those of the same run without it.
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 --steps 14 \
+  --formats obj --backend cpu --resolve-stats -o "$tmp/stats" >"$tmp/stats.out" 2>"$tmp/stats.err"
+check "resolve-stats exit" "0" "$?"
+check "resolve-stats phases" "1" "$(grep -c '^resolution phases (s): setup [0-9.]*, witnesses' "$tmp/stats.err")"
+check "resolve-stats page faults" "1" "$(grep -c '^resolution minor page faults (thousands): setup' "$tmp/stats.err")"
+check "resolve-stats lane" "1" "$(grep -c '^planning lane 0: ' "$tmp/stats.err")"
+check "resolve-stats not on stdout" "0" "$(grep -c 'resolution phases' "$tmp/stats.out")"
+check "no resolve-stats, no statistics" "0" "$(grep -c 'resolution phases' "$tmp/log")"
+for f in organs.csv contacts.csv contacts_after.csv stand.obj; do
+  check "resolve-stats same $f" "same" "$(cmp -s "$tmp/heap_small/$f" "$tmp/stats/$f" && echo same || echo different)"
+done
+
 # Help lines for every option.
 help=$("$canopy" stand --help)
 for opt in --out --steps --set --lod --formats --threads --rows --per-row --row-spacing --plant-spacing \
            --double-rows --jitter --random-rotation --no-random-rotation --seed --positions --max-modules --glb-instancing \
            --glb-compact \
            --level --clearance --collide --backend --no-resolve --max-rounds --resolve-clearance --resolve-level \
-           --max-device-memory; do
+           --resolve-stats --max-device-memory; do
   check "help $opt" "1" "$(grep -c -- "$opt" <<<"$help" | sed 's/[2-9]/1/')"
 done
 

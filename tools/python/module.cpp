@@ -1,7 +1,7 @@
 // The canopy Python module (pybind11): the command line's operations on the same library code,
 // organ arrays as NumPy views of the stand's memory, errors as Python exceptions carrying the
 // command line's located messages. Long calls release the GIL; progress callbacks take it back.
-#include "collision/resolve.hpp"
+#include "resolution/resolve.hpp"
 #include "geometry/export.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/organ_mesh.hpp"

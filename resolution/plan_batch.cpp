@@ -1,0 +1,148 @@
+#include "resolution/plan_batch.hpp"
+
+#include "resolution/resolve_policy.hpp"
+#include "geometry/clock.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+
+namespace canopy::planning {
+namespace {
+
+/// Every contact of the round with exactly one organ in `mover`'s subtree: what a turn of that
+/// mover must separate (several contacts on one organ are combined into one turn).
+const MetPairs& contacts_of(const Joints& joints, const ContactGraph& g, std::uint32_t mover) {
+  thread_local MetPairs met;  // the list's memory kept per thread (asked once per candidate)
+  met.clear();
+  const std::uint32_t end = joints.subtree_end(mover);
+  for (std::uint32_t x = mover; x < end; ++x)
+    for (std::uint32_t e = g.first[x]; e < g.first[x + 1]; ++e) {
+      const std::int32_t y = g.with[e];
+      if (!joints.holds(mover, y)) met.emplace_back(static_cast<std::int32_t>(x), y);
+    }
+  return met;
+}
+
+}  // namespace
+
+Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool strict) {
+  PhaseTimes& times = *lane.times;
+  const int threads = lane.threads;
+  std::vector<std::size_t>& slots = lane.slots;
+  std::vector<std::uint32_t>& local_of = lane.local_of;
+  slots.clear();
+  for (std::size_t i : batch)
+    for (std::size_t g : cand_slots[i])
+      if (local_of[g] == kNoPair) local_of[g] = 0, slots.push_back(g);
+  std::sort(slots.begin(), slots.end());
+  for (std::size_t k = 0; k < slots.size(); ++k) local_of[slots[k]] = static_cast<std::uint32_t>(k);
+  // Each contact's candidates as indices into the batch's movers, found once: those of
+  // batch[q] are cand_local[local_first[q], local_first[q + 1]). Pending: values of q.
+  std::vector<std::uint32_t> local_first{0}, cand_local, pending;
+  for (std::size_t q = 0; q < batch.size(); ++q) {
+    pending.push_back(static_cast<std::uint32_t>(q));
+    for (std::size_t g : cand_slots[batch[q]]) cand_local.push_back(local_of[g]);
+    local_first.push_back(static_cast<std::uint32_t>(cand_local.size()));
+  }
+  for (std::size_t g : slots) local_of[g] = kNoPair;
+  const auto candidates_of = [&](std::uint32_t q) {
+    return std::span<const std::uint32_t>(cand_local.data() + local_first[q], local_first[q + 1] - local_first[q]);
+  };
+  std::vector<TurnSearch::Candidate*>& state = lane.state;
+  std::vector<std::uint8_t>&open = lane.open, &want = lane.want;
+  std::vector<std::optional<Turn>>& refined = lane.refined;
+  state.assign(slots.size(), nullptr);
+  open.assign(slots.size(), 1);
+  want.assign(slots.size(), 0);
+  refined.assign(slots.size(), std::nullopt);
+  std::vector<CandidatePool>& pools = *lane.pools;
+  for (CandidatePool& p : pools) p.used = 0;  // the last batch's candidates are free again
+  if (lane.bulk) lane.bulk->clear();
+  const double batch_start = now_seconds();
+  std::vector<std::size_t> chosen;
+  // Bulk: the candidates found at the last level, refined in this level's calls (with its scan).
+  // Their contacts are settled (a contact with a candidate found is resolved, whatever the
+  // refined angles), so they want no scan, and are picked once the refined turns are back: the
+  // same contacts scanned at every level and the same picks, one level later.
+  std::vector<std::size_t> unrefined;
+  for (int level = 1; !pending.empty(); ++level) {
+    ++lane.levels;
+    tell(0);
+    std::fill(want.begin(), want.end(), 0);
+    for (std::size_t k : unrefined) want[k] = 2;
+    for (std::uint32_t q : pending) {
+      const std::span<const std::uint32_t> ks = candidates_of(q);
+      if (std::any_of(ks.begin(), ks.end(), [&](std::uint32_t k) { return want[k] == 2; })) continue;  // settled
+      for (std::uint32_t k : ks) want[k] |= open[k];
+    }
+    std::vector<std::size_t> scan;
+    for (std::size_t k = 0; k < slots.size(); ++k)
+      if (want[k] == 1) scan.push_back(k);
+    if (scan.empty() && unrefined.empty()) break;
+    // Neighbouring candidates (organs of one leaf) test against the same organs: a thread
+    // that takes a few in a row finds their poses in its cache. Chunks of up to 8, fewer
+    // where the level is short, so that no thread waits long at its end.
+    const int chunk = static_cast<int>(std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
+    times.lap(PhaseTimes::bookkeeping);
+    const double prepare_start = now_seconds();
+#pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
+    for (std::size_t j = 0; j < scan.size(); ++j) {
+      const double started = times.on ? now_seconds() : 0;
+      const std::size_t k = scan[j];
+      const std::uint32_t m = movers[slots[k]];
+      const auto me = static_cast<std::size_t>(omp_get_thread_num());
+      if (!state[k]) state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
+      // Found: refined to its smallest turn at once, by the same thread (it depends on the
+      // candidate alone).
+      if (!lane.bulk && search.scan_level(*state[k], level, (*lane.scratches)[me]))
+        refined[k] = search.refine(*state[k], (*lane.scratches)[me]);
+      open[k] = state[k]->searching();
+      if (times.on) {
+        const double busy = now_seconds() - started;
+#pragma omp atomic
+        times.scan_busy += busy;
+      }
+    }
+    lane.prepare_s += now_seconds() - prepare_start;
+    const auto candidates = [&](const std::vector<std::size_t>& ks) {
+      std::vector<TurnSearch::Candidate*> out;
+      for (std::size_t k : ks) out.push_back(state[k]);
+      return out;
+    };
+    if (lane.bulk) {
+      // This level's scan, and the last level's finds each refined to its smallest turn, once.
+      const std::vector<Turn> turns = lane.bulk->scan_and_refine(candidates(scan), level, candidates(unrefined));
+      for (std::size_t j = 0; j < unrefined.size(); ++j) refined[unrefined[j]] = turns[j];
+      unrefined.clear();
+      for (std::size_t k : scan)
+        if (state[k]->found_axis >= 0 && !refined[k]) unrefined.push_back(k);
+      for (std::size_t k : scan) open[k] = state[k]->searching();
+    }
+    times.lap(PhaseTimes::scan);  // with the batched scan's own work
+    // Each contact with a candidate found takes the cheapest (angle x weight; ties: policy order).
+    const std::size_t before = pending.size();
+    std::erase_if(pending, [&](std::uint32_t q) {
+      std::optional<std::size_t> pick;
+      double cost = 0;
+      for (std::uint32_t k : candidates_of(q)) {
+        if (!refined[k]) continue;
+        const double c = refined[k]->angle_deg * state[k]->weight;
+        if (!pick || c < cost) pick = k, cost = c;
+      }
+      if (!pick) return false;
+      resolved[batch[q]] = 1;
+      chosen.push_back(*pick);
+      return true;
+    });
+    unplanned -= before - pending.size();
+    times.lap(PhaseTimes::pick);
+  }
+  unplanned -= pending.size();  // left to the relaxed pass or the last resort
+  lane.batch_s += now_seconds() - batch_start;
+  Picks out;
+  for (std::size_t k : chosen) out.emplace_back(slots[k], *refined[k]);
+  return out;
+}
+
+}  // namespace canopy::planning
