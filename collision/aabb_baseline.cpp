@@ -44,7 +44,8 @@ std::int32_t AabbTree::build_node(std::uint32_t first, std::uint32_t count) {
   Node node;
   for (int d = 0; d < 3; ++d) node.lo[d] = 1e30f, node.hi[d] = -1e30f;
   for (std::uint32_t k = first; k < first + count; ++k)
-    for (int d = 0; d < 3; ++d) node.lo[d] = min_f(node.lo[d], box_[ids_[k]][d]), node.hi[d] = max_f(node.hi[d], box_[ids_[k]][d + 3]);
+    for (int d = 0; d < 3; ++d)
+      node.lo[d] = min_f(node.lo[d], box_[ids_[k]][d]), node.hi[d] = max_f(node.hi[d], box_[ids_[k]][d + 3]);
   const auto index = static_cast<std::int32_t>(nodes_.size());
   node.first = first, node.count = count;
   nodes_.push_back(node);
@@ -53,10 +54,9 @@ std::int32_t AabbTree::build_node(std::uint32_t first, std::uint32_t count) {
   for (int d = 1; d < 3; ++d)
     if (node.hi[d] - node.lo[d] > node.hi[axis] - node.lo[axis]) axis = d;
   const std::uint32_t half = count / 2;
-  std::nth_element(ids_.begin() + first, ids_.begin() + first + half, ids_.begin() + first + count,
-                   [&](std::uint32_t a, std::uint32_t b) {
-                     return box_[a][axis] + box_[a][axis + 3] < box_[b][axis] + box_[b][axis + 3];
-                   });
+  std::nth_element(
+      ids_.begin() + first, ids_.begin() + first + half, ids_.begin() + first + count,
+      [&](std::uint32_t a, std::uint32_t b) { return box_[a][axis] + box_[a][axis + 3] < box_[b][axis] + box_[b][axis + 3]; });
   const std::int32_t l = build_node(first, half);
   const std::int32_t r = build_node(first + half, count - half);
   nodes_[static_cast<std::size_t>(index)].left = l;

@@ -28,7 +28,7 @@ class AabbTree {
   };
   std::int32_t build_node(std::uint32_t first, std::uint32_t count);
   std::vector<Node> nodes_;
-  std::vector<std::uint32_t> ids_;  // organs taking part, reordered by the build
+  std::vector<std::uint32_t> ids_;         // organs taking part, reordered by the build
   std::vector<std::array<float, 6>> box_;  // per organ
 };
 

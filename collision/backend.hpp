@@ -18,7 +18,7 @@ struct DetectRequest {
   ContactLevel level = ContactLevel::exact;
   float clearance = 0;  // metres; with one, every bound at every level is inflated by it
   KindMask collide = default_collide_kinds();
-  int threads = 0;      // 0: all cores
+  int threads = 0;  // 0: all cores
   /// When set (one flag per plant), only plant pairs with at least one flagged plant are looked
   /// at: the re-detection of resolution rounds (plants whose organs moved, and their neighbours).
   const std::vector<std::uint8_t>* active_plants = nullptr;

@@ -31,8 +31,8 @@ void visit_plant_pairs(const Stand& s, const Mbvt& m, Visit&& visit) {
   };
   std::vector<Placed> sorted(n);
   for (std::size_t p = 0; p < n; ++p)
-    sorted[p] = {static_cast<std::int64_t>(std::floor(s.plants[p].y / cell)), static_cast<std::int64_t>(std::floor(s.plants[p].x / cell)),
-                 static_cast<std::int32_t>(p)};
+    sorted[p] = {static_cast<std::int64_t>(std::floor(s.plants[p].y / cell)),
+                 static_cast<std::int64_t>(std::floor(s.plants[p].x / cell)), static_cast<std::int32_t>(p)};
   std::sort(sorted.begin(), sorted.end());
   std::size_t run[3] = {0, 0, 0};  // where the run of row dy - 1 starts
   for (const Placed& at : sorted) {

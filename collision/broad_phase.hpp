@@ -23,7 +23,8 @@ std::uint64_t count_plant_pairs(const Stand& stand, const Mbvt& m, std::uint64_t
 /// A flag per plant: it holds a pair of organs taking part that are not adjacent, so it meets
 /// itself at the plant level (the tree's shape alone decides). With `only`, unflagged plants
 /// get 0.
-std::vector<std::uint8_t> plants_with_free_pairs(const Stand& stand, const Mbvt& m, const std::vector<std::uint8_t>* only = nullptr);
+std::vector<std::uint8_t> plants_with_free_pairs(const Stand& stand, const Mbvt& m,
+                                                 const std::vector<std::uint8_t>* only = nullptr);
 
 /// The plant level as both backends run it: the grid's plant pairs (p < q) and each plant with
 /// itself (p, p) where it holds a pair of organs that may meet, sorted; `count` gets the level's

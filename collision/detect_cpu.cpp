@@ -124,9 +124,7 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
 class CpuBackend : public DetectionBackend {
  public:
   std::string name() const override { return "cpu"; }
-  std::string device() const override {
-    return fmt::format("{} CPU threads", std::max(1u, std::thread::hardware_concurrency()));
-  }
+  std::string device() const override { return fmt::format("{} CPU threads", std::max(1u, std::thread::hardware_concurrency())); }
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
@@ -152,7 +150,6 @@ class CpuBackend : public DetectionBackend {
     refit_mbvt(*tree_, s, *lib_, moved, req.threads);
     return run(s, req, now_seconds() - t);
   }
-
 
  private:
   std::optional<Mbvt> tree_;
@@ -181,7 +178,8 @@ class CpuBackend : public DetectionBackend {
     // where they might not fit in memory (collision/memory_budget.hpp).
     const std::size_t budget = memory_budget(req.memory_limit);
     if (budget && !req.active_plants)
-      if (const std::uint64_t most = most_plant_pairs(budget); count_plant_pairs(s, m, most) > most) refuse_plant_pairs(most, budget);
+      if (const std::uint64_t most = most_plant_pairs(budget); count_plant_pairs(s, m, most) > most)
+        refuse_plant_pairs(most, budget);
     LevelCount plant_count;
     std::vector<Work>& work = work_;
     work.clear();
@@ -250,25 +248,25 @@ class CpuBackend : public DetectionBackend {
             });
         }
         const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
-        lane_clusters_overlapping(m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, m.lanes.roots[i], offset, [&](std::uint32_t j) {
-          const PassCluster& cb = m.lanes.pass[j];
-          if (passed_over(i, j)) return;
-          col.leaf_pair(p, q, i, j);
-          if (req.level == ContactLevel::leaf) return;
-          const auto block = [&](const LcdNode& na, const LcdNode& nb) {
-            lane_block_pairs(m.lanes, m.cluster_organs.data(), i, m.clusters[i], na, j, m.clusters[j], nb, offset,
-                             [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
-          };
-          // Two clusters of one block each (a tomato's compound leaves): the descent would hand
-          // their roots straight over, and a root spans its cluster's organs; the clusters' own
-          // lanes are taken, the nodes left unread.
-          static_assert(kBlockOrgans == 2 * OrganLanes::kWidth, "lane_small_cluster_pairs takes clusters of one block");
-          if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
-            lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), ca, cb, offset,
-                                     [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
-          else
-            descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset, block);
-        });
+        lane_clusters_overlapping(
+            m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, m.lanes.roots[i], offset, [&](std::uint32_t j) {
+              const PassCluster& cb = m.lanes.pass[j];
+              if (passed_over(i, j)) return;
+              col.leaf_pair(p, q, i, j);
+              if (req.level == ContactLevel::leaf) return;
+              const auto block = [&](const LcdNode& na, const LcdNode& nb) {
+                lane_block_pairs(m.lanes, m.cluster_organs.data(), i, m.clusters[i], na, j, m.clusters[j], nb, offset,
+                                 [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
+              };
+              // Two clusters of one block each (a tomato's compound leaves): the descent would hand
+              // their roots straight over, and a root spans its cluster's organs; the clusters' own
+              // lanes are taken, the nodes left unread.
+              static_assert(kBlockOrgans == 2 * OrganLanes::kWidth, "lane_small_cluster_pairs takes clusters of one block");
+              if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
+                lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), ca, cb, offset,
+                                         [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
+              else descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset, block);
+            });
       });
       done.fetch_add(1, std::memory_order_relaxed);
       if (const std::size_t grown = col.leaf.size() + col.organ.size() - held)

@@ -58,8 +58,9 @@ void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m
 namespace {
 
 /// organs_touch_at's test, the poses taking `made_a` / `made_b` (PosedOrgan::pose) where given.
-bool touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b, const Affine3f& pose_b,
-              float clearance, ExactScratch& x, Witness* witness, bool witness_tried, const Obb* made_a, const Obb* made_b) {
+bool touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
+              const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried, const Obb* made_a,
+              const Obb* made_b) {
   assert(a < b);
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
@@ -83,8 +84,9 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
 }
 
 // The body of pose(), built into both builds (collision/lanes/isa.hpp).
-[[gnu::always_inline]] inline void PosedOrgan::pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
-                                                         std::int32_t plant, std::int32_t frame_plant, const Obb* made) {
+[[gnu::always_inline]] inline void PosedOrgan::pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t id,
+                                                         const Affine3f& t, std::int32_t plant, std::int32_t frame_plant,
+                                                         const Obb* made) {
   organ = id, frame = frame_plant, mesh = &m;
   solid = is_solid(s.organs[static_cast<std::size_t>(id)].prototype);
   const Vec3f d = frame_offset(s, plant, frame_plant);
@@ -154,10 +156,8 @@ void PosedOrgan::pose_build_target(const Stand& s, const PrototypeMesh& m, std::
 
 void PosedOrgan::pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
                          std::int32_t frame_plant, const Obb* made) {
-  if (isa == Isa::x86_64_v4)
-    pose_v4(s, m, id, t, plant, frame_plant, made);
-  else
-    pose_build_target(s, m, id, t, plant, frame_plant, made);
+  if (isa == Isa::x86_64_v4) pose_v4(s, m, id, t, plant, frame_plant, made);
+  else pose_build_target(s, m, id, t, plant, frame_plant, made);
 }
 
 const std::vector<Vec3f>& PosedOrgan::vertices() const {
@@ -177,8 +177,9 @@ bool near_bits(const PosedOrgan& p, const FloatBounds& box, const Obb& obb, floa
   bits.resize(groups);
   unsigned any = 0;
   for (std::size_t g = 0; g < groups; ++g)
-    any |= bits[g] = static_cast<std::uint8_t>(near_lanes(&p.tri_lanes[g * PosedOrgan::kGroupFloats], box, obb, margin) &
-                                               lanes_detail::lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g)));
+    any |= bits[g] =
+        static_cast<std::uint8_t>(near_lanes(&p.tri_lanes[g * PosedOrgan::kGroupFloats], box, obb, margin) &
+                                  lanes_detail::lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g)));
   return any != 0;
 }
 
@@ -237,8 +238,8 @@ bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, cons
   return touch_at(s, lib, a, pose_a, b, pose_b, clearance, x, witness, witness_tried, nullptr, nullptr);
 }
 
-const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t,
-                                 std::int32_t frame, const PosedOrgan* keep, const Obb* made) {
+const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t, std::int32_t frame,
+                                 const PosedOrgan* keep, const Obb* made) {
   const std::size_t set = (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) & set_mask_;
   Entry* way = &entries_[2 * set];
   ++clock_;
@@ -280,10 +281,13 @@ namespace {
   // The float tests below (beyond_obb, triangles_rejected) reject only triangles or pairs more
   // than this beyond the clearance.
   const float margin = static_cast<float>(c) + kRejectSlack;
-  const auto pair_touches = [&](const Vec3f* p, const Vec3f* q) { return c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q); };
+  const auto pair_touches = [&](const Vec3f* p, const Vec3f* q) {
+    return c > 0 ? triangles_within(p, q, c) : triangles_intersect(p, q);
+  };
   // With a witness, start both loops at its triangles: a touching pair is likely near the one
   // that touched last (the answer is the same in any order).
-  const bool seen = witness && witness->latest >= 0 && witness->tri_a[witness->latest] < ta && witness->tri_b[witness->latest] < tb;
+  const bool seen =
+      witness && witness->latest >= 0 && witness->tri_a[witness->latest] < ta && witness->tri_b[witness->latest] < tb;
   const std::size_t start_a = seen ? static_cast<std::size_t>(witness->tri_a[witness->latest]) : 0;
   const std::size_t start_b = seen ? static_cast<std::size_t>(witness->tri_b[witness->latest]) : 0;
   // The triangles of each organ near the other, 8 at a time. Then a's near triangles one by
@@ -339,7 +343,8 @@ namespace {
   return false;
 }
 
-CANOPY_TARGET_V4 bool posed_touch_v4(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+CANOPY_TARGET_V4 bool posed_touch_v4(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
+                                     Witness* witness) {
   return posed_touch_body(pa, pb, clearance, x, witness);
 }
 
@@ -350,7 +355,8 @@ bool posed_touch_build_target(const PosedOrgan& pa, const PosedOrgan& pb, float 
 }  // namespace
 
 bool posed_touch_as(Isa isa, const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
-  return isa == Isa::x86_64_v4 ? posed_touch_v4(pa, pb, clearance, x, witness) : posed_touch_build_target(pa, pb, clearance, x, witness);
+  return isa == Isa::x86_64_v4 ? posed_touch_v4(pa, pb, clearance, x, witness)
+                               : posed_touch_build_target(pa, pb, clearance, x, witness);
 }
 
 bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {

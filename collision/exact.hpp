@@ -35,7 +35,9 @@ struct PosedOrgan {
   LineAlignedVector<float> tri_lanes;
   static constexpr std::size_t kGroupFloats = 15 * 8;
   /// Component k (lo x y z, hi x y z) of triangle i's box.
-  float tri_box(std::size_t i, int k) const { return tri_lanes[i / 8 * kGroupFloats + static_cast<std::size_t>(9 + k) * 8 + i % 8]; }
+  float tri_box(std::size_t i, int k) const {
+    return tri_lanes[i / 8 * kGroupFloats + static_cast<std::size_t>(9 + k) * 8 + i % 8];
+  }
   /// Triangle i's corners.
   void corners(std::size_t i, Vec3f* out) const {
     const float* g = &tri_lanes[i / 8 * kGroupFloats + i % 8];

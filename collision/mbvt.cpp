@@ -39,7 +39,8 @@ KindMask parse_collide_kinds(const std::string& list) {
     const auto kind = parse_organ_kind(name);
     if (!kind)
       throw std::invalid_argument(fmt::format(
-          "--collide: unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit, flower or all)", name));
+          "--collide: unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit, flower or all)",
+          name));
     k[static_cast<std::size_t>(*kind)] = true;
   }
   return k;
@@ -156,7 +157,8 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
   // Otherwise a free pair can only lie across clusters (the plant's organs taking part, as the
   // plant level asks).
   if (!part.plant_has_free)
-    part.plant_has_free = organs_hold_free_pair(s.organs.data(), part.organs.data(), 0, static_cast<std::uint32_t>(part.organs.size()));
+    part.plant_has_free =
+        organs_hold_free_pair(s.organs.data(), part.organs.data(), 0, static_cast<std::uint32_t>(part.organs.size()));
   return part;
 }
 
@@ -260,11 +262,14 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
   // otherwise all OBBs first.
   const std::size_t np = m.plants.size();
   bool tiled = true;
-  for (std::size_t p = 0, next = 0; tiled && p < np; next += s.plants[p].organ_count, ++p) tiled = s.plants[p].first_organ == next;
+  for (std::size_t p = 0, next = 0; tiled && p < np; next += s.plants[p].organ_count, ++p)
+    tiled = s.plants[p].first_organ == next;
   tiled = tiled && (np == 0 ? n == 0 : s.plants[np - 1].first_organ + s.plants[np - 1].organ_count == n);
   const auto fit_range = [&](std::size_t from, std::size_t to) {
     for (std::size_t first = from; first < to; first += 8)
-      fit_obbs8(m, s, lib, [first](int t) { return first + static_cast<std::size_t>(t); }, static_cast<int>(std::min<std::size_t>(8, to - first)));
+      fit_obbs8(
+          m, s, lib, [first](int t) { return first + static_cast<std::size_t>(t); },
+          static_cast<int>(std::min<std::size_t>(8, to - first)));
   };
   if (!tiled) {
     const std::ptrdiff_t chunks = static_cast<std::ptrdiff_t>((n + 1023) / 1024);
@@ -317,9 +322,12 @@ void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vecto
   for (std::ptrdiff_t g = 0; g < groups; ++g) {
     const auto first = static_cast<std::size_t>(g) * 8;
     const int count = static_cast<int>(std::min<std::size_t>(8, n - first));
-    fit_obbs8(m, s, lib, [&organs, first](int t) { return static_cast<std::size_t>(organs[first + static_cast<std::size_t>(t)]); }, count);
+    fit_obbs8(
+        m, s, lib, [&organs, first](int t) { return static_cast<std::size_t>(organs[first + static_cast<std::size_t>(t)]); },
+        count);
     for (int t = 0; t < count; ++t)
-      std::atomic_ref<std::uint8_t>(plant_dirty[static_cast<std::size_t>(s.organs[organs[first + static_cast<std::size_t>(t)]].plant)])
+      std::atomic_ref<std::uint8_t>(
+          plant_dirty[static_cast<std::size_t>(s.organs[organs[first + static_cast<std::size_t>(t)]].plant)])
           .store(1, std::memory_order_relaxed);
   }
   float radius = m.max_radius;  // grows with the plants refitted, as build_mbvt sets it

@@ -29,8 +29,8 @@ KindMask parse_collide_kinds(const std::string& list);
 
 struct MbvtConfig {
   KindMask collide = default_collide_kinds();
-  float clearance = 0;     // every bound is inflated by it
-  int leaf_chunk = 4;      // organs per LCD tree leaf
+  float clearance = 0;  // every bound is inflated by it
+  int leaf_chunk = 4;   // organs per LCD tree leaf
   /// Organs per cluster outside compound leaves: the most that still make one block of the pass
   /// (kBlockOrgans, collision/lcd_descent.hpp). Faster than 8 in bench_detect (half as many stem
   /// clusters, so fewer cluster pairs for a few more own pairs), 20 and more slower (they
@@ -46,26 +46,26 @@ struct LcdNode {
 
 struct Cluster {
   std::int32_t plant = 0;
-  std::int32_t leaf = -1;               // compound leaf id, -1 for a stem cluster
-  std::uint32_t first = 0, count = 0;   // organs in cluster_organs
-  std::uint32_t root = 0;               // root node
+  std::int32_t leaf = -1;              // compound leaf id, -1 for a stem cluster
+  std::uint32_t first = 0, count = 0;  // organs in cluster_organs
+  std::uint32_t root = 0;              // root node
   std::uint32_t first_node = 0, node_count = 0;
-  Box3f box;                            // axis-aligned, around the root's LCD box (lcd_aabb): a pre-test
+  Box3f box;  // axis-aligned, around the root's LCD box (lcd_aabb): a pre-test
 };
 
 struct PlantBound {
-  float radius = 0;          // horizontal, around the plant origin
-  float zlo = 0, zhi = -1;   // empty when zlo > zhi
+  float radius = 0;         // horizontal, around the plant origin
+  float zlo = 0, zhi = -1;  // empty when zlo > zhi
   std::uint32_t first_cluster = 0, cluster_count = 0;
-  Box3f box;                 // axis-aligned, around its clusters' boxes (plant frame)
+  Box3f box;  // axis-aligned, around its clusters' boxes (plant frame)
 };
 
 struct Mbvt {
   MbvtConfig config;
   std::vector<Obb, FirstTouchAllocator<Obb>> obbs;  // per organ (of every organ; unused where not taking part)
-  std::vector<std::uint8_t> takes_part;       // per organ
-  std::vector<std::int32_t> parent_of;        // per organ: its record's parent (the pass's adjacency test)
-  std::vector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
+  std::vector<std::uint8_t> takes_part;             // per organ
+  std::vector<std::int32_t> parent_of;              // per organ: its record's parent (the pass's adjacency test)
+  std::vector<std::uint32_t> cluster_organs;        // organ ids, cluster by cluster
   /// Beside cluster_organs: each organ's later organs in its cluster that are not adjacent to
   /// it (free_pair_masks), and per cluster whether it holds such a pair; the host's (the CPU
   /// pass's own pairs), made with the shape.
@@ -74,7 +74,7 @@ struct Mbvt {
   /// Per plant: whether its organs taking part hold a pair that is not adjacent, so it meets
   /// itself at the plant level (made with the shape; plants_with_free_pairs reads it).
   std::vector<std::uint8_t> plant_has_free;
-  std::vector<Cluster> clusters;              // plant by plant
+  std::vector<Cluster> clusters;  // plant by plant
   std::vector<LcdNode> nodes;
   std::vector<PlantBound> plants;
   float max_radius = 0;

@@ -11,7 +11,8 @@ namespace canopy {
 /// centres), written into every node of the cluster; fixed from then on (refits keep it).
 CANOPY_HD inline void fit_cluster_axis(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs, const Cluster& c) {
   float mx = 0, my = 0;
-  for (std::uint32_t k = c.first; k < c.first + c.count; ++k) mx += obbs[cluster_organs[k]].centre.x, my += obbs[cluster_organs[k]].centre.y;
+  for (std::uint32_t k = c.first; k < c.first + c.count; ++k)
+    mx += obbs[cluster_organs[k]].centre.x, my += obbs[cluster_organs[k]].centre.y;
   mx = mx / static_cast<float>(c.count) - obbs[cluster_organs[c.first]].centre.x;
   my = my / static_cast<float>(c.count) - obbs[cluster_organs[c.first]].centre.y;
   const float len = sqrtf(mx * mx + my * my);

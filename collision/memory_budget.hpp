@@ -18,7 +18,8 @@
 namespace canopy {
 
 inline constexpr double kBytesPerPlantPair = 64;
-inline constexpr double kBytesPerContact = 96;  // a 24-byte record in a thread's list, the merged list and the sorted answer, grown by doubling
+inline constexpr double kBytesPerContact =
+    96;  // a 24-byte record in a thread's list, the merged list and the sorted answer, grown by doubling
 inline constexpr double kResolutionBytesPerContact = 16 << 10;
 
 /// The memory a check allows: `limit` when set, else what the machine has available (0: unknown,
@@ -26,7 +27,9 @@ inline constexpr double kResolutionBytesPerContact = 16 << 10;
 std::size_t memory_budget(std::size_t limit);
 
 /// The most plant pairs whose bounds meet that `budget` bytes hold (kBytesPerPlantPair each).
-inline std::uint64_t most_plant_pairs(std::size_t budget) { return static_cast<std::uint64_t>(static_cast<double>(budget) / kBytesPerPlantPair); }
+inline std::uint64_t most_plant_pairs(std::size_t budget) {
+  return static_cast<std::uint64_t>(static_cast<double>(budget) / kBytesPerPlantPair);
+}
 /// Throws std::runtime_error: more than `most` plant pairs meet, more than `budget` bytes hold.
 /// Both backends call it before their plant level's list is made (count_plant_pairs).
 [[noreturn]] void refuse_plant_pairs(std::uint64_t most, std::size_t budget);

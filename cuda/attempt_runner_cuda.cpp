@@ -124,8 +124,8 @@ void CudaAttemptRunner::clear(std::size_t i) {
   l.moving_sent = l.keep_sent = l.pairs_sent = l.witness_sent = l.axes_sent = 0;
 }
 
-std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const AttemptTables& t, std::span<const AttemptGroup> groups,
-                                                       const AttemptSettings& settings) {
+std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const AttemptTables& t,
+                                                       std::span<const AttemptGroup> groups, const AttemptSettings& settings) {
   std::vector<std::uint32_t> out(groups.size(), 0);
   if (groups.empty()) return out;
   Lane& l = lane(i);
@@ -162,7 +162,8 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   l.put(l.task_first.get(), first.data(), first.size() * sizeof(std::uint32_t));
   l.touch.grow(groups.size());
   CANOPY_CUDA_CHECK(cudaMemsetAsync(l.touch.get(), 0, groups.size() * sizeof(std::uint32_t), stream));
-  if (!device_boxes_ && boxes_.size() != dev_.organs()) throw std::logic_error("bulk attempts: update_organs() not called for this stand");
+  if (!device_boxes_ && boxes_.size() != dev_.organs())
+    throw std::logic_error("bulk attempts: update_organs() not called for this stand");
   const Obb* obbs = device_boxes_ ? dev_.view().obbs : boxes_.get();
   const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(), l.axes.get(), obbs, l.witness.get()};
   const auto n_groups = static_cast<std::uint32_t>(groups.size()), n_tasks = static_cast<std::uint32_t>(tasks);
@@ -187,7 +188,8 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   launch_attempt_exact(dev_.view(), view, l.groups.get(), l.exact.get(), static_cast<std::uint32_t>(host.appended), l.touch.get(),
                        l.counters.get(), stream);
   if (detail_) l.busy.end(stream);
-  CANOPY_CUDA_CHECK(cudaMemcpyAsync(out.data(), l.touch.get(), groups.size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost, stream));
+  CANOPY_CUDA_CHECK(
+      cudaMemcpyAsync(out.data(), l.touch.get(), groups.size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost, stream));
   // The exact kernel's count of touches, read back only for the statistics (a copy per call).
   if (detail_) CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
   l.stream.synchronize();

@@ -80,15 +80,15 @@ class CudaAttemptRunner : public AttemptRunner {
   Lane& lane(std::size_t i);
 
   const StandOnDevice& dev_;
-  bool detail_ = false;  // keep_statistics(true): the timeline and the exact tests' touches
+  bool detail_ = false;                     // keep_statistics(true): the timeline and the exact tests' touches
   DeviceBuffer<Obb> boxes_, staged_boxes_;  // a copy of the host's boxes, where the device's differ
   bool device_boxes_ = false;               // reading the device stand's own OBBs
   DeviceBuffer<std::uint32_t> staged_ids_;
   std::array<std::unique_ptr<Lane>, kLanes> lanes_;  // slot i touched only by lane i's thread
-  Stats stats_;  // of update_organs
-  cudaEvent_t origin_{};  // recorded by keep_statistics(true), before every lane's timed work
-  cudaMemPool_t pool_{};  // the device's default pool, which the lanes' StreamBuffers draw on
-  int device_ = 0;        // the backend's device, made current on every lane's thread
+  Stats stats_;                                      // of update_organs
+  cudaEvent_t origin_{};                             // recorded by keep_statistics(true), before every lane's timed work
+  cudaMemPool_t pool_{};                             // the device's default pool, which the lanes' StreamBuffers draw on
+  int device_ = 0;                                   // the backend's device, made current on every lane's thread
 };
 
 }  // namespace canopy::cuda

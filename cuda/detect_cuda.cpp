@@ -28,7 +28,8 @@ namespace {
 constexpr std::size_t kOrganPairBytes = 2 * sizeof(std::uint64_t) + 1 + sizeof(Contact);
 /// Device bytes per cluster pair when the leaf level is the last: the pair, its key and work
 /// item twice (two sorts), its record.
-constexpr std::size_t kLeafPairBytes = sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t)) + sizeof(Contact);
+constexpr std::size_t kLeafPairBytes =
+    sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t)) + sizeof(Contact);
 
 class CudaBackend : public DetectionBackend, public AttemptSource {
  public:
@@ -85,8 +86,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
   /// Bytes of the stage lists held now (free for the next batch's lists).
   std::size_t list_bytes() const {
     return cluster_pairs_.size() * sizeof(ClusterPair) + (organ_keys_.size() + organ_sorted_.size()) * sizeof(std::uint64_t) +
-           (leaf_work_.size() + leaf_work_sorted_.size()) * sizeof(std::uint32_t) + hits_.size() + contacts_.size() * sizeof(Contact) +
-           keys_.bytes();
+           (leaf_work_.size() + leaf_work_sorted_.size()) * sizeof(std::uint32_t) + hits_.size() +
+           contacts_.size() * sizeof(Contact) + keys_.bytes();
   }
 
   /// Device bytes the stage lists may use: the request's budget (or what is free now, with the
@@ -142,7 +143,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     out.seconds[0] = now_seconds() - t;
     out.device_seconds[0] = plant_timer.seconds();
     if (req.level == ContactLevel::plant) {
-      for (std::uint64_t k : work) out.pairs.push_back({-1, -1, static_cast<std::int32_t>(key_hi(k)), static_cast<std::int32_t>(key_lo(k)), -1, -1});
+      for (std::uint64_t k : work)
+        out.pairs.push_back({-1, -1, static_cast<std::int32_t>(key_hi(k)), static_cast<std::int32_t>(key_lo(k)), -1, -1});
       return out;
     }
 
@@ -163,11 +165,11 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
       t = now_seconds();
       Counters host{};
       const std::size_t pair_bytes = req.level == ContactLevel::leaf ? kLeafPairBytes : sizeof(ClusterPair);
-      const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * std::size_t{n}, std::min(kMaxItems, budget / pair_bytes),
-                                     tight, leaf_timer, [&](ClusterPair* o, unsigned long long cap) {
-                                       launch_cluster_pairs(dev_.view(), batch, n, o, cap, counters_.get());
-                                     });
-      bool fits = nc * pair_bytes <= budget && (req.level != ContactLevel::leaf || nc * pair_bytes + KeyOps::scratch_bytes(nc) <= budget);
+      const std::size_t nc = collect(
+          cluster_pairs_, counters_, host, 64 * std::size_t{n}, std::min(kMaxItems, budget / pair_bytes), tight, leaf_timer,
+          [&](ClusterPair* o, unsigned long long cap) { launch_cluster_pairs(dev_.view(), batch, n, o, cap, counters_.get()); });
+      bool fits =
+          nc * pair_bytes <= budget && (req.level != ContactLevel::leaf || nc * pair_bytes + KeyOps::scratch_bytes(nc) <= budget);
       const Counters leaf_counts = host;
       t_leaf += now_seconds() - t;
       std::size_t no = 0;
@@ -175,17 +177,20 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
         t = now_seconds();
         // Cluster pairs in key order, so that neighbouring threads descend the same trees: an
         // optional step, left out under a memory budget or when its lists would not fit.
-        const std::size_t sort_bytes = nc * (sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t))) + KeyOps::scratch_bytes(nc);
+        const std::size_t sort_bytes =
+            nc * (sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t))) + KeyOps::scratch_bytes(nc);
         if (!tight && sort_bytes <= budget) {
           organ_timer.start();
           sort_cluster_pairs(nc, false);
-          launch_cluster_pairs_from_keys(organ_sorted_.get(), leaf_work_sorted_.get(), static_cast<std::uint32_t>(nc), cluster_pairs_.get());
+          launch_cluster_pairs_from_keys(organ_sorted_.get(), leaf_work_sorted_.get(), static_cast<std::uint32_t>(nc),
+                                         cluster_pairs_.get());
           organ_timer.stop();
         }
         const std::size_t room = (budget - nc * sizeof(ClusterPair)) / kOrganPairBytes;
         no = collect(organ_keys_, counters_, host, 4 * nc + 1024, std::min(kMaxItems, room), tight, organ_timer,
                      [&](std::uint64_t* o, unsigned long long cap) {
-                       launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap, counters_.get());
+                       launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap,
+                                          counters_.get());
                      });
         fits = no <= room && nc * sizeof(ClusterPair) + no * kOrganPairBytes + KeyOps::scratch_bytes(no) <= budget;
         t_organ += now_seconds() - t;

@@ -47,7 +47,8 @@ __global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uin
     for (std::uint32_t j = it.p == it.q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
       const Cluster& cb = v.clusters[j];
       if (i != j && !boxes_meet(ca.box, cb.box, it.offset)) continue;
-      const bool meet = i == j ? organs_hold_free_pair(v.organs, v.cluster_organs, ca.first, ca.count) : lcd_overlap(v.nodes[ca.root].box, v.nodes[cb.root].box, it.offset);
+      const bool meet = i == j ? organs_hold_free_pair(v.organs, v.cluster_organs, ca.first, ca.count)
+                               : lcd_overlap(v.nodes[ca.root].box, v.nodes[cb.root].box, it.offset);
       if (!meet) continue;
       ++found;
       append(out, capacity, c, ClusterPair{w, i, j});
@@ -102,13 +103,14 @@ __global__ void cluster_keys_kernel(const ClusterPair* pairs, std::uint32_t n, s
   work[k] = pairs[k].work;
 }
 
-__global__ void cluster_pairs_from_keys_kernel(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n, ClusterPair* out) {
+__global__ void cluster_pairs_from_keys_kernel(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n,
+                                               ClusterPair* out) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k < n) out[k] = ClusterPair{work[k], key_hi(keys[k]), key_lo(keys[k])};
 }
 
-__global__ void cluster_contacts_kernel(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,
-                                        Contact* out) {
+__global__ void cluster_contacts_kernel(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys,
+                                        std::uint32_t n, Contact* out) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const WorkItem w = work[work_of[k]];

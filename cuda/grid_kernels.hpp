@@ -12,12 +12,12 @@ namespace canopy::cuda {
 struct GridView {
   const PlantBound* plants;
   const PlantOrigin* origins;
-  const std::uint64_t* cells;     // cell keys, sorted
-  const std::uint32_t* members;   // plant ids in the order of `cells`
-  std::uint32_t n;                // plants
-  double x0, y0, cell;            // grid corner (the least origin coordinates) and cell size
-  const std::uint8_t* self;       // per plant: it holds a free pair, so it meets itself
-  const std::uint8_t* active;     // per plant, or null for all: pairs need an active plant
+  const std::uint64_t* cells;    // cell keys, sorted
+  const std::uint32_t* members;  // plant ids in the order of `cells`
+  std::uint32_t n;               // plants
+  double x0, y0, cell;           // grid corner (the least origin coordinates) and cell size
+  const std::uint8_t* self;      // per plant: it holds a free pair, so it meets itself
+  const std::uint8_t* active;    // per plant, or null for all: pairs need an active plant
 };
 
 /// keys[p] = the cell of plant p, ids[p] = p.

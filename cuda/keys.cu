@@ -14,18 +14,18 @@ std::size_t KeyOps::scratch_bytes(std::size_t n) {
   std::size_t a = 0, b = 0, c = 0, d = 0;
   CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortKeys(nullptr, a, static_cast<const std::uint64_t*>(nullptr),
                                                    static_cast<std::uint64_t*>(nullptr), items));
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, b, static_cast<const std::uint64_t*>(nullptr),
-                                                    static_cast<std::uint64_t*>(nullptr), static_cast<const std::uint32_t*>(nullptr),
-                                                    static_cast<std::uint32_t*>(nullptr), items));
-  CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(nullptr, c, static_cast<const std::uint64_t*>(nullptr), static_cast<std::uint64_t*>(nullptr),
-                                              static_cast<long long*>(nullptr), items));
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(
+      nullptr, b, static_cast<const std::uint64_t*>(nullptr), static_cast<std::uint64_t*>(nullptr),
+      static_cast<const std::uint32_t*>(nullptr), static_cast<std::uint32_t*>(nullptr), items));
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(nullptr, c, static_cast<const std::uint64_t*>(nullptr),
+                                              static_cast<std::uint64_t*>(nullptr), static_cast<long long*>(nullptr), items));
   CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, d, static_cast<const std::uint64_t*>(nullptr),
                                                static_cast<const std::uint8_t*>(nullptr), static_cast<std::uint64_t*>(nullptr),
                                                static_cast<long long*>(nullptr), items));
   std::size_t e = 0;
-  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, e, static_cast<const std::uint32_t*>(nullptr),
-                                                    static_cast<std::uint32_t*>(nullptr), static_cast<const std::uint64_t*>(nullptr),
-                                                    static_cast<std::uint64_t*>(nullptr), items));
+  CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(
+      nullptr, e, static_cast<const std::uint32_t*>(nullptr), static_cast<std::uint32_t*>(nullptr),
+      static_cast<const std::uint64_t*>(nullptr), static_cast<std::uint64_t*>(nullptr), items));
   return std::max({a, b, c, d, e}) + sizeof(long long);
 }
 

@@ -85,7 +85,8 @@ __device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n,
     const std::uint32_t i = i0 + lane;
     bool in = i < n;
     for (int d = 0; in && d < 3; ++d)
-      in = widen_own ? box[i][d] - c <= hi[d] && box[i][3 + d] + c >= lo[d] : box[i][d] <= hi[d] + c && box[i][3 + d] >= lo[d] - c;
+      in =
+          widen_own ? box[i][d] - c <= hi[d] && box[i][3 + d] + c >= lo[d] : box[i][d] <= hi[d] + c && box[i][3 + d] >= lo[d] - c;
     const unsigned votes = __ballot_sync(kFullWarp, in);
     if (in) out[count + __popc(votes & ((1u << lane) - 1))] = static_cast<std::uint8_t>(i);
     count += __popc(votes);
@@ -159,8 +160,10 @@ __device__ inline bool surfaces_touch(const StandView& v, const MeshRef& ma, con
     if (i < ma.triangle_count) {
       Vec3f a3[3];
       for (int q = 0; q < 3; ++q) a3[q] = vertex(v, ma, ta, zero, v.mesh_indices[ma.first_index + 3 * i + q]);
-      const float alo[3] = {min_f(a3[0].x, min_f(a3[1].x, a3[2].x)), min_f(a3[0].y, min_f(a3[1].y, a3[2].y)), min_f(a3[0].z, min_f(a3[1].z, a3[2].z))};
-      const float ahi[3] = {max_f(a3[0].x, max_f(a3[1].x, a3[2].x)), max_f(a3[0].y, max_f(a3[1].y, a3[2].y)), max_f(a3[0].z, max_f(a3[1].z, a3[2].z))};
+      const float alo[3] = {min_f(a3[0].x, min_f(a3[1].x, a3[2].x)), min_f(a3[0].y, min_f(a3[1].y, a3[2].y)),
+                            min_f(a3[0].z, min_f(a3[1].z, a3[2].z))};
+      const float ahi[3] = {max_f(a3[0].x, max_f(a3[1].x, a3[2].x)), max_f(a3[0].y, max_f(a3[1].y, a3[2].y)),
+                            max_f(a3[0].z, max_f(a3[1].z, a3[2].z))};
       bool near = true;
       for (int d = 0; d < 3; ++d) near = near && alo[d] - c <= hi[d] && ahi[d] + c >= lo[d];
       for (std::uint32_t j = 0; near && j < mb.triangle_count && !done; ++j) {
@@ -168,8 +171,12 @@ __device__ inline bool surfaces_touch(const StandView& v, const MeshRef& ma, con
         for (int q = 0; q < 3; ++q) b3[q] = vertex(v, mb, tb, db, v.mesh_indices[mb.first_index + 3 * j + q]);
         bool box = true;
         for (int d = 0; d < 3; ++d) {
-          const float bl = d == 0 ? min_f(b3[0].x, min_f(b3[1].x, b3[2].x)) : d == 1 ? min_f(b3[0].y, min_f(b3[1].y, b3[2].y)) : min_f(b3[0].z, min_f(b3[1].z, b3[2].z));
-          const float bh = d == 0 ? max_f(b3[0].x, max_f(b3[1].x, b3[2].x)) : d == 1 ? max_f(b3[0].y, max_f(b3[1].y, b3[2].y)) : max_f(b3[0].z, max_f(b3[1].z, b3[2].z));
+          const float bl = d == 0   ? min_f(b3[0].x, min_f(b3[1].x, b3[2].x))
+                           : d == 1 ? min_f(b3[0].y, min_f(b3[1].y, b3[2].y))
+                                    : min_f(b3[0].z, min_f(b3[1].z, b3[2].z));
+          const float bh = d == 0   ? max_f(b3[0].x, max_f(b3[1].x, b3[2].x))
+                           : d == 1 ? max_f(b3[0].y, max_f(b3[1].y, b3[2].y))
+                                    : max_f(b3[0].z, max_f(b3[1].z, b3[2].z));
           box = box && bl <= ahi[d] + c && bh >= alo[d] - c;
         }
         if (box && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3))) done = 1;
@@ -255,12 +262,13 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
   if (stage && ma.vertex_count <= WarpStage::kVertices && mb.vertex_count <= WarpStage::kVertices &&
       ma.triangle_count <= WarpStage::kTriangles && mb.triangle_count <= WarpStage::kTriangles) {
     if (detail::staged_surfaces_touch(v, ma, ta, mb, tb, db, clearance, *stage, found)) return true;
-    return detail::one_inside_other(v, ra, ma, [&](std::uint32_t k) { return stage->va[k]; }, rb, mb,
-                                    [&](std::uint32_t k) { return stage->vb[k]; });
+    return detail::one_inside_other(
+        v, ra, ma, [&](std::uint32_t k) { return stage->va[k]; }, rb, mb, [&](std::uint32_t k) { return stage->vb[k]; });
   }
   if (detail::surfaces_touch(v, ma, ta, mb, tb, db, clearance, done)) return true;
-  return detail::one_inside_other(v, ra, ma, [&](std::uint32_t k) { return vertex(v, ma, ta, zero, k); }, rb, mb,
-                                  [&](std::uint32_t k) { return vertex(v, mb, tb, db, k); });
+  return detail::one_inside_other(
+      v, ra, ma, [&](std::uint32_t k) { return vertex(v, ma, ta, zero, k); }, rb, mb,
+      [&](std::uint32_t k) { return vertex(v, mb, tb, db, k); });
 }
 
 }  // namespace canopy::cuda

@@ -31,13 +31,23 @@ std::vector<std::uint64_t> PlantLevel::work(const StandOnDevice& dev, const Dete
     active_.upload(*req.active_plants);
     active = active_.get();
   }
-  const GridView g{dev.view().plants, dev.view().origins, sorted_cells_.get(), sorted_members_.get(), np, dev.x0(), dev.y0(),
-                   cell, dev.self(), active};
+  const GridView g{dev.view().plants,
+                   dev.view().origins,
+                   sorted_cells_.get(),
+                   sorted_members_.get(),
+                   np,
+                   dev.x0(),
+                   dev.y0(),
+                   cell,
+                   dev.self(),
+                   active};
   Counters host{};
-  const std::size_t nw = collect(pair_keys_, counters, host, 8 * std::size_t{np} + 64, kMaxItems, tight, timer,
-                                 [&](std::uint64_t* o, unsigned long long cap) { launch_plant_pairs(g, o, cap, counters.get()); });
+  const std::size_t nw =
+      collect(pair_keys_, counters, host, 8 * std::size_t{np} + 64, kMaxItems, tight, timer,
+              [&](std::uint64_t* o, unsigned long long cap) { launch_plant_pairs(g, o, cap, counters.get()); });
   // The host holds the list too, and what detection and resolution make of it (collision/memory_budget.hpp).
-  if (const std::size_t budget = memory_budget(req.memory_limit); budget && !req.active_plants && host.between > most_plant_pairs(budget))
+  if (const std::size_t budget = memory_budget(req.memory_limit);
+      budget && !req.active_plants && host.between > most_plant_pairs(budget))
     refuse_plant_pairs(most_plant_pairs(budget), budget);
   if (nw > kMaxItems) throw CudaError(fmt::format("{} plant pairs: more than one launch can list", nw));
   count = LevelCount{static_cast<std::size_t>(host.between), static_cast<std::size_t>(host.within)};

@@ -24,7 +24,8 @@ void scatter_from_host(T* device, const T* host, std::span<const std::uint32_t> 
   staged_ids.upload_at(0, ids.data(), ids.size());
   staged.grow(items.size());
   staged.upload_at(0, items.data(), items.size());
-  launch_scatter(device, staged.get(), staged_ids.get(), static_cast<std::uint32_t>(ids.size()), sizeof(T) / sizeof(std::uint32_t));
+  launch_scatter(device, staged.get(), staged_ids.get(), static_cast<std::uint32_t>(ids.size()),
+                 sizeof(T) / sizeof(std::uint32_t));
 }
 
 }  // namespace canopy::cuda

@@ -45,10 +45,10 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, c
   indices_.upload(indices);
   meshes_.upload(meshes);
   boxes_.upload(boxes);
-  view_ = {transforms_.get(), organs_.get(), obbs_.get(), cluster_organs_.get(), clusters_.get(), nodes_.get(),
-           plants_.get(), positions_.get(), indices_.get(), meshes_.get(), origins_.get()};
-  tree_ = {transforms_.get(), organs_.get(), boxes_.get(), cluster_organs_.get(), clusters_.get(), obbs_.get(), nodes_.get(),
-           plants_.get(), max_radius_.get()};
+  view_ = {transforms_.get(), organs_.get(),    obbs_.get(),    cluster_organs_.get(), clusters_.get(), nodes_.get(),
+           plants_.get(),     positions_.get(), indices_.get(), meshes_.get(),         origins_.get()};
+  tree_ = {transforms_.get(), organs_.get(), boxes_.get(),  cluster_organs_.get(), clusters_.get(),
+           obbs_.get(),       nodes_.get(),  plants_.get(), max_radius_.get()};
   bytes_ = s.transforms.size() * sizeof(Affine3f) + s.organs.size() * sizeof(OrganRecord) + s.organ_count() * sizeof(Obb) +
            m.cluster_organs.size() * 4 + m.clusters.size() * sizeof(Cluster) + m.nodes.size() * sizeof(LcdNode) +
            m.plants.size() * (sizeof(PlantBound) + sizeof(PlantOrigin) + 1) + positions.size() * sizeof(Vec3f) +

@@ -102,7 +102,8 @@ std::vector<char> allgather_bytes(const void* data, std::size_t bytes, std::vect
   }
   to_int(total, "allgather");
   std::vector<char> out(total);
-  check(MPI_Allgatherv(data, c[static_cast<std::size_t>(rank())], MPI_BYTE, out.data(), c.data(), d.data(), MPI_BYTE, MPI_COMM_WORLD),
+  check(MPI_Allgatherv(data, c[static_cast<std::size_t>(rank())], MPI_BYTE, out.data(), c.data(), d.data(), MPI_BYTE,
+                       MPI_COMM_WORLD),
         "MPI_Allgatherv");
   if (starts) {
     starts->assign(d.begin(), d.end());
@@ -127,8 +128,7 @@ std::vector<std::vector<char>> alltoall_bytes(const std::vector<std::vector<char
   check(MPI_Alltoallv(send.data(), sc.data(), sd.data(), MPI_BYTE, recv.data(), rc.data(), rd.data(), MPI_BYTE, MPI_COMM_WORLD),
         "MPI_Alltoallv");
   std::vector<std::vector<char>> in(p);
-  for (std::size_t r = 0; r < p; ++r)
-    in[r].assign(recv.begin() + rd[r], recv.begin() + rd[r] + rc[r]);
+  for (std::size_t r = 0; r < p; ++r) in[r].assign(recv.begin() + rd[r], recv.begin() + rd[r] + rc[r]);
   return in;
 }
 

@@ -28,7 +28,8 @@ std::vector<std::uint64_t> by_global_id(const std::vector<std::int64_t>& ids, co
   const std::vector<std::uint64_t> all = allgather(rows);
   std::vector<std::uint64_t> table(plants_total * static_cast<std::uint64_t>(k), 0);
   for (std::size_t r = 0; r < all.size(); r += static_cast<std::size_t>(k + 1))
-    for (int j = 0; j < k; ++j) table[all[r] * static_cast<std::uint64_t>(k) + static_cast<std::uint64_t>(j)] = all[r + 1 + static_cast<std::size_t>(j)];
+    for (int j = 0; j < k; ++j)
+      table[all[r] * static_cast<std::uint64_t>(k) + static_cast<std::uint64_t>(j)] = all[r + 1 + static_cast<std::size_t>(j)];
   return table;
 }
 
@@ -113,8 +114,7 @@ void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<vo
     std::vector<std::string> text(std::min(wave, batches - w0));
     std::exception_ptr failed;  // thrown after the region: an exception must not leave it
 #pragma omp parallel for schedule(dynamic, 1)
-    for (std::size_t b = 0; b < text.size(); ++b)
-      try {
+    for (std::size_t b = 0; b < text.size(); ++b) try {
         for (std::size_t i = (w0 + b) * batch; i < std::min(n, (w0 + b + 1) * batch); ++i) {
           const std::size_t before = text[b].size();
           make(i, text[b]);

@@ -10,7 +10,8 @@ Tiling make_tiling(const std::vector<PlantPlacement>& plants, int tiles) {
   Tiling t;
   const std::size_t n = plants.size();
   double x0 = std::numeric_limits<double>::max(), x1 = -x0, y0 = x0, y1 = -x0;
-  for (const PlantPlacement& p : plants) x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  for (const PlantPlacement& p : plants)
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
   t.axis = (n == 0 || x1 - x0 >= y1 - y0) ? 0 : 1;
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);

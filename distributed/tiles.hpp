@@ -12,9 +12,9 @@
 namespace canopy {
 
 struct Tiling {
-  int axis = 0;                 // 0: strips across x, 1: across y
-  std::vector<int> owner;       // per plant (global id): the tile that owns it
-  std::vector<double> lo, hi;   // per tile: its owned plants' smallest and largest coordinate
+  int axis = 0;                // 0: strips across x, 1: across y
+  std::vector<int> owner;      // per plant (global id): the tile that owns it
+  std::vector<double> lo, hi;  // per tile: its owned plants' smallest and largest coordinate
   std::vector<std::size_t> owned_count;
 
   double coordinate(const PlantPlacement& p) const { return axis == 0 ? p.x : p.y; }

@@ -31,12 +31,12 @@ void exclusive_sums(std::vector<std::uint64_t>& values, int k, std::vector<std::
 /// Which plants of a (possibly partial) stand a writer writes, and their global numbering.
 struct ExportScope {
   const Stand& stand;
-  std::vector<std::uint32_t> plants;       // local plants written, ascending in global id
-  std::vector<std::int64_t> plant_id;      // per local plant: its global id
-  std::vector<std::int64_t> organ_shift;   // per local plant: global organ id - local organ id
-  std::vector<std::int64_t> leaf_shift;    // per local plant: global leaf id - local leaf id
+  std::vector<std::uint32_t> plants;      // local plants written, ascending in global id
+  std::vector<std::int64_t> plant_id;     // per local plant: its global id
+  std::vector<std::int64_t> organ_shift;  // per local plant: global organ id - local organ id
+  std::vector<std::int64_t> leaf_shift;   // per local plant: global leaf id - local leaf id
   std::uint64_t plants_total = 0, organs_total = 0;
-  const PlantScan* scan = nullptr;         // null: this process writes every plant
+  const PlantScan* scan = nullptr;  // null: this process writes every plant
 
   /// The whole stand written by this process alone.
   static ExportScope whole(const Stand& stand);

@@ -58,7 +58,8 @@ T parse(std::string_view cell, const std::string& file, int line, int column) {
 /// `v` when finite (from_chars reads "nan" and "inf" as numbers).
 template <typename T>
 T finite(T v, std::string_view cell, const std::string& file, int line, int column) {
-  if (!std::isfinite(v)) throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is not a finite number", file, line, column, cell));
+  if (!std::isfinite(v))
+    throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is not a finite number", file, line, column, cell));
   return v;
 }
 
@@ -66,7 +67,8 @@ T finite(T v, std::string_view cell, const std::string& file, int line, int colu
 float size(float v, std::string_view cell, const std::string& file, int line, int column) {
   finite(v, cell, file, line, column);
   if (!(v >= 0 && v <= kMaxOrganExtent))
-    throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range (a size from 0 to {} m)", file, line, column, cell, kMaxOrganExtent));
+    throw std::runtime_error(
+        fmt::format("{}:{}: column {} '{}' is out of range (a size from 0 to {} m)", file, line, column, cell, kMaxOrganExtent));
   return v;
 }
 
@@ -210,7 +212,8 @@ Stand read_stand(const std::string& dir) {
   const std::string_view plain(kOrganHeader);
   const std::string with_shapes = std::string(plain.substr(0, plain.size() - 1)) + kShapeColumns + "\n";
   std::size_t columns = 24;
-  if (!oin->next_line(line)) throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
+  if (!oin->next_line(line))
+    throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
   if (line + "\n" == with_shapes) columns = 27;
   else if (line + "\n" != plain)
     throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
@@ -221,7 +224,8 @@ Stand read_stand(const std::string& dir) {
   while (oin->next_line(line)) {
     const int ln = oin->line_number();
     const auto c = cells(line);
-    if (c.size() != columns) throw std::runtime_error(fmt::format("{}:{}: expected {} cells, got {}", ofile, ln, columns, c.size()));
+    if (c.size() != columns)
+      throw std::runtime_error(fmt::format("{}:{}: expected {} cells, got {}", ofile, ln, columns, c.size()));
     const std::size_t id = parse<std::size_t>(c[0], ofile, ln, 1);
     if (id != s.organs.size()) throw std::runtime_error(fmt::format("{}:{}: organ ids must run 0, 1, 2, ...", ofile, ln));
     if (id >= static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error(fmt::format("{}:{}: too many organs", ofile, ln));
@@ -239,7 +243,8 @@ Stand read_stand(const std::string& dir) {
     if (lod < 1 || lod > kMaxLod) throw std::runtime_error(fmt::format("{}:{}: lod must lie in 1..{}", ofile, ln, kMaxLod));
     r.lod = static_cast<std::uint8_t>(lod);
     if (columns == 27) {
-      const LeafletShape shape{parse<double>(c[24], ofile, ln, 25), parse<double>(c[25], ofile, ln, 26), parse<double>(c[26], ofile, ln, 27)};
+      const LeafletShape shape{parse<double>(c[24], ofile, ln, 25), parse<double>(c[25], ofile, ln, 26),
+                               parse<double>(c[26], ofile, ln, 27)};
       std::string why;
       const auto code = leaflet_shape_code(shape, &why);
       if (!code) throw std::runtime_error(fmt::format("{}:{}: {}", ofile, ln, why));
@@ -258,26 +263,30 @@ Stand read_stand(const std::string& dir) {
     }
     ++pr.organ_count;
     // A parent is an earlier organ of the same plant.
-    if (r.parent < -1 || r.parent >= static_cast<std::int32_t>(id) || (r.parent >= 0 && r.parent < static_cast<std::int32_t>(pr.first_organ)))
+    if (r.parent < -1 || r.parent >= static_cast<std::int32_t>(id) ||
+        (r.parent >= 0 && r.parent < static_cast<std::int32_t>(pr.first_organ)))
       throw std::runtime_error(fmt::format("{}:{}: parent {} is not an earlier organ of plant {}", ofile, ln, r.parent, r.plant));
     if (r.leaf < -1 || (r.leaf >= 0 && (static_cast<std::uint32_t>(r.leaf) < pr.first_leaf ||
-                                       static_cast<std::uint32_t>(r.leaf) > pr.first_leaf + pr.leaf_count)))
-      throw std::runtime_error(fmt::format("{}:{}: leaf {} is out of order (plant {}'s compound leaves are numbered from {} as they "
-                                           "first appear)",
-                                           ofile, ln, r.leaf, r.plant, pr.first_leaf));
+                                        static_cast<std::uint32_t>(r.leaf) > pr.first_leaf + pr.leaf_count)))
+      throw std::runtime_error(
+          fmt::format("{}:{}: leaf {} is out of order (plant {}'s compound leaves are numbered from {} as they "
+                      "first appear)",
+                      ofile, ln, r.leaf, r.plant, pr.first_leaf));
     if (r.leaf >= 0 && static_cast<std::uint32_t>(r.leaf) == pr.first_leaf + pr.leaf_count) ++pr.leaf_count, ++next_leaf;
     const float p0 = size(parse<float>(c[8], ofile, ln, 9), c[8], ofile, ln, 9);
     const float p1 = size(parse<float>(c[9], ofile, ln, 10), c[9], ofile, ln, 10);
     s.params.push_back({p0, p1});
     const float joint = finite(parse<float>(c[11], ofile, ln, 12), c[11], ofile, ln, 12);
-    if (!(joint >= 0 && joint <= 180)) throw std::runtime_error(fmt::format("{}:{}: column 12 (joint_limit) must lie in [0, 180], got {}", ofile, ln, c[11]));
+    if (!(joint >= 0 && joint <= 180))
+      throw std::runtime_error(fmt::format("{}:{}: column 12 (joint_limit) must lie in [0, 180], got {}", ofile, ln, c[11]));
     s.joint_limit_deg.push_back(joint);
     float v[12];
     for (int k = 0; k < 12; ++k) {
       const auto cell = c[static_cast<std::size_t>(12 + k)];
       v[k] = finite(parse<float>(cell, ofile, ln, 13 + k), cell, ofile, ln, 13 + k);
       if (!(std::fabs(v[k]) <= kMaxOrganExtent))
-        throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range (at most {} m)", ofile, ln, 13 + k, cell, kMaxOrganExtent));
+        throw std::runtime_error(
+            fmt::format("{}:{}: column {} '{}' is out of range (at most {} m)", ofile, ln, 13 + k, cell, kMaxOrganExtent));
     }
     s.transforms.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, {v[9], v[10], v[11]}});
     s.organs.push_back(r);

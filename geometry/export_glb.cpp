@@ -52,8 +52,9 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
     }
     it->organs.push_back(static_cast<std::uint32_t>(id));
   }
-  std::stable_sort(L.prims.begin(), L.prims.end(),
-                   [](const Primitive& a, const Primitive& b) { return std::make_pair(a.kind, a.uv) < std::make_pair(b.kind, b.uv); });
+  std::stable_sort(L.prims.begin(), L.prims.end(), [](const Primitive& a, const Primitive& b) {
+    return std::make_pair(a.kind, a.uv) < std::make_pair(b.kind, b.uv);
+  });
   const Vec3d off = s.offset(p);
   OrganMesh mesh;
   for (Primitive& q : L.prims) {
@@ -162,7 +163,7 @@ PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const std::uint64
     std::string attrs = fmt::format("\"POSITION\":{},\"NORMAL\":{}", apos, anrm);
     if (q.uv) attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(vuv, o_uv, 5126, q.vertices, "VEC2"));
     attrs += fmt::format(",\"_ORGAN\":{}", float_ids ? accessor(vid, o_id, 5126, q.vertices, "SCALAR")
-                                                       : accessor(vid, o_id, 5123, q.vertices, "VEC2"));
+                                                     : accessor(vid, o_id, 5123, q.vertices, "VEC2"));
     const std::size_t aidx = accessor(vidx, o_idx, 5125, q.indices, "SCALAR");
     if (!prims.empty()) prims += ',';
     prims += fmt::format("{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}", attrs, aidx,
@@ -212,8 +213,7 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   }
   std::vector<PlantJson> json(n);
 #pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t i = 0; i < n; ++i)
-    json[i] = plant_json(e.plant(e.plants[i]), plan[i], &before[K * i], float_ids, material_of);
+  for (std::size_t i = 0; i < n; ++i) json[i] = plant_json(e.plant(e.plants[i]), plan[i], &before[K * i], float_ids, material_of);
   const auto section = [&](std::string PlantJson::*field) {
     out.plants(n, 256, [&](std::size_t i, std::string& t) { t += json[i].*field; });
   };
@@ -225,9 +225,10 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   std::string origin;
   append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z), origin += ',';
   append_number(origin, -s.stand_origin.y);
-  out.fixed(fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
-                        "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
-                        origin));
+  out.fixed(
+      fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
+                  "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
+                  origin));
   section(&PlantJson::child);
   out.fixed("]}");
   section(&PlantJson::node);

@@ -38,8 +38,9 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, dou
     }
     it->organs.push_back(static_cast<std::uint32_t>(id));
   }
-  std::stable_sort(L.prims.begin(), L.prims.end(),
-                   [](const Primitive& a, const Primitive& b) { return std::make_pair(a.kind, a.uv) < std::make_pair(b.kind, b.uv); });
+  std::stable_sort(L.prims.begin(), L.prims.end(), [](const Primitive& a, const Primitive& b) {
+    return std::make_pair(a.kind, a.uv) < std::make_pair(b.kind, b.uv);
+  });
   const Vec3d off = s.offset(p);
   OrganMesh mesh;
   Vec3d lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
@@ -137,7 +138,8 @@ PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLa
   append_vec(place, L.corner.x, L.corner.y, L.corner.z);
   place += ']';
   if (L.step > 0) place += ",\"scale\":[", append_vec(place, L.step, L.step, L.step), place += ']';
-  j.node = fmt::format(",{{\"name\":\"plant_{}\",\"mesh\":{}{},\"extras\":{{\"first_organ\":{}}}}}", plant, nmesh, place, first_organ);
+  j.node =
+      fmt::format(",{{\"name\":\"plant_{}\",\"mesh\":{}{},\"extras\":{{\"first_organ\":{}}}}}", plant, nmesh, place, first_organ);
   const auto view = [&](std::size_t at, std::size_t bytes, std::size_t stride, int target) {
     if (nview > 0) j.views += ',';
     j.views += fmt::format("{{\"buffer\":0,\"byteOffset\":{},\"byteLength\":{}", at, bytes);
@@ -161,8 +163,8 @@ PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLa
     const auto accessor = [&](std::size_t v, std::size_t off, int comp, bool normalized, std::size_t count, const char* type,
                               const std::string& extra = {}) {
       if (nacc > 0) j.accessors += ',';
-      j.accessors += fmt::format("{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},{}\"count\":{},\"type\":\"{}\"{}}}", v, off,
-                                 comp, normalized ? "\"normalized\":true," : "", count, type, extra);
+      j.accessors += fmt::format("{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},{}\"count\":{},\"type\":\"{}\"{}}}",
+                                 v, off, comp, normalized ? "\"normalized\":true," : "", count, type, extra);
       return nacc++;
     };
     std::string bounds = ",\"min\":[";
@@ -200,16 +202,16 @@ PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLa
 void check_glb_compact(const ExportScope& e) {
   for (std::uint32_t p : e.plants)
     if (e.stand.plants[p].organ_count > kCompactOrgansPerPlant)
-      throw std::invalid_argument(fmt::format(
-          "--glb-compact: plant {} has {} organs; the compact glb numbers a plant's organs in 16 bits (at most {}): "
-          "write the default glb",
-          e.plant(p), e.stand.plants[p].organ_count, kCompactOrgansPerPlant));
+      throw std::invalid_argument(
+          fmt::format("--glb-compact: plant {} has {} organs; the compact glb numbers a plant's organs in 16 bits (at most {}): "
+                      "write the default glb",
+                      e.plant(p), e.stand.plants[p].organ_count, kCompactOrgansPerPlant));
 }
 
 void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out, const GlbCompactConfig& config) {
   if (!(config.max_step > 0) || !std::isfinite(config.max_step))
-    throw std::invalid_argument(fmt::format("compact glb: the largest position step must be a positive number of metres (got {})",
-                                            config.max_step));
+    throw std::invalid_argument(
+        fmt::format("compact glb: the largest position step must be a positive number of metres (got {})", config.max_step));
   check_glb_compact(e);
   const Stand& s = e.stand;
   const std::size_t n = e.plants.size();
@@ -256,10 +258,11 @@ void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter&
   out.fixed(std::string(20, '\0'));
   std::string origin;
   append_vec(origin, s.stand_origin.x, s.stand_origin.z, -s.stand_origin.y);
-  out.fixed(fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},"
-                        "\"extensionsUsed\":[\"KHR_mesh_quantization\"],\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
-                        "\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
-                        origin));
+  out.fixed(fmt::format(
+      "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},"
+      "\"extensionsUsed\":[\"KHR_mesh_quantization\"],\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
+      "\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
+      origin));
   section(&PlantJson::child);
   out.fixed("]}");
   section(&PlantJson::node);

@@ -46,8 +46,8 @@ Trs decompose(const Affine3f& m) {
     e[k] = normalized(v);
   }
   // Rotation matrix with columns e0 e1 e2 to a quaternion (Shepperd's method).
-  const double m00 = e[0].x, m10 = e[0].y, m20 = e[0].z, m01 = e[1].x, m11 = e[1].y, m21 = e[1].z, m02 = e[2].x,
-               m12 = e[2].y, m22 = e[2].z;
+  const double m00 = e[0].x, m10 = e[0].y, m20 = e[0].z, m01 = e[1].x, m11 = e[1].y, m21 = e[1].z, m02 = e[2].x, m12 = e[2].y,
+               m22 = e[2].z;
   const double tr = m00 + m11 + m22;
   double x, y, z, w;
   if (tr > 0) {
@@ -77,7 +77,8 @@ void append(std::string& bin, const void* p, std::size_t n) { bin.append(static_
 void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
   // Shared meshes: one per (prototype, lod, kind, leaflet shape) that occurs.
   const auto key_of = [](const OrganRecord& r) {
-    return std::make_tuple(static_cast<int>(r.prototype), static_cast<int>(r.lod), static_cast<int>(r.kind), static_cast<int>(r.shape));
+    return std::make_tuple(static_cast<int>(r.prototype), static_cast<int>(r.lod), static_cast<int>(r.kind),
+                           static_cast<int>(r.shape));
   };
   std::map<std::tuple<int, int, int, int>, int> mesh_of;
   for (const OrganRecord& r : s.organs) mesh_of.emplace(key_of(r), 0);
@@ -99,7 +100,8 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
   };
   const auto accessor = [&](int v, int comp, std::size_t count, const char* type, const std::string& extra = {}) {
     sep(accessors);
-    accessors += fmt::format("{{\"bufferView\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}", v, comp, count, type, extra);
+    accessors +=
+        fmt::format("{{\"bufferView\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}", v, comp, count, type, extra);
     return nacc++;
   };
   for (auto& [key, index] : mesh_of) {
@@ -115,16 +117,19 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     append_number(bounds, pm.box.lo.z), bounds += "],\"max\":[";
     append_number(bounds, pm.box.hi.x), bounds += ',', append_number(bounds, pm.box.hi.y), bounds += ',';
     append_number(bounds, pm.box.hi.z), bounds += ']';
-    const int apos = accessor(view(pm.positions.data(), 12 * pm.positions.size(), 0, 34962), 5126, pm.positions.size(), "VEC3", bounds);
+    const int apos =
+        accessor(view(pm.positions.data(), 12 * pm.positions.size(), 0, 34962), 5126, pm.positions.size(), "VEC3", bounds);
     const int anrm = accessor(view(pm.normals.data(), 12 * pm.normals.size(), 0, 34962), 5126, pm.normals.size(), "VEC3");
     std::string attrs = fmt::format("\"POSITION\":{},\"NORMAL\":{}", apos, anrm);
     if (!pm.uvs.empty())
-      attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(view(pm.uvs.data(), 8 * pm.uvs.size(), 0, 34962), 5126, pm.uvs.size(), "VEC2"));
+      attrs += fmt::format(",\"TEXCOORD_0\":{}",
+                           accessor(view(pm.uvs.data(), 8 * pm.uvs.size(), 0, 34962), 5126, pm.uvs.size(), "VEC2"));
     const int aidx = accessor(view(pm.indices.data(), 4 * pm.indices.size(), 0, 34963), 5125, pm.indices.size(), "SCALAR");
     sep(meshes);
-    meshes += fmt::format("{{\"name\":\"{}_{}_lod{}{}\",\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}]}}",
-                          kOrganKindNames[static_cast<std::size_t>(kind)], kPrototypeNames[static_cast<std::size_t>(proto)], lod,
-                          shape ? fmt::format("_shape{}", shape) : std::string(), attrs, aidx, material_of[static_cast<std::size_t>(kind)]);
+    meshes += fmt::format(
+        "{{\"name\":\"{}_{}_lod{}{}\",\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}]}}",
+        kOrganKindNames[static_cast<std::size_t>(kind)], kPrototypeNames[static_cast<std::size_t>(proto)], lod,
+        shape ? fmt::format("_shape{}", shape) : std::string(), attrs, aidx, material_of[static_cast<std::size_t>(kind)]);
     index = nmesh++;
   }
   // Plants: a node each, translated to its origin relative to stand_origin (Z up: the root turns
@@ -180,8 +185,9 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
       "\"children\":[{}]}}{}{}{}{}]",
       origin, children, plant_nodes.empty() ? "" : ",", plant_nodes, instance_nodes.empty() ? "" : ",", instance_nodes);
   if (nmesh > 0)
-    text += fmt::format(",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]",
-                        meshes, accessors, views, materials, bin.size());
+    text += fmt::format(
+        ",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]", meshes,
+        accessors, views, materials, bin.size());
   text += '}';
   while (bin.size() % 4) bin.push_back('\0');
   begin_glb(out, text, bin.size());

@@ -49,8 +49,12 @@ void write_ply(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
       std::size_t w = buf.size();
       buf.resize(w + 24 * mesh.positions.size());
       for (std::size_t v = 0; v < mesh.positions.size(); ++v, w += 24) {
-        const float f[6] = {static_cast<float>(off.x + mesh.positions[v].x), static_cast<float>(off.y + mesh.positions[v].y),
-                            mesh.positions[v].z, mesh.normals[v].x, mesh.normals[v].y, mesh.normals[v].z};
+        const float f[6] = {static_cast<float>(off.x + mesh.positions[v].x),
+                            static_cast<float>(off.y + mesh.positions[v].y),
+                            mesh.positions[v].z,
+                            mesh.normals[v].x,
+                            mesh.normals[v].y,
+                            mesh.normals[v].z};
         std::memcpy(buf.data() + w, f, 24);
       }
     }
@@ -67,7 +71,8 @@ void write_ply(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
       buf.resize(w + 21 * pm.triangle_count());
       for (std::size_t k = 0; k < pm.indices.size(); k += 3, w += 21) {
         buf[w] = 3;
-        const std::int32_t f[5] = {v0 + static_cast<std::int32_t>(pm.indices[k]), v0 + static_cast<std::int32_t>(pm.indices[k + 1]),
+        const std::int32_t f[5] = {v0 + static_cast<std::int32_t>(pm.indices[k]),
+                                   v0 + static_cast<std::int32_t>(pm.indices[k + 1]),
                                    v0 + static_cast<std::int32_t>(pm.indices[k + 2]), plant, organ};
         std::memcpy(buf.data() + w + 1, f, 20);
       }

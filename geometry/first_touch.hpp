@@ -40,7 +40,7 @@ struct FirstTouchAllocator : std::allocator<T> {
   }
   template <class U>
   void construct(U*) noexcept {
-    static_assert((std::is_aggregate_v<U> || std::is_arithmetic_v<U>) && std::is_trivially_copyable_v<U> &&
+    static_assert((std::is_aggregate_v<U> || std::is_arithmetic_v<U>)&&std::is_trivially_copyable_v<U> &&
                       std::is_trivially_destructible_v<U>,
                   "only plain structs of numbers are left unwritten");
   }

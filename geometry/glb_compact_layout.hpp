@@ -51,12 +51,17 @@ inline void put_position(char* at, const Vec3d& w, const PlantLayout& L) {
     const std::uint16_t q[3] = {units(w.x, L.corner.x, L.step), units(w.y, L.corner.y, L.step), units(w.z, L.corner.z, L.step)};
     std::memcpy(at, q, 6);
   } else {
-    const float f[3] = {static_cast<float>(w.x - L.corner.x), static_cast<float>(w.y - L.corner.y), static_cast<float>(w.z - L.corner.z)};
+    const float f[3] = {static_cast<float>(w.x - L.corner.x), static_cast<float>(w.y - L.corner.y),
+                        static_cast<float>(w.z - L.corner.z)};
     std::memcpy(at, f, 12);
   }
 }
 
-inline std::int8_t snorm8(float x) { return static_cast<std::int8_t>(std::clamp(std::floor(x * 127.0f + 0.5f), -127.0f, 127.0f)); }
-inline std::uint16_t unorm16(float x) { return static_cast<std::uint16_t>(std::floor(std::clamp(x, 0.0f, 1.0f) * 65535.0f + 0.5f)); }
+inline std::int8_t snorm8(float x) {
+  return static_cast<std::int8_t>(std::clamp(std::floor(x * 127.0f + 0.5f), -127.0f, 127.0f));
+}
+inline std::uint16_t unorm16(float x) {
+  return static_cast<std::uint16_t>(std::floor(std::clamp(x, 0.0f, 1.0f) * 65535.0f + 0.5f));
+}
 
 }  // namespace canopy::glb_compact

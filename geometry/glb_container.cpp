@@ -13,8 +13,10 @@ std::string glb_header(std::uint64_t json_bytes, std::uint64_t bin_bytes) {
   constexpr std::uint32_t kGlbMagic = 0x46546C67, kJsonChunk = 0x4E4F534A;
   const std::uint64_t total = 12 + 8 + json_bytes + (bin_bytes ? 8 + bin_bytes : 0);
   if (total > 0xffffffffULL)
-    throw std::runtime_error("stand.glb would exceed 4 GiB, the GLB limit; export fewer plants, use --glb-instancing, or obj/ply");
-  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(json_bytes), kJsonChunk};
+    throw std::runtime_error(
+        "stand.glb would exceed 4 GiB, the GLB limit; export fewer plants, use --glb-instancing, or obj/ply");
+  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(json_bytes),
+                                   kJsonChunk};
   return std::string(reinterpret_cast<const char*>(header), sizeof header);
 }
 

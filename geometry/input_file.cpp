@@ -84,7 +84,8 @@ bool InputFile::next_line(std::string& line, std::size_t max_line) {
       return true;
     }
   }
-  throw InputRefused(path_, line_ + 1, fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
+  throw InputRefused(path_, line_ + 1,
+                     fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
 }
 
 std::string InputFile::read_all() {

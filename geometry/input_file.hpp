@@ -16,12 +16,12 @@
 namespace canopy {
 
 /// What canopy reads at most from each kind of file (docs/cli.md, "Limits and refusals").
-inline constexpr std::uint64_t kMaxGrammarBytes = std::uint64_t{16} << 20;      // 16 MiB
-inline constexpr std::uint64_t kMaxPositionsBytes = std::uint64_t{1} << 30;     // 1 GiB
-inline constexpr std::uint64_t kMaxPlantsCsvBytes = std::uint64_t{1} << 30;     // 1 GiB
-inline constexpr std::uint64_t kMaxOrgansCsvBytes = std::uint64_t{64} << 30;    // 64 GiB
-inline constexpr std::uint64_t kMaxRunsCsvBytes = std::uint64_t{1} << 30;       // 1 GiB
-inline constexpr std::uint64_t kMaxSweepJsonBytes = std::uint64_t{1} << 20;     // 1 MiB
+inline constexpr std::uint64_t kMaxGrammarBytes = std::uint64_t{16} << 20;    // 16 MiB
+inline constexpr std::uint64_t kMaxPositionsBytes = std::uint64_t{1} << 30;   // 1 GiB
+inline constexpr std::uint64_t kMaxPlantsCsvBytes = std::uint64_t{1} << 30;   // 1 GiB
+inline constexpr std::uint64_t kMaxOrgansCsvBytes = std::uint64_t{64} << 30;  // 64 GiB
+inline constexpr std::uint64_t kMaxRunsCsvBytes = std::uint64_t{1} << 30;     // 1 GiB
+inline constexpr std::uint64_t kMaxSweepJsonBytes = std::uint64_t{1} << 20;   // 1 MiB
 /// The longest line a CSV input may have (canopy writes lines of a few hundred bytes; a grammar
 /// path in a positions file is at most PATH_MAX).
 inline constexpr std::size_t kMaxCsvLineBytes = 64 << 10;  // 64 KiB

@@ -86,8 +86,8 @@ CANOPY_HD inline void lcd_inflate(Lcd& l, float by) {
 /// An LCD box in the form its overlap test reads: the centre of its horizontal rectangle in the
 /// plant frame (cx, cy), its axis, its half sizes along u and v, and its vertical range; made
 /// once per box (lcd_centred) rather than at every test, where the pass tests each cluster's
-/// root against a dozen others. Half a cache line. An empty box's form has an empty vertical range (+inf, -inf), which meets no box
-/// of finite height.
+/// root against a dozen others. Half a cache line. An empty box's form has an empty vertical range (+inf, -inf), which meets no
+/// box of finite height.
 struct LcdCentred {
   float cx = 0, cy = 0, ax = 1, ay = 0, hu = 0, hv = 0;
   float z_lo = 0, z_hi = -1;
@@ -114,10 +114,10 @@ CANOPY_HD inline bool lcd_overlap(const LcdCentred& a, const LcdCentred& b, Vec3
   // |cos| and |sin| of the angle between the boxes' u axes: what each axis of one box makes
   // with both axes of the other.
   const float c = fabsf(a.ax * b.ax + a.ay * b.ay), sn = fabsf(a.ax * b.ay - a.ay * b.ax);
-  if (fabsf(dx * a.ax + dy * a.ay) > a.hu + (b.hu * c + b.hv * sn)) return false;   // a's u axis
-  if (fabsf(dy * a.ax - dx * a.ay) > a.hv + (b.hu * sn + b.hv * c)) return false;   // a's v axis
-  if (fabsf(dx * b.ax + dy * b.ay) > b.hu + (a.hu * c + a.hv * sn)) return false;   // b's u axis
-  if (fabsf(dy * b.ax - dx * b.ay) > b.hv + (a.hu * sn + a.hv * c)) return false;   // b's v axis
+  if (fabsf(dx * a.ax + dy * a.ay) > a.hu + (b.hu * c + b.hv * sn)) return false;  // a's u axis
+  if (fabsf(dy * a.ax - dx * a.ay) > a.hv + (b.hu * sn + b.hv * c)) return false;  // a's v axis
+  if (fabsf(dx * b.ax + dy * b.ay) > b.hu + (a.hu * c + a.hv * sn)) return false;  // b's u axis
+  if (fabsf(dy * b.ax - dx * b.ay) > b.hv + (a.hu * sn + a.hv * c)) return false;  // b's v axis
   return true;
 }
 

@@ -49,7 +49,8 @@ std::vector<LeafAngleSums> leaf_angle_sums(const Stand& s, PrototypeLibrary& lib
   for (std::size_t i = 0; i < s.organ_count(); ++i)
     if (s.organs[i].kind == OrganKind::leaflet) lib.get(s.organs[i].prototype, s.organs[i].lod);
   std::array<double, kGZenithsDeg.size()> cz{}, sz{};
-  for (std::size_t k = 0; k < cz.size(); ++k) cz[k] = std::cos(kGZenithsDeg[k] * std::numbers::pi / 180), sz[k] = std::sin(kGZenithsDeg[k] * std::numbers::pi / 180);
+  for (std::size_t k = 0; k < cz.size(); ++k)
+    cz[k] = std::cos(kGZenithsDeg[k] * std::numbers::pi / 180), sz[k] = std::sin(kGZenithsDeg[k] * std::numbers::pi / 180);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
     LeafAngleSums& sum = out[p];

@@ -14,7 +14,7 @@
 
 namespace canopy {
 
-inline constexpr int kLeafAngleBins = 18;           // 5-degree bins over 0-90 degrees
+inline constexpr int kLeafAngleBins = 18;  // 5-degree bins over 0-90 degrees
 inline constexpr double kLeafAngleBinDeg = 5.0;
 /// The zenith angles G is given at; 57.5 degrees is where G is close to 0.5 for any distribution.
 inline constexpr std::array<double, 7> kGZenithsDeg{0, 15, 30, 45, 57.5, 60, 75};

@@ -58,7 +58,8 @@ inline std::optional<std::uint8_t> leaflet_shape_code(const LeafletShape& s, std
     if (!std::isfinite(steps) || steps < a.lo - 0.5 || steps >= a.hi + 0.5) {
       if (what) {
         std::ostringstream o;
-        o << "leaflet " << a.name << " must lie in [" << a.lo * a.step << ", " << a.hi * a.step << "] degrees (got " << a.value << ")";
+        o << "leaflet " << a.name << " must lie in [" << a.lo * a.step << ", " << a.hi * a.step << "] degrees (got " << a.value
+          << ")";
         *what = o.str();
       }
       return std::nullopt;

@@ -11,9 +11,9 @@ namespace canopy {
 
 struct Obb {
   Vec3f centre;
-  Vec3f axis[3];    // orthonormal
-  float half[3];    // half extents along the axes
-  float radius;     // of the bounding sphere about the centre: a quick rejection first
+  Vec3f axis[3];  // orthonormal
+  float half[3];  // half extents along the axes
+  float radius;   // of the bounding sphere about the centre: a quick rejection first
 };
 
 /// Relative and absolute slack added to every bound so that float rounding never lets a vertex
@@ -79,13 +79,13 @@ CANOPY_HD inline Box3f obb_aabb(const Obb& o) {
   const float ez = fabsf(o.axis[0].z) * o.half[0] + fabsf(o.axis[1].z) * o.half[1] + fabsf(o.axis[2].z) * o.half[2];
   const float size = fabsf(o.centre.x) + fabsf(o.centre.y) + fabsf(o.centre.z) + ex + ey + ez;
   const float s = kBoundRelSlack * size + kBoundAbsSlack;
-  return Box3f{{o.centre.x - ex - s, o.centre.y - ey - s, o.centre.z - ez - s}, {o.centre.x + ex + s, o.centre.y + ey + s, o.centre.z + ez + s}};
+  return Box3f{{o.centre.x - ex - s, o.centre.y - ey - s, o.centre.z - ez - s},
+               {o.centre.x + ex + s, o.centre.y + ey + s, o.centre.z + ez + s}};
 }
 
 /// Corner i (0-7) of an OBB: bit k of i picks the + side of axis k.
 CANOPY_HD inline Vec3f obb_corner(const Obb& o, int i) {
-  const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1],
-              sz = (i & 4) ? o.half[2] : -o.half[2];
+  const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1], sz = (i & 4) ? o.half[2] : -o.half[2];
   return o.centre + o.axis[0] * sx + o.axis[1] * sy + o.axis[2] * sz;
 }
 

@@ -10,8 +10,8 @@
 namespace canopy {
 
 enum class OrganKind : std::uint8_t { internode, petiole, rachis, leaflet, peduncle, fruit, flower };
-inline constexpr std::array<std::string_view, 7> kOrganKindNames{
-    "internode", "petiole", "rachis", "leaflet", "peduncle", "fruit", "flower"};
+inline constexpr std::array<std::string_view, 7> kOrganKindNames{"internode", "petiole", "rachis", "leaflet",
+                                                                 "peduncle",  "fruit",   "flower"};
 
 enum class PrototypeKind : std::uint8_t { cylinder, leaflet, sphere, disk };
 inline constexpr std::array<std::string_view, 4> kPrototypeNames{"cylinder", "leaflet", "sphere", "disk"};

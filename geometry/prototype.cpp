@@ -37,9 +37,7 @@ void finish_box(PrototypeMesh& m) {
   m.box = {lo, hi};
 }
 
-void tri(PrototypeMesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-  m.indices.insert(m.indices.end(), {a, b, c});
-}
+void tri(PrototypeMesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c) { m.indices.insert(m.indices.end(), {a, b, c}); }
 
 std::uint32_t vertex(PrototypeMesh& m, Vec3f p, Vec3f n) {
   m.positions.push_back(p);

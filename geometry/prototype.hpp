@@ -39,7 +39,7 @@ struct PrototypeMesh {
   /// poses 8 triangles at a time from them (collision/exact.cpp).
   LineAlignedVector<float> corner_lanes;
   static constexpr std::size_t kCornerGroupFloats = 9 * 8;  // floats of corner_lanes per group of 8 triangles
-  Box3f box;                              // local box (exact bounds of the vertices)
+  Box3f box;                                                // local box (exact bounds of the vertices)
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 

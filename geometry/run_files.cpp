@@ -124,7 +124,8 @@ std::vector<std::string> remove_run_paths() {
   for (const Entry& e : r.entries)
     if (e.kind == RunPath::file && ::unlink(e.path.c_str()) == 0) removed.push_back(e.path);
   for (const Entry& e : r.entries)
-    if (e.kind == RunPath::staging && fs::exists(fs::symlink_status(e.path)) && remove_flat_folder(e.path)) removed.push_back(e.path);
+    if (e.kind == RunPath::staging && fs::exists(fs::symlink_status(e.path)) && remove_flat_folder(e.path))
+      removed.push_back(e.path);
   for (auto it = r.entries.rbegin(); it != r.entries.rend(); ++it)
     if (it->kind == RunPath::created_folder && ::rmdir(it->path.c_str()) == 0) removed.push_back(it->path);
   r.entries.clear();

@@ -62,8 +62,8 @@ bool exists_at(int dirfd, const std::string& name) {
 
 bool same_file_at(int dira, int dirb, const std::string& name) {
   struct stat a, b;
-  return ::fstatat(dira, name.c_str(), &a, AT_SYMLINK_NOFOLLOW) == 0 && ::fstatat(dirb, name.c_str(), &b, AT_SYMLINK_NOFOLLOW) == 0 &&
-         a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+  return ::fstatat(dira, name.c_str(), &a, AT_SYMLINK_NOFOLLOW) == 0 &&
+         ::fstatat(dirb, name.c_str(), &b, AT_SYMLINK_NOFOLLOW) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
 }
 
 void sync_folder(const std::string& path) {
@@ -91,7 +91,7 @@ std::atomic<unsigned> g_staging_count{0};
 void open_in_one_set(const std::string& dir, const std::function<void()>& open_all) {
   // The change time too: a folder made after the one read may get its inode number.
   const auto identity = [&] {
-    struct stat st{};
+    struct stat st {};
     if (::stat(dir.c_str(), &st) != 0) return std::tuple<dev_t, ino_t, time_t, long>(0, 0, 0, 0);
     return std::tuple<dev_t, ino_t, time_t, long>(st.st_dev, st.st_ino, st.st_ctim.tv_sec, st.st_ctim.tv_nsec);
   };
@@ -147,8 +147,9 @@ fs::path staging_place(const fs::path& p, const std::string& dir) {
     if (!S_ISDIR(st.st_mode)) refuse("it exists and is not a folder");
     struct stat here, parent;
     if (::stat(".", &here) == 0 && here.st_dev == st.st_dev && here.st_ino == st.st_ino)
-      refuse("it is the working folder, and a run replaces its output folder as a whole (which would leave this shell in a "
-             "removed folder); name a folder inside it or beside it");
+      refuse(
+          "it is the working folder, and a run replaces its output folder as a whole (which would leave this shell in a "
+          "removed folder); name a folder inside it or beside it");
     if (::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev)
       refuse("it is a mount point, which cannot be replaced as a whole; name a folder inside it");
     return p.parent_path();
@@ -192,7 +193,8 @@ void StagedFolder::open(const std::string& dir) {
   name_ = p.filename().string();
   // The folders missing above the output, made now and removed again if the run fails.
   std::vector<fs::path> missing;
-  for (fs::path a = p.parent_path(); !fs::exists(fs::symlink_status(a)) && a != a.root_path(); a = a.parent_path()) missing.push_back(a);
+  for (fs::path a = p.parent_path(); !fs::exists(fs::symlink_status(a)) && a != a.root_path(); a = a.parent_path())
+    missing.push_back(a);
   for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
     const auto lock = lock_run_paths();
     if (::mkdir(it->c_str(), 0777) == 0) {
@@ -254,9 +256,10 @@ void StagedFolder::remove_leftovers() {
     }
     if (::rmdir(path.c_str()) == 0) leftovers_.push_back(e);
     else
-      leftover_notes_.push_back(fmt::format("kept {}, left by a run that ended before it finished: it holds {} (not canopy's, and not "
-                                            "the same as in {})",
-                                            path, fmt::join(kept, ", "), dir_));
+      leftover_notes_.push_back(
+          fmt::format("kept {}, left by a run that ended before it finished: it holds {} (not canopy's, and not "
+                      "the same as in {})",
+                      path, fmt::join(kept, ", "), dir_));
   }
 }
 

@@ -48,8 +48,8 @@ class StagedFolder {
   std::string path(const std::string& name) const { return staging_ + "/" + name; }
 
   struct Committed {
-    std::vector<std::string> dropped;   // names in `replaces` the earlier folder had and the new set has not
-    std::vector<std::string> notes;     // what was not done as planned (an earlier folder kept), a line each
+    std::vector<std::string> dropped;  // names in `replaces` the earlier folder had and the new set has not
+    std::vector<std::string> notes;    // what was not done as planned (an earlier folder kept), a line each
   };
   /// Syncs every file of the staging folder and the folder, carries the earlier folder's other
   /// entries across, swaps, syncs the parent, removes the earlier folder. Throws, with `dir` as it

@@ -20,7 +20,7 @@ struct OrganRecord {
   OrganKind kind = OrganKind::internode;
   PrototypeKind prototype = PrototypeKind::cylinder;
   std::uint8_t lod = 2;
-  std::uint8_t shape = 0;    // a curved leaflet's shape code (geometry/leaflet_shape.hpp), 0: flat
+  std::uint8_t shape = 0;  // a curved leaflet's shape code (geometry/leaflet_shape.hpp), 0: flat
 };
 static_assert(sizeof(OrganRecord) == 16);
 static_assert(sizeof(Affine3f) == 48);
@@ -29,7 +29,7 @@ struct PlantRecord {
   double x = 0, y = 0;      // origin, metres (double: fields kilometres wide keep micrometres)
   double rotation_deg = 0;  // about +Z
   std::uint64_t seed = 0;
-  int grammar = 0;          // index into Stand::grammars
+  int grammar = 0;  // index into Stand::grammars
   int steps = 0;
   std::uint32_t first_organ = 0, organ_count = 0;
   std::uint32_t first_leaf = 0, leaf_count = 0;
@@ -42,8 +42,8 @@ struct Stand {
   std::vector<std::array<float, 2>> params;  // prototype parameters, in order
   std::vector<float> joint_limit_deg;        // for resolution
   std::vector<PlantRecord> plants;
-  std::vector<std::string> grammars;         // grammar files (as given) the plants came from
-  Vec3d stand_origin;                        // the first plant's origin
+  std::vector<std::string> grammars;  // grammar files (as given) the plants came from
+  Vec3d stand_origin;                 // the first plant's origin
 
   std::size_t organ_count() const { return organs.size(); }
   std::size_t plant_count() const { return plants.size(); }

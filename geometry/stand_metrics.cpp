@@ -46,7 +46,8 @@ LeafInclination leaf_inclination(const Stand& s, PrototypeLibrary& lib, int bins
     organ_mesh(s, i, lib, m, true);
     const std::vector<std::uint32_t>& idx = m.prototype->indices;
     for (std::size_t t = 0; t < idx.size(); t += 3) {
-      const Vec3d a = to_double(m.positions[idx[t]]), b = to_double(m.positions[idx[t + 1]]), c = to_double(m.positions[idx[t + 2]]);
+      const Vec3d a = to_double(m.positions[idx[t]]), b = to_double(m.positions[idx[t + 1]]),
+                  c = to_double(m.positions[idx[t + 2]]);
       const Vec3d n = cross(b - a, c - a);
       const double twice = length(n);
       if (!(twice > 0)) continue;

@@ -9,11 +9,11 @@
 namespace canopy {
 
 struct LeafAreaIndex {
-  double lai = 0;             // one-sided leaflet area / ground area of the plants counted
-  double leaf_area = 0;       // m2, over the plants counted
-  double ground_area = 0;     // m2
-  std::size_t plants = 0;     // plants counted
-  bool inner_only = false;    // true when edge plants were left out
+  double lai = 0;           // one-sided leaflet area / ground area of the plants counted
+  double leaf_area = 0;     // m2, over the plants counted
+  double ground_area = 0;   // m2
+  std::size_t plants = 0;   // plants counted
+  bool inner_only = false;  // true when edge plants were left out
 };
 
 /// Leaf area index (one-sided leaflet blade area over ground area) of a row stand of `rows` x

@@ -11,7 +11,8 @@ namespace canopy {
 int max_threads() { return std::max(1024, omp_get_num_procs()); }
 
 int checked_threads(int threads) {
-  if (threads < 0) throw std::invalid_argument(fmt::format("the thread count must be at least 0 (0: all cores; got {})", threads));
+  if (threads < 0)
+    throw std::invalid_argument(fmt::format("the thread count must be at least 0 (0: all cores; got {})", threads));
   const int most = max_threads();
   if (threads > most)
     throw std::invalid_argument(fmt::format("the thread count {} is more than the {} canopy runs at most", threads, most));

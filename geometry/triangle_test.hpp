@@ -24,9 +24,7 @@ CANOPY_HD inline D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + 
 CANOPY_HD inline D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 CANOPY_HD inline double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 CANOPY_HD inline D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-CANOPY_HD inline bool less(D3 a, D3 b) {
-  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
-}
+CANOPY_HD inline bool less(D3 a, D3 b) { return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z))); }
 CANOPY_HD inline bool same(D3 a, D3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 /// det[b - a, c - a, d - a]: positive when d lies on the side of plane (a, b, c) that
@@ -43,9 +41,7 @@ CANOPY_HD inline double orient2d(P2 a, P2 b, P2 c) { return (b.u - a.u) * (c.v -
 CANOPY_HD inline int sign(double x) { return (x > 0) - (x < 0); }
 
 /// Drops the coordinate `axis` (0, 1, 2).
-CANOPY_HD inline P2 project(D3 p, int axis) {
-  return axis == 0 ? P2{p.y, p.z} : axis == 1 ? P2{p.z, p.x} : P2{p.x, p.y};
-}
+CANOPY_HD inline P2 project(D3 p, int axis) { return axis == 0 ? P2{p.y, p.z} : axis == 1 ? P2{p.z, p.x} : P2{p.x, p.y}; }
 CANOPY_HD inline int dominant_axis(D3 n) {
   const double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
   return ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
@@ -70,8 +66,7 @@ CANOPY_HD inline bool segments_2d(P2 a, P2 b, P2 c, P2 d) {
 
 /// p in the closed triangle (a, b, c) of the plane; a degenerate triangle counts as its edges.
 CANOPY_HD inline bool point_in_triangle_2d(P2 p, P2 a, P2 b, P2 c) {
-  if (orient2d(a, b, c) == 0)
-    return segments_2d(a, b, p, p) || segments_2d(b, c, p, p) || segments_2d(c, a, p, p);
+  if (orient2d(a, b, c) == 0) return segments_2d(a, b, p, p) || segments_2d(b, c, p, p) || segments_2d(c, a, p, p);
   const int s1 = sign(orient2d(a, b, p)), s2 = sign(orient2d(b, c, p)), s3 = sign(orient2d(c, a, p));
   return !((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0));
 }
@@ -131,8 +126,7 @@ CANOPY_HD inline bool segment_triangle_sided(D3 a, D3 b, const D3 t[3], D3 n, do
   if ((sa > 0 && sb > 0) || (sa < 0 && sb < 0)) return false;
   if (sa == 0 && sb == 0) return segment_triangle_in_plane(a, b, t, n);
   // The segment crosses or touches the plane: does its line pass through the closed triangle?
-  const int s1 = sign(orient3d(a, b, t[0], t[1])), s2 = sign(orient3d(a, b, t[1], t[2])),
-            s3 = sign(orient3d(a, b, t[2], t[0]));
+  const int s1 = sign(orient3d(a, b, t[0], t[1])), s2 = sign(orient3d(a, b, t[1], t[2])), s3 = sign(orient3d(a, b, t[2], t[0]));
   return !((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0));
 }
 
@@ -146,9 +140,21 @@ CANOPY_HD_OUTLINE inline bool segment_triangle(D3 a, D3 b, const D3 t[3]) {
 
 /// Sorts a triangle's vertices (lexicographically): the canonical order.
 CANOPY_HD inline void sort3(D3 t[3]) {
-  if (less(t[1], t[0])) { const D3 x = t[0]; t[0] = t[1]; t[1] = x; }
-  if (less(t[2], t[1])) { const D3 x = t[1]; t[1] = t[2]; t[2] = x; }
-  if (less(t[1], t[0])) { const D3 x = t[0]; t[0] = t[1]; t[1] = x; }
+  if (less(t[1], t[0])) {
+    const D3 x = t[0];
+    t[0] = t[1];
+    t[1] = x;
+  }
+  if (less(t[2], t[1])) {
+    const D3 x = t[1];
+    t[1] = t[2];
+    t[2] = x;
+  }
+  if (less(t[1], t[0])) {
+    const D3 x = t[0];
+    t[0] = t[1];
+    t[1] = x;
+  }
 }
 CANOPY_HD inline bool triangle_less(const D3 a[3], const D3 b[3]) {
   for (int i = 0; i < 3; ++i) {

@@ -21,9 +21,7 @@ CANOPY_HD inline Vec3f operator*(Vec3f a, float s) { return {a.x * s, a.y * s, a
 CANOPY_HD inline Vec3f operator*(float s, Vec3f a) { return {a.x * s, a.y * s, a.z * s}; }
 CANOPY_HD inline Vec3f operator-(Vec3f a) { return {-a.x, -a.y, -a.z}; }
 CANOPY_HD inline float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-CANOPY_HD inline Vec3f cross(Vec3f a, Vec3f b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+CANOPY_HD inline Vec3f cross(Vec3f a, Vec3f b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 CANOPY_HD inline float length(Vec3f a) { return sqrtf(dot(a, a)); }
 
 /// A 3x4 affine map x -> A x + t stored as four columns; for an organ the columns are its

@@ -23,7 +23,8 @@ std::vector<double> layer_leaf_area(const Stand& s, PrototypeLibrary& lib, doubl
                     p2 = to_double(apply(t, m.positions[m.indices[k + 2]]));
         const double area = 0.5 * length(cross(p1 - p0, p2 - p0));
         const double z = (p0.z + p1.z + p2.z) / 3;
-        a[static_cast<std::size_t>(std::clamp(static_cast<long>(std::floor(z / layer_m)), 0L, static_cast<long>(layers) - 1))] += area;
+        a[static_cast<std::size_t>(std::clamp(static_cast<long>(std::floor(z / layer_m)), 0L, static_cast<long>(layers) - 1))] +=
+            area;
       }
     }
   }

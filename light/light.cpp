@@ -33,7 +33,8 @@ struct Run {
     if (cfg.periodic || !(scene.hi().x > scene.lo().x)) return cfg.tile;
     Box2d r{1e300, 1e300, -1e300, -1e300};
     for (int k = 0; k < 8; ++k) {
-      const Vec3d p{(k & 1) ? scene.hi().x : scene.lo().x, (k & 2) ? scene.hi().y : scene.lo().y, (k & 4) ? scene.hi().z : std::max(0.0, scene.lo().z)};
+      const Vec3d p{(k & 1) ? scene.hi().x : scene.lo().x, (k & 2) ? scene.hi().y : scene.lo().y,
+                    (k & 4) ? scene.hi().z : std::max(0.0, scene.lo().z)};
       const double x = p.x - toward.x * p.z / toward.z, y = p.y - toward.y * p.z / toward.z;
       r.x0 = std::min(r.x0, x), r.y0 = std::min(r.y0, y), r.x1 = std::max(r.x1, x), r.y1 = std::max(r.y1, y);
     }
@@ -48,25 +49,33 @@ struct Run {
     const double cp = c * static_cast<double>(stand.plant_count());
     const double silhouette = per_ray * toward.z;  // area across the direction per ray
     d.fraction = {static_cast<double>(t.hits) * c, std::sqrt(static_cast<double>(t.hits_diff)) * c};
-    if (leaf_area > 0) d.star = {static_cast<double>(t.leaf) * silhouette / leaf_area, std::sqrt(static_cast<double>(t.leaf_diff)) * silhouette / leaf_area};
+    if (leaf_area > 0)
+      d.star = {static_cast<double>(t.leaf) * silhouette / leaf_area,
+                std::sqrt(static_cast<double>(t.leaf_diff)) * silhouette / leaf_area};
     d.plant.resize(stand.plant_count());
     d.plant_star.resize(stand.plant_count());
     for (std::size_t p = 0; p < stand.plant_count(); ++p) {
       d.plant[p] = {static_cast<double>(t.plant[p]) * cp, std::sqrt(static_cast<double>(t.plant_diff[p])) * cp};
       const double la = plant_leaf_area[p];
-      if (la > 0) d.plant_star[p] = {static_cast<double>(t.plant_leaf[p]) * silhouette / la, std::sqrt(static_cast<double>(t.plant_leaf_diff[p])) * silhouette / la};
+      if (la > 0)
+        d.plant_star[p] = {static_cast<double>(t.plant_leaf[p]) * silhouette / la,
+                           std::sqrt(static_cast<double>(t.plant_leaf_diff[p])) * silhouette / la};
     }
-    for (std::size_t k = 0; k < kKinds; ++k) d.kind[k] = {static_cast<double>(t.kind[k]) * c, std::sqrt(static_cast<double>(t.kind_diff[k])) * c};
+    for (std::size_t k = 0; k < kKinds; ++k)
+      d.kind[k] = {static_cast<double>(t.kind[k]) * c, std::sqrt(static_cast<double>(t.kind_diff[k])) * c};
     d.layer.resize(layers);
-    for (std::size_t l = 0; l < layers; ++l) d.layer[l] = {static_cast<double>(t.layer[l]) * c, std::sqrt(static_cast<double>(t.layer_diff[l])) * c};
+    for (std::size_t l = 0; l < layers; ++l)
+      d.layer[l] = {static_cast<double>(t.layer[l]) * c, std::sqrt(static_cast<double>(t.layer_diff[l])) * c};
     return d;
   }
 
   DirectionLight trace(Vec3d toward, double n, std::uint64_t stream) {
     const Box2d reg = region(toward);
     if (n > kMaxRaysPerDirection)
-      throw std::invalid_argument(fmt::format("the errors asked for need {:.3g} rays in one direction (the limit is {:.3g}): ask for a larger "
-                                              "--error or --plant-error, or fewer --rays-per-m2", n, kMaxRaysPerDirection));
+      throw std::invalid_argument(
+          fmt::format("the errors asked for need {:.3g} rays in one direction (the limit is {:.3g}): ask for a larger "
+                      "--error or --plant-error, or fewer --rays-per-m2",
+                      n, kMaxRaysPerDirection));
     DirectionJob job;
     job.toward = toward;
     job.grid = make_grid(reg, n);
@@ -99,8 +108,10 @@ struct Run {
   static void check_reachable(double n, double r) {
     const double need = n * std::pow(std::max(r, 1.0), 1 / 0.75);
     if (need > kMaxRaysPerDirection)
-      throw std::invalid_argument(fmt::format("the errors asked for need more than {:.3g} rays in one direction (the limit is {:.3g}): ask "
-                                              "for a larger --error or --plant-error", need, kMaxRaysPerDirection));
+      throw std::invalid_argument(
+          fmt::format("the errors asked for need more than {:.3g} rays in one direction (the limit is {:.3g}): ask "
+                      "for a larger --error or --plant-error",
+                      need, kMaxRaysPerDirection));
   }
 
   /// The exponent a of error ~ rays^-a. Independent rays fall at 0.5 and a jittered grid over
@@ -168,7 +179,8 @@ struct Run {
     std::vector<Vec3d> to(sky.size());
     for (std::size_t i = 0; i < sky.size(); ++i) to[i] = toward(sky[i].elevation_deg, sky[i].azimuth_deg);
     if (cfg.rays_per_m2) {
-      for (std::size_t i = 0; i < sky.size(); ++i) d[i] = trace(to[i], *cfg.rays_per_m2 * region(to[i]).area(), (first_id + i) << 8);
+      for (std::size_t i = 0; i < sky.size(); ++i)
+        d[i] = trace(to[i], *cfg.rays_per_m2 * region(to[i]).area(), (first_id + i) << 8);
       return d;
     }
     for (std::size_t i = 0; i < sky.size(); ++i) d[i] = trace(to[i], cfg.sky_pilot_rays, (first_id + i) << 8);
@@ -221,13 +233,16 @@ void check_config(const LightConfig& c) {
     throw std::invalid_argument(fmt::format("--rays-per-m2: {} is not in (0, 1e9]", *c.rays_per_m2));
   for (const Beam& b : c.suns) {
     if (!(b.elevation_deg > 0 && b.elevation_deg <= 90))
-      throw std::invalid_argument(fmt::format("--sun: elevation {} is not above the horizon (0 < elevation <= 90)", b.elevation_deg));
+      throw std::invalid_argument(
+          fmt::format("--sun: elevation {} is not above the horizon (0 < elevation <= 90)", b.elevation_deg));
     if (!std::isfinite(b.azimuth_deg)) throw std::invalid_argument("--sun: the azimuth must be a finite number");
   }
   if (c.sky_directions != 0) (void)sky_directions(c.sky, c.sky_directions);
   if (!(c.tile.width() > 0 && c.tile.height() > 0 && std::isfinite(c.tile.area())))
-    throw std::invalid_argument(fmt::format("--tile: [{}, {}] x [{}, {}] has no area", c.tile.x0, c.tile.x1, c.tile.y0, c.tile.y1));
-  if (!(c.layer_m >= 1e-3 && c.layer_m <= 1e3)) throw std::invalid_argument(fmt::format("--layer: {} m is not in 0.001..1000", c.layer_m));
+    throw std::invalid_argument(
+        fmt::format("--tile: [{}, {}] x [{}, {}] has no area", c.tile.x0, c.tile.x1, c.tile.y0, c.tile.y1));
+  if (!(c.layer_m >= 1e-3 && c.layer_m <= 1e3))
+    throw std::invalid_argument(fmt::format("--layer: {} m is not in 0.001..1000", c.layer_m));
   if (c.pilot_rays < 2 || c.sky_pilot_rays < 2) throw std::invalid_argument("first passes need at least 2 rays");
 }
 

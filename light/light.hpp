@@ -37,16 +37,16 @@ inline constexpr std::size_t kMaxLayers = 100000;
 struct LightConfig {
   std::vector<Beam> suns;
   SkyModel sky = SkyModel::soc;
-  int sky_directions = 46;              // 0: no diffuse light and no STAR
-  Box2d tile;                           // relative to stand_origin
+  int sky_directions = 46;  // 0: no diffuse light and no STAR
+  Box2d tile;               // relative to stand_origin
   bool periodic = true;
-  double error = 0.002;                 // standard error asked of the stand's fractions
-  std::optional<double> plant_error;    // and of each plant's (root mean square over plants)
-  std::optional<double> rays_per_m2;    // instead of the errors: rays per m2 of ground sampled
-  double layer_m = 0.1;                 // height of the profile's layers
+  double error = 0.002;               // standard error asked of the stand's fractions
+  std::optional<double> plant_error;  // and of each plant's (root mean square over plants)
+  std::optional<double> rays_per_m2;  // instead of the errors: rays per m2 of ground sampled
+  double layer_m = 0.1;               // height of the profile's layers
   std::uint64_t seed = 1;
-  int pilot_rays = 4096;                // rays of the first pass that sizes each beam's count
-  int sky_pilot_rays = 1024;            // per sky direction
+  int pilot_rays = 4096;      // rays of the first pass that sizes each beam's count
+  int sky_pilot_rays = 1024;  // per sky direction
 };
 /// Throws std::invalid_argument naming the option on a value out of range.
 void check_config(const LightConfig& c);
@@ -59,25 +59,25 @@ struct Estimate {
 struct DirectionLight {
   double elevation_deg = 90, azimuth_deg = 0, weight = 1;
   std::uint64_t rays = 0;
-  Estimate fraction;                      // of the light on the tile
-  Estimate star;                          // leaflet silhouette over leaflet area
-  std::vector<Estimate> plant;            // of the light on each plant's ground share
+  Estimate fraction;            // of the light on the tile
+  Estimate star;                // leaflet silhouette over leaflet area
+  std::vector<Estimate> plant;  // of the light on each plant's ground share
   std::vector<Estimate> plant_star;
-  std::array<Estimate, kKinds> kind{};    // of the light on the tile, by the kind hit
-  std::vector<Estimate> layer;            // of the light on the tile, by the layer hit
+  std::array<Estimate, kKinds> kind{};  // of the light on the tile, by the kind hit
+  std::vector<Estimate> layer;          // of the light on the tile, by the layer hit
 };
 
 struct LightResult {
   Box2d tile;
   bool periodic = true;
   SkyModel sky = SkyModel::soc;
-  double leaf_area = 0, lai = 0;          // leaflets, one-sided; lai over the tile
+  double leaf_area = 0, lai = 0;  // leaflets, one-sided; lai over the tile
   std::vector<double> plant_leaf_area;
   double layer_m = 0.1;
-  std::vector<double> layer_leaf_area;    // leaflet area by height layer (triangle centroids)
+  std::vector<double> layer_leaf_area;  // leaflet area by height layer (triangle centroids)
   LeafAngles leaf_angles;
-  DirectionLight ground;                  // from the zenith: ground cover
-  std::vector<DirectionLight> direct;     // one per sun
+  DirectionLight ground;               // from the zenith: ground cover
+  std::vector<DirectionLight> direct;  // one per sun
   std::vector<DirectionLight> sky_directions;
   std::optional<DirectionLight> diffuse;  // the sky's directions combined with their weights
   std::size_t organs_skipped = 0;         // flattened solids, not in the scene

@@ -20,7 +20,8 @@ double unit(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; 
 }  // namespace
 
 OrganIndex::OrganIndex(const Stand& s) : plant(s.organ_count()), kind(s.organ_count()) {
-  for (std::size_t i = 0; i < s.organ_count(); ++i) plant[i] = s.organs[i].plant, kind[i] = static_cast<std::uint8_t>(s.organs[i].kind);
+  for (std::size_t i = 0; i < s.organ_count(); ++i)
+    plant[i] = s.organs[i].plant, kind[i] = static_cast<std::uint8_t>(s.organs[i].kind);
 }
 
 Grid make_grid(const Box2d& region, double rays) {
@@ -45,7 +46,8 @@ Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t 
   const std::int32_t last_layer = static_cast<std::int32_t>(job.layers) - 1;
   const auto outcome = [&](std::uint64_t i, std::uint64_t j) {
     const std::uint64_t h = mix(base ^ mix(j * 0x9e3779b97f4a7c15ULL ^ mix(i)));
-    const Vec3d ground{g.region.x0 + (static_cast<double>(i) + unit(h)) * cw, g.region.y0 + (static_cast<double>(j) + unit(mix(h))) * ch, 0};
+    const Vec3d ground{g.region.x0 + (static_cast<double>(i) + unit(h)) * cw,
+                       g.region.y0 + (static_cast<double>(j) + unit(mix(h))) * ch, 0};
     const Vec3d org = ground + s * t_max;
     const Hit hit = scene.trace(org, d, t_max);
     Outcome o;

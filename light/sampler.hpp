@@ -20,7 +20,7 @@ struct OrganIndex {
 };
 
 struct Grid {
-  Box2d region;               // ground region sampled (relative to stand_origin)
+  Box2d region;                  // ground region sampled (relative to stand_origin)
   std::uint64_t nx = 2, ny = 1;  // nx even: cells (2k, j) and (2k + 1, j) are a pair
   std::uint64_t rays() const { return nx * ny; }
 };
@@ -28,11 +28,11 @@ struct Grid {
 Grid make_grid(const Box2d& region, double rays);
 
 struct DirectionJob {
-  Vec3d toward;               // unit vector toward the source (z > 0)
+  Vec3d toward;  // unit vector toward the source (z > 0)
   Grid grid;
   std::uint64_t seed = 1;
-  std::uint64_t stream = 0;   // the direction's own stream of cell points
-  double layer_m = 0.1;       // height layers of the profile
+  std::uint64_t stream = 0;  // the direction's own stream of cell points
+  double layer_m = 0.1;      // height layers of the profile
   std::size_t layers = 1;
 };
 

@@ -33,7 +33,8 @@ bool flat(PrototypeKind k) { return k == PrototypeKind::leaflet || k == Prototyp
 Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>()) {
   // Embree's build threads: as many as the run's OpenMP team (--threads N means N throughout).
   impl_->device = rtcNewDevice(fmt::format("threads={}", std::max(1, omp_get_max_threads())).c_str());
-  if (!impl_->device) throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
+  if (!impl_->device)
+    throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   RTCDevice dev = impl_->device;
   impl_->prototypes.assign(4 * (kMaxLod + 1), nullptr);
   const auto proto_scene = [&](PrototypeKind k, int lod) {
@@ -42,9 +43,12 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
     const PrototypeMesh& m = lib.get(k, lod);
     sc = rtcNewScene(dev);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
-    for (std::size_t i = 0; i < m.positions.size(); ++i) v[3 * i] = m.positions[i].x, v[3 * i + 1] = m.positions[i].y, v[3 * i + 2] = m.positions[i].z;
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangle_count()));
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
+    for (std::size_t i = 0; i < m.positions.size(); ++i)
+      v[3 * i] = m.positions[i].x, v[3 * i + 1] = m.positions[i].y, v[3 * i + 2] = m.positions[i].z;
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangle_count()));
     std::copy(m.indices.begin(), m.indices.end(), idx);
     rtcCommitGeometry(g);
     rtcAttachGeometry(sc, g);
@@ -70,8 +74,18 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
       t.c2 = to_float(normalized(n) * std::sqrt(length(n)));
     }
     const Vec3d off = s.offset(static_cast<std::size_t>(r.plant));
-    const float xfm[12] = {t.c0.x, t.c0.y, t.c0.z, t.c1.x, t.c1.y, t.c1.z, t.c2.x, t.c2.y, t.c2.z,
-                           static_cast<float>(t.t.x + off.x), static_cast<float>(t.t.y + off.y), static_cast<float>(t.t.z + off.z)};
+    const float xfm[12] = {t.c0.x,
+                           t.c0.y,
+                           t.c0.z,
+                           t.c1.x,
+                           t.c1.y,
+                           t.c1.z,
+                           t.c2.x,
+                           t.c2.y,
+                           t.c2.z,
+                           static_cast<float>(t.t.x + off.x),
+                           static_cast<float>(t.t.y + off.y),
+                           static_cast<float>(t.t.z + off.z)};
     RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(inst, proto_scene(r.prototype, r.lod));
     rtcSetGeometryTimeStepCount(inst, 1);
@@ -94,7 +108,8 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
   lo_ = lo_ - Vec3d{pad, pad, pad}, hi_ = hi_ + Vec3d{pad, pad, pad};
   lo_.z = std::min(lo_.z, 0.0);
   rtcCommitScene(impl_->top);
-  if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) throw std::runtime_error("Embree could not build the light scene (out of memory?)");
+  if (rtcGetDeviceError(dev) != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree could not build the light scene (out of memory?)");
 }
 
 Scene::~Scene() = default;
@@ -141,7 +156,8 @@ Hit Scene::trace(Vec3d org, Vec3d dir, double t_max) const {
   }
   // The copies of the stand, shifted by (i px, j py), whose boxes the ray's footprint meets.
   const Vec3d end = org + dir * t_max;
-  const double sx0 = std::min(org.x, end.x), sx1 = std::max(org.x, end.x), sy0 = std::min(org.y, end.y), sy1 = std::max(org.y, end.y);
+  const double sx0 = std::min(org.x, end.x), sx1 = std::max(org.x, end.x), sy0 = std::min(org.y, end.y),
+               sy1 = std::max(org.y, end.y);
   const long i0 = static_cast<long>(std::ceil((sx0 - hi_.x) / px_)), i1 = static_cast<long>(std::floor((sx1 - lo_.x) / px_));
   const long j0 = static_cast<long>(std::ceil((sy0 - hi_.y) / py_)), j1 = static_cast<long>(std::floor((sy1 - lo_.y) / py_));
   struct Copy {

@@ -42,7 +42,8 @@ std::vector<SkyDirection> sky_directions(SkyModel model, int n) {
   const int rings = std::max(1, static_cast<int>(std::lround(std::sqrt(static_cast<double>(n)))));
   std::vector<int> cum(static_cast<std::size_t>(rings) + 1, 0);
   for (int k = 1; k <= rings; ++k)
-    cum[static_cast<std::size_t>(k)] = static_cast<int>(std::lround(static_cast<double>(n) * k * k / (static_cast<double>(rings) * rings)));
+    cum[static_cast<std::size_t>(k)] =
+        static_cast<int>(std::lround(static_cast<double>(n) * k * k / (static_cast<double>(rings) * rings)));
   cum[1] = std::max(cum[1], 1);
   const double total = radiance_cos_integral(model, 0, 1);
   std::vector<SkyDirection> out;

@@ -38,7 +38,8 @@ struct Tally {
 
   Tally() = default;
   Tally(std::size_t plants, std::size_t layers)
-      : plant(plants, 0), plant_diff(plants, 0), plant_leaf(plants, 0), plant_leaf_diff(plants, 0), layer(layers, 0), layer_diff(layers, 0) {}
+      : plant(plants, 0), plant_diff(plants, 0), plant_leaf(plants, 0), plant_leaf_diff(plants, 0), layer(layers, 0),
+        layer_diff(layers, 0) {}
 
   void add(const Outcome& a) {
     ++rays;
@@ -80,7 +81,8 @@ struct Tally {
   Tally& operator+=(const Tally& o) {
     rays += o.rays, hits += o.hits, hits_diff += o.hits_diff, leaf += o.leaf, leaf_diff += o.leaf_diff;
     for (std::size_t i = 0; i < plant.size(); ++i)
-      plant[i] += o.plant[i], plant_diff[i] += o.plant_diff[i], plant_leaf[i] += o.plant_leaf[i], plant_leaf_diff[i] += o.plant_leaf_diff[i];
+      plant[i] += o.plant[i], plant_diff[i] += o.plant_diff[i], plant_leaf[i] += o.plant_leaf[i],
+          plant_leaf_diff[i] += o.plant_leaf_diff[i];
     for (std::size_t i = 0; i < kKinds; ++i) kind[i] += o.kind[i], kind_diff[i] += o.kind_diff[i];
     for (std::size_t i = 0; i < layer.size(); ++i) layer[i] += o.layer[i], layer_diff[i] += o.layer_diff[i];
     return *this;

@@ -8,10 +8,10 @@ namespace canopy {
 namespace {
 
 [[noreturn]] void cap_exceeded(std::size_t cap, std::size_t step) {
-  throw ModuleCapError(fmt::format(
-      "the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
-      "many steps; lower --steps or raise --max-modules)",
-      cap, step == 0 ? std::string() : fmt::format(" at step {}", step)));
+  throw ModuleCapError(
+      fmt::format("the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
+                  "many steps; lower --steps or raise --max-modules)",
+                  cap, step == 0 ? std::string() : fmt::format(" at step {}", step)));
 }
 
 /// Copies a module's `n` parameters, starting at params[offset], into the production's frame.
@@ -242,7 +242,8 @@ std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& re
   }
   if (module >= origin.size() || !origin[module]) return std::nullopt;
   const SuccessorModule& m = *origin[module];
-  if (parameter >= 0 && static_cast<std::size_t>(parameter) < m.args.size() && m.args[static_cast<std::size_t>(parameter)].pos().line > 0)
+  if (parameter >= 0 && static_cast<std::size_t>(parameter) < m.args.size() &&
+      m.args[static_cast<std::size_t>(parameter)].pos().line > 0)
     return m.args[static_cast<std::size_t>(parameter)].pos();
   return m.pos;
 }

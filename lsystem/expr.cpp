@@ -23,9 +23,15 @@ struct Function {
   int min_args, max_args;
 };
 constexpr std::array<Function, 10> kFunctions{{
-    {"sin", Op::Sin, 1, 1}, {"cos", Op::Cos, 1, 1}, {"tan", Op::Tan, 1, 1},
-    {"sqrt", Op::Sqrt, 1, 1}, {"abs", Op::Abs, 1, 1}, {"floor", Op::Floor, 1, 1},
-    {"ceil", Op::Ceil, 1, 1}, {"min", Op::Min, 2, 16}, {"max", Op::Max, 2, 16},
+    {"sin", Op::Sin, 1, 1},
+    {"cos", Op::Cos, 1, 1},
+    {"tan", Op::Tan, 1, 1},
+    {"sqrt", Op::Sqrt, 1, 1},
+    {"abs", Op::Abs, 1, 1},
+    {"floor", Op::Floor, 1, 1},
+    {"ceil", Op::Ceil, 1, 1},
+    {"min", Op::Min, 2, 16},
+    {"max", Op::Max, 2, 16},
     {"rand", Op::Rand, 2, 2},
 }};
 
@@ -76,10 +82,20 @@ class ExprParser {
   };
   // Longest tokens first so "<=" is not read as "<".
   static constexpr std::array<BinOp, 14> kBinOps{{
-      {"||", 1, Op::OrJump}, {"&&", 2, Op::AndJump}, {"==", 3, Op::Eq}, {"!=", 3, Op::Ne},
-      {"<=", 4, Op::Le}, {">=", 4, Op::Ge}, {"<", 4, Op::Lt}, {">", 4, Op::Gt},
-      {"+", 5, Op::Add}, {"-", 5, Op::Sub}, {"*", 6, Op::Mul}, {"/", 6, Op::Div},
-      {"^", 8, Op::Pow}, {"=", 0, Op::Eq},
+      {"||", 1, Op::OrJump},
+      {"&&", 2, Op::AndJump},
+      {"==", 3, Op::Eq},
+      {"!=", 3, Op::Ne},
+      {"<=", 4, Op::Le},
+      {">=", 4, Op::Ge},
+      {"<", 4, Op::Lt},
+      {">", 4, Op::Gt},
+      {"+", 5, Op::Add},
+      {"-", 5, Op::Sub},
+      {"*", 6, Op::Mul},
+      {"/", 6, Op::Div},
+      {"^", 8, Op::Pow},
+      {"=", 0, Op::Eq},
   }};
 
   const BinOp* peek_binop() {
@@ -192,8 +208,7 @@ class ExprParser {
     const Function* fn = nullptr;
     for (const auto& f : kFunctions)
       if (f.name == id) fn = &f;
-    if (!fn)
-      error(start, "unknown function '{}' (known: sin cos tan sqrt abs min max floor ceil rand)", id);
+    if (!fn) error(start, "unknown function '{}' (known: sin cos tan sqrt abs min max floor ceil rand)", id);
     eat("(");
     int args = 0;
     skip();
@@ -262,28 +277,60 @@ double Expr::run(const double* frame, Rng* rng) const {
       case Op::Neg: st[sp] = -st[sp]; break;
       case Op::Not: st[sp] = st[sp] == 0 ? 1 : 0; break;
       case Op::ToBool: st[sp] = st[sp] != 0 ? 1 : 0; break;
-      case Op::Add: --sp; st[sp] += st[sp + 1]; break;
-      case Op::Sub: --sp; st[sp] -= st[sp + 1]; break;
-      case Op::Mul: --sp; st[sp] *= st[sp + 1]; break;
+      case Op::Add:
+        --sp;
+        st[sp] += st[sp + 1];
+        break;
+      case Op::Sub:
+        --sp;
+        st[sp] -= st[sp + 1];
+        break;
+      case Op::Mul:
+        --sp;
+        st[sp] *= st[sp + 1];
+        break;
       case Op::Div:
         --sp;
         if (st[sp + 1] == 0) fail_at(pos_.shifted(in.column), "division by zero in '{}'", text_);
         st[sp] /= st[sp + 1];
         break;
-      case Op::Pow: --sp; st[sp] = std::pow(st[sp], st[sp + 1]); break;
-      case Op::Lt: --sp; st[sp] = st[sp] < st[sp + 1]; break;
-      case Op::Gt: --sp; st[sp] = st[sp] > st[sp + 1]; break;
-      case Op::Le: --sp; st[sp] = st[sp] <= st[sp + 1]; break;
-      case Op::Ge: --sp; st[sp] = st[sp] >= st[sp + 1]; break;
-      case Op::Eq: --sp; st[sp] = st[sp] == st[sp + 1]; break;
-      case Op::Ne: --sp; st[sp] = st[sp] != st[sp + 1]; break;
+      case Op::Pow:
+        --sp;
+        st[sp] = std::pow(st[sp], st[sp + 1]);
+        break;
+      case Op::Lt:
+        --sp;
+        st[sp] = st[sp] < st[sp + 1];
+        break;
+      case Op::Gt:
+        --sp;
+        st[sp] = st[sp] > st[sp + 1];
+        break;
+      case Op::Le:
+        --sp;
+        st[sp] = st[sp] <= st[sp + 1];
+        break;
+      case Op::Ge:
+        --sp;
+        st[sp] = st[sp] >= st[sp + 1];
+        break;
+      case Op::Eq:
+        --sp;
+        st[sp] = st[sp] == st[sp + 1];
+        break;
+      case Op::Ne:
+        --sp;
+        st[sp] = st[sp] != st[sp + 1];
+        break;
       case Op::AndJump:
         if (st[sp] == 0) pc = in.arg - 1;
         else --sp;
         break;
       case Op::OrJump:
-        if (st[sp] != 0) { st[sp] = 1; pc = in.arg - 1; }
-        else --sp;
+        if (st[sp] != 0) {
+          st[sp] = 1;
+          pc = in.arg - 1;
+        } else --sp;
         break;
       case Op::Sin: st[sp] = std::sin(st[sp]); break;
       case Op::Cos: st[sp] = std::cos(st[sp]); break;

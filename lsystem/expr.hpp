@@ -15,10 +15,34 @@
 namespace canopy {
 
 enum class Op : std::uint8_t {
-  Const, Param, Neg, Not, Add, Sub, Mul, Div, Pow, Lt, Gt, Le, Ge, Eq, Ne,
+  Const,
+  Param,
+  Neg,
+  Not,
+  Add,
+  Sub,
+  Mul,
+  Div,
+  Pow,
+  Lt,
+  Gt,
+  Le,
+  Ge,
+  Eq,
+  Ne,
   AndJump,  // top == 0: keep 0 and jump; else pop
   OrJump,   // top != 0: replace by 1 and jump; else pop
-  ToBool, Sin, Cos, Tan, Sqrt, Abs, Min, Max, Floor, Ceil, Rand,
+  ToBool,
+  Sin,
+  Cos,
+  Tan,
+  Sqrt,
+  Abs,
+  Min,
+  Max,
+  Floor,
+  Ceil,
+  Rand,
 };
 
 struct Instr {

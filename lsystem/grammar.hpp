@@ -44,7 +44,7 @@ struct Successor {
 /// Productions that share predecessor, contexts and condition: one stochastic group (a
 /// deterministic production is a group of one).
 struct RuleGroup {
-  std::vector<ModulePattern> left;   // in text order; the last one is the nearest
+  std::vector<ModulePattern> left;  // in text order; the last one is the nearest
   ModulePattern predecessor;
   std::vector<ModulePattern> right;  // in text order; the first one is the nearest
   std::optional<Expr> condition;
@@ -92,8 +92,8 @@ struct Grammar {
   std::string name;
   std::uint64_t seed = 1;
   int steps = 0;
-  double angle = 90;  // degrees
-  double step = 1;    // metres
+  double angle = 90;                                      // degrees
+  double step = 1;                                        // metres
   std::vector<std::pair<std::string, double>> constants;  // after --set overrides
   SymbolTable symbols;
   std::vector<std::string> multi_char_names;  // declared names of several characters, longest first

@@ -46,8 +46,7 @@ void canonical(const YAML::Node& node, std::string& out) {
       out += fmt::format("{}:", node.Scalar().size());
       out += node.Scalar();
       return;
-    default:
-      out += '~';
+    default: out += '~';
   }
 }
 

@@ -58,7 +58,8 @@ class Loader {
 
     collect_declared_names(root);
     RuleBuilder builder(g_, ModuleLexer(g_.multi_char_names));
-    g_.axiom = builder.module_list(src_.string(root["axiom"], "axiom"), [&](std::size_t off) { return src_.at(root["axiom"], off); }, "the axiom");
+    g_.axiom = builder.module_list(
+        src_.string(root["axiom"], "axiom"), [&](std::size_t off) { return src_.at(root["axiom"], off); }, "the axiom");
     builder.check_brackets(g_.axiom, src_.at(root["axiom"]), "the axiom");
     g_.productions = build_rules(builder, root["productions"], "productions");
     g_.interpretation = build_rules(builder, root["interpretation"], "interpretation");
@@ -92,7 +93,8 @@ class Loader {
               if (cn == n) return NameRef{false, 0, cv};
             return std::nullopt;
           });
-          if (e.uses_rand()) fail_at(src_.at(kv.second, 0), "constant '{}' may not use rand(); draw per plant in a production instead", name);
+          if (e.uses_rand())
+            fail_at(src_.at(kv.second, 0), "constant '{}' may not use rand(); draw per plant in a production instead", name);
           value = e.eval_constant();
         }
         g_.constants.emplace_back(name, value);
@@ -102,9 +104,8 @@ class Loader {
       if (applied[i]) continue;
       std::string known;
       for (const auto& [cn, cv] : g_.constants) known += (known.empty() ? "" : ", ") + cn;
-      throw std::invalid_argument(fmt::format("--set {}: {} has no constant '{}' (its constants: {})",
-                                              options_.overrides[i].name, src_.file(), options_.overrides[i].name,
-                                              known.empty() ? "none" : known));
+      throw std::invalid_argument(fmt::format("--set {}: {} has no constant '{}' (its constants: {})", options_.overrides[i].name,
+                                              src_.file(), options_.overrides[i].name, known.empty() ? "none" : known));
     }
   }
 
@@ -166,14 +167,17 @@ class Loader {
       OrganEntry organ;
       organ.pos = src_.at(kv.first);
       if (!e["prototype"]) fail_at(src_.at(kv.first), "{} needs a prototype (cylinder, leaflet, sphere or disk)", what);
-      if (!e["kind"]) fail_at(src_.at(kv.first), "{} needs a kind (internode, petiole, rachis, leaflet, peduncle, fruit or flower)", what);
+      if (!e["kind"])
+        fail_at(src_.at(kv.first), "{} needs a kind (internode, petiole, rachis, leaflet, peduncle, fruit or flower)", what);
       const std::string proto = src_.string(e["prototype"], "prototype");
       const auto p = parse_prototype(proto);
       if (!p) fail_at(src_.at(e["prototype"]), "unknown prototype '{}' (expected cylinder, leaflet, sphere or disk)", proto);
       organ.prototype = *p;
       const std::string kind = src_.string(e["kind"], "kind");
       const auto k = parse_organ_kind(kind);
-      if (!k) fail_at(src_.at(e["kind"]), "unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit or flower)", kind);
+      if (!k)
+        fail_at(src_.at(e["kind"]),
+                "unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit or flower)", kind);
       organ.kind = *k;
       if (e["joint_limit"]) {
         organ.joint_limit_deg = src_.number(e["joint_limit"], "joint_limit");
@@ -234,8 +238,7 @@ class Loader {
 
   void read_stand(const YAML::Node& node) {
     if (!node) return;
-    src_.check_map(node, "stand",
-                   "rows per_row row_spacing plant_spacing double_rows jitter random_rotation seed positions");
+    src_.check_map(node, "stand", "rows per_row row_spacing plant_spacing double_rows jitter random_rotation seed positions");
     StandSpec s;
     auto positive = [&](const char* key) -> std::optional<double> {
       if (!node[key]) return std::nullopt;
@@ -270,8 +273,7 @@ std::optional<double> Grammar::constant(const std::string& n) const {
 
 ConstantOverride parse_override(const std::string& text) {
   const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw std::invalid_argument(fmt::format("--set {}: expected NAME=VALUE", text));
+  if (eq == std::string::npos || eq == 0) throw std::invalid_argument(fmt::format("--set {}: expected NAME=VALUE", text));
   ConstantOverride o;
   o.name = std::string(trim(std::string_view(text).substr(0, eq)));
   const std::string_view v = trim(std::string_view(text).substr(eq + 1));

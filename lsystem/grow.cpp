@@ -33,17 +33,17 @@ Affine3f rotate_z(const Affine3f& m, double deg) {
 }
 
 void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit) {
-  const std::size_t per_organ = sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) +
-                                sizeof(OrganInstance);
-  const double need = static_cast<double>(n) *
-                      (static_cast<double>((first.turtle.organs.size() + 1) * per_organ + first.modules * 10) +
-                       sizeof(PlantPlacement) + sizeof(PlantRecord));
+  const std::size_t per_organ =
+      sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) + sizeof(OrganInstance);
+  const double need =
+      static_cast<double>(n) * (static_cast<double>((first.turtle.organs.size() + 1) * per_organ + first.modules * 10) +
+                                sizeof(PlantPlacement) + sizeof(PlantRecord));
   const std::size_t limit = memory_limit ? memory_limit : available_memory();
   if (limit && need > static_cast<double>(limit))
-    throw std::runtime_error(fmt::format(
-        "a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} GB available; "
-        "use fewer plants or a coarser --lod",
-        n, need / 1e9, first.turtle.organs.size(), static_cast<double>(limit) / 1e9));
+    throw std::runtime_error(
+        fmt::format("a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} GB available; "
+                    "use fewer plants or a coarser --lod",
+                    n, need / 1e9, first.turtle.organs.size(), static_cast<double>(limit) / 1e9));
 }
 
 /// The grammar file a placement names (relative to the positions file), or the stand's.
@@ -115,14 +115,17 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   for (std::size_t p = 0; p < n; ++p) {
     const PlantPlacement& pl = req.plants[p];
     if (pl.steps && (*pl.steps < 0 || *pl.steps > kMaxSteps))
-      throw std::invalid_argument(fmt::format("plant {}: its derivation steps must lie in 0..{} (got {})", p, kMaxSteps, *pl.steps));
+      throw std::invalid_argument(
+          fmt::format("plant {}: its derivation steps must lie in 0..{} (got {})", p, kMaxSteps, *pl.steps));
     if (!std::isfinite(pl.x) || !std::isfinite(pl.y) || !std::isfinite(pl.rotation_deg))
       throw std::invalid_argument(
-          fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y, pl.rotation_deg));
+          fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y,
+                      pl.rotation_deg));
     if (std::fabs(pl.x) > kMaxPlantCoordinate || std::fabs(pl.y) > kMaxPlantCoordinate)
-      throw std::invalid_argument(fmt::format("plant {}: its position (x {:g}, y {:g}) is farther from the origin than "
-                                              "the {:g} m plants may stand",
-                                              p, pl.x, pl.y, kMaxPlantCoordinate));
+      throw std::invalid_argument(
+          fmt::format("plant {}: its position (x {:g}, y {:g}) is farther from the origin than "
+                      "the {:g} m plants may stand",
+                      p, pl.x, pl.y, kMaxPlantCoordinate));
   }
   std::vector<GrownPlant> grown(n);
   for (std::size_t p = 0; p < n; ++p) {

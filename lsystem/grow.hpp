@@ -14,14 +14,14 @@
 namespace canopy {
 
 struct GrowRequest {
-  std::string grammar;                  // the stand's grammar file
-  std::vector<PlantPlacement> plants;   // a placement may name another grammar (positions files)
-  std::string relative_to;              // folder for relative grammar paths in placements
-  LoadOptions load;                     // --set overrides, applied to every grammar
-  std::optional<int> steps;             // overrides every grammar's steps (a placement's own wins)
+  std::string grammar;                 // the stand's grammar file
+  std::vector<PlantPlacement> plants;  // a placement may name another grammar (positions files)
+  std::string relative_to;             // folder for relative grammar paths in placements
+  LoadOptions load;                    // --set overrides, applied to every grammar
+  std::optional<int> steps;            // overrides every grammar's steps (a placement's own wins)
   int lod = 2;
   std::size_t max_modules = kDefaultMaxModules;
-  int threads = 0;                      // 0: all cores
+  int threads = 0;  // 0: all cores
   /// Refuse before growing when the stand would need more than this many bytes (0: the
   /// machine's available memory).
   std::size_t memory_limit = 0;

@@ -24,12 +24,20 @@ class PodBuffer {
   PodBuffer() = default;
   PodBuffer(const PodBuffer& o) { append(o.data_, o.size_); }
   PodBuffer& operator=(const PodBuffer& o) {
-    if (this != &o) { size_ = 0; append(o.data_, o.size_); }
+    if (this != &o) {
+      size_ = 0;
+      append(o.data_, o.size_);
+    }
     return *this;
   }
-  PodBuffer(PodBuffer&& o) noexcept : data_(o.data_), size_(o.size_), cap_(o.cap_) { o.data_ = nullptr; o.size_ = o.cap_ = 0; }
+  PodBuffer(PodBuffer&& o) noexcept : data_(o.data_), size_(o.size_), cap_(o.cap_) {
+    o.data_ = nullptr;
+    o.size_ = o.cap_ = 0;
+  }
   PodBuffer& operator=(PodBuffer&& o) noexcept {
-    std::swap(data_, o.data_); std::swap(size_, o.size_); std::swap(cap_, o.cap_);
+    std::swap(data_, o.data_);
+    std::swap(size_, o.size_);
+    std::swap(cap_, o.cap_);
     return *this;
   }
   ~PodBuffer() { std::free(data_); }
@@ -57,13 +65,19 @@ class PodBuffer {
     return data_ + size_;
   }
   void grow(std::size_t n) { size_ += n; }
-  void push_back(T v) { *room(1) = v; ++size_; }
+  void push_back(T v) {
+    *room(1) = v;
+    ++size_;
+  }
   void append(const T* p, std::size_t n) {
     if (n == 0) return;
     std::memcpy(room(n), p, n * sizeof(T));
     size_ += n;
   }
-  void resize(std::size_t n) { reserve(n); size_ = n; }
+  void resize(std::size_t n) {
+    reserve(n);
+    size_ = n;
+  }
 
  private:
   T* data_ = nullptr;

@@ -43,8 +43,8 @@ bool valid_utf8(std::string_view s) {
 namespace {
 
 /// Offsets of every top-level occurrence of `tok` in [from, to), checking parentheses.
-std::vector<std::size_t> top_level(std::string_view s, std::string_view tok, std::size_t from,
-                                   std::size_t to, const SourcePos& pos) {
+std::vector<std::size_t> top_level(std::string_view s, std::string_view tok, std::size_t from, std::size_t to,
+                                   const SourcePos& pos) {
   std::vector<std::size_t> hits;
   int depth = 0;
   for (std::size_t i = from; i < to; ++i) {
@@ -94,14 +94,16 @@ ProductionParts split_production(std::string_view s, const SourcePos& pos) {
     pred_end = gt[0];
   }
   p.predecessor = make_span(s, pred_begin, pred_end);
-  if (p.predecessor.begin == p.predecessor.end) fail_at(pos.shifted(static_cast<int>(pred_begin)), "missing predecessor before '->'");
+  if (p.predecessor.begin == p.predecessor.end)
+    fail_at(pos.shifted(static_cast<int>(pred_begin)), "missing predecessor before '->'");
 
   // Right-hand side: successor [: probability]
   std::size_t succ_end = s.size();
   if (auto colons = top_level(s, ":", arrow + 2, s.size(), pos); !colons.empty()) {
     succ_end = colons.back();
     p.probability = make_span(s, colons.back() + 1, s.size());
-    if (p.probability.begin == p.probability.end) fail_at(pos.shifted(static_cast<int>(colons.back())), "empty probability after ':'");
+    if (p.probability.begin == p.probability.end)
+      fail_at(pos.shifted(static_cast<int>(colons.back())), "empty probability after ':'");
   }
   p.successor = make_span(s, arrow + 2, succ_end);
   return p;
@@ -122,7 +124,10 @@ std::vector<RawModule> ModuleLexer::lex(std::string_view text, const SourcePos& 
   std::size_t i = 0;
   const auto at = [&](std::size_t k) { return pos.shifted(static_cast<int>(k)); };
   while (i < text.size()) {
-    if (std::isspace(static_cast<unsigned char>(text[i]))) { ++i; continue; }
+    if (std::isspace(static_cast<unsigned char>(text[i]))) {
+      ++i;
+      continue;
+    }
     const char c = text[i];
     if (c == '(') fail_at(at(i), "'(' must follow a module name");
     if (c == ')') fail_at(at(i), "')' without a matching '('");

@@ -42,9 +42,7 @@ void RuleBuilder::note_arity(Symbol s, int n, const SourcePos& pos) {
   }
 }
 
-const SourcePos* RuleBuilder::first_use(Symbol s) const {
-  return s < seen_.size() && seen_[s] ? &first_use_[s] : nullptr;
-}
+const SourcePos* RuleBuilder::first_use(Symbol s) const { return s < seen_.size() && seen_[s] ? &first_use_[s] : nullptr; }
 
 NameResolver RuleBuilder::resolver(const std::vector<std::string>* formals) const {
   return [this, formals](std::string_view name) -> std::optional<NameRef> {
@@ -57,8 +55,8 @@ NameResolver RuleBuilder::resolver(const std::vector<std::string>* formals) cons
   };
 }
 
-std::vector<SuccessorModule> RuleBuilder::compile_modules(std::string_view text, const Locate& locate,
-                                                          std::size_t base, const NameResolver& resolve) {
+std::vector<SuccessorModule> RuleBuilder::compile_modules(std::string_view text, const Locate& locate, std::size_t base,
+                                                          const NameResolver& resolve) {
   std::vector<SuccessorModule> out;
   for (const RawModule& raw : lexer_.lex(text, locate(base))) {
     SuccessorModule m;
@@ -146,8 +144,8 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
         // A condition that is always false is legal; it simply never applies.
       }
     }
-    group.key = squeeze(parts.left.of(text)) + "<" + squeeze(parts.predecessor.of(text)) + ">" +
-                squeeze(parts.right.of(text)) + ":" + squeeze(parts.condition.of(text));
+    group.key = squeeze(parts.left.of(text)) + "<" + squeeze(parts.predecessor.of(text)) + ">" + squeeze(parts.right.of(text)) +
+                ":" + squeeze(parts.condition.of(text));
 
     Successor succ;
     succ.modules = compile_modules(parts.successor.of(text), src.locate, parts.successor.begin, resolve);
@@ -191,7 +189,8 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
         if (!explicit_prob[gi][k])
           fail_at(prob_pos[gi][k],
                   "productions with the same predecessor, contexts and condition ('{}') form a stochastic group; "
-                  "each needs a probability (': p' after the successor)", g.key);
+                  "each needs a probability (': p' after the successor)",
+                  g.key);
     }
     double sum = 0;
     for (auto& s : g.successors) {
@@ -214,8 +213,8 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     const auto& ids = t.by_symbol[s];
     if (ids.empty()) continue;
     const RuleGroup& g = t.groups[ids[0]];
-    const bool simple = ids.size() == 1 && g.left.empty() && g.right.empty() && !g.condition &&
-                        g.successors.size() == 1 && g.successors[0].constant;
+    const bool simple = ids.size() == 1 && g.left.empty() && g.right.empty() && !g.condition && g.successors.size() == 1 &&
+                        g.successors[0].constant;
     t.mode[s] = simple ? RewriteMode::constant : RewriteMode::general;
   }
   (void)what;

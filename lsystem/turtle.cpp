@@ -99,8 +99,9 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
       for (int k = 0; k < ar && k < 2; ++k) {
         if (a[k] < 0) fail(i, p, fmt::format("{} parameter {} must not be negative", name_of(o.prototype), k + 1), k);
         if (a[k] > kMaxOrganExtent)
-          fail(i, p, fmt::format("{} parameter {} is {} m, more than the {} m an organ may measure", name_of(o.prototype), k + 1, a[k],
-                                 kMaxOrganExtent),
+          fail(i, p,
+               fmt::format("{} parameter {} is {} m, more than the {} m an organ may measure", name_of(o.prototype), k + 1, a[k],
+                           kMaxOrganExtent),
                k);
         o.params[k] = static_cast<float>(a[k]);
       }

@@ -26,13 +26,13 @@ struct OrganInstance {
   OrganKind kind = OrganKind::internode;
   PrototypeKind prototype = PrototypeKind::cylinder;
   float params[2] = {0, 0};  // the prototype's parameters, in order
-  std::uint8_t shape = 0;   // a curved leaflet's shape (its parameters 3-5, geometry/leaflet_shape.hpp)
-  int parent = -1;          // index in this plant, -1 at a root
-  int leaf = -1;            // compound leaf in this plant, -1 outside one
+  std::uint8_t shape = 0;    // a curved leaflet's shape (its parameters 3-5, geometry/leaflet_shape.hpp)
+  int parent = -1;           // index in this plant, -1 at a root
+  int leaf = -1;             // compound leaf in this plant, -1 outside one
   int lod = 2;
   float joint_limit_deg = 60;
-  Affine3f transform;       // prototype frame -> plant frame
-  std::uint32_t module = 0; // index in the interpreted string, for messages
+  Affine3f transform;        // prototype frame -> plant frame
+  std::uint32_t module = 0;  // index in the interpreted string, for messages
 };
 
 struct TurtleResult {

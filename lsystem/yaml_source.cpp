@@ -48,8 +48,10 @@ SourcePos YamlSource::at(const YAML::Node& node, std::size_t offset) const {
     const std::string value = node.Scalar();
     std::size_t line = 0, col = 0;
     for (std::size_t i = 0; i < offset && i < value.size(); ++i) {
-      if (value[i] == '\n') { ++line; col = 0; }
-      else ++col;
+      if (value[i] == '\n') {
+        ++line;
+        col = 0;
+      } else ++col;
     }
     std::size_t k = text_.find('\n', static_cast<std::size_t>(m.pos));
     int indent = 0;
@@ -75,8 +77,7 @@ long long YamlSource::integer(const YAML::Node& node, std::string_view what, lon
   const std::string s = node.Scalar();
   long long v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-    fail_at(at(node), "{} must be a whole number, got '{}'", what, s);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) fail_at(at(node), "{} must be a whole number, got '{}'", what, s);
   if (v < lo || v > hi) fail_at(at(node), "{} must be between {} and {}, got {}", what, lo, hi, v);
   return v;
 }

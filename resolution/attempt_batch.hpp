@@ -88,7 +88,7 @@ struct AttemptSettings {
 /// answers were. A runner counts what its hardware lets it count; the host's counts calls and
 /// groups.
 struct AttemptStats {
-  std::string hardware;  // AttemptRunner::hardware()
+  std::string hardware;   // AttemptRunner::hardware()
   std::size_t lanes = 0;  // lanes that worked
   std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
   double call_s = 0, upload_s = 0, box_s = 0, exact_s = 0;

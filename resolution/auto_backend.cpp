@@ -101,13 +101,15 @@ class FallbackRunner : public AttemptRunner {
 class AutoBackend : public DetectionBackend, public AttemptSource {
  public:
   AutoBackend(std::unique_ptr<DetectionBackend> preferred, BackendMaker fallback)
-      : first_(std::move(preferred)), make_fallback_(std::move(fallback)), runner_([this](const std::string& why) { fall_back(why); }) {}
+      : first_(std::move(preferred)), make_fallback_(std::move(fallback)),
+        runner_([this](const std::string& why) { fall_back(why); }) {}
 
   std::string name() const override { return second_ ? second_->name() : first_->name(); }
   /// After a fallback: the fallback's device, and what failed where.
   std::string device() const override {
-    return second_ ? fmt::format("{} (the {} backend on {} failed: {})", second_->device(), first_->name(), first_->device(), why_)
-                   : first_->device();
+    return second_
+               ? fmt::format("{} (the {} backend on {} failed: {})", second_->device(), first_->name(), first_->device(), why_)
+               : first_->device();
   }
   Contacts detect(const Stand& s, const DetectRequest& r) override {
     if (!second_) {
@@ -160,7 +162,8 @@ class AutoBackend : public DetectionBackend, public AttemptSource {
     if (second_) return;
     second_ = make_fallback_();
     why_ = why;
-    fmt::print(stderr, "canopy: note: the {} backend failed ({}); going on with the {} backend\n", first_->name(), why, second_->name());
+    fmt::print(stderr, "canopy: note: the {} backend failed ({}); going on with the {} backend\n", first_->name(), why,
+               second_->name());
   }
 
   std::unique_ptr<DetectionBackend> first_;

@@ -89,8 +89,8 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
         // and have none on the candidate).
         const Witness* w = p < pairs.witness.size() ? &pairs.witness[p] : nullptr;
         tables_.witness[at] = w && w->latest >= 0 ? std::uint32_t{w->tri_a[w->latest]} << 16 | w->tri_b[w->latest] : kNoWitness;
-        tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),
-                                        keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
+        tables_.pairs[at++] =
+            PairEntry{t.moving + static_cast<std::uint32_t>(i), keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
       }
     if (near) continue;
     std::copy(c.moving.begin(), c.moving.end(), tables_.moving.begin() + t.moving);
@@ -174,7 +174,8 @@ std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan,
     lo[j] = refine[j]->lo, hi[j] = refine[j]->hi;
     // The neighbours gathered cover the found angle, so no midpoint gathers (clear_axes below
     // takes a candidate several times, and gathering is not safe for that).
-    if (refine[j]->strict && refine[j]->near_deg < hi[j]) throw std::logic_error("batched scan: neighbours do not cover a found turn");
+    if (refine[j]->strict && refine[j]->near_deg < hi[j])
+      throw std::logic_error("batched scan: neighbours do not cover a found turn");
   }
   // The bisection (while hi - lo > tol, test the midpoint and keep the half with a failing end
   // and a separating end) answered a few steps at a time: every midpoint the next kSpeculate
@@ -210,8 +211,10 @@ std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan,
         const Node at = nodes[n];
         if (at.depth + 1 >= kSpeculate) continue;
         const double mid = 0.5 * (at.lo + at.hi);
-        if (mid - at.lo > tol) nodes[n].left = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{at.lo, mid, -1, -1, at.depth + 1});
-        if (at.hi - mid > tol) nodes[n].right = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{mid, at.hi, -1, -1, at.depth + 1});
+        if (mid - at.lo > tol)
+          nodes[n].left = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{at.lo, mid, -1, -1, at.depth + 1});
+        if (at.hi - mid > tol)
+          nodes[n].right = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{mid, at.hi, -1, -1, at.depth + 1});
       }
       tree_first.push_back(static_cast<std::uint32_t>(nodes.size()));
     }

@@ -21,7 +21,8 @@ inline std::vector<std::uint32_t> bend_chain(const Stand& s, const ResolveConfig
                                              const std::vector<std::uint8_t>* planned = nullptr) {
   std::vector<std::uint32_t> c{k};
   if (!chain_kind(s.organs[k].kind)) return c;
-  for (std::int32_t p = s.organs[k].parent; p >= 0 && static_cast<int>(c.size()) < most; p = s.organs[static_cast<std::size_t>(p)].parent) {
+  for (std::int32_t p = s.organs[k].parent; p >= 0 && static_cast<int>(c.size()) < most;
+       p = s.organs[static_cast<std::size_t>(p)].parent) {
     const OrganKind kind = s.organs[static_cast<std::size_t>(p)].kind;
     if (!chain_kind(kind) || !cfg.movable[static_cast<std::size_t>(kind)]) break;
     if (planned && (*planned)[static_cast<std::size_t>(p)]) break;

@@ -105,8 +105,8 @@ bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, cons
     for (const OrganRun& run : ts.near.runs(q)) {
       const double slack = 1e-5 * (1 + std::fabs(cx) + std::fabs(cy) + run.radius);
       const Vec3d rlo = to_double(run.lo) + to_double(off), rhi = to_double(run.hi) + to_double(off);
-      if (rhi.x + pad + slack < lo[0] || rlo.x - pad - slack > hi[0] || rhi.y + pad + slack < lo[1] || rlo.y - pad - slack > hi[1] ||
-          rhi.z + pad + slack < lo[2] || rlo.z - pad - slack > hi[2])
+      if (rhi.x + pad + slack < lo[0] || rlo.x - pad - slack > hi[0] || rhi.y + pad + slack < lo[1] ||
+          rlo.y - pad - slack > hi[1] || rhi.z + pad + slack < lo[2] || rlo.z - pad - slack > hi[2])
         continue;
       for (std::uint32_t y = run.first; y < run.end; ++y) {
         if (y >= first && y < end && q == plant) continue;  // moving: tested above
@@ -157,7 +157,8 @@ std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& tu
         const std::vector<std::uint32_t> c(chain.end() - m, chain.end());
         std::vector<Turn> bent;
         for (int j = 0; j < m; ++j) {
-          const Mat3d q = Joints::local_after(ts.joints.joint_frame(c[static_cast<std::size_t>(j)]), turn_by(rot->axis, deg[static_cast<std::size_t>(j)]));
+          const Mat3d q = Joints::local_after(ts.joints.joint_frame(c[static_cast<std::size_t>(j)]),
+                                              turn_by(rot->axis, deg[static_cast<std::size_t>(j)]));
           if (rotation_angle_deg(q) > s.joint_limit_deg[c[static_cast<std::size_t>(j)]]) return false;
           bent.push_back(Turn{c[static_cast<std::size_t>(j)], q, deg[static_cast<std::size_t>(j)]});
         }

@@ -18,9 +18,9 @@
 namespace canopy {
 
 struct SpreadStats {
-  std::size_t spread = 0;   // turns spread over several joints
-  std::size_t joints = 0;   // joints those turns became
-  std::size_t kinked = 0;   // turns above the bend step left at one joint (no spread passed)
+  std::size_t spread = 0;             // turns spread over several joints
+  std::size_t joints = 0;             // joints those turns became
+  std::size_t kinked = 0;             // turns above the bend step left at one joint (no spread passed)
   std::vector<std::uint32_t> unbent;  // movers of turns past their own limit that no spread could take
 };
 
@@ -30,6 +30,7 @@ struct SpreadStats {
 /// where no spread passes (its mover listed in SpreadStats::unbent): resolution then searches
 /// that mover within its own limit (TurnSearch::unbendable), and its contacts wait for the next
 /// round.
-std::vector<Turn> spread_turns(const TurnSearch& search, const std::vector<Turn>& turns, int threads, SpreadStats* stats = nullptr);
+std::vector<Turn> spread_turns(const TurnSearch& search, const std::vector<Turn>& turns, int threads,
+                               SpreadStats* stats = nullptr);
 
 }  // namespace canopy

@@ -5,7 +5,8 @@ namespace canopy {
 void ContactGraph::build(std::size_t organs, const std::vector<Contact>& contacts) {
   first.assign(organs + 1, 0);
   witness.clear();  // found again for this list by find_witnesses, if asked
-  for (const Contact& c : contacts) ++first[static_cast<std::size_t>(c.organ_a) + 1], ++first[static_cast<std::size_t>(c.organ_b) + 1];
+  for (const Contact& c : contacts)
+    ++first[static_cast<std::size_t>(c.organ_a) + 1], ++first[static_cast<std::size_t>(c.organ_b) + 1];
   for (std::size_t i = 0; i < organs; ++i) first[i + 1] += first[i];
   with.resize(first[organs]);
   // first[x] serves as x's cursor (it ends at first[x + 1]), then moves back by one slot.

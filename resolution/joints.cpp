@@ -99,8 +99,8 @@ std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint3
   std::vector<std::uint32_t> outer;
   for (std::uint32_t k : roots)
     if (outer.empty() || k >= subtree_end_[outer.back()]) outer.push_back(k);
-  // The subtrees are disjoint: each is rewritten on its own (on all threads, tens of thousands
-  // per resolution round), the same transforms in any order.
+      // The subtrees are disjoint: each is rewritten on its own (on all threads, tens of thousands
+      // per resolution round), the same transforms in any order.
 #pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
   {
     std::vector<Motion> d;
@@ -112,7 +112,9 @@ std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint3
       for (std::uint32_t i = k; i < end; ++i) {
         if (i > k) {
           const Motion& up = d[static_cast<std::size_t>(parent_[i]) - k];
-          d[i - k] = slot_[i] >= 0 ? compose(up, rotation_about(to_double(grown_[i].t), local_[static_cast<std::size_t>(slot_[i])])) : up;
+          d[i - k] = slot_[i] >= 0
+                         ? compose(up, rotation_about(to_double(grown_[i].t), local_[static_cast<std::size_t>(slot_[i])]))
+                         : up;
         }
         s.transforms[i] = apply(d[i - k], grown_[i]);
       }

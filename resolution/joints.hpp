@@ -67,7 +67,7 @@ class Joints {
   // thread used to zero first).
   std::vector<std::int32_t, FirstTouchAllocator<std::int32_t>> parent_;
   std::vector<std::uint32_t, FirstTouchAllocator<std::uint32_t>> subtree_end_;
-  std::vector<std::int32_t, FirstTouchAllocator<std::int32_t>> slot_;   // index into local_, -1 never turned
+  std::vector<std::int32_t, FirstTouchAllocator<std::int32_t>> slot_;  // index into local_, -1 never turned
   std::vector<Mat3d> local_;
   std::vector<std::uint32_t> turned_ids_;
 };

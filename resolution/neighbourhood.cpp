@@ -27,7 +27,8 @@ void Neighbourhood::fit_plant(const Stand& s, std::span<const Obb> boxes, std::s
     double r = 0, slo[3] = {1e300, 1e300, 1e300}, shi[3] = {-1e300, -1e300, -1e300};
     for (std::uint32_t i = run.first; i < run.end; ++i) {
       const Obb& bi = boxes[i];
-      const double dx = double(bi.centre.x) - run.centre.x, dy = double(bi.centre.y) - run.centre.y, dz = double(bi.centre.z) - run.centre.z;
+      const double dx = double(bi.centre.x) - run.centre.x, dy = double(bi.centre.y) - run.centre.y,
+                   dz = double(bi.centre.z) - run.centre.z;
       r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz) + bi.radius);
       const double c[3] = {bi.centre.x, bi.centre.y, bi.centre.z};
       for (int a = 0; a < 3; ++a) slo[a] = std::min(slo[a], c[a] - bi.radius), shi[a] = std::max(shi[a], c[a] + bi.radius);
@@ -67,8 +68,10 @@ void Neighbourhood::update(const Stand& s, std::span<const Obb> boxes, const std
 std::vector<std::int32_t> Neighbourhood::plants_near(const Stand& s, double x, double y, double r) const {
   std::vector<std::int32_t> out;
   const double d = r + max_reach_;
-  const auto i0 = static_cast<std::int64_t>(std::floor((x - d) / cell_)), i1 = static_cast<std::int64_t>(std::floor((x + d) / cell_));
-  const auto j0 = static_cast<std::int64_t>(std::floor((y - d) / cell_)), j1 = static_cast<std::int64_t>(std::floor((y + d) / cell_));
+  const auto i0 = static_cast<std::int64_t>(std::floor((x - d) / cell_)),
+             i1 = static_cast<std::int64_t>(std::floor((x + d) / cell_));
+  const auto j0 = static_cast<std::int64_t>(std::floor((y - d) / cell_)),
+             j1 = static_cast<std::int64_t>(std::floor((y + d) / cell_));
   for (std::int64_t i = i0; i <= i1; ++i)
     for (std::int64_t j = j0; j <= j1; ++j) {
       const auto it = cells_.find(key(i, j));

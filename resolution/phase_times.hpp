@@ -11,7 +11,21 @@ namespace canopy {
 /// (ResolveRequest::statistics; off: one branch per phase); `scan_busy` sums the candidates'
 /// scan times over the threads, so scan_busy / (threads x scan) is the scan's parallel share.
 struct PhaseTimes {
-  enum Phase { setup, witnesses, candidates, bookkeeping, scan, pick, last_resort, apply, refit, redetect, merge, release, count };
+  enum Phase {
+    setup,
+    witnesses,
+    candidates,
+    bookkeeping,
+    scan,
+    pick,
+    last_resort,
+    apply,
+    refit,
+    redetect,
+    merge,
+    release,
+    count
+  };
   explicit PhaseTimes(bool on = false) : on(on) {}
   bool on;
   double seconds[count] = {}, scan_busy = 0, mark = now_seconds();

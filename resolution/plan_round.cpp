@@ -161,9 +161,9 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   Plan plan;
   for (std::size_t i = 0; i < n; ++i)
     if (!resolved[i])
-      plan.why[i] = cands[i].empty() ? why[i]
-                                     : fmt::format("no turn within the joint limits of the {} organ(s) tried separates them",
-                                                   cands[i].size());
+      plan.why[i] = cands[i].empty()
+                        ? why[i]
+                        : fmt::format("no turn within the joint limits of the {} organ(s) tried separates them", cands[i].size());
   for (const auto& t : turn_of)
     if (t) plan.turns.push_back(*t);
   return plan;

@@ -35,7 +35,7 @@ ResolveResult Resolution::finish() {
     }
   }
   auto gone = std::make_shared<std::pair<std::vector<std::vector<CandidatePool>>, std::vector<AttemptTables>>>(std::move(pools),
-                                                                                                           std::move(tables));
+                                                                                                               std::move(tables));
   BackgroundRelease::instance().hand_over([gone] { gone->first.clear(), gone->second.clear(); });
   times.lap(PhaseTimes::release);
   if (req.statistics) out.stats = statistics();
@@ -43,8 +43,7 @@ ResolveResult Resolution::finish() {
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     if (!mine(contacts[i].plant_a)) continue;
     const auto w = why.find(i);
-    out.unresolved.push_back(
-        {contacts[i], w != why.end() ? w->second : "still in contact when resolution stopped: " + out.stop});
+    out.unresolved.push_back({contacts[i], w != why.end() ? w->second : "still in contact when resolution stopped: " + out.stop});
   }
   // The mean turn as an exact sum of angles in units of 2^-32 degrees, so that it does not depend
   // on how the joints are split between processes.

@@ -23,9 +23,9 @@ namespace canopy {
 
 struct ResolveProgress {
   int round = 0;
-  std::size_t contacts = 0;  // left at the start of the round
-  double seconds = 0;        // since resolution began
-  std::size_t unplanned = 0; // contacts of the round still without a turn (planning goes on)
+  std::size_t contacts = 0;   // left at the start of the round
+  double seconds = 0;         // since resolution began
+  std::size_t unplanned = 0;  // contacts of the round still without a turn (planning goes on)
 };
 
 /// Resolution over tiles (distributed/): this process holds the plants it owns plus a halo deep
@@ -82,8 +82,8 @@ struct ResolveRequest {
 
 struct ResolveRound {
   int round = 0;
-  std::size_t contacts = 0;   // at the start of the round
-  std::size_t turned = 0;     // joints turned in the round
+  std::size_t contacts = 0;  // at the start of the round
+  std::size_t turned = 0;    // joints turned in the round
   std::size_t plants_redetected = 0;
   double plan_s = 0, detect_s = 0;
   /// What planned the round, as it ran: "host search" (candidate by candidate on the host's
@@ -100,11 +100,11 @@ struct UnresolvedContact {
 
 struct ResolveResult {
   std::size_t contacts_before = 0, contacts_after = 0;  // at config.level
-  int rounds = 0;                  // rounds that turned organs
-  bool converged = false;          // no contact left
-  std::string stop;                // why the loop ended
-  std::size_t organs_moved = 0;    // joints turned (organs carried along not counted)
-  std::size_t organs_carried = 0;  // organs whose transform changed
+  int rounds = 0;                                       // rounds that turned organs
+  bool converged = false;                               // no contact left
+  std::string stop;                                     // why the loop ended
+  std::size_t organs_moved = 0;                         // joints turned (organs carried along not counted)
+  std::size_t organs_carried = 0;                       // organs whose transform changed
   /// The mean of the turned joints' final angles; the largest turn an organ carries from its
   /// grown orientation (a bent chain's whole bend, a kink's joint angle); the largest single
   /// joint angle.

@@ -16,16 +16,20 @@ void ResolveConfig::check() const {
       throw std::invalid_argument(fmt::format("resolution: {} must be a finite number above 0 (got {})", what, v));
   };
   if (!std::isfinite(clearance) || clearance < 0)
-    throw std::invalid_argument(fmt::format("resolution: the clearance must be a finite number of metres, at least 0 (got {})", clearance));
+    throw std::invalid_argument(
+        fmt::format("resolution: the clearance must be a finite number of metres, at least 0 (got {})", clearance));
   positive("the angle tolerance (degrees)", angle_tolerance_deg);
   positive("the scan step (degrees)", scan_step_deg);
   positive("the bend step (degrees)", bend_step_deg);
-  if (bend_joints < 1) throw std::invalid_argument(fmt::format("resolution: bend joints must be at least 1 (got {})", bend_joints));
+  if (bend_joints < 1)
+    throw std::invalid_argument(fmt::format("resolution: bend joints must be at least 1 (got {})", bend_joints));
   for (std::size_t k = 0; k < kind_weight.size(); ++k)
     if (movable[k]) positive(fmt::format("the {} weight", kOrganKindNames[k]).c_str(), kind_weight[k]);
   if (max_rounds < 1 || candidates < 1 || axis_fan < 0 || stall_rounds < 1)
-    throw std::invalid_argument(fmt::format("resolution: rounds ({}), candidates ({}) and stall rounds ({}) must be at least 1, "
-                                            "axes ({}) at least 0", max_rounds, candidates, stall_rounds, axis_fan));
+    throw std::invalid_argument(
+        fmt::format("resolution: rounds ({}), candidates ({}) and stall rounds ({}) must be at least 1, "
+                    "axes ({}) at least 0",
+                    max_rounds, candidates, stall_rounds, axis_fan));
 }
 
 KindMask ResolveConfig::default_movable_kinds() {
@@ -78,9 +82,11 @@ std::vector<std::uint32_t> candidate_movers(const Stand& s, const Joints& j, con
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   if (all.empty()) {
-    const OrganKind ka = s.organs[static_cast<std::size_t>(c.organ_a)].kind, kb = s.organs[static_cast<std::size_t>(c.organ_b)].kind;
-    why = before > 0 ? "the two organs turn only together (one subtree holds both)"
-                     : fmt::format("neither organ may turn ({} and {}, and no turnable organ carries them)", name_of(ka), name_of(kb));
+    const OrganKind ka = s.organs[static_cast<std::size_t>(c.organ_a)].kind,
+                    kb = s.organs[static_cast<std::size_t>(c.organ_b)].kind;
+    why = before > 0
+              ? "the two organs turn only together (one subtree holds both)"
+              : fmt::format("neither organ may turn ({} and {}, and no turnable organ carries them)", name_of(ka), name_of(kb));
     return all;
   }
   const bool between = c.plant_a != c.plant_b;

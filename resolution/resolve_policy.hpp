@@ -22,19 +22,19 @@
 namespace canopy {
 
 struct ResolveConfig {
-  int max_rounds = 30;               // detection rounds before giving up
-  int stall_rounds = 5;              // stop when the contact count has not improved for this many rounds
-  double clearance = 1e-4;           // metres left between a turned organ and what it met
-  double angle_tolerance_deg = 0.5;  // the smallest separating angle is found to within this
-  double scan_step_deg = 3;          // angles tried in steps of this before bisection
-  int axis_fan = 12;                  // axes across the organ's width-normal plane tried besides the away axis
+  int max_rounds = 30;                       // detection rounds before giving up
+  int stall_rounds = 5;                      // stop when the contact count has not improved for this many rounds
+  double clearance = 1e-4;                   // metres left between a turned organ and what it met
+  double angle_tolerance_deg = 0.5;          // the smallest separating angle is found to within this
+  double scan_step_deg = 3;                  // angles tried in steps of this before bisection
+  int axis_fan = 12;                         // axes across the organ's width-normal plane tried besides the away axis
   ContactLevel level = ContactLevel::exact;  // exact, or organ (OBBs: faster, turns more)
   KindMask movable = default_movable_kinds();
   std::array<int, 7> kind_rank = default_kind_rank();
   /// Cost of a turn = angle x weight: a petiole turn (which carries a whole leaf) must be this
   /// many times smaller than a leaflet turn to be preferred.
   std::array<double, 7> kind_weight = default_kind_weight();
-  int candidates = 10;                // movers per contact scanned together (policy order)
+  int candidates = 10;  // movers per contact scanned together (policy order)
   bool outer_first = true;
   /// A turn of a petiole, rachis or peduncle segment by more than bend_step_deg is spread over up
   /// to bend_joints joints of its chain, about bend_step_deg each, where the bent pose passes the

@@ -20,8 +20,8 @@ const ResolveConfig& checked_config(const ResolveRequest& req, const Contacts& i
   if (cfg.level != ContactLevel::exact && cfg.level != ContactLevel::organ)
     throw std::invalid_argument("resolution detects at the exact or the organ level");
   if (initial.level != cfg.level)
-    throw std::invalid_argument(fmt::format("resolution at the {} level was given contacts of the {} level", name_of(cfg.level),
-                                            name_of(initial.level)));
+    throw std::invalid_argument(
+        fmt::format("resolution at the {} level was given contacts of the {} level", name_of(cfg.level), name_of(initial.level)));
   check_resolution_fits(initial.pairs.size(), req.detect.memory_limit);
   return cfg;
 }
@@ -37,9 +37,18 @@ DetectRequest at_level(DetectRequest d, ContactLevel level) {
 Resolution::Resolution(Stand& stand, DetectionBackend& backend, const ResolveRequest& req, const Contacts& initial)
     : s(stand), backend(backend), req(req), cfg(checked_config(req, initial)), dreq(at_level(req.detect, cfg.level)),
       threads(dreq.threads > 0 ? dreq.threads : omp_get_max_threads()), joints(s, threads), boxes(fit_all()),
-      near(s, boxes, threads), unbendable(s.organ_count(), 0),
-      search{s, joints, lib, cfg, dreq.collide, near, boxes, touching,
-             static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)), dreq.clearance, &unbendable},
+      near(s, boxes, threads),
+      unbendable(s.organ_count(), 0), search{s,
+                                             joints,
+                                             lib,
+                                             cfg,
+                                             dreq.collide,
+                                             near,
+                                             boxes,
+                                             touching,
+                                             static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)),
+                                             dreq.clearance,
+                                             &unbendable},
       contacts(initial.pairs), part(req.partition), left(static_cast<std::size_t>(total({owned_contacts()})[0])),
       carried(s.organ_count(), 0), moved_now(s.organ_count(), 0), best(left) {
   out.contacts_before = left;
@@ -100,8 +109,7 @@ bool Resolution::plan_turns(Round& w) {
   const int round = w.record.round;
   PlanRequest preq;
   preq.threads = threads;
-  if (req.progress)
-    preq.planning = [&](std::size_t pending) { req.progress({round, left, now_seconds() - t0, pending}); };
+  if (req.progress) preq.planning = [&](std::size_t pending) { req.progress({round, left, now_seconds() - t0, pending}); };
   preq.plan_plants = part ? &part->plan : nullptr;
   preq.runner = w.runner;
   if (const std::size_t lanes = w.runner ? std::min(req.bulk_lanes, w.runner->lanes()) : 1; lanes > 1 && !lane_threads)

@@ -32,8 +32,8 @@ struct Resolution {
   /// What one round's steps hand on to the next.
   struct Round {
     ResolveRound record;
-    double started = 0;                // of the planning, then of the re-detection
-    AttemptRunner* runner = nullptr;   // of bulk attempts, if any
+    double started = 0;               // of the planning, then of the re-detection
+    AttemptRunner* runner = nullptr;  // of bulk attempts, if any
     Plan plan;
     std::vector<std::int64_t> counts;  // over every process: turns and marks planned, joints turned
     std::vector<std::uint8_t> active;  // per plant: its organs moved this round
@@ -80,7 +80,8 @@ struct Resolution {
   /// Sums over every process (this one alone without a partition).
   std::vector<std::int64_t> total(std::vector<std::int64_t> v) const { return part ? part->sum(std::move(v)) : v; }
   std::int64_t owned_contacts() const {
-    return static_cast<std::int64_t>(std::count_if(contacts.begin(), contacts.end(), [&](const Contact& c) { return mine(c.plant_a); }));
+    return static_cast<std::int64_t>(
+        std::count_if(contacts.begin(), contacts.end(), [&](const Contact& c) { return mine(c.plant_a); }));
   }
 
   // The state, made in this order by the constructor (the setup's order).
@@ -105,9 +106,10 @@ struct Resolution {
   std::size_t left;
   std::vector<std::uint8_t> carried, moved_now;
   std::map<std::size_t, std::string> why;
-  std::vector<std::uint32_t> changed;           // organs moved by the last round (the runner is told next round)
-  std::vector<std::int64_t> bend_counts = std::vector<std::int64_t>(4, 0);  // this process's turns bent, their joints, kinks, unbent
-  AttemptRunner* told = nullptr;                // the runner that has seen every organ
+  std::vector<std::uint32_t> changed;  // organs moved by the last round (the runner is told next round)
+  std::vector<std::int64_t> bend_counts =
+      std::vector<std::int64_t>(4, 0);  // this process's turns bent, their joints, kinks, unbent
+  AttemptRunner* told = nullptr;        // the runner that has seen every organ
   std::size_t best;
   int best_round = 0;
   std::vector<std::vector<CandidatePool>> pools;  // per lane of planning, per thread

@@ -27,7 +27,8 @@ double swept_reach(const Stand& s, PrototypeLibrary& lib, std::size_t p, const K
     const OrganRecord& r = s.organs[k];
     const Affine3f& m = s.transforms[k];
     const Vec3d joint{m.t.x, m.t.y, m.t.z};
-    const std::ptrdiff_t parent = r.parent < 0 ? -1 : static_cast<std::ptrdiff_t>(r.parent) - static_cast<std::ptrdiff_t>(pr.first_organ);
+    const std::ptrdiff_t parent =
+        r.parent < 0 ? -1 : static_cast<std::ptrdiff_t>(r.parent) - static_cast<std::ptrdiff_t>(pr.first_organ);
     const bool parent_moves = parent >= 0 && moves[static_cast<std::size_t>(parent)];
     const Obb b = make_obb(m, lib.get(r).box, 0);
     const double half_diagonal = b.radius;  // the box's bounding sphere about its centre

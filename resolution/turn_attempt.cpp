@@ -29,7 +29,9 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   Obb ox;
   Affine3f tx;
   const auto pose = [&](std::int32_t x) -> const Affine3f& {
-    if (pose_of != x) tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)], pose_of = x;
+    if (pose_of != x)
+      tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)],
+      pose_of = x;
     return tx;
   };
   // Whether pair p of `set` (moving[i], keep[y[p]]) meets at this pose; `witness_tried`: its
@@ -58,12 +60,13 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     const Affine3f& tx_now = pose(x);
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
     const float gap = set == 0 ? clearance : detect_clearance;
-    return x < y ? witness_slot_touching(s, lib, x, tx_now, y, ty, gap, w, skip) : witness_slot_touching(s, lib, y, ty, x, tx_now, gap, w, skip);
+    return x < y ? witness_slot_touching(s, lib, x, tx_now, y, ty, gap, w, skip)
+                 : witness_slot_touching(s, lib, y, ty, x, tx_now, gap, w, skip);
   };
   // What blocked this axis last, kept for the next attempt about it: the pair and, at the exact
   // level, the triangles that touched (the pair's newest witness slot).
-  Candidate::AxisBlock* const memo = axis >= 0 && static_cast<std::size_t>(axis) < c.axis_block.size()
-                                         ? &c.axis_block[static_cast<std::size_t>(axis)] : nullptr;
+  Candidate::AxisBlock* const memo =
+      axis >= 0 && static_cast<std::size_t>(axis) < c.axis_block.size() ? &c.axis_block[static_cast<std::size_t>(axis)] : nullptr;
   const auto blocked_by = [&](std::uint32_t set, std::uint32_t i, std::uint32_t p) {
     if (!memo) return false;
     const Witness& w = (set == 0 ? c.met_pairs : c.near_pairs).witness[p];
@@ -96,7 +99,8 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     Witness& w = (b.set == 0 ? c.met_pairs : c.near_pairs).witness[b.pair];
     // The remembered triangles of this axis were just seen to miss.
     const int skip = memo && memo->by.pair == b.pair && memo->by.set == b.set && memo->tri_a != Witness::kNone
-                         ? w.slot_of(memo->tri_a, memo->tri_b) : -1;
+                         ? w.slot_of(memo->tri_a, memo->tri_b)
+                         : -1;
     const int slot = witness_meets(b.set, b.organ, b.pair, w, skip);
     if (slot >= 0) return w.promote(slot), blocked_by(b.set, b.organ, b.pair);
   }
@@ -143,7 +147,8 @@ bool TurnSearch::near_limit(const Candidate& c, double deg) const {
 }
 
 bool TurnSearch::within_limit(Candidate& c, const Vec3d& a, double deg) const {
-  return deg <= c.chain_deg || !near_limit(c, deg) || rotation_angle_deg(local_after(c, a, deg)) <= stand.joint_limit_deg[c.mover];
+  return deg <= c.chain_deg || !near_limit(c, deg) ||
+         rotation_angle_deg(local_after(c, a, deg)) <= stand.joint_limit_deg[c.mover];
 }
 
 Mat3d TurnSearch::local_after(Candidate& c, const Vec3d& a, double deg) const {

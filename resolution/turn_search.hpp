@@ -55,10 +55,10 @@ struct TurnSearch {
   const ResolveConfig& config;
   KindMask collide;
   const Neighbourhood& near;
-  std::span<const Obb> boxes;  // every organ's current OBB (no clearance), kept up to date by the caller
-  const ContactGraph& touching;   // contacts at the start of the round
-  float clearance = 0;         // separation from the organs met (the larger of both clearances)
-  float detect_clearance = 0;  // what detection counts as a contact: neighbours must stay this far
+  std::span<const Obb> boxes;    // every organ's current OBB (no clearance), kept up to date by the caller
+  const ContactGraph& touching;  // contacts at the start of the round
+  float clearance = 0;           // separation from the organs met (the larger of both clearances)
+  float detect_clearance = 0;    // what detection counts as a contact: neighbours must stay this far
   /// Per organ, where given: a chain mover whose turn past its own limit no spread could take
   /// (resolution/bend_spread.hpp); it is searched within its own limit from then on.
   const std::vector<std::uint8_t>* unbendable = nullptr;
@@ -89,7 +89,7 @@ struct TurnSearch {
     /// search, when it first needs them: a batched search never reads them, and at 10,000 plants
     /// they would be hundreds of megabytes written a round).
     std::vector<Obb> keep_box;
-    std::vector<Vec3f> keep_off;   // per keep organ: the offset into the mover's plant frame
+    std::vector<Vec3f> keep_off;  // per keep organ: the offset into the mover's plant frame
     std::vector<Vec3d> axes;
     /// Pairs with the organs met, and (a strict search) with the neighbours to keep clear. The
     /// neighbours are gathered when an attempt first clears every organ met: most candidates

@@ -23,7 +23,9 @@ using namespace canopy;
 
 namespace {
 
-double mean(const std::vector<double>& v) { return v.empty() ? 0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
+double mean(const std::vector<double>& v) {
+  return v.empty() ? 0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
 
 }  // namespace
 
@@ -56,13 +58,15 @@ int main(int argc, char** argv) {
   }
   if (grammars.empty() || layout.rows < 1 || layout.per_row < 1 || !(layout.plant_spacing > 0) || !(layout.row_spacing > 0) ||
       lod < 1 || lod > kMaxLod) {
-    std::fprintf(stderr, "bench_architecture: name a grammar; rows, plants per row, spacings and the level of detail must be positive\n%s",
-                 usage.c_str());
+    std::fprintf(
+        stderr, "bench_architecture: name a grammar; rows, plants per row, spacings and the level of detail must be positive\n%s",
+        usage.c_str());
     return 2;
   }
   const int bins = 9;
-  std::string text = "grammar,plants,density_per_m2,organs_per_plant,triangles_per_plant,leaves_per_plant,height_m,leaf_area_m2,lai,"
-                     "mean_inclination_deg";
+  std::string text =
+      "grammar,plants,density_per_m2,organs_per_plant,triangles_per_plant,leaves_per_plant,height_m,leaf_area_m2,lai,"
+      "mean_inclination_deg";
   for (int b = 0; b < bins; ++b) text += fmt::format(",incl_{}_{}", b * 10, b * 10 + 10);
   text += '\n';
   fmt::print("{:<28} {:>7} {:>9} {:>7} {:>7} {:>9} {:>6} {:>10}  inclination, % of leaf area by 10-degree class\n", "grammar",
@@ -90,12 +94,13 @@ int main(int argc, char** argv) {
     const double density = 1 / (layout.plant_spacing * layout.row_spacing);
     std::string classes;
     text += fmt::format("{},{},{:.4f},{:.1f},{:.1f},{:.2f},{:.4f},{:.5f},{:.4f},{:.3f}", g, s.plant_count(), density,
-                        static_cast<double>(s.organ_count()) / n, static_cast<double>(triangles) / n, static_cast<double>(leaves) / n,
-                        height, area, lai.lai, inc.mean_deg);
+                        static_cast<double>(s.organ_count()) / n, static_cast<double>(triangles) / n,
+                        static_cast<double>(leaves) / n, height, area, lai.lai, inc.mean_deg);
     for (double f : inc.fraction) classes += fmt::format(" {:>4.1f}", 100 * f), text += fmt::format(",{:.5f}", f);
     text += '\n';
-    fmt::print("{:<28} {:>7.0f} {:>9.0f} {:>7.1f} {:>7.2f} {:>9.3f} {:>6.2f} {:>10.1f} {}\n", g, static_cast<double>(s.organ_count()) / n,
-               static_cast<double>(triangles) / n, static_cast<double>(leaves) / n, height, area, lai.lai, inc.mean_deg, classes);
+    fmt::print("{:<28} {:>7.0f} {:>9.0f} {:>7.1f} {:>7.2f} {:>9.3f} {:>6.2f} {:>10.1f} {}\n", g,
+               static_cast<double>(s.organ_count()) / n, static_cast<double>(triangles) / n, static_cast<double>(leaves) / n,
+               height, area, lai.lai, inc.mean_deg, classes);
   }
   std::FILE* out = std::fopen(csv.c_str(), "w");
   if (!out || std::fputs(text.c_str(), out) < 0 || std::fclose(out) != 0) {

@@ -50,8 +50,8 @@ int main(int argc, char** argv) {
   // Rows are kept until every case has run, so a grammar that fails to load leaves an earlier
   // CSV as it was.
   std::string rows = "grammar,engine,steps,final_modules,modules_written,median_s,modules_per_s\n";
-  fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10} {:>14}\n", "grammar", "steps", "final modules", "modules written",
-             "median s", "Mmodules/s");
+  fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10} {:>14}\n", "grammar", "steps", "final modules", "modules written", "median s",
+             "Mmodules/s");
   for (const Case& c : cases) {
     Grammar g;
     try {

@@ -46,7 +46,8 @@ std::size_t implied_pairs(const Stand& s, const Mbvt& m, const std::vector<Conta
     out.clear();
     const PlantBound& pb = m.plants[static_cast<std::size_t>(p)];
     for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c)
-      for (std::uint32_t k = m.clusters[c].first; k < m.clusters[c].first + m.clusters[c].count; ++k) out.push_back(m.cluster_organs[k]);
+      for (std::uint32_t k = m.clusters[c].first; k < m.clusters[c].first + m.clusters[c].count; ++k)
+        out.push_back(m.cluster_organs[k]);
   };
   const auto organs_of_cluster = [&](std::int32_t c, std::vector<std::uint32_t>& out) {
     const Cluster& cl = m.clusters[static_cast<std::size_t>(c)];
@@ -80,7 +81,8 @@ int main(int argc, char** argv) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
     } else {
-      return help_or_refuse("bench_detect", argv[i], "usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--repeats R] [--csv FILE]\n");
+      return help_or_refuse("bench_detect", argv[i],
+                            "usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--repeats R] [--csv FILE]\n");
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), "w");
@@ -107,12 +109,14 @@ int main(int argc, char** argv) {
       const auto rows = cpu->detect(s, req).pairs;
       const auto l = static_cast<std::size_t>(level);
       pairs[l] = rows.size();
-      fp[l] = (level == ContactLevel::organ ? rows.size() : implied_pairs(s, m, rows, level == ContactLevel::leaf)) - exact.size();
+      fp[l] =
+          (level == ContactLevel::organ ? rows.size() : implied_pairs(s, m, rows, level == ContactLevel::leaf)) - exact.size();
     }
     pairs[3] = exact.size();
     for (int threads : thread_counts(all)) {
       omp_set_num_threads(threads);
-      const auto row = [&](const char* method, const std::string& stage, double sec, std::size_t p, long long f, long long missed) {
+      const auto row = [&](const char* method, const std::string& stage, double sec, std::size_t p, long long f,
+                           long long missed) {
         fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10} {:>12} {:>8}\n", n, threads, method, stage, sec, p, f, missed);
         fmt::print(out, "{},{:.1f},{:.0f},{},{},{},{:.6f},{},{},{}\n", n, opp, tpp, threads, method, stage, sec, p, f, missed);
       };
@@ -198,9 +202,10 @@ int main(int argc, char** argv) {
                  "to exact", f_med, theirs.size(), fcl.build_s(), only_ours.size(), only_fcl.size());
       fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10}   beside FCL's: bounds built {:.4f} s\n", n, 1, "mbvt",
                  "query(beside)", query_med, exact.size(), built_med);
-      fmt::print("{:>6} {:>4} {:<10} FCL's query / canopy's, one thread, taken in turn: {:.2f}x (canopy's bounds built included), "
-                 "{:.2f}x (query against query); medians of {} repeats' ratios\n",
-                 n, 1, "ratio", median(built_ratio), median(query_ratio), repeats);
+      fmt::print(
+          "{:>6} {:>4} {:<10} FCL's query / canopy's, one thread, taken in turn: {:.2f}x (canopy's bounds built included), "
+          "{:.2f}x (query against query); medians of {} repeats' ratios\n",
+          n, 1, "ratio", median(built_ratio), median(query_ratio), repeats);
       fmt::print(out, "{},{:.1f},{:.0f},1,fcl,build,{:.6f},0,-1,-1\n", n, opp, tpp, fcl.build_s());
       fmt::print(out, "{},{:.1f},{:.0f},1,fcl,to exact,{:.6f},{},{},{}\n", n, opp, tpp, f_med, theirs.size(), only_fcl.size(),
                  only_ours.size());

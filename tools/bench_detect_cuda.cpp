@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
     } else {
-      return help_or_refuse("bench_detect_cuda", argv[i], "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
+      return help_or_refuse("bench_detect_cuda", argv[i],
+                            "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
     }
   }
   // From the command line's factory, as `canopy stand --backend cuda` and `--backend cpu` get them.
@@ -48,10 +49,11 @@ int main(int argc, char** argv) {
   auto cpu = cli::make_backend("cpu", note);
   std::FILE* out = std::fopen(csv.c_str(), "w");
   if (!out) return 1;
-  fmt::print(out, "device,plants,organs_per_plant,triangles_per_plant,level,gpu_load_s,gpu_fit_s,gpu_stage_s,gpu_kernel_s,"
-                 "gpu_detect_s,gpu_again_s,cpu_total_s,pairs,false_positives_vs_exact,"
-                 "again_plant_s,again_leaf_s,again_organ_s,again_exact_s,again_plant_kernel_s,again_leaf_kernel_s,"
-                 "again_organ_kernel_s,again_exact_kernel_s\n");
+  fmt::print(out,
+             "device,plants,organs_per_plant,triangles_per_plant,level,gpu_load_s,gpu_fit_s,gpu_stage_s,gpu_kernel_s,"
+             "gpu_detect_s,gpu_again_s,cpu_total_s,pairs,false_positives_vs_exact,"
+             "again_plant_s,again_leaf_s,again_organ_s,again_exact_s,again_plant_kernel_s,again_leaf_kernel_s,"
+             "again_organ_kernel_s,again_exact_kernel_s\n");
   fmt::print("device: {}\n{:>7} {:<6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10}\n", gpu->device(), "plants", "level",
              "load s", "fit s", "stage s", "kernel s", "detect s", "again s", "cpu s", "pairs", "organ FP");
   for (int n : sizes) {
@@ -102,8 +104,9 @@ int main(int argc, char** argv) {
                  median(load), median(fit), median(stage), median(kernel), median(detect), median(again), median(cpu_total),
                  c.pairs.size(), fp);
       fmt::print(out, "{},{},{:.1f},{:.0f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{}", gpu->device(), n,
-                 static_cast<double>(s.organ_count()) / n, static_cast<double>(tris) / n, name_of(level), median(load), median(fit),
-                 median(stage), median(kernel), median(detect), median(again), median(cpu_total), c.pairs.size(), fp);
+                 static_cast<double>(s.organ_count()) / n, static_cast<double>(tris) / n, name_of(level), median(load),
+                 median(fit), median(stage), median(kernel), median(detect), median(again), median(cpu_total), c.pairs.size(),
+                 fp);
       for (const auto* v : {&level_s, &level_kernel_s})
         for (const auto& x : *v) fmt::print(out, ",{:.6f}", median(x));
       fmt::print(out, "\n");

@@ -54,8 +54,9 @@ int main(int argc, char** argv) {
       sizes.clear();
       for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
     } else {
-      return help_or_refuse("bench_generate", argv[i],
-                            "usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]\n");
+      return help_or_refuse(
+          "bench_generate", argv[i],
+          "usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]\n");
     }
   }
   fs::create_directories(dir);

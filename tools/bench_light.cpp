@@ -74,9 +74,9 @@ double resident_mb() {
 double cpu_seconds() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
-
 
 }  // namespace
 
@@ -89,32 +89,33 @@ int bench_main(int argc, char** argv) {
   std::string grammar = std::string(CANOPY_SOURCE_DIR) + "/grammars/tomato.yaml";
   bool append = false;
   for (int i = 1; i < argc; ++i) try {
-    if (!std::strcmp(argv[i], "--plants") && i + 1 < argc) plants = numbers(argv[++i]);
-    else if (!std::strcmp(argv[i], "--errors") && i + 1 < argc) errors = numbers(argv[++i]);
-    else if (!std::strcmp(argv[i], "--plant-errors") && i + 1 < argc) plant_errors = numbers(argv[++i]);
-    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--sky-directions") && i + 1 < argc) sky = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--sun") && i + 1 < argc) {
-      const std::vector<double> s = numbers(argv[++i]);
-      if (s.size() != 2) {
-        std::fprintf(stderr, "bench_light: --sun takes ELEVATION,AZIMUTH, got %s\n", argv[i]);
-        return 2;
-      }
-      sun_e = s[0], sun_a = s[1];
-    } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
-    else if (!std::strcmp(argv[i], "--grammar") && i + 1 < argc) grammar = argv[++i];
-    else if (!std::strcmp(argv[i], "--append")) append = true;
-    else
-      return help_or_refuse("bench_light", argv[i],
-                            "usage: bench_light [--plants 1000,10000] [--threads T] [--errors 0.01,0.005,0.002,0.001]\n"
-                            "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--grammar FILE] [--csv FILE]\n"
-                            "                   [--append]\n"
-                            "  the default stand of each size; per error: a direct beam and the sky's directions to that standard\n"
-                            "  error of the stand's fractions (--errors) or of each plant's, root mean square (--plant-errors)\n");
-  } catch (const std::exception&) {
-    std::fprintf(stderr, "bench_light: %s: not a number or list of numbers\n", argv[i]);
-    return 2;
-  }
+      if (!std::strcmp(argv[i], "--plants") && i + 1 < argc) plants = numbers(argv[++i]);
+      else if (!std::strcmp(argv[i], "--errors") && i + 1 < argc) errors = numbers(argv[++i]);
+      else if (!std::strcmp(argv[i], "--plant-errors") && i + 1 < argc) plant_errors = numbers(argv[++i]);
+      else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
+      else if (!std::strcmp(argv[i], "--sky-directions") && i + 1 < argc) sky = std::atoi(argv[++i]);
+      else if (!std::strcmp(argv[i], "--sun") && i + 1 < argc) {
+        const std::vector<double> s = numbers(argv[++i]);
+        if (s.size() != 2) {
+          std::fprintf(stderr, "bench_light: --sun takes ELEVATION,AZIMUTH, got %s\n", argv[i]);
+          return 2;
+        }
+        sun_e = s[0], sun_a = s[1];
+      } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
+      else if (!std::strcmp(argv[i], "--grammar") && i + 1 < argc) grammar = argv[++i];
+      else if (!std::strcmp(argv[i], "--append")) append = true;
+      else
+        return help_or_refuse(
+            "bench_light", argv[i],
+            "usage: bench_light [--plants 1000,10000] [--threads T] [--errors 0.01,0.005,0.002,0.001]\n"
+            "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--grammar FILE] [--csv FILE]\n"
+            "                   [--append]\n"
+            "  the default stand of each size; per error: a direct beam and the sky's directions to that standard\n"
+            "  error of the stand's fractions (--errors) or of each plant's, root mean square (--plant-errors)\n");
+    } catch (const std::exception&) {
+      std::fprintf(stderr, "bench_light: %s: not a number or list of numbers\n", argv[i]);
+      return 2;
+    }
   const ThreadLimit thread_limit(threads);
   const int used_threads = omp_get_max_threads();
   const std::string commit = first_line(fmt::format("git -C '{}' rev-parse --short HEAD 2>/dev/null", CANOPY_SOURCE_DIR));
@@ -131,8 +132,8 @@ int bench_main(int argc, char** argv) {
       "cpu_s,rays_per_s,scene_mb,bytes_per_organ,ground_cover,ground_cover_se,direct,direct_se,diffuse,diffuse_se,star,star_se,"
       "plant_se_rms_direct,plant_se_rms_diffuse\n";
   fmt::print("bench_light: {} threads, {}; commit {}\n", used_threads, where, commit.empty() ? "unknown" : commit);
-  fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8} {:>8} {:>8} {:>12} {:>9} {:>9} {:>9} {:>9}\n", "plants", "mode", "asked", "rays", "scene s",
-             "trace s", "total s", "rays/s", "direct se", "diff. se", "plant se", "star se");
+  fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8} {:>8} {:>8} {:>12} {:>9} {:>9} {:>9} {:>9}\n", "plants", "mode", "asked", "rays",
+             "scene s", "trace s", "total s", "rays/s", "direct se", "diff. se", "plant se", "star se");
   for (double n_d : plants) {
     const int n = static_cast<int>(n_d);
     GrowRequest req;
@@ -167,16 +168,18 @@ int bench_main(int argc, char** argv) {
       const double diff = r.diffuse ? r.diffuse->fraction.value : NAN, diff_se = r.diffuse ? r.diffuse->fraction.se : NAN;
       const double star = r.diffuse ? r.diffuse->star.value : NAN, star_se = r.diffuse ? r.diffuse->star.se : NAN;
       const double prms_diff = r.diffuse ? rms(r.diffuse->plant) : NAN;
-      fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8.3f} {:>8.3f} {:>8.3f} {:>12.0f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.5f}\n", n, mode, asked, r.rays,
-                 r.scene_s, r.trace_s, total, static_cast<double>(r.rays) / r.trace_s, r.direct.empty() ? NAN : r.direct[0].fraction.se, diff_se,
-                 r.direct.empty() ? NAN : rms(r.direct[0].plant), star_se);
-      rows += fmt::format("{},{},{:.1f},{:.0f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
-                          n, stand.organ_count(), static_cast<double>(stand.organ_count()) / n,
-                          static_cast<double>(triangles) / n, used_threads, mode, asked, r.rays, r.scene_s, r.trace_s, total, cpu,
-                          static_cast<double>(r.rays) / r.trace_s, scene_mb, scene_mb * 1048576.0 / static_cast<double>(stand.organ_count()),
-                          r.ground.fraction.value, r.ground.fraction.se, r.direct.empty() ? NAN : r.direct[0].fraction.value,
-                          r.direct.empty() ? NAN : r.direct[0].fraction.se, diff, diff_se, star, star_se,
-                          r.direct.empty() ? NAN : rms(r.direct[0].plant), prms_diff);
+      fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8.3f} {:>8.3f} {:>8.3f} {:>12.0f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.5f}\n", n, mode,
+                 asked, r.rays, r.scene_s, r.trace_s, total, static_cast<double>(r.rays) / r.trace_s,
+                 r.direct.empty() ? NAN : r.direct[0].fraction.se, diff_se, r.direct.empty() ? NAN : rms(r.direct[0].plant),
+                 star_se);
+      rows += fmt::format(
+          "{},{},{:.1f},{:.0f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:"
+          ".6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
+          n, stand.organ_count(), static_cast<double>(stand.organ_count()) / n, static_cast<double>(triangles) / n, used_threads,
+          mode, asked, r.rays, r.scene_s, r.trace_s, total, cpu, static_cast<double>(r.rays) / r.trace_s, scene_mb,
+          scene_mb * 1048576.0 / static_cast<double>(stand.organ_count()), r.ground.fraction.value, r.ground.fraction.se,
+          r.direct.empty() ? NAN : r.direct[0].fraction.value, r.direct.empty() ? NAN : r.direct[0].fraction.se, diff, diff_se,
+          star, star_se, r.direct.empty() ? NAN : rms(r.direct[0].plant), prms_diff);
     };
     // Rays per second: the direct beam alone at a fixed density (about 2 million rays).
     {

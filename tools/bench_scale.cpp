@@ -77,8 +77,9 @@ int main(int argc, char** argv) {
       mpi::abort("cannot write the CSV");
     }
     if (fresh)
-      fmt::print(out, "ranks,plants,plants_per_rank,largest_tile,organs,generate_s,detect_s,resolve_s,total_s,rounds,comm_s,"
-                      "comm_per_round_s,contacts_before,contacts_after,plants_per_s_per_rank,backend,device\n");
+      fmt::print(out,
+                 "ranks,plants,plants_per_rank,largest_tile,organs,generate_s,detect_s,resolve_s,total_s,rounds,comm_s,"
+                 "comm_per_round_s,contacts_before,contacts_after,plants_per_s_per_rank,backend,device\n");
     fmt::print("{:>5} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>6} {:>8} {:>10} {:>9} {:>7} {:>12}\n", "ranks", "plants",
                "per rank", "tile", "grow s", "detect s", "resolve s", "total s", "rounds", "comm s", "comm/round", "before",
                "after", "plants/s/rank");
@@ -112,12 +113,12 @@ int main(int argc, char** argv) {
     const std::size_t after = ts.resolved ? ts.resolved->contacts_after : before;
     const double rate = static_cast<double>(n) / total / ranks;
     const std::string device = r.device.is_string() ? r.device.get<std::string>() : std::string("cpu");
-    fmt::print("{:>5} {:>9} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>6} {:>8.3f} {:>10.4f} {:>9} {:>7} {:>12.0f}\n", ranks,
-               n, n / ranks, largest, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds, comm,
-               rounds ? comm / rounds : 0.0, before, after, rate);
+    fmt::print("{:>5} {:>9} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>6} {:>8.3f} {:>10.4f} {:>9} {:>7} {:>12.0f}\n",
+               ranks, n, n / ranks, largest, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds,
+               comm, rounds ? comm / rounds : 0.0, before, after, rate);
     if (ts.resolved) fmt::print("      resolution planned with: {} ({} on {})\n", ts.resolved->planning, r.backend, device);
-    fmt::print(out, "{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{:.5f},{},{},{:.1f},{},\"{}\"\n", ranks, n, n / ranks, largest,
-               organs, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds, comm,
+    fmt::print(out, "{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{:.5f},{},{},{:.1f},{},\"{}\"\n", ranks, n, n / ranks,
+               largest, organs, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds, comm,
                rounds ? comm / rounds : 0.0, before, after, rate, r.backend, device);
     std::fflush(out);
   }

@@ -130,12 +130,15 @@ ChildRun spawn_child(std::vector<std::string> args) {
   wait4(pid, &status, 0, &ru);
   c.wall_s = (now_ns() - c.spawned_ns) * 1e-9;
   c.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  c.cpu_s = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+  c.cpu_s = static_cast<double>(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) +
+            1e-6 * static_cast<double>(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
   c.peak_rss_gb = static_cast<double>(ru.ru_maxrss) * 1024.0 / 1e9;  // kilobytes
   return c;
 }
 
-double num(const nlohmann::json& j, const char* key) { return j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0; }
+double num(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : 0.0;
+}
 
 }  // namespace
 
@@ -230,10 +233,11 @@ int main(int argc, char** argv) {
     std::string device = j["device"].is_string() ? j["device"].get<std::string>() : "";
     std::replace(device.begin(), device.end(), ',', ';');  // one CSV field
     const double dev_gb = num(j, "device_peak_bytes") / 1e9;
-    fmt::print("{:>7} {:>7.2f} {:>7.3f} {:>6.2f} {:>6.3f} {:>6.3f} {:>6.3f} {:>7.2f} {:>7.3f} {:>6.2f} {:>7.2f} {:>7.3f} {:>6.3f} "
-               "{:>6.2f} {:>6.2f} {:>7.2f} {:>6.2f}\n",
-               n, c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"), num(t, "detect_after"),
-               num(t, "export_format"), num(t, "export_write"), commit, end, c.peak_rss_gb, dev_gb, gbs, gbs / disk.synced_gbs);
+    fmt::print(
+        "{:>7} {:>7.2f} {:>7.3f} {:>6.2f} {:>6.3f} {:>6.3f} {:>6.3f} {:>7.2f} {:>7.3f} {:>6.2f} {:>7.2f} {:>7.3f} {:>6.3f} "
+        "{:>6.2f} {:>6.2f} {:>7.2f} {:>6.2f}\n",
+        n, c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"), num(t, "detect_after"),
+        num(t, "export_format"), num(t, "export_write"), commit, end, c.peak_rss_gb, dev_gb, gbs, gbs / disk.synced_gbs);
     fmt::print(out,
                "{},{:.1f},{:.1f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
                "{:.4f},{:.2f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n",

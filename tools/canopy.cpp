@@ -34,9 +34,9 @@ int main(int argc, char** argv) {
   CLI::App app{"canopy: penetration-free plant stands from parametric L-system grammars", "canopy"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(CANOPY_VERSION));
-  std::vector<canopy::cli::Command> commands{canopy::cli::add_derive(app), canopy::cli::add_stand(app), canopy::cli::add_detect(app),
-                                                canopy::cli::add_sweep(app), canopy::cli::add_render(app), canopy::cli::add_light(app),
-                                                canopy::cli::add_info(app)};
+  std::vector<canopy::cli::Command> commands{
+      canopy::cli::add_derive(app), canopy::cli::add_stand(app), canopy::cli::add_detect(app), canopy::cli::add_sweep(app),
+      canopy::cli::add_render(app), canopy::cli::add_light(app), canopy::cli::add_info(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

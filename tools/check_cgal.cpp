@@ -151,7 +151,9 @@ int main(int argc, char** argv) {
       }
     }
   }
-  fmt::print("CGAL check of {} ({}) against {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} disagree\n", dir,
-             glb ? "stand.glb" : "stand.obj", contacts_file, tested, found, listed.size(), near, bad);
+  fmt::print(
+      "CGAL check of {} ({}) against {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} "
+      "disagree\n",
+      dir, glb ? "stand.glb" : "stand.obj", contacts_file, tested, found, listed.size(), near, bad);
   return bad == 0 ? 0 : 1;
 }

@@ -61,8 +61,7 @@ inline CLI::Validator metres_note(std::string option) {
       [option](std::string& in) {
         double v = 0;
         if (CLI::detail::lexical_cast(in, v) && std::isfinite(v) && v >= 0.1)
-          std::fprintf(stderr,
-                       "canopy: note: %s is in metres: %s is %g mm (for %g mm write %g)\n", option.c_str(), in.c_str(),
+          std::fprintf(stderr, "canopy: note: %s is in metres: %s is %g mm (for %g mm write %g)\n", option.c_str(), in.c_str(),
                        v * 1000, v, v / 1000);
         return std::string();
       },

@@ -28,9 +28,9 @@ Command add_derive(CLI::App& root) {
   app->add_option("--set", opt->set, "Override a constant: NAME=VALUE (repeatable)");
   app->add_flag("--stats", opt->stats, "Print {\"modules\": N, \"counts\": {...}} instead of the string");
   app->add_flag("--interpreted", opt->interpreted, "Apply the interpretation (homomorphism) before printing");
-  app->add_option("--max-modules", opt->max_modules,
-                  fmt::format("Stop with an error when the string would exceed this many modules (default {})",
-                              kDefaultMaxModules))
+  app->add_option(
+         "--max-modules", opt->max_modules,
+         fmt::format("Stop with an error when the string would exceed this many modules (default {})", kDefaultMaxModules))
       ->transform(whole_in(1, INT64_MAX));
   return {app, [opt]() {
             LoadOptions lo;

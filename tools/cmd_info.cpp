@@ -17,8 +17,9 @@ Command add_info(CLI::App& root) {
   auto self_test = std::make_shared<bool>(false);
   app->add_flag("--self-test", *self_test, "Run a small kernel on each CUDA device and check its result");
   return {app, [self_test]() {
-            fmt::print("canopy {}\nheap pages: {} (tools/heap_pages.hpp; CANOPY_HEAP_PAGES=large|small)\nbackend cpu: available\n",
-                       CANOPY_VERSION, heap_pages_in_use());
+            fmt::print(
+                "canopy {}\nheap pages: {} (tools/heap_pages.hpp; CANOPY_HEAP_PAGES=large|small)\nbackend cpu: available\n",
+                CANOPY_VERSION, heap_pages_in_use());
 #ifdef CANOPY_HAVE_CUDA
             const auto report = cuda::query_devices();
             if (report.devices.empty()) fmt::print("backend cuda: built, no device ({})\n", report.unavailable_reason);

@@ -89,7 +89,8 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
     row["rounds"] = std::to_string(r.rounds);
     // What is left, at the exact level: resolution's own list when it resolved at that level,
     // else a detection from scratch.
-    row["residual_contacts"] = std::to_string(rc.level == ContactLevel::exact ? r.contacts_after : backend.detect(stand, dreq).pairs.size());
+    row["residual_contacts"] =
+        std::to_string(rc.level == ContactLevel::exact ? r.contacts_after : backend.detect(stand, dreq).pairs.size());
     if (!o.no_light) light_s += light_columns(stand, layout, o, "after", row);
   }
   if (!o.no_light) row["light_s"] = fmt::format("{:.4f}", light_s);
@@ -115,7 +116,8 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     steps.clear();
     for (double s : parse_number_list("--steps", o.steps, 0, false)) {
       if (s != std::floor(s)) throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
-      if (s > kMaxSteps) throw std::invalid_argument(fmt::format("--steps: {} is more than the {} steps a plant may grow", s, kMaxSteps));
+      if (s > kMaxSteps)
+        throw std::invalid_argument(fmt::format("--steps: {} is more than the {} steps a plant may grow", s, kMaxSteps));
       steps.push_back(static_cast<int>(s));
     }
   }
@@ -173,10 +175,11 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
 
   const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
   if (print)
-    fmt::print("sweep: {} cells x {} seeds = {} runs of {} x {} plants (jitter {} m from the {}, random rotation {} from the {}), "
-               "{} already done; backend {}\n",
-               cells.size(), o.seeds, total, o.rows, o.per_row, *o.jitter, jitter_from, *o.random_rotation ? "on" : "off",
-               rotation_from, finished.size(), note);
+    fmt::print(
+        "sweep: {} cells x {} seeds = {} runs of {} x {} plants (jitter {} m from the {}, random rotation {} from the {}), "
+        "{} already done; backend {}\n",
+        cells.size(), o.seeds, total, o.rows, o.per_row, *o.jitter, jitter_from, *o.random_rotation ? "on" : "off", rotation_from,
+        finished.size(), note);
   const bool tty = print && isatty(fileno(stderr));
   g_interrupted = false;
   // Ctrl-C ends the sweep after the run in progress (the command line only: a host program such
@@ -277,12 +280,15 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
 
 Command add_sweep(CLI::App& root) {
   auto o = std::make_shared<SweepOptions>();
-  CLI::App* app = root.add_subcommand("sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
+  CLI::App* app =
+      root.add_subcommand("sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
   app->add_option("GRAMMAR", o->grammar, "Grammar file (YAML)")->required();
   app->add_option("-o,--out", o->out, "Output folder: runs.csv, summary.csv (default sweep); an existing one is resumed");
-  app->add_option("--plant-spacing", o->plant_spacing, "Metres between plants in a row: a list a,b,c or a range start:stop:step (default 0.4)");
+  app->add_option("--plant-spacing", o->plant_spacing,
+                  "Metres between plants in a row: a list a,b,c or a range start:stop:step (default 0.4)");
   app->add_option("--row-spacing", o->row_spacing, "Metres between rows: list or range (default 1.0)");
-  app->add_option("--density", o->density, "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x row spacing)");
+  app->add_option("--density", o->density,
+                  "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x row spacing)");
   app->add_option("--steps", o->steps, "Plant ages in derivation steps: list or range (default: the grammar's)");
   app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->transform(whole_in(1, INT32_MAX));
   app->add_option("--rows", o->rows, "Rows per stand (default 3)")->transform(whole_in(1, INT32_MAX));
@@ -290,7 +296,8 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--jitter", o->jitter,
                   "Jitter radius in metres (default: the grammar's stand entry, else 0.02; plants are turned at random unless "
                   "the grammar's stand entry says otherwise)")
-      ->check(kFinite)->check(at_least(0));
+      ->check(kFinite)
+      ->check(at_least(0));
   app->add_option("--lod", o->lod, "Level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
   app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")
@@ -298,8 +305,10 @@ Command add_sweep(CLI::App& root) {
   app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
   app->add_option("--sun", o->sun, "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
   app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");
-  app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")->check(CLI::Range(1, 10000));
-  app->add_option("--light-error", o->light_error, "Light columns: standard error asked of the stand's fractions (default 0.002)")->check(kFinite);
+  app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")
+      ->check(CLI::Range(1, 10000));
+  app->add_option("--light-error", o->light_error, "Light columns: standard error asked of the stand's fractions (default 0.002)")
+      ->check(kFinite);
   app->add_flag("--no-light", o->no_light, "Leave the light columns empty");
   o->detect.add_to(*app);
   o->resolve.add_to(*app);

@@ -14,13 +14,16 @@ void DetectOptions::add_to(CLI::App& app) {
   app.add_option("--level", level, "Contact level: plant, leaf, organ or exact (default exact)")
       ->check(CLI::IsMember({"plant", "leaf", "organ", "exact"}));
   app.add_option("--clearance", clearance, "Organs closer than this many metres count as a contact (default 0)")
-      ->check(kFinite)->check(at_least(0))->check(metres_note("--clearance"));
+      ->check(kFinite)
+      ->check(at_least(0))
+      ->check(metres_note("--clearance"));
   app.add_option("--collide", collide,
                  "Organ kinds that take part, comma separated (internode, petiole, rachis, leaflet, peduncle, fruit, flower), "
                  "or all (default all: every organ of the stand's files)");
   app.add_option("--backend", backend, "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
-  app.add_option("--threads", threads, "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")->transform(thread_count());
+  app.add_option("--threads", threads, "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")
+      ->transform(thread_count());
   app.add_option("--max-device-memory", max_device_memory,
                  "CUDA: device memory detection may use, e.g. 512M or 2G (default: what is free); lists that would not fit "
                  "are made in batches");
@@ -80,7 +83,8 @@ nlohmann::ordered_json counts_json(const Contacts& c) {
   for (std::size_t l = 0; l < 4; ++l) {
     const auto& k = c.counts[l];
     j[std::string(kContactLevelNames[l])] =
-        k ? nlohmann::ordered_json{{"between", k->between}, {"within", k->within}, {"total", k->total()}} : nlohmann::ordered_json(nullptr);
+        k ? nlohmann::ordered_json{{"between", k->between}, {"within", k->within}, {"total", k->total()}}
+          : nlohmann::ordered_json(nullptr);
   }
   return j;
 }

@@ -90,7 +90,8 @@ inline bool command_runs_on_gpu(int argc, char** argv, std::string_view default_
     const std::string_view a = argv[i];
     for (std::string_view name : {"--backend", "--backends"}) {
       if (a == name && i + 1 < argc) backend = argv[i + 1];
-      else if (a.size() > name.size() && a.substr(0, name.size()) == name && a[name.size()] == '=') backend = a.substr(name.size() + 1);
+      else if (a.size() > name.size() && a.substr(0, name.size()) == name && a[name.size()] == '=')
+        backend = a.substr(name.size() + 1);
     }
   }
   if (backend.find("cuda") != std::string_view::npos) return true;

@@ -91,7 +91,8 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   for (const OrganRecord& x : s.organs) present[static_cast<std::size_t>(x.kind)] = true;
   Json kinds = Json::object();
   for (std::size_t k = 0; k < light::kKinds; ++k)
-    if (present[k]) kinds[std::string(kOrganKindNames[k])] = by_light(r, [k](const light::DirectionLight& d) { return d.kind[k]; });
+    if (present[k])
+      kinds[std::string(kOrganKindNames[k])] = by_light(r, [k](const light::DirectionLight& d) { return d.kind[k]; });
   j["kinds"] = kinds;
   Json layers = Json::array();
   for (std::size_t l = 0; l < r.layer_leaf_area.size(); ++l) {
@@ -123,11 +124,13 @@ std::string light_csv(const light::LightResult& r, const Stand& s) {
     return d.fraction.value > 0 ? d.plant[p].value / (n * d.fraction.value) : 0.0;
   };
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    out += fmt::format("{},{},{},{},{},{}", p, s.plants[p].x, s.plants[p].y, r.plant_leaf_area[p], r.ground.plant[p].value, r.ground.plant[p].se);
+    out += fmt::format("{},{},{},{},{},{}", p, s.plants[p].x, s.plants[p].y, r.plant_leaf_area[p], r.ground.plant[p].value,
+                       r.ground.plant[p].se);
     for (const auto& d : r.direct) out += fmt::format(",{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p));
     if (r.diffuse) {
       const auto& d = *r.diffuse;
-      out += fmt::format(",{},{},{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p), d.plant_star[p].value, d.plant_star[p].se);
+      out +=
+          fmt::format(",{},{},{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p), d.plant_star[p].value, d.plant_star[p].se);
     }
     out += "\n";
   }

@@ -46,8 +46,9 @@ std::vector<SunSpec> parse_suns(const LightOptions& o) {
 #ifdef CANOPY_HAVE_LIGHT
       const light::SunPosition p = light::solar_position(*o.latitude, *o.day, h);
       if (!(p.elevation_deg > 0))
-        throw std::invalid_argument(fmt::format("--hours: at {} h the sun is {:.1f} degrees below the horizon (latitude {}, day {})", h,
-                                                -p.elevation_deg, *o.latitude, *o.day));
+        throw std::invalid_argument(
+            fmt::format("--hours: at {} h the sun is {:.1f} degrees below the horizon (latitude {}, day {})", h, -p.elevation_deg,
+                        *o.latitude, *o.day));
       SunSpec x;
       x.elevation_deg = p.elevation_deg, x.azimuth_deg = p.azimuth_deg, x.hour = h, x.from_hours = true;
       out.push_back(x);
@@ -67,21 +68,25 @@ std::array<double, 4> parse_tile(const std::string& text) {
     const std::string rest = text.substr(std::min(at, text.size()));
     t[static_cast<std::size_t>(k)] = leading_number(rest, used);
     const bool last = k == 3;
-    if (used == 0 || !std::isfinite(t[static_cast<std::size_t>(k)]) || (last ? used != rest.size() : (used >= rest.size() || rest[used] != ',')))
+    if (used == 0 || !std::isfinite(t[static_cast<std::size_t>(k)]) ||
+        (last ? used != rest.size() : (used >= rest.size() || rest[used] != ',')))
       throw std::invalid_argument(fmt::format("--tile: '{}' is not XMIN,YMIN,XMAX,YMAX (metres)", text));
     at += used + 1;
   }
-  if (!(t[2] > t[0] && t[3] > t[1])) throw std::invalid_argument(fmt::format("--tile: '{}' has XMAX <= XMIN or YMAX <= YMIN", text));
+  if (!(t[2] > t[0] && t[3] > t[1]))
+    throw std::invalid_argument(fmt::format("--tile: '{}' has XMAX <= XMIN or YMAX <= YMIN", text));
   return t;
 }
 
 std::array<double, 4> lattice_tile(const RowLayout& l) {
   const double ps = l.plant_spacing, rs = l.row_spacing;
   if (!(ps > 0) || !(rs > 0))
-    throw std::invalid_argument("the layout's lattice has no area (plant or row spacing 0): give --tile XMIN,YMIN,XMAX,YMAX or --no-periodic");
+    throw std::invalid_argument(
+        "the layout's lattice has no area (plant or row spacing 0): give --tile XMIN,YMIN,XMAX,YMAX or --no-periodic");
   if (l.double_rows) {
     if (l.rows % 2 != 0)
-      throw std::invalid_argument(fmt::format("double rows repeat by pairs, and the stand has {} rows: give an even --rows, --tile or --no-periodic", l.rows));
+      throw std::invalid_argument(fmt::format(
+          "double rows repeat by pairs, and the stand has {} rows: give an even --rows, --tile or --no-periodic", l.rows));
     const double mid = *l.double_rows / 2;
     return {-ps / 2, mid - rs / 2, (l.per_row - 0.5) * ps, mid + (l.rows / 2 - 0.5) * rs};
   }
@@ -110,7 +115,8 @@ std::optional<RowLayout> folder_layout(const std::string& dir) {
 }
 
 #ifdef CANOPY_HAVE_LIGHT
-light::LightConfig light_config(const LightOptions& o, const Stand& s, const std::optional<RowLayout>& layout, std::vector<SunSpec>& suns) {
+light::LightConfig light_config(const LightOptions& o, const Stand& s, const std::optional<RowLayout>& layout,
+                                std::vector<SunSpec>& suns) {
   light::LightConfig c;
   suns = parse_suns(o);
   for (const SunSpec& x : suns) c.suns.push_back({x.elevation_deg, x.azimuth_deg});
@@ -131,11 +137,13 @@ light::LightConfig light_config(const LightOptions& o, const Stand& s, const std
     // An isolated stand from a positions file: its plants' footprint (plant origins, widened by
     // the mean distance to a neighbour's share, i.e. half the side of each plant's square).
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-    for (const PlantRecord& p : s.plants) x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+    for (const PlantRecord& p : s.plants)
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
     const double pad = s.plant_count() > 1 ? 0.5 * std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(s.plant_count())) : 0.5;
     t = {x0 - std::max(pad, 0.05), y0 - std::max(pad, 0.05), x1 + std::max(pad, 0.05), y1 + std::max(pad, 0.05)};
   } else {
-    throw std::invalid_argument("a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
+    throw std::invalid_argument(
+        "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
   }
   const Vec3d org = s.stand_origin;
   c.tile = {t[0] - org.x, t[1] - org.y, t[2] - org.x, t[3] - org.y};
@@ -147,7 +155,8 @@ light::LightConfig light_config(const LightOptions& o, const Stand& s, const std
 LightOutcome run_light(LightOptions o, bool print) {
 #ifndef CANOPY_HAVE_LIGHT
   (void)o, (void)print;
-  throw std::invalid_argument("canopy light: this build has no ray caster (Embree was not found: apt-get install libembree-dev, then build again)");
+  throw std::invalid_argument(
+      "canopy light: this build has no ray caster (Embree was not found: apt-get install libembree-dev, then build again)");
 #else
   const ThreadLimit thread_limit(o.threads);
   {
@@ -160,7 +169,8 @@ LightOutcome run_light(LightOptions o, bool print) {
     light::check_config(v);
     if (!std::filesystem::is_directory(o.source) && o.tile.empty() && !o.no_periodic) {
       if (!o.stand.positions.empty())
-        throw std::invalid_argument("a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
+        throw std::invalid_argument(
+            "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
       StandOptions probe = o.stand;
       probe.grammar = o.source;
       RowLayout l = plan_stand(probe).layout;
@@ -196,8 +206,9 @@ LightOutcome run_light(LightOptions o, bool print) {
   files.commit_all();
   if (print) {
     const auto pm = [](const light::Estimate& e) { return fmt::format("{:.4f} +- {:.4f}", e.value, e.se); };
-    fmt::print("light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n", stand.plant_count(),
-               r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai, r.rays, r.trace_s, r.scene_s);
+    fmt::print("light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n",
+               stand.plant_count(), r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai, r.rays,
+               r.trace_s, r.scene_s);
     fmt::print("  {:<34} {}  ({} rays)\n", "ground cover", pm(r.ground.fraction), r.ground.rays);
     for (std::size_t i = 0; i < r.direct.size(); ++i)
       fmt::print("  {:<34} {}  ({} rays)\n",
@@ -205,7 +216,8 @@ LightOutcome run_light(LightOptions o, bool print) {
                              suns[i].from_hours ? fmt::format(" ({} h)", suns[i].hour) : std::string()),
                  pm(r.direct[i].fraction), r.direct[i].rays);
     if (r.diffuse) {
-      fmt::print("  {:<34} {}  ({} rays)\n", fmt::format("diffuse ({} sky, {} directions)", light::sky_name(r.sky), r.sky_directions.size()),
+      fmt::print("  {:<34} {}  ({} rays)\n",
+                 fmt::format("diffuse ({} sky, {} directions)", light::sky_name(r.sky), r.sky_directions.size()),
                  pm(r.diffuse->fraction), r.diffuse->rays);
       fmt::print("  {:<34} {}\n", "STAR (leaflets, over the sky)", pm(r.diffuse->star));
     }

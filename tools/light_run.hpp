@@ -25,10 +25,10 @@ struct LightOptions {
   std::vector<std::string> suns;  // "ELEVATION,AZIMUTH"
   std::optional<double> latitude;
   std::optional<int> day;
-  std::string hours;              // "8,10,12": local solar times
+  std::string hours;  // "8,10,12": local solar times
   std::string sky = "soc";
   int sky_directions = 46;
-  std::string tile;               // "XMIN,YMIN,XMAX,YMAX"
+  std::string tile;  // "XMIN,YMIN,XMAX,YMAX"
   bool no_periodic = false;
   double error = 0.002;
   std::optional<double> plant_error;

@@ -58,16 +58,51 @@ double component(const tinygltf::Model& m, const tinygltf::Accessor& a, std::siz
   const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
   const int stride = a.ByteStride(view);
-  const std::size_t at = view.byteOffset + a.byteOffset + i * static_cast<std::size_t>(stride) + static_cast<std::size_t>(k * size);
+  const std::size_t at =
+      view.byteOffset + a.byteOffset + i * static_cast<std::size_t>(stride) + static_cast<std::size_t>(k * size);
   const unsigned char* p = m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + at;
   double x = 0, scale = 1;
   switch (a.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t v; std::memcpy(&v, p, 1); x = v; scale = 127; break; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { std::uint8_t v; std::memcpy(&v, p, 1); x = v; scale = 255; break; }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t v; std::memcpy(&v, p, 2); x = v; scale = 32767; break; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, p, 2); x = v; scale = 65535; break; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t v; std::memcpy(&v, p, 4); x = v; break; }
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); x = v; break; }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      std::int8_t v;
+      std::memcpy(&v, p, 1);
+      x = v;
+      scale = 127;
+      break;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+      std::uint8_t v;
+      std::memcpy(&v, p, 1);
+      x = v;
+      scale = 255;
+      break;
+    }
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      std::int16_t v;
+      std::memcpy(&v, p, 2);
+      x = v;
+      scale = 32767;
+      break;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t v;
+      std::memcpy(&v, p, 2);
+      x = v;
+      scale = 65535;
+      break;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      std::uint32_t v;
+      std::memcpy(&v, p, 4);
+      x = v;
+      break;
+    }
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float v;
+      std::memcpy(&v, p, 4);
+      x = v;
+      break;
+    }
     default: throw std::runtime_error(fmt::format("glb: component type {} not read", a.componentType));
   }
   return a.normalized ? std::max(x / scale, -1.0) : x;
@@ -102,8 +137,9 @@ void read_glb_organs(const std::string& path, std::vector<OrganGeometry>& organs
         if (ids.type == TINYGLTF_TYPE_VEC2) id += 65536 * component(m, ids, i, 1);
         OrganGeometry& g = organs.at(static_cast<std::size_t>(id));
         double y_up[3];
-        for (int k = 0; k < 3; ++k) y_up[k] = origin[static_cast<std::size_t>(k)] + t[static_cast<std::size_t>(k)] +
-                                              s[static_cast<std::size_t>(k)] * component(m, pos, i, k);
+        for (int k = 0; k < 3; ++k)
+          y_up[k] = origin[static_cast<std::size_t>(k)] + t[static_cast<std::size_t>(k)] +
+                    s[static_cast<std::size_t>(k)] * component(m, pos, i, k);
         where[i] = {static_cast<std::size_t>(id), static_cast<int>(g.v.size())};
         g.add(y_up[0], -y_up[2], y_up[1]);  // glTF's Y up back to Z up
       }
@@ -111,7 +147,9 @@ void read_glb_organs(const std::string& path, std::vector<OrganGeometry>& organs
       for (std::size_t i = 0; i + 2 < idx.count; i += 3) {
         std::array<int, 3> f{};
         const auto a = static_cast<std::size_t>(component(m, idx, i, 0));
-        for (int k = 0; k < 3; ++k) f[static_cast<std::size_t>(k)] = where.at(static_cast<std::size_t>(component(m, idx, i + static_cast<std::size_t>(k), 0))).second;
+        for (int k = 0; k < 3; ++k)
+          f[static_cast<std::size_t>(k)] =
+              where.at(static_cast<std::size_t>(component(m, idx, i + static_cast<std::size_t>(k), 0))).second;
         organs.at(where.at(a).first).f.push_back(f);
       }
     }

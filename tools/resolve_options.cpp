@@ -15,7 +15,9 @@ void ResolveOptions::add_to(CLI::App& app) {
       ->transform(whole_in(1, INT32_MAX));
   app.add_option("--resolve-clearance", clearance,
                  "Resolution: metres left between a turned organ and what it met (default 0.0001)")
-      ->check(kFinite)->check(at_least(0))->check(metres_note("--resolve-clearance"));
+      ->check(kFinite)
+      ->check(at_least(0))
+      ->check(metres_note("--resolve-clearance"));
   app.add_option("--resolve-level", level,
                  "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
                  "turns organs that never touched)")
@@ -23,12 +25,14 @@ void ResolveOptions::add_to(CLI::App& app) {
   app.add_option("--resolve-candidates", candidates,
                  fmt::format("Resolution: organs per contact that may turn, in policy order (default {})", candidates))
       ->transform(whole_in(1, INT32_MAX));
-  app.add_option("--resolve-axes", axis_fan,
-                 fmt::format("Resolution: axes tried across an organ's width-normal plane besides the away axis (default {})", axis_fan))
+  app.add_option(
+         "--resolve-axes", axis_fan,
+         fmt::format("Resolution: axes tried across an organ's width-normal plane besides the away axis (default {})", axis_fan))
       ->transform(whole_in(4, 64));
   app.add_option("--resolve-step", scan_step,
                  fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
-      ->check(kFinite)->check(number_in(0.5, 30));
+      ->check(kFinite)
+      ->check(number_in(0.5, 30));
   app.add_option("--bend-joints", bend_joints,
                  fmt::format("Resolution: joints of a petiole, rachis or peduncle chain a turn may be spread over, so that it "
                              "bends instead of kinking (default {}; 1: never)",
@@ -36,13 +40,15 @@ void ResolveOptions::add_to(CLI::App& app) {
       ->transform(whole_in(1, 32));
   app.add_option("--bend-step", bend_step,
                  fmt::format("Resolution: degrees per joint a turn is spread to (default {})", bend_step))
-      ->check(kFinite)->check(number_in(0.5, 60));
+      ->check(kFinite)
+      ->check(number_in(0.5, 60));
   app.add_flag("--resolve-host-search", host_search,
                "Resolution: on a GPU (--backend cuda, or auto with a GPU), search candidate by candidate on the host's cores "
                "instead of running each level's attempts on the device in lanes of batches (the same turns; slower on the "
                "16-core GPU machines)");
-  app.add_flag_callback("--resolve-device-search", [this] { host_search = false; },
-                        "Resolution: each level's attempts on the device on a GPU (--backend cuda or auto; the default there)");
+  app.add_flag_callback(
+      "--resolve-device-search", [this] { host_search = false; },
+      "Resolution: each level's attempts on the device on a GPU (--backend cuda or auto; the default there)");
   app.add_option("--resolve-lanes", lanes,
                  fmt::format("Resolution: with the device's attempts, batches of contacts planned at once, each on a thread and "
                              "stream of its own (default {}; 1 to 8; the same turns for any number)",
@@ -71,16 +77,22 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
   nlohmann::ordered_json order;
   for (std::size_t k = 0; k < 7; ++k)
     if (c.movable[k]) order[std::string(kOrganKindNames[k])] = c.kind_rank[k];
-  return {{"enabled", !no_resolve},        {"level", level},
-          {"max_rounds", c.max_rounds},    {"clearance", c.clearance},
-          {"angle_tolerance_deg", c.angle_tolerance_deg}, {"scan_step_deg", c.scan_step_deg},
-          {"candidates", c.candidates},    {"axis_fan", c.axis_fan},
-          {"bend_joints", c.bend_joints},  {"bend_step_deg", c.bend_step_deg},
+  return {{"enabled", !no_resolve},
+          {"level", level},
+          {"max_rounds", c.max_rounds},
+          {"clearance", c.clearance},
+          {"angle_tolerance_deg", c.angle_tolerance_deg},
+          {"scan_step_deg", c.scan_step_deg},
+          {"candidates", c.candidates},
+          {"axis_fan", c.axis_fan},
+          {"bend_joints", c.bend_joints},
+          {"bend_step_deg", c.bend_step_deg},
           // Asked for: auto, the backend's bulk attempts where it has them (the device's on CUDA), the
           // host search otherwise; "resolution" says what planned.
           {"search", host_search ? "host" : "auto"},
           {"lanes", lanes},
-          {"movable_rank", order},         {"outer_first", c.outer_first}};
+          {"movable_rank", order},
+          {"outer_first", c.outer_first}};
 }
 
 ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
@@ -148,13 +160,15 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
 }
 
 void print_resolution(const ResolveResult& r) {
-  fmt::print("resolution: {} -> {} contacts in {} rounds, {:.3f} s; {} organs turned (mean {:.2f} deg, max turn {:.2f} deg, "
-             "largest joint {:.2f} deg), {} organs moved with them; {}\n",
-             r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg,
-             r.max_joint_deg, r.organs_carried, r.stop);
+  fmt::print(
+      "resolution: {} -> {} contacts in {} rounds, {:.3f} s; {} organs turned (mean {:.2f} deg, max turn {:.2f} deg, "
+      "largest joint {:.2f} deg), {} organs moved with them; {}\n",
+      r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, r.max_joint_deg,
+      r.organs_carried, r.stop);
   if (r.bends || r.kinks || r.unbent)
-    fmt::print("  {} turns bent over {} joints of their chains, {} left at one joint, {} past a joint's limit that no bend could take\n",
-               r.bends, r.bend_joints, r.kinks, r.unbent);
+    fmt::print(
+        "  {} turns bent over {} joints of their chains, {} left at one joint, {} past a joint's limit that no bend could take\n",
+        r.bends, r.bend_joints, r.kinks, r.unbent);
   fmt::print("  planned with: {}\n", r.planning);
   fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s", "detect s");
   for (const ResolveRound& x : r.per_round)

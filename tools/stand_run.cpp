@@ -41,7 +41,8 @@ constexpr const char* kPlyFile = "stand.ply";
 }  // namespace
 
 GlbForm glb_form(bool instancing, bool compact, double resolve_clearance) {
-  if (instancing && compact) throw std::invalid_argument("--glb-instancing and --glb-compact are two forms of stand.glb: choose one");
+  if (instancing && compact)
+    throw std::invalid_argument("--glb-instancing and --glb-compact are two forms of stand.glb: choose one");
   GlbForm g{instancing, compact, {}};
   if (resolve_clearance > 0) g.compact_config.max_step = resolve_clearance / 2;
   return g;
@@ -70,14 +71,14 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
   if (glb.instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open(kGlbFile));
   std::deque<ChunkFile> opened;
   write_stand_files(
-      ExportScope::whole(stand), lib, chunked, [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); },
-      glb);
+      ExportScope::whole(stand), lib, chunked,
+      [&](const std::string& name) -> ChunkWriter& { return opened.emplace_back(files.open(name)); }, glb);
 }
 
 const std::vector<std::string>& stand_folder_files() {
-  static const std::vector<std::string> names{kGlbFile,       kObjFile,     kMtlFile,       kPlyFile,
-                                              "organs.csv",   "plants.csv", "contacts.csv", "contacts_after.csv",
-                                              "report.json",  "light.csv",  "light.json"};
+  static const std::vector<std::string> names{kGlbFile,      kObjFile,     kMtlFile,       kPlyFile,
+                                              "organs.csv",  "plants.csv", "contacts.csv", "contacts_after.csv",
+                                              "report.json", "light.csv",  "light.json"};
   return names;
 }
 
@@ -123,11 +124,15 @@ StandPlan plan_stand(StandOptions& o) {
 }
 
 void check_target(const StandOptions& o) {
-  if (!o.positions.empty()) throw std::invalid_argument("--target-lai and --target-ground-cover choose a row layout's plant spacing: not with --positions");
+  if (!o.positions.empty())
+    throw std::invalid_argument(
+        "--target-lai and --target-ground-cover choose a row layout's plant spacing: not with --positions");
   if (o.rows.plant_spacing)
     throw std::invalid_argument("--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
-  if (o.target.lai && o.target.ground_cover) throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
-  if (!(o.target.error >= 1e-5 && o.target.error <= 0.5)) throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", o.target.error));
+  if (o.target.lai && o.target.ground_cover)
+    throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
+  if (!(o.target.error >= 1e-5 && o.target.error <= 0.5))
+    throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", o.target.error));
 }
 
 void check_plan_fits(const StandPlan& plan, std::size_t plants) {
@@ -164,15 +169,16 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   } else {
     nlohmann::ordered_json sources;
     for (const auto& [field, source] : plan.layout_sources) sources[field] = source;
-    config["layout"] = {{"rows", layout.rows},
-                        {"per_row", layout.per_row},
-                        {"row_spacing", layout.row_spacing},
-                        {"plant_spacing", layout.plant_spacing},
-                        {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
-                        {"jitter", layout.jitter},
-                        {"random_rotation", layout.random_rotation},
-                        {"seed", layout.seed},
-                        {"sources", sources}};  // per field: command line, grammar or default
+    config["layout"] = {
+        {"rows", layout.rows},
+        {"per_row", layout.per_row},
+        {"row_spacing", layout.row_spacing},
+        {"plant_spacing", layout.plant_spacing},
+        {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
+        {"jitter", layout.jitter},
+        {"random_rotation", layout.random_rotation},
+        {"seed", layout.seed},
+        {"sources", sources}};  // per field: command line, grammar or default
   }
   rep.config = config;
   rep.grammar = plan.grammar.name.empty() ? o.grammar : plan.grammar.name;
@@ -269,12 +275,14 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     print_folder_changes(files.folder(), committed);
     if (target)
       fmt::print("target {} {}: plant spacing {} m ({} {:.4f}{})\n", o.target.lai ? "LAI" : "ground cover",
-                 o.target.lai ? *o.target.lai : *o.target.ground_cover, target->plant_spacing, o.target.lai ? "LAI" : "ground cover",
-                 target->reached, o.target.lai ? std::string() : fmt::format(" +- {:.4f}", target->standard_error));
+                 o.target.lai ? *o.target.lai : *o.target.ground_cover, target->plant_spacing,
+                 o.target.lai ? "LAI" : "ground cover", target->reached,
+                 o.target.lai ? std::string() : fmt::format(" +- {:.4f}", target->standard_error));
     print_summary(stand, lib, rep, o.out);
     if (o.positions.empty()) fmt::print("{}\n", layout_line(plan.layout, plan.layout_sources));
     print_contacts_table(contacts, backend_note);
-    if (rep.backend != first_backend) fmt::print("backend: the run ended on {}: {}\n", rep.backend, rep.device.get<std::string>());
+    if (rep.backend != first_backend)
+      fmt::print("backend: the run ended on {}: {}\n", rep.backend, rep.device.get<std::string>());
     if (resolved) print_resolution(*resolved);
   }
   StandOutcome out;

@@ -38,7 +38,7 @@ struct StandOptions {
   bool any_grammar_path = false;  // a positions file's grammar cells may name any file
   DetectOptions detect;
   ResolveOptions resolve;
-  TargetOptions target;          // --target-lai / --target-ground-cover choose the plant spacing
+  TargetOptions target;  // --target-lai / --target-ground-cover choose the plant spacing
 };
 
 struct StandOutcome {

@@ -23,11 +23,14 @@ double tile_area(const RowLayout& l) {
 }  // namespace
 
 void add_target_options(CLI::App& app, TargetOptions& t) {
-  app.add_option("--target-lai", t.lai, "Choose the plant spacing so the stand's leaf area index (leaflets over the lattice's ground) is this")
+  app.add_option("--target-lai", t.lai,
+                 "Choose the plant spacing so the stand's leaf area index (leaflets over the lattice's ground) is this")
       ->check(kFinite);
-  app.add_option("--target-ground-cover", t.ground_cover, "Choose the plant spacing so the stand's ground cover (periodic, from the zenith) is this")
+  app.add_option("--target-ground-cover", t.ground_cover,
+                 "Choose the plant spacing so the stand's ground cover (periodic, from the zenith) is this")
       ->check(kFinite);
-  app.add_option("--target-error", t.error, "Standard error of each ground cover estimate of --target-ground-cover (default 0.002)")
+  app.add_option("--target-error", t.error,
+                 "Standard error of each ground cover estimate of --target-ground-cover (default 0.002)")
       ->check(kFinite);
 }
 
@@ -40,7 +43,8 @@ void place_plants(Stand& stand, const RowLayout& layout) {
 
 SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions& t) {
   if (t.lai && t.ground_cover) throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
-  if (t.lai && !(*t.lai > 0 && *t.lai <= 1000)) throw std::invalid_argument(fmt::format("--target-lai: {} is not in (0, 1000]", *t.lai));
+  if (t.lai && !(*t.lai > 0 && *t.lai <= 1000))
+    throw std::invalid_argument(fmt::format("--target-lai: {} is not in (0, 1000]", *t.lai));
   if (t.ground_cover && !(*t.ground_cover > 0 && *t.ground_cover < 1))
     throw std::invalid_argument(fmt::format("--target-ground-cover: {} is not in (0, 1)", *t.ground_cover));
   if (!(layout.row_spacing > 0)) throw std::invalid_argument("--target-lai and --target-ground-cover need a row spacing above 0");
@@ -62,7 +66,8 @@ SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions&
     cfg.sky_directions = 0;
     cfg.error = t.error;
     const std::array<double, 4> tile = lattice_tile(l);
-    cfg.tile = {tile[0] - stand.stand_origin.x, tile[1] - stand.stand_origin.y, tile[2] - stand.stand_origin.x, tile[3] - stand.stand_origin.y};
+    cfg.tile = {tile[0] - stand.stand_origin.x, tile[1] - stand.stand_origin.y, tile[2] - stand.stand_origin.x,
+                tile[3] - stand.stand_origin.y};
     const light::LightResult r = light::compute_light(stand, lib, cfg);
     se = r.ground.fraction.se;
     return r.ground.fraction.value;
@@ -75,14 +80,17 @@ SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions&
   double f = figure(lo);
   if (f >= target) {
     while (f >= target) {
-      if (hi >= kMaxSpacing) throw std::invalid_argument(fmt::format("the target {} is still exceeded at a plant spacing of {} m", target, kMaxSpacing));
+      if (hi >= kMaxSpacing)
+        throw std::invalid_argument(
+            fmt::format("the target {} is still exceeded at a plant spacing of {} m", target, kMaxSpacing));
       lo = hi, hi = std::min(kMaxSpacing, hi * 2), f = figure(hi);
     }
   } else {
     while (f < target) {
       if (lo <= kMinSpacing)
-        throw std::invalid_argument(fmt::format("the target {} cannot be reached at this row spacing and age: at a plant spacing of {} m it is {:.4f}",
-                                                target, kMinSpacing, f));
+        throw std::invalid_argument(
+            fmt::format("the target {} cannot be reached at this row spacing and age: at a plant spacing of {} m it is {:.4f}",
+                        target, kMinSpacing, f));
       hi = lo, lo = std::max(kMinSpacing, lo / 2), f = figure(lo);
     }
   }

@@ -59,8 +59,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
   std::vector<PlantPlacement>& placements = ts.placements;
   on_every_rank([&] {
     formats = parse_formats(o.formats);
-    if (o.glb_instancing)
-      throw std::invalid_argument("--glb-instancing is written by one process only; run it without mpirun");
+    if (o.glb_instancing) throw std::invalid_argument("--glb-instancing is written by one process only; run it without mpirun");
     plan = plan_stand(o);
     dreq = o.detect.request();
     backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());
@@ -91,8 +90,9 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     PrototypeLibrary lib;
     for (std::size_t p = 0; p < mine.plant_count(); ++p) {
       reach = std::max(reach, swept_reach(mine, lib, p, rc.movable));
-      own_counts.insert(own_counts.end(), {static_cast<std::int64_t>(own[p]), static_cast<std::int64_t>(mine.plants[p].organ_count),
-                                           static_cast<std::int64_t>(mine.plants[p].leaf_count)});
+      own_counts.insert(own_counts.end(),
+                        {static_cast<std::int64_t>(own[p]), static_cast<std::int64_t>(mine.plants[p].organ_count),
+                         static_cast<std::int64_t>(mine.plants[p].leaf_count)});
     }
   });
   reach = mpi::max(reach);
@@ -155,9 +155,10 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
       ResolvePartition part;
       part.owned = t.owned;
       for (std::uint32_t g : t.region)  // the plants within one hop of this strip
-        part.plan.push_back(std::abs(ts.tiling.coordinate(ts.placements[g]) -
-                                     std::clamp(ts.tiling.coordinate(ts.placements[g]), ts.tiling.lo[static_cast<std::size_t>(rank)],
-                                                ts.tiling.hi[static_cast<std::size_t>(rank)])) <= ts.hop);
+        part.plan.push_back(
+            std::abs(ts.tiling.coordinate(ts.placements[g]) -
+                     std::clamp(ts.tiling.coordinate(ts.placements[g]), ts.tiling.lo[static_cast<std::size_t>(rank)],
+                                ts.tiling.hi[static_cast<std::size_t>(rank)])) <= ts.hop);
       // Time in the collectives (waiting for the slowest rank included).
       const auto timed = [&ts](auto&& f) {
         const auto t0 = std::chrono::steady_clock::now();
@@ -205,11 +206,13 @@ void run_stand_tiled(StandOptions o) {
   {
     std::vector<std::int64_t> tris;
     const std::vector<std::size_t> local = triangles_per_plant(t.stand, lib);
-    for (std::uint32_t p : scope.plants) tris.insert(tris.end(), {static_cast<std::int64_t>(t.region[p]), static_cast<std::int64_t>(local[p])});
+    for (std::uint32_t p : scope.plants)
+      tris.insert(tris.end(), {static_cast<std::int64_t>(t.region[p]), static_cast<std::int64_t>(local[p])});
     const std::vector<std::int64_t> all = mpi::allgather(tris);
     counts.triangles.assign(n, 0);
     counts.organs.assign(n, 0);
-    for (std::size_t i = 0; i < all.size(); i += 2) counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
+    for (std::size_t i = 0; i < all.size(); i += 2)
+      counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
     for (std::size_t p = 0; p < n; ++p) counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
   }
   {
@@ -227,7 +230,8 @@ void run_stand_tiled(StandOptions o) {
   }
   mpi::SharedOutputSet files(o.out, stand_folder_files(), ts.ids, n);
   try {
-    write_stand_files(scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); }, glb_form(o));
+    write_stand_files(
+        scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); }, glb_form(o));
     write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
     write_contacts_csv(scope, ts.after.pairs, ts.after.level, files.open("contacts_after.csv"));
     rep.timings["export"] = seconds_since(t_export);

@@ -14,11 +14,11 @@ namespace canopy::cli {
 /// A rank's part of the stand: the plants it holds (its own and its halo), their global ids and
 /// the shifts from local to global organ and leaf ids.
 struct Tile {
-  std::vector<std::uint32_t> region;           // global plant ids, ascending
-  std::vector<std::uint8_t> owned;             // per local plant
-  std::vector<std::int64_t> first_organ;       // per global plant (size N + 1)
+  std::vector<std::uint32_t> region;      // global plant ids, ascending
+  std::vector<std::uint8_t> owned;        // per local plant
+  std::vector<std::int64_t> first_organ;  // per global plant (size N + 1)
   std::vector<std::int64_t> first_leaf;
-  std::vector<std::vector<int>> holders;       // per local plant: the other ranks holding it
+  std::vector<std::vector<int>> holders;  // per local plant: the other ranks holding it
   Stand stand;
 
   std::size_t local_of(std::int64_t global_plant) const {
@@ -36,14 +36,14 @@ struct TiledStand {
   std::vector<PlantPlacement> placements;  // the whole stand's
   Tiling tiling;
   Tile tile;
-  double reach = 0, hop = 0, halo = 0;     // swept reach, farthest meeting distance, halo depth (metres)
-  std::vector<std::int64_t> ids;           // global ids of this rank's own plants
+  double reach = 0, hop = 0, halo = 0;  // swept reach, farthest meeting distance, halo depth (metres)
+  std::vector<std::int64_t> ids;        // global ids of this rank's own plants
   std::unique_ptr<mpi::RankScan> scan;
-  std::unique_ptr<ExportScope> scope;      // this rank's own plants
+  std::unique_ptr<ExportScope> scope;  // this rank's own plants
   StandReport rep;
-  Contacts before, after;                  // counts of the whole stand, pairs this rank owns
+  Contacts before, after;  // counts of the whole stand, pairs this rank owns
   std::optional<ResolveResult> resolved;
-  double comm_s = 0;                       // resolution: time in collectives (waits included)
+  double comm_s = 0;  // resolution: time in collectives (waits included)
   std::chrono::steady_clock::time_point start;
 };
 

@@ -34,7 +34,8 @@ void check_sweep_light(const SweepOptions& o) {
   if (o.no_light) return;
 #ifdef CANOPY_HAVE_LIGHT
   if (!(o.light_error >= light::kMinError && o.light_error <= light::kMaxError))
-    throw std::invalid_argument(fmt::format("--light-error: {} is not in {}..{}", o.light_error, light::kMinError, light::kMaxError));
+    throw std::invalid_argument(
+        fmt::format("--light-error: {} is not in {}..{}", o.light_error, light::kMinError, light::kMaxError));
   light::check_config(sweep_light_config(o));
   if (o.sky_directions < 1) throw std::invalid_argument("--sky-directions: a sweep's light needs at least 1 (or --no-light)");
 #else

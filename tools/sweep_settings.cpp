@@ -27,20 +27,23 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
   nlohmann::ordered_json resolve = o.resolve.config_json();
   resolve.erase("search");  // the same turns either way, and for any number of lanes
   resolve.erase("lanes");
-  nlohmann::ordered_json out = {{"grammar", o.grammar},
-          {"grammar_digest", grammar_digest(o.grammar)},
-          {"set", constants},
-          {"rows", o.rows},
-          {"per_row", o.per_row},
-          {"jitter", o.jitter.value_or(0.02)},
-          {"lod", o.lod},
-          {"max_modules", o.max_modules},
-          {"level", o.detect.level},
-          {"clearance", o.detect.clearance},
-          {"collide", kinds},
-          {"resolve", resolve},
-          {"light", o.no_light ? nlohmann::ordered_json(nullptr)
-                               : nlohmann::ordered_json{{"sun", o.sun}, {"sky", o.sky}, {"sky_directions", o.sky_directions}, {"error", o.light_error}}}};
+  nlohmann::ordered_json out = {
+      {"grammar", o.grammar},
+      {"grammar_digest", grammar_digest(o.grammar)},
+      {"set", constants},
+      {"rows", o.rows},
+      {"per_row", o.per_row},
+      {"jitter", o.jitter.value_or(0.02)},
+      {"lod", o.lod},
+      {"max_modules", o.max_modules},
+      {"level", o.detect.level},
+      {"clearance", o.detect.clearance},
+      {"collide", kinds},
+      {"resolve", resolve},
+      {"light", o.no_light
+                    ? nlohmann::ordered_json(nullptr)
+                    : nlohmann::ordered_json{
+                          {"sun", o.sun}, {"sky", o.sky}, {"sky_directions", o.sky_directions}, {"error", o.light_error}}}};
   // Only when off: sweeps before it turned every plant, and their sweep.json has no such key.
   if (!o.random_rotation.value_or(true)) out["random_rotation"] = false;
   return out;
@@ -54,16 +57,18 @@ void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& 
     for (const auto& [key, value] : settings.items()) {
       if (key == "grammar") continue;  // the file's document is compared, not the path naming it
       // A sweep begun by a canopy of before grammar_digest kept the digest of the file's bytes.
-      if (key == "grammar_digest" && before.contains(key) && before.at(key) == grammar_text_digest(settings["grammar"].get<std::string>()))
+      if (key == "grammar_digest" && before.contains(key) &&
+          before.at(key) == grammar_text_digest(settings["grammar"].get<std::string>()))
         continue;
       if (!before.contains(key) || before.at(key) != value)
-        differs += fmt::format("{}{} {} -> {}", differs.empty() ? "" : "; ", key, before.contains(key) ? before.at(key).dump() : "(none)",
-                               value.dump());
+        differs += fmt::format("{}{} {} -> {}", differs.empty() ? "" : "; ", key,
+                               before.contains(key) ? before.at(key).dump() : "(none)", value.dump());
     }
     if (!differs.empty())
-      throw std::invalid_argument(fmt::format("sweep: {} holds {} run(s) made with other settings ({}); give another -o, or the same "
-                                              "settings to resume it",
-                                              dir, finished_runs, differs));
+      throw std::invalid_argument(
+          fmt::format("sweep: {} holds {} run(s) made with other settings ({}); give another -o, or the same "
+                      "settings to resume it",
+                      dir, finished_runs, differs));
     return;
   }
   AtomicFile out(path);

@@ -64,8 +64,7 @@ std::vector<SweepCell> sweep_cells(const std::vector<double>& row_spacings, cons
     std::vector<double> plant;
     if (!densities.empty())
       for (double d : densities) plant.push_back(1.0 / (d * row));
-    else
-      plant = plant_spacings;
+    else plant = plant_spacings;
     for (double p : plant)
       for (const auto& st : steps) {
         SweepCell c;

@@ -77,14 +77,49 @@ std::string header() {
 }  // namespace
 
 const std::vector<std::string>& run_columns() {
-  static const std::vector<std::string> c{
-      "run", "plant_spacing", "row_spacing", "density", "steps", "seed", "status", "plants", "organs", "lai", "lai_plants",
-      "plant_between_per_plant", "plant_within_per_plant", "leaf_between_per_plant", "leaf_within_per_plant",
-      "organ_between_per_plant", "organ_within_per_plant", "exact_between_per_plant", "exact_within_per_plant",
-      "organs_turned", "organs_turned_per_plant", "mean_turn_deg", "max_turn_deg", "rounds", "residual_contacts",
-      "ground_cover_before", "direct_before", "diffuse_before", "star_before", "mean_inclination_before", "light_se_before",
-      "ground_cover_after", "direct_after", "diffuse_after", "star_after", "mean_inclination_after", "light_se_after",
-      "generate_s", "detect_s", "resolve_s", "light_s", "backend", "message"};
+  static const std::vector<std::string> c{"run",
+                                          "plant_spacing",
+                                          "row_spacing",
+                                          "density",
+                                          "steps",
+                                          "seed",
+                                          "status",
+                                          "plants",
+                                          "organs",
+                                          "lai",
+                                          "lai_plants",
+                                          "plant_between_per_plant",
+                                          "plant_within_per_plant",
+                                          "leaf_between_per_plant",
+                                          "leaf_within_per_plant",
+                                          "organ_between_per_plant",
+                                          "organ_within_per_plant",
+                                          "exact_between_per_plant",
+                                          "exact_within_per_plant",
+                                          "organs_turned",
+                                          "organs_turned_per_plant",
+                                          "mean_turn_deg",
+                                          "max_turn_deg",
+                                          "rounds",
+                                          "residual_contacts",
+                                          "ground_cover_before",
+                                          "direct_before",
+                                          "diffuse_before",
+                                          "star_before",
+                                          "mean_inclination_before",
+                                          "light_se_before",
+                                          "ground_cover_after",
+                                          "direct_after",
+                                          "diffuse_after",
+                                          "star_after",
+                                          "mean_inclination_after",
+                                          "light_se_after",
+                                          "generate_s",
+                                          "detect_s",
+                                          "resolve_s",
+                                          "light_s",
+                                          "backend",
+                                          "message"};
   return c;
 }
 
@@ -117,9 +152,10 @@ std::vector<RunRow> read_runs(const std::string& path) {
       const std::string& column = run_columns()[i];
       // summary.csv averages these: a value that is not a number is not from canopy sweep.
       if (is_metric(column) && !f[i].empty() && !finite_number(f[i]))
-        throw std::invalid_argument(fmt::format("{}:{}: column '{}' needs a number, got '{}' (not a runs.csv written by canopy sweep; "
-                                                "use another -o)",
-                                                path, in.line_number(), column, f[i]));
+        throw std::invalid_argument(
+            fmt::format("{}:{}: column '{}' needs a number, got '{}' (not a runs.csv written by canopy sweep; "
+                        "use another -o)",
+                        path, in.line_number(), column, f[i]));
       r[column] = f[i];
     }
     rows.push_back(std::move(r));

@@ -60,7 +60,8 @@ std::vector<Turn> exchange_turns(const Tile& t, const std::vector<Turn>& mine) {
   std::vector<std::vector<char>> out(static_cast<std::size_t>(mpi::size()));
   for (const Turn& turn : mine) {
     const auto p = static_cast<std::size_t>(t.stand.organs[turn.organ].plant);
-    WireTurn w{static_cast<std::int64_t>(turn.organ) - t.stand.plants[p].first_organ + t.first_organ[t.region[p]], {}, turn.angle_deg};
+    WireTurn w{
+        static_cast<std::int64_t>(turn.organ) - t.stand.plants[p].first_organ + t.first_organ[t.region[p]], {}, turn.angle_deg};
     std::memcpy(w.local, turn.local.m, sizeof w.local);
     for (int r : t.holders[p]) {
       auto& b = out[static_cast<std::size_t>(r)];
@@ -72,7 +73,9 @@ std::vector<Turn> exchange_turns(const Tile& t, const std::vector<Turn>& mine) {
     for (std::size_t at = 0; at + sizeof(WireTurn) <= b.size(); at += sizeof(WireTurn)) {
       WireTurn w;
       std::memcpy(&w, b.data() + at, sizeof w);
-      const auto g = static_cast<std::size_t>(std::upper_bound(t.first_organ.begin(), t.first_organ.end(), w.organ) - t.first_organ.begin()) - 1;
+      const auto g = static_cast<std::size_t>(std::upper_bound(t.first_organ.begin(), t.first_organ.end(), w.organ) -
+                                              t.first_organ.begin()) -
+                     1;
       const std::size_t p = t.local_of(static_cast<std::int64_t>(g));
       Turn turn;
       turn.organ = static_cast<std::uint32_t>(w.organ - t.first_organ[g] + t.stand.plants[p].first_organ);
@@ -86,7 +89,9 @@ std::vector<Turn> exchange_turns(const Tile& t, const std::vector<Turn>& mine) {
 /// The unresolved contacts of every rank on rank 0, in global ids and order.
 std::vector<UnresolvedContact> gather_unresolved(const ExportScope& e, const std::vector<UnresolvedContact>& mine) {
   std::vector<char> blob;
-  const auto put = [&](std::int64_t v) { blob.insert(blob.end(), reinterpret_cast<const char*>(&v), reinterpret_cast<const char*>(&v) + 8); };
+  const auto put = [&](std::int64_t v) {
+    blob.insert(blob.end(), reinterpret_cast<const char*>(&v), reinterpret_cast<const char*>(&v) + 8);
+  };
   for (const UnresolvedContact& u : mine) {
     put(e.organ(u.contact.organ_a)), put(e.organ(u.contact.organ_b));
     put(e.plant(static_cast<std::size_t>(u.contact.plant_a))), put(e.plant(static_cast<std::size_t>(u.contact.plant_b)));

@@ -31,9 +31,7 @@ inline void store8(float* p, F8 v) {
 #endif
 }
 /// The lanes at + t (t < 8) that lie below `count`, as bits: a run's last lanes masked off.
-inline unsigned lanes_below(std::uint32_t count, std::uint32_t at) {
-  return count - at < 8 ? (1u << (count - at)) - 1 : 0xffu;
-}
+inline unsigned lanes_below(std::uint32_t count, std::uint32_t at) { return count - at < 8 ? (1u << (count - at)) - 1 : 0xffu; }
 inline unsigned bits8(I8 m) {
 #if defined(__AVX__)
   return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<F8>(m)));
@@ -68,7 +66,7 @@ inline void transpose8(const float* const* rows, F8* out) {
 #endif
 }
 inline F8 splat8(float x) { return F8{x, x, x, x, x, x, x, x}; }  // x in every lane
-inline F8 abs8(F8 v) {  // fabsf lane by lane (the sign bit cleared)
+inline F8 abs8(F8 v) {                                            // fabsf lane by lane (the sign bit cleared)
   I8 bits;
   std::memcpy(&bits, &v, sizeof v);
   bits &= 0x7fffffff;

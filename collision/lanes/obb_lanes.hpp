@@ -85,8 +85,8 @@ inline unsigned ObbBatch::overlapping() const {
   for (int i = 0; i < 3; ++i) t[i] = gx * ax[i][0] + gy * ax[i][1] + gz * ax[i][2];
   for (int i = 0; i < 3; ++i) apart |= abs8(t[i]) > ah[i] + bh[0] * ar[i][0] + bh[1] * ar[i][1] + bh[2] * ar[i][2];
   for (int j = 0; j < 3; ++j)
-    apart |= abs8(t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j]) >
-             ah[0] * ar[0][j] + ah[1] * ar[1][j] + ah[2] * ar[2][j] + bh[j];
+    apart |=
+        abs8(t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j]) > ah[0] * ar[0][j] + ah[1] * ar[1][j] + ah[2] * ar[2][j] + bh[j];
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {

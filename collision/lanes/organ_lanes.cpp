@@ -37,7 +37,8 @@ void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {
   lanes.organs.assign_empty(lay_out(lanes.organ_first, m.clusters.size(), [&](std::size_t c) { return m.clusters[c].count; }));
   lanes.roots.assign(m.clusters.size(), lcd_centred(Lcd{}));
   lanes.pass.assign(m.clusters.size(), PassCluster{});
-  const std::size_t cluster_lanes = lay_out(lanes.cluster_first, m.plants.size(), [&](std::size_t p) { return m.plants[p].cluster_count; });
+  const std::size_t cluster_lanes =
+      lay_out(lanes.cluster_first, m.plants.size(), [&](std::size_t p) { return m.plants[p].cluster_count; });
   lanes.clusters.assign_empty(cluster_lanes);
   lanes.root_lanes.assign_empty(cluster_lanes);
 }

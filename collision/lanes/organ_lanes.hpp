@@ -47,7 +47,9 @@ struct BoxLanes : FieldLanes<6> {
     at(lane, 0) = b.lo.x, at(lane, 1) = b.lo.y, at(lane, 2) = b.lo.z;
     at(lane, 3) = b.hi.x, at(lane, 4) = b.hi.y, at(lane, 5) = b.hi.z;
   }
-  Box3f get(std::size_t lane) const { return Box3f{{at(lane, 0), at(lane, 1), at(lane, 2)}, {at(lane, 3), at(lane, 4), at(lane, 5)}}; }
+  Box3f get(std::size_t lane) const {
+    return Box3f{{at(lane, 0), at(lane, 1), at(lane, 2)}, {at(lane, 3), at(lane, 4), at(lane, 5)}};
+  }
 };
 
 /// LCD boxes (centred form, geometry/lcd.hpp) by lane (cx, cy, ax, ay, hu, hv, z_lo, z_hi: 256
@@ -69,7 +71,7 @@ struct LcdLanes : FieldLanes<8> {
 /// fields, side by side): from a 52-byte record and three arrays a cluster pair's first loads
 /// waited on up to four lines (bench_detect: the pass about 7 % faster on one).
 struct alignas(64) PassCluster {
-  Box3f box;                           // Cluster::box
+  Box3f box;  // Cluster::box
   /// The box around its organs' boxes (their least lo and greatest hi, so an organ box that
   /// misses it misses every one of them, exactly).
   Box3f around;

@@ -22,7 +22,8 @@ namespace lanes_detail {
 /// starts anywhere in its run (every cluster's and plant's run starts a group).
 [[gnu::noinline]] inline void gather_group(const BoxLanes& l, std::uint32_t lane, float* out) {
   for (int k = 0; k < 6; ++k)
-    for (std::uint32_t t = 0; t < BoxLanes::kWidth; ++t) out[static_cast<std::uint32_t>(k) * BoxLanes::kWidth + t] = l.at(lane + t, k);
+    for (std::uint32_t t = 0; t < BoxLanes::kWidth; ++t)
+      out[static_cast<std::uint32_t>(k) * BoxLanes::kWidth + t] = l.at(lane + t, k);
 }
 /// Lanes lane .. lane + 7 in one group's layout: the group itself where `lane` starts one, else
 /// gathered into `scratch` (kGroupFloats floats).
@@ -168,11 +169,12 @@ inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* c
 /// where any of the 8 meet, the LCD boxes 8 at a time (collision/lanes/lcd_lanes.hpp), rather than an
 /// LCD test and a branch per cluster whose box meets.
 template <typename OnCluster>
-inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb, std::uint32_t q, std::uint32_t from, const Box3f& box,
-                                      const LcdCentred& root, Vec3f offset, OnCluster&& on_cluster) {
+inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb, std::uint32_t q, std::uint32_t from,
+                                      const Box3f& box, const LcdCentred& root, Vec3f offset, OnCluster&& on_cluster) {
   const std::uint32_t l0 = l.cluster_first[q];
   for (std::uint32_t k0 = from / OrganLanes::kWidth * OrganLanes::kWidth; k0 < pb.cluster_count; k0 += OrganLanes::kWidth) {
-    unsigned mask = lanes_detail::group_meeting(l.clusters.group(l0 + k0), box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
+    unsigned mask =
+        lanes_detail::group_meeting(l.clusters.group(l0 + k0), box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
     if (k0 < from) mask &= ~0u << (from - k0);
     if (!mask) continue;
     for (mask &= lcd_overlapping8(root, l.root_lanes.group(l0 + k0), offset); mask; mask &= mask - 1)
@@ -184,8 +186,8 @@ inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb,
 /// `offset` (boxes_meet(cluster i's box, box, offset)), in order; for every cluster of p with
 /// `all`.
 template <typename OnCluster>
-inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& pa, std::uint32_t p, const Box3f& box, Vec3f offset,
-                                        bool all, OnCluster&& on_cluster) {
+inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& pa, std::uint32_t p, const Box3f& box,
+                                        Vec3f offset, bool all, OnCluster&& on_cluster) {
   const std::uint32_t l0 = l.cluster_first[p];
   for (std::uint32_t k0 = 0; k0 < pa.cluster_count; k0 += OrganLanes::kWidth) {
     unsigned mask = lanes_detail::lanes_below(pa.cluster_count, k0);
@@ -199,8 +201,8 @@ inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& p
 /// meet and, in a cluster of at most kMaskOrgans organs, that are not adjacent (in a larger one
 /// every pair whose boxes meet).
 template <typename OnPair>
-inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after, const PassCluster& c,
-                           OnPair&& on_pair) {
+inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after,
+                           const PassCluster& c, OnPair&& on_pair) {
   const std::uint32_t l0 = c.lane;
   constexpr std::uint32_t kW = OrganLanes::kWidth;
   if (c.count <= 2 * kW) {
@@ -211,7 +213,7 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
     // lane tests they save.
     static_assert(2 * OrganLanes::kWidth <= kMaskOrgans, "the masks must hold these clusters' free pairs");
     unsigned hits[2 * kW];
-    unsigned rows = 0;  // bit x set where row x has a pair
+    unsigned rows = 0;                     // bit x set where row x has a pair
     const float* g0 = l.organs.group(l0);  // the cluster's run starts a group
     for (std::uint32_t x = 0; x + 1 < c.count; ++x) {
       const Box3f bx = lanes_detail::run_box(g0, x);

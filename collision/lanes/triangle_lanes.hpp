@@ -85,7 +85,8 @@ inline unsigned near_lanes(const float* group, const FloatBounds& box, const Obb
 /// two planes reject all of those, the edge axes are left uncomputed, and where the axes of t's
 /// first edge (or first two) do, the rest (the other lanes' bits are then whatever the tests
 /// made so far gave).
-inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const float* group, float margin, unsigned wanted = 0xffu) {
+inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const float* group, float margin,
+                               unsigned wanted = 0xffu) {
   using namespace lanes_detail;
   F8 u[3][3];  // corner, coordinate
   for (int c = 0; c < 3; ++c)

@@ -67,7 +67,6 @@ inline Stand row_stand(std::uint64_t seed) {
   return grow_stand(req);
 }
 
-
 /// A seeded random small stand of curved-leaflet tomatoes (grammars/tomato_mature.yaml at a
 /// random age) whose leaflets take every bend, cup and fold the shape code holds, at level of
 /// detail `lod`: dense rows or a cluster, random rotations.
@@ -106,8 +105,10 @@ inline std::vector<Contact> brute_force_exact(const Stand& s, const KindMask& co
     organ_vertices(s, lib.get(r), static_cast<std::int32_t>(i), 0, verts[i]);
     box[i] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
     for (const Vec3f& v : verts[i]) {
-      box[i][0] = std::min<double>(box[i][0], v.x), box[i][1] = std::min<double>(box[i][1], v.y), box[i][2] = std::min<double>(box[i][2], v.z);
-      box[i][3] = std::max<double>(box[i][3], v.x), box[i][4] = std::max<double>(box[i][4], v.y), box[i][5] = std::max<double>(box[i][5], v.z);
+      box[i][0] = std::min<double>(box[i][0], v.x), box[i][1] = std::min<double>(box[i][1], v.y),
+      box[i][2] = std::min<double>(box[i][2], v.z);
+      box[i][3] = std::max<double>(box[i][3], v.x), box[i][4] = std::max<double>(box[i][4], v.y),
+      box[i][5] = std::max<double>(box[i][5], v.z);
     }
   }
   std::vector<Contact> out;

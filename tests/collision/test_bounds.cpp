@@ -96,7 +96,8 @@ TEST_CASE("LCD overlap agrees with the brute-force test of the same boxes as OBB
       l[k] = random_lcd(g, i % 4 == 0 ? 0.3f : u(g) * 3.14159f, 1.0f, 0.05f, 0.5f);  // every fourth pair parallel
       axes[k][0] = {l[k].ax, l[k].ay, 0}, axes[k][1] = {-l[k].ay, l[k].ax, 0}, axes[k][2] = {0, 0, 1};
       for (int c = 0; c < 8; ++c) {
-        const float su = (c & 1) ? l[k].hi[0] : l[k].lo[0], sv = (c & 2) ? l[k].hi[1] : l[k].lo[1], sz = (c & 4) ? l[k].hi[2] : l[k].lo[2];
+        const float su = (c & 1) ? l[k].hi[0] : l[k].lo[0], sv = (c & 2) ? l[k].hi[1] : l[k].lo[1],
+                    sz = (c & 4) ? l[k].hi[2] : l[k].lo[2];
         corners[k][c] = axes[k][0] * su + axes[k][1] * sv + Vec3f{0, 0, sz};
       }
     }
@@ -158,10 +159,12 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
   for (std::uint32_t ci = 0; ci < m.clusters.size(); ++ci) {
     const Cluster& c = m.clusters[ci];
     const PlantBound& pb = m.plants[static_cast<std::size_t>(c.plant)];
-    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x == c.box.lo.x);
+    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x ==
+          c.box.lo.x);
     const LcdCentred root = lcd_centred(m.nodes[c.root].box);
     CHECK(std::memcmp(&m.lanes.roots[ci], &root, sizeof root) == 0);  // the root's LCD box, centred
-    const LcdCentred root_lane = m.lanes.root_lanes.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster));
+    const LcdCentred root_lane =
+        m.lanes.root_lanes.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster));
     CHECK(std::memcmp(&root_lane, &root, sizeof root) == 0);  // and in the plant's LCD lanes
     // The root spans the cluster's organs (the CPU pass takes a one-block cluster's span from it).
     CHECK(m.nodes[c.root].first == c.first);
@@ -262,8 +265,8 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
     const LcdCentred root_lane =
         m.lanes.root_lanes.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster));
     CHECK(std::memcmp(&root_lane, &root, sizeof root) == 0);
-    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster)).hi.z ==
-          m.clusters[c].box.hi.z);
+    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster))
+              .hi.z == m.clusters[c].box.hi.z);
   }
   // Boxes contain what they must (axes kept from the first build, so not equal to the fresh ones).
   OrganMesh mesh;
@@ -284,15 +287,15 @@ bool same_bytes(const V& a, const V& b) {
 
 /// Every array of two trees, byte for byte.
 bool same_tree(const Mbvt& a, const Mbvt& b) {
-  bool same = same_bytes(a.obbs, b.obbs) && same_bytes(a.takes_part, b.takes_part) && same_bytes(a.cluster_organs, b.cluster_organs) &&
-              same_bytes(a.free_after, b.free_after) && same_bytes(a.cluster_has_free, b.cluster_has_free) &&
-              same_bytes(a.plant_has_free, b.plant_has_free) &&
+  bool same = same_bytes(a.obbs, b.obbs) && same_bytes(a.takes_part, b.takes_part) &&
+              same_bytes(a.cluster_organs, b.cluster_organs) && same_bytes(a.free_after, b.free_after) &&
+              same_bytes(a.cluster_has_free, b.cluster_has_free) && same_bytes(a.plant_has_free, b.plant_has_free) &&
               same_bytes(a.clusters, b.clusters) && same_bytes(a.nodes, b.nodes) && same_bytes(a.plants, b.plants) &&
               a.max_radius == b.max_radius && same_bytes(a.lanes.organ_first, b.lanes.organ_first) &&
               same_bytes(a.lanes.pass, b.lanes.pass) && same_bytes(a.lanes.roots, b.lanes.roots) &&
               same_bytes(a.lanes.cluster_first, b.lanes.cluster_first);
-  return same && same_bytes(a.lanes.organs.data, b.lanes.organs.data) && same_bytes(a.lanes.clusters.data, b.lanes.clusters.data) &&
-         same_bytes(a.lanes.root_lanes.data, b.lanes.root_lanes.data);
+  return same && same_bytes(a.lanes.organs.data, b.lanes.organs.data) &&
+         same_bytes(a.lanes.clusters.data, b.lanes.clusters.data) && same_bytes(a.lanes.root_lanes.data, b.lanes.root_lanes.data);
 }
 
 }  // namespace
@@ -340,7 +343,8 @@ TEST_CASE("every organ's OBB is make_obb's, whether or not the plants' organs fo
   }
 }
 
-TEST_CASE("curved leaflets: every vertex lies in its OBB, its cluster's LCD boxes and its plant's bounds, at every level of detail") {
+TEST_CASE(
+    "curved leaflets: every vertex lies in its OBB, its cluster's LCD boxes and its plant's bounds, at every level of detail") {
   std::set<int> shapes;
   for (int lod = 1; lod <= 4; ++lod) {
     const Stand s = curved_stand(static_cast<std::uint64_t>(lod), lod);

@@ -39,7 +39,8 @@ TEST_CASE("the float plane pre-test rejects only pairs farther apart than the cl
     for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
       const float margin = c + 1e-5f;
       const TrianglePlane pp = TrianglePlane::of(p[0], p[1], p[2]), pq = TrianglePlane::of(q[0], q[1], q[2]);
-      const bool reject = pp.beyond(q, margin) || pq.beyond(p, margin) || apart_on_edges(p, q, margin) || apart_on_edges(q, p, margin);
+      const bool reject =
+          pp.beyond(q, margin) || pq.beyond(p, margin) || apart_on_edges(p, q, margin) || apart_on_edges(q, p, margin);
       if (reject) {
         ++rejected;
         CHECK_MESSAGE(d > c, "trial ", trial, " distance ", d, " clearance ", c);
@@ -79,7 +80,8 @@ TEST_CASE("the OBB filter rejects only triangles farther from the organ than the
       if (trial % 7 == 0) t[2] = t[0] + (t[1] - t[0]) * 0.5f;  // a degenerate triangle
       double d = 1e300;
       for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-        const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]], posed.vertices()[mesh.indices[3 * i + 1]], posed.vertices()[mesh.indices[3 * i + 2]]};
+        const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]], posed.vertices()[mesh.indices[3 * i + 1]],
+                            posed.vertices()[mesh.indices[3 * i + 2]]};
         d = std::min(d, reference_distance(t, q));
       }
       for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
@@ -90,7 +92,8 @@ TEST_CASE("the OBB filter rejects only triangles farther from the organ than the
         ++rejected;
         CHECK_MESSAGE(d > c, "seed ", seed, " trial ", trial, " distance ", d, " clearance ", c);
         for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-          const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]], posed.vertices()[mesh.indices[3 * i + 1]], posed.vertices()[mesh.indices[3 * i + 2]]};
+          const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]], posed.vertices()[mesh.indices[3 * i + 1]],
+                              posed.vertices()[mesh.indices[3 * i + 2]]};
           const bool touches = c > 0 ? triangles_within(t, q, c) : triangles_intersect(t, q);
           CHECK_FALSE(touches);
         }
@@ -179,14 +182,16 @@ TEST_CASE("two solids rejected by their capsules never touch: against the full t
       l = l * (1 / length(l));
       Affine3f m = test::frame(heading, l, at, kind == PrototypeKind::sphere ? r : len, r);
       if (trial % 5 == 0) m.c2 = m.c2 * 0.6f;  // unequal radial scales
-      const auto id = b.add(kind, kind == PrototypeKind::sphere ? OrganKind::fruit : OrganKind::internode, m, kind == PrototypeKind::sphere ? r : len, r);
+      const auto id = b.add(kind, kind == PrototypeKind::sphere ? OrganKind::fruit : OrganKind::internode, m,
+                            kind == PrototypeKind::sphere ? r : len, r);
       return std::make_pair(id, r);
     };
     const Vec3f h0 = unit();
     const auto [a, ra] = solid(0, {static_cast<float>(u01(g)), static_cast<float>(u01(g)), 1.0f}, h0);
     // The second starts beside a point of the first's axis, its surface near the first's.
     const Affine3f ta = b.stand.transforms[0];
-    const Vec3f beside = ta.t + ta.c0 * static_cast<float>(u01(g) * 1.2 - 0.1) + unit() * (ra * static_cast<float>(0.5 + 2.5 * u01(g)));
+    const Vec3f beside =
+        ta.t + ta.c0 * static_cast<float>(u01(g) * 1.2 - 0.1) + unit() * (ra * static_cast<float>(0.5 + 2.5 * u01(g)));
     const std::int32_t bo = solid(1, beside, unit()).first;
     if (two_plants) {
       b.stand.organs[1].plant = 1;
@@ -244,8 +249,9 @@ TEST_CASE("the poses take the OBBs of a tree fit with no clearance: the same bit
     for (std::int32_t a = 0; a < n; ++a)
       for (std::int32_t b = a + 1; b < n; ++b) {
         if (!m.takes_part[static_cast<std::size_t>(a)] || !m.takes_part[static_cast<std::size_t>(b)]) continue;
-        if (!obb_overlap(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)],
-                         plant_offset(s, s.organs[static_cast<std::size_t>(a)].plant, s.organs[static_cast<std::size_t>(b)].plant)))
+        if (!obb_overlap(
+                m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)],
+                plant_offset(s, s.organs[static_cast<std::size_t>(a)].plant, s.organs[static_cast<std::size_t>(b)].plant)))
           continue;
         const bool with = organs_touch(s, lib, a, b, 0, x, m.obbs.data()), without = organs_touch(s, lib, a, b, 0, y);
         CHECK(with == without);

@@ -26,7 +26,8 @@ bool same_pose(const PosedOrgan& x, const PosedOrgan& y) {
 }
 
 bool same_witness(const Witness& x, const Witness& y) {
-  return std::memcmp(x.tri_a, y.tri_a, sizeof x.tri_a) == 0 && std::memcmp(x.tri_b, y.tri_b, sizeof x.tri_b) == 0 && x.latest == y.latest;
+  return std::memcmp(x.tri_a, y.tri_a, sizeof x.tri_a) == 0 && std::memcmp(x.tri_b, y.tri_b, sizeof x.tri_b) == 0 &&
+         x.latest == y.latest;
 }
 
 /// Transform t turned by `deg` degrees about the vertical through its origin, as resolution turns

@@ -22,7 +22,8 @@ std::size_t check_masks(const Stand& s, const Mbvt& m, std::size_t& unmasked_clu
   REQUIRE(m.cluster_has_free.size() == m.clusters.size());
   for (std::size_t c = 0; c < m.clusters.size(); ++c) {
     const Cluster& cl = m.clusters[c];
-    CHECK(static_cast<bool>(m.cluster_has_free[c]) == organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), cl.first, cl.count));
+    CHECK(static_cast<bool>(m.cluster_has_free[c]) ==
+          organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), cl.first, cl.count));
     if (!pairs_masked(cl.count)) {
       ++unmasked_clusters;
       for (std::uint32_t x = 0; x < cl.count; ++x) CHECK(m.free_after[cl.first + x] == ~std::uint64_t{0});
@@ -56,7 +57,8 @@ std::size_t check_plant_flags(const Stand& s, const Mbvt& m) {
       const Cluster& first = m.clusters[pb.first_cluster];
       const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
       want = organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), first.first, last.first + last.count - first.first);
-      for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c) any_cluster |= m.cluster_has_free[c] != 0;
+      for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c)
+        any_cluster |= m.cluster_has_free[c] != 0;
     }
     INFO("plant " << p);
     CHECK(static_cast<bool>(m.plant_has_free[p]) == want);
@@ -120,12 +122,10 @@ TEST_CASE("free-pair masks of random forests: roots, parents outside the cluster
       const std::uint32_t pick = g() % 10;
       if (pick < 6 && k > 0)
         r.parent = static_cast<std::int32_t>(ids[k - 1 - g() % std::min<std::uint32_t>(k, pick < 4 ? 2 : k)]);
-      else if (pick < 8)
-        r.parent = static_cast<std::int32_t>(g() % 3 * 3);  // outside, below the first id
+      else if (pick < 8) r.parent = static_cast<std::int32_t>(g() % 3 * 3);  // outside, below the first id
       else if (pick < 9 && k > 0 && ids[k] - 1 != ids[k - 1])
         r.parent = static_cast<std::int32_t>(ids[k] - 1);  // the id in the gap just below: outside
-      else
-        r.parent = -1;
+      else r.parent = -1;
     }
     std::vector<std::uint64_t> masks(n);
     const bool any = free_pair_masks(organs.data(), ids.data(), n, masks.data());

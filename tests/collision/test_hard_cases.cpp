@@ -50,7 +50,8 @@ TEST_CASE("hand-built stands: containment in solids, zero-thickness and zero-len
     req.collide = parse_collide_kinds("all");
     const std::vector<Contact> found = make_cpu_backend()->detect(c.built.stand, req).pairs;
     const auto listed = [&](std::int32_t a, std::int32_t b) {
-      return std::any_of(found.begin(), found.end(), [&](const Contact& k) { return k.organ_a == std::min(a, b) && k.organ_b == std::max(a, b); });
+      return std::any_of(found.begin(), found.end(),
+                         [&](const Contact& k) { return k.organ_a == std::min(a, b) && k.organ_b == std::max(a, b); });
     };
     for (const auto& [a, b] : c.touching) CHECK(listed(a, b));
     for (const auto& [a, b] : c.apart) CHECK_FALSE(listed(a, b));
@@ -70,7 +71,8 @@ TEST_CASE("identical plants on the same spot, and a stand 10^6 m from the origin
   // Every organ that takes part meets its twin.
   std::size_t twins = 0;
   const std::uint32_t n = twin.plants[0].organ_count;
-  for (const Contact& k : c.pairs) twins += k.plant_a == 0 && k.plant_b == 1 && static_cast<std::uint32_t>(k.organ_b) == k.organ_a + n;
+  for (const Contact& k : c.pairs)
+    twins += k.plant_a == 0 && k.plant_b == 1 && static_cast<std::uint32_t>(k.organ_b) == k.organ_a + n;
   std::size_t taking_part = 0;
   const KindMask kinds = default_collide_kinds();
   for (std::uint32_t i = 0; i < n; ++i) taking_part += kinds[static_cast<std::size_t>(twin.organs[i].kind)];

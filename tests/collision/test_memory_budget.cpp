@@ -30,7 +30,9 @@ TEST_CASE("detection refuses plant pairs or contact lists past its memory, with 
   auto cpu = make_cpu_backend();
   DetectRequest req;
   req.memory_limit = static_cast<std::size_t>(27 * kBytesPerPlantPair);
-  CHECK(failure([&] { cpu->detect(s, req); }).starts_with("the plants' bounds meet in more than 27 pairs (plants on or near one spot?)"));
+  CHECK(failure([&] {
+          cpu->detect(s, req);
+        }).starts_with("the plants' bounds meet in more than 27 pairs (plants on or near one spot?)"));
   req.memory_limit = static_cast<std::size_t>(28 * kBytesPerPlantPair);  // the pairs fit, their contacts do not
   CHECK(failure([&] { cpu->detect(s, req); }).starts_with("detection stopped after "));
   req.memory_limit = std::size_t{1} << 30;

@@ -65,7 +65,8 @@ TEST_CASE("CUDA equals CPU with a clearance, on crowded plants, twins and far fr
   same_everywhere(random_stand(21, 8), req, "clearance");
   GrowRequest g;
   g.grammar = source("grammars/tomato.yaml");
-  for (const char* o : {"phyllotaxis=15", "internode_min=0.015", "internode_max=0.02"}) g.load.overrides.push_back(parse_override(o));
+  for (const char* o : {"phyllotaxis=15", "internode_min=0.015", "internode_max=0.02"})
+    g.load.overrides.push_back(parse_override(o));
   g.steps = 14;
   PlantPlacement p;
   p.seed = 3;
@@ -157,9 +158,9 @@ TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
     const auto t3 = std::chrono::steady_clock::now();
     INFO(n << " plants");
     CHECK(a.pairs == b.pairs);
-    MESSAGE(n << " plants: " << b.pairs.size() << " exact contacts; cpu "
-              << std::chrono::duration<double>(t1 - t0).count() << " s, cuda (stand load included) "
-              << std::chrono::duration<double>(t3 - t2).count() << " s on " << gpu->device());
+    MESSAGE(n << " plants: " << b.pairs.size() << " exact contacts; cpu " << std::chrono::duration<double>(t1 - t0).count()
+              << " s, cuda (stand load included) " << std::chrono::duration<double>(t3 - t2).count() << " s on "
+              << gpu->device());
     // A second detection of the resident stand with nothing moved gives the same list.
     CHECK(gpu->redetect(s, req, {}).pairs == b.pairs);
     for (ContactLevel level : {ContactLevel::organ, ContactLevel::leaf, ContactLevel::plant}) {
@@ -177,32 +178,33 @@ TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
 
 TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the CPU") {
   for (bool device_search : {true, false})
-  for (int n : {20, 300}) {
-    const char* way = device_search ? "attempts on the device (the default)" : "the host's search";
-    INFO(way);
-    GrowRequest g;
-    g.grammar = source("grammars/tomato.yaml");
-    g.plants = default_stand_layout(n);
-    for (PlantPlacement& p : g.plants) p.x *= 0.7;  // denser than the default: more to resolve
-    Stand a = grow_stand(g), b = a;
-    auto cpu = make_cpu_backend();
-    auto gpu = cuda::make_cuda_backend();
-    ResolveRequest req;
-    req.bulk_attempts = device_search;
-    const Contacts ca = cpu->detect(a, req.detect), cb = gpu->detect(b, req.detect);
-    REQUIRE(ca.pairs == cb.pairs);
-    const ResolveResult ra = resolve(a, *cpu, req, ca), rb = resolve(b, *gpu, req, cb);
-    INFO(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after);
-    CHECK(ra.contacts_after == rb.contacts_after);
-    CHECK(ra.rounds == rb.rounds);
-    CHECK(ra.organs_moved == rb.organs_moved);
-    CHECK(ra.planning == "host search");
-    CHECK(rb.planning == (device_search ? "device attempts, " + std::to_string(ResolveRequest{}.bulk_lanes) + " lanes" : std::string("host search")));
-    CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
-    // Re-detection after the rounds (refit kept on the device) equals a fresh CPU detection.
-    CHECK(gpu->detect(b, req.detect).pairs == cpu->detect(a, req.detect).pairs);
-    MESSAGE(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after << " contacts in " << ra.rounds << " rounds");
-  }
+    for (int n : {20, 300}) {
+      const char* way = device_search ? "attempts on the device (the default)" : "the host's search";
+      INFO(way);
+      GrowRequest g;
+      g.grammar = source("grammars/tomato.yaml");
+      g.plants = default_stand_layout(n);
+      for (PlantPlacement& p : g.plants) p.x *= 0.7;  // denser than the default: more to resolve
+      Stand a = grow_stand(g), b = a;
+      auto cpu = make_cpu_backend();
+      auto gpu = cuda::make_cuda_backend();
+      ResolveRequest req;
+      req.bulk_attempts = device_search;
+      const Contacts ca = cpu->detect(a, req.detect), cb = gpu->detect(b, req.detect);
+      REQUIRE(ca.pairs == cb.pairs);
+      const ResolveResult ra = resolve(a, *cpu, req, ca), rb = resolve(b, *gpu, req, cb);
+      INFO(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after);
+      CHECK(ra.contacts_after == rb.contacts_after);
+      CHECK(ra.rounds == rb.rounds);
+      CHECK(ra.organs_moved == rb.organs_moved);
+      CHECK(ra.planning == "host search");
+      CHECK(rb.planning == (device_search ? "device attempts, " + std::to_string(ResolveRequest{}.bulk_lanes) + " lanes"
+                                          : std::string("host search")));
+      CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
+      // Re-detection after the rounds (refit kept on the device) equals a fresh CPU detection.
+      CHECK(gpu->detect(b, req.detect).pairs == cpu->detect(a, req.detect).pairs);
+      MESSAGE(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after << " contacts in " << ra.rounds << " rounds");
+    }
 }
 
 TEST_CASE("resolution's attempts on every GPU of the machine: the CPU's turns") {
@@ -219,7 +221,8 @@ TEST_CASE("resolution's attempts on every GPU of the machine: the CPU's turns") 
   req.bulk_attempts = true;
   const ResolveResult ra = resolve(a, *cpu, req, cpu->detect(a, req.detect));
   const std::size_t devices = cuda::query_devices().devices.size();
-  if (devices < 2) MESSAGE("one GPU: the lanes' threads and the backend share device 0 (the case of a second GPU is not exercised)");
+  if (devices < 2)
+    MESSAGE("one GPU: the lanes' threads and the backend share device 0 (the case of a second GPU is not exercised)");
   for (std::size_t d = 0; d < devices; ++d) {
     INFO("device " << d);
     Stand b = grown;
@@ -244,11 +247,11 @@ TEST_CASE("resolution's attempts on the device: the host search's turns at the o
     bool crowded;
     std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts;
   };
-  for (const Case& k : {Case{"organ level", ContactLevel::organ, 0, 1e-4, false}, Case{"clearances", ContactLevel::exact, 0.001f, 0.002, false},
-                        Case{"crowded", ContactLevel::exact, 0, 1e-4, true},
-                        Case{"one lane", ContactLevel::exact, 0, 1e-4, false, 1},
-                        Case{"batches of 40 contacts, 3 lanes at once", ContactLevel::exact, 0, 1e-4, false, 3, 40},
-                        Case{"crowded, batches of 25, 8 lanes", ContactLevel::exact, 0, 1e-4, true, 8, 25}}) {
+  for (const Case& k :
+       {Case{"organ level", ContactLevel::organ, 0, 1e-4, false}, Case{"clearances", ContactLevel::exact, 0.001f, 0.002, false},
+        Case{"crowded", ContactLevel::exact, 0, 1e-4, true}, Case{"one lane", ContactLevel::exact, 0, 1e-4, false, 1},
+        Case{"batches of 40 contacts, 3 lanes at once", ContactLevel::exact, 0, 1e-4, false, 3, 40},
+        Case{"crowded, batches of 25, 8 lanes", ContactLevel::exact, 0, 1e-4, true, 8, 25}}) {
     GrowRequest g;
     g.grammar = source("grammars/tomato.yaml");
     g.plants = default_stand_layout(k.crowded ? 12 : 40);
@@ -274,7 +277,8 @@ TEST_CASE("resolution's attempts on the device: the host search's turns at the o
     CHECK(ra.organs_moved == rb.organs_moved);
     CHECK(ra.mean_turn_deg == rb.mean_turn_deg);
     CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
-    MESSAGE(std::string(k.name) << ": " << ra.contacts_before << " -> " << ra.contacts_after << " contacts, " << ra.organs_moved << " turned");
+    MESSAGE(std::string(k.name) << ": " << ra.contacts_before << " -> " << ra.contacts_after << " contacts, " << ra.organs_moved
+                                << " turned");
   }
 }
 

@@ -24,7 +24,8 @@ TEST_CASE("region: own and halo plants merged equal one growth of all of them") 
   all.grammar = grammar();
   all.steps = 12;
   std::mt19937_64 g(5);
-  for (int i = 0; i < 9; ++i) all.plants.push_back({0.3 * i, 0, 37.0 * i, g() % 100, {}, i % 3 == 0 ? std::optional<int>(9) : std::nullopt});
+  for (int i = 0; i < 9; ++i)
+    all.plants.push_back({0.3 * i, 0, 37.0 * i, g() % 100, {}, i % 3 == 0 ? std::optional<int>(9) : std::nullopt});
   const Stand whole = grow_stand(all);
   for (std::uint64_t split : {0b000000000ull, 0b101010101ull, 0b111100000ull, 0b000011111ull, 0b010011010ull}) {
     GrowRequest own = all, halo = all;

@@ -83,7 +83,8 @@ TEST_CASE("tiles: more tiles than plants leaves empty tiles with empty regions")
 }
 
 TEST_CASE("tiles: plants on one coordinate at a border go to different tiles by id") {
-  const std::vector<PlantPlacement> plants{{0, 0, 0, 1, {}, {}}, {1, 0, 0, 2, {}, {}}, {1, 0.2, 0, 3, {}, {}}, {2, 0, 0, 4, {}, {}}};
+  const std::vector<PlantPlacement> plants{
+      {0, 0, 0, 1, {}, {}}, {1, 0, 0, 2, {}, {}}, {1, 0.2, 0, 3, {}, {}}, {2, 0, 0, 4, {}, {}}};
   const Tiling t = make_tiling(plants, 2);
   CHECK(t.owner == std::vector<int>{0, 0, 1, 1});
   CHECK(t.hi[0] == t.lo[1]);

@@ -60,14 +60,16 @@ bool consistent(const canopy::Stand& s) {
       if (id >= n) return false;
       const canopy::OrganRecord& r = s.organs[id];
       if (r.plant != static_cast<std::int32_t>(p)) return false;
-      if (r.parent != -1 && (r.parent < static_cast<std::int32_t>(pr.first_organ) || r.parent >= static_cast<std::int32_t>(id))) return false;
+      if (r.parent != -1 && (r.parent < static_cast<std::int32_t>(pr.first_organ) || r.parent >= static_cast<std::int32_t>(id)))
+        return false;
       if (r.leaf != -1 && (r.leaf < static_cast<std::int32_t>(pr.first_leaf) ||
                            r.leaf >= static_cast<std::int32_t>(pr.first_leaf + pr.leaf_count)))
         return false;
       const float* t = &s.transforms[id].c0.x;
       for (int k = 0; k < 12; ++k)
         if (!std::isfinite(t[k])) return false;
-      if (!std::isfinite(s.params[id][0]) || !std::isfinite(s.params[id][1]) || !std::isfinite(s.joint_limit_deg[id])) return false;
+      if (!std::isfinite(s.params[id][0]) || !std::isfinite(s.params[id][1]) || !std::isfinite(s.joint_limit_deg[id]))
+        return false;
     }
   }
   return organs == n;
@@ -98,7 +100,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const std::invalid_argument&) {
     return 0;
   }
-  if (!consistent(s)) std::abort();           // a stand detection would index out of bounds
+  if (!consistent(s)) std::abort();          // a stand detection would index out of bounds
   if (!same(s, read_back(s))) std::abort();  // what it accepted, written and read again, differs
   return 0;
 }

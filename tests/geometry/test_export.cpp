@@ -118,7 +118,8 @@ TEST_CASE("glb reads back: nodes per plant, organ ids, counts, Y-up positions") 
   const float* v = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + acc.byteOffset);
   const auto& ids = model.accessors[static_cast<std::size_t>(prim.attributes.at("_ORGAN"))];
   const auto& iview = model.bufferViews[static_cast<std::size_t>(ids.bufferView)];
-  const std::size_t organ = static_cast<std::size_t>(*reinterpret_cast<const float*>(model.buffers[0].data.data() + iview.byteOffset + ids.byteOffset));
+  const std::size_t organ =
+      static_cast<std::size_t>(*reinterpret_cast<const float*>(model.buffers[0].data.data() + iview.byteOffset + ids.byteOffset));
   const Vec3f local = apply(s.transforms[organ], lib.get(s.organs[organ]).positions[0]);
   CHECK(v[0] == doctest::Approx(local.x).epsilon(1e-6));
   CHECK(v[1] == doctest::Approx(local.z).epsilon(1e-6));

@@ -52,13 +52,29 @@ double component(const tinygltf::Model& m, int accessor, std::size_t i, int k) {
   const auto& a = m.accessors[static_cast<std::size_t>(accessor)];
   const auto& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
-  const unsigned char* p = m.buffers[0].data.data() + v.byteOffset + a.byteOffset + i * static_cast<std::size_t>(a.ByteStride(v)) +
-                           static_cast<std::size_t>(k * size);
+  const unsigned char* p = m.buffers[0].data.data() + v.byteOffset + a.byteOffset +
+                           i * static_cast<std::size_t>(a.ByteStride(v)) + static_cast<std::size_t>(k * size);
   switch (a.componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: { std::int8_t x; std::memcpy(&x, p, 1); return a.normalized ? std::max(x / 127.0, -1.0) : x; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t x; std::memcpy(&x, p, 2); return a.normalized ? x / 65535.0 : x; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t x; std::memcpy(&x, p, 4); return x; }
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: { float x; std::memcpy(&x, p, 4); return x; }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      std::int8_t x;
+      std::memcpy(&x, p, 1);
+      return a.normalized ? std::max(x / 127.0, -1.0) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      std::uint16_t x;
+      std::memcpy(&x, p, 2);
+      return a.normalized ? x / 65535.0 : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      std::uint32_t x;
+      std::memcpy(&x, p, 4);
+      return x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float x;
+      std::memcpy(&x, p, 4);
+      return x;
+    }
     default: FAIL("unexpected component type ", a.componentType); return 0;
   }
 }
@@ -123,8 +139,8 @@ ReadBack check_compact(const Stand& s, const GlbCompactConfig& config) {
           for (int c = 0; c < 3; ++c) CHECK(std::fabs(component(m, nrm, i, c) - nw[c]) <= 0.5 / 127 + 1e-6);
           if (uv)
             for (int c = 0; c < 2; ++c)
-              CHECK(std::fabs(component(m, prim.attributes.at("TEXCOORD_0"), i, c) - mesh.prototype->uvs[k][static_cast<std::size_t>(c)]) <=
-                    0.5 / 65535 + 1e-7);
+              CHECK(std::fabs(component(m, prim.attributes.at("TEXCOORD_0"), i, c) -
+                              mesh.prototype->uvs[k][static_cast<std::size_t>(c)]) <= 0.5 / 65535 + 1e-7);
         }
         for (std::uint32_t k : mesh.prototype->indices) CHECK(component(m, idx, t++, 0) == static_cast<double>(base + k));
         ++organs_seen;
@@ -176,7 +192,8 @@ TEST_CASE("compact glb: 32-bit indices past 65,535 vertices a primitive; more or
   CHECK(r.wide_indices == 1);
   req.steps = 17;  // 131,072 organs in one plant
   const Stand many = grow_stand(req);
-  CHECK_THROWS_WITH_AS(check_glb_compact(ExportScope::whole(many)), doctest::Contains("plant 0 has 131072 organs"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(check_glb_compact(ExportScope::whole(many)), doctest::Contains("plant 0 has 131072 organs"),
+                       std::invalid_argument);
   PrototypeLibrary lib;
   fs::create_directories(dir + "/out");
   {

@@ -52,25 +52,26 @@ TEST_CASE("a long line across many reads, and one longer than the bound") {
   InputFile in(f, "test file", 1 << 20);
   std::string line;
   REQUIRE(in.next_line(line));
-  CHECK_THROWS_WITH_AS(in.next_line(line), (f + ":2: a line of the test file is longer than the 64 KiB canopy reads").c_str(), InputRefused);
+  CHECK_THROWS_WITH_AS(in.next_line(line), (f + ":2: a line of the test file is longer than the 64 KiB canopy reads").c_str(),
+                       InputRefused);
   std::remove(f.c_str());
 }
 
 TEST_CASE("files larger than the limit, by their size or by what is read") {
   const std::string f = write_temp(std::string(2000, 'y'));
-  CHECK_THROWS_WITH_AS(InputFile(f, "test file", 1024), (f + ": the test file is larger than the 1 KiB canopy reads (2000 bytes)").c_str(),
-                       InputRefused);
+  CHECK_THROWS_WITH_AS(InputFile(f, "test file", 1024),
+                       (f + ": the test file is larger than the 1 KiB canopy reads (2000 bytes)").c_str(), InputRefused);
   CHECK(read_input_file(f, "test file", 2000).size() == 2000);
   std::remove(f.c_str());
   // A file under /proc says its size is 0; what is read counts.
-  CHECK_THROWS_WITH_AS(read_input_file("/proc/self/maps", "test file", 16), "/proc/self/maps: the test file is larger than the 16 bytes canopy reads",
-                       InputRefused);
+  CHECK_THROWS_WITH_AS(read_input_file("/proc/self/maps", "test file", 16),
+                       "/proc/self/maps: the test file is larger than the 16 bytes canopy reads", InputRefused);
 }
 
 TEST_CASE("folders, devices and pipes are refused without waiting or reading") {
   CHECK_THROWS_WITH_AS(InputFile("/tmp", "test file", 1024), "/tmp: the test file is a folder, not a file", InputRefused);
-  CHECK_THROWS_WITH_AS(InputFile("/dev/zero", "test file", 1024), "/dev/zero: the test file is not a regular file (a device, pipe or socket)",
-                       InputRefused);
+  CHECK_THROWS_WITH_AS(InputFile("/dev/zero", "test file", 1024),
+                       "/dev/zero: the test file is not a regular file (a device, pipe or socket)", InputRefused);
   char fifo[] = "/tmp/canopy-fifo-XXXXXX";
   REQUIRE(mkdtemp(fifo));
   const std::string path = std::string(fifo) + "/pipe";
@@ -79,6 +80,6 @@ TEST_CASE("folders, devices and pipes are refused without waiting or reading") {
   CHECK_THROWS_AS(InputFile(path, "test file", 1024), InputRefused);
   std::remove(path.c_str());
   rmdir(fifo);
-  CHECK_THROWS_WITH_AS(InputFile("/tmp/canopy-no-such-input", "test file", 1024), "/tmp/canopy-no-such-input: cannot open the test file",
-                       FileNotFound);
+  CHECK_THROWS_WITH_AS(InputFile("/tmp/canopy-no-such-input", "test file", 1024),
+                       "/tmp/canopy-no-such-input: cannot open the test file", FileNotFound);
 }

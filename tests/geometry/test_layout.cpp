@@ -102,7 +102,8 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   l.double_rows = 7e7;  // rows at 0, 7e7, 2e7, 9e7: within
   CHECK(message(l).empty());
   l.double_rows = 9e7;  // the second row of the second pair at 1.1e8
-  CHECK(message(l).starts_with("--rows 4 x --row-spacing 2e+07 m with --double-rows 9e+07 m (+ --jitter 0 m) reaches y = 1.1e+08 m"));
+  CHECK(message(l).starts_with(
+      "--rows 4 x --row-spacing 2e+07 m with --double-rows 9e+07 m (+ --jitter 0 m) reaches y = 1.1e+08 m"));
   // At the bound itself: accepted.
   RowLayout edge;
   edge.per_row = 2;
@@ -158,22 +159,29 @@ TEST_CASE("positions files from a spreadsheet: a byte-order mark and CRLF line e
   CHECK(p[0].rotation_deg == 30);
   CHECK(p[0].seed == 7);
   // The mark is skipped at the start of the file only: elsewhere it is a cell's text.
-  CHECK(error_of("x,y,rotation,seed\n\xEF\xBB\xBF" "1,2,0,4\n") == ":2:1: column 'x' needs a finite number, got '\xEF\xBB\xBF" "1'");
+  CHECK(error_of("x,y,rotation,seed\n\xEF\xBB\xBF"
+                 "1,2,0,4\n") ==
+        ":2:1: column 'x' needs a finite number, got '\xEF\xBB\xBF"
+        "1'");
 }
 
 TEST_CASE("positions files: missing columns and bad cells name the place") {
-  CHECK(error_of("x,y,seed\n1,2,3\n") == ":1: missing column 'rotation' (the header needs x,y,rotation,seed and may add grammar,steps)");
+  CHECK(error_of("x,y,seed\n1,2,3\n") ==
+        ":1: missing column 'rotation' (the header needs x,y,rotation,seed and may add grammar,steps)");
   CHECK(error_of("x,y,rotation,seed\n1,abc,0,1\n") == ":2:3: column 'y' needs a finite number, got 'abc'");
   CHECK(error_of("x,y,rotation,seed\n1,2,0\n") == ":2: expected 4 cells as in the header, got 3");
   CHECK(error_of("x,y,rotation,seed\n1,2,0,-4\n") == ":2:7: column 'seed' needs a whole number, got '-4'");
-  CHECK(error_of("x,y,rotation,seed,steps\n1,2,0,4,2.5\n") == ":2:9: column 'steps' needs a whole number from 0 to 100000, got '2.5'");
+  CHECK(error_of("x,y,rotation,seed,steps\n1,2,0,4,2.5\n") ==
+        ":2:9: column 'steps' needs a whole number from 0 to 100000, got '2.5'");
   CHECK(error_of("x;y;rotation;seed\n0,5;1;0;4\n") ==
-        ":1: missing column 'x' (the header needs x,y,rotation,seed and may add grammar,steps); the cells are separated by ';' or tabs, and positions files use commas");
+        ":1: missing column 'x' (the header needs x,y,rotation,seed and may add grammar,steps); the cells are separated by ';' "
+        "or tabs, and positions files use commas");
   CHECK(error_of("") == ": empty positions file (expected a header x,y,rotation,seed)");
 }
 
 TEST_CASE("positions past the bound on plant positions name file, line and column") {
-  CHECK(error_of("x,y,rotation,seed\n1e57,0,0,1\n") == ":2:1: column 'x' is 1e57 m: plants may stand at most 1e+08 m from the origin");
+  CHECK(error_of("x,y,rotation,seed\n1e57,0,0,1\n") ==
+        ":2:1: column 'x' is 1e57 m: plants may stand at most 1e+08 m from the origin");
   CHECK(error_of("x,y,rotation,seed\n0,0,0,1\n3,-1.5e8,0,2\n") ==
         ":3:3: column 'y' is -1.5e8 m: plants may stand at most 1e+08 m from the origin");
   CHECK(positions_of("x,y,rotation,seed\n-1e8,1e8,0,1\n").size() == 1);
@@ -196,13 +204,16 @@ TEST_CASE("positions files: unknown and duplicate columns are refused by name") 
   CHECK(error_of("x,y,rotation,seed,Steps\n0,0,0,1,3\n") ==
         ":1:19: unknown column 'Steps' (the header has x,y,rotation,seed and may add grammar,steps)");
   CHECK(error_of("x,y,rotation,seed,x\n0,0,0,1,3\n") == ":1:19: column 'x' appears twice in the header (cells 1 and 5)");
-  CHECK(error_of("x,y,rotation,seed,\n0,0,0,1,\n") == ":1:19: unknown column '' (the header has x,y,rotation,seed and may add grammar,steps)");
+  CHECK(error_of("x,y,rotation,seed,\n0,0,0,1,\n") ==
+        ":1:19: unknown column '' (the header has x,y,rotation,seed and may add grammar,steps)");
 }
 
 TEST_CASE("positions files: steps up to 100000, numbers out of range said so") {
   CHECK(positions_of("x,y,rotation,seed,steps\n0,0,0,1,100000\n")[0].steps == 100000);
-  CHECK(error_of("x,y,rotation,seed,steps\n0,0,0,1,1e9\n") == ":2:9: column 'steps' needs a whole number from 0 to 100000, got '1e9'");
-  CHECK(error_of("x,y,rotation,seed\n1e400,0,0,1\n") == ":2:1: column 'x' needs a finite number, got '1e400', which is out of range");
+  CHECK(error_of("x,y,rotation,seed,steps\n0,0,0,1,1e9\n") ==
+        ":2:9: column 'steps' needs a whole number from 0 to 100000, got '1e9'");
+  CHECK(error_of("x,y,rotation,seed\n1e400,0,0,1\n") ==
+        ":2:1: column 'x' needs a finite number, got '1e400', which is out of range");
 }
 
 TEST_CASE("positions files: a grammar cell names a file in the positions file's folder or below it") {
@@ -211,8 +222,10 @@ TEST_CASE("positions files: a grammar cell names a file in the positions file's 
   CHECK(error_of("x,y,rotation,seed,grammar\n0,0,0,1,../../../../etc/shadow\n") ==
         ":2:9: column 'grammar': '../../../../etc/shadow' leaves the positions file's folder; a grammar cell names a file in the "
         "positions file's folder or below it (--any-grammar-path allows others)");
-  CHECK(error_of("x,y,rotation,seed,grammar\n0,0,0,1,a/../../b.yaml\n").starts_with(":2:9: column 'grammar': 'a/../../b.yaml' leaves"));
-  CHECK(error_of("x,y,rotation,seed,grammar\n0,0,0,1,/etc/passwd\n").starts_with(":2:9: column 'grammar': '/etc/passwd' is an absolute path"));
+  CHECK(error_of("x,y,rotation,seed,grammar\n0,0,0,1,a/../../b.yaml\n")
+            .starts_with(":2:9: column 'grammar': 'a/../../b.yaml' leaves"));
+  CHECK(error_of("x,y,rotation,seed,grammar\n0,0,0,1,/etc/passwd\n")
+            .starts_with(":2:9: column 'grammar': '/etc/passwd' is an absolute path"));
   // Allowed when asked for.
   const std::string f = write_temp("x,y,rotation,seed,grammar\n0,0,0,1,/etc/passwd\n1,0,0,2,../g.yaml\n");
   const auto p = read_positions(f, true);
@@ -223,8 +236,8 @@ TEST_CASE("positions files: a grammar cell names a file in the positions file's 
 }
 
 TEST_CASE("positions files that are not regular files are refused before reading") {
-  CHECK_THROWS_WITH_AS(read_positions("/dev/zero"), "/dev/zero: the positions file is not a regular file (a device, pipe or socket)",
-                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(read_positions("/dev/zero"),
+                       "/dev/zero: the positions file is not a regular file (a device, pipe or socket)", std::invalid_argument);
   CHECK_THROWS_WITH_AS(read_positions("/tmp"), "/tmp: the positions file is a folder, not a file", std::invalid_argument);
   CHECK_THROWS_AS(read_positions("/tmp/canopy-no-such-positions.csv"), FileNotFound);
 }
@@ -233,11 +246,14 @@ TEST_CASE("row layouts name the length that is not finite") {
   RowLayout l;
   l.per_row = 2;
   l.jitter = INFINITY;  // was reported as plant 0's position
-  CHECK_THROWS_WITH_AS(row_layout(l), "the jitter must be a finite number of metres, not negative (got inf)", std::invalid_argument);
+  CHECK_THROWS_WITH_AS(row_layout(l), "the jitter must be a finite number of metres, not negative (got inf)",
+                       std::invalid_argument);
   l.jitter = 0;
   l.plant_spacing = -1;
-  CHECK_THROWS_WITH_AS(row_layout(l), "the plant spacing must be a finite number of metres, not negative (got -1)", std::invalid_argument);
+  CHECK_THROWS_WITH_AS(row_layout(l), "the plant spacing must be a finite number of metres, not negative (got -1)",
+                       std::invalid_argument);
   l.plant_spacing = 0.4;
   l.double_rows = NAN;
-  CHECK_THROWS_WITH_AS(row_layout(l), "the double-row gap must be a finite number of metres, not negative (got nan)", std::invalid_argument);
+  CHECK_THROWS_WITH_AS(row_layout(l), "the double-row gap must be a finite number of metres, not negative (got nan)",
+                       std::invalid_argument);
 }

@@ -24,8 +24,7 @@ bool same_mesh(const PrototypeMesh& a, const PrototypeMesh& b) {
   const auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return a.positions.size() == b.positions.size() && a.indices == b.indices && a.uvs == b.uvs &&
          std::memcmp(a.positions.data(), b.positions.data(), bytes(a.positions)) == 0 &&
-         std::memcmp(a.normals.data(), b.normals.data(), bytes(a.normals)) == 0 &&
-         std::memcmp(&a.box, &b.box, sizeof a.box) == 0;
+         std::memcmp(a.normals.data(), b.normals.data(), bytes(a.normals)) == 0 && std::memcmp(&a.box, &b.box, sizeof a.box) == 0;
 }
 
 /// The curved blade's area at the nominal aspect, by quadrature: lengths across are kept, lengths
@@ -71,7 +70,8 @@ TEST_CASE("shape codes round-trip, round to their steps and refuse angles out of
 }
 
 TEST_CASE("shape 0 is the flat blade, byte for byte, and only leaflets take a shape") {
-  for (int lod = 1; lod <= kMaxLod; ++lod) CHECK(same_mesh(make_prototype(PrototypeKind::leaflet, lod, 0), make_prototype(PrototypeKind::leaflet, lod)));
+  for (int lod = 1; lod <= kMaxLod; ++lod)
+    CHECK(same_mesh(make_prototype(PrototypeKind::leaflet, lod, 0), make_prototype(PrototypeKind::leaflet, lod)));
   CHECK_THROWS(make_prototype(PrototypeKind::cylinder, 2, 5));
   PrototypeLibrary lib;
   CHECK_THROWS(lib.get(PrototypeKind::sphere, 2, 9));

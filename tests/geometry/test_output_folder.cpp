@@ -106,7 +106,8 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   CHECK(inode(dir / "notes.txt") == notes);  // the same file, never copied
   CHECK(fs::status(dir).permissions() == (fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec));
   CHECK(slurp(dir / "renders" / "deep" / "a.png") == "picture");
-  CHECK(std::set<std::string>(c.dropped.begin(), c.dropped.end()) == std::set<std::string>{"light.csv", "report.json", "stand.ply"});
+  CHECK(std::set<std::string>(c.dropped.begin(), c.dropped.end()) ==
+        std::set<std::string>{"light.csv", "report.json", "stand.ply"});
   CHECK(c.notes.empty());
   CHECK(names(root) == std::set<std::string>{"out"});
   fs::remove_all(root);
@@ -265,8 +266,8 @@ TEST_CASE("number formatting checks every conversion") {
   CHECK(out == "123.250");
   // A number past the field's 64 characters was appended from a buffer never written (1e57 in
   // stand.obj: 860 bytes of stack memory); it is an error now.
-  CHECK_THROWS_WITH_AS(append_fixed(out, 1e57, 7), doctest::Contains("cannot write the number 1.000000e+57 with 7 fixed decimals"),
-                       std::range_error);
+  CHECK_THROWS_WITH_AS(append_fixed(out, 1e57, 7),
+                       doctest::Contains("cannot write the number 1.000000e+57 with 7 fixed decimals"), std::range_error);
   CHECK(out == "123.250");
   append_number(out, 1e300);
   CHECK(out == "123.2501e+300");

@@ -22,7 +22,9 @@ bool closed(const PrototypeMesh& m) {
   std::map<std::tuple<float, float, float>, std::uint32_t> weld;
   std::vector<std::uint32_t> id(m.positions.size());
   for (std::size_t i = 0; i < m.positions.size(); ++i)
-    id[i] = weld.emplace(std::make_tuple(m.positions[i].x, m.positions[i].y, m.positions[i].z), static_cast<std::uint32_t>(weld.size())).first->second;
+    id[i] = weld.emplace(std::make_tuple(m.positions[i].x, m.positions[i].y, m.positions[i].z),
+                         static_cast<std::uint32_t>(weld.size()))
+                .first->second;
   for (std::size_t i = 0; i < m.indices.size(); i += 3)
     for (int k = 0; k < 3; ++k) ++edges[{id[m.indices[i + k]], id[m.indices[i + (k + 1) % 3]]}];
   for (const auto& [e, n] : edges)

@@ -87,9 +87,11 @@ TEST_CASE("the segment distance bound never exceeds the least distance, and stay
     double allowance = sin < 1e-5 ? 2 * (len_u + len_v) * sin : 0;
     if (sin >= 1e-5) {
       const double rn = std::sqrt(dot(r, r));
-      allowance = (1e-12 + 1e-14 * (1 + rn / len_u) / (sin * sin)) * len_u + (1e-12 + 1e-14 * (1 + rn / len_v) / (sin * sin)) * len_v;
+      allowance =
+          (1e-12 + 1e-14 * (1 + rn / len_u) / (sin * sin)) * len_u + (1e-12 + 1e-14 * (1 + rn / len_v) / (sin * sin)) * len_v;
     }
-    CHECK_MESSAGE(static_cast<LD>(bound) >= ref - allowance - 1e-9L, "trial ", trial, " bound ", bound, " least ", static_cast<double>(ref));
+    CHECK_MESSAGE(static_cast<LD>(bound) >= ref - allowance - 1e-9L, "trial ", trial, " bound ", bound, " least ",
+                  static_cast<double>(ref));
   }
   CHECK(parallel > 500);
   CHECK(crossing > 500);
@@ -139,7 +141,7 @@ TEST_CASE("only two solids are ever rejected, and never on non-finite transforms
   const Affine3f far{{0.1f, 0, 0}, {0, 0.01f, 0}, {0, 0, 0.01f}, {0, 0, 1}};
   CHECK(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, 0}, 0));
   CHECK(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::sphere, far, {0, 0, 0}, 0));
-  CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, 0}, 2.0f));  // within the clearance
+  CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, 0}, 2.0f));    // within the clearance
   CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, -0.99f}, 0));  // moved onto it
   CHECK_FALSE(solids_apart(PrototypeKind::leaflet, a, PrototypeKind::cylinder, far, {0, 0, 0}, 0));
   CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::disk, far, {0, 0, 0}, 0));

@@ -87,7 +87,8 @@ TEST_CASE("a stand folder as canopy writes it reads back") {
 }
 
 TEST_CASE("an empty organs.csv or plants.csv is not a stand of plants without organs") {
-  CHECK(Folder(kPlants, "").error() == "DIR/organs.csv:1: expected the header " + kOrgansHeader.substr(0, kOrgansHeader.size() - 1));
+  CHECK(Folder(kPlants, "").error() ==
+        "DIR/organs.csv:1: expected the header " + kOrgansHeader.substr(0, kOrgansHeader.size() - 1));
   CHECK(Folder("", organs_with(99, 0, "")).error() == "DIR/plants.csv:1: expected the header id,x,y,rotation,seed,grammar,steps");
 }
 
@@ -95,13 +96,16 @@ TEST_CASE("numbers that are not finite, or do not fit, are refused with their pl
   CHECK(Folder(kPlants, organs_with(1, 12, "nan")).error() == "DIR/organs.csv:3: column 13 'nan' is not a finite number");
   CHECK(Folder(kPlants, organs_with(1, 23, "-inf")).error() == "DIR/organs.csv:3: column 24 '-inf' is not a finite number");
   CHECK(Folder(kPlants, organs_with(0, 14, "1e300")).error() == "DIR/organs.csv:2: column 15 '1e300' is out of range");
-  CHECK(Folder(kPlants, organs_with(0, 14, "2e6")).error() == "DIR/organs.csv:2: column 15 '2e6' is out of range (at most 1000000 m)");
+  CHECK(Folder(kPlants, organs_with(0, 14, "2e6")).error() ==
+        "DIR/organs.csv:2: column 15 '2e6' is out of range (at most 1000000 m)");
   CHECK(Folder(kPlants, organs_with(2, 8, "-0.5")).error() ==
         "DIR/organs.csv:4: column 9 '-0.5' is out of range (a size from 0 to 1000000 m)");
-  CHECK(Folder(kPlants, organs_with(2, 11, "200")).error() == "DIR/organs.csv:4: column 12 (joint_limit) must lie in [0, 180], got 200");
+  CHECK(Folder(kPlants, organs_with(2, 11, "200")).error() ==
+        "DIR/organs.csv:4: column 12 (joint_limit) must lie in [0, 180], got 200");
   CHECK(Folder(kPlants, organs_with(2, 1, "abc")).error() == "DIR/organs.csv:4: column 2 'abc' is not a valid number");
-  CHECK(Folder("id,x,y,rotation,seed,grammar,steps\n0,nan,0,0,7,t.yaml,6\n1,0,0,0,8,t.yaml,6\n", organs_with(99, 0, "")).error() ==
-        "DIR/plants.csv:2: column 2 'nan' is not a finite number");
+  CHECK(
+      Folder("id,x,y,rotation,seed,grammar,steps\n0,nan,0,0,7,t.yaml,6\n1,0,0,0,8,t.yaml,6\n", organs_with(99, 0, "")).error() ==
+      "DIR/plants.csv:2: column 2 'nan' is not a finite number");
 }
 
 TEST_CASE("structure that detection would index out of bounds is refused") {
@@ -110,7 +114,8 @@ TEST_CASE("structure that detection would index out of bounds is refused") {
   CHECK(Folder(kPlants, organs_with(4, 2, "0")).error() == "DIR/organs.csv:6: parent 0 is not an earlier organ of plant 1");
   CHECK(Folder(kPlants, organs_with(1, 2, "1")).error() == "DIR/organs.csv:3: parent 1 is not an earlier organ of plant 0");
   // Compound-leaf ids that skip, go below the plant's first, or are negative.
-  CHECK(Folder(kPlants, organs_with(4, 4, "2147483647")).error().starts_with("DIR/organs.csv:6: leaf 2147483647 is out of order"));
+  CHECK(
+      Folder(kPlants, organs_with(4, 4, "2147483647")).error().starts_with("DIR/organs.csv:6: leaf 2147483647 is out of order"));
   CHECK(Folder(kPlants, organs_with(4, 4, "0")).error().starts_with("DIR/organs.csv:6: leaf 0 is out of order"));
   CHECK(Folder(kPlants, organs_with(1, 4, "-2")).error().starts_with("DIR/organs.csv:3: leaf -2 is out of order"));
   CHECK(Folder(kPlants, organs_with(3, 1, "5")).error() == "DIR/organs.csv:5: plant 5 is not in DIR/plants.csv");

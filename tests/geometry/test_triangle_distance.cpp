@@ -52,8 +52,8 @@ TEST_CASE("edge over edge: the gap shows on the cross-product axis only") {
   // neither triangle's plane separates them by h (each plane holds the other's edge direction
   // at a tilt), the edge axis does.
   const float h = 0.002f;
-  const Vec3f p[3] = {{-1, 0, 0}, {1, 0, 0}, {0, 0, -1}};        // edge along x at z = 0, hanging down
-  const Vec3f q[3] = {{0, -1, h}, {0, 1, h}, {0, 0, 1 + h}};     // edge along y at z = h, standing up
+  const Vec3f p[3] = {{-1, 0, 0}, {1, 0, 0}, {0, 0, -1}};     // edge along x at z = 0, hanging down
+  const Vec3f q[3] = {{0, -1, h}, {0, 1, h}, {0, 0, 1 + h}};  // edge along y at z = h, standing up
   const double d = reference_distance(p, q);
   CHECK(d == doctest::Approx(h).epsilon(1e-6));
   CHECK(triangles_within(p, q, h * 1.001));

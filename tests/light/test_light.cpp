@@ -48,7 +48,8 @@ const std::vector<light::Beam> kSuns{{90, 0}, {60, 30}, {35, 250}, {15, 120}};
 TEST_CASE("a disk intercepts its area times the cosine of its normal to the sun, over the sun's cosine") {
   const double r = 0.1;
   for (double tilt : {0.0, 40 * kDeg, 90 * kDeg}) {
-    const Stand s = one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at({0.2f, -0.1f, 0.5f}, static_cast<float>(r), tilt));
+    const Stand s =
+        one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at({0.2f, -0.1f, 0.5f}, static_cast<float>(r), tilt));
     const light::Box2d tile{-0.25, -0.25, 0.25, 0.25};
     PrototypeLibrary lib;
     const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, false, 0.0005));
@@ -179,7 +180,7 @@ TEST_CASE("the same fractions on any thread count") {
   layout.rows = 2, layout.per_row = 3, layout.random_rotation = true, layout.jitter = 0.02;
   req.plants = row_layout(layout);
   const Stand s = grow_stand(req);
-  light::LightConfig c = beams({{40, 70}}, {-0.2 , -0.5, 1.0, 1.5}, true, 0.004);
+  light::LightConfig c = beams({{40, 70}}, {-0.2, -0.5, 1.0, 1.5}, true, 0.004);
   c.sky_directions = 12;
   c.plant_error = 0.004;
   light::LightResult one, two;

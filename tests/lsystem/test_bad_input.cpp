@@ -63,13 +63,11 @@ TEST_CASE("unbalanced brackets") {
 }
 
 TEST_CASE("division by zero, NaN and infinity") {
-  CHECK(error_of("steps: 1\naxiom: A(0)\nproductions:\n  - A(x) -> A(1/x)\n") ==
-        "test.yaml:4:16: division by zero in '1/x'");
+  CHECK(error_of("steps: 1\naxiom: A(0)\nproductions:\n  - A(x) -> A(1/x)\n") == "test.yaml:4:16: division by zero in '1/x'");
   CHECK(error_of("axiom: A(1/0)\n") == "test.yaml:1:11: division by zero in '1/0'");
   CHECK(error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - A(x) -> A(sqrt(x))\n") ==
         "test.yaml:4:15: 'sqrt(x)' is not a number (NaN)");
-  CHECK(error_of("steps: 3\naxiom: A(10)\nproductions:\n  - A(x) -> A(x^x)\n") ==
-        "test.yaml:4:15: 'x^x' is infinite");
+  CHECK(error_of("steps: 3\naxiom: A(10)\nproductions:\n  - A(x) -> A(x^x)\n") == "test.yaml:4:15: 'x^x' is infinite");
   CHECK(error_of("angle: .nan\naxiom: F\n") == "test.yaml:1:8: angle must be a finite number, got '.nan'");
 }
 
@@ -78,7 +76,8 @@ TEST_CASE("stochastic groups must sum to 1") {
         "test.yaml:3:15: the probabilities of the group '<A>:' sum to 0.9, not 1");
   CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 0.5\"\n  - A -> C\n").find("each needs a probability") !=
         std::string::npos);
-  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 1.5\"\n") == "test.yaml:3:15: a probability must lie in [0, 1], got 1.5");
+  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 1.5\"\n") ==
+        "test.yaml:3:15: a probability must lie in [0, 1], got 1.5");
 }
 
 TEST_CASE("invalid UTF-8 in module names (found by the fuzzer)") {
@@ -91,7 +90,8 @@ TEST_CASE("production syntax") {
         "test.yaml:3:5: this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");
   CHECK(error_of("axiom: A\nproductions:\n  - A B\n") == "test.yaml:3:5: expected '->' in production 'A B'");
   CHECK(error_of("axiom: A\nproductions:\n  - \" -> B\"\n") == "test.yaml:3:6: missing predecessor before '->'");
-  CHECK(error_of("axiom: A(1)\nproductions:\n  - \"A(1) -> B\"\n") == "test.yaml:3:8: a formal parameter must be a name, got '1'");
+  CHECK(error_of("axiom: A(1)\nproductions:\n  - \"A(1) -> B\"\n") ==
+        "test.yaml:3:8: a formal parameter must be a name, got '1'");
   CHECK(error_of("axiom: A(1, 2)\nproductions:\n  - \"A(x, x) -> B\"\n") ==
         "test.yaml:3:11: formal parameter 'x' appears twice in this production");
   CHECK(error_of("axiom: A\nproductions:\n  - \"[ < A -> B\"\n").find("brackets are not allowed") != std::string::npos);
@@ -112,14 +112,16 @@ TEST_CASE("expressions nested deeper than the parser's bound are a located error
   };
   const std::string deep = "expression nested too deeply (more than 256 levels of parentheses, unary operators or calls)";
   // Each of these crashed the recursive parser (a signal, not an error) past about 10,000 levels.
-  for (const std::string& e : {nested("(", 30000, ")"), nested("-", 100000, ""), nested("!", 100000, ""), nested("abs(", 50000, ")")}) {
+  for (const std::string& e :
+       {nested("(", 30000, ")"), nested("-", 100000, ""), nested("!", 100000, ""), nested("abs(", 50000, ")")}) {
     const std::string message = error_of("axiom: A(" + e + ")\n");
     CHECK(message.starts_with("test.yaml:1:"));
     CHECK(message.ends_with(deep));
   }
   CHECK(error_of("constants: {k: \"" + nested("(", 30000, ")") + "\"}\naxiom: A(k)\n").ends_with(deep));
   // '^' associates to the right: each level waits with an operand, so the operand bound speaks first.
-  CHECK(error_of("axiom: A(" + nested("2^", 30000, "") + ")\n") == "test.yaml:1:138: expression nested too deeply (more than 64 operands)");
+  CHECK(error_of("axiom: A(" + nested("2^", 30000, "") + ")\n") ==
+        "test.yaml:1:138: expression nested too deeply (more than 64 operands)");
   // Nesting of any depth written by hand stays well inside the bound.
   CHECK(error_of("axiom: A(" + nested("(", 200, ")") + " + " + nested("-", 200, "") + ")\n") == "");
 }
@@ -128,7 +130,8 @@ TEST_CASE("steps outside 0..100000 are refused wherever they come from") {
   const Grammar g = grammar("axiom: A\nproductions:\n  - A -> A\n");
   for (const int steps : {-3, kMaxSteps + 1})
     CHECK_THROWS_WITH_AS(derive(g, DeriveRequest{steps, 1, kDefaultMaxModules}),
-                         fmt::format("the derivation steps must lie in 0..100000 (got {})", steps).c_str(), std::invalid_argument);
+                         fmt::format("the derivation steps must lie in 0..100000 (got {})", steps).c_str(),
+                         std::invalid_argument);
   CHECK(derived(g, kMaxSteps) == "A");
   CHECK(error_of("steps: 100001\naxiom: A\n") == "test.yaml:1:8: steps must be between 0 and 100000, got 100001");
 }
@@ -140,16 +143,19 @@ TEST_CASE("an organ's level of detail has the stand's range, 1..16, with its pla
 }
 
 TEST_CASE("a file with none of a grammar's keys is not quoted back") {
-  CHECK(error_of("root:x:0:0: secret\nbin: x\n") == "test.yaml:1:1: not a grammar file (none of its keys is a grammar's, such as axiom or "
-                                                     "productions)");
+  CHECK(error_of("root:x:0:0: secret\nbin: x\n") ==
+        "test.yaml:1:1: not a grammar file (none of its keys is a grammar's, such as axiom or "
+        "productions)");
   // A grammar with a misspelt key is still told which key.
   CHECK(error_of("axiom: F\nproduction: []\n").starts_with("test.yaml:2:1: unknown key 'production' in the grammar"));
 }
 
 TEST_CASE("grammar files that are not regular files are refused before reading") {
   // /dev/zero was read until memory ran out; a folder read as an empty grammar.
-  CHECK(grammar_error([] { load_grammar("/dev/zero"); }) == "/dev/zero: the grammar file is not a regular file (a device, pipe or socket)");
-  CHECK(grammar_error([] { load_grammar(source("grammars")); }) == source("grammars") + ": the grammar file is a folder, not a file");
+  CHECK(grammar_error([] { load_grammar("/dev/zero"); }) ==
+        "/dev/zero: the grammar file is not a regular file (a device, pipe or socket)");
+  CHECK(grammar_error([] { load_grammar(source("grammars")); }) ==
+        source("grammars") + ": the grammar file is a folder, not a file");
   CHECK_THROWS_AS(load_grammar(source("grammars/no-such-file.yaml")), GrammarFileError);
 }
 

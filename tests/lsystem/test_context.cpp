@@ -132,9 +132,13 @@ TEST_CASE("context index equals the naive search on random bracketed strings") {
     const int n = 1 + static_cast<int>(gen() % 60);
     for (int k = 0; k < n; ++k) {
       const unsigned r = gen() % 6;
-      if (r == 0) { s.symbols.push_back(g.symbols.open_bracket()); ++depth; }
-      else if (r == 1 && depth > 0) { s.symbols.push_back(g.symbols.close_bracket()); --depth; }
-      else s.symbols.push_back(r == 2 ? ign : r == 3 ? b : a);
+      if (r == 0) {
+        s.symbols.push_back(g.symbols.open_bracket());
+        ++depth;
+      } else if (r == 1 && depth > 0) {
+        s.symbols.push_back(g.symbols.close_bracket());
+        --depth;
+      } else s.symbols.push_back(r == 2 ? ign : r == 3 ? b : a);
     }
     while (depth-- > 0) s.symbols.push_back(g.symbols.close_bracket());
     ContextIndex idx;

@@ -106,7 +106,8 @@ TEST_CASE("tropism bends H towards T by e |H x T| after each cylinder (ABOP 2.2)
 }
 
 TEST_CASE("structure tree: parents skip closed branches; compound leaves end at their branch") {
-  const TurtleResult r = turtle("I(1,1) [ Leaf P(1,1) [ L(1,1) ] [ L(1,1) ] R(1,1) L(1,1) ] I(1,1) [ I(1,1) ] I(1,1) [ Leaf P(1,1) ]");
+  const TurtleResult r =
+      turtle("I(1,1) [ Leaf P(1,1) [ L(1,1) ] [ L(1,1) ] R(1,1) L(1,1) ] I(1,1) [ I(1,1) ] I(1,1) [ Leaf P(1,1) ]");
   REQUIRE(r.organs.size() == 10);
   const int parent[] = {-1, 0, 1, 1, 1, 4, 0, 6, 6, 8};
   const int leaf[] = {-1, 0, 0, 0, 0, 0, -1, -1, -1, 1};
@@ -129,7 +130,8 @@ TEST_CASE("structure tree: parents skip closed branches; compound leaves end at 
 TEST_CASE("every organ of the default tomato sits on its parent's joint") {
   const Grammar g = load_grammar(source("grammars/tomato.yaml"));
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    const TurtleResult r = run_turtle(g, interpret(g, derive(g, DeriveRequest{std::nullopt, seed, kDefaultMaxModules}), seed), {});
+    const TurtleResult r =
+        run_turtle(g, interpret(g, derive(g, DeriveRequest{std::nullopt, seed, kDefaultMaxModules}), seed), {});
     REQUIRE(r.organs.size() > 200);
     int roots = 0;
     for (const OrganInstance& o : r.organs) {
@@ -155,7 +157,8 @@ TEST_CASE("negative or non-finite sizes reaching the turtle are errors naming th
   }
 }
 
-TEST_CASE("a non-finite position or rotation, a level of detail out of range, negative steps or threads: refused before growing") {
+TEST_CASE(
+    "a non-finite position or rotation, a level of detail out of range, negative steps or threads: refused before growing") {
   // grow_stand is where rows, positions files and the Python module's arrays all arrive.
   GrowRequest req;
   req.grammar = source("grammars/tomato.yaml");
@@ -235,10 +238,12 @@ TEST_CASE("organ parameter errors name the file, line and column of the expressi
         "FILE:10:15: plant 0 (seed 1), module 11 'L(-2,0.2)': leaflet parameter 1 must not be negative");
   // Sizes that fit a double but not a float were written as inf and NaN.
   CHECK(grow_error(organs + "axiom: L(1e300,1e300)\n") ==
-        "FILE:4:10: plant 0 (seed 1), module 0 'L(1e+300,1e+300)': leaflet parameter 1 is 1e+300 m, more than the 1000000 m an organ "
+        "FILE:4:10: plant 0 (seed 1), module 0 'L(1e+300,1e+300)': leaflet parameter 1 is 1e+300 m, more than the 1000000 m an "
+        "organ "
         "may measure");
   CHECK(grow_error(organs + "axiom: F(1e300) L(1, 1)\n") ==
-        "FILE:4:10: plant 0 (seed 1), module 0 'F(1e+300)': the step takes the turtle farther than 1000000 m from the plant's origin");
+        "FILE:4:10: plant 0 (seed 1), module 0 'F(1e+300)': the step takes the turtle farther than 1000000 m from the plant's "
+        "origin");
   CHECK(grow_error(organs + "axiom: I(1e6, 1) I(1e6, 1) L(1, 1)\n") ==
         "FILE:4:28: plant 0 (seed 1), module 2 'L(1,1)': the organ lies farther than 1000000 m from its plant's origin");
   CHECK(grow_error(organs + "axiom: L(1e6, 1e6)\n") == "");  // the bound itself is allowed

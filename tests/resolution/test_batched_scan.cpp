@@ -86,7 +86,14 @@ TEST_CASE("batched turn search: organ level, clearances, crowded stands and many
       {"crowded: relaxed pass, last resort, unresolvable pairs", {11, 12}, true},
       {"more axes than one group of 32", {3}, false, ContactLevel::exact, ResolveConfig{}.clearance, 0, 40},
       // 0.05 degrees: bisections of up to 6 steps, more than one call's worth of speculation.
-      {"a fine angle tolerance", {2, 6}, false, ContactLevel::exact, ResolveConfig{}.clearance, 0, ResolveConfig{}.axis_fan, 0.05},
+      {"a fine angle tolerance",
+       {2, 6},
+       false,
+       ContactLevel::exact,
+       ResolveConfig{}.clearance,
+       0,
+       ResolveConfig{}.axis_fan,
+       0.05},
   };
   for (const Case& k : cases)
     for (std::uint64_t seed : k.seeds) {

@@ -42,9 +42,22 @@ Mat3d frame(const Affine3f& t) {  // the organ's orthonormal frame: columns H, L
   const Vec3d c[3] = {normalized(to_double(t.c0)), normalized(to_double(t.c1)), normalized(to_double(t.c2))};
   Mat3d m;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m.m[3 * i + j] = (j == 0 ? c[0] : j == 1 ? c[1] : c[2]).x * (i == 0) +
-                                                 (j == 0 ? c[0] : j == 1 ? c[1] : c[2]).y * (i == 1) +
-                                                 (j == 0 ? c[0] : j == 1 ? c[1] : c[2]).z * (i == 2);
+    for (int j = 0; j < 3; ++j)
+      m.m[3 * i + j] = (j == 0   ? c[0]
+                        : j == 1 ? c[1]
+                                 : c[2])
+                               .x *
+                           (i == 0) +
+                       (j == 0   ? c[0]
+                        : j == 1 ? c[1]
+                                 : c[2])
+                               .y *
+                           (i == 1) +
+                       (j == 0   ? c[0]
+                        : j == 1 ? c[1]
+                                 : c[2])
+                               .z *
+                           (i == 2);
   return m;
 }
 
@@ -55,7 +68,9 @@ Vec3d local_point(const Affine3f& t, Vec3d p) {
   return {dot(r, cross(b, c)) / det, dot(a, cross(r, c)) / det, dot(a, cross(b, r)) / det};
 }
 
-Vec3d apply_d(const Affine3f& t, Vec3d x) { return to_double(t.c0) * x.x + to_double(t.c1) * x.y + to_double(t.c2) * x.z + to_double(t.t); }
+Vec3d apply_d(const Affine3f& t, Vec3d x) {
+  return to_double(t.c0) * x.x + to_double(t.c1) * x.y + to_double(t.c2) * x.z + to_double(t.t);
+}
 
 }  // namespace
 
@@ -149,7 +164,8 @@ TEST_CASE("resolution leaves no contact involving an organ that may turn, on see
     // Plants with no turned organ are bit-identical.
     std::vector<std::uint8_t> touched(s.plant_count(), 0);
     for (std::size_t i = 0; i < s.organ_count(); ++i)
-      if (std::memcmp(&s.transforms[i], &grown.transforms[i], sizeof(Affine3f)) != 0) touched[static_cast<std::size_t>(s.organs[i].plant)] = 1;
+      if (std::memcmp(&s.transforms[i], &grown.transforms[i], sizeof(Affine3f)) != 0)
+        touched[static_cast<std::size_t>(s.organs[i].plant)] = 1;
     std::size_t untouched = 0;
     for (std::uint8_t t : touched) untouched += !t;
     MESSAGE("seed " << seed << ": " << r.contacts_before << " -> " << r.contacts_after << " contacts, " << r.rounds << " rounds, "
@@ -255,20 +271,25 @@ TEST_CASE("settings that cannot be met are refused by name, before any work") {
     CAPTURE(v);
     DetectRequest d;
     d.clearance = static_cast<float>(v);
-    CHECK_THROWS_WITH_AS(cpu->detect(s, d), doctest::Contains("detection: the clearance must be a finite number"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(cpu->detect(s, d), doctest::Contains("detection: the clearance must be a finite number"),
+                         std::invalid_argument);
     CHECK_THROWS_WITH_AS(cpu->redetect(s, d, {}), doctest::Contains("detection: the clearance"), std::invalid_argument);
     ResolveRequest req;
     req.config.scan_step_deg = v;
-    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the scan step (degrees) must be"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the scan step (degrees) must be"),
+                         std::invalid_argument);
     req.config = ResolveConfig{};
     req.config.clearance = v;
-    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the clearance must be"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the clearance must be"),
+                         std::invalid_argument);
     req.config = ResolveConfig{};
     req.config.angle_tolerance_deg = v;
-    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the angle tolerance"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the angle tolerance"),
+                         std::invalid_argument);
     req.config = ResolveConfig{};
     req.config.kind_weight[static_cast<std::size_t>(OrganKind::petiole)] = v;
-    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the petiole weight"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the petiole weight"),
+                         std::invalid_argument);
   }
   DetectRequest threads;
   threads.threads = -1;
@@ -298,9 +319,9 @@ TEST_CASE("bent chains: turns spread over petiole and rachis joints stay attache
     const Stand grown = s;
     const ResolveResult r = run(s);
     bends += r.bends, joints_bent += r.bend_joints;
-    MESSAGE("seed " << seed << ": " << r.contacts_before << " -> " << r.contacts_after << " contacts, " << r.bends << " turns bent over "
-                    << r.bend_joints << " joints, " << r.kinks << " left at one joint; mean " << r.mean_turn_deg << ", max turn "
-                    << r.max_turn_deg << ", largest joint " << r.max_joint_deg << " deg");
+    MESSAGE("seed " << seed << ": " << r.contacts_before << " -> " << r.contacts_after << " contacts, " << r.bends
+                    << " turns bent over " << r.bend_joints << " joints, " << r.kinks << " left at one joint; mean "
+                    << r.mean_turn_deg << ", max turn " << r.max_turn_deg << ", largest joint " << r.max_joint_deg << " deg");
     CHECK(r.contacts_before > 0);
     auto cpu = make_cpu_backend();
     const Contacts after = cpu->detect(s, DetectRequest{});
@@ -384,6 +405,7 @@ TEST_CASE("resolution refuses contacts past its memory, with a clear message, be
   ResolveRequest rr;
   rr.detect.memory_limit = static_cast<std::size_t>(static_cast<double>(c.pairs.size()) * kResolutionBytesPerContact) - 1;
   rr.config.max_rounds = 1;
-  CHECK(failure([&] { resolve(s, *cpu, rr, cpu->detect(s, DetectRequest{})); })
-            .starts_with(fmt::format("resolving {} contacts needs about", c.pairs.size())));
+  CHECK(failure([&] {
+          resolve(s, *cpu, rr, cpu->detect(s, DetectRequest{}));
+        }).starts_with(fmt::format("resolving {} contacts needs about", c.pairs.size())));
 }

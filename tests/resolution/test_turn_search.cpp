@@ -42,7 +42,8 @@ struct Setup {
 };
 
 /// The oracle: whether turning `c`'s subtree by rotation r clears what the search asks for.
-bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candidate& c, const Mat3d& r, double deg, ExactScratch& scratch) {
+bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candidate& c, const Mat3d& r, double deg,
+                   ExactScratch& scratch) {
   const Stand& s = w.stand;
   // Within the mover's joint limit, or (a chain segment) within what a spread over its chain can
   // take (resolution/bend_chain.hpp).
@@ -63,7 +64,8 @@ bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candida
       // Organs touching the subtree before the turn are other contacts' business.
       bool busy = false;
       for (std::int32_t m : c.moving)
-        for (std::uint32_t e = w.touching.first[static_cast<std::size_t>(m)]; e < w.touching.first[static_cast<std::size_t>(m) + 1]; ++e)
+        for (std::uint32_t e = w.touching.first[static_cast<std::size_t>(m)];
+             e < w.touching.first[static_cast<std::size_t>(m) + 1]; ++e)
           busy |= w.touching.with[e] == y;
       if (!is_met && busy) continue;
       const float gap = is_met ? search.clearance : search.detect_clearance;
@@ -72,8 +74,8 @@ bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candida
       const Vec3d cy = to_double(w.boxes[k].centre + off);
       if (length(cy - cx) > ox.radius + w.boxes[k].radius + 2.0 * gap + 1e-4) continue;
       const Affine3f& ty = s.transforms[k];
-      const bool touch = x < y ? organs_touch_at(s, w.lib, x, tx, y, ty, gap, scratch)
-                               : organs_touch_at(s, w.lib, y, ty, x, tx, gap, scratch);
+      const bool touch =
+          x < y ? organs_touch_at(s, w.lib, x, tx, y, ty, gap, scratch) : organs_touch_at(s, w.lib, y, ty, x, tx, gap, scratch);
       if (touch) return false;
     }
   }
@@ -90,8 +92,11 @@ TEST_CASE("turn search: an attempt clears exactly what brute force over the whol
     w.config.clearance = seed % 2 ? 1e-4 : 0;
     const float detect_clearance = seed % 3 == 0 ? 5e-5f : 0.f;
     Neighbourhood near(w.stand, w.boxes, 1);
-    const TurnSearch search{w.stand, w.joints, w.lib, w.config, w.collide, near, w.boxes, w.touching,
-                            static_cast<float>(std::max<double>(w.config.clearance, detect_clearance)), detect_clearance};
+    const TurnSearch search{
+        w.stand,         w.joints,   w.lib,
+        w.config,        w.collide,  near,
+        w.boxes,         w.touching, static_cast<float>(std::max<double>(w.config.clearance, detect_clearance)),
+        detect_clearance};
     std::mt19937_64 g(seed);
     std::uniform_real_distribution<double> u(-1, 1);
     ExactScratch scratch, oracle_scratch;
@@ -117,7 +122,8 @@ TEST_CASE("turn search: an attempt clears exactly what brute force over the whol
             Mat3d local;
             const bool got = search.attempt(c, axis, deg, local, scratch, own);
             const bool want = brute_attempt(w, search, c, axis_angle(axis, deg * kRad), deg, oracle_scratch);
-            INFO("seed " << seed << " mover " << m << (strict ? " strict" : " relaxed") << " axis " << t << " at " << deg << " deg");
+            INFO("seed " << seed << " mover " << m << (strict ? " strict" : " relaxed") << " axis " << t << " at " << deg
+                         << " deg");
             CHECK(got == want);
             ++attempts;
             accepted += got;

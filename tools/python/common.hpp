@@ -18,7 +18,6 @@ namespace canopy::python {
 
 namespace py = pybind11;
 
-
 /// Raised inside a long call when a Python callback raised: unwinds the C++ side, then the
 /// Python error is restored.
 struct CallbackRaised {};
@@ -55,15 +54,13 @@ class Callback {
   std::optional<py::error_already_set> error_;
 };
 
-inline py::object json_to_py(const nlohmann::ordered_json& j) {
-  return py::module_::import("json").attr("loads")(j.dump());
-}
+inline py::object json_to_py(const nlohmann::ordered_json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
 /// A stand owned by Python: arrays handed out view its memory and keep this object alive.
 struct PyStand {
   Stand stand;
   std::string grammar;
-  std::optional<Contacts> last;  // the last detection (for export)
+  std::optional<Contacts> last;     // the last detection (for export)
   std::optional<RowLayout> layout;  // the rows it was grown in (its lattice is light's tile)
 };
 
@@ -91,25 +88,27 @@ inline DetectRequest detect_request(const std::string& level, double clearance, 
   d.clearance = clearance;
   d.collide = collide;
   d.threads = threads;
-  if (!parse_contact_level(level)) throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", level));
+  if (!parse_contact_level(level))
+    throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", level));
   if (clearance < 0) throw std::invalid_argument("clearance must not be negative");
   return d.request();
 }
 
 inline py::array contacts_array(const std::vector<Contact>& pairs) {
-  py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("organ_a", "<i4"), py::make_tuple("organ_b", "<i4"),
-                                       py::make_tuple("plant_a", "<i4"), py::make_tuple("plant_b", "<i4"))));
+  py::dtype dt =
+      py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("organ_a", "<i4"), py::make_tuple("organ_b", "<i4"),
+                                                   py::make_tuple("plant_a", "<i4"), py::make_tuple("plant_b", "<i4"))));
   py::array out(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(pairs.size())});
   auto* p = static_cast<std::int32_t*>(out.mutable_data());
   for (std::size_t i = 0; i < pairs.size(); ++i)
-    p[4 * i] = pairs[i].organ_a, p[4 * i + 1] = pairs[i].organ_b, p[4 * i + 2] = pairs[i].plant_a, p[4 * i + 3] = pairs[i].plant_b;
+    p[4 * i] = pairs[i].organ_a, p[4 * i + 1] = pairs[i].organ_b, p[4 * i + 2] = pairs[i].plant_a,
+          p[4 * i + 3] = pairs[i].plant_b;
   return out;
 }
 
 inline std::unique_ptr<DetectionBackend> backend_named(const std::string& name, std::string& note) {
   return cli::make_backend(name, note);
 }
-
 
 /// Registers canopy.Stand.
 void bind_stand(py::module_& m);

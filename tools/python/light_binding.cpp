@@ -55,7 +55,8 @@ py::dict csv_columns(const std::string& csv) {
     for (std::size_t c = 0; c < names.size(); ++c) cols[c].push_back(std::stod(cells.at(c)));
   }
   py::dict out;
-  for (std::size_t c = 0; c < names.size(); ++c) out[py::str(names[c])] = py::array_t<double>(static_cast<py::ssize_t>(cols[c].size()), cols[c].data());
+  for (std::size_t c = 0; c < names.size(); ++c)
+    out[py::str(names[c])] = py::array_t<double>(static_cast<py::ssize_t>(cols[c].size()), cols[c].data());
   return out;
 }
 #endif

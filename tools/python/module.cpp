@@ -52,8 +52,8 @@ PYBIND11_MODULE(_canopy, m) {
 
   m.def(
       "derive",
-      [](py::object grammar_arg, std::optional<int> steps, std::optional<std::uint64_t> seed, const std::map<std::string, double>& set,
-         bool stats, bool interpreted, std::size_t max_modules) -> py::object {
+      [](py::object grammar_arg, std::optional<int> steps, std::optional<std::uint64_t> seed,
+         const std::map<std::string, double>& set, bool stats, bool interpreted, std::size_t max_modules) -> py::object {
         const std::string grammar = path_of(grammar_arg);
         LoadOptions lo;
         for (const auto& s : overrides(set)) lo.overrides.push_back(parse_override(s));
@@ -124,7 +124,8 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "target_error") o.target.error = v.cast<double>();
           else throw std::invalid_argument(fmt::format("stand: unknown option '{}'", k));
         }
-        if (!parse_contact_level(o.detect.level)) throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", o.detect.level));
+        if (!parse_contact_level(o.detect.level))
+          throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", o.detect.level));
         Callback cb(std::move(progress));
         cli::StandOutcome r;
         try {
@@ -180,7 +181,8 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "no_light") o.no_light = v.cast<bool>();
           else throw std::invalid_argument(fmt::format("sweep: unknown option '{}'", k));
         }
-        if (o.seeds < 1 || o.rows < 1 || o.per_row < 1) throw std::invalid_argument("sweep: seeds, rows and per_row must be at least 1");
+        if (o.seeds < 1 || o.rows < 1 || o.per_row < 1)
+          throw std::invalid_argument("sweep: seeds, rows and per_row must be at least 1");
         Callback cb(std::move(progress));
         cli::SweepOutcome r;
         try {

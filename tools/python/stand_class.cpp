@@ -40,7 +40,8 @@ void bind_stand(py::module_& m) {
                 p.x = a(i, 0), p.y = a(i, 1), p.rotation_deg = a(i, 2);
                 // A whole number in [0, 2^64): a cast would truncate 1.5 and wrap 2^70 without a word.
                 if (!(a(i, 3) >= 0 && a(i, 3) < 0x1p64 && std::floor(a(i, 3)) == a(i, 3)))
-                  throw std::invalid_argument(fmt::format("positions: row {}: the seed must be a non-negative integer below 2^64, got {}", i, a(i, 3)));
+                  throw std::invalid_argument(
+                      fmt::format("positions: row {}: the seed must be a non-negative integer below 2^64, got {}", i, a(i, 3)));
                 p.seed = static_cast<std::uint64_t>(a(i, 3));
                 req.plants.push_back(p);
               }
@@ -79,26 +80,27 @@ void bind_stand(py::module_& m) {
           },
           py::arg("dir"), "Reads a stand back from a folder written by canopy stand.")
       .def_property_readonly("plant_count", [](const PyStand& s) { return s.stand.plant_count(); })
-      .def_property_readonly("ids",
-                             [](const PyStand& s) {
-                               py::array_t<std::int64_t> a(static_cast<py::ssize_t>(s.stand.organ_count()));
-                               auto* p = a.mutable_data();
-                               for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = static_cast<std::int64_t>(i);
-                               return a;
-                             },
-                             "Organ ids (global, as in organs.csv and contacts): 0 .. organ_count - 1.")
+      .def_property_readonly(
+          "ids",
+          [](const PyStand& s) {
+            py::array_t<std::int64_t> a(static_cast<py::ssize_t>(s.stand.organ_count()));
+            auto* p = a.mutable_data();
+            for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = static_cast<std::int64_t>(i);
+            return a;
+          },
+          "Organ ids (global, as in organs.csv and contacts): 0 .. organ_count - 1.")
       .def_property_readonly("organ_count", [](const PyStand& s) { return s.stand.organ_count(); })
       .def_property_readonly(
           "organs",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
-            py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("plant", "<i4"), py::make_tuple("parent", "<i4"),
-                                                 py::make_tuple("leaf", "<i4"), py::make_tuple("kind", "u1"),
-                                                 py::make_tuple("prototype", "u1"), py::make_tuple("lod", "u1"),
-                                                 py::make_tuple("reserved", "u1"))));
+            py::dtype dt = py::dtype::from_args(py::list(
+                py::make_tuple(py::make_tuple("plant", "<i4"), py::make_tuple("parent", "<i4"), py::make_tuple("leaf", "<i4"),
+                               py::make_tuple("kind", "u1"), py::make_tuple("prototype", "u1"), py::make_tuple("lod", "u1"),
+                               py::make_tuple("reserved", "u1"))));
             return read_only(py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
-                                       std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))}, s.stand.organs.data(),
-                                       self));
+                                       std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))},
+                                       s.stand.organs.data(), self));
           },
           "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records (no copy; read-only).")
       .def_property_readonly(
@@ -120,30 +122,32 @@ void bind_stand(py::module_& m) {
                                                 reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self));
           },
           "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame (read-only).")
-      .def_property_readonly("area",
-                             [](PyStand& s) {
-                               PrototypeLibrary lib;
-                               py::array_t<double> a(static_cast<py::ssize_t>(s.stand.organ_count()));
-                               auto* p = a.mutable_data();
-                               for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = organ_area(s.stand, i, lib);
-                               return a;
-                             },
-                             "One-sided area of each organ, m2 (as organs.csv; computed).")
-      .def_property_readonly("length",
-                             [](PyStand& s) {
-                               PrototypeLibrary lib;
-                               py::array_t<double> a(static_cast<py::ssize_t>(s.stand.organ_count()));
-                               auto* p = a.mutable_data();
-                               for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = organ_length(s.stand, i);
-                               return a;
-                             },
-                             "Length of each organ, m (as organs.csv; computed).")
+      .def_property_readonly(
+          "area",
+          [](PyStand& s) {
+            PrototypeLibrary lib;
+            py::array_t<double> a(static_cast<py::ssize_t>(s.stand.organ_count()));
+            auto* p = a.mutable_data();
+            for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = organ_area(s.stand, i, lib);
+            return a;
+          },
+          "One-sided area of each organ, m2 (as organs.csv; computed).")
+      .def_property_readonly(
+          "length",
+          [](PyStand& s) {
+            PrototypeLibrary lib;
+            py::array_t<double> a(static_cast<py::ssize_t>(s.stand.organ_count()));
+            auto* p = a.mutable_data();
+            for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = organ_length(s.stand, i);
+            return a;
+          },
+          "Length of each organ, m (as organs.csv; computed).")
       .def_property_readonly(
           "plants",
           [](PyStand& s) {
-            py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("x", "<f8"), py::make_tuple("y", "<f8"),
-                                                 py::make_tuple("rotation", "<f8"), py::make_tuple("seed", "<u8"),
-                                                 py::make_tuple("steps", "<i4"), py::make_tuple("organ_count", "<u4"))));
+            py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(
+                py::make_tuple("x", "<f8"), py::make_tuple("y", "<f8"), py::make_tuple("rotation", "<f8"),
+                py::make_tuple("seed", "<u8"), py::make_tuple("steps", "<i4"), py::make_tuple("organ_count", "<u4"))));
             py::array out(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.plant_count())});
             auto* b = static_cast<char*>(out.mutable_data());
             for (std::size_t i = 0; i < s.stand.plant_count(); ++i) {
@@ -226,8 +230,8 @@ void bind_stand(py::module_& m) {
             return out;
           },
           py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0, py::arg("resolve_clearance") = 1e-4,
-          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("max_rounds") = 30,
-          py::arg("backend") = "auto", py::arg("threads") = 0, py::arg("progress") = py::none(),
+          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("max_rounds") = 30, py::arg("backend") = "auto",
+          py::arg("threads") = 0, py::arg("progress") = py::none(),
           "Turns organs out of contact (canopy stand's resolution); progress(round, contacts_left, seconds) is called each "
           "round, and raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and 'search' say "
           "what planned the rounds) with 'contacts_after', 'backend', 'device' and 'note'.")
@@ -254,7 +258,6 @@ void bind_stand(py::module_& m) {
           "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv of the last "
           "detection or resolution); glb_compact writes stand.glb quantized (KHR_mesh_quantization, positions in steps "
           "of at most 50 um, half the default resolution clearance).");
-
 }
 
 }  // namespace canopy::python

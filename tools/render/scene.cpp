@@ -54,7 +54,8 @@ struct Scene::Impl {
 
 Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>()), stand_(s) {
   impl_->device = rtcNewDevice(nullptr);
-  if (!impl_->device) throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
+  if (!impl_->device)
+    throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   RTCDevice dev = impl_->device;
   impl_->prototypes.assign(kMeshSlots, nullptr);
   const auto proto_scene = [&](const OrganRecord& r) {
@@ -63,11 +64,12 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
     const PrototypeMesh& m = lib.get(r);
     sc = rtcNewScene(dev);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                                          m.positions.size()));
-    for (std::size_t i = 0; i < m.positions.size(); ++i) v[3 * i] = m.positions[i].x, v[3 * i + 1] = m.positions[i].y, v[3 * i + 2] = m.positions[i].z;
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
-                                                               m.triangle_count()));
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
+    for (std::size_t i = 0; i < m.positions.size(); ++i)
+      v[3 * i] = m.positions[i].x, v[3 * i + 1] = m.positions[i].y, v[3 * i + 2] = m.positions[i].z;
+    auto* idx = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangle_count()));
     std::copy(m.indices.begin(), m.indices.end(), idx);
     rtcCommitGeometry(g);
     rtcAttachGeometry(sc, g);
@@ -84,8 +86,18 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
     const Vec3d det3 = cross(to_double(t.c0), to_double(t.c1));
     if (!(std::abs(dot(det3, to_double(t.c2))) > 0)) continue;  // a flat or empty organ shows nothing
     const Vec3d off = s.offset(static_cast<std::size_t>(r.plant));
-    const float xfm[12] = {t.c0.x, t.c0.y, t.c0.z, t.c1.x, t.c1.y, t.c1.z, t.c2.x, t.c2.y, t.c2.z,
-                           static_cast<float>(t.t.x + off.x), static_cast<float>(t.t.y + off.y), static_cast<float>(t.t.z + off.z)};
+    const float xfm[12] = {t.c0.x,
+                           t.c0.y,
+                           t.c0.z,
+                           t.c1.x,
+                           t.c1.y,
+                           t.c1.z,
+                           t.c2.x,
+                           t.c2.y,
+                           t.c2.z,
+                           static_cast<float>(t.t.x + off.x),
+                           static_cast<float>(t.t.y + off.y),
+                           static_cast<float>(t.t.z + off.z)};
     RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(inst, proto_scene(r));
     rtcSetGeometryTimeStepCount(inst, 1);
@@ -125,8 +137,10 @@ Image Scene::render(const Camera& cam, const std::vector<std::uint8_t>& highligh
       const double u = ((x + 0.5) / cam.width * 2 - 1) * cam.half_w, v = (1 - (y + 0.5) / cam.height * 2) * cam.half_h;
       const Vec3d org = cam.centre + cam.right * u + cam.up * v - cam.dir * cam.back;
       RTCRayHit rh{};
-      rh.ray.org_x = static_cast<float>(org.x), rh.ray.org_y = static_cast<float>(org.y), rh.ray.org_z = static_cast<float>(org.z);
-      rh.ray.dir_x = static_cast<float>(cam.dir.x), rh.ray.dir_y = static_cast<float>(cam.dir.y), rh.ray.dir_z = static_cast<float>(cam.dir.z);
+      rh.ray.org_x = static_cast<float>(org.x), rh.ray.org_y = static_cast<float>(org.y),
+      rh.ray.org_z = static_cast<float>(org.z);
+      rh.ray.dir_x = static_cast<float>(cam.dir.x), rh.ray.dir_y = static_cast<float>(cam.dir.y),
+      rh.ray.dir_z = static_cast<float>(cam.dir.z);
       rh.ray.tnear = 0, rh.ray.tfar = std::numeric_limits<float>::infinity(), rh.ray.mask = 0xffffffffu;
       rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
       rtcIntersect1(impl_->top, &ctx, &rh);

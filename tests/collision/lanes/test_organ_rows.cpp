@@ -50,7 +50,8 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
           // The lanes leave out the adjacent pairs of a cluster whose pairs are masked.
           own_pairs(m.cluster_organs.data(), ca.first, ca.count, box_of, into(shared));
           if (pairs_masked(ca.count))
-            std::erase_if(shared, [&](const auto& ab) { return adjacent(s.organs[ab.first], ab.first, s.organs[ab.second], ab.second); });
+            std::erase_if(shared,
+                          [&](const auto& ab) { return adjacent(s.organs[ab.first], ab.first, s.organs[ab.second], ab.second); });
           lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), m.lanes.pass[i], into(lanes));
         } else {
           if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
@@ -148,7 +149,12 @@ TEST_CASE("eight lanes against a moved box give boxes_meet's answer lane by lane
         default: b = random_box(g), b.hi.x = std::numeric_limits<float>::quiet_NaN();
       }
       if (k % 8 < 6 && round % 3 == 0) {  // one float beyond touching: they miss
-        float& f = k % 2 ? (k % 8 < 2 ? b.hi.x : k % 8 < 4 ? b.hi.y : b.hi.z) : (k % 8 < 2 ? b.lo.x : k % 8 < 4 ? b.lo.y : b.lo.z);
+        float& f = k % 2 ? (k % 8 < 2   ? b.hi.x
+                            : k % 8 < 4 ? b.hi.y
+                                        : b.hi.z)
+                         : (k % 8 < 2   ? b.lo.x
+                            : k % 8 < 4 ? b.lo.y
+                                        : b.lo.z);
         f = std::nextafter(f, k % 2 ? -1e30f : 1e30f);
       }
       if (k != 15) lanes.set(k, b);
@@ -221,10 +227,8 @@ TEST_CASE("the clusters found through lanes are those whose boxes meet and whose
         std::vector<std::uint32_t> want, got;
         for (std::uint32_t j = pb.first_cluster + from; j < pb.first_cluster + pb.cluster_count; ++j) {
           if (!boxes_meet(m.clusters[i].box, m.clusters[j].box, offset)) continue;
-          if (lcd_overlap(m.nodes[m.clusters[i].root].box, m.nodes[m.clusters[j].root].box, offset))
-            want.push_back(j);
-          else
-            ++box_only;
+          if (lcd_overlap(m.nodes[m.clusters[i].root].box, m.nodes[m.clusters[j].root].box, offset)) want.push_back(j);
+          else ++box_only;
         }
         lane_clusters_overlapping(m.lanes, pb, static_cast<std::uint32_t>(q), from, m.clusters[i].box, m.lanes.roots[i], offset,
                                   [&](std::uint32_t j) { got.push_back(j); });

@@ -51,8 +51,8 @@ int compare(const PosedOrgan& p, const double* box, const Obb& obb, float margin
     for (int c = 0; c < 3; ++c) {
       const float xyz[3] = {t[c].x, t[c].y, t[c].z};
       for (int k = 0; k < 3; ++k)
-        CHECK(std::memcmp(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats + static_cast<std::size_t>(3 * c + k) * 8 + i % 8], &xyz[k],
-                          sizeof(float)) == 0);
+        CHECK(std::memcmp(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats + static_cast<std::size_t>(3 * c + k) * 8 + i % 8],
+                          &xyz[k], sizeof(float)) == 0);
     }
     const bool want = meets_in_double(tb, box) && !beyond_obb(t, obb, margin);
     const unsigned bits = near_lanes(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats], bounds, obb, margin);
@@ -150,7 +150,8 @@ void put(float* group, int lane, const Vec3f* u) {
 
 /// Lanes whose answer differs from triangles_rejected's: t against the 8 triangles u[0..7], all
 /// lanes asked for and then each of the masks in `wanted` (their lanes only).
-int rejected_differences(const Vec3f* t, const Vec3f (*u)[3], float margin, int& rejected, std::initializer_list<unsigned> wanted = {}) {
+int rejected_differences(const Vec3f* t, const Vec3f (*u)[3], float margin, int& rejected,
+                         std::initializer_list<unsigned> wanted = {}) {
   float group[PosedOrgan::kGroupFloats] = {};
   for (int lane = 0; lane < 8; ++lane) put(group, lane, u[lane]);
   const TrianglePlane pt = TrianglePlane::of(t[0], t[1], t[2]);
@@ -186,10 +187,14 @@ TEST_CASE("a triangle's float rejections against 8 others at once are triangles_
       for (auto& p : others[lane]) p = base + shift + Vec3f{u(rng), u(rng), u(rng)} * size;
       switch ((trial + lane) % 9) {
         case 0: others[lane][2] = others[lane][0] + (others[lane][1] - others[lane][0]) * 0.5f; break;  // a sliver
-        case 1: others[lane][1] = others[lane][2] = others[lane][0]; break;                              // a point
-        case 2: others[lane][0] = t[1]; break;                                                           // a shared corner
-        case 3: for (int c = 0; c < 3; ++c) others[lane][c] = t[(c + 1) % 3]; break;                     // t itself
-        case 4: for (int c = 0; c < 3; ++c) others[lane][c] = t[c] + Vec3f{0, 0, size * 0.5f}; break;   // parallel planes
+        case 1: others[lane][1] = others[lane][2] = others[lane][0]; break;                             // a point
+        case 2: others[lane][0] = t[1]; break;                                                          // a shared corner
+        case 3:
+          for (int c = 0; c < 3; ++c) others[lane][c] = t[(c + 1) % 3];
+          break;  // t itself
+        case 4:
+          for (int c = 0; c < 3; ++c) others[lane][c] = t[c] + Vec3f{0, 0, size * 0.5f};
+          break;  // parallel planes
         default: break;
       }
     }
@@ -258,8 +263,14 @@ TEST_CASE("float bounds of a box of floats are the floats themselves, as the rou
   // signed zeros, tiny, huge and random floats.
   std::mt19937 g(41);
   std::uniform_real_distribution<float> u(-3, 3);
-  const float special[] = {0.0f, -0.0f, std::numeric_limits<float>::denorm_min(), -std::numeric_limits<float>::min(),
-                           std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), 1e-30f, 123456.7f};
+  const float special[] = {0.0f,
+                           -0.0f,
+                           std::numeric_limits<float>::denorm_min(),
+                           -std::numeric_limits<float>::min(),
+                           std::numeric_limits<float>::max(),
+                           -std::numeric_limits<float>::max(),
+                           1e-30f,
+                           123456.7f};
   for (int i = 0; i < 20000; ++i) {
     double box[6];
     for (double& v : box) v = g() % 5 == 0 ? special[g() % 8] : u(g) * std::pow(10.0f, static_cast<float>(g() % 9) - 4.0f);
