@@ -1,5 +1,7 @@
 #include "light/scene.hpp"
 
+#include "light/embree_mesh.hpp"
+
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 #include <omp.h>
@@ -26,7 +28,10 @@ struct Scene::Impl {
 
 namespace {
 
-bool flat(PrototypeKind k) { return k == PrototypeKind::leaflet || k == PrototypeKind::disk; }
+/// A mesh in its local z = 0 plane: a disk, or a leaflet that is not curved.
+bool flat(const OrganRecord& r) {
+  return r.prototype == PrototypeKind::disk || (r.prototype == PrototypeKind::leaflet && r.shape == 0);
+}
 
 }  // namespace
 
@@ -36,24 +41,12 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
   if (!impl_->device)
     throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   RTCDevice dev = impl_->device;
-  impl_->prototypes.assign(4 * (kMaxLod + 1), nullptr);
-  const auto proto_scene = [&](PrototypeKind k, int lod) {
-    RTCScene& sc = impl_->prototypes[static_cast<std::size_t>(k) * (kMaxLod + 1) + static_cast<std::size_t>(lod)];
+  // One scene per mesh: prototype, level of detail and, for a leaflet, its curved shape.
+  impl_->prototypes.assign(kMeshSlots, nullptr);
+  const auto proto_scene = [&](const OrganRecord& r) {
+    RTCScene& sc = impl_->prototypes[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
     if (sc) return sc;
-    const PrototypeMesh& m = lib.get(k, lod);
-    sc = rtcNewScene(dev);
-    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
-    for (std::size_t i = 0; i < m.positions.size(); ++i)
-      v[3 * i] = m.positions[i].x, v[3 * i + 1] = m.positions[i].y, v[3 * i + 2] = m.positions[i].z;
-    auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangle_count()));
-    std::copy(m.indices.begin(), m.indices.end(), idx);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(sc, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(sc);
+    sc = prototype_scene(dev, lib.get(r));
     return sc;
   };
   impl_->top = rtcNewScene(dev);
@@ -67,7 +60,7 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
       // A flat blade lies in its local z = 0 plane, so its third column moves nothing: any
       // column off the blade's plane gives Embree an invertible transform and the same blade.
       const Vec3d n = cross(a, b);
-      if (!flat(r.prototype) || !(length(n) > 0)) {
+      if (!flat(r) || !(length(n) > 0)) {
         ++skipped_;
         continue;
       }
@@ -87,13 +80,13 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
                            static_cast<float>(t.t.y + off.y),
                            static_cast<float>(t.t.z + off.z)};
     RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, proto_scene(r.prototype, r.lod));
+    rtcSetGeometryInstancedScene(inst, proto_scene(r));
     rtcSetGeometryTimeStepCount(inst, 1);
     rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
     rtcCommitGeometry(inst);
     rtcAttachGeometryByID(impl_->top, inst, static_cast<unsigned>(i));
     rtcReleaseGeometry(inst);
-    const Box3f& bx = lib.get(r.prototype, r.lod).box;
+    const Box3f& bx = lib.get(r).box;
     for (int k = 0; k < 8; ++k) {
       const Vec3f p = apply(t, Vec3f{(k & 1) ? bx.hi.x : bx.lo.x, (k & 2) ? bx.hi.y : bx.lo.y, (k & 4) ? bx.hi.z : bx.lo.z});
       const Vec3d w = to_double(p) + off;

@@ -1,6 +1,7 @@
 // canopy light against analytic answers: the shadow of a disk and of a thin square slab from
 // any sun (isolated and across the periodic tile's edge), and turbid-medium canopies whose
 // intercepted fraction and STAR follow from the probability that a random leaf covers a point.
+#include "geometry/leaflet_shape.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/thread_limit.hpp"
 #include "light/light.hpp"
@@ -210,4 +211,32 @@ TEST_CASE("the same fractions on any thread count") {
   same(one.direct[0], two.direct[0]);
   same(*one.diffuse, *two.diffuse);
   CHECK(one.rays == two.rays);
+}
+
+TEST_CASE("a curved leaflet casts the shadow of its own curved mesh, not of the flat blade") {
+  // A leaflet whose midrib droops by 80 degrees from base to tip, lying along +X: seen from the
+  // zenith its arc covers less ground than the flat blade. The mesh is single-valued over the
+  // ground, so its shadow is the sum of its triangles' areas projected on it.
+  const float l = 0.2f, w = 0.1f;
+  Affine3f t;
+  t.c0 = {l, 0, 0}, t.c1 = {0, w, 0}, t.c2 = {0, 0, w}, t.t = {-0.1f, 0, 0.5f};
+  Stand s = one_organ(PrototypeKind::leaflet, OrganKind::leaflet, 2, t);
+  s.organs[0].shape = *leaflet_shape_code({-80, 0, 0});
+  PrototypeLibrary lib;
+  const PrototypeMesh &curved = lib.get(s.organs[0]), &flat = lib.get(PrototypeKind::leaflet, 2);
+  const auto projected = [&](const PrototypeMesh& m) {
+    double area = 0;
+    for (std::size_t k = 0; k + 2 < m.indices.size(); k += 3) {
+      const Vec3f a = apply(t, m.positions[m.indices[k]]), b = apply(t, m.positions[m.indices[k + 1]]),
+                  c = apply(t, m.positions[m.indices[k + 2]]);
+      area += 0.5 * std::abs(double(b.x - a.x) * (c.y - a.y) - double(b.y - a.y) * (c.x - a.x));
+    }
+    return area;
+  };
+  const double want = projected(curved);
+  REQUIRE(want < 0.9 * projected(flat));  // the two are told apart
+  const light::Box2d tile{-0.25, -0.25, 0.25, 0.25};
+  const light::LightResult res = light::compute_light(s, lib, beams({{90, 0}}, tile, false, 0.0005));
+  check_area(res.ground, tile, want);
+  check_area(res.direct[0], tile, want);
 }

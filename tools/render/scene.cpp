@@ -2,6 +2,8 @@
 
 #include "geometry/organ_mesh.hpp"
 
+#include "light/embree_mesh.hpp"
+
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 
@@ -61,20 +63,7 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
   const auto proto_scene = [&](const OrganRecord& r) {
     RTCScene& sc = impl_->prototypes[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
     if (sc) return sc;
-    const PrototypeMesh& m = lib.get(r);
-    sc = rtcNewScene(dev);
-    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), m.positions.size()));
-    for (std::size_t i = 0; i < m.positions.size(); ++i)
-      v[3 * i] = m.positions[i].x, v[3 * i + 1] = m.positions[i].y, v[3 * i + 2] = m.positions[i].z;
-    auto* idx = static_cast<unsigned*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), m.triangle_count()));
-    std::copy(m.indices.begin(), m.indices.end(), idx);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(sc, g);
-    rtcReleaseGeometry(g);
-    rtcCommitScene(sc);
+    sc = light::prototype_scene(dev, lib.get(r));
     return sc;
   };
   impl_->top = rtcNewScene(dev);
