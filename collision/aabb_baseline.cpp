@@ -54,9 +54,10 @@ std::int32_t AabbTree::build_node(std::uint32_t first, std::uint32_t count) {
   for (int d = 1; d < 3; ++d)
     if (node.hi[d] - node.lo[d] > node.hi[axis] - node.lo[axis]) axis = d;
   const std::uint32_t half = count / 2;
-  std::nth_element(
-      ids_.begin() + first, ids_.begin() + first + half, ids_.begin() + first + count,
-      [&](std::uint32_t a, std::uint32_t b) { return box_[a][axis] + box_[a][axis + 3] < box_[b][axis] + box_[b][axis + 3]; });
+  std::nth_element(ids_.begin() + first, ids_.begin() + first + half, ids_.begin() + first + count,
+                   [&](std::uint32_t a, std::uint32_t b) {
+                     return box_[a][axis] + box_[a][axis + 3] < box_[b][axis] + box_[b][axis + 3];
+                   });
   const std::int32_t l = build_node(first, half);
   const std::int32_t r = build_node(first + half, count - half);
   nodes_[static_cast<std::size_t>(index)].left = l;
@@ -79,7 +80,8 @@ std::vector<Contact> AabbTree::overlapping_pairs(const Stand& s) const {
       while (!stack.empty()) {
         const Node& nd = nodes_[static_cast<std::size_t>(stack.back())];
         stack.pop_back();
-        if (ba[0] > nd.hi[0] || nd.lo[0] > ba[3] || ba[1] > nd.hi[1] || nd.lo[1] > ba[4] || ba[2] > nd.hi[2] || nd.lo[2] > ba[5])
+        if (ba[0] > nd.hi[0] || nd.lo[0] > ba[3] || ba[1] > nd.hi[1] || nd.lo[1] > ba[4] ||
+            ba[2] > nd.hi[2] || nd.lo[2] > ba[5])
           continue;
         if (nd.left >= 0) {
           stack.push_back(nd.left);

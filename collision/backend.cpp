@@ -9,10 +9,11 @@ namespace canopy {
 
 void check_request(const DetectRequest& r) {
   if (!std::isfinite(r.clearance) || r.clearance < 0)
-    throw std::invalid_argument(
-        fmt::format("detection: the clearance must be a finite number of metres, at least 0 (got {})", r.clearance));
+    throw std::invalid_argument(fmt::format(
+        "detection: the clearance must be a finite number of metres, at least 0 (got {})", r.clearance));
   if (r.threads < 0)
-    throw std::invalid_argument(fmt::format("detection: the thread count must be at least 0 (0: all cores; got {})", r.threads));
+    throw std::invalid_argument(
+        fmt::format("detection: the thread count must be at least 0 (0: all cores; got {})", r.threads));
 }
 
 }  // namespace canopy

@@ -59,7 +59,8 @@ class DetectionBackend {
   /// Resolution rounds: organs `moved` have new transforms in `stand`. Refits the bounding
   /// volumes kept from the last detect() or redetect() on this stand (a transform per organ, not
   /// a rebuild; on CUDA only the moved organs travel to the device) and detects again.
-  virtual Contacts redetect(const Stand& stand, const DetectRequest& request, const std::vector<std::uint32_t>& moved) = 0;
+  virtual Contacts redetect(const Stand& stand, const DetectRequest& request,
+                            const std::vector<std::uint32_t>& moved) = 0;
   // Every member is pure: a backend that wraps another (resolution/auto_backend.hpp) must say
   // what it does with each, so none of the wrapped backend's paths is dropped unseen.
 };

@@ -8,7 +8,8 @@
 namespace canopy {
 
 bool plant_bounds_overlap(const Stand& s, const Mbvt& m, std::size_t p, std::size_t q) {
-  return plant_bounds_meet(m.plants[p], m.plants[q], s.plants[q].x - s.plants[p].x, s.plants[q].y - s.plants[p].y);
+  return plant_bounds_meet(m.plants[p], m.plants[q], s.plants[q].x - s.plants[p].x,
+                           s.plants[q].y - s.plants[p].y);
 }
 
 namespace {
@@ -27,7 +28,9 @@ void visit_plant_pairs(const Stand& s, const Mbvt& m, Visit&& visit) {
   struct Placed {
     std::int64_t iy, ix;
     std::int32_t plant;
-    bool operator<(const Placed& o) const { return iy != o.iy ? iy < o.iy : ix != o.ix ? ix < o.ix : plant < o.plant; }
+    bool operator<(const Placed& o) const {
+      return iy != o.iy ? iy < o.iy : ix != o.ix ? ix < o.ix : plant < o.plant;
+    }
   };
   std::vector<Placed> sorted(n);
   for (std::size_t p = 0; p < n; ++p)
@@ -67,13 +70,16 @@ std::uint64_t count_plant_pairs(const Stand& s, const Mbvt& m, std::uint64_t sto
   return count;
 }
 
-std::vector<std::uint8_t> plants_with_free_pairs(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>* only) {
+std::vector<std::uint8_t> plants_with_free_pairs(const Stand& s, const Mbvt& m,
+                                                 const std::vector<std::uint8_t>* only) {
   std::vector<std::uint8_t> self(s.plant_count(), 0);
-  for (std::size_t p = 0; p < s.plant_count(); ++p) self[p] = m.plant_has_free[p] && (!only || (*only)[p]) ? 1 : 0;
+  for (std::size_t p = 0; p < s.plant_count(); ++p)
+    self[p] = m.plant_has_free[p] && (!only || (*only)[p]) ? 1 : 0;
   return self;
 }
 
-std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, const Mbvt& m, LevelCount& count,
+std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& s, const Mbvt& m,
+                                                               LevelCount& count,
                                                                const std::vector<std::uint8_t>* active) {
   auto work = plant_pairs(s, m);
   const auto on = [&](std::int32_t p) { return !active || (*active)[static_cast<std::size_t>(p)]; };

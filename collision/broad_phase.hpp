@@ -30,7 +30,7 @@ std::vector<std::uint8_t> plants_with_free_pairs(const Stand& stand, const Mbvt&
 /// itself (p, p) where it holds a pair of organs that may meet, sorted; `count` gets the level's
 /// numbers between and within plants. With `active` (a flag per plant), only pairs with a
 /// flagged plant.
-std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(const Stand& stand, const Mbvt& m, LevelCount& count,
-                                                               const std::vector<std::uint8_t>* active = nullptr);
+std::vector<std::pair<std::int32_t, std::int32_t>> plant_level(
+    const Stand& stand, const Mbvt& m, LevelCount& count, const std::vector<std::uint8_t>* active = nullptr);
 
 }  // namespace canopy

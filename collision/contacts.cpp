@@ -9,7 +9,8 @@ void write_contacts_csv(const Stand& stand, const Contacts& c, AtomicFile& out) 
   write_contacts_csv(ExportScope::whole(stand), c.pairs, c.level, f);
 }
 
-void write_contacts_csv(const ExportScope& e, const std::vector<Contact>& pairs, ContactLevel level, ChunkWriter& out) {
+void write_contacts_csv(const ExportScope& e, const std::vector<Contact>& pairs, ContactLevel level,
+                        ChunkWriter& out) {
   out.fixed("organ_a,organ_b,plant_a,plant_b,level\n");
   // Rows grouped by their first plant: sorted pairs keep each plant's rows together.
   std::vector<std::size_t> first(e.stand.plant_count() + 1, 0);
@@ -25,7 +26,8 @@ void write_contacts_csv(const ExportScope& e, const std::vector<Contact>& pairs,
     const std::size_t p = e.plants[i];
     for (std::size_t r = first[p]; r < first[p + 1]; ++r) {
       const Contact& k = *rows[r];
-      t += fmt::format("{},{},{},{},{}\n", e.organ(k.organ_a), e.organ(k.organ_b), e.plant(static_cast<std::size_t>(k.plant_a)),
+      t += fmt::format("{},{},{},{},{}\n", e.organ(k.organ_a), e.organ(k.organ_b),
+                       e.plant(static_cast<std::size_t>(k.plant_a)),
                        e.plant(static_cast<std::size_t>(k.plant_b)), name);
     }
   });

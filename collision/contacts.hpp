@@ -38,9 +38,9 @@ struct Contacts {
   std::array<std::optional<LevelCount>, 4> counts;  // every level up to `level`
   std::array<double, 4> seconds{};                  // time spent per level
   double build_s = 0;                               // bounding volume build or refit
-  double load_s = 0;                                // CUDA: stand and tree shape uploaded (detect, not redetect)
-  std::size_t batches = 1;                          // CUDA: batches of plant pairs the stages ran in
-  std::array<double, 4> device_seconds{};           // CUDA: kernel time per level from CUDA events
+  double load_s = 0;                       // CUDA: stand and tree shape uploaded (detect, not redetect)
+  std::size_t batches = 1;                 // CUDA: batches of plant pairs the stages ran in
+  std::array<double, 4> device_seconds{};  // CUDA: kernel time per level from CUDA events
 };
 
 /// The numbers of `pairs` between and within plants.
@@ -51,7 +51,8 @@ inline LevelCount count_pairs(const std::vector<Contact>& pairs) {
 }
 
 /// The pairs whose flag in `hit` is set, in order (the exact level out of the organ level).
-inline std::vector<Contact> keep_hits(const std::vector<Contact>& pairs, const std::vector<std::uint8_t>& hit) {
+inline std::vector<Contact> keep_hits(const std::vector<Contact>& pairs,
+                                      const std::vector<std::uint8_t>& hit) {
   std::vector<Contact> out;
   for (std::size_t i = 0; i < pairs.size(); ++i)
     if (hit[i]) out.push_back(pairs[i]);
@@ -59,7 +60,8 @@ inline std::vector<Contact> keep_hits(const std::vector<Contact>& pairs, const s
 }
 
 /// adjacent() for two organs of one plant, ia and ib, from their parents alone.
-CANOPY_HD inline bool parents_adjacent(std::int32_t parent_a, std::int32_t ia, std::int32_t parent_b, std::int32_t ib) {
+CANOPY_HD inline bool parents_adjacent(std::int32_t parent_a, std::int32_t ia, std::int32_t parent_b,
+                                       std::int32_t ib) {
   return parent_a == ib || parent_b == ia || parent_a == parent_b;
 }
 
@@ -73,6 +75,7 @@ CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const Orga
 void write_contacts_csv(const Stand& stand, const Contacts& c, AtomicFile& out);
 /// contacts.csv over an ExportScope: the rows of the scope's plants (a row belongs to its first
 /// plant), ids mapped to the whole stand's (the same bytes as for the whole stand).
-void write_contacts_csv(const ExportScope& scope, const std::vector<Contact>& pairs, ContactLevel level, ChunkWriter& out);
+void write_contacts_csv(const ExportScope& scope, const std::vector<Contact>& pairs, ContactLevel level,
+                        ChunkWriter& out);
 
 }  // namespace canopy

@@ -48,7 +48,8 @@ struct Collector {
   ObbBatch batch[kBatches];
   int filling = 0;  // the batch pairs are added to; the others are full or empty
   /// Adds a pair; tests the other batch where this one fills up.
-  void add(const Obb& oa, const Obb& ob, Vec3f off, std::int32_t ia, std::int32_t ib, std::int32_t pa, std::int32_t pb) {
+  void add(const Obb& oa, const Obb& ob, Vec3f off, std::int32_t ia, std::int32_t ib, std::int32_t pa,
+           std::int32_t pb) {
     batch[filling].add(oa, ob, off, ia, ib, pa, pb);
     if (!batch[filling].full()) return;
     filling = (filling + 1) % kBatches;
@@ -60,14 +61,16 @@ struct Collector {
   }
   void leaf_pair(std::int32_t p, std::int32_t q, std::uint32_t i, std::uint32_t j) {
     (p == q ? leaves.within : leaves.between)++;
-    if (keep_leaves) leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
+    if (keep_leaves)
+      leaf.push_back({-1, -1, p, q, static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)});
   }
   /// A batch's OBB tests; the pairs whose OBBs overlap join the organ level. Leaves it empty.
   void test(ObbBatch& waiting) {
     for (unsigned hit = waiting.overlapping(); hit; hit &= hit - 1) {
       const int t = __builtin_ctz(hit);
       Contact c;
-      c.organ_a = std::min(waiting.organ_a[t], waiting.organ_b[t]), c.organ_b = std::max(waiting.organ_a[t], waiting.organ_b[t]);
+      c.organ_a = std::min(waiting.organ_a[t], waiting.organ_b[t]),
+      c.organ_b = std::max(waiting.organ_a[t], waiting.organ_b[t]);
       c.plant_a = waiting.plant_a[t], c.plant_b = waiting.plant_b[t];
       organ.push_back(c);
     }
@@ -78,18 +81,22 @@ struct Collector {
 /// `known_free`: the pair is known not to be adjacent (a cluster's own pair that its free_after
 /// mask let through), so the parents are left unread. Inlined where the pass finds its pairs:
 /// a call costs the pass time (bench_detect: about 4 %, one thread).
-[[gnu::always_inline]] inline void organ_pair(const Mbvt& m, std::int32_t a, std::int32_t b, Vec3f offset_ab, Collector& out,
-                                              std::int32_t plant_a, std::int32_t plant_b, bool known_free = false) {
+[[gnu::always_inline]] inline void organ_pair(const Mbvt& m, std::int32_t a, std::int32_t b, Vec3f offset_ab,
+                                              Collector& out, std::int32_t plant_a, std::int32_t plant_b,
+                                              bool known_free = false) {
   // offset_ab moves b into a's plant frame when a is the lower organ; callers pass organs of
   // one plant pair with the lower plant's organ first.
-  if (out.moved && !(*out.moved)[static_cast<std::size_t>(a)] && !(*out.moved)[static_cast<std::size_t>(b)]) return;
+  if (out.moved && !(*out.moved)[static_cast<std::size_t>(a)] && !(*out.moved)[static_cast<std::size_t>(b)])
+    return;
   // Organs of two plants are never adjacent; of one plant, their parents decide (the tree's
   // dense copy: a quarter of the records' bytes, so a faster pass than reading the records,
   // prefetched or not).
   if (plant_a == plant_b && !known_free &&
-      parents_adjacent(m.parent_of[static_cast<std::size_t>(a)], a, m.parent_of[static_cast<std::size_t>(b)], b))
+      parents_adjacent(m.parent_of[static_cast<std::size_t>(a)], a, m.parent_of[static_cast<std::size_t>(b)],
+                       b))
     return;
-  out.add(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)], offset_ab, a, b, plant_a, plant_b);
+  out.add(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)], offset_ab, a, b, plant_a,
+          plant_b);
 }
 
 /// Asks for plant q's boxes, organ ids and lanes ahead of a work item that needs them (not its
@@ -113,18 +120,23 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
   lines(&m.cluster_organs[c0.first], (c1.first + c1.count - c0.first) * sizeof(std::uint32_t));
   const OrganLanes& l = m.lanes;
   const auto lanes = [&](const BoxLanes& b, std::size_t l0, std::size_t l1) {
-    lines(b.group(l0), (l1 - l0 + BoxLanes::kWidth - 1) / BoxLanes::kWidth * BoxLanes::kGroupFloats * sizeof(float));
+    lines(b.group(l0),
+          (l1 - l0 + BoxLanes::kWidth - 1) / BoxLanes::kWidth * BoxLanes::kGroupFloats * sizeof(float));
   };
-  lanes(l.organs, l.organ_first[pb.first_cluster], l.organ_first[pb.first_cluster + pb.cluster_count - 1] + c1.count);
+  lanes(l.organs, l.organ_first[pb.first_cluster],
+        l.organ_first[pb.first_cluster + pb.cluster_count - 1] + c1.count);
   const std::size_t k0 = l.cluster_first[static_cast<std::size_t>(q)], k1 = k0 + pb.cluster_count;
   lanes(l.clusters, k0, k1);
-  lines(l.root_lanes.group(k0), (k1 - k0 + LcdLanes::kWidth - 1) / LcdLanes::kWidth * LcdLanes::kGroupFloats * sizeof(float));
+  lines(l.root_lanes.group(k0),
+        (k1 - k0 + LcdLanes::kWidth - 1) / LcdLanes::kWidth * LcdLanes::kGroupFloats * sizeof(float));
 }
 
 class CpuBackend : public DetectionBackend {
  public:
   std::string name() const override { return "cpu"; }
-  std::string device() const override { return fmt::format("{} CPU threads", std::max(1u, std::thread::hardware_concurrency())); }
+  std::string device() const override {
+    return fmt::format("{} CPU threads", std::max(1u, std::thread::hardware_concurrency()));
+  }
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
@@ -142,7 +154,8 @@ class CpuBackend : public DetectionBackend {
     return run(s, req, now_seconds() - t);
   }
 
-  Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
+  Contacts redetect(const Stand& s, const DetectRequest& req,
+                    const std::vector<std::uint32_t>& moved) override {
     check_request(req);
     if (!tree_ || tree_->obbs.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
@@ -223,7 +236,8 @@ class CpuBackend : public DetectionBackend {
     }
     // The lists stop where they would outgrow the memory (collision/memory_budget.hpp): plants
     // on or near one spot make contacts as the square of their number.
-    const std::size_t most = budget ? static_cast<std::size_t>(static_cast<double>(budget) / kBytesPerContact) : SIZE_MAX;
+    const std::size_t most =
+        budget ? static_cast<std::size_t>(static_cast<double>(budget) / kBytesPerContact) : SIZE_MAX;
     std::atomic<std::size_t> listed{0}, done{0};
     std::atomic<bool> over{false};
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
@@ -238,45 +252,54 @@ class CpuBackend : public DetectionBackend {
       const std::size_t held = col.leaf.size() + col.organ.size();
       // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the other
       // plant's box (8 of p's clusters at a time), then each cluster's.
-      lane_clusters_meeting_moved(m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
-        const PassCluster& ca = m.lanes.pass[i];
-        if (p == q && !passed_over(i, i) && ca.has_free) {  // within one cluster: all its pairs
-          col.leaf_pair(p, q, i, i);
-          if (req.level != ContactLevel::leaf)
-            lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), ca, [&](std::int32_t a, std::int32_t b) {
-              organ_pair(m, a, b, offset, col, p, q, pairs_masked(ca.count));
-            });
-        }
-        const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
-        lane_clusters_overlapping(
-            m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, m.lanes.roots[i], offset, [&](std::uint32_t j) {
-              const PassCluster& cb = m.lanes.pass[j];
-              if (passed_over(i, j)) return;
-              col.leaf_pair(p, q, i, j);
-              if (req.level == ContactLevel::leaf) return;
-              const auto block = [&](const LcdNode& na, const LcdNode& nb) {
-                lane_block_pairs(m.lanes, m.cluster_organs.data(), i, m.clusters[i], na, j, m.clusters[j], nb, offset,
-                                 [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
-              };
-              // Two clusters of one block each (a tomato's compound leaves): the descent would hand
-              // their roots straight over, and a root spans its cluster's organs; the clusters' own
-              // lanes are taken, the nodes left unread.
-              static_assert(kBlockOrgans == 2 * OrganLanes::kWidth, "lane_small_cluster_pairs takes clusters of one block");
-              if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
-                lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), ca, cb, offset,
-                                         [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
-              else descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset, block);
-            });
-      });
+      lane_clusters_meeting_moved(
+          m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
+            const PassCluster& ca = m.lanes.pass[i];
+            if (p == q && !passed_over(i, i) && ca.has_free) {  // within one cluster: all its pairs
+              col.leaf_pair(p, q, i, i);
+              if (req.level != ContactLevel::leaf)
+                lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), ca,
+                               [&](std::int32_t a, std::int32_t b) {
+                                 organ_pair(m, a, b, offset, col, p, q, pairs_masked(ca.count));
+                               });
+            }
+            const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
+            lane_clusters_overlapping(
+                m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, m.lanes.roots[i], offset,
+                [&](std::uint32_t j) {
+                  const PassCluster& cb = m.lanes.pass[j];
+                  if (passed_over(i, j)) return;
+                  col.leaf_pair(p, q, i, j);
+                  if (req.level == ContactLevel::leaf) return;
+                  const auto block = [&](const LcdNode& na, const LcdNode& nb) {
+                    lane_block_pairs(
+                        m.lanes, m.cluster_organs.data(), i, m.clusters[i], na, j, m.clusters[j], nb, offset,
+                        [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
+                  };
+                  // Two clusters of one block each (a tomato's compound leaves): the descent would hand
+                  // their roots straight over, and a root spans its cluster's organs; the clusters' own
+                  // lanes are taken, the nodes left unread.
+                  static_assert(kBlockOrgans == 2 * OrganLanes::kWidth,
+                                "lane_small_cluster_pairs takes clusters of one block");
+                  if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
+                    lane_small_cluster_pairs(
+                        m.lanes, m.cluster_organs.data(), ca, cb, offset,
+                        [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
+                  else
+                    descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset, block);
+                });
+          });
       done.fetch_add(1, std::memory_order_relaxed);
       if (const std::size_t grown = col.leaf.size() + col.organ.size() - held)
-        if (listed.fetch_add(grown, std::memory_order_relaxed) + grown > most) over.store(true, std::memory_order_relaxed);
+        if (listed.fetch_add(grown, std::memory_order_relaxed) + grown > most)
+          over.store(true, std::memory_order_relaxed);
     }
     if (over)
-      throw std::runtime_error(fmt::format(
-          "detection stopped after {} of {} plant pairs: its contact lists (over {} pairs) outgrew the {:.1f} GB of memory "
-          "available (plants on or near one spot?); spread the plants out or use fewer",
-          done.load(), work.size(), listed.load(), static_cast<double>(budget) / 1e9));
+      throw std::runtime_error(
+          fmt::format("detection stopped after {} of {} plant pairs: its contact lists (over {} pairs) "
+                      "outgrew the {:.1f} GB of memory "
+                      "available (plants on or near one spot?); spread the plants out or use fewer",
+                      done.load(), work.size(), listed.load(), static_cast<double>(budget) / 1e9));
     for (Collector& c : per) c.test_waiting();
     std::vector<Contact> leaf;
     std::vector<Contact>& organ = organ_;
@@ -316,7 +339,8 @@ class CpuBackend : public DetectionBackend {
     // Every organ's mesh was made with the tree (fit_mbvt, before threads share the library).
     // Each thread's scratch kept from the last detection (its poses' memory warm), its poses
     // forgotten; its pose cache holds two poses (PoseCache::kDetectionSets).
-    while (scratch_.size() < static_cast<std::size_t>(threads)) scratch_.emplace_back(PoseCache::kDetectionSets);
+    while (scratch_.size() < static_cast<std::size_t>(threads))
+      scratch_.emplace_back(PoseCache::kDetectionSets);
     // The tree's OBBs are the poses' own (make_obb at the stand's transforms) where it was fit with
     // no clearance: the poses take them rather than make them again.
     const Obb* tree_obbs = m.config.clearance == 0 ? m.obbs.data() : nullptr;
@@ -338,7 +362,9 @@ class CpuBackend : public DetectionBackend {
             __builtin_prefetch(&s.organs[k]);
             if (tree_obbs) __builtin_prefetch(&tree_obbs[k]);
           }
-        hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch, tree_obbs) ? 1 : 0;
+        hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch, tree_obbs)
+                     ? 1
+                     : 0;
       }
     }
     out.pairs = keep_hits(organ, hit);

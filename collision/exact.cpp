@@ -32,8 +32,8 @@ struct Spiral {
 
 void organ_vertices(const Stand& s, const PrototypeMesh& mesh, std::int32_t organ, std::int32_t frame_plant,
                     std::vector<Vec3f>& out) {
-  organ_vertices(s, mesh, s.transforms[static_cast<std::size_t>(organ)], s.organs[static_cast<std::size_t>(organ)].plant,
-                 frame_plant, out);
+  organ_vertices(s, mesh, s.transforms[static_cast<std::size_t>(organ)],
+                 s.organs[static_cast<std::size_t>(organ)].plant, frame_plant, out);
 }
 
 namespace {
@@ -50,8 +50,8 @@ void moved_vertices(const PrototypeMesh& mesh, const Affine3f& m, Vec3f d, std::
 
 }  // namespace
 
-void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m, std::int32_t plant, std::int32_t frame_plant,
-                    std::vector<Vec3f>& out) {
+void organ_vertices(const Stand& s, const PrototypeMesh& mesh, const Affine3f& m, std::int32_t plant,
+                    std::int32_t frame_plant, std::vector<Vec3f>& out) {
   moved_vertices(mesh, m, frame_offset(s, plant, frame_plant), out);
 }
 
@@ -59,12 +59,14 @@ namespace {
 
 /// organs_touch_at's test, the poses taking `made_a` / `made_b` (PosedOrgan::pose) where given.
 bool touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
-              const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried, const Obb* made_a,
-              const Obb* made_b) {
+              const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried,
+              const Obb* made_a, const Obb* made_b) {
   assert(a < b);
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
-  if (solids_apart(ra.prototype, pose_a, rb.prototype, pose_b, frame_offset(s, rb.plant, ra.plant), clearance)) return false;
+  if (solids_apart(ra.prototype, pose_a, rb.prototype, pose_b, frame_offset(s, rb.plant, ra.plant),
+                   clearance))
+    return false;
   if (witness && !witness_tried) {
     const int slot = witness_slot_touching(s, lib, a, pose_a, b, pose_b, clearance, *witness);
     if (slot >= 0) return witness->promote(slot), true;
@@ -76,16 +78,17 @@ bool touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affin
 
 }  // namespace
 
-bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance, ExactScratch& x,
-                  const Obb* obbs) {
+bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::int32_t b, float clearance,
+                  ExactScratch& x, const Obb* obbs) {
   const auto ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
-  return touch_at(s, lib, a, s.transforms[ia], b, s.transforms[ib], clearance, x, nullptr, false, obbs ? &obbs[ia] : nullptr,
-                  obbs ? &obbs[ib] : nullptr);
+  return touch_at(s, lib, a, s.transforms[ia], b, s.transforms[ib], clearance, x, nullptr, false,
+                  obbs ? &obbs[ia] : nullptr, obbs ? &obbs[ib] : nullptr);
 }
 
 // The body of pose(), built into both builds (collision/lanes/isa.hpp).
-[[gnu::always_inline]] inline void PosedOrgan::pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t id,
-                                                         const Affine3f& t, std::int32_t plant, std::int32_t frame_plant,
+[[gnu::always_inline]] inline void PosedOrgan::pose_body(const Stand& s, const PrototypeMesh& m,
+                                                         std::int32_t id, const Affine3f& t,
+                                                         std::int32_t plant, std::int32_t frame_plant,
                                                          const Obb* made) {
   organ = id, frame = frame_plant, mesh = &m;
   solid = is_solid(s.organs[static_cast<std::size_t>(id)].prototype);
@@ -112,7 +115,8 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
   // tests/geometry), the lanes past the last triangle left out.
   F8 organ_lo[3], organ_hi[3];
   for (int k = 0; k < 3; ++k)
-    organ_lo[k] = splat8(std::numeric_limits<float>::infinity()), organ_hi[k] = splat8(-std::numeric_limits<float>::infinity());
+    organ_lo[k] = splat8(std::numeric_limits<float>::infinity()),
+    organ_hi[k] = splat8(-std::numeric_limits<float>::infinity());
   for (std::size_t g = 0; g < groups; ++g) {
     const float* local = &m.corner_lanes[g * PrototypeMesh::kCornerGroupFloats];
     float* group = &tri_lanes[g * kGroupFloats];
@@ -129,7 +133,8 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
     // Lanes below the triangle count (a compare of the lane numbers, not a mask built lane by lane).
     const I8 in_use = I8{0, 1, 2, 3, 4, 5, 6, 7} < static_cast<int>(std::min<std::size_t>(tris - 8 * g, 8));
     for (int k = 0; k < 3; ++k) {
-      const F8 box_lo = min8(at[0][k], min8(at[1][k], at[2][k])), box_hi = max8(at[0][k], max8(at[1][k], at[2][k]));
+      const F8 box_lo = min8(at[0][k], min8(at[1][k], at[2][k])),
+               box_hi = max8(at[0][k], max8(at[1][k], at[2][k]));
       store8(group + 8 * (9 + k), box_lo);
       store8(group + 8 * (12 + k), box_hi);
       // As std::min and std::max take a new value (a NaN one leaves the box as it was).
@@ -144,18 +149,19 @@ bool organs_touch(const Stand& s, PrototypeLibrary& lib, std::int32_t a, std::in
     }
 }
 
-CANOPY_TARGET_V4 void PosedOrgan::pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
-                                          std::int32_t plant, std::int32_t frame_plant, const Obb* made) {
+CANOPY_TARGET_V4 void PosedOrgan::pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t id,
+                                          const Affine3f& t, std::int32_t plant, std::int32_t frame_plant,
+                                          const Obb* made) {
   pose_body(s, m, id, t, plant, frame_plant, made);
 }
 
-void PosedOrgan::pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
-                                   std::int32_t frame_plant, const Obb* made) {
+void PosedOrgan::pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
+                                   std::int32_t plant, std::int32_t frame_plant, const Obb* made) {
   pose_body(s, m, id, t, plant, frame_plant, made);
 }
 
-void PosedOrgan::pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t, std::int32_t plant,
-                         std::int32_t frame_plant, const Obb* made) {
+void PosedOrgan::pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t id, const Affine3f& t,
+                         std::int32_t plant, std::int32_t frame_plant, const Obb* made) {
   if (isa == Isa::x86_64_v4) pose_v4(s, m, id, t, plant, frame_plant, made);
   else pose_build_target(s, m, id, t, plant, frame_plant, made);
 }
@@ -172,14 +178,15 @@ namespace {
 
 /// A bit per triangle of `p` (8 per byte): near_lanes against the other organ's box and OBB.
 /// Whether any is set.
-bool near_bits(const PosedOrgan& p, const FloatBounds& box, const Obb& obb, float margin, std::vector<std::uint8_t>& bits) {
+bool near_bits(const PosedOrgan& p, const FloatBounds& box, const Obb& obb, float margin,
+               std::vector<std::uint8_t>& bits) {
   const std::size_t tris = p.mesh->triangle_count(), groups = (tris + 7) / 8;
   bits.resize(groups);
   unsigned any = 0;
   for (std::size_t g = 0; g < groups; ++g)
-    any |= bits[g] =
-        static_cast<std::uint8_t>(near_lanes(&p.tri_lanes[g * PosedOrgan::kGroupFloats], box, obb, margin) &
-                                  lanes_detail::lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g)));
+    any |= bits[g] = static_cast<std::uint8_t>(
+        near_lanes(&p.tri_lanes[g * PosedOrgan::kGroupFloats], box, obb, margin) &
+        lanes_detail::lanes_below(static_cast<std::uint32_t>(tris), static_cast<std::uint32_t>(8 * g)));
   return any != 0;
 }
 
@@ -191,11 +198,13 @@ bool boxes_apart(const Vec3f* p, const Vec3f* q, double c) {
   for (int k = 0; k < 3; ++k) {
     const auto lo_hi = [k](const Vec3f* t, float& lo, float& hi) {
       const auto at = [k](const Vec3f& v) { return k == 0 ? v.x : k == 1 ? v.y : v.z; };
-      lo = std::min(at(t[0]), std::min(at(t[1]), at(t[2]))), hi = std::max(at(t[0]), std::max(at(t[1]), at(t[2])));
+      lo = std::min(at(t[0]), std::min(at(t[1]), at(t[2]))),
+      hi = std::max(at(t[0]), std::max(at(t[1]), at(t[2])));
     };
     float plo, phi, qlo, qhi;
     lo_hi(p, plo, phi), lo_hi(q, qlo, qhi);
-    if (static_cast<double>(plo) > static_cast<double>(qhi) + c || static_cast<double>(qlo) > static_cast<double>(phi) + c)
+    if (static_cast<double>(plo) > static_cast<double>(qhi) + c ||
+        static_cast<double>(qlo) > static_cast<double>(phi) + c)
       return true;
   }
   return false;
@@ -203,8 +212,9 @@ bool boxes_apart(const Vec3f* p, const Vec3f* q, double c) {
 
 }  // namespace
 
-int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
-                          const Affine3f& pose_b, float clearance, const Witness& w, int skip) {
+int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a,
+                          std::int32_t b, const Affine3f& pose_b, float clearance, const Witness& w,
+                          int skip) {
   const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
   const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
   const PrototypeMesh& ma = lib.get(ra);
@@ -233,14 +243,16 @@ int witness_slot_touching(const Stand& s, PrototypeLibrary& lib, std::int32_t a,
   return -1;
 }
 
-bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a, std::int32_t b,
-                     const Affine3f& pose_b, float clearance, ExactScratch& x, Witness* witness, bool witness_tried) {
+bool organs_touch_at(const Stand& s, PrototypeLibrary& lib, std::int32_t a, const Affine3f& pose_a,
+                     std::int32_t b, const Affine3f& pose_b, float clearance, ExactScratch& x,
+                     Witness* witness, bool witness_tried) {
   return touch_at(s, lib, a, pose_a, b, pose_b, clearance, x, witness, witness_tried, nullptr, nullptr);
 }
 
-const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t, std::int32_t frame,
-                                 const PosedOrgan* keep, const Obb* made) {
-  const std::size_t set = (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) & set_mask_;
+const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t,
+                                 std::int32_t frame, const PosedOrgan* keep, const Obb* made) {
+  const std::size_t set =
+      (static_cast<std::size_t>(organ) * 0x9E3779B1u ^ static_cast<std::size_t>(frame)) & set_mask_;
   Entry* way = &entries_[2 * set];
   ++clock_;
   for (int w = 0; w < 2; ++w)
@@ -264,8 +276,8 @@ const PosedOrgan& PoseCache::get(const Stand& s, PrototypeLibrary& lib, std::int
 namespace {
 
 // The body of posed_touch, built into both builds (collision/lanes/isa.hpp).
-[[gnu::always_inline]] inline bool posed_touch_body(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
-                                                    Witness* witness) {
+[[gnu::always_inline]] inline bool posed_touch_body(const PosedOrgan& pa, const PosedOrgan& pb,
+                                                    float clearance, ExactScratch& x, Witness* witness) {
   assert(pa.organ < pb.organ && pa.frame == pb.frame);
   const PrototypeMesh& ma = *pa.mesh;
   const PrototypeMesh& mb = *pb.mesh;
@@ -286,8 +298,8 @@ namespace {
   };
   // With a witness, start both loops at its triangles: a touching pair is likely near the one
   // that touched last (the answer is the same in any order).
-  const bool seen =
-      witness && witness->latest >= 0 && witness->tri_a[witness->latest] < ta && witness->tri_b[witness->latest] < tb;
+  const bool seen = witness && witness->latest >= 0 && witness->tri_a[witness->latest] < ta &&
+                    witness->tri_b[witness->latest] < tb;
   const std::size_t start_a = seen ? static_cast<std::size_t>(witness->tri_a[witness->latest]) : 0;
   const std::size_t start_b = seen ? static_cast<std::size_t>(witness->tri_b[witness->latest]) : 0;
   // The triangles of each organ near the other, 8 at a time. Then a's near triangles one by
@@ -336,30 +348,34 @@ namespace {
     const Vec3f p = other.first_vertex();
     const Vec3f point[3] = {p, p, p};
     return !beyond_obb(point, solid.obb, margin) &&
-           point_in_convex(d3(p), solid.vertices().data(), solid.mesh->indices.data(), static_cast<int>(solid_tris));
+           point_in_convex(d3(p), solid.vertices().data(), solid.mesh->indices.data(),
+                           static_cast<int>(solid_tris));
   };
   if (pb.solid && ta > 0 && inside(pb, tb, pa)) return true;
   if (pa.solid && tb > 0 && inside(pa, ta, pb)) return true;
   return false;
 }
 
-CANOPY_TARGET_V4 bool posed_touch_v4(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
-                                     Witness* witness) {
+CANOPY_TARGET_V4 bool posed_touch_v4(const PosedOrgan& pa, const PosedOrgan& pb, float clearance,
+                                     ExactScratch& x, Witness* witness) {
   return posed_touch_body(pa, pb, clearance, x, witness);
 }
 
-bool posed_touch_build_target(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+bool posed_touch_build_target(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
+                              Witness* witness) {
   return posed_touch_body(pa, pb, clearance, x, witness);
 }
 
 }  // namespace
 
-bool posed_touch_as(Isa isa, const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+bool posed_touch_as(Isa isa, const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
+                    Witness* witness) {
   return isa == Isa::x86_64_v4 ? posed_touch_v4(pa, pb, clearance, x, witness)
                                : posed_touch_build_target(pa, pb, clearance, x, witness);
 }
 
-bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x, Witness* witness) {
+bool posed_touch(const PosedOrgan& pa, const PosedOrgan& pb, float clearance, ExactScratch& x,
+                 Witness* witness) {
   return posed_touch_as(fastest_isa(), pa, pb, clearance, x, witness);
 }
 

@@ -43,8 +43,9 @@ struct PosedOrgan {
     const float* g = &tri_lanes[i / 8 * kGroupFloats + i % 8];
     for (int c = 0; c < 3; ++c) out[c] = {g[8 * (3 * c)], g[8 * (3 * c + 1)], g[8 * (3 * c + 2)]};
   }
-  double box[6] = {0, 0, 0, 0, 0, 0};  // the organ's box in double (not widened): its corners' (every vertex is one)
-  Obb obb{};                           // its OBB in this frame (make_obb, centre moved by the origin difference)
+  double box[6] = {0, 0, 0,
+                   0, 0, 0};  // the organ's box in double (not widened): its corners' (every vertex is one)
+  Obb obb{};                  // its OBB in this frame (make_obb, centre moved by the origin difference)
   /// Triangle i's plane, made when first asked for: most triangles of a pose never pass the
   /// box tests that come before it.
   const TrianglePlane& plane(std::size_t i) const {
@@ -70,16 +71,16 @@ struct PosedOrgan {
     pose_as(fastest_isa(), s, m, organ, t, plant, frame_plant, made);
   }
   /// pose() with the given build (Isa::x86_64_v4 only where cpu_has_x86_64_v4()): the same bits.
-  void pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-               std::int32_t frame_plant, const Obb* made = nullptr);
+  void pose_as(Isa isa, const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t,
+               std::int32_t plant, std::int32_t frame_plant, const Obb* made = nullptr);
 
  private:
-  void pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-                 std::int32_t frame_plant, const Obb* made);
-  void pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-               std::int32_t frame_plant, const Obb* made);
-  void pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t, std::int32_t plant,
-                         std::int32_t frame_plant, const Obb* made);
+  void pose_body(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t,
+                 std::int32_t plant, std::int32_t frame_plant, const Obb* made);
+  void pose_v4(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t,
+               std::int32_t plant, std::int32_t frame_plant, const Obb* made);
+  void pose_build_target(const Stand& s, const PrototypeMesh& m, std::int32_t organ, const Affine3f& t,
+                         std::int32_t plant, std::int32_t frame_plant, const Obb* made);
 
   Affine3f at_{};
   Vec3f moved_{};
@@ -113,8 +114,8 @@ class PoseCache {
       : set_mask_(std::bit_ceil(std::max<std::size_t>(sets, 1)) - 1), entries_(2 * (set_mask_ + 1)) {}
   /// `organ` at transform `t` in the frame of plant `frame`, made now or found; `keep` (a pose
   /// returned before) is never evicted by this call; `made` as PosedOrgan::pose takes it.
-  const PosedOrgan& get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t, std::int32_t frame,
-                        const PosedOrgan* keep = nullptr, const Obb* made = nullptr);
+  const PosedOrgan& get(const Stand& s, PrototypeLibrary& lib, std::int32_t organ, const Affine3f& t,
+                        std::int32_t frame, const PosedOrgan* keep = nullptr, const Obb* made = nullptr);
   /// Forgets every pose (nothing is found again) and keeps the poses' memory for the next ones.
   void forget() {
     for (Entry& e : entries_) e.stand = nullptr, e.pose.organ = -1, e.used = 0;
@@ -180,37 +181,40 @@ struct Witness {
 /// transforms (a's plant frame), or -1: the quick first check of organs_touch_at, making only
 /// the six vertices of each pair. Slot `skip` is passed over (one the caller has just seen miss
 /// at these transforms).
-int witness_slot_touching(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
-                          const Affine3f& tb, float clearance, const Witness& witness, int skip = -1);
+int witness_slot_touching(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta,
+                          std::int32_t b, const Affine3f& tb, float clearance, const Witness& witness,
+                          int skip = -1);
 /// The full test of two posed organs (a < b; b posed in a's plant's frame), remembering the
 /// touching triangles in `witness` when given; with the fastest build this CPU runs
 /// (collision/lanes/isa.hpp).
-bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
+bool posed_touch(const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch,
+                 Witness* witness);
 /// posed_touch with the given build (Isa::x86_64_v4 only where cpu_has_x86_64_v4()): the same
 /// answer and witness.
-bool posed_touch_as(Isa isa, const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch, Witness* witness);
+bool posed_touch_as(Isa isa, const PosedOrgan& a, const PosedOrgan& b, float clearance, ExactScratch& scratch,
+                    Witness* witness);
 
 /// The same test as organs_touch with the organs at the given plant-frame transforms instead of
 /// the stand's (the turn search of resolution tries poses before it keeps one). With a witness,
 /// its triangle pairs are tried first unless the caller has just done so (`witness_tried`).
-bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta, std::int32_t b,
-                     const Affine3f& tb, float clearance, ExactScratch& scratch, Witness* witness = nullptr,
-                     bool witness_tried = false);
+bool organs_touch_at(const Stand& stand, PrototypeLibrary& lib, std::int32_t a, const Affine3f& ta,
+                     std::int32_t b, const Affine3f& tb, float clearance, ExactScratch& scratch,
+                     Witness* witness = nullptr, bool witness_tried = false);
 
 /// organs_touch_at for two organs in either order: the test runs with the lower id first (its
 /// plant's frame, its witness order), as every caller must.
-inline bool organs_touch_either(const Stand& stand, PrototypeLibrary& lib, std::int32_t x, const Affine3f& tx, std::int32_t y,
-                                const Affine3f& ty, float clearance, ExactScratch& scratch, Witness* witness = nullptr,
-                                bool witness_tried = false) {
+inline bool organs_touch_either(const Stand& stand, PrototypeLibrary& lib, std::int32_t x, const Affine3f& tx,
+                                std::int32_t y, const Affine3f& ty, float clearance, ExactScratch& scratch,
+                                Witness* witness = nullptr, bool witness_tried = false) {
   return x < y ? organs_touch_at(stand, lib, x, tx, y, ty, clearance, scratch, witness, witness_tried)
                : organs_touch_at(stand, lib, y, ty, x, tx, clearance, scratch, witness, witness_tried);
 }
 
 /// The organ's vertices in the plant frame of `frame_plant` (its own frame moved by the origin
 /// difference), as every exact test computes them.
-void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, std::int32_t organ, std::int32_t frame_plant,
-                    std::vector<Vec3f>& out);
-void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, const Affine3f& transform, std::int32_t plant,
+void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, std::int32_t organ,
                     std::int32_t frame_plant, std::vector<Vec3f>& out);
+void organ_vertices(const Stand& stand, const PrototypeMesh& mesh, const Affine3f& transform,
+                    std::int32_t plant, std::int32_t frame_plant, std::vector<Vec3f>& out);
 
 }  // namespace canopy

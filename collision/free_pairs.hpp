@@ -22,7 +22,8 @@ inline bool pairs_masked(std::uint32_t organs) { return organs <= kMaskOrgans; }
 /// set where k < y < n and organs ids[k], ids[y] are not adjacent (every bit when n exceeds
 /// kMaskOrgans). Returns whether the cluster holds a pair that is not adjacent
 /// (organs_hold_free_pair's answer).
-inline bool free_pair_masks(const OrganRecord* organs, const std::uint32_t* ids, std::uint32_t n, std::uint64_t* free_after) {
+inline bool free_pair_masks(const OrganRecord* organs, const std::uint32_t* ids, std::uint32_t n,
+                            std::uint64_t* free_after) {
   if (!pairs_masked(n)) {
     for (std::uint32_t k = 0; k < n; ++k) free_after[k] = ~std::uint64_t{0};
     return organs_hold_free_pair(organs, ids, 0, n);
@@ -38,7 +39,9 @@ inline bool free_pair_masks(const OrganRecord* organs, const std::uint32_t* ids,
   for (std::uint32_t k = 0; k < n; ++k) {
     const std::int32_t pa = parent[k] = organs[ids[k]].parent;
     const std::int64_t back = static_cast<std::int64_t>(ids[k]) - pa;
-    int j = back > 0 && back <= k && static_cast<std::int32_t>(ids[k - back]) == pa ? static_cast<int>(k - back) : -1;
+    int j = back > 0 && back <= k && static_cast<std::int32_t>(ids[k - back]) == pa
+                ? static_cast<int>(k - back)
+                : -1;
     if (j < 0) {
       j = static_cast<int>(k) - 1;
       while (j >= 0 && static_cast<std::int32_t>(ids[j]) != pa) --j;

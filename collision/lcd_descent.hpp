@@ -22,8 +22,8 @@ inline constexpr std::uint32_t kBlockOrgans = 16;
 /// `offset`); the larger node is split first. The roots' boxes are known to overlap (the caller
 /// found the cluster pair by that test).
 template <typename OnBlock>
-CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, std::uint32_t root_a, std::uint32_t root_b, Vec3f offset,
-                                        OnBlock&& on_block) {
+CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, std::uint32_t root_a, std::uint32_t root_b,
+                                        Vec3f offset, OnBlock&& on_block) {
   constexpr int kStack = 64;  // at most the two trees' depths together: far below this
   std::uint32_t stack[kStack][2];
   int top = 0;
@@ -33,9 +33,11 @@ CANOPY_HD inline void descend_lcd_trees(const LcdNode* nodes, std::uint32_t root
     const std::uint32_t ia = stack[top][0], ib = stack[top][1];
     const LcdNode& na = nodes[ia];
     const LcdNode& nb = nodes[ib];
-    const bool roots = ia == root_a && ib == root_b;  // only the first pair: children differ from their parents
+    const bool roots =
+        ia == root_a && ib == root_b;  // only the first pair: children differ from their parents
     if (!roots && !lcd_overlap(na.box, nb.box, offset)) continue;
-    const bool split_a = na.left >= 0 && na.count > kBlockOrgans, split_b = nb.left >= 0 && nb.count > kBlockOrgans;
+    const bool split_a = na.left >= 0 && na.count > kBlockOrgans,
+               split_b = nb.left >= 0 && nb.count > kBlockOrgans;
     if (!split_a && !split_b) {
       on_block(na, nb);
       continue;

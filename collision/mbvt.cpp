@@ -16,7 +16,9 @@
 namespace canopy {
 namespace {
 
-void fit_cluster(Mbvt& m, const Cluster& c) { fit_cluster_nodes(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), c); }
+void fit_cluster(Mbvt& m, const Cluster& c) {
+  fit_cluster_nodes(m.nodes.data(), m.obbs.data(), m.cluster_organs.data(), c);
+}
 
 /// The plant's bound, and its clusters' axis-aligned boxes on the way.
 void fit_plant(Mbvt& m, PlantBound& pb) { fit_plant_bound(m.nodes.data(), m.clusters.data(), pb); }
@@ -38,9 +40,10 @@ KindMask parse_collide_kinds(const std::string& list) {
   for (const std::string& name : split_list(list)) {
     const auto kind = parse_organ_kind(name);
     if (!kind)
-      throw std::invalid_argument(fmt::format(
-          "--collide: unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit, flower or all)",
-          name));
+      throw std::invalid_argument(
+          fmt::format("--collide: unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, "
+                      "peduncle, fruit, flower or all)",
+                      name));
     k[static_cast<std::size_t>(*kind)] = true;
   }
   return k;
@@ -104,7 +107,8 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
   for (std::uint32_t g = 0; g < groups; ++g) group_first[g + 1] += group_first[g];
   part.organs.resize(group_first[groups]);
   for (std::uint32_t k = 0; k < pr.organ_count; ++k)
-    if (group_of[k] >= 0) part.organs[group_first[static_cast<std::size_t>(group_of[k])]++] = pr.first_organ + k;
+    if (group_of[k] >= 0)
+      part.organs[group_first[static_cast<std::size_t>(group_of[k])]++] = pr.first_organ + k;
   for (std::uint32_t g = groups; g > 0; --g) group_first[g] = group_first[g - 1];
   group_first[0] = 0;
   part.clusters.reserve(groups);
@@ -151,14 +155,15 @@ PlantPart build_plant(const Stand& s, const Mbvt& m, std::size_t p) {
   part.has_free.resize(groups);
   for (std::uint32_t g = 0; g < groups; ++g) {
     const Cluster& c = part.clusters[g];
-    part.has_free[g] = free_pair_masks(s.organs.data(), &part.organs[c.first], c.count, &part.free_after[c.first]) ? 1 : 0;
+    part.has_free[g] =
+        free_pair_masks(s.organs.data(), &part.organs[c.first], c.count, &part.free_after[c.first]) ? 1 : 0;
     part.plant_has_free = part.plant_has_free || part.has_free[g];
   }
   // Otherwise a free pair can only lie across clusters (the plant's organs taking part, as the
   // plant level asks).
   if (!part.plant_has_free)
-    part.plant_has_free =
-        organs_hold_free_pair(s.organs.data(), part.organs.data(), 0, static_cast<std::uint32_t>(part.organs.size()));
+    part.plant_has_free = organs_hold_free_pair(s.organs.data(), part.organs.data(), 0,
+                                                static_cast<std::uint32_t>(part.organs.size()));
   return part;
 }
 
@@ -200,13 +205,17 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
   for (std::size_t p = 0; p < np; ++p) {
     const PlantPart& part = parts[p];
     const auto oo = static_cast<std::uint32_t>(o0[p]), no = static_cast<std::uint32_t>(n0[p]);
-    std::copy(part.organs.begin(), part.organs.end(), m.cluster_organs.begin() + static_cast<std::ptrdiff_t>(o0[p]));
-    std::copy(part.free_after.begin(), part.free_after.end(), m.free_after.begin() + static_cast<std::ptrdiff_t>(o0[p]));
-    std::copy(part.has_free.begin(), part.has_free.end(), m.cluster_has_free.begin() + static_cast<std::ptrdiff_t>(c0[p]));
+    std::copy(part.organs.begin(), part.organs.end(),
+              m.cluster_organs.begin() + static_cast<std::ptrdiff_t>(o0[p]));
+    std::copy(part.free_after.begin(), part.free_after.end(),
+              m.free_after.begin() + static_cast<std::ptrdiff_t>(o0[p]));
+    std::copy(part.has_free.begin(), part.has_free.end(),
+              m.cluster_has_free.begin() + static_cast<std::ptrdiff_t>(c0[p]));
     for (std::size_t k = 0; k < part.nodes.size(); ++k) {
       LcdNode node = part.nodes[k];
       node.first += oo;
-      if (node.left >= 0) node.left += static_cast<std::int32_t>(no), node.right += static_cast<std::int32_t>(no);
+      if (node.left >= 0)
+        node.left += static_cast<std::int32_t>(no), node.right += static_cast<std::int32_t>(no);
       m.nodes[n0[p] + k] = node;
     }
     for (std::size_t k = 0; k < part.clusters.size(); ++k) {
@@ -275,7 +284,8 @@ void fit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib) {
     const std::ptrdiff_t chunks = static_cast<std::ptrdiff_t>((n + 1023) / 1024);
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t k = 0; k < chunks; ++k)
-      fit_range(static_cast<std::size_t>(k) * 1024, std::min<std::size_t>(n, static_cast<std::size_t>(k + 1) * 1024));
+      fit_range(static_cast<std::size_t>(k) * 1024,
+                std::min<std::size_t>(n, static_cast<std::size_t>(k + 1) * 1024));
   }
   lay_out_lanes(m.lanes, m);
 #pragma omp parallel for schedule(dynamic, 16)
@@ -305,12 +315,14 @@ void rebuild_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const MbvtConf
   fit_mbvt(m, s, lib);
 }
 
-void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs, int threads) {
+void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs,
+                int threads) {
   // The moved organs' boxes, then the plants that hold one, each on `threads` threads (all by
   // default: a resolution round moves organs in most plants of a stand). Their meshes were made
   // by build_mbvt with this library.
   if (m.lanes.organ_first.size() != m.clusters.size())
-    throw std::logic_error("refit_mbvt: the tree's boxes were never fit on the host (build_mbvt or fit_mbvt first)");
+    throw std::logic_error(
+        "refit_mbvt: the tree's boxes were never fit on the host (build_mbvt or fit_mbvt first)");
   // Nothing moved: no thread is started (an idle OpenMP worker would then spin beside a
   // detection asked to run on one thread).
   if (organs.empty()) return;
@@ -323,7 +335,10 @@ void refit_mbvt(Mbvt& m, const Stand& s, PrototypeLibrary& lib, const std::vecto
     const auto first = static_cast<std::size_t>(g) * 8;
     const int count = static_cast<int>(std::min<std::size_t>(8, n - first));
     fit_obbs8(
-        m, s, lib, [&organs, first](int t) { return static_cast<std::size_t>(organs[first + static_cast<std::size_t>(t)]); },
+        m, s, lib,
+        [&organs, first](int t) {
+          return static_cast<std::size_t>(organs[first + static_cast<std::size_t>(t)]);
+        },
         count);
     for (int t = 0; t < count; ++t)
       std::atomic_ref<std::uint8_t>(

@@ -62,10 +62,11 @@ struct PlantBound {
 
 struct Mbvt {
   MbvtConfig config;
-  std::vector<Obb, FirstTouchAllocator<Obb>> obbs;  // per organ (of every organ; unused where not taking part)
-  std::vector<std::uint8_t> takes_part;             // per organ
-  std::vector<std::int32_t> parent_of;              // per organ: its record's parent (the pass's adjacency test)
-  std::vector<std::uint32_t> cluster_organs;        // organ ids, cluster by cluster
+  std::vector<Obb, FirstTouchAllocator<Obb>>
+      obbs;                                   // per organ (of every organ; unused where not taking part)
+  std::vector<std::uint8_t> takes_part;       // per organ
+  std::vector<std::int32_t> parent_of;        // per organ: its record's parent (the pass's adjacency test)
+  std::vector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
   /// Beside cluster_organs: each organ's later organs in its cluster that are not adjacent to
   /// it (free_pair_masks), and per cluster whether it holds such a pair; the host's (the CPU
   /// pass's own pairs), made with the shape.
@@ -98,7 +99,8 @@ void fit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib);
 /// After organs turned: new OBBs for `organs` (ids) and new boxes for their clusters and plants
 /// (lanes included), with the tree's shape and axes kept: a transform per organ, not a rebuild.
 /// `threads`: how many threads (0: all cores); nothing moved, nothing is done.
-void refit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs, int threads = 0);
+void refit_mbvt(Mbvt& m, const Stand& stand, PrototypeLibrary& lib, const std::vector<std::uint32_t>& organs,
+                int threads = 0);
 
 /// The organ pair (a, b) and the offset that carries b's plant frame into a's.
 Vec3f plant_offset(const Stand& stand, std::int32_t plant_a, std::int32_t plant_b);

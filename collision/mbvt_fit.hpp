@@ -9,7 +9,8 @@ namespace canopy {
 
 /// The LCD axis of cluster c (horizontal, from its first organ towards the mean of its organs'
 /// centres), written into every node of the cluster; fixed from then on (refits keep it).
-CANOPY_HD inline void fit_cluster_axis(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs, const Cluster& c) {
+CANOPY_HD inline void fit_cluster_axis(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs,
+                                       const Cluster& c) {
   float mx = 0, my = 0;
   for (std::uint32_t k = c.first; k < c.first + c.count; ++k)
     mx += obbs[cluster_organs[k]].centre.x, my += obbs[cluster_organs[k]].centre.y;
@@ -17,17 +18,19 @@ CANOPY_HD inline void fit_cluster_axis(LcdNode* nodes, const Obb* obbs, const st
   my = my / static_cast<float>(c.count) - obbs[cluster_organs[c.first]].centre.y;
   const float len = sqrtf(mx * mx + my * my);
   const float ax = len > 1e-6f ? mx / len : 1.0f, ay = len > 1e-6f ? my / len : 0.0f;
-  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n) nodes[n].box.ax = ax, nodes[n].box.ay = ay;
+  for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n)
+    nodes[n].box.ax = ax, nodes[n].box.ay = ay;
 }
 
 /// Whether organs cluster_organs[first, first + count) hold a pair that is not adjacent (so a
 /// contact among them is possible): the host's shape build (clusters above kMaskOrgans organs,
 /// plants) and the CUDA cluster-pairs kernel.
-CANOPY_HD inline bool organs_hold_free_pair(const OrganRecord* organs, const std::uint32_t* cluster_organs, std::uint32_t first,
-                                            std::uint32_t count) {
+CANOPY_HD inline bool organs_hold_free_pair(const OrganRecord* organs, const std::uint32_t* cluster_organs,
+                                            std::uint32_t first, std::uint32_t count) {
   for (std::uint32_t i = first; i < first + count; ++i)
     for (std::uint32_t j = i + 1; j < first + count; ++j) {
-      const auto a = static_cast<std::int32_t>(cluster_organs[i]), b = static_cast<std::int32_t>(cluster_organs[j]);
+      const auto a = static_cast<std::int32_t>(cluster_organs[i]),
+                 b = static_cast<std::int32_t>(cluster_organs[j]);
       if (!adjacent(organs[a], a, organs[b], b)) return true;
     }
   return false;
@@ -52,7 +55,8 @@ CANOPY_HD inline void fit_leaf_node(LcdNode& node, const Obb* obbs, const std::u
   const float ax = node.box.ax, ay = node.box.ay;
   node.box = Lcd{};
   node.box.ax = ax, node.box.ay = ay;
-  for (std::uint32_t k = node.first; k < node.first + node.count; ++k) lcd_add(node.box, obbs[cluster_organs[k]]);
+  for (std::uint32_t k = node.first; k < node.first + node.count; ++k)
+    lcd_add(node.box, obbs[cluster_organs[k]]);
   lcd_inflate(node.box, 0);  // rounding slack of the projection
 }
 
@@ -74,7 +78,8 @@ CANOPY_HD inline void fit_inner_nodes(LcdNode* nodes, const Cluster& c) {
 }
 
 /// Boxes of every node of cluster c from its organs' OBBs, bottom-up (children before parents).
-CANOPY_HD inline void fit_cluster_nodes(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs, const Cluster& c) {
+CANOPY_HD inline void fit_cluster_nodes(LcdNode* nodes, const Obb* obbs, const std::uint32_t* cluster_organs,
+                                        const Cluster& c) {
   for (std::uint32_t n = c.first_node; n < c.first_node + c.node_count; ++n)
     if (nodes[n].left < 0) fit_leaf_node(nodes[n], obbs, cluster_organs);
   fit_inner_nodes(nodes, c);
@@ -93,7 +98,8 @@ CANOPY_HD inline Box3f lcd_aabb(const Lcd& l) {
     b.lo.x = min_f(b.lo.x, x), b.hi.x = max_f(b.hi.x, x);
     b.lo.y = min_f(b.lo.y, y), b.hi.y = max_f(b.hi.y, y);
   }
-  const float size = fabsf(b.lo.x) + fabsf(b.hi.x) + fabsf(b.lo.y) + fabsf(b.hi.y) + fabsf(l.lo[2]) + fabsf(l.hi[2]);
+  const float size =
+      fabsf(b.lo.x) + fabsf(b.hi.x) + fabsf(b.lo.y) + fabsf(b.hi.y) + fabsf(l.lo[2]) + fabsf(l.hi[2]);
   const float s = 16 * kBoundRelSlack * size + kBoundAbsSlack;
   b.lo = {b.lo.x - s, b.lo.y - s, l.lo[2] - s};
   b.hi = {b.hi.x + s, b.hi.y + s, l.hi[2] + s};

@@ -11,20 +11,22 @@ namespace canopy {
 std::size_t memory_budget(std::size_t limit) { return limit ? limit : memory_available(); }
 
 void refuse_plant_pairs(std::uint64_t most, std::size_t budget) {
-  throw std::runtime_error(fmt::format(
-      "the plants' bounds meet in more than {} pairs (plants on or near one spot?): their contact lists would need more than the "
-      "{:.1f} GB of memory available; spread the plants out or use fewer",
-      most, static_cast<double>(budget) / 1e9));
+  throw std::runtime_error(
+      fmt::format("the plants' bounds meet in more than {} pairs (plants on or near one spot?): their "
+                  "contact lists would need more than the "
+                  "{:.1f} GB of memory available; spread the plants out or use fewer",
+                  most, static_cast<double>(budget) / 1e9));
 }
 
 void check_resolution_fits(std::size_t contacts, std::size_t limit) {
   const std::size_t budget = memory_budget(limit);
   const double need = static_cast<double>(contacts) * kResolutionBytesPerContact;
   if (budget == 0 || need <= static_cast<double>(budget)) return;
-  throw std::runtime_error(fmt::format(
-      "resolving {} contacts needs about {:.1f} GB of memory, more than the {:.1f} GB available (plants overlap heavily); "
-      "run with --no-resolve, or spread the plants out or use fewer",
-      contacts, need / 1e9, static_cast<double>(budget) / 1e9));
+  throw std::runtime_error(
+      fmt::format("resolving {} contacts needs about {:.1f} GB of memory, more than the {:.1f} GB available "
+                  "(plants overlap heavily); "
+                  "run with --no-resolve, or spread the plants out or use fewer",
+                  contacts, need / 1e9, static_cast<double>(budget) / 1e9));
 }
 
 }  // namespace canopy

@@ -38,8 +38,8 @@ CANOPY_HD inline Box3f box_around(const LcdNode& n, BoxOf&& box_of) {
 /// Calls on_pair(organ_a, organ_b) for organ x under node na and y under nb (positions in
 /// cluster_organs) whose boxes meet, b's moved by `offset`; box_of(position) gives an organ's box.
 template <typename BoxOf, typename OnPair>
-CANOPY_HD inline void block_pairs(const std::uint32_t* cluster_organs, const LcdNode& na, const LcdNode& nb, Vec3f offset,
-                                  BoxOf&& box_of, OnPair&& on_pair) {
+CANOPY_HD inline void block_pairs(const std::uint32_t* cluster_organs, const LcdNode& na, const LcdNode& nb,
+                                  Vec3f offset, BoxOf&& box_of, OnPair&& on_pair) {
   const Box3f around = box_around(nb, box_of);
   for (std::uint32_t x = na.first; x < na.first + na.count; ++x) {
     const Box3f bx = box_of(x);
@@ -52,8 +52,8 @@ CANOPY_HD inline void block_pairs(const std::uint32_t* cluster_organs, const Lcd
 
 /// The same for the pairs x < y of one cluster's organs (positions first .. first + count).
 template <typename BoxOf, typename OnPair>
-CANOPY_HD inline void own_pairs(const std::uint32_t* cluster_organs, std::uint32_t first, std::uint32_t count, BoxOf&& box_of,
-                                OnPair&& on_pair) {
+CANOPY_HD inline void own_pairs(const std::uint32_t* cluster_organs, std::uint32_t first, std::uint32_t count,
+                                BoxOf&& box_of, OnPair&& on_pair) {
   for (std::uint32_t x = first; x < first + count; ++x) {
     const Box3f bx = box_of(x);
     for (std::uint32_t y = x + 1; y < first + count; ++y)

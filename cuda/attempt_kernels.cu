@@ -25,9 +25,9 @@ __device__ std::uint32_t group_of(const std::uint32_t* task_first, std::uint32_t
 }
 
 __global__ void attempt_boxes_kernel(StandView v, AttemptTablesView t, const AttemptGroup* groups,
-                                     const std::uint32_t* task_first, std::uint32_t n_groups, std::uint32_t n_tasks,
-                                     AttemptSettings settings, std::uint32_t* touch, ExactAttempt* out,
-                                     unsigned long long capacity, Counters* c) {
+                                     const std::uint32_t* task_first, std::uint32_t n_groups,
+                                     std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
+                                     ExactAttempt* out, unsigned long long capacity, Counters* c) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n_tasks) return;
   const std::uint32_t gi = group_of(task_first, n_groups, k);
@@ -67,8 +67,8 @@ __global__ void attempt_boxes_kernel(StandView v, AttemptTablesView t, const Att
 /// At most 128 registers a thread (4 blocks an SM): the exact test needs many, and more warps
 /// hide its latencies better than spilling costs.
 __global__ void __launch_bounds__(kThreads, 4)
-    attempt_exact_kernel(StandView v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks, std::uint32_t n,
-                         std::uint32_t* touch, Counters* c) {
+    attempt_exact_kernel(StandView v, AttemptTablesView t, const AttemptGroup* groups,
+                         const ExactAttempt* tasks, std::uint32_t n, std::uint32_t* touch, Counters* c) {
   __shared__ volatile int done[kThreads / 32];
   __shared__ WarpStage stage[kThreads / 32];
   const std::uint64_t id = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -96,25 +96,29 @@ __global__ void __launch_bounds__(kThreads, 4)
   // One call with the lower organ first: the whole warp test is inlined once, not twice (the
   // kernel's code is large enough that instruction fetch is its first stall).
   const bool low = xo < yo;
-  const bool found = warp_organs_touch(v, low ? xo : yo, low ? tx : ty, low ? yo : xo, low ? ty : tx, y.gap, flag, room, keep);
+  const bool found = warp_organs_touch(v, low ? xo : yo, low ? tx : ty, low ? yo : xo, low ? ty : tx, y.gap,
+                                       flag, room, keep);
   if (found && threadIdx.x % 32 == 0) atomicOr(&touch[task.group], bit), atomicAdd(&c->exact_touches, 1ull);
 }
 
 }  // namespace
 
-void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
-                          std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
-                          ExactAttempt* out, unsigned long long capacity, Counters* counters, cudaStream_t stream) {
+void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const AttemptGroup* groups,
+                          const std::uint32_t* task_first, std::uint32_t n_groups, std::uint32_t n_tasks,
+                          AttemptSettings settings, std::uint32_t* touch, ExactAttempt* out,
+                          unsigned long long capacity, Counters* counters, cudaStream_t stream) {
   if (!n_tasks) return;
-  attempt_boxes_kernel<<<blocks(n_tasks), kThreads, 0, stream>>>(v, t, groups, task_first, n_groups, n_tasks, settings, touch,
-                                                                 out, capacity, counters);
+  attempt_boxes_kernel<<<blocks(n_tasks), kThreads, 0, stream>>>(v, t, groups, task_first, n_groups, n_tasks,
+                                                                 settings, touch, out, capacity, counters);
   CANOPY_CUDA_CHECK_LAUNCH("attempt_boxes_kernel");
 }
 
-void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
-                          std::uint32_t n, std::uint32_t* touch, Counters* counters, cudaStream_t stream) {
+void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups,
+                          const ExactAttempt* tasks, std::uint32_t n, std::uint32_t* touch,
+                          Counters* counters, cudaStream_t stream) {
   if (!n) return;
-  attempt_exact_kernel<<<blocks(std::uint64_t{n} * 32), kThreads, 0, stream>>>(v, t, groups, tasks, n, touch, counters);
+  attempt_exact_kernel<<<blocks(std::uint64_t{n} * 32), kThreads, 0, stream>>>(v, t, groups, tasks, n, touch,
+                                                                               counters);
   CANOPY_CUDA_CHECK_LAUNCH("attempt_exact_kernel");
 }
 

@@ -29,12 +29,14 @@ struct ExactAttempt {
 /// (n_groups + 1 entries). Touching boxes set the axis bit in touch[g] at the organ level; at
 /// the exact level a pair whose witness triangles touch at the turned pose sets it too (counted
 /// in witness_hits), and the others append an ExactAttempt (past `capacity` only counted).
-void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const std::uint32_t* task_first,
-                          std::uint32_t n_groups, std::uint32_t n_tasks, AttemptSettings settings, std::uint32_t* touch,
-                          ExactAttempt* out, unsigned long long capacity, Counters* counters, cudaStream_t stream = 0);
+void launch_attempt_boxes(const StandView& v, AttemptTablesView t, const AttemptGroup* groups,
+                          const std::uint32_t* task_first, std::uint32_t n_groups, std::uint32_t n_tasks,
+                          AttemptSettings settings, std::uint32_t* touch, ExactAttempt* out,
+                          unsigned long long capacity, Counters* counters, cudaStream_t stream = 0);
 /// The exact test of each ExactAttempt (skipped where its axis already touches); a pair found
 /// touching keeps the triangles that touched as its witness (counted in exact_touches).
-void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups, const ExactAttempt* tasks,
-                          std::uint32_t n, std::uint32_t* touch, Counters* counters, cudaStream_t stream = 0);
+void launch_attempt_exact(const StandView& v, AttemptTablesView t, const AttemptGroup* groups,
+                          const ExactAttempt* tasks, std::uint32_t n, std::uint32_t* touch,
+                          Counters* counters, cudaStream_t stream = 0);
 
 }  // namespace canopy::cuda

@@ -12,7 +12,8 @@
 
 namespace canopy::cuda {
 void CudaAttemptRunner::Stats::add(const Stats& o) {
-  calls += o.calls, groups += o.groups, box_tests += o.box_tests, witness_hits += o.witness_hits, exact_tests += o.exact_tests;
+  calls += o.calls, groups += o.groups, box_tests += o.box_tests, witness_hits += o.witness_hits,
+      exact_tests += o.exact_tests;
   exact_touches += o.exact_touches, uploaded_bytes += o.uploaded_bytes;
   seconds += o.seconds, upload_s += o.upload_s, box_s += o.box_s, exact_s += o.exact_s;
 }
@@ -61,8 +62,10 @@ AttemptStats CudaAttemptRunner::take_statistics() {
   out.hardware = hardware();
   for (const auto& l : lanes_)
     if (l && l->stats.calls) all.add(l->stats), ++out.lanes;
-  out.calls = all.calls, out.groups = all.groups, out.box_tests = all.box_tests, out.witness_hits = all.witness_hits;
-  out.exact_tests = all.exact_tests, out.exact_touches = all.exact_touches, out.uploaded_bytes = all.uploaded_bytes;
+  out.calls = all.calls, out.groups = all.groups, out.box_tests = all.box_tests,
+  out.witness_hits = all.witness_hits;
+  out.exact_tests = all.exact_tests, out.exact_touches = all.exact_touches,
+  out.uploaded_bytes = all.uploaded_bytes;
   out.call_s = all.seconds, out.upload_s = all.upload_s, out.box_s = all.box_s, out.exact_s = all.exact_s;
   // The device's own clock: from the first call's kernels to the last's, and how much of that
   // some lane's kernels were queued or running.
@@ -97,9 +100,10 @@ CudaAttemptRunner::Lane& CudaAttemptRunner::lane(std::size_t i) {
   return *lanes_[i];
 }
 
-void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
-                                      bool all) {
-  if (boxes.size() != stand.organ_count()) throw std::logic_error("bulk attempts: one box per organ expected");
+void CudaAttemptRunner::update_organs(const Stand& stand, std::span<const Obb> boxes,
+                                      std::span<const std::uint32_t> changed, bool all) {
+  if (boxes.size() != stand.organ_count())
+    throw std::logic_error("bulk attempts: one box per organ expected");
   device_boxes_ = dev_.obb_clearance() == 0 && dev_.organs() == boxes.size();
   if (device_boxes_) {
     boxes_.resize(0);
@@ -125,7 +129,8 @@ void CudaAttemptRunner::clear(std::size_t i) {
 }
 
 std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const AttemptTables& t,
-                                                       std::span<const AttemptGroup> groups, const AttemptSettings& settings) {
+                                                       std::span<const AttemptGroup> groups,
+                                                       const AttemptSettings& settings) {
   std::vector<std::uint32_t> out(groups.size(), 0);
   if (groups.empty()) return out;
   Lane& l = lane(i);
@@ -134,11 +139,13 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   if (t.moving.size() < l.moving_sent || t.keep.size() < l.keep_sent || t.pairs.size() < l.pairs_sent ||
       t.axes.size() < l.axes_sent || t.witness.size() < l.witness_sent)
     throw std::logic_error("bulk attempts: the tables shrank without a clear()");
-  if (t.witness.size() != t.pairs.size()) throw std::logic_error("bulk attempts: one witness per pair expected");
+  if (t.witness.size() != t.pairs.size())
+    throw std::logic_error("bulk attempts: one witness per pair expected");
   const std::size_t bytes = (t.moving.size() - l.moving_sent) * sizeof(std::int32_t) +
                             (t.keep.size() - l.keep_sent) * sizeof(KeepEntry) +
                             (t.pairs.size() - l.pairs_sent) * (sizeof(PairEntry) + sizeof(std::uint32_t)) +
-                            (t.axes.size() - l.axes_sent) * sizeof(Vec3d) + groups.size() * sizeof(AttemptGroup) +
+                            (t.axes.size() - l.axes_sent) * sizeof(Vec3d) +
+                            groups.size() * sizeof(AttemptGroup) +
                             (groups.size() + 1) * sizeof(std::uint32_t);
   l.stats.uploaded_bytes += bytes;
   l.sync(l.moving, t.moving, l.moving_sent);
@@ -154,7 +161,8 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
     tasks += groups[g].pair_end - groups[g].pair_first;
   }
   if (tasks > std::numeric_limits<std::uint32_t>::max())
-    throw std::length_error(fmt::format("bulk attempts: {} pair tests in one call (at most 2^32 - 1)", tasks));
+    throw std::length_error(
+        fmt::format("bulk attempts: {} pair tests in one call (at most 2^32 - 1)", tasks));
   first[groups.size()] = static_cast<std::uint32_t>(tasks);
   l.groups.grow(groups.size());
   l.put(l.groups.get(), groups.data(), groups.size() * sizeof(AttemptGroup));
@@ -165,33 +173,39 @@ std::vector<std::uint32_t> CudaAttemptRunner::touching(std::size_t i, const Atte
   if (!device_boxes_ && boxes_.size() != dev_.organs())
     throw std::logic_error("bulk attempts: update_organs() not called for this stand");
   const Obb* obbs = device_boxes_ ? dev_.view().obbs : boxes_.get();
-  const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(), l.axes.get(), obbs, l.witness.get()};
-  const auto n_groups = static_cast<std::uint32_t>(groups.size()), n_tasks = static_cast<std::uint32_t>(tasks);
+  const AttemptTablesView view{l.moving.get(), l.keep.get(), l.pairs.get(),
+                               l.axes.get(),   obbs,         l.witness.get()};
+  const auto n_groups = static_cast<std::uint32_t>(groups.size()),
+             n_tasks = static_cast<std::uint32_t>(tasks);
   // The exact tests are listed with a capacity; a list that overflows is made again, larger.
   const double t1 = now_seconds();  // the uploads queued (they run before the kernels, in the stream's order)
   Counters host{};
   for (;;) {
     if (detail_) l.busy.begin(stream);
     CANOPY_CUDA_CHECK(cudaMemsetAsync(l.counters.get(), 0, sizeof(Counters), stream));
-    launch_attempt_boxes(dev_.view(), view, l.groups.get(), l.task_first.get(), n_groups, n_tasks, settings, l.touch.get(),
-                         l.exact.get(), l.exact.size(), l.counters.get(), stream);
+    launch_attempt_boxes(dev_.view(), view, l.groups.get(), l.task_first.get(), n_groups, n_tasks, settings,
+                         l.touch.get(), l.exact.get(), l.exact.size(), l.counters.get(), stream);
     if (detail_) l.busy.end(stream);
-    CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
+    CANOPY_CUDA_CHECK(
+        cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
     l.stream.synchronize();
     if (host.appended <= l.exact.size()) break;
     if (host.appended > std::numeric_limits<std::uint32_t>::max())
-      throw std::length_error(fmt::format("bulk attempts: {} exact tests in one call (at most 2^32 - 1)", host.appended));
+      throw std::length_error(
+          fmt::format("bulk attempts: {} exact tests in one call (at most 2^32 - 1)", host.appended));
     l.exact.grow(host.appended + host.appended / 4);
   }
   const double t2 = now_seconds();
   if (detail_) l.busy.begin(stream);
-  launch_attempt_exact(dev_.view(), view, l.groups.get(), l.exact.get(), static_cast<std::uint32_t>(host.appended), l.touch.get(),
-                       l.counters.get(), stream);
+  launch_attempt_exact(dev_.view(), view, l.groups.get(), l.exact.get(),
+                       static_cast<std::uint32_t>(host.appended), l.touch.get(), l.counters.get(), stream);
   if (detail_) l.busy.end(stream);
-  CANOPY_CUDA_CHECK(
-      cudaMemcpyAsync(out.data(), l.touch.get(), groups.size() * sizeof(std::uint32_t), cudaMemcpyDeviceToHost, stream));
+  CANOPY_CUDA_CHECK(cudaMemcpyAsync(out.data(), l.touch.get(), groups.size() * sizeof(std::uint32_t),
+                                    cudaMemcpyDeviceToHost, stream));
   // The exact kernel's count of touches, read back only for the statistics (a copy per call).
-  if (detail_) CANOPY_CUDA_CHECK(cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
+  if (detail_)
+    CANOPY_CUDA_CHECK(
+        cudaMemcpyAsync(&host, l.counters.get(), sizeof(Counters), cudaMemcpyDeviceToHost, stream));
   l.stream.synchronize();
   const double t3 = now_seconds();
   Stats& st = l.stats;

@@ -25,11 +25,13 @@ class CudaAttemptRunner : public AttemptRunner {
   /// Where the device stand's OBBs were fitted without a clearance, reads those (the same bits
   /// as `boxes`, kept current by the backend's redetect()); otherwise uploads every box (`all`)
   /// or scatters the changed organs' boxes. The transforms are the device stand's.
-  void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed, bool all) override;
+  void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
+                     bool all) override;
   std::size_t lanes() const override { return kLanes; }
   std::string hardware() const override { return "device"; }
   void clear(std::size_t lane) override;
-  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables,
+                                      std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
   /// On: from the next call, an event pair around every kernel of every lane (a timeline against
   /// an origin event recorded now) and the exact tests' touches read back (a copy per call).
@@ -44,7 +46,8 @@ class CudaAttemptRunner : public AttemptRunner {
   /// pageable copy returns once the driver holds the bytes), then until the box kernel's count is
   /// back, then until the answers are.
   struct Stats {
-    std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
+    std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0,
+                  uploaded_bytes = 0;
     double seconds = 0, upload_s = 0, box_s = 0, exact_s = 0;
     void add(const Stats& o);
   };
@@ -55,7 +58,8 @@ class CudaAttemptRunner : public AttemptRunner {
     StreamBuffer<std::int32_t> moving{stream.get()};
     StreamBuffer<KeepEntry> keep{stream.get()};
     StreamBuffer<PairEntry> pairs{stream.get()};
-    StreamBuffer<std::uint32_t> witness{stream.get()};  // per pair; the exact tests bring it up to date on the device
+    StreamBuffer<std::uint32_t> witness{
+        stream.get()};  // per pair; the exact tests bring it up to date on the device
     StreamBuffer<Vec3d> axes{stream.get()};
     std::size_t moving_sent = 0, keep_sent = 0, pairs_sent = 0, witness_sent = 0, axes_sent = 0;
     StreamBuffer<AttemptGroup> groups{stream.get()};
@@ -80,15 +84,15 @@ class CudaAttemptRunner : public AttemptRunner {
   Lane& lane(std::size_t i);
 
   const StandOnDevice& dev_;
-  bool detail_ = false;                     // keep_statistics(true): the timeline and the exact tests' touches
+  bool detail_ = false;  // keep_statistics(true): the timeline and the exact tests' touches
   DeviceBuffer<Obb> boxes_, staged_boxes_;  // a copy of the host's boxes, where the device's differ
   bool device_boxes_ = false;               // reading the device stand's own OBBs
   DeviceBuffer<std::uint32_t> staged_ids_;
   std::array<std::unique_ptr<Lane>, kLanes> lanes_;  // slot i touched only by lane i's thread
   Stats stats_;                                      // of update_organs
-  cudaEvent_t origin_{};                             // recorded by keep_statistics(true), before every lane's timed work
-  cudaMemPool_t pool_{};                             // the device's default pool, which the lanes' StreamBuffers draw on
-  int device_ = 0;                                   // the backend's device, made current on every lane's thread
+  cudaEvent_t origin_{};  // recorded by keep_statistics(true), before every lane's timed work
+  cudaMemPool_t pool_{};  // the device's default pool, which the lanes' StreamBuffers draw on
+  int device_ = 0;        // the backend's device, made current on every lane's thread
 };
 
 }  // namespace canopy::cuda

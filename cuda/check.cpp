@@ -5,7 +5,8 @@
 namespace canopy::cuda {
 
 void throw_cuda_error(cudaError_t e, const char* what, const char* file, int line) {
-  throw CudaError(fmt::format("CUDA error in {} ({}:{}): {} ({})", what, file, line, cudaGetErrorString(e), cudaGetErrorName(e)));
+  throw CudaError(fmt::format("CUDA error in {} ({}:{}): {} ({})", what, file, line, cudaGetErrorString(e),
+                              cudaGetErrorName(e)));
 }
 
 }  // namespace canopy::cuda

@@ -36,7 +36,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
   explicit CudaBackend(int device) : device_(device) {
     const DeviceReport r = query_devices();
     if (device < 0 || static_cast<std::size_t>(device) >= r.devices.size())
-      throw CudaError(fmt::format("no CUDA device {} ({})", device, r.devices.empty() ? r.unavailable_reason : "out of range"));
+      throw CudaError(fmt::format("no CUDA device {} ({})", device,
+                                  r.devices.empty() ? r.unavailable_reason : "out of range"));
     name_ = r.devices[static_cast<std::size_t>(device)].name;
     CANOPY_CUDA_CHECK(cudaSetDevice(device));
     counters_.resize(1);
@@ -72,7 +73,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     return attempts_.get();
   }
 
-  Contacts redetect(const Stand& s, const DetectRequest& req, const std::vector<std::uint32_t>& moved) override {
+  Contacts redetect(const Stand& s, const DetectRequest& req,
+                    const std::vector<std::uint32_t>& moved) override {
     check_request(req);
     if (!tree_ || tree_->takes_part.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
@@ -85,7 +87,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
  private:
   /// Bytes of the stage lists held now (free for the next batch's lists).
   std::size_t list_bytes() const {
-    return cluster_pairs_.size() * sizeof(ClusterPair) + (organ_keys_.size() + organ_sorted_.size()) * sizeof(std::uint64_t) +
+    return cluster_pairs_.size() * sizeof(ClusterPair) +
+           (organ_keys_.size() + organ_sorted_.size()) * sizeof(std::uint64_t) +
            (leaf_work_.size() + leaf_work_sorted_.size()) * sizeof(std::uint32_t) + hits_.size() +
            contacts_.size() * sizeof(Contact) + keys_.bytes();
   }
@@ -101,9 +104,10 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
       budget = held + (free + list_bytes()) / 10 * 9;
     }
     if (budget <= held + 4096)
-      throw CudaError(fmt::format("the stand needs {:.1f} MB on the device, more than the {:.1f} MB allowed{}",
-                                  static_cast<double>(held) / 1e6, static_cast<double>(budget) / 1e6,
-                                  req.max_device_bytes ? " (--max-device-memory)" : " (free device memory)"));
+      throw CudaError(
+          fmt::format("the stand needs {:.1f} MB on the device, more than the {:.1f} MB allowed{}",
+                      static_cast<double>(held) / 1e6, static_cast<double>(budget) / 1e6,
+                      req.max_device_bytes ? " (--max-device-memory)" : " (free device memory)"));
     return budget - held;
   }
 
@@ -117,18 +121,22 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
   /// A batch's nc cluster pairs as keys pair_key(a, b) sorted into organ_sorted_, their work
   /// items alongside in leaf_work_sorted_.
   void sort_cluster_pairs(std::size_t nc, bool tight) {
-    organ_keys_.fit(nc, tight), organ_sorted_.fit(nc, tight), leaf_work_.fit(nc, tight), leaf_work_sorted_.fit(nc, tight);
-    launch_cluster_keys(cluster_pairs_.get(), static_cast<std::uint32_t>(nc), organ_keys_.get(), leaf_work_.get());
+    organ_keys_.fit(nc, tight), organ_sorted_.fit(nc, tight), leaf_work_.fit(nc, tight),
+        leaf_work_sorted_.fit(nc, tight);
+    launch_cluster_keys(cluster_pairs_.get(), static_cast<std::uint32_t>(nc), organ_keys_.get(),
+                        leaf_work_.get());
     keys_.sort_pairs(organ_keys_.get(), organ_sorted_.get(), leaf_work_.get(), leaf_work_sorted_.get(), nc);
   }
 
   /// The leaf level's records of a batch's nc cluster pairs, sorted as the CPU sorts them (plant
   /// pair, then clusters): by cluster pair, then stably by work item (work items are sorted).
-  void download_cluster_contacts(const WorkItem* batch, std::size_t nc, bool tight, std::vector<Contact>& to) {
+  void download_cluster_contacts(const WorkItem* batch, std::size_t nc, bool tight,
+                                 std::vector<Contact>& to) {
     sort_cluster_pairs(nc, tight);
     keys_.sort_pairs(leaf_work_sorted_.get(), leaf_work_.get(), organ_sorted_.get(), organ_keys_.get(), nc);
     contacts_.fit(nc, tight);
-    launch_cluster_contacts(batch, leaf_work_.get(), organ_keys_.get(), static_cast<std::uint32_t>(nc), contacts_.get());
+    launch_cluster_contacts(batch, leaf_work_.get(), organ_keys_.get(), static_cast<std::uint32_t>(nc),
+                            contacts_.get());
     append_download(to, contacts_.get(), nc, staged_contacts_);
   }
 
@@ -139,12 +147,14 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     const bool tight = req.max_device_bytes != 0;
     EventTimer plant_timer, leaf_timer, organ_timer, exact_timer;
     double t = now_seconds();
-    const std::vector<std::uint64_t> work = plants_.work(dev_, req, tight, keys_, counters_, plant_timer, out.counts[0], work_);
+    const std::vector<std::uint64_t> work =
+        plants_.work(dev_, req, tight, keys_, counters_, plant_timer, out.counts[0], work_);
     out.seconds[0] = now_seconds() - t;
     out.device_seconds[0] = plant_timer.seconds();
     if (req.level == ContactLevel::plant) {
       for (std::uint64_t k : work)
-        out.pairs.push_back({-1, -1, static_cast<std::int32_t>(key_hi(k)), static_cast<std::int32_t>(key_lo(k)), -1, -1});
+        out.pairs.push_back(
+            {-1, -1, static_cast<std::int32_t>(key_hi(k)), static_cast<std::int32_t>(key_lo(k)), -1, -1});
       return out;
     }
 
@@ -159,17 +169,20 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
       const auto n = static_cast<std::uint32_t>(hi - lo);
       const WorkItem* batch = work_.get() + lo;
       if (tight) {
-        cluster_pairs_.resize(0), organ_keys_.resize(0), organ_sorted_.resize(0), hits_.resize(0), contacts_.resize(0);
+        cluster_pairs_.resize(0), organ_keys_.resize(0), organ_sorted_.resize(0), hits_.resize(0),
+            contacts_.resize(0);
         leaf_work_.resize(0), leaf_work_sorted_.resize(0), keys_.release();
       }
       t = now_seconds();
       Counters host{};
       const std::size_t pair_bytes = req.level == ContactLevel::leaf ? kLeafPairBytes : sizeof(ClusterPair);
-      const std::size_t nc = collect(
-          cluster_pairs_, counters_, host, 64 * std::size_t{n}, std::min(kMaxItems, budget / pair_bytes), tight, leaf_timer,
-          [&](ClusterPair* o, unsigned long long cap) { launch_cluster_pairs(dev_.view(), batch, n, o, cap, counters_.get()); });
-      bool fits =
-          nc * pair_bytes <= budget && (req.level != ContactLevel::leaf || nc * pair_bytes + KeyOps::scratch_bytes(nc) <= budget);
+      const std::size_t nc = collect(cluster_pairs_, counters_, host, 64 * std::size_t{n},
+                                     std::min(kMaxItems, budget / pair_bytes), tight, leaf_timer,
+                                     [&](ClusterPair* o, unsigned long long cap) {
+                                       launch_cluster_pairs(dev_.view(), batch, n, o, cap, counters_.get());
+                                     });
+      bool fits = nc * pair_bytes <= budget &&
+                  (req.level != ContactLevel::leaf || nc * pair_bytes + KeyOps::scratch_bytes(nc) <= budget);
       const Counters leaf_counts = host;
       t_leaf += now_seconds() - t;
       std::size_t no = 0;
@@ -178,27 +191,30 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
         // Cluster pairs in key order, so that neighbouring threads descend the same trees: an
         // optional step, left out under a memory budget or when its lists would not fit.
         const std::size_t sort_bytes =
-            nc * (sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t))) + KeyOps::scratch_bytes(nc);
+            nc * (sizeof(ClusterPair) + 2 * (sizeof(std::uint64_t) + sizeof(std::uint32_t))) +
+            KeyOps::scratch_bytes(nc);
         if (!tight && sort_bytes <= budget) {
           organ_timer.start();
           sort_cluster_pairs(nc, false);
-          launch_cluster_pairs_from_keys(organ_sorted_.get(), leaf_work_sorted_.get(), static_cast<std::uint32_t>(nc),
-                                         cluster_pairs_.get());
+          launch_cluster_pairs_from_keys(organ_sorted_.get(), leaf_work_sorted_.get(),
+                                         static_cast<std::uint32_t>(nc), cluster_pairs_.get());
           organ_timer.stop();
         }
         const std::size_t room = (budget - nc * sizeof(ClusterPair)) / kOrganPairBytes;
-        no = collect(organ_keys_, counters_, host, 4 * nc + 1024, std::min(kMaxItems, room), tight, organ_timer,
-                     [&](std::uint64_t* o, unsigned long long cap) {
-                       launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(), static_cast<std::uint32_t>(nc), o, cap,
-                                          counters_.get());
+        no = collect(organ_keys_, counters_, host, 4 * nc + 1024, std::min(kMaxItems, room), tight,
+                     organ_timer, [&](std::uint64_t* o, unsigned long long cap) {
+                       launch_organ_pairs(dev_.view(), batch, cluster_pairs_.get(),
+                                          static_cast<std::uint32_t>(nc), o, cap, counters_.get());
                      });
-        fits = no <= room && nc * sizeof(ClusterPair) + no * kOrganPairBytes + KeyOps::scratch_bytes(no) <= budget;
+        fits = no <= room &&
+               nc * sizeof(ClusterPair) + no * kOrganPairBytes + KeyOps::scratch_bytes(no) <= budget;
         t_organ += now_seconds() - t;
       }
       if (!fits) {
         if (n == 1)
-          throw CudaError(fmt::format("plants {} and {} alone need more device memory than the {:.1f} MB allowed for lists",
-                                      key_hi(work[lo]), key_lo(work[lo]), static_cast<double>(budget) / 1e6));
+          throw CudaError(fmt::format(
+              "plants {} and {} alone need more device memory than the {:.1f} MB allowed for lists",
+              key_hi(work[lo]), key_lo(work[lo]), static_cast<double>(budget) / 1e6));
         size = std::max<std::size_t>(1, (hi - lo) / 2);
         continue;
       }
@@ -230,7 +246,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
           t = now_seconds();
           hits_.fit(nu, tight);
           exact_timer.start();
-          launch_exact(dev_.view(), organ_keys_.get(), static_cast<std::uint32_t>(nu), req.clearance, hits_.get());
+          launch_exact(dev_.view(), organ_keys_.get(), static_cast<std::uint32_t>(nu), req.clearance,
+                       hits_.get());
           const std::size_t nh = keys_.select(organ_keys_.get(), hits_.get(), organ_sorted_.get(), nu);
           exact_timer.stop();
           download_contacts(organ_sorted_.get(), nh, tight, out.pairs);
@@ -280,6 +297,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
 
 }  // namespace
 
-std::unique_ptr<DetectionBackend> make_cuda_backend(int device) { return std::make_unique<CudaBackend>(device); }
+std::unique_ptr<DetectionBackend> make_cuda_backend(int device) {
+  return std::make_unique<CudaBackend>(device);
+}
 
 }  // namespace canopy::cuda

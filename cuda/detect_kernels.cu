@@ -33,18 +33,21 @@ constexpr int kClusterLanes = 4;
 /// kClusterLanes threads per plant pair: lane l takes the clusters l, l + kClusterLanes, ... of
 /// plant p against the clusters of plant q (the axis-aligned pre-tests leave most of them little
 /// to do, so one thread per plant pair would leave the GPU idle behind the busiest).
-__global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uint32_t n_work, ClusterPair* out,
-                                     unsigned long long capacity, Counters* c) {
+__global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uint32_t n_work,
+                                     ClusterPair* out, unsigned long long capacity, Counters* c) {
   const std::uint64_t t = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-  const auto w = static_cast<std::uint32_t>(t / kClusterLanes), lane = static_cast<std::uint32_t>(t % kClusterLanes);
+  const auto w = static_cast<std::uint32_t>(t / kClusterLanes),
+             lane = static_cast<std::uint32_t>(t % kClusterLanes);
   if (w >= n_work) return;
   const WorkItem it = work[w];
   const PlantBound pa = v.plants[it.p], pb = v.plants[it.q];
   unsigned long long found = 0;
-  for (std::uint32_t i = pa.first_cluster + lane; i < pa.first_cluster + pa.cluster_count; i += kClusterLanes) {
+  for (std::uint32_t i = pa.first_cluster + lane; i < pa.first_cluster + pa.cluster_count;
+       i += kClusterLanes) {
     const Cluster ca = v.clusters[i];
     if (it.p != it.q && !boxes_meet(ca.box, pb.box, it.offset)) continue;  // pre-tests as on the CPU
-    for (std::uint32_t j = it.p == it.q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
+    for (std::uint32_t j = it.p == it.q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count;
+         ++j) {
       const Cluster& cb = v.clusters[j];
       if (i != j && !boxes_meet(ca.box, cb.box, it.offset)) continue;
       const bool meet = i == j ? organs_hold_free_pair(v.organs, v.cluster_organs, ca.first, ca.count)
@@ -57,8 +60,9 @@ __global__ void cluster_pairs_kernel(StandView v, const WorkItem* work, std::uin
   if (found) atomicAdd(it.p == it.q ? &c->within : &c->between, found);
 }
 
-__global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n,
-                                   std::uint64_t* out, unsigned long long capacity, Counters* c) {
+__global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const ClusterPair* pairs,
+                                   std::uint32_t n, std::uint64_t* out, unsigned long long capacity,
+                                   Counters* c) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const ClusterPair cp = pairs[k];
@@ -70,10 +74,12 @@ __global__ void organ_pairs_kernel(StandView v, const WorkItem* work, const Clus
   // bits as the host's lanes), as most pairs fail the OBB test's sphere step on data it loads anyway.
   const auto box_of = [&](std::uint32_t pos) { return obb_aabb(v.obbs[v.cluster_organs[pos]]); };
   const auto test = [&](std::uint32_t x, std::uint32_t y) {
-    const auto a = static_cast<std::int32_t>(v.cluster_organs[x]), b = static_cast<std::int32_t>(v.cluster_organs[y]);
+    const auto a = static_cast<std::int32_t>(v.cluster_organs[x]),
+               b = static_cast<std::int32_t>(v.cluster_organs[y]);
     if (adjacent(v.organs[a], a, v.organs[b], b) || !obb_overlap(v.obbs[a], v.obbs[b], it.offset)) return;
     if (!boxes_meet(box_of(x), box_of(y), it.offset)) return;
-    append(out, capacity, c, pair_key(static_cast<std::uint32_t>(a < b ? a : b), static_cast<std::uint32_t>(a < b ? b : a)));
+    append(out, capacity, c,
+           pair_key(static_cast<std::uint32_t>(a < b ? a : b), static_cast<std::uint32_t>(a < b ? b : a)));
   };
   if (cp.a == cp.b) {
     for (std::uint32_t x = ca.first; x < ca.first + ca.count; ++x)
@@ -96,25 +102,31 @@ __global__ void count_pairs_kernel(StandView v, const std::uint64_t* keys, std::
   atomicAdd(within ? &c->within : &c->between, 1ull);
 }
 
-__global__ void cluster_keys_kernel(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys, std::uint32_t* work) {
+__global__ void cluster_keys_kernel(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys,
+                                    std::uint32_t* work) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   keys[k] = pair_key(pairs[k].a, pairs[k].b);
   work[k] = pairs[k].work;
 }
 
-__global__ void cluster_pairs_from_keys_kernel(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n,
-                                               ClusterPair* out) {
+__global__ void cluster_pairs_from_keys_kernel(const std::uint64_t* keys, const std::uint32_t* work,
+                                               std::uint32_t n, ClusterPair* out) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k < n) out[k] = ClusterPair{work[k], key_hi(keys[k]), key_lo(keys[k])};
 }
 
-__global__ void cluster_contacts_kernel(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys,
-                                        std::uint32_t n, Contact* out) {
+__global__ void cluster_contacts_kernel(const WorkItem* work, const std::uint32_t* work_of,
+                                        const std::uint64_t* keys, std::uint32_t n, Contact* out) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const WorkItem w = work[work_of[k]];
-  out[k] = Contact{-1, -1, w.p, w.q, static_cast<std::int32_t>(key_hi(keys[k])), static_cast<std::int32_t>(key_lo(keys[k]))};
+  out[k] = Contact{-1,
+                   -1,
+                   w.p,
+                   w.q,
+                   static_cast<std::int32_t>(key_hi(keys[k])),
+                   static_cast<std::int32_t>(key_lo(keys[k]))};
 }
 
 __global__ void contacts_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, Contact* out) {
@@ -125,15 +137,16 @@ __global__ void contacts_kernel(StandView v, const std::uint64_t* keys, std::uin
 }
 
 /// A warp per organ pair (cuda/organ_pair_test.cuh) at the stand's transforms.
-__global__ void exact_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, float clearance, std::uint8_t* hit) {
+__global__ void exact_kernel(StandView v, const std::uint64_t* keys, std::uint32_t n, float clearance,
+                             std::uint8_t* hit) {
   __shared__ volatile int done[kThreads / 32];
   __shared__ WarpStage stage[kThreads / 32];
   const std::uint64_t t = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
   const auto k = static_cast<std::uint32_t>(t / 32);
   if (k >= n) return;  // whole warps: n x 32 threads in blocks of whole warps
   const std::uint32_t a = key_hi(keys[k]), b = key_lo(keys[k]);
-  const bool found =
-      warp_organs_touch(v, a, v.transforms[a], b, v.transforms[b], clearance, done[threadIdx.x / 32], &stage[threadIdx.x / 32]);
+  const bool found = warp_organs_touch(v, a, v.transforms[a], b, v.transforms[b], clearance,
+                                       done[threadIdx.x / 32], &stage[threadIdx.x / 32]);
   if (threadIdx.x % 32 == 0) hit[k] = found ? 1 : 0;
 }
 
@@ -150,12 +163,14 @@ void launch_work_items(const StandView& v, const std::uint64_t* keys, std::uint3
 void launch_cluster_pairs(const StandView& v, const WorkItem* work, std::uint32_t n_work, ClusterPair* out,
                           unsigned long long capacity, Counters* counters) {
   if (!n_work) return;
-  cluster_pairs_kernel<<<blocks(std::uint64_t{n_work} * kClusterLanes), kThreads>>>(v, work, n_work, out, capacity, counters);
+  cluster_pairs_kernel<<<blocks(std::uint64_t{n_work} * kClusterLanes), kThreads>>>(v, work, n_work, out,
+                                                                                    capacity, counters);
   CANOPY_CUDA_CHECK_LAUNCH("cluster_pairs_kernel");
 }
 
-void launch_organ_pairs(const StandView& v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n_pairs,
-                        std::uint64_t* out, unsigned long long capacity, Counters* counters) {
+void launch_organ_pairs(const StandView& v, const WorkItem* work, const ClusterPair* pairs,
+                        std::uint32_t n_pairs, std::uint64_t* out, unsigned long long capacity,
+                        Counters* counters) {
   if (!n_pairs) return;
   organ_pairs_kernel<<<blocks(n_pairs), kThreads>>>(v, work, pairs, n_pairs, out, capacity, counters);
   CANOPY_CUDA_CHECK_LAUNCH("organ_pairs_kernel");
@@ -167,20 +182,22 @@ void launch_count_pairs(const StandView& v, const std::uint64_t* keys, std::uint
   CANOPY_CUDA_CHECK_LAUNCH("count_pairs_kernel");
 }
 
-void launch_cluster_keys(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys, std::uint32_t* work) {
+void launch_cluster_keys(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys,
+                         std::uint32_t* work) {
   if (!n) return;
   cluster_keys_kernel<<<blocks(n), kThreads>>>(pairs, n, keys, work);
   CANOPY_CUDA_CHECK_LAUNCH("cluster_keys_kernel");
 }
 
-void launch_cluster_pairs_from_keys(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n, ClusterPair* out) {
+void launch_cluster_pairs_from_keys(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n,
+                                    ClusterPair* out) {
   if (!n) return;
   cluster_pairs_from_keys_kernel<<<blocks(n), kThreads>>>(keys, work, n, out);
   CANOPY_CUDA_CHECK_LAUNCH("cluster_pairs_from_keys_kernel");
 }
 
-void launch_cluster_contacts(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,
-                             Contact* out) {
+void launch_cluster_contacts(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys,
+                             std::uint32_t n, Contact* out) {
   if (!n) return;
   cluster_contacts_kernel<<<blocks(n), kThreads>>>(work, work_of, keys, n, out);
   CANOPY_CUDA_CHECK_LAUNCH("cluster_contacts_kernel");
@@ -192,15 +209,16 @@ void launch_contacts(const StandView& v, const std::uint64_t* keys, std::uint32_
   CANOPY_CUDA_CHECK_LAUNCH("contacts_kernel");
 }
 
-void launch_exact(const StandView& v, const std::uint64_t* keys, std::uint32_t n_pairs, float clearance, std::uint8_t* hit) {
+void launch_exact(const StandView& v, const std::uint64_t* keys, std::uint32_t n_pairs, float clearance,
+                  std::uint8_t* hit) {
   if (!n_pairs) return;
   exact_kernel<<<blocks(std::uint64_t{n_pairs} * 32), kThreads>>>(v, keys, n_pairs, clearance, hit);
   CANOPY_CUDA_CHECK_LAUNCH("exact_kernel");
 }
 
 namespace {
-__global__ void scatter_kernel(std::uint32_t* dst, const std::uint32_t* src, const std::uint32_t* index, std::uint32_t n,
-                               std::uint32_t words) {
+__global__ void scatter_kernel(std::uint32_t* dst, const std::uint32_t* src, const std::uint32_t* index,
+                               std::uint32_t n, std::uint32_t words) {
   const std::uint64_t k = static_cast<std::uint64_t>(blockIdx.x) * blockDim.x + threadIdx.x;
   if (k >= static_cast<std::uint64_t>(n) * words) return;
   const std::uint64_t item = k / words, w = k % words;
@@ -208,7 +226,8 @@ __global__ void scatter_kernel(std::uint32_t* dst, const std::uint32_t* src, con
 }
 }  // namespace
 
-void launch_scatter(void* dst, const void* src, const std::uint32_t* index, std::uint32_t n, std::uint32_t words) {
+void launch_scatter(void* dst, const void* src, const std::uint32_t* index, std::uint32_t n,
+                    std::uint32_t words) {
   const std::uint64_t total = static_cast<std::uint64_t>(n) * words;
   if (total == 0) return;
   scatter_kernel<<<static_cast<unsigned>((total + kThreads - 1) / kThreads), kThreads>>>(

@@ -59,22 +59,26 @@ void launch_cluster_pairs(const StandView& v, const WorkItem* work, std::uint32_
 /// Cluster pairs as keys pair_key(a, b) with their work items (batch-local).
 void launch_cluster_keys(const ClusterPair* pairs, std::uint32_t n, std::uint64_t* keys, std::uint32_t* work);
 /// Cluster pairs back from keys and their work items (after a sort).
-void launch_cluster_pairs_from_keys(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n, ClusterPair* out);
+void launch_cluster_pairs_from_keys(const std::uint64_t* keys, const std::uint32_t* work, std::uint32_t n,
+                                    ClusterPair* out);
 /// Leaf-level contact records (plants of the work item, the two clusters) of cluster-pair keys.
-void launch_cluster_contacts(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys, std::uint32_t n,
-                             Contact* out);
+void launch_cluster_contacts(const WorkItem* work, const std::uint32_t* work_of, const std::uint64_t* keys,
+                             std::uint32_t n, Contact* out);
 /// Organ pairs as keys pair_key(a, b), a < b (repeats possible: sort and de-duplicate).
-void launch_organ_pairs(const StandView& v, const WorkItem* work, const ClusterPair* pairs, std::uint32_t n_pairs,
-                        std::uint64_t* out, unsigned long long capacity, Counters* counters);
+void launch_organ_pairs(const StandView& v, const WorkItem* work, const ClusterPair* pairs,
+                        std::uint32_t n_pairs, std::uint64_t* out, unsigned long long capacity,
+                        Counters* counters);
 /// Counts organ-pair keys between and within plants.
 void launch_count_pairs(const StandView& v, const std::uint64_t* keys, std::uint32_t n, Counters* counters);
 /// The contact records of organ-pair keys (organ ids and their plants).
 void launch_contacts(const StandView& v, const std::uint64_t* keys, std::uint32_t n, Contact* out);
 /// hit[k] = whether organ pair keys[k] touches (within `clearance` when it is positive).
-void launch_exact(const StandView& v, const std::uint64_t* keys, std::uint32_t n, float clearance, std::uint8_t* hit);
+void launch_exact(const StandView& v, const std::uint64_t* keys, std::uint32_t n, float clearance,
+                  std::uint8_t* hit);
 
 /// dst[index[i]] = src[i] for i < n, items of `words` 32-bit words: moved organs' transforms and
 /// boxes travel to the device one by one, not as whole arrays.
-void launch_scatter(void* dst, const void* src, const std::uint32_t* index, std::uint32_t n, std::uint32_t words);
+void launch_scatter(void* dst, const void* src, const std::uint32_t* index, std::uint32_t n,
+                    std::uint32_t words);
 
 }  // namespace canopy::cuda

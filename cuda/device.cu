@@ -16,7 +16,8 @@ __global__ void iota_squares(int* out, int n) {
 }
 
 /// vertices: six per pair, a's three then b's.
-__global__ void triangle_tests_kernel(const Vec3f* vertices, std::uint32_t n, float clearance, std::uint8_t* out) {
+__global__ void triangle_tests_kernel(const Vec3f* vertices, std::uint32_t n, float clearance,
+                                      std::uint8_t* out) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const Vec3f* p = vertices + 6 * std::size_t{k};
@@ -26,7 +27,8 @@ __global__ void triangle_tests_kernel(const Vec3f* vertices, std::uint32_t n, fl
 
 }  // namespace
 
-std::vector<std::uint8_t> device_triangle_tests(const std::vector<std::array<Vec3f, 6>>& pairs, float clearance) {
+std::vector<std::uint8_t> device_triangle_tests(const std::vector<std::array<Vec3f, 6>>& pairs,
+                                                float clearance) {
   std::vector<Vec3f> flat;
   for (const auto& pair : pairs) flat.insert(flat.end(), pair.begin(), pair.end());
   DeviceBuffer<Vec3f> in;
@@ -52,8 +54,8 @@ void self_test(int device) {
   check(copy, "cudaMemcpy", __FILE__, __LINE__);
   for (int i = 0; i < n; ++i)
     if (h[i] != i * i)
-      throw CudaError("self test: element " + std::to_string(i) + " is " + std::to_string(h[i]) + ", expected " +
-                      std::to_string(i * i));
+      throw CudaError("self test: element " + std::to_string(i) + " is " + std::to_string(h[i]) +
+                      ", expected " + std::to_string(i * i));
 }
 
 }  // namespace canopy::cuda

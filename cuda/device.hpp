@@ -34,6 +34,7 @@ void self_test(int device);
 /// the current device: for each pair (a's three vertices, then b's), whether the triangles meet,
 /// or with a positive `clearance` whether they lie within it. Lets the tests hold the device's
 /// answers to the host's.
-std::vector<std::uint8_t> device_triangle_tests(const std::vector<std::array<Vec3f, 6>>& pairs, float clearance);
+std::vector<std::uint8_t> device_triangle_tests(const std::vector<std::array<Vec3f, 6>>& pairs,
+                                                float clearance);
 
 }  // namespace canopy::cuda

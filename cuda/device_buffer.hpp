@@ -118,11 +118,13 @@ class StreamBuffer {
     CANOPY_CUDA_CHECK(cudaMallocAsync(reinterpret_cast<void**>(&bigger), m * sizeof(T), stream_));
     device_bytes().add(m * sizeof(T));
     if (keep) {
-      if (const cudaError_t e = cudaMemcpyAsync(bigger, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream_);
+      if (const cudaError_t e =
+              cudaMemcpyAsync(bigger, p_, keep * sizeof(T), cudaMemcpyDeviceToDevice, stream_);
           e != cudaSuccess) {
         cudaFreeAsync(bigger, stream_);  // this buffer stays as it was
         device_bytes().sub(m * sizeof(T));
-        ::canopy::cuda::check(e, "cudaMemcpyAsync (keeping a stream buffer's entries as it grows)", __FILE__, __LINE__);
+        ::canopy::cuda::check(e, "cudaMemcpyAsync (keeping a stream buffer's entries as it grows)", __FILE__,
+                              __LINE__);
       }
     }
     if (p_) {

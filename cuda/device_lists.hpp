@@ -20,9 +20,10 @@ inline constexpr std::size_t kMaxItems = 0x7fffffff;
 /// runs again. Returns the items found, which exceed `limit` when they do not fit (then nothing
 /// usable is in `out`).
 template <typename T, typename Launch>
-std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t guess, std::size_t limit,
-                    bool tight, EventTimer& timer, Launch&& launch) {
-  std::size_t capacity = std::max<std::size_t>(std::min(tight ? guess : std::max(guess, out.size()), limit), 1);
+std::size_t collect(DeviceBuffer<T>& out, DeviceBuffer<Counters>& counters, Counters& host, std::size_t guess,
+                    std::size_t limit, bool tight, EventTimer& timer, Launch&& launch) {
+  std::size_t capacity =
+      std::max<std::size_t>(std::min(tight ? guess : std::max(guess, out.size()), limit), 1);
   for (;;) {
     out.fit(capacity, tight);
     CANOPY_CUDA_CHECK(cudaMemset(counters.get(), 0, sizeof(Counters)));

@@ -12,13 +12,14 @@ constexpr int kThreads = 128;
 unsigned blocks(std::uint32_t n) { return (n + kThreads - 1) / kThreads; }
 
 /// Cell coordinates from the grid corner: non-negative, and below 2^31 (the host sizes cells so).
-__device__ void cell_of(const PlantOrigin& o, double x0, double y0, double cell, std::uint32_t& ix, std::uint32_t& iy) {
+__device__ void cell_of(const PlantOrigin& o, double x0, double y0, double cell, std::uint32_t& ix,
+                        std::uint32_t& iy) {
   ix = static_cast<std::uint32_t>(floor((o.x - x0) / cell));
   iy = static_cast<std::uint32_t>(floor((o.y - y0) / cell));
 }
 
-__global__ void plant_cells_kernel(const PlantOrigin* origins, std::uint32_t n, double x0, double y0, double cell,
-                                   std::uint64_t* keys, std::uint32_t* ids) {
+__global__ void plant_cells_kernel(const PlantOrigin* origins, std::uint32_t n, double x0, double y0,
+                                   double cell, std::uint64_t* keys, std::uint32_t* ids) {
   const std::uint32_t p = blockIdx.x * blockDim.x + threadIdx.x;
   if (p >= n) return;
   std::uint32_t ix, iy;
@@ -68,14 +69,15 @@ __global__ void plant_pairs_kernel(GridView g, std::uint64_t* out, unsigned long
 
 }  // namespace
 
-void launch_plant_cells(const PlantOrigin* origins, std::uint32_t n, double x0, double y0, double cell, std::uint64_t* keys,
-                        std::uint32_t* ids) {
+void launch_plant_cells(const PlantOrigin* origins, std::uint32_t n, double x0, double y0, double cell,
+                        std::uint64_t* keys, std::uint32_t* ids) {
   if (!n) return;
   plant_cells_kernel<<<blocks(n), kThreads>>>(origins, n, x0, y0, cell, keys, ids);
   CANOPY_CUDA_CHECK_LAUNCH("plant_cells_kernel");
 }
 
-void launch_plant_pairs(const GridView& g, std::uint64_t* out, unsigned long long capacity, Counters* counters) {
+void launch_plant_pairs(const GridView& g, std::uint64_t* out, unsigned long long capacity,
+                        Counters* counters) {
   if (!g.n) return;
   plant_pairs_kernel<<<blocks(g.n), kThreads>>>(g, out, capacity, counters);
   CANOPY_CUDA_CHECK_LAUNCH("plant_pairs_kernel");

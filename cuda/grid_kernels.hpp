@@ -21,10 +21,11 @@ struct GridView {
 };
 
 /// keys[p] = the cell of plant p, ids[p] = p.
-void launch_plant_cells(const PlantOrigin* origins, std::uint32_t n, double x0, double y0, double cell, std::uint64_t* keys,
-                        std::uint32_t* ids);
+void launch_plant_cells(const PlantOrigin* origins, std::uint32_t n, double x0, double y0, double cell,
+                        std::uint64_t* keys, std::uint32_t* ids);
 /// Plant pairs pair_key(p, q): p < q with meeting bounds (counted `between`), and (p, p) for the
 /// plants that meet themselves (counted `within`).
-void launch_plant_pairs(const GridView& g, std::uint64_t* out, unsigned long long capacity, Counters* counters);
+void launch_plant_pairs(const GridView& g, std::uint64_t* out, unsigned long long capacity,
+                        Counters* counters);
 
 }  // namespace canopy::cuda

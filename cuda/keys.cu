@@ -18,10 +18,11 @@ std::size_t KeyOps::scratch_bytes(std::size_t n) {
       nullptr, b, static_cast<const std::uint64_t*>(nullptr), static_cast<std::uint64_t*>(nullptr),
       static_cast<const std::uint32_t*>(nullptr), static_cast<std::uint32_t*>(nullptr), items));
   CANOPY_CUDA_CHECK(cub::DeviceSelect::Unique(nullptr, c, static_cast<const std::uint64_t*>(nullptr),
-                                              static_cast<std::uint64_t*>(nullptr), static_cast<long long*>(nullptr), items));
-  CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(nullptr, d, static_cast<const std::uint64_t*>(nullptr),
-                                               static_cast<const std::uint8_t*>(nullptr), static_cast<std::uint64_t*>(nullptr),
-                                               static_cast<long long*>(nullptr), items));
+                                              static_cast<std::uint64_t*>(nullptr),
+                                              static_cast<long long*>(nullptr), items));
+  CANOPY_CUDA_CHECK(cub::DeviceSelect::Flagged(
+      nullptr, d, static_cast<const std::uint64_t*>(nullptr), static_cast<const std::uint8_t*>(nullptr),
+      static_cast<std::uint64_t*>(nullptr), static_cast<long long*>(nullptr), items));
   std::size_t e = 0;
   CANOPY_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(
       nullptr, e, static_cast<const std::uint32_t*>(nullptr), static_cast<std::uint32_t*>(nullptr),
@@ -78,14 +79,19 @@ void KeyOps::sort_pairs(const std::uint32_t* keys_in, std::uint32_t* keys_out, c
 std::size_t KeyOps::unique(const std::uint64_t* in, std::uint64_t* out, std::size_t n) {
   if (!n) return 0;
   const auto items = static_cast<long long>(n);
-  call([&](void* s, std::size_t& bytes) { return cub::DeviceSelect::Unique(s, bytes, in, out, count_.get(), items); });
+  call([&](void* s, std::size_t& bytes) {
+    return cub::DeviceSelect::Unique(s, bytes, in, out, count_.get(), items);
+  });
   return selected();
 }
 
-std::size_t KeyOps::select(const std::uint64_t* in, const std::uint8_t* flags, std::uint64_t* out, std::size_t n) {
+std::size_t KeyOps::select(const std::uint64_t* in, const std::uint8_t* flags, std::uint64_t* out,
+                           std::size_t n) {
   if (!n) return 0;
   const auto items = static_cast<long long>(n);
-  call([&](void* s, std::size_t& bytes) { return cub::DeviceSelect::Flagged(s, bytes, in, flags, out, count_.get(), items); });
+  call([&](void* s, std::size_t& bytes) {
+    return cub::DeviceSelect::Flagged(s, bytes, in, flags, out, count_.get(), items);
+  });
   return selected();
 }
 

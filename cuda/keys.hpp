@@ -12,7 +12,9 @@
 namespace canopy::cuda {
 
 /// The key of the id pair (hi, lo).
-CANOPY_HD constexpr std::uint64_t pair_key(std::uint32_t hi, std::uint32_t lo) { return std::uint64_t{hi} << 32 | lo; }
+CANOPY_HD constexpr std::uint64_t pair_key(std::uint32_t hi, std::uint32_t lo) {
+  return std::uint64_t{hi} << 32 | lo;
+}
 CANOPY_HD constexpr std::uint32_t key_hi(std::uint64_t k) { return static_cast<std::uint32_t>(k >> 32); }
 CANOPY_HD constexpr std::uint32_t key_lo(std::uint64_t k) { return static_cast<std::uint32_t>(k); }
 

@@ -20,7 +20,8 @@ __device__ inline Vec3f offset_between(const StandView& v, std::int32_t p, std::
 
 /// Vertex k of a mesh at transform t, in the frame of the lower organ's plant (moved by
 /// `offset`), exactly as the host computes it: apply(m, p) + d.
-__device__ inline Vec3f vertex(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset, std::uint32_t k) {
+__device__ inline Vec3f vertex(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset,
+                               std::uint32_t k) {
   return apply(t, v.mesh_positions[m.first_vertex + k]) + offset;
 }
 
@@ -48,16 +49,18 @@ struct WarpStage {
 namespace detail {
 
 /// The lanes' share of a mesh posed into shared memory: vertices, then triangle boxes (lo, hi).
-__device__ inline void stage_mesh(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset, Vec3f* vert,
-                                  float (*box)[6]) {
+__device__ inline void stage_mesh(const StandView& v, const MeshRef& m, const Affine3f& t, Vec3f offset,
+                                  Vec3f* vert, float (*box)[6]) {
   const unsigned lane = threadIdx.x % 32;
   for (std::uint32_t i = lane; i < m.vertex_count; i += 32) vert[i] = vertex(v, m, t, offset, i);
   __syncwarp();
   for (std::uint32_t i = lane; i < m.triangle_count; i += 32) {
     const std::uint32_t* idx = v.mesh_indices + m.first_index + 3 * i;
     const Vec3f p = vert[idx[0]], q = vert[idx[1]], r = vert[idx[2]];
-    box[i][0] = min_f(p.x, min_f(q.x, r.x)), box[i][1] = min_f(p.y, min_f(q.y, r.y)), box[i][2] = min_f(p.z, min_f(q.z, r.z));
-    box[i][3] = max_f(p.x, max_f(q.x, r.x)), box[i][4] = max_f(p.y, max_f(q.y, r.y)), box[i][5] = max_f(p.z, max_f(q.z, r.z));
+    box[i][0] = min_f(p.x, min_f(q.x, r.x)), box[i][1] = min_f(p.y, min_f(q.y, r.y)),
+    box[i][2] = min_f(p.z, min_f(q.z, r.z));
+    box[i][3] = max_f(p.x, max_f(q.x, r.x)), box[i][4] = max_f(p.y, max_f(q.y, r.y)),
+    box[i][5] = max_f(p.z, max_f(q.z, r.z));
   }
   __syncwarp();
 }
@@ -77,16 +80,16 @@ __device__ inline void staged_box(const Vec3f* vert, std::uint32_t n, float lo[3
 /// triangle that does not cannot pass the pair test against any triangle inside it): their
 /// indices in `out`, their count back. `widen_own`: c is added to the triangle's box, else to
 /// [lo, hi], as the pair test adds it (c on a's side), so rounding cannot drop a pair it passes.
-__device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n, const float lo[3], const float hi[3], double c,
-                                         bool widen_own, std::uint8_t* out) {
+__device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n, const float lo[3],
+                                         const float hi[3], double c, bool widen_own, std::uint8_t* out) {
   const unsigned lane = threadIdx.x % 32;
   std::uint32_t count = 0;
   for (std::uint32_t i0 = 0; i0 < n; i0 += 32) {
     const std::uint32_t i = i0 + lane;
     bool in = i < n;
     for (int d = 0; in && d < 3; ++d)
-      in =
-          widen_own ? box[i][d] - c <= hi[d] && box[i][3 + d] + c >= lo[d] : box[i][d] <= hi[d] + c && box[i][3 + d] >= lo[d] - c;
+      in = widen_own ? box[i][d] - c <= hi[d] && box[i][3 + d] + c >= lo[d]
+                     : box[i][d] <= hi[d] + c && box[i][3 + d] >= lo[d] - c;
     const unsigned votes = __ballot_sync(kFullWarp, in);
     if (in) out[count + __popc(votes & ((1u << lane) - 1))] = static_cast<std::uint8_t>(i);
     count += __popc(votes);
@@ -97,8 +100,9 @@ __device__ inline std::uint32_t reaching(const float (*box)[6], std::uint32_t n,
 
 /// Whether any triangle pair of the staged meshes touches (the lanes share the pairs of the
 /// triangles that reach the other mesh's box). Every lane returns the same answer.
-__device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& ma, const Affine3f& ta, const MeshRef& mb,
-                                             const Affine3f& tb, Vec3f db, float clearance, WarpStage& w, std::uint32_t* found) {
+__device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& ma, const Affine3f& ta,
+                                             const MeshRef& mb, const Affine3f& tb, Vec3f db, float clearance,
+                                             WarpStage& w, std::uint32_t* found) {
   const unsigned lane = threadIdx.x % 32;
   stage_mesh(v, ma, ta, Vec3f{0, 0, 0}, w.va, w.ba);
   stage_mesh(v, mb, tb, db, w.vb, w.bb);
@@ -116,7 +120,8 @@ __device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& 
     if (k < na * nb) {
       i = w.la[k / nb], j = w.lb[k % nb];
       bool box = true;
-      for (int d = 0; d < 3; ++d) box = box && w.bb[j][d] <= w.ba[i][3 + d] + c && w.bb[j][3 + d] >= w.ba[i][d] - c;
+      for (int d = 0; d < 3; ++d)
+        box = box && w.bb[j][d] <= w.ba[i][3 + d] + c && w.bb[j][3 + d] >= w.ba[i][d] - c;
       if (box) {
         const std::uint32_t* ia = v.mesh_indices + ma.first_index + 3 * i;
         const std::uint32_t* ib = v.mesh_indices + mb.first_index + 3 * j;
@@ -124,8 +129,10 @@ __device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& 
         const Vec3f b3[3] = {w.vb[ib[0]], w.vb[ib[1]], w.vb[ib[2]]};
         // The host's float rejections first (collision/exact.cpp posed_touch): most pairs near
         // a contact are settled there, not in the double-precision test.
-        const TrianglePlane pa = TrianglePlane::of(a3[0], a3[1], a3[2]), pb = TrianglePlane::of(b3[0], b3[1], b3[2]);
-        hit = !triangles_rejected(pa, a3, pb, b3, margin) && (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3));
+        const TrianglePlane pa = TrianglePlane::of(a3[0], a3[1], a3[2]),
+                            pb = TrianglePlane::of(b3[0], b3[1], b3[2]);
+        hit = !triangles_rejected(pa, a3, pb, b3, margin) &&
+              (c > 0 ? triangles_within(a3, b3, c) : triangles_intersect(a3, b3));
       }
     }
     const unsigned votes = __ballot_sync(kFullWarp, hit);
@@ -140,8 +147,9 @@ __device__ inline bool staged_surfaces_touch(const StandView& v, const MeshRef& 
 
 /// Whether any triangle pair touches, vertices made as needed (meshes of any size): each lane
 /// takes a's triangles in turn against all of b's; `done` is the warp's shared flag.
-__device__ inline bool surfaces_touch(const StandView& v, const MeshRef& ma, const Affine3f& ta, const MeshRef& mb,
-                                      const Affine3f& tb, Vec3f db, float clearance, volatile int& done) {
+__device__ inline bool surfaces_touch(const StandView& v, const MeshRef& ma, const Affine3f& ta,
+                                      const MeshRef& mb, const Affine3f& tb, Vec3f db, float clearance,
+                                      volatile int& done) {
   const unsigned lane = threadIdx.x % 32;
   const Vec3f zero{0, 0, 0};
   // b's box, widened by the clearance: only a's triangles inside it need the full test.
@@ -205,8 +213,9 @@ __device__ inline bool inside_solid(const StandView& v, Vec3f p, const MeshRef& 
 /// Whether one organ lies wholly inside the other's solid (their vertices given by vertex_a and
 /// vertex_b), for organs whose surfaces do not meet.
 template <typename VertexA, typename VertexB>
-__device__ inline bool one_inside_other(const StandView& v, const OrganRecord& ra, const MeshRef& ma, VertexA vertex_a,
-                                        const OrganRecord& rb, const MeshRef& mb, VertexB vertex_b) {
+__device__ inline bool one_inside_other(const StandView& v, const OrganRecord& ra, const MeshRef& ma,
+                                        VertexA vertex_a, const OrganRecord& rb, const MeshRef& mb,
+                                        VertexB vertex_b) {
   if (is_solid(rb.prototype) && ma.vertex_count && inside_solid(v, vertex_a(0), mb, vertex_b)) return true;
   return is_solid(ra.prototype) && mb.vertex_count && inside_solid(v, vertex_b(0), ma, vertex_a);
 }
@@ -217,8 +226,9 @@ __device__ inline bool one_inside_other(const StandView& v, const OrganRecord& r
 /// transforms ta and tb (each in its own plant's frame), one thread: their vertices made as the
 /// warp test makes them and its exact predicate, so a touch here is one the warp test finds too
 /// (resolution's bulk attempts try a pair's last touching triangles before a warp's full test).
-__device__ inline bool witness_touches(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
-                                       const Affine3f& tb, std::uint32_t witness, float clearance) {
+__device__ inline bool witness_touches(const StandView& v, std::uint32_t a, const Affine3f& ta,
+                                       std::uint32_t b, const Affine3f& tb, std::uint32_t witness,
+                                       float clearance) {
   const OrganRecord ra = v.organs[a], rb = v.organs[b];
   const MeshRef ma = v.meshes[mesh_slot(ra.prototype, ra.lod, ra.shape)];
   const MeshRef mb = v.meshes[mesh_slot(rb.prototype, rb.lod, rb.shape)];
@@ -245,8 +255,9 @@ __device__ inline bool witness_touches(const StandView& v, std::uint32_t a, cons
 /// each keeps only its triangles that reach the other's box, and the lanes share the pairs of
 /// those (the same pairs pass the same box test as without, so the answer is the same); where
 /// `found` is given, a touching triangle pair found there is written to it (of a << 16 | of b).
-__device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, const Affine3f& ta, std::uint32_t b,
-                                         const Affine3f& tb, float clearance, volatile int& done, WarpStage* stage = nullptr,
+__device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, const Affine3f& ta,
+                                         std::uint32_t b, const Affine3f& tb, float clearance,
+                                         volatile int& done, WarpStage* stage = nullptr,
                                          std::uint32_t* found = nullptr) {
   const OrganRecord ra = v.organs[a], rb = v.organs[b];
   const MeshRef ma = v.meshes[mesh_slot(ra.prototype, ra.lod, ra.shape)];
@@ -263,7 +274,8 @@ __device__ inline bool warp_organs_touch(const StandView& v, std::uint32_t a, co
       ma.triangle_count <= WarpStage::kTriangles && mb.triangle_count <= WarpStage::kTriangles) {
     if (detail::staged_surfaces_touch(v, ma, ta, mb, tb, db, clearance, *stage, found)) return true;
     return detail::one_inside_other(
-        v, ra, ma, [&](std::uint32_t k) { return stage->va[k]; }, rb, mb, [&](std::uint32_t k) { return stage->vb[k]; });
+        v, ra, ma, [&](std::uint32_t k) { return stage->va[k]; }, rb, mb,
+        [&](std::uint32_t k) { return stage->vb[k]; });
   }
   if (detail::surfaces_touch(v, ma, ta, mb, tb, db, clearance, done)) return true;
   return detail::one_inside_other(

@@ -11,14 +11,15 @@
 
 namespace canopy::cuda {
 
-std::vector<std::uint64_t> PlantLevel::work(const StandOnDevice& dev, const DetectRequest& req, bool tight, KeyOps& keys,
-                                            DeviceBuffer<Counters>& counters, EventTimer& timer, std::optional<LevelCount>& count,
-                                            DeviceBuffer<WorkItem>& work) {
+std::vector<std::uint64_t> PlantLevel::work(const StandOnDevice& dev, const DetectRequest& req, bool tight,
+                                            KeyOps& keys, DeviceBuffer<Counters>& counters, EventTimer& timer,
+                                            std::optional<LevelCount>& count, DeviceBuffer<WorkItem>& work) {
   const std::uint32_t np = dev.plants();
   // Cells at least twice the largest radius, and few enough that coordinates fit 31 bits.
   const double cell = std::max({2.0 * static_cast<double>(dev.max_radius()), 1e-3, dev.span() / 1e9});
   if (cell != sorted_cell_) {
-    cells_.fit(np, tight), members_.fit(np, tight), sorted_cells_.fit(np, tight), sorted_members_.fit(np, tight);
+    cells_.fit(np, tight), members_.fit(np, tight), sorted_cells_.fit(np, tight),
+        sorted_members_.fit(np, tight);
     timer.start();
     launch_plant_cells(dev.view().origins, np, dev.x0(), dev.y0(), cell, cells_.get(), members_.get());
     keys.sort_pairs(cells_.get(), sorted_cells_.get(), members_.get(), sorted_members_.get(), np);
@@ -27,7 +28,8 @@ std::vector<std::uint64_t> PlantLevel::work(const StandOnDevice& dev, const Dete
   }
   const std::uint8_t* active = nullptr;
   if (req.active_plants) {
-    if (req.active_plants->size() != np) throw std::invalid_argument("detect: active_plants needs one flag per plant");
+    if (req.active_plants->size() != np)
+      throw std::invalid_argument("detect: active_plants needs one flag per plant");
     active_.upload(*req.active_plants);
     active = active_.get();
   }
@@ -42,9 +44,9 @@ std::vector<std::uint64_t> PlantLevel::work(const StandOnDevice& dev, const Dete
                    dev.self(),
                    active};
   Counters host{};
-  const std::size_t nw =
-      collect(pair_keys_, counters, host, 8 * std::size_t{np} + 64, kMaxItems, tight, timer,
-              [&](std::uint64_t* o, unsigned long long cap) { launch_plant_pairs(g, o, cap, counters.get()); });
+  const std::size_t nw = collect(
+      pair_keys_, counters, host, 8 * std::size_t{np} + 64, kMaxItems, tight, timer,
+      [&](std::uint64_t* o, unsigned long long cap) { launch_plant_pairs(g, o, cap, counters.get()); });
   // The host holds the list too, and what detection and resolution make of it (collision/memory_budget.hpp).
   if (const std::size_t budget = memory_budget(req.memory_limit);
       budget && !req.active_plants && host.between > most_plant_pairs(budget))

@@ -20,9 +20,9 @@ class PlantLevel {
   /// The plant pairs of `dev` (keys pair_key(p, q), p <= q; only pairs with an active plant when
   /// the request names some) into `work` on the device and returned on the host; `count` gets
   /// the level's numbers. Under a memory budget (`tight`) only the work list stays allocated.
-  std::vector<std::uint64_t> work(const StandOnDevice& dev, const DetectRequest& req, bool tight, KeyOps& keys,
-                                  DeviceBuffer<Counters>& counters, EventTimer& timer, std::optional<LevelCount>& count,
-                                  DeviceBuffer<WorkItem>& work);
+  std::vector<std::uint64_t> work(const StandOnDevice& dev, const DetectRequest& req, bool tight,
+                                  KeyOps& keys, DeviceBuffer<Counters>& counters, EventTimer& timer,
+                                  std::optional<LevelCount>& count, DeviceBuffer<WorkItem>& work);
   /// A new stand: the plants are sorted into cells again.
   void reset() { sorted_cell_ = 0; }
   /// Device bytes held between calls besides the work list.

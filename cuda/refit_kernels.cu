@@ -10,7 +10,8 @@ namespace {
 constexpr int kThreads = 128;
 unsigned blocks(std::uint32_t n) { return (n + kThreads - 1) / kThreads; }
 
-__global__ void refit_organs_kernel(TreeView v, const std::uint32_t* organs, std::uint32_t n, float clearance) {
+__global__ void refit_organs_kernel(TreeView v, const std::uint32_t* organs, std::uint32_t n,
+                                    float clearance) {
   const std::uint32_t k = blockIdx.x * blockDim.x + threadIdx.x;
   if (k >= n) return;
   const std::uint32_t id = organs ? organs[k] : k;

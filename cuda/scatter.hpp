@@ -14,8 +14,8 @@ namespace canopy::cuda {
 /// device[k] = host[k] for every k in `ids`; `staged_ids` (left holding the ids) and `staged`
 /// grow as needed.
 template <typename T>
-void scatter_from_host(T* device, const T* host, std::span<const std::uint32_t> ids, DeviceBuffer<std::uint32_t>& staged_ids,
-                       DeviceBuffer<T>& staged) {
+void scatter_from_host(T* device, const T* host, std::span<const std::uint32_t> ids,
+                       DeviceBuffer<std::uint32_t>& staged_ids, DeviceBuffer<T>& staged) {
   static_assert(sizeof(T) % sizeof(std::uint32_t) == 0, "scattered items are whole 32-bit words");
   if (ids.empty()) return;
   std::vector<T> items(ids.size());

@@ -7,7 +7,8 @@
 
 namespace canopy::cuda {
 
-void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, const std::vector<std::uint8_t>& self) {
+void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib,
+                         const std::vector<std::uint8_t>& self) {
   std::vector<MeshRef> meshes(kMeshSlots);
   std::vector<Box3f> boxes(kMeshSlots);
   std::vector<Vec3f> positions;
@@ -27,8 +28,10 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, c
   double x1 = 0, y1 = 0;
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
     origins[p] = {s.plants[p].x, s.plants[p].y};
-    x0_ = p ? std::min(x0_, s.plants[p].x) : s.plants[p].x, x1 = p ? std::max(x1, s.plants[p].x) : s.plants[p].x;
-    y0_ = p ? std::min(y0_, s.plants[p].y) : s.plants[p].y, y1 = p ? std::max(y1, s.plants[p].y) : s.plants[p].y;
+    x0_ = p ? std::min(x0_, s.plants[p].x) : s.plants[p].x,
+    x1 = p ? std::max(x1, s.plants[p].x) : s.plants[p].x;
+    y0_ = p ? std::min(y0_, s.plants[p].y) : s.plants[p].y,
+    y1 = p ? std::max(y1, s.plants[p].y) : s.plants[p].y;
   }
   span_ = std::max(x1 - x0_, y1 - y0_);
   transforms_.upload(s.transforms);
@@ -45,21 +48,25 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, c
   indices_.upload(indices);
   meshes_.upload(meshes);
   boxes_.upload(boxes);
-  view_ = {transforms_.get(), organs_.get(),    obbs_.get(),    cluster_organs_.get(), clusters_.get(), nodes_.get(),
-           plants_.get(),     positions_.get(), indices_.get(), meshes_.get(),         origins_.get()};
+  view_ = {transforms_.get(), organs_.get(), obbs_.get(),   cluster_organs_.get(),
+           clusters_.get(),   nodes_.get(),  plants_.get(), positions_.get(),
+           indices_.get(),    meshes_.get(), origins_.get()};
   tree_ = {transforms_.get(), organs_.get(), boxes_.get(),  cluster_organs_.get(), clusters_.get(),
            obbs_.get(),       nodes_.get(),  plants_.get(), max_radius_.get()};
-  bytes_ = s.transforms.size() * sizeof(Affine3f) + s.organs.size() * sizeof(OrganRecord) + s.organ_count() * sizeof(Obb) +
-           m.cluster_organs.size() * 4 + m.clusters.size() * sizeof(Cluster) + m.nodes.size() * sizeof(LcdNode) +
-           m.plants.size() * (sizeof(PlantBound) + sizeof(PlantOrigin) + 1) + positions.size() * sizeof(Vec3f) +
-           indices.size() * 4 + meshes.size() * sizeof(MeshRef) + boxes.size() * sizeof(Box3f) + sizeof(float);
+  bytes_ = s.transforms.size() * sizeof(Affine3f) + s.organs.size() * sizeof(OrganRecord) +
+           s.organ_count() * sizeof(Obb) + m.cluster_organs.size() * 4 + m.clusters.size() * sizeof(Cluster) +
+           m.nodes.size() * sizeof(LcdNode) +
+           m.plants.size() * (sizeof(PlantBound) + sizeof(PlantOrigin) + 1) +
+           positions.size() * sizeof(Vec3f) + indices.size() * 4 + meshes.size() * sizeof(MeshRef) +
+           boxes.size() * sizeof(Box3f) + sizeof(float);
 }
 
 void StandOnDevice::fit(float clearance) {
   obb_clearance_ = clearance;
   CANOPY_CUDA_CHECK(cudaMemset(max_radius_.get(), 0, sizeof(float)));
   launch_refit_organs(tree_, nullptr, static_cast<std::uint32_t>(obbs_.size()), clearance);
-  launch_fit_clusters(tree_, static_cast<std::uint32_t>(clusters_.size()), static_cast<std::uint32_t>(nodes_.size()));
+  launch_fit_clusters(tree_, static_cast<std::uint32_t>(clusters_.size()),
+                      static_cast<std::uint32_t>(nodes_.size()));
   launch_refit_plants(tree_, nullptr, static_cast<std::uint32_t>(plants_.size()));
 }
 
@@ -71,7 +78,8 @@ float StandOnDevice::max_radius() const {
 
 void StandOnDevice::refit(const Stand& s, const Mbvt& m, const std::vector<std::uint32_t>& moved) {
   if (moved.empty()) return;
-  if (m.config.clearance != obb_clearance_) throw std::logic_error("refit: not the clearance the boxes were fitted with");
+  if (m.config.clearance != obb_clearance_)
+    throw std::logic_error("refit: not the clearance the boxes were fitted with");
   // The moved organs' transforms, scattered into place (ids_ keeps the ids for the refit).
   scatter_from_host(transforms_.get(), s.transforms.data(), moved, ids_, moved_transforms_);
   launch_refit_organs(tree_, ids_.get(), static_cast<std::uint32_t>(moved.size()), m.config.clearance);
@@ -83,7 +91,8 @@ void StandOnDevice::refit(const Stand& s, const Mbvt& m, const std::vector<std::
   plants.erase(std::unique(plants.begin(), plants.end()), plants.end());
   std::vector<std::uint32_t> clusters;
   for (std::uint32_t p : plants)
-    for (std::uint32_t c = m.plants[p].first_cluster; c < m.plants[p].first_cluster + m.plants[p].cluster_count; ++c)
+    for (std::uint32_t c = m.plants[p].first_cluster;
+         c < m.plants[p].first_cluster + m.plants[p].cluster_count; ++c)
       clusters.push_back(c);
   dirty_clusters_.upload(clusters);
   dirty_plants_.upload(plants);

@@ -15,7 +15,8 @@ void check(int rc, const char* what) {
   char text[MPI_MAX_ERROR_STRING];
   int len = 0;
   MPI_Error_string(rc, text, &len);
-  throw std::runtime_error(fmt::format("MPI: {} failed: {}", what, std::string(text, static_cast<std::size_t>(len))));
+  throw std::runtime_error(
+      fmt::format("MPI: {} failed: {}", what, std::string(text, static_cast<std::size_t>(len))));
 }
 
 int to_int(std::size_t n, const char* what) {
@@ -66,7 +67,8 @@ int size() {
 
 int local_rank() {
   MPI_Comm node;
-  check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node), "MPI_Comm_split_type");
+  check(MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node),
+        "MPI_Comm_split_type");
   int r = 0;
   MPI_Comm_rank(node, &r);
   MPI_Comm_free(&node);
@@ -77,7 +79,8 @@ void barrier() { check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier"); }
 
 std::vector<std::int64_t> sum(std::vector<std::int64_t> values) {
   std::vector<std::int64_t> out(values.size());
-  check(MPI_Allreduce(values.data(), out.data(), to_int(values.size(), "sum"), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD),
+  check(MPI_Allreduce(values.data(), out.data(), to_int(values.size(), "sum"), MPI_INT64_T, MPI_SUM,
+                      MPI_COMM_WORLD),
         "MPI_Allreduce (sum)");
   return out;
 }
@@ -92,7 +95,8 @@ std::vector<char> allgather_bytes(const void* data, std::size_t bytes, std::vect
   const int p = size();
   const long long mine = static_cast<long long>(bytes);
   std::vector<long long> counts(static_cast<std::size_t>(p));
-  check(MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, MPI_COMM_WORLD), "MPI_Allgather (sizes)");
+  check(MPI_Allgather(&mine, 1, MPI_LONG_LONG, counts.data(), 1, MPI_LONG_LONG, MPI_COMM_WORLD),
+        "MPI_Allgather (sizes)");
   std::vector<int> c(static_cast<std::size_t>(p)), d(static_cast<std::size_t>(p));
   std::size_t total = 0;
   for (std::size_t r = 0; r < c.size(); ++r) {
@@ -102,8 +106,8 @@ std::vector<char> allgather_bytes(const void* data, std::size_t bytes, std::vect
   }
   to_int(total, "allgather");
   std::vector<char> out(total);
-  check(MPI_Allgatherv(data, c[static_cast<std::size_t>(rank())], MPI_BYTE, out.data(), c.data(), d.data(), MPI_BYTE,
-                       MPI_COMM_WORLD),
+  check(MPI_Allgatherv(data, c[static_cast<std::size_t>(rank())], MPI_BYTE, out.data(), c.data(), d.data(),
+                       MPI_BYTE, MPI_COMM_WORLD),
         "MPI_Allgatherv");
   if (starts) {
     starts->assign(d.begin(), d.end());
@@ -123,9 +127,11 @@ std::vector<std::vector<char>> alltoall_bytes(const std::vector<std::vector<char
   }
   check(MPI_Alltoall(sc.data(), 1, MPI_INT, rc.data(), 1, MPI_INT, MPI_COMM_WORLD), "MPI_Alltoall (sizes)");
   std::size_t total = 0;
-  for (std::size_t r = 0; r < p; ++r) rd[r] = to_int(total, "alltoall"), total += static_cast<std::size_t>(rc[r]);
+  for (std::size_t r = 0; r < p; ++r)
+    rd[r] = to_int(total, "alltoall"), total += static_cast<std::size_t>(rc[r]);
   std::vector<char> recv(total);
-  check(MPI_Alltoallv(send.data(), sc.data(), sd.data(), MPI_BYTE, recv.data(), rc.data(), rd.data(), MPI_BYTE, MPI_COMM_WORLD),
+  check(MPI_Alltoallv(send.data(), sc.data(), sd.data(), MPI_BYTE, recv.data(), rc.data(), rd.data(),
+                      MPI_BYTE, MPI_COMM_WORLD),
         "MPI_Alltoallv");
   std::vector<std::vector<char>> in(p);
   for (std::size_t r = 0; r < p; ++r) in[r].assign(recv.begin() + rd[r], recv.begin() + rd[r] + rc[r]);

@@ -30,7 +30,8 @@ void barrier();
 std::vector<std::int64_t> sum(std::vector<std::int64_t> values);
 double max(double value);
 /// Every rank's bytes, concatenated in rank order, and where each rank's part starts (size+1).
-std::vector<char> allgather_bytes(const void* data, std::size_t bytes, std::vector<std::size_t>* starts = nullptr);
+std::vector<char> allgather_bytes(const void* data, std::size_t bytes,
+                                  std::vector<std::size_t>* starts = nullptr);
 /// Sends `out[r]` to rank r, returns what each rank sent here.
 std::vector<std::vector<char>> alltoall_bytes(const std::vector<std::vector<char>>& out);
 /// Collective: when any rank passes a non-empty error, every rank throws std::runtime_error

@@ -17,38 +17,47 @@ namespace canopy::mpi {
 namespace {
 
 /// Every rank's (id, k values) pairs laid out by global id: the whole stand's table.
-std::vector<std::uint64_t> by_global_id(const std::vector<std::int64_t>& ids, const std::vector<std::uint64_t>& values, int k,
+std::vector<std::uint64_t> by_global_id(const std::vector<std::int64_t>& ids,
+                                        const std::vector<std::uint64_t>& values, int k,
                                         std::uint64_t plants_total) {
   std::vector<std::uint64_t> rows;
   rows.reserve(ids.size() * static_cast<std::size_t>(k + 1));
   for (std::size_t i = 0; i < ids.size(); ++i) {
     rows.push_back(static_cast<std::uint64_t>(ids[i]));
-    for (int j = 0; j < k; ++j) rows.push_back(values[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(j)]);
+    for (int j = 0; j < k; ++j)
+      rows.push_back(values[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(j)]);
   }
   const std::vector<std::uint64_t> all = allgather(rows);
   std::vector<std::uint64_t> table(plants_total * static_cast<std::uint64_t>(k), 0);
   for (std::size_t r = 0; r < all.size(); r += static_cast<std::size_t>(k + 1))
     for (int j = 0; j < k; ++j)
-      table[all[r] * static_cast<std::uint64_t>(k) + static_cast<std::uint64_t>(j)] = all[r + 1 + static_cast<std::size_t>(j)];
+      table[all[r] * static_cast<std::uint64_t>(k) + static_cast<std::uint64_t>(j)] =
+          all[r + 1 + static_cast<std::size_t>(j)];
   return table;
 }
 
 }  // namespace
 
-void RankScan::exclusive(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) const {
+void RankScan::exclusive(std::vector<std::uint64_t>& values, int k,
+                         std::vector<std::uint64_t>& totals) const {
   std::vector<std::uint64_t> table = by_global_id(ids_, values, k, total_);
   exclusive_sums(table, k, totals);
   for (std::size_t i = 0; i < ids_.size(); ++i)
     for (std::size_t j = 0; j < static_cast<std::size_t>(k); ++j)
-      values[i * static_cast<std::size_t>(k) + j] = table[static_cast<std::size_t>(ids_[i]) * static_cast<std::size_t>(k) + j];
+      values[i * static_cast<std::size_t>(k) + j] =
+          table[static_cast<std::size_t>(ids_[i]) * static_cast<std::size_t>(k) + j];
 }
 
-SharedFile::SharedFile(const std::string& path, const std::vector<std::int64_t>& ids, std::uint64_t plants_total)
+SharedFile::SharedFile(const std::string& path, const std::vector<std::int64_t>& ids,
+                       std::uint64_t plants_total)
     : path_(path), ids_(ids), plants_total_(plants_total) {
   MPI_File fh;
-  const int rc = MPI_File_open(MPI_COMM_WORLD, path_.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
-  if (rc != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot write {} (MPI_File_open failed)", path_));
-  if (MPI_File_set_size(fh, 0) != MPI_SUCCESS) throw std::runtime_error(fmt::format("cannot truncate {}", path_));
+  const int rc =
+      MPI_File_open(MPI_COMM_WORLD, path_.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
+  if (rc != MPI_SUCCESS)
+    throw std::runtime_error(fmt::format("cannot write {} (MPI_File_open failed)", path_));
+  if (MPI_File_set_size(fh, 0) != MPI_SUCCESS)
+    throw std::runtime_error(fmt::format("cannot truncate {}", path_));
   handle_ = fh;
 }
 
@@ -71,7 +80,8 @@ void SharedFile::write_at(std::uint64_t at, const char* data, std::size_t n) {
   while (n > 0) {
     const std::size_t piece = std::min<std::size_t>(n, std::size_t(1) << 30);
     MPI_Status status;
-    if (MPI_File_write_at(fh, static_cast<MPI_Offset>(at), data, static_cast<int>(piece), MPI_BYTE, &status) != MPI_SUCCESS)
+    if (MPI_File_write_at(fh, static_cast<MPI_Offset>(at), data, static_cast<int>(piece), MPI_BYTE,
+                          &status) != MPI_SUCCESS)
       throw std::runtime_error(fmt::format("cannot write {} bytes at offset {} of {}", piece, at, path_));
     at += piece, data += piece, n -= piece;
   }
@@ -90,7 +100,8 @@ void SharedFile::patch(std::uint64_t at, std::string_view bytes) {
   if (rank() == 0) write_at(at, bytes.data(), bytes.size());
 }
 
-void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<void(std::size_t, std::string&)>& make) {
+void SharedFile::plants(std::size_t n, std::size_t batch,
+                        const std::function<void(std::size_t, std::string&)>& make) {
   // This rank's chunks, formatted on all threads a wave at a time and spilled in order to a file
   // of its own beside the output (so memory stays bounded whatever the section's size), then
   // copied to their places after every earlier plant's chunk once all sizes are known.
@@ -140,7 +151,8 @@ void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<vo
     std::uint64_t bytes = sizes[i];
     while (j < n && at[j] == at[i] + bytes) bytes += sizes[j++];
     for (std::uint64_t done = 0; done < bytes;) {
-      const std::size_t piece = static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, std::uint64_t(1) << 28));
+      const std::size_t piece =
+          static_cast<std::size_t>(std::min<std::uint64_t>(bytes - done, std::uint64_t(1) << 28));
       buf.resize(piece);
       if (std::fread(buf.data(), 1, piece, spill.get()) != piece)
         throw std::runtime_error(fmt::format("cannot read back {} bytes from {}", piece, spill_path));
@@ -152,8 +164,8 @@ void SharedFile::plants(std::size_t n, std::size_t batch, const std::function<vo
   offset_ += totals[0];
 }
 
-SharedOutputSet::SharedOutputSet(const std::string& dir, std::vector<std::string> replaces, std::vector<std::int64_t> ids,
-                                 std::uint64_t plants_total)
+SharedOutputSet::SharedOutputSet(const std::string& dir, std::vector<std::string> replaces,
+                                 std::vector<std::int64_t> ids, std::uint64_t plants_total)
     : ids_(std::move(ids)), plants_total_(plants_total) {
   std::string error;
   if (rank() == 0) {

@@ -16,8 +16,10 @@ namespace canopy::mpi {
 /// PlantScan over every rank: `ids` are the global ids of this rank's written plants, in order.
 class RankScan final : public PlantScan {
  public:
-  RankScan(std::vector<std::int64_t> ids, std::uint64_t plants_total) : ids_(std::move(ids)), total_(plants_total) {}
-  void exclusive(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) const override;
+  RankScan(std::vector<std::int64_t> ids, std::uint64_t plants_total)
+      : ids_(std::move(ids)), total_(plants_total) {}
+  void exclusive(std::vector<std::uint64_t>& values, int k,
+                 std::vector<std::uint64_t>& totals) const override;
 
  private:
   std::vector<std::int64_t> ids_;
@@ -29,7 +31,8 @@ class SharedFile final : public ChunkWriter {
   SharedFile(const std::string& path, const std::vector<std::int64_t>& ids, std::uint64_t plants_total);
   ~SharedFile() override;
   void fixed(std::string_view text) override;
-  void plants(std::size_t n, std::size_t batch, const std::function<void(std::size_t, std::string&)>& make) override;
+  void plants(std::size_t n, std::size_t batch,
+              const std::function<void(std::size_t, std::string&)>& make) override;
   std::uint64_t offset() const override { return offset_; }
   void patch(std::uint64_t at, std::string_view bytes) override;
   /// Text that rank 0 alone has (the report): written by rank 0 at the current offset.

@@ -13,8 +13,10 @@ void append_plant(Stand& to, const Stand& from, std::size_t p) {
   const auto g = std::find(to.grammars.begin(), to.grammars.end(), grammar);
   pr.grammar = static_cast<int>(g - to.grammars.begin());
   if (g == to.grammars.end()) to.grammars.push_back(grammar);
-  const auto organ_shift = static_cast<std::int64_t>(to.organs.size()) - static_cast<std::int64_t>(pr.first_organ);
-  const std::uint32_t leaves = to.plants.empty() ? 0 : to.plants.back().first_leaf + to.plants.back().leaf_count;
+  const auto organ_shift =
+      static_cast<std::int64_t>(to.organs.size()) - static_cast<std::int64_t>(pr.first_organ);
+  const std::uint32_t leaves =
+      to.plants.empty() ? 0 : to.plants.back().first_leaf + to.plants.back().leaf_count;
   const auto leaf_shift = static_cast<std::int64_t>(leaves) - static_cast<std::int64_t>(pr.first_leaf);
   const auto plant = static_cast<std::int32_t>(to.plants.size());
   for (std::uint32_t k = pr.first_organ; k < pr.first_organ + pr.organ_count; ++k) {

@@ -15,8 +15,9 @@ Tiling make_tiling(const std::vector<PlantPlacement>& plants, int tiles) {
   t.axis = (n == 0 || x1 - x0 >= y1 - y0) ? 0 : 1;
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return t.coordinate(plants[a]) < t.coordinate(plants[b]); });
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return t.coordinate(plants[a]) < t.coordinate(plants[b]);
+  });
   const auto count = static_cast<std::size_t>(std::max(1, tiles));
   t.owner.assign(n, 0);
   t.lo.assign(count, std::numeric_limits<double>::infinity());
@@ -45,14 +46,17 @@ bool near_strip(const Tiling& t, int tile, double c, double halo) {
 
 }  // namespace
 
-std::vector<std::uint32_t> tile_region(const Tiling& t, const std::vector<PlantPlacement>& plants, int tile, double halo) {
+std::vector<std::uint32_t> tile_region(const Tiling& t, const std::vector<PlantPlacement>& plants, int tile,
+                                       double halo) {
   std::vector<std::uint32_t> out;
   for (std::size_t p = 0; p < plants.size(); ++p)
-    if (t.owner[p] == tile || near_strip(t, tile, t.coordinate(plants[p]), halo)) out.push_back(static_cast<std::uint32_t>(p));
+    if (t.owner[p] == tile || near_strip(t, tile, t.coordinate(plants[p]), halo))
+      out.push_back(static_cast<std::uint32_t>(p));
   return out;
 }
 
-std::vector<int> tiles_holding(const Tiling& t, const std::vector<PlantPlacement>& plants, std::size_t p, double halo) {
+std::vector<int> tiles_holding(const Tiling& t, const std::vector<PlantPlacement>& plants, std::size_t p,
+                               double halo) {
   std::vector<int> out;
   for (int tile = 0; tile < static_cast<int>(t.lo.size()); ++tile)
     if (tile != t.owner[p] && near_strip(t, tile, t.coordinate(plants[p]), halo)) out.push_back(tile);

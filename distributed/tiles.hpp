@@ -27,9 +27,11 @@ Tiling make_tiling(const std::vector<PlantPlacement>& plants, int tiles);
 
 /// The plants tile `t` holds, ascending by id: its own and those of other tiles whose coordinate
 /// lies within `halo` metres of its strip.
-std::vector<std::uint32_t> tile_region(const Tiling& tiling, const std::vector<PlantPlacement>& plants, int t, double halo);
+std::vector<std::uint32_t> tile_region(const Tiling& tiling, const std::vector<PlantPlacement>& plants, int t,
+                                       double halo);
 
 /// The tiles (other than the owner) whose region holds plant `p`.
-std::vector<int> tiles_holding(const Tiling& tiling, const std::vector<PlantPlacement>& plants, std::size_t p, double halo);
+std::vector<int> tiles_holding(const Tiling& tiling, const std::vector<PlantPlacement>& plants, std::size_t p,
+                               double halo);
 
 }  // namespace canopy

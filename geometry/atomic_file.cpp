@@ -82,7 +82,8 @@ void AtomicFile::write_raw(const void* data, std::size_t n) {
   times_.bytes += n;
   if (n >= (std::size_t(1) << 16)) {
     // Large blocks go straight to the kernel: no second copy through stdio's buffer.
-    if (std::fflush(f_) != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
+    if (std::fflush(f_) != 0)
+      throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
     const char* p = static_cast<const char*>(data);
     const std::size_t block = n;
     const off_t at = ::lseek(fileno(f_), 0, SEEK_CUR);
@@ -113,7 +114,8 @@ void AtomicFile::close() {
   const double s = seconds_since(t);
   times_.busy_s += s, times_.waited_s += s;
   f_ = nullptr;
-  if (bad || rc != 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(bad ? err : errno)));
+  if (bad || rc != 0)
+    throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(bad ? err : errno)));
 }
 
 void AtomicFile::commit() {
@@ -132,7 +134,8 @@ void AtomicFile::commit() {
   }
 }
 
-OutputSet::OutputSet(const std::string& dir, std::vector<std::string> replaces) : folder_(dir, std::move(replaces)) {}
+OutputSet::OutputSet(const std::string& dir, std::vector<std::string> replaces)
+    : folder_(dir, std::move(replaces)) {}
 
 AtomicFile& OutputSet::open(const std::string& name) {
   // Under the registry's lock: once a signal's clean-up holds it, no file appears in the staging

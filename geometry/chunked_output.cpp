@@ -15,7 +15,8 @@ ExportScope ExportScope::whole(const Stand& s) {
   const std::size_t n = s.plant_count();
   e.plants.resize(n);
   e.plant_id.resize(n);
-  for (std::size_t p = 0; p < n; ++p) e.plants[p] = static_cast<std::uint32_t>(p), e.plant_id[p] = static_cast<std::int64_t>(p);
+  for (std::size_t p = 0; p < n; ++p)
+    e.plants[p] = static_cast<std::uint32_t>(p), e.plant_id[p] = static_cast<std::int64_t>(p);
   e.organ_shift.assign(n, 0);
   e.leaf_shift.assign(n, 0);
   e.plants_total = n;
@@ -23,7 +24,8 @@ ExportScope ExportScope::whole(const Stand& s) {
   return e;
 }
 
-void ExportScope::exclusive(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) const {
+void ExportScope::exclusive(std::vector<std::uint64_t>& values, int k,
+                            std::vector<std::uint64_t>& totals) const {
   if (scan) {
     scan->exclusive(values, k, totals);
     return;
@@ -48,7 +50,8 @@ void ChunkFile::fixed(std::string_view text) {
   offset_ += text.size();
 }
 
-void ChunkFile::plants(std::size_t n, std::size_t batch, const std::function<void(std::size_t, std::string&)>& make) {
+void ChunkFile::plants(std::size_t n, std::size_t batch,
+                       const std::function<void(std::size_t, std::string&)>& make) {
   std::atomic<std::uint64_t> bytes{0};
   write_ordered(out_, n, batch, [&](std::size_t first, std::size_t last, std::string& buf) {
     for (std::size_t i = first; i < last; ++i) make(i, buf);
@@ -60,9 +63,10 @@ void ChunkFile::plants(std::size_t n, std::size_t batch, const std::function<voi
 void ChunkFile::patch(std::uint64_t at, std::string_view bytes) {
   std::FILE* f = out_.get();
   std::fflush(f);
-  if (fseeko(f, static_cast<off_t>(at), SEEK_SET) != 0 || std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size() ||
-      fseeko(f, 0, SEEK_END) != 0)
-    throw std::runtime_error(fmt::format("{}: cannot rewrite {} bytes at offset {}", out_.path(), bytes.size(), at));
+  if (fseeko(f, static_cast<off_t>(at), SEEK_SET) != 0 ||
+      std::fwrite(bytes.data(), 1, bytes.size(), f) != bytes.size() || fseeko(f, 0, SEEK_END) != 0)
+    throw std::runtime_error(
+        fmt::format("{}: cannot rewrite {} bytes at offset {}", out_.path(), bytes.size(), at));
 }
 
 }  // namespace canopy

@@ -21,7 +21,8 @@ class PlantScan {
   virtual ~PlantScan() = default;
   /// `values` holds k numbers per written plant of this process; each is replaced by the sum of
   /// the same number over the plants (of every process) before it; `totals` gets the k sums.
-  virtual void exclusive(std::vector<std::uint64_t>& values, int k, std::vector<std::uint64_t>& totals) const = 0;
+  virtual void exclusive(std::vector<std::uint64_t>& values, int k,
+                         std::vector<std::uint64_t>& totals) const = 0;
 };
 
 /// In place: each of the k columns of `values` (rows of k) replaced by the sum of the rows
@@ -42,7 +43,9 @@ struct ExportScope {
   static ExportScope whole(const Stand& stand);
 
   std::int64_t organ(std::int64_t local) const {
-    return local < 0 ? -1 : local + organ_shift[static_cast<std::size_t>(stand.organs[static_cast<std::size_t>(local)].plant)];
+    return local < 0 ? -1
+                     : local + organ_shift[static_cast<std::size_t>(
+                                   stand.organs[static_cast<std::size_t>(local)].plant)];
   }
   std::int64_t leaf_of(std::size_t local_organ) const {
     const OrganRecord& r = stand.organs[local_organ];
@@ -61,7 +64,8 @@ class ChunkWriter {
   virtual void fixed(std::string_view text) = 0;
   /// One section: `make(i, out)` appends the chunk of the i-th written plant (called on all threads,
   /// any order; `batch` plants per task).
-  virtual void plants(std::size_t n, std::size_t batch, const std::function<void(std::size_t, std::string&)>& make) = 0;
+  virtual void plants(std::size_t n, std::size_t batch,
+                      const std::function<void(std::size_t, std::string&)>& make) = 0;
   /// Global offset of the next byte.
   virtual std::uint64_t offset() const = 0;
   /// Overwrites bytes written earlier at global offset `at` (lengths known only at the end).
@@ -73,7 +77,8 @@ class ChunkFile final : public ChunkWriter {
  public:
   explicit ChunkFile(AtomicFile& out) : out_(out) {}
   void fixed(std::string_view text) override;
-  void plants(std::size_t n, std::size_t batch, const std::function<void(std::size_t, std::string&)>& make) override;
+  void plants(std::size_t n, std::size_t batch,
+              const std::function<void(std::size_t, std::string&)>& make) override;
   std::uint64_t offset() const override { return offset_; }
   void patch(std::uint64_t at, std::string_view bytes) override;
 

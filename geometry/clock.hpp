@@ -6,7 +6,9 @@
 namespace canopy {
 
 /// Seconds on the steady clock since its arbitrary origin: only differences of two mean anything.
-inline double now_seconds() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+inline double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 /// Seconds from `start` (a std::chrono::steady_clock::now()) to now.
 inline double seconds_since(std::chrono::steady_clock::time_point start) {

@@ -11,7 +11,8 @@
 namespace canopy {
 
 /// stand.obj (+ stand.mtl): world metres, Z up, `o plant_<p>`, `g organ_<id>`, `usemtl <kind>`.
-void write_obj(const Stand& stand, PrototypeLibrary& lib, AtomicFile& obj, AtomicFile& mtl, const std::string& mtl_name);
+void write_obj(const Stand& stand, PrototypeLibrary& lib, AtomicFile& obj, AtomicFile& mtl,
+               const std::string& mtl_name);
 /// stand.ply: binary little endian, float32 vertices relative to stand_origin, normals, per face
 /// `plant` and `organ`.
 void write_ply(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
@@ -32,7 +33,8 @@ inline constexpr std::uint32_t kCompactOrgansPerPlant = 65536;
 /// UNSIGNED_SHORT steps, normals normalized BYTE, leaflet UVs normalized UNSIGNED_SHORT, indices
 /// UNSIGNED_SHORT below 65,536 vertices a primitive; organ id = node extras.first_organ +
 /// `_ORGAN` (UNSIGNED_SHORT). About half the size of write_glb's file.
-void write_glb_compact(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out, const GlbCompactConfig& config = {});
+void write_glb_compact(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out,
+                       const GlbCompactConfig& config = {});
 /// stand.glb with one shared mesh per prototype, level of detail and kind, drawn per organ
 /// through EXT_mesh_gpu_instancing (translation, rotation, scale and `_ORGAN` per instance).
 void write_glb_instanced(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out);
@@ -43,11 +45,14 @@ void write_organs_csv(const Stand& stand, PrototypeLibrary& lib, AtomicFile& out
 /// plants.csv: id,x,y,rotation,seed,grammar,steps.
 void write_plants_csv(const Stand& stand, AtomicFile& out);
 /// The same writers over an ExportScope (a tile's plants with global numbering) into
-/// ChunkWriters: the bytes of the whole stand's file that fall to those plants (docs/design.md "Export files").
-void write_obj(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& obj, ChunkWriter& mtl, const std::string& mtl_name);
+/// ChunkWriters: the bytes of the whole stand's file that fall to those plants (docs/design.md "Export
+/// files").
+void write_obj(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& obj, ChunkWriter& mtl,
+               const std::string& mtl_name);
 void write_ply(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
 void write_glb(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
-void write_glb_compact(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out, const GlbCompactConfig& config = {});
+void write_glb_compact(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out,
+                       const GlbCompactConfig& config = {});
 /// Throws std::invalid_argument naming a plant of the scope with more organs than the compact glb
 /// numbers (kCompactOrgansPerPlant), so a run can refuse before its work rather than at export.
 void check_glb_compact(const ExportScope& scope);

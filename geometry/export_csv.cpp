@@ -51,7 +51,8 @@ T parse(std::string_view cell, const std::string& file, int line, int column) {
   if (whole_cell && r.ec == std::errc::result_out_of_range)
     throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range", file, line, column, cell));
   if (!whole_cell || r.ec != std::errc())
-    throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is not a valid number", file, line, column, cell));
+    throw std::runtime_error(
+        fmt::format("{}:{}: column {} '{}' is not a valid number", file, line, column, cell));
   return v;
 }
 
@@ -59,7 +60,8 @@ T parse(std::string_view cell, const std::string& file, int line, int column) {
 template <typename T>
 T finite(T v, std::string_view cell, const std::string& file, int line, int column) {
   if (!std::isfinite(v))
-    throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is not a finite number", file, line, column, cell));
+    throw std::runtime_error(
+        fmt::format("{}:{}: column {} '{}' is not a finite number", file, line, column, cell));
   return v;
 }
 
@@ -67,8 +69,8 @@ T finite(T v, std::string_view cell, const std::string& file, int line, int colu
 float size(float v, std::string_view cell, const std::string& file, int line, int column) {
   finite(v, cell, file, line, column);
   if (!(v >= 0 && v <= kMaxOrganExtent))
-    throw std::runtime_error(
-        fmt::format("{}:{}: column {} '{}' is out of range (a size from 0 to {} m)", file, line, column, cell, kMaxOrganExtent));
+    throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range (a size from 0 to {} m)",
+                                         file, line, column, cell, kMaxOrganExtent));
   return v;
 }
 
@@ -80,12 +82,14 @@ void write_organs_csv(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& 
   std::vector<std::uint64_t> curved(e.plants.size(), 0), totals;
   for (std::size_t i = 0; i < e.plants.size(); ++i) {
     const PlantRecord& pr = s.plants[e.plants[i]];
-    for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) curved[i] += s.organs[id].shape != 0;
+    for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id)
+      curved[i] += s.organs[id].shape != 0;
   }
   e.exclusive(curved, 1, totals);
   const bool shapes = totals[0] > 0;
   const std::string_view header(kOrganHeader);
-  out.fixed(shapes ? std::string(header.substr(0, header.size() - 1)) + kShapeColumns + "\n" : std::string(header));
+  out.fixed(shapes ? std::string(header.substr(0, header.size() - 1)) + kShapeColumns + "\n"
+                   : std::string(header));
   make_meshes(s, lib);
   out.plants(e.plants.size(), 16, [&](std::size_t i, std::string& t) {
     const PlantRecord& pr = s.plants[e.plants[i]];
@@ -185,11 +189,13 @@ Stand read_stand(const std::string& dir) {
   std::string line;
   std::map<std::string, int> grammar_index;
   if (!pin->next_line(line) || line + "\n" != kPlantHeader)
-    throw std::runtime_error(fmt::format("{}:1: expected the header {}", pfile, without_newline(kPlantHeader)));
+    throw std::runtime_error(
+        fmt::format("{}:1: expected the header {}", pfile, without_newline(kPlantHeader)));
   while (pin->next_line(line)) {
     const int ln = pin->line_number();
     const auto c = cells(line);
-    if (c.size() != 7) throw std::runtime_error(fmt::format("{}:{}: expected 7 cells, got {}", pfile, ln, c.size()));
+    if (c.size() != 7)
+      throw std::runtime_error(fmt::format("{}:{}: expected 7 cells, got {}", pfile, ln, c.size()));
     PlantRecord pr;
     if (parse<std::size_t>(c[0], pfile, ln, 1) != s.plants.size())
       throw std::runtime_error(fmt::format("{}:{}: plant ids must run 0, 1, 2, ...", pfile, ln));
@@ -206,17 +212,20 @@ Stand read_stand(const std::string& dir) {
     pr.grammar = it->second;
     pr.steps = parse<int>(c[6], pfile, ln, 7);
     if (pr.steps < 0 || pr.steps > kMaxSteps)
-      throw std::runtime_error(fmt::format("{}:{}: column 7 (steps) must lie in 0..{}, got {}", pfile, ln, kMaxSteps, pr.steps));
+      throw std::runtime_error(
+          fmt::format("{}:{}: column 7 (steps) must lie in 0..{}, got {}", pfile, ln, kMaxSteps, pr.steps));
     s.plants.push_back(pr);
   }
   const std::string_view plain(kOrganHeader);
   const std::string with_shapes = std::string(plain.substr(0, plain.size() - 1)) + kShapeColumns + "\n";
   std::size_t columns = 24;
   if (!oin->next_line(line))
-    throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
+    throw std::runtime_error(
+        fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
   if (line + "\n" == with_shapes) columns = 27;
   else if (line + "\n" != plain)
-    throw std::runtime_error(fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
+    throw std::runtime_error(
+        fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
   // Organs come plant by plant; within a plant a compound leaf takes the next id when its first
   // organ appears (as the turtle numbers them), so the plants' leaf ranges follow each other.
   std::int32_t plant = -1;
@@ -227,8 +236,10 @@ Stand read_stand(const std::string& dir) {
     if (c.size() != columns)
       throw std::runtime_error(fmt::format("{}:{}: expected {} cells, got {}", ofile, ln, columns, c.size()));
     const std::size_t id = parse<std::size_t>(c[0], ofile, ln, 1);
-    if (id != s.organs.size()) throw std::runtime_error(fmt::format("{}:{}: organ ids must run 0, 1, 2, ...", ofile, ln));
-    if (id >= static_cast<std::size_t>(INT32_MAX)) throw std::runtime_error(fmt::format("{}:{}: too many organs", ofile, ln));
+    if (id != s.organs.size())
+      throw std::runtime_error(fmt::format("{}:{}: organ ids must run 0, 1, 2, ...", ofile, ln));
+    if (id >= static_cast<std::size_t>(INT32_MAX))
+      throw std::runtime_error(fmt::format("{}:{}: too many organs", ofile, ln));
     OrganRecord r;
     r.plant = parse<std::int32_t>(c[1], ofile, ln, 2);
     r.parent = parse<std::int32_t>(c[2], ofile, ln, 3);
@@ -240,7 +251,8 @@ Stand read_stand(const std::string& dir) {
     if (!proto) throw std::runtime_error(fmt::format("{}:{}: unknown prototype '{}'", ofile, ln, c[7]));
     r.prototype = *proto;
     const int lod = parse<int>(c[10], ofile, ln, 11);
-    if (lod < 1 || lod > kMaxLod) throw std::runtime_error(fmt::format("{}:{}: lod must lie in 1..{}", ofile, ln, kMaxLod));
+    if (lod < 1 || lod > kMaxLod)
+      throw std::runtime_error(fmt::format("{}:{}: lod must lie in 1..{}", ofile, ln, kMaxLod));
     r.lod = static_cast<std::uint8_t>(lod);
     if (columns == 27) {
       const LeafletShape shape{parse<double>(c[24], ofile, ln, 25), parse<double>(c[25], ofile, ln, 26),
@@ -249,12 +261,14 @@ Stand read_stand(const std::string& dir) {
       const auto code = leaflet_shape_code(shape, &why);
       if (!code) throw std::runtime_error(fmt::format("{}:{}: {}", ofile, ln, why));
       if (*code != 0 && r.prototype != PrototypeKind::leaflet)
-        throw std::runtime_error(fmt::format("{}:{}: a {} has no bend, cup or fold (only leaflets curve)", ofile, ln, c[7]));
+        throw std::runtime_error(
+            fmt::format("{}:{}: a {} has no bend, cup or fold (only leaflets curve)", ofile, ln, c[7]));
       r.shape = *code;
     }
     if (r.plant < 0 || static_cast<std::size_t>(r.plant) >= s.plants.size())
       throw std::runtime_error(fmt::format("{}:{}: plant {} is not in {}", ofile, ln, r.plant, pfile));
-    if (r.plant < plant) throw std::runtime_error(fmt::format("{}: organs must be grouped plant by plant", ofile));
+    if (r.plant < plant)
+      throw std::runtime_error(fmt::format("{}: organs must be grouped plant by plant", ofile));
     PlantRecord& pr = s.plants[static_cast<std::size_t>(r.plant)];
     if (r.plant != plant) {
       pr.first_organ = static_cast<std::uint32_t>(id);
@@ -265,30 +279,34 @@ Stand read_stand(const std::string& dir) {
     // A parent is an earlier organ of the same plant.
     if (r.parent < -1 || r.parent >= static_cast<std::int32_t>(id) ||
         (r.parent >= 0 && r.parent < static_cast<std::int32_t>(pr.first_organ)))
-      throw std::runtime_error(fmt::format("{}:{}: parent {} is not an earlier organ of plant {}", ofile, ln, r.parent, r.plant));
+      throw std::runtime_error(
+          fmt::format("{}:{}: parent {} is not an earlier organ of plant {}", ofile, ln, r.parent, r.plant));
     if (r.leaf < -1 || (r.leaf >= 0 && (static_cast<std::uint32_t>(r.leaf) < pr.first_leaf ||
                                         static_cast<std::uint32_t>(r.leaf) > pr.first_leaf + pr.leaf_count)))
-      throw std::runtime_error(
-          fmt::format("{}:{}: leaf {} is out of order (plant {}'s compound leaves are numbered from {} as they "
-                      "first appear)",
-                      ofile, ln, r.leaf, r.plant, pr.first_leaf));
-    if (r.leaf >= 0 && static_cast<std::uint32_t>(r.leaf) == pr.first_leaf + pr.leaf_count) ++pr.leaf_count, ++next_leaf;
+      throw std::runtime_error(fmt::format(
+          "{}:{}: leaf {} is out of order (plant {}'s compound leaves are numbered from {} as they "
+          "first appear)",
+          ofile, ln, r.leaf, r.plant, pr.first_leaf));
+    if (r.leaf >= 0 && static_cast<std::uint32_t>(r.leaf) == pr.first_leaf + pr.leaf_count)
+      ++pr.leaf_count, ++next_leaf;
     const float p0 = size(parse<float>(c[8], ofile, ln, 9), c[8], ofile, ln, 9);
     const float p1 = size(parse<float>(c[9], ofile, ln, 10), c[9], ofile, ln, 10);
     s.params.push_back({p0, p1});
     const float joint = finite(parse<float>(c[11], ofile, ln, 12), c[11], ofile, ln, 12);
     if (!(joint >= 0 && joint <= 180))
-      throw std::runtime_error(fmt::format("{}:{}: column 12 (joint_limit) must lie in [0, 180], got {}", ofile, ln, c[11]));
+      throw std::runtime_error(
+          fmt::format("{}:{}: column 12 (joint_limit) must lie in [0, 180], got {}", ofile, ln, c[11]));
     s.joint_limit_deg.push_back(joint);
     float v[12];
     for (int k = 0; k < 12; ++k) {
       const auto cell = c[static_cast<std::size_t>(12 + k)];
       v[k] = finite(parse<float>(cell, ofile, ln, 13 + k), cell, ofile, ln, 13 + k);
       if (!(std::fabs(v[k]) <= kMaxOrganExtent))
-        throw std::runtime_error(
-            fmt::format("{}:{}: column {} '{}' is out of range (at most {} m)", ofile, ln, 13 + k, cell, kMaxOrganExtent));
+        throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range (at most {} m)", ofile,
+                                             ln, 13 + k, cell, kMaxOrganExtent));
     }
-    s.transforms.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, {v[9], v[10], v[11]}});
+    s.transforms.push_back(
+        {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, {v[9], v[10], v[11]}});
     s.organs.push_back(r);
   }
   // A plant without organs has its (empty) leaf range where the next plant's begins.

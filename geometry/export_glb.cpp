@@ -24,8 +24,10 @@ struct Primitive {
   bool uv;
   std::vector<std::uint32_t> organs;
   std::size_t vertices = 0, indices = 0;
-  Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
-  Vec3f hi{-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(), -std::numeric_limits<float>::max()};
+  Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+           std::numeric_limits<float>::max()};
+  Vec3f hi{-std::numeric_limits<float>::max(), -std::numeric_limits<float>::max(),
+           -std::numeric_limits<float>::max()};
 };
 
 struct PlantLayout {
@@ -35,7 +37,8 @@ struct PlantLayout {
 };
 
 Vec3f glb_position(const Vec3d& off, Vec3f v) {
-  return to_y_up({static_cast<float>(off.x + v.x), static_cast<float>(off.y + v.y), static_cast<float>(off.z + v.z)});
+  return to_y_up(
+      {static_cast<float>(off.x + v.x), static_cast<float>(off.y + v.y), static_cast<float>(off.z + v.z)});
 }
 
 PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std::size_t id_size) {
@@ -45,7 +48,8 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
   for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
     const OrganRecord& r = s.organs[id];
     const bool uv = r.prototype == PrototypeKind::leaflet;
-    auto it = std::find_if(L.prims.begin(), L.prims.end(), [&](const Primitive& q) { return q.kind == r.kind && q.uv == uv; });
+    auto it = std::find_if(L.prims.begin(), L.prims.end(),
+                           [&](const Primitive& q) { return q.kind == r.kind && q.uv == uv; });
     if (it == L.prims.end()) {
       L.prims.push_back({r.kind, uv, {}});
       it = L.prims.end() - 1;
@@ -103,7 +107,8 @@ void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLi
           const float f = static_cast<float>(gid);
           std::memcpy(ids, &f, 4), ids += 4;
         } else {
-          const std::uint16_t h[2] = {static_cast<std::uint16_t>(gid & 0xffff), static_cast<std::uint16_t>(gid >> 16)};
+          const std::uint16_t h[2] = {static_cast<std::uint16_t>(gid & 0xffff),
+                                      static_cast<std::uint16_t>(gid >> 16)};
           std::memcpy(ids, h, 4), ids += 4;
         }
       }
@@ -134,7 +139,8 @@ PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const std::uint64
   j.node = fmt::format(",{{\"name\":\"plant_{}\",\"mesh\":{}}}", plant, nmesh);
   const auto view = [&](std::size_t bytes, int stride, int target) {
     if (nview > 0) j.views += ',';
-    j.views += fmt::format("{{\"buffer\":0,\"byteOffset\":{},\"byteLength\":{},\"target\":{}", offset, bytes, target);
+    j.views += fmt::format("{{\"buffer\":0,\"byteOffset\":{},\"byteLength\":{},\"target\":{}", offset, bytes,
+                           target);
     if (stride) j.views += fmt::format(",\"byteStride\":{}", stride);
     j.views += '}';
     offset += bytes;
@@ -149,14 +155,17 @@ PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const std::uint64
     const auto accessor = [&](std::size_t v, std::size_t off, int comp, std::size_t count, const char* type,
                               const std::string& extra = {}) {
       if (nacc > 0) j.accessors += ',';
-      j.accessors += fmt::format("{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}", v,
-                                 off, comp, count, type, extra);
+      j.accessors += fmt::format(
+          "{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}", v,
+          off, comp, count, type, extra);
       return nacc++;
     };
     std::string bounds = ",\"min\":[";
-    append_number(bounds, q.lo.x), bounds += ',', append_number(bounds, q.lo.y), bounds += ',', append_number(bounds, q.lo.z);
+    append_number(bounds, q.lo.x), bounds += ',', append_number(bounds, q.lo.y), bounds += ',',
+        append_number(bounds, q.lo.z);
     bounds += "],\"max\":[";
-    append_number(bounds, q.hi.x), bounds += ',', append_number(bounds, q.hi.y), bounds += ',', append_number(bounds, q.hi.z);
+    append_number(bounds, q.hi.x), bounds += ',', append_number(bounds, q.hi.y), bounds += ',',
+        append_number(bounds, q.hi.z);
     bounds += ']';
     const std::size_t apos = accessor(vpos, o_pos, 5126, q.vertices, "VEC3", bounds);
     const std::size_t anrm = accessor(vnrm, o_pos, 5126, q.vertices, "VEC3");
@@ -213,7 +222,8 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   }
   std::vector<PlantJson> json(n);
 #pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t i = 0; i < n; ++i) json[i] = plant_json(e.plant(e.plants[i]), plan[i], &before[K * i], float_ids, material_of);
+  for (std::size_t i = 0; i < n; ++i)
+    json[i] = plant_json(e.plant(e.plants[i]), plan[i], &before[K * i], float_ids, material_of);
   const auto section = [&](std::string PlantJson::*field) {
     out.plants(n, 256, [&](std::size_t i, std::string& t) { t += json[i].*field; });
   };
@@ -223,10 +233,12 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   const std::uint64_t start = out.offset();
   out.fixed(std::string(20, '\0'));
   std::string origin;
-  append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z), origin += ',';
+  append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z),
+      origin += ',';
   append_number(origin, -s.stand_origin.y);
   out.fixed(
-      fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
+      fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{"
+                  "\"nodes\":[0]}}],"
                   "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
                   origin));
   section(&PlantJson::child);
@@ -243,7 +255,9 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
     section(&PlantJson::views);
     out.fixed(fmt::format("],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]", materials, bin_bytes));
   }
-  if (!float_ids) out.fixed(",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}");
+  if (!float_ids)
+    out.fixed(
+        ",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}");
   out.fixed("}");
   std::uint64_t json_bytes = out.offset() - start - 20;
   if (json_bytes % 4) {

@@ -31,7 +31,8 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, dou
   for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
     const OrganRecord& r = s.organs[id];
     const bool uv = r.prototype == PrototypeKind::leaflet;
-    auto it = std::find_if(L.prims.begin(), L.prims.end(), [&](const Primitive& q) { return q.kind == r.kind && q.uv == uv; });
+    auto it = std::find_if(L.prims.begin(), L.prims.end(),
+                           [&](const Primitive& q) { return q.kind == r.kind && q.uv == uv; });
     if (it == L.prims.end()) {
       L.prims.push_back({r.kind, uv, {}});
       it = L.prims.end() - 1;
@@ -43,7 +44,8 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, dou
   });
   const Vec3d off = s.offset(p);
   OrganMesh mesh;
-  Vec3d lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
+  Vec3d lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+           std::numeric_limits<double>::max()};
   Vec3d hi{-lo.x, -lo.y, -lo.z};
   for (Primitive& q : L.prims) {
     for (std::uint32_t id : q.organs) {
@@ -67,7 +69,8 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, dou
   // The finest step, a float (so the node's scale reads back exactly), that spans the box.
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   float step = static_cast<float>(extent / kUnits);
-  if (static_cast<double>(step) * kUnits < extent) step = std::nextafter(step, std::numeric_limits<float>::max());
+  if (static_cast<double>(step) * kUnits < extent)
+    step = std::nextafter(step, std::numeric_limits<float>::max());
   if (step <= 0) step = std::numeric_limits<float>::min();
   L.step = step <= max_step ? step : 0;
   return L;
@@ -124,8 +127,8 @@ void append_vec(std::string& out, double x, double y, double z) {
   append_number(out, x), out += ',', append_number(out, y), out += ',', append_number(out, z);
 }
 
-PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLayout& L, const std::uint64_t* before,
-                     const std::array<int, 7>& material_of) {
+PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLayout& L,
+                     const std::uint64_t* before, const std::array<int, 7>& material_of) {
   PlantJson j;
   std::size_t nview = before[0], nacc = before[1], offset = before[3];
   const std::size_t nmesh = before[2];
@@ -138,8 +141,8 @@ PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLa
   append_vec(place, L.corner.x, L.corner.y, L.corner.z);
   place += ']';
   if (L.step > 0) place += ",\"scale\":[", append_vec(place, L.step, L.step, L.step), place += ']';
-  j.node =
-      fmt::format(",{{\"name\":\"plant_{}\",\"mesh\":{}{},\"extras\":{{\"first_organ\":{}}}}}", plant, nmesh, place, first_organ);
+  j.node = fmt::format(",{{\"name\":\"plant_{}\",\"mesh\":{}{},\"extras\":{{\"first_organ\":{}}}}}", plant,
+                       nmesh, place, first_organ);
   const auto view = [&](std::size_t at, std::size_t bytes, std::size_t stride, int target) {
     if (nview > 0) j.views += ',';
     j.views += fmt::format("{{\"buffer\":0,\"byteOffset\":{},\"byteLength\":{}", at, bytes);
@@ -160,18 +163,20 @@ PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLa
   std::size_t o_pos = 0, o_nrm = 0, o_uv = 0, o_idx = 0;
   std::string prims;
   for (const Primitive& q : L.prims) {
-    const auto accessor = [&](std::size_t v, std::size_t off, int comp, bool normalized, std::size_t count, const char* type,
-                              const std::string& extra = {}) {
+    const auto accessor = [&](std::size_t v, std::size_t off, int comp, bool normalized, std::size_t count,
+                              const char* type, const std::string& extra = {}) {
       if (nacc > 0) j.accessors += ',';
-      j.accessors += fmt::format("{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},{}\"count\":{},\"type\":\"{}\"{}}}",
-                                 v, off, comp, normalized ? "\"normalized\":true," : "", count, type, extra);
+      j.accessors += fmt::format(
+          "{{\"bufferView\":{},\"byteOffset\":{},\"componentType\":{},{}\"count\":{},\"type\":\"{}\"{}}}", v,
+          off, comp, normalized ? "\"normalized\":true," : "", count, type, extra);
       return nacc++;
     };
     std::string bounds = ",\"min\":[";
     if (L.step > 0) {
       const auto u = [&](double w, double c) { return static_cast<int>(units(w, c, L.step)); };
-      bounds += fmt::format("{},{},{}],\"max\":[{},{},{}]", u(q.lo.x, L.corner.x), u(q.lo.y, L.corner.y), u(q.lo.z, L.corner.z),
-                            u(q.hi.x, L.corner.x), u(q.hi.y, L.corner.y), u(q.hi.z, L.corner.z));
+      bounds += fmt::format("{},{},{}],\"max\":[{},{},{}]", u(q.lo.x, L.corner.x), u(q.lo.y, L.corner.y),
+                            u(q.lo.z, L.corner.z), u(q.hi.x, L.corner.x), u(q.hi.y, L.corner.y),
+                            u(q.hi.z, L.corner.z));
     } else {
       const auto f = [](double w, double c) { return static_cast<double>(static_cast<float>(w - c)); };
       append_vec(bounds, f(q.lo.x, L.corner.x), f(q.lo.y, L.corner.y), f(q.lo.z, L.corner.z));
@@ -179,12 +184,14 @@ PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLa
       append_vec(bounds, f(q.hi.x, L.corner.x), f(q.hi.y, L.corner.y), f(q.hi.z, L.corner.z));
       bounds += ']';
     }
-    const std::size_t apos = accessor(vpos, o_pos, L.step > 0 ? 5123 : 5126, false, q.vertices, "VEC3", bounds);
+    const std::size_t apos =
+        accessor(vpos, o_pos, L.step > 0 ? 5123 : 5126, false, q.vertices, "VEC3", bounds);
     const std::size_t anrm = accessor(vnrm, o_nrm, 5120, true, q.vertices, "VEC3");
     std::string attrs = fmt::format("\"POSITION\":{},\"NORMAL\":{}", apos, anrm);
     if (q.uv) attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(vuv, o_uv, 5123, true, q.vertices, "VEC2"));
     attrs += fmt::format(",\"_ORGAN\":{}", accessor(vid, o_pos, 5123, false, q.vertices, "SCALAR"));
-    const std::size_t aidx = accessor(vidx, o_idx, q.index_size() == 2 ? 5123 : 5125, false, q.indices, "SCALAR");
+    const std::size_t aidx =
+        accessor(vidx, o_idx, q.index_size() == 2 ? 5123 : 5125, false, q.indices, "SCALAR");
     if (!prims.empty()) prims += ',';
     prims += fmt::format("{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}", attrs, aidx,
                          material_of[static_cast<std::size_t>(q.kind)]);
@@ -203,15 +210,18 @@ void check_glb_compact(const ExportScope& e) {
   for (std::uint32_t p : e.plants)
     if (e.stand.plants[p].organ_count > kCompactOrgansPerPlant)
       throw std::invalid_argument(
-          fmt::format("--glb-compact: plant {} has {} organs; the compact glb numbers a plant's organs in 16 bits (at most {}): "
+          fmt::format("--glb-compact: plant {} has {} organs; the compact glb numbers a plant's organs in 16 "
+                      "bits (at most {}): "
                       "write the default glb",
                       e.plant(p), e.stand.plants[p].organ_count, kCompactOrgansPerPlant));
 }
 
-void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out, const GlbCompactConfig& config) {
+void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out,
+                       const GlbCompactConfig& config) {
   if (!(config.max_step > 0) || !std::isfinite(config.max_step))
     throw std::invalid_argument(
-        fmt::format("compact glb: the largest position step must be a positive number of metres (got {})", config.max_step));
+        fmt::format("compact glb: the largest position step must be a positive number of metres (got {})",
+                    config.max_step));
   check_glb_compact(e);
   const Stand& s = e.stand;
   const std::size_t n = e.plants.size();
@@ -261,7 +271,8 @@ void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter&
   out.fixed(fmt::format(
       "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},"
       "\"extensionsUsed\":[\"KHR_mesh_quantization\"],\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
-      "\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
+      "\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],"
+      "\"children\":[",
       origin));
   section(&PlantJson::child);
   out.fixed("]}");
@@ -294,7 +305,8 @@ void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter&
   }
 }
 
-void write_glb_compact(const Stand& s, PrototypeLibrary& lib, AtomicFile& out, const GlbCompactConfig& config) {
+void write_glb_compact(const Stand& s, PrototypeLibrary& lib, AtomicFile& out,
+                       const GlbCompactConfig& config) {
   ChunkFile f(out);
   write_glb_compact(ExportScope::whole(s), lib, f, config);
 }

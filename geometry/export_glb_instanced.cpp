@@ -46,8 +46,8 @@ Trs decompose(const Affine3f& m) {
     e[k] = normalized(v);
   }
   // Rotation matrix with columns e0 e1 e2 to a quaternion (Shepperd's method).
-  const double m00 = e[0].x, m10 = e[0].y, m20 = e[0].z, m01 = e[1].x, m11 = e[1].y, m21 = e[1].z, m02 = e[2].x, m12 = e[2].y,
-               m22 = e[2].z;
+  const double m00 = e[0].x, m10 = e[0].y, m20 = e[0].z, m01 = e[1].x, m11 = e[1].y, m21 = e[1].z,
+               m02 = e[2].x, m12 = e[2].y, m22 = e[2].z;
   const double tr = m00 + m11 + m22;
   double x, y, z, w;
   if (tr > 0) {
@@ -98,15 +98,17 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     append(bin, data, bytes);
     return nview++;
   };
-  const auto accessor = [&](int v, int comp, std::size_t count, const char* type, const std::string& extra = {}) {
+  const auto accessor = [&](int v, int comp, std::size_t count, const char* type,
+                            const std::string& extra = {}) {
     sep(accessors);
-    accessors +=
-        fmt::format("{{\"bufferView\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}", v, comp, count, type, extra);
+    accessors += fmt::format("{{\"bufferView\":{},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}", v,
+                             comp, count, type, extra);
     return nacc++;
   };
   for (auto& [key, index] : mesh_of) {
     const auto [proto, lod, kind, shape] = key;
-    const PrototypeMesh& pm = lib.get(static_cast<PrototypeKind>(proto), lod, static_cast<std::uint8_t>(shape));
+    const PrototypeMesh& pm =
+        lib.get(static_cast<PrototypeKind>(proto), lod, static_cast<std::uint8_t>(shape));
     if (material_of[static_cast<std::size_t>(kind)] < 0) {
       material_of[static_cast<std::size_t>(kind)] = nmat++;
       sep(materials);
@@ -117,19 +119,23 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     append_number(bounds, pm.box.lo.z), bounds += "],\"max\":[";
     append_number(bounds, pm.box.hi.x), bounds += ',', append_number(bounds, pm.box.hi.y), bounds += ',';
     append_number(bounds, pm.box.hi.z), bounds += ']';
-    const int apos =
-        accessor(view(pm.positions.data(), 12 * pm.positions.size(), 0, 34962), 5126, pm.positions.size(), "VEC3", bounds);
-    const int anrm = accessor(view(pm.normals.data(), 12 * pm.normals.size(), 0, 34962), 5126, pm.normals.size(), "VEC3");
+    const int apos = accessor(view(pm.positions.data(), 12 * pm.positions.size(), 0, 34962), 5126,
+                              pm.positions.size(), "VEC3", bounds);
+    const int anrm =
+        accessor(view(pm.normals.data(), 12 * pm.normals.size(), 0, 34962), 5126, pm.normals.size(), "VEC3");
     std::string attrs = fmt::format("\"POSITION\":{},\"NORMAL\":{}", apos, anrm);
     if (!pm.uvs.empty())
-      attrs += fmt::format(",\"TEXCOORD_0\":{}",
-                           accessor(view(pm.uvs.data(), 8 * pm.uvs.size(), 0, 34962), 5126, pm.uvs.size(), "VEC2"));
-    const int aidx = accessor(view(pm.indices.data(), 4 * pm.indices.size(), 0, 34963), 5125, pm.indices.size(), "SCALAR");
+      attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(view(pm.uvs.data(), 8 * pm.uvs.size(), 0, 34962),
+                                                          5126, pm.uvs.size(), "VEC2"));
+    const int aidx =
+        accessor(view(pm.indices.data(), 4 * pm.indices.size(), 0, 34963), 5125, pm.indices.size(), "SCALAR");
     sep(meshes);
     meshes += fmt::format(
-        "{{\"name\":\"{}_{}_lod{}{}\",\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}]}}",
-        kOrganKindNames[static_cast<std::size_t>(kind)], kPrototypeNames[static_cast<std::size_t>(proto)], lod,
-        shape ? fmt::format("_shape{}", shape) : std::string(), attrs, aidx, material_of[static_cast<std::size_t>(kind)]);
+        "{{\"name\":\"{}_{}_lod{}{}\",\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},"
+        "\"mode\":4}}]}}",
+        kOrganKindNames[static_cast<std::size_t>(kind)], kPrototypeNames[static_cast<std::size_t>(proto)],
+        lod, shape ? fmt::format("_shape{}", shape) : std::string(), attrs, aidx,
+        material_of[static_cast<std::size_t>(kind)]);
     index = nmesh++;
   }
   // Plants: a node each, translated to its origin relative to stand_origin (Z up: the root turns
@@ -160,7 +166,8 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
       const int ao = accessor(view(organ.data(), 4 * organ.size(), 0, 0), 5126, n, "SCALAR");
       sep(instance_nodes);
       instance_nodes += fmt::format(
-          "{{\"mesh\":{},\"extensions\":{{\"EXT_mesh_gpu_instancing\":{{\"attributes\":{{\"TRANSLATION\":{},\"ROTATION\":{},"
+          "{{\"mesh\":{},\"extensions\":{{\"EXT_mesh_gpu_instancing\":{{\"attributes\":{{\"TRANSLATION\":{},"
+          "\"ROTATION\":{},"
           "\"SCALE\":{},\"_ORGAN\":{}}}}}}}}}",
           mesh, at, aq, as, ao);
       sep(kids);
@@ -176,18 +183,23 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
     children += std::to_string(p + 1);
   }
   std::string origin;
-  append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z), origin += ',';
+  append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z),
+      origin += ',';
   append_number(origin, -s.stand_origin.y);
   std::string text = fmt::format(
-      "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"],"
+      "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"extensionsUsed\":[\"EXT_mesh_gpu_"
+      "instancing\"],"
       "\"extensionsRequired\":[\"EXT_mesh_gpu_instancing\"],\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
-      "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"rotation\":[-0.70710678118654757,0,0,0.70710678118654757],"
+      "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"rotation\":[-0.70710678118654757,0,0,0."
+      "70710678118654757],"
       "\"children\":[{}]}}{}{}{}{}]",
-      origin, children, plant_nodes.empty() ? "" : ",", plant_nodes, instance_nodes.empty() ? "" : ",", instance_nodes);
+      origin, children, plant_nodes.empty() ? "" : ",", plant_nodes, instance_nodes.empty() ? "" : ",",
+      instance_nodes);
   if (nmesh > 0)
     text += fmt::format(
-        ",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]", meshes,
-        accessors, views, materials, bin.size());
+        ",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{"
+        "\"byteLength\":{}}}]",
+        meshes, accessors, views, materials, bin.size());
   text += '}';
   while (bin.size() % 4) bin.push_back('\0');
   begin_glb(out, text, bin.size());

@@ -20,16 +20,18 @@ void put_xyz(std::string& out, const char* tag, double x, double y, double z, in
 
 }  // namespace
 
-void write_obj(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& obj, ChunkWriter& mtl, const std::string& mtl_name) {
+void write_obj(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& obj, ChunkWriter& mtl,
+               const std::string& mtl_name) {
   const Stand& stand = e.stand;
   std::string m = "# canopy: one material per organ kind\n";
   for (std::size_t k = 0; k < kOrganKindNames.size(); ++k) {
     const Vec3f c = kind_colour(static_cast<OrganKind>(k));
-    m += fmt::format("newmtl {}\nKd {} {} {}\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1\n\n", kOrganKindNames[k], c.x, c.y, c.z);
+    m += fmt::format("newmtl {}\nKd {} {} {}\nKa 0 0 0\nKs 0 0 0\nd 1\nillum 1\n\n", kOrganKindNames[k], c.x,
+                     c.y, c.z);
   }
   mtl.fixed(m);
-  obj.fixed(fmt::format("# canopy stand: {} plants, {} organs; metres, Z up, world coordinates\nmtllib {}\n", e.plants_total,
-                        e.organs_total, mtl_name));
+  obj.fixed(fmt::format("# canopy stand: {} plants, {} organs; metres, Z up, world coordinates\nmtllib {}\n",
+                        e.plants_total, e.organs_total, mtl_name));
   // OBJ indices are global: vertex and texture-coordinate offsets of each plant, by prefix sums.
   const std::size_t n = e.plants.size();
   std::vector<std::uint64_t> base(2 * n, 0), totals;
@@ -89,7 +91,8 @@ void write_obj(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& obj, Ch
   });
 }
 
-void write_obj(const Stand& stand, PrototypeLibrary& lib, AtomicFile& obj, AtomicFile& mtl, const std::string& mtl_name) {
+void write_obj(const Stand& stand, PrototypeLibrary& lib, AtomicFile& obj, AtomicFile& mtl,
+               const std::string& mtl_name) {
   ChunkFile o(obj), m(mtl);
   write_obj(ExportScope::whole(stand), lib, o, m, mtl_name);
 }

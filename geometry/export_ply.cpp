@@ -10,7 +10,8 @@
 
 namespace canopy {
 
-static_assert(std::endian::native == std::endian::little, "PLY export writes the host's little-endian values");
+static_assert(std::endian::native == std::endian::little,
+              "PLY export writes the host's little-endian values");
 
 void write_ply(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   const Stand& stand = e.stand;
@@ -25,7 +26,8 @@ void write_ply(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
     }
   }
   e.exclusive(base, 2, totals);
-  if (totals[0] > 0x7fffffffULL) throw std::runtime_error("stand.ply: more than 2^31 vertices; export fewer plants");
+  if (totals[0] > 0x7fffffffULL)
+    throw std::runtime_error("stand.ply: more than 2^31 vertices; export fewer plants");
   std::string header = "ply\nformat binary_little_endian 1.0\ncomment canopy stand\ncomment stand_origin ";
   append_number(header, stand.stand_origin.x);
   header += ' ';

@@ -20,8 +20,10 @@ struct Primitive {
   bool uv;
   std::vector<std::uint32_t> organs;
   std::size_t vertices = 0, indices = 0;
-  Vec3d lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(), std::numeric_limits<double>::max()};
-  Vec3d hi{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(), -std::numeric_limits<double>::max()};
+  Vec3d lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+           std::numeric_limits<double>::max()};
+  Vec3d hi{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
+           -std::numeric_limits<double>::max()};
   // 65535 is the restart value that glTF forbids in UNSIGNED_SHORT indices.
   int index_size() const { return vertices <= 65535 ? 2 : 4; }
   std::size_t index_bytes() const { return (static_cast<std::size_t>(index_size()) * indices + 3) / 4 * 4; }
@@ -48,7 +50,8 @@ inline std::uint16_t units(double w, double corner, double step) {
 
 inline void put_position(char* at, const Vec3d& w, const PlantLayout& L) {
   if (L.step > 0) {
-    const std::uint16_t q[3] = {units(w.x, L.corner.x, L.step), units(w.y, L.corner.y, L.step), units(w.z, L.corner.z, L.step)};
+    const std::uint16_t q[3] = {units(w.x, L.corner.x, L.step), units(w.y, L.corner.y, L.step),
+                                units(w.z, L.corner.z, L.step)};
     std::memcpy(at, q, 6);
   } else {
     const float f[3] = {static_cast<float>(w.x - L.corner.x), static_cast<float>(w.y - L.corner.y),

@@ -15,8 +15,8 @@ std::string glb_header(std::uint64_t json_bytes, std::uint64_t bin_bytes) {
   if (total > 0xffffffffULL)
     throw std::runtime_error(
         "stand.glb would exceed 4 GiB, the GLB limit; export fewer plants, use --glb-instancing, or obj/ply");
-  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(json_bytes),
-                                   kJsonChunk};
+  const std::uint32_t header[5] = {kGlbMagic, 2, static_cast<std::uint32_t>(total),
+                                   static_cast<std::uint32_t>(json_bytes), kJsonChunk};
   return std::string(reinterpret_cast<const char*>(header), sizeof header);
 }
 

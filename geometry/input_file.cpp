@@ -14,9 +14,12 @@ namespace {
 
 /// A limit as it is documented: "16 MiB", "64 KiB", "1 GiB".
 std::string size_text(std::uint64_t n) {
-  if (n >= (std::uint64_t{1} << 30) && n % (std::uint64_t{1} << 30) == 0) return fmt::format("{} GiB", n >> 30);
-  if (n >= (std::uint64_t{1} << 20) && n % (std::uint64_t{1} << 20) == 0) return fmt::format("{} MiB", n >> 20);
-  if (n >= (std::uint64_t{1} << 10) && n % (std::uint64_t{1} << 10) == 0) return fmt::format("{} KiB", n >> 10);
+  if (n >= (std::uint64_t{1} << 30) && n % (std::uint64_t{1} << 30) == 0)
+    return fmt::format("{} GiB", n >> 30);
+  if (n >= (std::uint64_t{1} << 20) && n % (std::uint64_t{1} << 20) == 0)
+    return fmt::format("{} MiB", n >> 20);
+  if (n >= (std::uint64_t{1} << 10) && n % (std::uint64_t{1} << 10) == 0)
+    return fmt::format("{} KiB", n >> 10);
   return fmt::format("{} bytes", n);
 }
 
@@ -31,9 +34,11 @@ InputFile::InputFile(const std::string& path, std::string_view what, std::uint64
   std::string refusal;
   if (::fstat(fd_, &st) != 0) refusal = fmt::format("cannot read the {} ({})", what_, std::strerror(errno));
   else if (S_ISDIR(st.st_mode)) refusal = fmt::format("the {} is a folder, not a file", what_);
-  else if (!S_ISREG(st.st_mode)) refusal = fmt::format("the {} is not a regular file (a device, pipe or socket)", what_);
+  else if (!S_ISREG(st.st_mode))
+    refusal = fmt::format("the {} is not a regular file (a device, pipe or socket)", what_);
   else if (static_cast<std::uint64_t>(st.st_size) > max_bytes_)
-    refusal = fmt::format("the {} is larger than the {} canopy reads ({} bytes)", what_, size_text(max_bytes_), st.st_size);
+    refusal = fmt::format("the {} is larger than the {} canopy reads ({} bytes)", what_,
+                          size_text(max_bytes_), st.st_size);
   if (!refusal.empty()) {
     ::close(fd_);
     fd_ = -1;
@@ -54,11 +59,13 @@ bool InputFile::fill() {
   ssize_t n;
   do n = ::read(fd_, chunk, sizeof chunk);
   while (n < 0 && errno == EINTR);
-  if (n < 0) throw std::runtime_error(fmt::format("{}: cannot read the {} ({})", path_, what_, std::strerror(errno)));
+  if (n < 0)
+    throw std::runtime_error(fmt::format("{}: cannot read the {} ({})", path_, what_, std::strerror(errno)));
   if (n == 0) return false;
   read_ += static_cast<std::uint64_t>(n);
   if (read_ > max_bytes_)
-    throw InputRefused(path_, 0, fmt::format("the {} is larger than the {} canopy reads", what_, size_text(max_bytes_)));
+    throw InputRefused(
+        path_, 0, fmt::format("the {} is larger than the {} canopy reads", what_, size_text(max_bytes_)));
   buf_.append(chunk, static_cast<std::size_t>(n));
   return true;
 }
@@ -84,8 +91,9 @@ bool InputFile::next_line(std::string& line, std::size_t max_line) {
       return true;
     }
   }
-  throw InputRefused(path_, line_ + 1,
-                     fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
+  throw InputRefused(
+      path_, line_ + 1,
+      fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
 }
 
 std::string InputFile::read_all() {

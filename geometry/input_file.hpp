@@ -30,7 +30,8 @@ inline constexpr std::size_t kMaxCsvLineBytes = 64 << 10;  // 64 KiB
 class InputRefused : public std::invalid_argument {
  public:
   InputRefused(const std::string& path, int line, const std::string& reason)
-      : std::invalid_argument(line > 0 ? fmt::format("{}:{}: {}", path, line, reason) : fmt::format("{}: {}", path, reason)),
+      : std::invalid_argument(line > 0 ? fmt::format("{}:{}: {}", path, line, reason)
+                                       : fmt::format("{}: {}", path, reason)),
         line_(line), reason_(reason) {}
   int line() const { return line_; }
   const std::string& reason() const { return reason_; }

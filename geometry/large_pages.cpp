@@ -28,7 +28,8 @@ void* map_large(std::size_t bytes) {
   const auto base = reinterpret_cast<std::uintptr_t>(raw);
   const std::uintptr_t aligned = (base + kHugePage - 1) / kHugePage * kHugePage;
   if (aligned > base) munmap(raw, aligned - base);
-  if (const std::uintptr_t tail = base + span - (aligned + size)) munmap(reinterpret_cast<void*>(aligned + size), tail);
+  if (const std::uintptr_t tail = base + span - (aligned + size))
+    munmap(reinterpret_cast<void*>(aligned + size), tail);
   void* p = reinterpret_cast<void*>(aligned);
 #ifdef MADV_HUGEPAGE
   madvise(p, size, MADV_HUGEPAGE);  // advice only: where it is refused the pages are small

@@ -73,23 +73,24 @@ void check_reach(const RowLayout& l) {
                                                     {"--jitter", l.jitter}};
   for (const auto& [name, v] : options)
     if (v > kMaxPlantCoordinate)
-      throw std::invalid_argument(
-          fmt::format("{} {:g} m: plants may stand at most {:g} m from the origin", name, v, kMaxPlantCoordinate));
+      throw std::invalid_argument(fmt::format("{} {:g} m: plants may stand at most {:g} m from the origin",
+                                              name, v, kMaxPlantCoordinate));
   const double x = (l.per_row - 1) * l.plant_spacing + l.jitter;
   if (x > kMaxPlantCoordinate)
-    throw std::invalid_argument(
-        fmt::format("--per-row {} x --plant-spacing {:g} m (+ --jitter {:g} m) reaches x = {:g} m: plants may "
-                    "stand at most {:g} m from the origin",
-                    l.per_row, l.plant_spacing, l.jitter, x, kMaxPlantCoordinate));
+    throw std::invalid_argument(fmt::format(
+        "--per-row {} x --plant-spacing {:g} m (+ --jitter {:g} m) reaches x = {:g} m: plants may "
+        "stand at most {:g} m from the origin",
+        l.per_row, l.plant_spacing, l.jitter, x, kMaxPlantCoordinate));
   double y = (l.rows - 1) * l.row_spacing;
   if (l.double_rows)
-    for (int r = std::max(0, l.rows - 2); r < l.rows; ++r) y = std::max(y, (r / 2) * l.row_spacing + (r % 2) * *l.double_rows);
+    for (int r = std::max(0, l.rows - 2); r < l.rows; ++r)
+      y = std::max(y, (r / 2) * l.row_spacing + (r % 2) * *l.double_rows);
   if (y + l.jitter > kMaxPlantCoordinate)
-    throw std::invalid_argument(
-        fmt::format("--rows {} x --row-spacing {:g} m{} (+ --jitter {:g} m) reaches y = {:g} m: plants may "
-                    "stand at most {:g} m from the origin",
-                    l.rows, l.row_spacing, l.double_rows ? fmt::format(" with --double-rows {:g} m", *l.double_rows) : "",
-                    l.jitter, y + l.jitter, kMaxPlantCoordinate));
+    throw std::invalid_argument(fmt::format(
+        "--rows {} x --row-spacing {:g} m{} (+ --jitter {:g} m) reaches y = {:g} m: plants may "
+        "stand at most {:g} m from the origin",
+        l.rows, l.row_spacing, l.double_rows ? fmt::format(" with --double-rows {:g} m", *l.double_rows) : "",
+        l.jitter, y + l.jitter, kMaxPlantCoordinate));
 }
 
 }  // namespace
@@ -107,7 +108,8 @@ std::optional<std::uint64_t> parse_seed(std::string_view text) {
 
 std::vector<PlantPlacement> row_layout(const RowLayout& l) {
   if (l.rows < 1 || l.per_row < 1)
-    throw std::invalid_argument(fmt::format("--rows and --per-row must be at least 1 (got {} and {})", l.rows, l.per_row));
+    throw std::invalid_argument(
+        fmt::format("--rows and --per-row must be at least 1 (got {} and {})", l.rows, l.per_row));
   // Each named: an infinite jitter used to surface as plant 0's position not being finite.
   const std::pair<const char*, double> lengths[] = {{"row spacing", l.row_spacing},
                                                     {"plant spacing", l.plant_spacing},
@@ -115,7 +117,8 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
                                                     {"jitter", l.jitter}};
   for (const auto& [name, v] : lengths)
     if (!(v >= 0) || !std::isfinite(v))
-      throw std::invalid_argument(fmt::format("the {} must be a finite number of metres, not negative (got {})", name, v));
+      throw std::invalid_argument(
+          fmt::format("the {} must be a finite number of metres, not negative (got {})", name, v));
   check_reach(l);
   std::vector<PlantPlacement> out;
   out.reserve(static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.per_row));
@@ -167,44 +170,51 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     const auto cells = split(line);
     if (col.empty()) {
-      for (std::size_t i = 0; i < cells.size(); ++i) col.emplace(std::string(cells[i].first), static_cast<int>(i));
+      for (std::size_t i = 0; i < cells.size(); ++i)
+        col.emplace(std::string(cells[i].first), static_cast<int>(i));
       for (const char* need : {"x", "y", "rotation", "seed"})
         if (!col.count(need)) {
           // A spreadsheet set to a decimal comma separates its "CSV" cells with ';'.
-          const bool other_separator = cells.size() == 1 && cells[0].first.find_first_of(";\t") != std::string_view::npos;
+          const bool other_separator =
+              cells.size() == 1 && cells[0].first.find_first_of(";\t") != std::string_view::npos;
           throw std::invalid_argument(fmt::format(
-              "{}:{}: missing column '{}' (the header needs x,y,rotation,seed and may add grammar,steps){}", path, line_no, need,
-              other_separator ? "; the cells are separated by ';' or tabs, and positions files use commas" : ""));
+              "{}:{}: missing column '{}' (the header needs x,y,rotation,seed and may add grammar,steps){}",
+              path, line_no, need,
+              other_separator ? "; the cells are separated by ';' or tabs, and positions files use commas"
+                              : ""));
         }
       // A misspelt column ("Steps") would otherwise be passed over and its values never used.
       for (std::size_t i = 0; i < cells.size(); ++i) {
         const auto& [name, column] = cells[i];
         const std::size_t first = static_cast<std::size_t>(col.at(std::string(name)));
         if (first != i)
-          throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' appears twice in the header (cells {} and {})", path,
-                                                  line_no, column, name, first + 1, i + 1));
-        if (name != "x" && name != "y" && name != "rotation" && name != "seed" && name != "grammar" && name != "steps")
           throw std::invalid_argument(
-              fmt::format("{}:{}:{}: unknown column '{}' (the header has x,y,rotation,seed and may add grammar,steps)", path,
-                          line_no, column, name));
+              fmt::format("{}:{}:{}: column '{}' appears twice in the header (cells {} and {})", path,
+                          line_no, column, name, first + 1, i + 1));
+        if (name != "x" && name != "y" && name != "rotation" && name != "seed" && name != "grammar" &&
+            name != "steps")
+          throw std::invalid_argument(fmt::format(
+              "{}:{}:{}: unknown column '{}' (the header has x,y,rotation,seed and may add grammar,steps)",
+              path, line_no, column, name));
       }
       ncols = cells.size();
       continue;
     }
     if (cells.size() != ncols)
-      throw std::invalid_argument(
-          fmt::format("{}:{}: expected {} cells as in the header, got {}", path, line_no, ncols, cells.size()));
+      throw std::invalid_argument(fmt::format("{}:{}: expected {} cells as in the header, got {}", path,
+                                              line_no, ncols, cells.size()));
     auto number = [&](const char* name) {
       const auto& [cell, column] = cells[static_cast<std::size_t>(col[name])];
       double v = 0;
       const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
       const bool whole_cell = r.ptr == cell.data() + cell.size();
       if (!cell.empty() && whole_cell && r.ec == std::errc::result_out_of_range)
-        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}', which is out of range",
-                                                path, line_no, column, name, cell));
-      if (cell.empty() || r.ec != std::errc() || !whole_cell || !std::isfinite(v))
         throw std::invalid_argument(
-            fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}'", path, line_no, column, name, cell));
+            fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}', which is out of range", path,
+                        line_no, column, name, cell));
+      if (cell.empty() || r.ec != std::errc() || !whole_cell || !std::isfinite(v))
+        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' needs a finite number, got '{}'", path,
+                                                line_no, column, name, cell));
       return v;
     };
     // A coordinate past the bound cannot be written faithfully or kept to the plant frame's precision.
@@ -212,8 +222,9 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
       const double v = number(name);
       if (std::fabs(v) > kMaxPlantCoordinate) {
         const auto& [cell, column] = cells[static_cast<std::size_t>(col[name])];
-        throw std::invalid_argument(fmt::format("{}:{}:{}: column '{}' is {} m: plants may stand at most {:g} m from the origin",
-                                                path, line_no, column, name, cell, kMaxPlantCoordinate));
+        throw std::invalid_argument(
+            fmt::format("{}:{}:{}: column '{}' is {} m: plants may stand at most {:g} m from the origin",
+                        path, line_no, column, name, cell, kMaxPlantCoordinate));
       }
       return v;
     };
@@ -225,8 +236,8 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
       const auto& [cell, column] = cells[static_cast<std::size_t>(col["seed"])];
       const auto seed = parse_seed(cell);
       if (!seed)
-        throw std::invalid_argument(
-            fmt::format("{}:{}:{}: column 'seed' needs a whole number, got '{}'", path, line_no, column, cell));
+        throw std::invalid_argument(fmt::format("{}:{}:{}: column 'seed' needs a whole number, got '{}'",
+                                                path, line_no, column, cell));
       p.seed = *seed;
     }
     if (col.count("grammar")) {
@@ -244,14 +255,16 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
       const auto& [cell, column] = cells[static_cast<std::size_t>(col["steps"])];
       const double v = number("steps");
       if (v != std::floor(v) || v < 0 || v > kMaxSteps)
-        throw std::invalid_argument(fmt::format("{}:{}:{}: column 'steps' needs a whole number from 0 to {}, got '{}'", path,
-                                                line_no, column, kMaxSteps, cell));
+        throw std::invalid_argument(
+            fmt::format("{}:{}:{}: column 'steps' needs a whole number from 0 to {}, got '{}'", path, line_no,
+                        column, kMaxSteps, cell));
       p.steps = static_cast<int>(v);
     }
     out.push_back(p);
   }
   if (col.empty())
-    throw std::invalid_argument(fmt::format("{}: empty positions file (expected a header x,y,rotation,seed)", path));
+    throw std::invalid_argument(
+        fmt::format("{}: empty positions file (expected a header x,y,rotation,seed)", path));
   return out;
 }
 

@@ -86,8 +86,8 @@ CANOPY_HD inline void lcd_inflate(Lcd& l, float by) {
 /// An LCD box in the form its overlap test reads: the centre of its horizontal rectangle in the
 /// plant frame (cx, cy), its axis, its half sizes along u and v, and its vertical range; made
 /// once per box (lcd_centred) rather than at every test, where the pass tests each cluster's
-/// root against a dozen others. Half a cache line. An empty box's form has an empty vertical range (+inf, -inf), which meets no
-/// box of finite height.
+/// root against a dozen others. Half a cache line. An empty box's form has an empty vertical range (+inf,
+/// -inf), which meets no box of finite height.
 struct LcdCentred {
   float cx = 0, cy = 0, ax = 1, ay = 0, hu = 0, hv = 0;
   float z_lo = 0, z_hi = -1;

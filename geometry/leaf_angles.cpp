@@ -32,7 +32,8 @@ void add_blade(LeafAngleSums& sum, double area, double nz, const std::array<doub
   const double cl = std::min(1.0, std::abs(nz)), sl = std::sqrt(std::max(0.0, 1 - cl * cl));
   const double deg = std::acos(cl) * 180 / std::numbers::pi;
   sum.area += area;
-  sum.bins[static_cast<std::size_t>(std::clamp(static_cast<int>(deg / kLeafAngleBinDeg), 0, kLeafAngleBins - 1))] += area;
+  sum.bins[static_cast<std::size_t>(
+      std::clamp(static_cast<int>(deg / kLeafAngleBinDeg), 0, kLeafAngleBins - 1))] += area;
   sum.inclination_area += deg * area;
   for (std::size_t k = 0; k < cz.size(); ++k) sum.g_area[k] += area * projection(cz[k], sz[k], cl, sl);
 }
@@ -50,7 +51,8 @@ std::vector<LeafAngleSums> leaf_angle_sums(const Stand& s, PrototypeLibrary& lib
     if (s.organs[i].kind == OrganKind::leaflet) lib.get(s.organs[i].prototype, s.organs[i].lod);
   std::array<double, kGZenithsDeg.size()> cz{}, sz{};
   for (std::size_t k = 0; k < cz.size(); ++k)
-    cz[k] = std::cos(kGZenithsDeg[k] * std::numbers::pi / 180), sz[k] = std::sin(kGZenithsDeg[k] * std::numbers::pi / 180);
+    cz[k] = std::cos(kGZenithsDeg[k] * std::numbers::pi / 180),
+    sz[k] = std::sin(kGZenithsDeg[k] * std::numbers::pi / 180);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
     LeafAngleSums& sum = out[p];

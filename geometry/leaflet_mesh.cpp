@@ -70,7 +70,9 @@ PrototypeMesh curved_leaflet(int lod, const LeafletShape& shape) {
     m.uvs.push_back({static_cast<float>(s), static_cast<float>(0.5 + y)});
     return static_cast<std::uint32_t>(m.positions.size() - 1);
   };
-  const auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) { m.indices.insert(m.indices.end(), {a, b, c}); };
+  const auto tri = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    m.indices.insert(m.indices.end(), {a, b, c});
+  };
   // Stations as the flat blade's (s = t^2), each a row of vertices from the right margin (y < 0)
   // to the left one; the half-widths are the flat blade's, rounded to float as it rounds them.
   const int n = 4 * lod + 1;

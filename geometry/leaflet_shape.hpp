@@ -37,7 +37,8 @@ inline constexpr double kNominalLeafletAspect = 0.5;
 /// The shape of code `code` (the quantised angles).
 inline LeafletShape leaflet_shape(std::uint8_t code) {
   const auto sext = [](int v, int bits) { return v >= (1 << (bits - 1)) ? v - (1 << bits) : v; };
-  return {kBendStepDeg * sext(code >> 4, 4), kCupStepDeg * sext((code >> 2) & 3, 2), kFoldStepDeg * (code & 3)};
+  return {kBendStepDeg * sext(code >> 4, 4), kCupStepDeg * sext((code >> 2) & 3, 2),
+          kFoldStepDeg * (code & 3)};
 }
 
 /// The code of the nearest shape, or nothing when an angle lies outside its range (by more than
@@ -58,8 +59,8 @@ inline std::optional<std::uint8_t> leaflet_shape_code(const LeafletShape& s, std
     if (!std::isfinite(steps) || steps < a.lo - 0.5 || steps >= a.hi + 0.5) {
       if (what) {
         std::ostringstream o;
-        o << "leaflet " << a.name << " must lie in [" << a.lo * a.step << ", " << a.hi * a.step << "] degrees (got " << a.value
-          << ")";
+        o << "leaflet " << a.name << " must lie in [" << a.lo * a.step << ", " << a.hi * a.step
+          << "] degrees (got " << a.value << ")";
         *what = o.str();
       }
       return std::nullopt;

@@ -16,7 +16,8 @@ struct Mat3d {
 CANOPY_HD inline Mat3d operator*(const Mat3d& a, const Mat3d& b) {
   Mat3d c;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) c.m[3 * i + j] = a.m[3 * i] * b.m[j] + a.m[3 * i + 1] * b.m[3 + j] + a.m[3 * i + 2] * b.m[6 + j];
+    for (int j = 0; j < 3; ++j)
+      c.m[3 * i + j] = a.m[3 * i] * b.m[j] + a.m[3 * i + 1] * b.m[3 + j] + a.m[3 * i + 2] * b.m[6 + j];
   return c;
 }
 CANOPY_HD inline Vec3d operator*(const Mat3d& a, Vec3d v) {
@@ -46,7 +47,9 @@ struct Motion {
   Mat3d r;
   Vec3d t;
 };
-CANOPY_HD inline Motion compose(const Motion& a, const Motion& b) { return {a.r * b.r, a.r * b.t + a.t}; }  // a o b
+CANOPY_HD inline Motion compose(const Motion& a, const Motion& b) {
+  return {a.r * b.r, a.r * b.t + a.t};
+}  // a o b
 CANOPY_HD inline Motion rotation_about(Vec3d p, const Mat3d& r) { return {r, p - r * p}; }
 CANOPY_HD inline Vec3d apply(const Motion& m, Vec3d p) { return m.r * p + m.t; }
 /// The motion applied to an organ transform (columns rotated, joint moved), rounded to float.
@@ -63,7 +66,8 @@ CANOPY_HD inline Affine3f apply(const Motion& m, const Affine3f& a) {
 CANOPY_HD inline Obb carried_box(const Obb& o, const Motion& m, float inflate) {
   Obb r;
   r.centre = to_float(apply(m, to_double(o.centre)));
-  for (int k = 0; k < 3; ++k) r.axis[k] = to_float(m.r * to_double(o.axis[k])), r.half[k] = o.half[k] + inflate;
+  for (int k = 0; k < 3; ++k)
+    r.axis[k] = to_float(m.r * to_double(o.axis[k])), r.half[k] = o.half[k] + inflate;
   set_radius(r);
   return r;
 }

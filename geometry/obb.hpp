@@ -24,7 +24,8 @@ inline constexpr float kBoundAbsSlack = 1e-7f;
 
 /// Sets the bounding-sphere radius from the half extents (after any change to them).
 CANOPY_HD inline void set_radius(Obb& o) {
-  o.radius = sqrtf(o.half[0] * o.half[0] + o.half[1] * o.half[1] + o.half[2] * o.half[2]) * (1 + kBoundRelSlack);
+  o.radius =
+      sqrtf(o.half[0] * o.half[0] + o.half[1] * o.half[1] + o.half[2] * o.half[2]) * (1 + kBoundRelSlack);
 }
 
 CANOPY_HD inline Vec3f unit_or_zero(Vec3f v, float& len) {
@@ -37,8 +38,10 @@ CANOPY_HD inline Vec3f unit_or_zero(Vec3f v, float& len) {
 /// axis completing the frame and a zero extent.
 CANOPY_HD inline Obb make_obb(const Affine3f& m, const Box3f& local, float inflate) {
   Obb o;
-  const Vec3f c{0.5f * (local.lo.x + local.hi.x), 0.5f * (local.lo.y + local.hi.y), 0.5f * (local.lo.z + local.hi.z)};
-  const float h[3] = {0.5f * (local.hi.x - local.lo.x), 0.5f * (local.hi.y - local.lo.y), 0.5f * (local.hi.z - local.lo.z)};
+  const Vec3f c{0.5f * (local.lo.x + local.hi.x), 0.5f * (local.lo.y + local.hi.y),
+                0.5f * (local.lo.z + local.hi.z)};
+  const float h[3] = {0.5f * (local.hi.x - local.lo.x), 0.5f * (local.hi.y - local.lo.y),
+                      0.5f * (local.hi.z - local.lo.z)};
   o.centre = apply(m, c);
   const Vec3f col[3] = {m.c0, m.c1, m.c2};
   float len[3];
@@ -74,9 +77,12 @@ CANOPY_HD inline Obb grown(Obb o, float by) {
 /// z), grown by the bounds' rounding slack so that it holds every point the OBB holds: the
 /// organ-pair stage's pre-test (collision/organ_blocks.hpp). A NaN box meets nothing.
 CANOPY_HD inline Box3f obb_aabb(const Obb& o) {
-  const float ex = fabsf(o.axis[0].x) * o.half[0] + fabsf(o.axis[1].x) * o.half[1] + fabsf(o.axis[2].x) * o.half[2];
-  const float ey = fabsf(o.axis[0].y) * o.half[0] + fabsf(o.axis[1].y) * o.half[1] + fabsf(o.axis[2].y) * o.half[2];
-  const float ez = fabsf(o.axis[0].z) * o.half[0] + fabsf(o.axis[1].z) * o.half[1] + fabsf(o.axis[2].z) * o.half[2];
+  const float ex =
+      fabsf(o.axis[0].x) * o.half[0] + fabsf(o.axis[1].x) * o.half[1] + fabsf(o.axis[2].x) * o.half[2];
+  const float ey =
+      fabsf(o.axis[0].y) * o.half[0] + fabsf(o.axis[1].y) * o.half[1] + fabsf(o.axis[2].y) * o.half[2];
+  const float ez =
+      fabsf(o.axis[0].z) * o.half[0] + fabsf(o.axis[1].z) * o.half[1] + fabsf(o.axis[2].z) * o.half[2];
   const float size = fabsf(o.centre.x) + fabsf(o.centre.y) + fabsf(o.centre.z) + ex + ey + ez;
   const float s = kBoundRelSlack * size + kBoundAbsSlack;
   return Box3f{{o.centre.x - ex - s, o.centre.y - ey - s, o.centre.z - ez - s},
@@ -85,7 +91,8 @@ CANOPY_HD inline Box3f obb_aabb(const Obb& o) {
 
 /// Corner i (0-7) of an OBB: bit k of i picks the + side of axis k.
 CANOPY_HD inline Vec3f obb_corner(const Obb& o, int i) {
-  const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1], sz = (i & 4) ? o.half[2] : -o.half[2];
+  const float sx = (i & 1) ? o.half[0] : -o.half[0], sy = (i & 2) ? o.half[1] : -o.half[1],
+              sz = (i & 4) ? o.half[2] : -o.half[2];
   return o.centre + o.axis[0] * sx + o.axis[1] * sy + o.axis[2] * sz;
 }
 
@@ -112,7 +119,8 @@ CANOPY_HD inline bool obb_overlap(const Obb& a, const Obb& b, Vec3f offset) {
   const Vec3f d = b.centre + offset - a.centre;
   const float t[3] = {dot(d, a.axis[0]), dot(d, a.axis[1]), dot(d, a.axis[2])};
   for (int i = 0; i < 3; ++i)
-    if (fabsf(t[i]) > a.half[i] + b.half[0] * ar[i][0] + b.half[1] * ar[i][1] + b.half[2] * ar[i][2]) return false;
+    if (fabsf(t[i]) > a.half[i] + b.half[0] * ar[i][0] + b.half[1] * ar[i][1] + b.half[2] * ar[i][2])
+      return false;
   for (int j = 0; j < 3; ++j)
     if (fabsf(t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j]) >
         a.half[0] * ar[0][j] + a.half[1] * ar[1][j] + a.half[2] * ar[2][j] + b.half[j])

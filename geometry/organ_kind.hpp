@@ -23,7 +23,9 @@ inline constexpr std::array<int, 4> kPrototypeArity{2, 2, 1, 1};
 inline constexpr std::array<int, 4> kPrototypeMaxArity{2, 5, 1, 1};
 
 /// Solids: closed cylinders and spheres contain what lies inside them (both backends' exact test).
-CANOPY_HD inline bool is_solid(PrototypeKind k) { return k == PrototypeKind::cylinder || k == PrototypeKind::sphere; }
+CANOPY_HD inline bool is_solid(PrototypeKind k) {
+  return k == PrototypeKind::cylinder || k == PrototypeKind::sphere;
+}
 
 inline std::string_view name_of(OrganKind k) { return kOrganKindNames[static_cast<int>(k)]; }
 inline std::string_view name_of(PrototypeKind k) { return kPrototypeNames[static_cast<int>(k)]; }

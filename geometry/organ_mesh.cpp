@@ -11,7 +11,9 @@
 
 namespace canopy {
 
-Affine3f cofactor(const Affine3f& m) { return {cross(m.c1, m.c2), cross(m.c2, m.c0), cross(m.c0, m.c1), {0, 0, 0}}; }
+Affine3f cofactor(const Affine3f& m) {
+  return {cross(m.c1, m.c2), cross(m.c2, m.c0), cross(m.c0, m.c1), {0, 0, 0}};
+}
 
 Vec3f transform_normal(const Affine3f& m, Vec3f n) { return transform_normal(m, cofactor(m), n); }
 
@@ -25,7 +27,8 @@ Vec3f transform_normal(const Affine3f& m, const Affine3f& cof, Vec3f n) {
   return {0, 0, 1};
 }
 
-void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out, bool positions_only) {
+void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out,
+                bool positions_only) {
   const OrganRecord& r = stand.organs[id];
   const Affine3f& m = stand.transforms[id];
   out.prototype = &library.get(r);
@@ -35,7 +38,8 @@ void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, O
   if (positions_only) return;
   const Affine3f cof = cofactor(m);
   out.normals.resize(pm.normals.size());
-  for (std::size_t i = 0; i < pm.normals.size(); ++i) out.normals[i] = transform_normal(m, cof, pm.normals[i]);
+  for (std::size_t i = 0; i < pm.normals.size(); ++i)
+    out.normals[i] = transform_normal(m, cof, pm.normals[i]);
 }
 
 namespace {
@@ -111,7 +115,8 @@ void make_meshes(const Stand& s, PrototypeLibrary& lib, int threads) {
   }
   for (std::size_t p = 0; p < kPrototypeNames.size(); ++p)
     for (int l = 1; l <= kMaxLod; ++l)
-      for (int shape = 0; shape < (p == static_cast<std::size_t>(PrototypeKind::leaflet) ? kShapeCount : 1); ++shape)
+      for (int shape = 0; shape < (p == static_cast<std::size_t>(PrototypeKind::leaflet) ? kShapeCount : 1);
+           ++shape)
         if (used[static_cast<std::size_t>(mesh_slot(static_cast<PrototypeKind>(p), l, shape))])
           lib.get(static_cast<PrototypeKind>(p), l, static_cast<std::uint8_t>(shape));
 }

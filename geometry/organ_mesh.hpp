@@ -27,7 +27,8 @@ struct OrganMesh {
 void make_meshes(const Stand& stand, PrototypeLibrary& library, int threads = 0);
 
 /// Fills `out` with organ `id` of `stand` (normals too unless `positions_only`).
-void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out, bool positions_only = false);
+void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out,
+                bool positions_only = false);
 
 /// The cofactor matrix of m's linear part (columns c1 x c2, c2 x c0, c0 x c1): it carries surface
 /// normals and area elements, computed once per organ.

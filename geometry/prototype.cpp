@@ -23,11 +23,13 @@ double leaflet_norm() {
 void finish_box(PrototypeMesh& m) {
   m.corner_lanes.assign((m.triangle_count() + 7) / 8 * PrototypeMesh::kCornerGroupFloats, 0.0f);
   for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-    const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]], c = m.positions[m.indices[i + 2]];
+    const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]],
+                c = m.positions[m.indices[i + 2]];
     m.face_cross.push_back(cross(b - a, c - a));
     const std::size_t t = i / 3;
     const float corners[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
-    for (std::size_t k = 0; k < 9; ++k) m.corner_lanes[t / 8 * PrototypeMesh::kCornerGroupFloats + 8 * k + t % 8] = corners[k];
+    for (std::size_t k = 0; k < 9; ++k)
+      m.corner_lanes[t / 8 * PrototypeMesh::kCornerGroupFloats + 8 * k + t % 8] = corners[k];
   }
   Vec3f lo = m.positions.front(), hi = lo;
   for (const Vec3f& p : m.positions) {
@@ -37,7 +39,9 @@ void finish_box(PrototypeMesh& m) {
   m.box = {lo, hi};
 }
 
-void tri(PrototypeMesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c) { m.indices.insert(m.indices.end(), {a, b, c}); }
+void tri(PrototypeMesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  m.indices.insert(m.indices.end(), {a, b, c});
+}
 
 std::uint32_t vertex(PrototypeMesh& m, Vec3f p, Vec3f n) {
   m.positions.push_back(p);
@@ -153,14 +157,16 @@ double leaflet_half_width(double s) {
 
 double leaflet_outline_area() {
   // 2 N B(a+1, b+1), the Beta function by its Gamma form.
-  const double beta = std::tgamma(kBaseExp + 1) * std::tgamma(kTipExp + 1) / std::tgamma(kBaseExp + kTipExp + 2);
+  const double beta =
+      std::tgamma(kBaseExp + 1) * std::tgamma(kTipExp + 1) / std::tgamma(kBaseExp + kTipExp + 2);
   return 2 * leaflet_norm() * beta;
 }
 
 PrototypeMesh make_prototype(PrototypeKind kind, int lod, std::uint8_t shape) {
   if (lod < 1 || lod > kMaxLod) throw std::invalid_argument("level of detail must lie in 1..16");
   if (shape != 0 && kind != PrototypeKind::leaflet)
-    throw std::invalid_argument(std::string("a ") + std::string(name_of(kind)) + " has no shape (only leaflets curve)");
+    throw std::invalid_argument(std::string("a ") + std::string(name_of(kind)) +
+                                " has no shape (only leaflets curve)");
   PrototypeMesh m;
   switch (kind) {
     case PrototypeKind::cylinder: m = cylinder(lod); break;
@@ -175,7 +181,8 @@ PrototypeMesh make_prototype(PrototypeKind kind, int lod, std::uint8_t shape) {
 const PrototypeMesh& PrototypeLibrary::make(PrototypeKind kind, int lod, std::uint8_t shape) {
   if (lod < 1 || lod > kMaxLod) throw std::invalid_argument("level of detail must lie in 1..16");
   if (shape != 0 && kind != PrototypeKind::leaflet)
-    throw std::invalid_argument(std::string("a ") + std::string(name_of(kind)) + " has no shape (only leaflets curve)");
+    throw std::invalid_argument(std::string("a ") + std::string(name_of(kind)) +
+                                " has no shape (only leaflets curve)");
   auto& slot = made_[static_cast<std::size_t>(mesh_slot(kind, lod, shape))];
   std::lock_guard<std::mutex> lock(mutex_);
   if (const PrototypeMesh* m = slot.load(std::memory_order_relaxed)) return *m;

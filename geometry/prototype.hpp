@@ -75,7 +75,8 @@ class PrototypeLibrary {
   /// is a curved leaflet's (any other prototype with one is refused).
   const PrototypeMesh& get(PrototypeKind kind, int lod, std::uint8_t shape = 0) {
     if (lod >= 1 && lod <= kMaxLod && (shape == 0 || kind == PrototypeKind::leaflet))
-      if (const PrototypeMesh* m = made_[static_cast<std::size_t>(mesh_slot(kind, lod, shape))].load(std::memory_order_acquire))
+      if (const PrototypeMesh* m =
+              made_[static_cast<std::size_t>(mesh_slot(kind, lod, shape))].load(std::memory_order_acquire))
         return *m;
     return make(kind, lod, shape);
   }

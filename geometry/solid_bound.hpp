@@ -32,7 +32,9 @@ namespace solid_bound_detail {
 CANOPY_HD inline double norm(D3 a) { return sqrt(dot(a, a)); }
 
 /// Distance from x to the segment p + s u, s in [0, 1] (to a point of it: never below the least).
-CANOPY_HD inline double point_segment_distance(D3 x, D3 p, D3 u) { return sqrt(segment_segment_dist2(x, x, p, p + u)); }
+CANOPY_HD inline double point_segment_distance(D3 x, D3 p, D3 u) {
+  return sqrt(segment_segment_dist2(x, x, p, p + u));
+}
 
 /// sqrt of Gershgorin's bound on the largest eigenvalue of a Gram matrix: a bound on the
 /// largest stretch of the map whose columns made it (its spectral norm), exact for orthogonal
@@ -68,7 +70,8 @@ CANOPY_HD inline double segments_distance_bound(D3 p, D3 u, D3 q, D3 v) {
   const double b = dot(u, v), c = dot(u, r), f = dot(v, r);
   const double s = (c * vv - b * f) / nn, t = (b * c - uu * f) / nn;
   const double rr = dot(r, r), sin2 = nn / (uu * vv);
-  const double ws = 1e-12 + 1e-14 * (1 + sqrt(rr / uu)) / sin2, wt = 1e-12 + 1e-14 * (1 + sqrt(rr / vv)) / sin2;
+  const double ws = 1e-12 + 1e-14 * (1 + sqrt(rr / uu)) / sin2,
+               wt = 1e-12 + 1e-14 * (1 + sqrt(rr / vv)) / sin2;
   if (s >= -ws && s <= 1 + ws && t >= -wt && t <= 1 + wt) best = min_d(best, fabs(dot(r, n)) / sqrt(nn));
   return best;
 }
@@ -106,11 +109,12 @@ inline constexpr double kSolidAbsSlack = 2e-6;
 /// frame) are both solids whose capsules lie more than `clearance` plus the slack apart: then
 /// neither their triangles nor what one encloses come within the clearance of the other. False
 /// (test them) for any other pair, and for non-finite transforms.
-CANOPY_HD inline bool solids_apart(PrototypeKind ka, const Affine3f& ta, PrototypeKind kb, const Affine3f& tb, Vec3f db,
-                                   float clearance) {
+CANOPY_HD inline bool solids_apart(PrototypeKind ka, const Affine3f& ta, PrototypeKind kb, const Affine3f& tb,
+                                   Vec3f db, float clearance) {
   Capsule a, b;
   if (!solid_capsule(ka, ta, Vec3f{0, 0, 0}, a) || !solid_capsule(kb, tb, db, b)) return false;
-  const double reach = a.radius + b.radius + static_cast<double>(clearance) + kSolidRelSlack * (a.size + b.size) + kSolidAbsSlack;
+  const double reach = a.radius + b.radius + static_cast<double>(clearance) +
+                       kSolidRelSlack * (a.size + b.size) + kSolidAbsSlack;
   return segments_distance_bound(a.p, a.u, b.p, b.u) > reach;
 }
 

@@ -30,7 +30,8 @@ std::string why() { return std::strerror(errno); }
 /// An open folder, closed on scope exit.
 struct Fd {
   int fd = -1;
-  explicit Fd(const std::string& path, int flags = O_RDONLY | O_DIRECTORY | O_CLOEXEC) : fd(::open(path.c_str(), flags)) {}
+  explicit Fd(const std::string& path, int flags = O_RDONLY | O_DIRECTORY | O_CLOEXEC)
+      : fd(::open(path.c_str(), flags)) {}
   ~Fd() {
     if (fd >= 0) ::close(fd);
   }
@@ -63,7 +64,8 @@ bool exists_at(int dirfd, const std::string& name) {
 bool same_file_at(int dira, int dirb, const std::string& name) {
   struct stat a, b;
   return ::fstatat(dira, name.c_str(), &a, AT_SYMLINK_NOFOLLOW) == 0 &&
-         ::fstatat(dirb, name.c_str(), &b, AT_SYMLINK_NOFOLLOW) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+         ::fstatat(dirb, name.c_str(), &b, AT_SYMLINK_NOFOLLOW) == 0 && a.st_dev == b.st_dev &&
+         a.st_ino == b.st_ino;
 }
 
 void sync_folder(const std::string& path) {
@@ -80,7 +82,8 @@ std::string staging_tag(std::string_view rest) {
     if (c == '-') ++dashes;
     else if (c < '0' || c > '9') return {};
   }
-  if (dashes != 2 || rest.front() == '-' || rest.back() == '-' || rest.find("--") != std::string_view::npos) return {};
+  if (dashes != 2 || rest.front() == '-' || rest.back() == '-' || rest.find("--") != std::string_view::npos)
+    return {};
   return std::string(rest.substr(0, rest.rfind('-')));
 }
 
@@ -93,7 +96,8 @@ void open_in_one_set(const std::string& dir, const std::function<void()>& open_a
   const auto identity = [&] {
     struct stat st {};
     if (::stat(dir.c_str(), &st) != 0) return std::tuple<dev_t, ino_t, time_t, long>(0, 0, 0, 0);
-    return std::tuple<dev_t, ino_t, time_t, long>(st.st_dev, st.st_ino, st.st_ctim.tv_sec, st.st_ctim.tv_nsec);
+    return std::tuple<dev_t, ino_t, time_t, long>(st.st_dev, st.st_ino, st.st_ctim.tv_sec,
+                                                  st.st_ctim.tv_nsec);
   };
   for (int attempt = 0; attempt < 16; ++attempt) {
     const auto before = identity();
@@ -102,7 +106,8 @@ void open_in_one_set(const std::string& dir, const std::function<void()>& open_a
   }
 }
 
-void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files, const std::vector<std::string>& paths) {
+void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files,
+                     const std::vector<std::string>& paths) {
   open_in_one_set(dir, [&] {
     for (std::size_t i = 0; i < files.size(); ++i) {
       files[i]->close();
@@ -130,7 +135,8 @@ std::string output_folder(const std::string& dir) {
     if (!ec && fs::is_directory(target, ec)) p = target;
   }
   if (p == p.root_path() || p.filename().empty() || p.filename() == "..")
-    throw std::runtime_error(fmt::format("cannot create the output folder {}: the file system's root cannot be replaced", dir));
+    throw std::runtime_error(
+        fmt::format("cannot create the output folder {}: the file system's root cannot be replaced", dir));
   return p.string();
 }
 
@@ -148,7 +154,8 @@ fs::path staging_place(const fs::path& p, const std::string& dir) {
     struct stat here, parent;
     if (::stat(".", &here) == 0 && here.st_dev == st.st_dev && here.st_ino == st.st_ino)
       refuse(
-          "it is the working folder, and a run replaces its output folder as a whole (which would leave this shell in a "
+          "it is the working folder, and a run replaces its output folder as a whole (which would leave this "
+          "shell in a "
           "removed folder); name a folder inside it or beside it");
     if (::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev)
       refuse("it is a mount point, which cannot be replaced as a whole; name a folder inside it");
@@ -157,7 +164,8 @@ fs::path staging_place(const fs::path& p, const std::string& dir) {
   if (errno != ENOENT && errno != ENOTDIR) refuse(why());
   fs::path at = p.parent_path();
   while (::lstat(at.c_str(), &st) != 0 && at != at.root_path()) at = at.parent_path();
-  if (::stat(at.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) refuse(fmt::format("{} is not a folder", at.string()));
+  if (::stat(at.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+    refuse(fmt::format("{} is not a folder", at.string()));
   return at;
 }
 
@@ -170,11 +178,13 @@ void check_output_dir(const std::string& dir) {
   };
   // A folder made and removed again: what the staging folder will need.
   const fs::path probe = writable / fmt::format(".canopy-probe-{}", process_tag());
-  if (::mkdir(probe.c_str(), 0700) != 0) refuse(fmt::format("cannot make a folder in {}: {}", writable.string(), why()));
+  if (::mkdir(probe.c_str(), 0700) != 0)
+    refuse(fmt::format("cannot make a folder in {}: {}", writable.string(), why()));
   ::rmdir(probe.c_str());
 }
 
-StagedFolder::StagedFolder(const std::string& dir, std::vector<std::string> replaces) : replaces_(std::move(replaces)) {
+StagedFolder::StagedFolder(const std::string& dir, std::vector<std::string> replaces)
+    : replaces_(std::move(replaces)) {
   try {
     open(dir);
   } catch (...) {
@@ -193,7 +203,8 @@ void StagedFolder::open(const std::string& dir) {
   name_ = p.filename().string();
   // The folders missing above the output, made now and removed again if the run fails.
   std::vector<fs::path> missing;
-  for (fs::path a = p.parent_path(); !fs::exists(fs::symlink_status(a)) && a != a.root_path(); a = a.parent_path())
+  for (fs::path a = p.parent_path(); !fs::exists(fs::symlink_status(a)) && a != a.root_path();
+       a = a.parent_path())
     missing.push_back(a);
   for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
     const auto lock = lock_run_paths();
@@ -201,14 +212,16 @@ void StagedFolder::open(const std::string& dir) {
       created_.push_back(it->string());
       created_ids_.push_back(register_run_path(it->string(), RunPath::created_folder));
     } else if (errno != EEXIST) {
-      throw std::runtime_error(fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, it->string(), why()));
+      throw std::runtime_error(
+          fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, it->string(), why()));
     }
   }
   remove_leftovers();
   const auto lock = lock_run_paths();
   staging_ = fmt::format("{}/.{}{}{}-{}", parent_, name_, kStagingMark, process_tag(), g_staging_count++);
   if (::mkdir(staging_.c_str(), 0777) != 0)
-    throw std::runtime_error(fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, staging_, why()));
+    throw std::runtime_error(
+        fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, staging_, why()));
   staging_id_ = register_run_path(staging_, RunPath::staging);
 }
 
@@ -245,10 +258,12 @@ void StagedFolder::remove_leftovers() {
     std::vector<std::string> kept;
     for (const std::string& n : names_in(path)) {
       const bool folder = is_folder_at(from.fd, n);
-      const bool ours = !folder && (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end() || is_dead_temporary(n));
+      const bool ours = !folder && (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end() ||
+                                    is_dead_temporary(n));
       if (ours || (to.fd >= 0 && same_file_at(from.fd, to.fd, n))) {
         ::unlinkat(from.fd, n.c_str(), 0);
-      } else if (to.fd >= 0 && !exists_at(to.fd, n) && ::renameat(from.fd, n.c_str(), to.fd, n.c_str()) == 0) {
+      } else if (to.fd >= 0 && !exists_at(to.fd, n) &&
+                 ::renameat(from.fd, n.c_str(), to.fd, n.c_str()) == 0) {
         // carried across by that run and not yet in place: back where it was
       } else {
         kept.push_back(n);
@@ -256,10 +271,10 @@ void StagedFolder::remove_leftovers() {
     }
     if (::rmdir(path.c_str()) == 0) leftovers_.push_back(e);
     else
-      leftover_notes_.push_back(
-          fmt::format("kept {}, left by a run that ended before it finished: it holds {} (not canopy's, and not "
-                      "the same as in {})",
-                      path, fmt::join(kept, ", "), dir_));
+      leftover_notes_.push_back(fmt::format(
+          "kept {}, left by a run that ended before it finished: it holds {} (not canopy's, and not "
+          "the same as in {})",
+          path, fmt::join(kept, ", "), dir_));
   }
 }
 
@@ -271,7 +286,8 @@ StagedFolder::Committed StagedFolder::commit() {
     struct stat st;
     if (::lstat(f.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
     Fd file(f, O_RDONLY | O_CLOEXEC);
-    if (file.fd < 0 || ::fsync(file.fd) != 0) throw std::runtime_error(fmt::format("cannot sync {}: {}", f, why()));
+    if (file.fd < 0 || ::fsync(file.fd) != 0)
+      throw std::runtime_error(fmt::format("cannot sync {}: {}", f, why()));
   }
   sync_folder(staging_);
 
@@ -285,9 +301,11 @@ StagedFolder::Committed StagedFolder::commit() {
     unregister_run_path(staging_id_);
     staging_id_ = 0;
   } else {
-    if (!S_ISDIR(st.st_mode)) throw std::runtime_error(fmt::format("cannot replace {}: it is not a folder", dir_));
+    if (!S_ISDIR(st.st_mode))
+      throw std::runtime_error(fmt::format("cannot replace {}: it is not a folder", dir_));
     Fd old_fd(dir_), new_fd(staging_);
-    if (old_fd.fd < 0 || new_fd.fd < 0) throw std::runtime_error(fmt::format("cannot open {} or {}: {}", dir_, staging_, why()));
+    if (old_fd.fd < 0 || new_fd.fd < 0)
+      throw std::runtime_error(fmt::format("cannot open {} or {}: {}", dir_, staging_, why()));
     // The earlier folder's other entries carried across: files linked (present in both until the
     // swap), folders moved (absent from the earlier folder for the instant before the swap).
     std::vector<std::string> moved;
@@ -356,8 +374,9 @@ StagedFolder::Committed StagedFolder::commit() {
         ::unlinkat(old_fd.fd, n.c_str(), 0);
     }
     if (::rmdir(old_path.c_str()) != 0)
-      out.notes.push_back(fmt::format("kept the earlier folder as {}: it holds {} that could not be moved into {}", old_path,
-                                      fmt::join(names_in(old_path), ", "), dir_));
+      out.notes.push_back(
+          fmt::format("kept the earlier folder as {}: it holds {} that could not be moved into {}", old_path,
+                      fmt::join(names_in(old_path), ", "), dir_));
   }
   unregister_run_path(staging_id_);
   return out;

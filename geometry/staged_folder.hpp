@@ -75,7 +75,8 @@ class StagedFolder {
 /// Opens `files[i]` on `paths[i]` (files of folder `dir`) so that all come from one set: the
 /// folder's identity is read before and after they are opened, and they are opened again when a
 /// run swapped the folder in between. Once open, a file reads whole whatever replaces it.
-void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files, const std::vector<std::string>& paths);
+void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files,
+                     const std::vector<std::string>& paths);
 /// The same rule for any way of opening: `open_all` (which replaces what it opened before) is
 /// called again until the folder was not swapped while it ran.
 void open_in_one_set(const std::string& dir, const std::function<void()>& open_all);

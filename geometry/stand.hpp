@@ -48,7 +48,9 @@ struct Stand {
   std::size_t organ_count() const { return organs.size(); }
   std::size_t plant_count() const { return plants.size(); }
   /// The origin of plant p relative to stand_origin, in double.
-  Vec3d offset(std::size_t p) const { return {plants[p].x - stand_origin.x, plants[p].y - stand_origin.y, 0}; }
+  Vec3d offset(std::size_t p) const {
+    return {plants[p].x - stand_origin.x, plants[p].y - stand_origin.y, 0};
+  }
 };
 
 }  // namespace canopy

@@ -21,8 +21,8 @@ struct LeafAreaIndex {
 /// plant_spacing x row_spacing of ground. Counted on the inner plants (neither in the first or
 /// last row nor first or last in its row), so the open edges of a small stand do not bias it;
 /// a stand with fewer than 3 rows or 3 plants a row has no inner plants and counts every plant.
-LeafAreaIndex leaf_area_index(const Stand& stand, PrototypeLibrary& lib, int rows, int per_row, double plant_spacing,
-                              double row_spacing);
+LeafAreaIndex leaf_area_index(const Stand& stand, PrototypeLibrary& lib, int rows, int per_row,
+                              double plant_spacing, double row_spacing);
 
 /// One-sided leaflet area of each plant, m2 (the exported meshes' areas).
 std::vector<double> leaflet_area_per_plant(const Stand& stand, PrototypeLibrary& lib);

@@ -20,9 +20,10 @@ namespace detail {
 [[noreturn]] inline void number_too_long(double v, int decimals) {
   char shown[32];
   const auto r = std::to_chars(shown, shown + sizeof shown, v, std::chars_format::scientific, 6);
-  throw std::range_error(std::string("cannot write the number ") + std::string(shown, r.ptr) +
-                         (decimals >= 0 ? " with " + std::to_string(decimals) + " fixed decimals" : std::string()) +
-                         ": it does not fit an export's number field");
+  throw std::range_error(
+      std::string("cannot write the number ") + std::string(shown, r.ptr) +
+      (decimals >= 0 ? " with " + std::to_string(decimals) + " fixed decimals" : std::string()) +
+      ": it does not fit an export's number field");
 }
 }  // namespace detail
 

@@ -46,7 +46,8 @@ CANOPY_HD_OUTLINE inline double point_triangle_dist2(D3 p, const D3 t[3]) {
   const D3 a = t[0], b = t[1], c = t[2];
   const D3 n = cross(b - a, c - a);
   if (n.x == 0 && n.y == 0 && n.z == 0)
-    return min_d(segment_segment_dist2(p, p, a, b), min_d(segment_segment_dist2(p, p, b, c), segment_segment_dist2(p, p, c, a)));
+    return min_d(segment_segment_dist2(p, p, a, b),
+                 min_d(segment_segment_dist2(p, p, b, c), segment_segment_dist2(p, p, c, a)));
   const D3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   D3 q;
@@ -61,7 +62,8 @@ CANOPY_HD_OUTLINE inline double point_triangle_dist2(D3 p, const D3 t[3]) {
     else if (vc <= 0 && d1 >= 0 && d3v <= 0) q = a + ab * (d1 / (d1 - d3v));
     else if (d6 >= 0 && d5 <= d6) q = c;
     else if (vb <= 0 && d2 >= 0 && d6 <= 0) q = a + ac * (d2 / (d2 - d6));
-    else if (va <= 0 && (d4 - d3v) >= 0 && (d5 - d6) >= 0) q = b + (c - b) * ((d4 - d3v) / ((d4 - d3v) + (d5 - d6)));
+    else if (va <= 0 && (d4 - d3v) >= 0 && (d5 - d6) >= 0)
+      q = b + (c - b) * ((d4 - d3v) / ((d4 - d3v) + (d5 - d6)));
     else {
       const double denom = 1.0 / (va + vb + vc);
       q = a + ab * (vb * denom) + ac * (vc * denom);
@@ -115,12 +117,14 @@ CANOPY_HD inline bool apart_on_edge_axes(const D3 t[3], const D3 u[3], double cl
 /// Whether two closed triangles come within `clearance` of each other (intersecting counts).
 /// `likely_touching` (a pair that touched at a nearby pose) only changes the order of the work:
 /// the intersection test first, the quick rejections after; the answer is the same.
-CANOPY_HD_OUTLINE inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance, bool likely_touching = false) {
+CANOPY_HD_OUTLINE inline bool triangles_within(const Vec3f* pa, const Vec3f* pb, double clearance,
+                                               bool likely_touching = false) {
   D3 a[3], b[3];
   const D3 *t, *u;
   canonical_pair(pa, pb, a, b, t, u);
   if (likely_touching && triangles_intersect_canonical(t, u)) return true;
-  if (beyond_plane(t, u, clearance) || beyond_plane(u, t, clearance) || apart_on_edge_axes(t, u, clearance)) return false;
+  if (beyond_plane(t, u, clearance) || beyond_plane(u, t, clearance) || apart_on_edge_axes(t, u, clearance))
+    return false;
   if (!likely_touching && triangles_intersect_canonical(t, u)) return true;
   const double c2 = clearance * clearance;
   for (int i = 0; i < 3; ++i) {

@@ -78,8 +78,8 @@ CANOPY_HD inline bool beyond_obb(const Vec3f* t, const Obb& o, float margin) {
 
 /// Whether the float tests reject the pair (t, u) at `margin` (clearance + kRejectSlack): u
 /// beyond t's plane, t beyond u's, or apart on an edge-edge axis.
-CANOPY_HD inline bool triangles_rejected(const TrianglePlane& pt, const Vec3f* t, const TrianglePlane& pu, const Vec3f* u,
-                                         float margin) {
+CANOPY_HD inline bool triangles_rejected(const TrianglePlane& pt, const Vec3f* t, const TrianglePlane& pu,
+                                         const Vec3f* u, float margin) {
   return pu.beyond(t, margin) || pt.beyond(u, margin) || apart_on_edges(t, u, margin);
 }
 

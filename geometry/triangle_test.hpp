@@ -23,25 +23,34 @@ CANOPY_HD inline D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - 
 CANOPY_HD inline D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 CANOPY_HD inline D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
 CANOPY_HD inline double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-CANOPY_HD inline D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-CANOPY_HD inline bool less(D3 a, D3 b) { return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z))); }
+CANOPY_HD inline D3 cross(D3 a, D3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+CANOPY_HD inline bool less(D3 a, D3 b) {
+  return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+}
 CANOPY_HD inline bool same(D3 a, D3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 /// det[b - a, c - a, d - a]: positive when d lies on the side of plane (a, b, c) that
 /// (b - a) x (c - a) points to.
 CANOPY_HD inline double orient3d(D3 a, D3 b, D3 c, D3 d) {
   const D3 ba = b - a, ca = c - a, da = d - a;
-  return ba.x * (ca.y * da.z - ca.z * da.y) - ba.y * (ca.x * da.z - ca.z * da.x) + ba.z * (ca.x * da.y - ca.y * da.x);
+  return ba.x * (ca.y * da.z - ca.z * da.y) - ba.y * (ca.x * da.z - ca.z * da.x) +
+         ba.z * (ca.x * da.y - ca.y * da.x);
 }
 
 struct P2 {
   double u, v;
 };
-CANOPY_HD inline double orient2d(P2 a, P2 b, P2 c) { return (b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u); }
+CANOPY_HD inline double orient2d(P2 a, P2 b, P2 c) {
+  return (b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u);
+}
 CANOPY_HD inline int sign(double x) { return (x > 0) - (x < 0); }
 
 /// Drops the coordinate `axis` (0, 1, 2).
-CANOPY_HD inline P2 project(D3 p, int axis) { return axis == 0 ? P2{p.y, p.z} : axis == 1 ? P2{p.z, p.x} : P2{p.x, p.y}; }
+CANOPY_HD inline P2 project(D3 p, int axis) {
+  return axis == 0 ? P2{p.y, p.z} : axis == 1 ? P2{p.z, p.x} : P2{p.x, p.y};
+}
 CANOPY_HD inline int dominant_axis(D3 n) {
   const double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
   return ax >= ay && ax >= az ? 0 : ay >= az ? 1 : 2;
@@ -66,7 +75,8 @@ CANOPY_HD inline bool segments_2d(P2 a, P2 b, P2 c, P2 d) {
 
 /// p in the closed triangle (a, b, c) of the plane; a degenerate triangle counts as its edges.
 CANOPY_HD inline bool point_in_triangle_2d(P2 p, P2 a, P2 b, P2 c) {
-  if (orient2d(a, b, c) == 0) return segments_2d(a, b, p, p) || segments_2d(b, c, p, p) || segments_2d(c, a, p, p);
+  if (orient2d(a, b, c) == 0)
+    return segments_2d(a, b, p, p) || segments_2d(b, c, p, p) || segments_2d(c, a, p, p);
   const int s1 = sign(orient2d(a, b, p)), s2 = sign(orient2d(b, c, p)), s3 = sign(orient2d(c, a, p));
   return !((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0));
 }
@@ -126,7 +136,8 @@ CANOPY_HD inline bool segment_triangle_sided(D3 a, D3 b, const D3 t[3], D3 n, do
   if ((sa > 0 && sb > 0) || (sa < 0 && sb < 0)) return false;
   if (sa == 0 && sb == 0) return segment_triangle_in_plane(a, b, t, n);
   // The segment crosses or touches the plane: does its line pass through the closed triangle?
-  const int s1 = sign(orient3d(a, b, t[0], t[1])), s2 = sign(orient3d(a, b, t[1], t[2])), s3 = sign(orient3d(a, b, t[2], t[0]));
+  const int s1 = sign(orient3d(a, b, t[0], t[1])), s2 = sign(orient3d(a, b, t[1], t[2])),
+            s3 = sign(orient3d(a, b, t[2], t[0]));
   return !((s1 < 0 || s2 < 0 || s3 < 0) && (s1 > 0 || s2 > 0 || s3 > 0));
 }
 
@@ -166,7 +177,8 @@ CANOPY_HD inline bool triangle_less(const D3 a[3], const D3 b[3]) {
 
 /// The canonical order of a triangle pair: each triangle's vertices sorted, then the smaller
 /// triangle first (t), so every vertex order and argument order computes the same thing.
-CANOPY_HD inline void canonical_pair(const Vec3f* pa, const Vec3f* pb, D3 a[3], D3 b[3], const D3*& t, const D3*& u) {
+CANOPY_HD inline void canonical_pair(const Vec3f* pa, const Vec3f* pb, D3 a[3], D3 b[3], const D3*& t,
+                                     const D3*& u) {
   for (int i = 0; i < 3; ++i) a[i] = d3(pa[i]), b[i] = d3(pb[i]);
   sort3(a);
   sort3(b);
@@ -193,11 +205,13 @@ CANOPY_HD_OUTLINE inline bool triangles_intersect_canonical(const D3* t, const D
   // Not coplanar (or degenerate): they meet exactly when an edge of one meets the other.
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
-    if (du ? segment_triangle(t[i], t[j], u) : segment_triangle_sided(t[i], t[j], u, nu, st[i], st[j])) return true;
+    if (du ? segment_triangle(t[i], t[j], u) : segment_triangle_sided(t[i], t[j], u, nu, st[i], st[j]))
+      return true;
   }
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3;
-    if (dt ? segment_triangle(u[i], u[j], t) : segment_triangle_sided(u[i], u[j], t, nt, su[i], su[j])) return true;
+    if (dt ? segment_triangle(u[i], u[j], t) : segment_triangle_sided(u[i], u[j], t, nt, su[i], su[j]))
+      return true;
   }
   return false;
 }
@@ -218,7 +232,8 @@ CANOPY_HD_OUTLINE inline bool triangles_intersect(const Vec3f* pa, const Vec3f* 
 CANOPY_HD inline bool point_in_convex(D3 p, const Vec3f* vertices, const unsigned* indices, int triangles) {
   bool inner = false;
   for (int f = 0; f < triangles; ++f) {
-    const D3 a = d3(vertices[indices[3 * f]]), b = d3(vertices[indices[3 * f + 1]]), c = d3(vertices[indices[3 * f + 2]]);
+    const D3 a = d3(vertices[indices[3 * f]]), b = d3(vertices[indices[3 * f + 1]]),
+             c = d3(vertices[indices[3 * f + 2]]);
     const double o = orient3d(a, b, c, p);
     if (o > 0) return false;
     inner |= o < 0;

@@ -10,6 +10,7 @@ namespace canopy::light {
 /// One-sided leaflet area in each of `layers` layers `layer_m` high from the ground, each triangle
 /// in the layer of its centroid (the top layer takes what lies above, the first what lies
 /// below); summed plant by plant in organ order, so the same on any thread count.
-std::vector<double> layer_leaf_area(const Stand& stand, PrototypeLibrary& lib, double layer_m, std::size_t layers);
+std::vector<double> layer_leaf_area(const Stand& stand, PrototypeLibrary& lib, double layer_m,
+                                    std::size_t layers);
 
 }  // namespace canopy::light

@@ -55,7 +55,8 @@ struct Run {
     d.plant.resize(stand.plant_count());
     d.plant_star.resize(stand.plant_count());
     for (std::size_t p = 0; p < stand.plant_count(); ++p) {
-      d.plant[p] = {static_cast<double>(t.plant[p]) * cp, std::sqrt(static_cast<double>(t.plant_diff[p])) * cp};
+      d.plant[p] = {static_cast<double>(t.plant[p]) * cp,
+                    std::sqrt(static_cast<double>(t.plant_diff[p])) * cp};
       const double la = plant_leaf_area[p];
       if (la > 0)
         d.plant_star[p] = {static_cast<double>(t.plant_leaf[p]) * silhouette / la,
@@ -72,10 +73,10 @@ struct Run {
   DirectionLight trace(Vec3d toward, double n, std::uint64_t stream) {
     const Box2d reg = region(toward);
     if (n > kMaxRaysPerDirection)
-      throw std::invalid_argument(
-          fmt::format("the errors asked for need {:.3g} rays in one direction (the limit is {:.3g}): ask for a larger "
-                      "--error or --plant-error, or fewer --rays-per-m2",
-                      n, kMaxRaysPerDirection));
+      throw std::invalid_argument(fmt::format(
+          "the errors asked for need {:.3g} rays in one direction (the limit is {:.3g}): ask for a larger "
+          "--error or --plant-error, or fewer --rays-per-m2",
+          n, kMaxRaysPerDirection));
     DirectionJob job;
     job.toward = toward;
     job.grid = make_grid(reg, n);
@@ -108,10 +109,10 @@ struct Run {
   static void check_reachable(double n, double r) {
     const double need = n * std::pow(std::max(r, 1.0), 1 / 0.75);
     if (need > kMaxRaysPerDirection)
-      throw std::invalid_argument(
-          fmt::format("the errors asked for need more than {:.3g} rays in one direction (the limit is {:.3g}): ask "
-                      "for a larger --error or --plant-error",
-                      need, kMaxRaysPerDirection));
+      throw std::invalid_argument(fmt::format(
+          "the errors asked for need more than {:.3g} rays in one direction (the limit is {:.3g}): ask "
+          "for a larger --error or --plant-error",
+          need, kMaxRaysPerDirection));
   }
 
   /// The exponent a of error ~ rays^-a. Independent rays fall at 0.5 and a jittered grid over
@@ -146,17 +147,21 @@ struct Run {
 
   /// The sky's directions combined with their weights: fractions and STAR, their errors from the
   /// directions' (independent) errors.
-  DirectionLight combine(const std::vector<DirectionLight>& dirs, const std::vector<SkyDirection>& sky) const {
+  DirectionLight combine(const std::vector<DirectionLight>& dirs,
+                         const std::vector<SkyDirection>& sky) const {
     DirectionLight c;
     c.elevation_deg = c.azimuth_deg = 0;
     c.plant.resize(stand.plant_count()), c.plant_star.resize(stand.plant_count()), c.layer.resize(layers);
-    const auto add = [](Estimate& a, const Estimate& b, double w) { a.value += w * b.value, a.se += sq(w * b.se); };
+    const auto add = [](Estimate& a, const Estimate& b, double w) {
+      a.value += w * b.value, a.se += sq(w * b.se);
+    };
     for (std::size_t i = 0; i < dirs.size(); ++i) {
       const double w = sky[i].weight;
       const DirectionLight& d = dirs[i];
       c.rays += d.rays;
       add(c.fraction, d.fraction, w), add(c.star, d.star, w);
-      for (std::size_t p = 0; p < c.plant.size(); ++p) add(c.plant[p], d.plant[p], w), add(c.plant_star[p], d.plant_star[p], w);
+      for (std::size_t p = 0; p < c.plant.size(); ++p)
+        add(c.plant[p], d.plant[p], w), add(c.plant_star[p], d.plant_star[p], w);
       for (std::size_t k = 0; k < kKinds; ++k) add(c.kind[k], d.kind[k], w);
       for (std::size_t l = 0; l < layers; ++l) add(c.layer[l], d.layer[l], w);
     }
@@ -206,7 +211,8 @@ struct Run {
       };
       std::vector<double> n = shares([](const DirectionLight& x) { return x.fraction.se; }, cfg.error);
       if (cfg.plant_error) {
-        const std::vector<double> np = shares([this](const DirectionLight& x) { return plant_rms(x.plant); }, *cfg.plant_error);
+        const std::vector<double> np =
+            shares([this](const DirectionLight& x) { return plant_rms(x.plant); }, *cfg.plant_error);
         for (std::size_t i = 0; i < n.size(); ++i) n[i] = std::max(n[i], np[i]);
       }
       for (std::size_t i = 0; i < sky.size(); ++i) {
@@ -226,16 +232,19 @@ struct Run {
 
 void check_config(const LightConfig& c) {
   const auto error_ok = [](double e) { return e >= kMinError && e <= kMaxError; };
-  if (!error_ok(c.error)) throw std::invalid_argument(fmt::format("--error: {} is not in {}..{}", c.error, kMinError, kMaxError));
+  if (!error_ok(c.error))
+    throw std::invalid_argument(fmt::format("--error: {} is not in {}..{}", c.error, kMinError, kMaxError));
   if (c.plant_error && !error_ok(*c.plant_error))
-    throw std::invalid_argument(fmt::format("--plant-error: {} is not in {}..{}", *c.plant_error, kMinError, kMaxError));
+    throw std::invalid_argument(
+        fmt::format("--plant-error: {} is not in {}..{}", *c.plant_error, kMinError, kMaxError));
   if (c.rays_per_m2 && !(*c.rays_per_m2 > 0 && *c.rays_per_m2 <= 1e9))
     throw std::invalid_argument(fmt::format("--rays-per-m2: {} is not in (0, 1e9]", *c.rays_per_m2));
   for (const Beam& b : c.suns) {
     if (!(b.elevation_deg > 0 && b.elevation_deg <= 90))
       throw std::invalid_argument(
           fmt::format("--sun: elevation {} is not above the horizon (0 < elevation <= 90)", b.elevation_deg));
-    if (!std::isfinite(b.azimuth_deg)) throw std::invalid_argument("--sun: the azimuth must be a finite number");
+    if (!std::isfinite(b.azimuth_deg))
+      throw std::invalid_argument("--sun: the azimuth must be a finite number");
   }
   if (c.sky_directions != 0) (void)sky_directions(c.sky, c.sky_directions);
   if (!(c.tile.width() > 0 && c.tile.height() > 0 && std::isfinite(c.tile.area())))
@@ -243,7 +252,8 @@ void check_config(const LightConfig& c) {
         fmt::format("--tile: [{}, {}] x [{}, {}] has no area", c.tile.x0, c.tile.x1, c.tile.y0, c.tile.y1));
   if (!(c.layer_m >= 1e-3 && c.layer_m <= 1e3))
     throw std::invalid_argument(fmt::format("--layer: {} m is not in 0.001..1000", c.layer_m));
-  if (c.pilot_rays < 2 || c.sky_pilot_rays < 2) throw std::invalid_argument("first passes need at least 2 rays");
+  if (c.pilot_rays < 2 || c.sky_pilot_rays < 2)
+    throw std::invalid_argument("first passes need at least 2 rays");
 }
 
 LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const LightConfig& cfg) {
@@ -266,7 +276,8 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   r.scene_s = seconds_since(t_scene);
   const double layers_d = std::ceil(std::max(scene.hi().z, 0.0) / cfg.layer_m);
   if (layers_d > static_cast<double>(kMaxLayers))
-    throw std::invalid_argument(fmt::format("--layer: {} m cuts the stand into more than {} layers", cfg.layer_m, kMaxLayers));
+    throw std::invalid_argument(
+        fmt::format("--layer: {} m cuts the stand into more than {} layers", cfg.layer_m, kMaxLayers));
   const std::size_t layers = std::max<std::size_t>(1, static_cast<std::size_t>(layers_d));
   r.layer_leaf_area = layer_leaf_area(stand, lib, cfg.layer_m, layers);
 

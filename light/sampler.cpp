@@ -35,13 +35,15 @@ Grid make_grid(const Box2d& region, double rays) {
   return g;
 }
 
-Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t plants, const DirectionJob& job) {
+Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t plants,
+                      const DirectionJob& job) {
   Tally total(plants, job.layers);
   const Grid& g = job.grid;
   const Vec3d s = job.toward, d{-s.x, -s.y, -s.z};
   const double top = scene.hi().z + 1e-3;  // rays start above everything
   const double t_max = top / s.z;          // distance from the start to the ground
-  const double cw = g.region.width() / static_cast<double>(g.nx), ch = g.region.height() / static_cast<double>(g.ny);
+  const double cw = g.region.width() / static_cast<double>(g.nx),
+               ch = g.region.height() / static_cast<double>(g.ny);
   const std::uint64_t base = mix(job.seed ^ mix(job.stream * 0xd1b54a32d192ed03ULL));
   const std::int32_t last_layer = static_cast<std::int32_t>(job.layers) - 1;
   const auto outcome = [&](std::uint64_t i, std::uint64_t j) {

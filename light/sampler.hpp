@@ -37,6 +37,7 @@ struct DirectionJob {
 };
 
 /// Traces every ray of the job and counts what they hit (OpenMP threads over grid rows).
-Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t plants, const DirectionJob& job);
+Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t plants,
+                      const DirectionJob& job);
 
 }  // namespace canopy::light

@@ -39,7 +39,8 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
   // Embree's build threads: as many as the run's OpenMP team (--threads N means N throughout).
   impl_->device = rtcNewDevice(fmt::format("threads={}", std::max(1, omp_get_max_threads())).c_str());
   if (!impl_->device)
-    throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
+    throw std::runtime_error(
+        fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   RTCDevice dev = impl_->device;
   // One scene per mesh: prototype, level of detail and, for a leaflet, its curved shape.
   impl_->prototypes.assign(kMeshSlots, nullptr);
@@ -88,7 +89,8 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
     rtcReleaseGeometry(inst);
     const Box3f& bx = lib.get(r).box;
     for (int k = 0; k < 8; ++k) {
-      const Vec3f p = apply(t, Vec3f{(k & 1) ? bx.hi.x : bx.lo.x, (k & 2) ? bx.hi.y : bx.lo.y, (k & 4) ? bx.hi.z : bx.lo.z});
+      const Vec3f p = apply(
+          t, Vec3f{(k & 1) ? bx.hi.x : bx.lo.x, (k & 2) ? bx.hi.y : bx.lo.y, (k & 4) ? bx.hi.z : bx.lo.z});
       const Vec3d w = to_double(p) + off;
       lo_ = {std::min(lo_.x, w.x), std::min(lo_.y, w.y), std::min(lo_.z, w.z)};
       hi_ = {std::max(hi_.x, w.x), std::max(hi_.y, w.y), std::max(hi_.z, w.z)};
@@ -97,7 +99,8 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
   if (!(lo_.x <= hi_.x)) lo_ = {0, 0, 0}, hi_ = {0, 0, 0};
   // A margin well above float rounding at the stand's extent: the ray's float origin and Embree's
   // float boxes never clip a hit at the box's edge (a wider box only traces a copy more often).
-  const double pad = 1e-5 * (1 + std::max({std::abs(lo_.x), std::abs(lo_.y), std::abs(hi_.x), std::abs(hi_.y), hi_.z}));
+  const double pad =
+      1e-5 * (1 + std::max({std::abs(lo_.x), std::abs(lo_.y), std::abs(hi_.x), std::abs(hi_.y), hi_.z}));
   lo_ = lo_ - Vec3d{pad, pad, pad}, hi_ = hi_ + Vec3d{pad, pad, pad};
   lo_.z = std::min(lo_.z, 0.0);
   rtcCommitScene(impl_->top);
@@ -112,7 +115,8 @@ namespace {
 /// Entry and exit of the ray in box [lo, hi] within [0, t_max]; false when it misses.
 bool slab(Vec3d o, Vec3d d, Vec3d lo, Vec3d hi, double t_max, double& t0, double& t1) {
   t0 = 0, t1 = t_max;
-  const double os[3] = {o.x, o.y, o.z}, ds[3] = {d.x, d.y, d.z}, ls[3] = {lo.x, lo.y, lo.z}, hs[3] = {hi.x, hi.y, hi.z};
+  const double os[3] = {o.x, o.y, o.z}, ds[3] = {d.x, d.y, d.z}, ls[3] = {lo.x, lo.y, lo.z},
+               hs[3] = {hi.x, hi.y, hi.z};
   for (int a = 0; a < 3; ++a) {
     if (ds[a] == 0) {
       if (os[a] < ls[a] || os[a] > hs[a]) return false;
@@ -135,12 +139,15 @@ Hit Scene::trace(Vec3d org, Vec3d dir, double t_max) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRayHit rh{};
-    rh.ray.org_x = static_cast<float>(o.x), rh.ray.org_y = static_cast<float>(o.y), rh.ray.org_z = static_cast<float>(o.z);
-    rh.ray.dir_x = static_cast<float>(dir.x), rh.ray.dir_y = static_cast<float>(dir.y), rh.ray.dir_z = static_cast<float>(dir.z);
+    rh.ray.org_x = static_cast<float>(o.x), rh.ray.org_y = static_cast<float>(o.y),
+    rh.ray.org_z = static_cast<float>(o.z);
+    rh.ray.dir_x = static_cast<float>(dir.x), rh.ray.dir_y = static_cast<float>(dir.y),
+    rh.ray.dir_z = static_cast<float>(dir.z);
     rh.ray.tnear = static_cast<float>(t0), rh.ray.tfar = static_cast<float>(t1), rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->top, &ctx, &rh);
-    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID && rh.ray.tfar < best.t) best.organ = rh.hit.instID[0], best.t = rh.ray.tfar;
+    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID && rh.ray.tfar < best.t)
+      best.organ = rh.hit.instID[0], best.t = rh.ray.tfar;
   };
   if (px_ <= 0 || py_ <= 0) {
     double t0, t1;
@@ -151,8 +158,10 @@ Hit Scene::trace(Vec3d org, Vec3d dir, double t_max) const {
   const Vec3d end = org + dir * t_max;
   const double sx0 = std::min(org.x, end.x), sx1 = std::max(org.x, end.x), sy0 = std::min(org.y, end.y),
                sy1 = std::max(org.y, end.y);
-  const long i0 = static_cast<long>(std::ceil((sx0 - hi_.x) / px_)), i1 = static_cast<long>(std::floor((sx1 - lo_.x) / px_));
-  const long j0 = static_cast<long>(std::ceil((sy0 - hi_.y) / py_)), j1 = static_cast<long>(std::floor((sy1 - lo_.y) / py_));
+  const long i0 = static_cast<long>(std::ceil((sx0 - hi_.x) / px_)),
+             i1 = static_cast<long>(std::floor((sx1 - lo_.x) / px_));
+  const long j0 = static_cast<long>(std::ceil((sy0 - hi_.y) / py_)),
+             j1 = static_cast<long>(std::floor((sy1 - lo_.y) / py_));
   struct Copy {
     double t0, t1;
     Vec3d o;

@@ -52,7 +52,8 @@ std::vector<SkyDirection> sky_directions(SkyModel model, int n) {
     const int first = cum[static_cast<std::size_t>(k) - 1], count = cum[static_cast<std::size_t>(k)] - first;
     if (count <= 0) continue;
     // A cap of zenith t holds 2 pi (1 - cos t) sr: ring borders at equal area.
-    const double c_top = 1 - static_cast<double>(first) / n, c_bottom = 1 - static_cast<double>(first + count) / n;
+    const double c_top = 1 - static_cast<double>(first) / n,
+                 c_bottom = 1 - static_cast<double>(first + count) / n;
     const double c_mid = 1 - (first + 0.5 * count) / n;
     const double zenith = first == 0 && count == 1 ? 0.0 : std::acos(c_mid);
     const double w = radiance_cos_integral(model, std::max(0.0, c_bottom), c_top) / total / count;
@@ -68,9 +69,12 @@ std::vector<SkyDirection> sky_directions(SkyModel model, int n) {
 }
 
 SunPosition solar_position(double latitude_deg, int day, double hour) {
-  if (!(std::abs(latitude_deg) <= 90)) throw std::invalid_argument(fmt::format("--latitude: {} is not in -90..90", latitude_deg));
-  if (day < 1 || day > 366) throw std::invalid_argument(fmt::format("--day: {} is not a day of the year (1..366)", day));
-  if (!(hour >= 0 && hour <= 24)) throw std::invalid_argument(fmt::format("--hours: {} is not a solar time in 0..24", hour));
+  if (!(std::abs(latitude_deg) <= 90))
+    throw std::invalid_argument(fmt::format("--latitude: {} is not in -90..90", latitude_deg));
+  if (day < 1 || day > 366)
+    throw std::invalid_argument(fmt::format("--day: {} is not a day of the year (1..366)", day));
+  if (!(hour >= 0 && hour <= 24))
+    throw std::invalid_argument(fmt::format("--hours: {} is not a solar time in 0..24", hour));
   const double decl = 23.45 * kDeg * std::sin(2 * std::numbers::pi * (284 + day) / 365.0);
   const double omega = 15 * kDeg * (hour - 12), phi = latitude_deg * kDeg;
   // The unit vector toward the sun in (east, north, up).

@@ -38,8 +38,8 @@ struct Tally {
 
   Tally() = default;
   Tally(std::size_t plants, std::size_t layers)
-      : plant(plants, 0), plant_diff(plants, 0), plant_leaf(plants, 0), plant_leaf_diff(plants, 0), layer(layers, 0),
-        layer_diff(layers, 0) {}
+      : plant(plants, 0), plant_diff(plants, 0), plant_leaf(plants, 0), plant_leaf_diff(plants, 0),
+        layer(layers, 0), layer_diff(layers, 0) {}
 
   void add(const Outcome& a) {
     ++rays;

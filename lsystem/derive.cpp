@@ -8,10 +8,10 @@ namespace canopy {
 namespace {
 
 [[noreturn]] void cap_exceeded(std::size_t cap, std::size_t step) {
-  throw ModuleCapError(
-      fmt::format("the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
-                  "many steps; lower --steps or raise --max-modules)",
-                  cap, step == 0 ? std::string() : fmt::format(" at step {}", step)));
+  throw ModuleCapError(fmt::format(
+      "the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
+      "many steps; lower --steps or raise --max-modules)",
+      cap, step == 0 ? std::string() : fmt::format(" at step {}", step)));
 }
 
 /// Copies a module's `n` parameters, starting at params[offset], into the production's frame.
@@ -46,7 +46,8 @@ void ContextIndex::build(const Grammar& g, const ModuleString& s) {
     const Symbol x = s.symbols[i];
     param_offset[i] = static_cast<std::uint32_t>(off);
     off += static_cast<std::uint64_t>(g.symbols.arity(x) < 0 ? 0 : g.symbols.arity(x));
-    if (off > std::numeric_limits<std::uint32_t>::max()) throw ModuleCapError("too many parameters for context matching");
+    if (off > std::numeric_limits<std::uint32_t>::max())
+      throw ModuleCapError("too many parameters for context matching");
     left[i] = last;
     if (x == open) stack.push_back(last);
     else if (x == close) {
@@ -83,8 +84,8 @@ using Origins = PodBuffer<const SuccessorModule*>;
 /// `in`, `out_origin` for `out`): the slow path that locates an error found after derivation.
 /// Both forms draw the same numbers, so the tracked run derives the same string.
 template <bool Track>
-void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
-                  std::size_t max_modules, const Origins* in_origin, Origins* out_origin) {
+void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out,
+                  Rng& rng, std::size_t max_modules, const Origins* in_origin, Origins* out_origin) {
   if constexpr (Track) out_origin->clear();
   out.symbols.clear();
   out.params.clear();
@@ -95,7 +96,8 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
 
   const std::size_t nsym = table.mode.size();
   std::vector<int> arity(g.symbols.size());
-  for (std::size_t s = 0; s < arity.size(); ++s) arity[s] = std::max(0, g.symbols.arity(static_cast<Symbol>(s)));
+  for (std::size_t s = 0; s < arity.size(); ++s)
+    arity[s] = std::max(0, g.symbols.arity(static_cast<Symbol>(s)));
 
   const Symbol* sym = in.symbols.data();
   const double* par = in.params.data();
@@ -109,7 +111,8 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
     if (mode == RewriteMode::copy) {
       // A run of modules that stay as they are: copied in one piece.
       std::size_t j = i + 1, q = p + static_cast<std::size_t>(ar);
-      while (j < n && (sym[j] >= nsym || table.mode[sym[j]] == RewriteMode::copy)) q += static_cast<std::size_t>(arity[sym[j++]]);
+      while (j < n && (sym[j] >= nsym || table.mode[sym[j]] == RewriteMode::copy))
+        q += static_cast<std::size_t>(arity[sym[j++]]);
       out.symbols.append(sym + i, j - i);
       out.params.append(par + p, q - p);
       if constexpr (Track) out_origin->append(in_origin->data() + i, j - i);
@@ -132,13 +135,17 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
         for (std::size_t k = rg.left.size(); ok && k-- > 0;) {
           j = ctx.left[static_cast<std::size_t>(j)];
           if (j < 0 || sym[j] != rg.left[k].symbol) ok = false;
-          else bind(frame + rg.left[k].first_slot, par, ctx.param_offset[static_cast<std::size_t>(j)], arity[sym[j]]);
+          else
+            bind(frame + rg.left[k].first_slot, par, ctx.param_offset[static_cast<std::size_t>(j)],
+                 arity[sym[j]]);
         }
         j = static_cast<std::int32_t>(i);
         for (std::size_t k = 0; ok && k < rg.right.size(); ++k) {
           j = ctx.right[static_cast<std::size_t>(j)];
           if (j < 0 || sym[j] != rg.right[k].symbol) ok = false;
-          else bind(frame + rg.right[k].first_slot, par, ctx.param_offset[static_cast<std::size_t>(j)], arity[sym[j]]);
+          else
+            bind(frame + rg.right[k].first_slot, par, ctx.param_offset[static_cast<std::size_t>(j)],
+                 arity[sym[j]]);
         }
         if (!ok) continue;
         bind(frame + rg.predecessor.first_slot, par, p, ar);
@@ -186,7 +193,8 @@ void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, M
 ModuleString derive(const Grammar& g, const DeriveRequest& req) {
   const int steps = req.steps.value_or(g.steps);
   if (steps < 0 || steps > kMaxSteps)
-    throw std::invalid_argument(fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, steps));
+    throw std::invalid_argument(
+        fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, steps));
   Rng rng(req.seed.value_or(g.seed));
   ModuleString cur = evaluate_axiom(g, rng);
   if (cur.size() > req.max_modules) cap_exceeded(req.max_modules, 0);
@@ -212,7 +220,8 @@ Rng interpretation_stream(std::uint64_t seed) {
 
 }  // namespace
 
-ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint64_t seed, std::size_t max_modules) {
+ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint64_t seed,
+                       std::size_t max_modules) {
   if (g.interpretation.empty()) return derived;
   Rng rng = interpretation_stream(seed);
   ModuleString out;
@@ -220,8 +229,8 @@ ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint6
   return out;
 }
 
-std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& req, bool interpreted, std::size_t module,
-                                       int parameter) {
+std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& req, bool interpreted,
+                                       std::size_t module, int parameter) {
   const int steps = req.steps.value_or(g.steps);
   const std::uint64_t seed = req.seed.value_or(g.seed);
   Rng rng(seed);

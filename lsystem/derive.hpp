@@ -36,8 +36,8 @@ ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint6
 /// expression of its parameter `parameter` (0-based; -1: the module itself). Derives again while
 /// tracking every module, so it is for messages about a string already derived; nothing when the
 /// place is unknown.
-std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& req, bool interpreted, std::size_t module,
-                                       int parameter = -1);
+std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& req, bool interpreted,
+                                       std::size_t module, int parameter = -1);
 
 /// One parallel rewriting step of `in` by `table` into `out`.
 void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,

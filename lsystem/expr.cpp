@@ -110,7 +110,9 @@ class ExprParser {
     ExprParser& p;
     Nest(ExprParser& parser, std::size_t at) : p(parser) {
       if (++p.nesting_ > kMaxNesting)
-        p.error(at, "expression nested too deeply (more than {} levels of parentheses, unary operators or calls)", kMaxNesting);
+        p.error(at,
+                "expression nested too deeply (more than {} levels of parentheses, unary operators or calls)",
+                kMaxNesting);
     }
     ~Nest() { --p.nesting_; }
   };
@@ -164,7 +166,8 @@ class ExprParser {
     if (std::isalpha(static_cast<unsigned char>(c)) || c == '_') return name();
     if (eat("(")) {
       binary(1);
-      if (!eat(")")) error(i_, "expected ')' to close the '(' at column {}", pos_.column + static_cast<int>(col));
+      if (!eat(")"))
+        error(i_, "expected ')' to close the '(' at column {}", pos_.column + static_cast<int>(col));
       return;
     }
     error(col, "unexpected '{}' where a value was expected", c);
@@ -183,7 +186,8 @@ class ExprParser {
     }
     double v = 0;
     const auto r = std::from_chars(s_.data() + start, s_.data() + i_, v);
-    if (r.ec != std::errc() || r.ptr != s_.data() + i_) error(start, "malformed number '{}'", s_.substr(start, i_ - start));
+    if (r.ec != std::errc() || r.ptr != s_.data() + i_)
+      error(start, "malformed number '{}'", s_.substr(start, i_ - start));
     emit(Op::Const, start, 1, 0, v);
   }
 
@@ -221,7 +225,8 @@ class ExprParser {
       }
     }
     if (args < fn->min_args || args > fn->max_args) {
-      if (fn->min_args == fn->max_args) error(start, "'{}' takes {} argument(s), got {}", id, fn->min_args, args);
+      if (fn->min_args == fn->max_args)
+        error(start, "'{}' takes {} argument(s), got {}", id, fn->min_args, args);
       error(start, "'{}' takes at least {} arguments, got {}", id, fn->min_args, args);
     }
     if (fn->op == Op::Rand) out_.uses_rand_ = true;
@@ -352,7 +357,8 @@ double Expr::run(const double* frame, Rng* rng) const {
         break;
       }
       case Op::Rand: {
-        if (!rng) fail_at(pos_.shifted(in.column), "rand() cannot be used here (only in productions and the axiom)");
+        if (!rng)
+          fail_at(pos_.shifted(in.column), "rand() cannot be used here (only in productions and the axiom)");
         --sp;
         st[sp] = rng->uniform(st[sp], st[sp + 1]);
         break;

@@ -40,13 +40,16 @@ class Loader {
 
   Grammar load(const YAML::Node& root) {
     g_.file = src_.file();
-    if (!root.IsMap()) fail_at(src_.at(root), "a grammar file is a YAML map with keys such as axiom and productions");
+    if (!root.IsMap())
+      fail_at(src_.at(root), "a grammar file is a YAML map with keys such as axiom and productions");
     // A file that has none of a grammar's keys is not a grammar with a typo: it may be any file
     // (a path in a positions file, a wrong argument), and its text is not quoted back.
     bool any_known = false;
     for (const auto& kv : root)
       if (kv.first.IsScalar() && is_top_key(kv.first.Scalar())) any_known = true;
-    if (!any_known) fail_at(src_.at(root), "not a grammar file (none of its keys is a grammar's, such as axiom or productions)");
+    if (!any_known)
+      fail_at(src_.at(root),
+              "not a grammar file (none of its keys is a grammar's, such as axiom or productions)");
     src_.check_map(root, "the grammar", kTopKeys);
     if (root["name"]) g_.name = src_.string(root["name"], "name");
     if (root["seed"]) g_.seed = static_cast<std::uint64_t>(src_.integer(root["seed"], "seed", 0, INT64_MAX));
@@ -59,7 +62,8 @@ class Loader {
     collect_declared_names(root);
     RuleBuilder builder(g_, ModuleLexer(g_.multi_char_names));
     g_.axiom = builder.module_list(
-        src_.string(root["axiom"], "axiom"), [&](std::size_t off) { return src_.at(root["axiom"], off); }, "the axiom");
+        src_.string(root["axiom"], "axiom"), [&](std::size_t off) { return src_.at(root["axiom"], off); },
+        "the axiom");
     builder.check_brackets(g_.axiom, src_.at(root["axiom"]), "the axiom");
     g_.productions = build_rules(builder, root["productions"], "productions");
     g_.interpretation = build_rules(builder, root["interpretation"], "interpretation");
@@ -78,7 +82,8 @@ class Loader {
       src_.check_map(node, "constants", "");
       for (const auto& kv : node) {
         const std::string name = kv.first.Scalar();
-        if (!is_identifier(name)) fail_at(src_.at(kv.first), "constant name '{}' is not a name (letters, digits, _)", name);
+        if (!is_identifier(name))
+          fail_at(src_.at(kv.first), "constant name '{}' is not a name (letters, digits, _)", name);
         double value = 0;
         bool overridden = false;
         for (std::size_t i = 0; i < options_.overrides.size(); ++i)
@@ -88,13 +93,15 @@ class Loader {
           }
         if (!overridden) {
           const std::string text = src_.string(kv.second, fmt::format("constant '{}'", name));
-          const Expr e = Expr::compile(text, src_.at(kv.second, 0), [this](std::string_view n) -> std::optional<NameRef> {
-            for (const auto& [cn, cv] : g_.constants)
-              if (cn == n) return NameRef{false, 0, cv};
-            return std::nullopt;
-          });
+          const Expr e = Expr::compile(text, src_.at(kv.second, 0),
+                                       [this](std::string_view n) -> std::optional<NameRef> {
+                                         for (const auto& [cn, cv] : g_.constants)
+                                           if (cn == n) return NameRef{false, 0, cv};
+                                         return std::nullopt;
+                                       });
           if (e.uses_rand())
-            fail_at(src_.at(kv.second, 0), "constant '{}' may not use rand(); draw per plant in a production instead", name);
+            fail_at(src_.at(kv.second, 0),
+                    "constant '{}' may not use rand(); draw per plant in a production instead", name);
           value = e.eval_constant();
         }
         g_.constants.emplace_back(name, value);
@@ -104,8 +111,9 @@ class Loader {
       if (applied[i]) continue;
       std::string known;
       for (const auto& [cn, cv] : g_.constants) known += (known.empty() ? "" : ", ") + cn;
-      throw std::invalid_argument(fmt::format("--set {}: {} has no constant '{}' (its constants: {})", options_.overrides[i].name,
-                                              src_.file(), options_.overrides[i].name, known.empty() ? "none" : known));
+      throw std::invalid_argument(fmt::format("--set {}: {} has no constant '{}' (its constants: {})",
+                                              options_.overrides[i].name, src_.file(),
+                                              options_.overrides[i].name, known.empty() ? "none" : known));
     }
   }
 
@@ -147,7 +155,8 @@ class Loader {
       for (const auto& item : list) {
         RuleBuilder::Source s;
         if (item.IsMap())
-          fail_at(src_.at(item), "this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");
+          fail_at(src_.at(item),
+                  "this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");
         s.text = src_.string(item, "a production");
         s.locate = [this, item](std::size_t off) { return src_.at(item, off); };
         sources.push_back(std::move(s));
@@ -166,23 +175,30 @@ class Loader {
       src_.check_map(e, what, "prototype kind joint_limit lod");
       OrganEntry organ;
       organ.pos = src_.at(kv.first);
-      if (!e["prototype"]) fail_at(src_.at(kv.first), "{} needs a prototype (cylinder, leaflet, sphere or disk)", what);
+      if (!e["prototype"])
+        fail_at(src_.at(kv.first), "{} needs a prototype (cylinder, leaflet, sphere or disk)", what);
       if (!e["kind"])
-        fail_at(src_.at(kv.first), "{} needs a kind (internode, petiole, rachis, leaflet, peduncle, fruit or flower)", what);
+        fail_at(src_.at(kv.first),
+                "{} needs a kind (internode, petiole, rachis, leaflet, peduncle, fruit or flower)", what);
       const std::string proto = src_.string(e["prototype"], "prototype");
       const auto p = parse_prototype(proto);
-      if (!p) fail_at(src_.at(e["prototype"]), "unknown prototype '{}' (expected cylinder, leaflet, sphere or disk)", proto);
+      if (!p)
+        fail_at(src_.at(e["prototype"]),
+                "unknown prototype '{}' (expected cylinder, leaflet, sphere or disk)", proto);
       organ.prototype = *p;
       const std::string kind = src_.string(e["kind"], "kind");
       const auto k = parse_organ_kind(kind);
       if (!k)
         fail_at(src_.at(e["kind"]),
-                "unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit or flower)", kind);
+                "unknown organ kind '{}' (expected internode, petiole, rachis, leaflet, peduncle, fruit or "
+                "flower)",
+                kind);
       organ.kind = *k;
       if (e["joint_limit"]) {
         organ.joint_limit_deg = src_.number(e["joint_limit"], "joint_limit");
         if (organ.joint_limit_deg < 0 || organ.joint_limit_deg > 180)
-          fail_at(src_.at(e["joint_limit"]), "joint_limit must lie in [0, 180] degrees, got {}", organ.joint_limit_deg);
+          fail_at(src_.at(e["joint_limit"]), "joint_limit must lie in [0, 180] degrees, got {}",
+                  organ.joint_limit_deg);
       }
       if (e["lod"]) organ.lod = static_cast<int>(src_.integer(e["lod"], "lod", 1, kMaxLod));
       const Symbol sym = g_.symbols.intern(name);
@@ -193,8 +209,10 @@ class Loader {
         const int n = g_.symbols.arity(sym);
         if (n < least || n > most) {
           if (least == most)
-            fail_at(*used, "organ '{}' is a {} and takes {} parameter(s), but is used with {}", name, proto, least, n);
-          fail_at(*used, "organ '{}' is a {} and takes {} to {} parameters, but is used with {}", name, proto, least, most, n);
+            fail_at(*used, "organ '{}' is a {} and takes {} parameter(s), but is used with {}", name, proto,
+                    least, n);
+          fail_at(*used, "organ '{}' is a {} and takes {} to {} parameters, but is used with {}", name, proto,
+                  least, most, n);
         }
         want = n;
       }
@@ -204,7 +222,8 @@ class Loader {
   }
 
   void read_names(const YAML::Node& root) {
-    if (const auto& c = root["compound_leaf"]) g_.compound_leaf = g_.symbols.intern(src_.string(c, "compound_leaf"));
+    if (const auto& c = root["compound_leaf"])
+      g_.compound_leaf = g_.symbols.intern(src_.string(c, "compound_leaf"));
     std::vector<Symbol> ignored;
     if (const auto& l = root["ignore"])
       for (const auto& item : l) {
@@ -227,7 +246,8 @@ class Loader {
     src_.check_map(node, "tropism", "direction strength");
     Tropism t;
     if (const auto& d = node["direction"]) {
-      if (!d.IsSequence() || d.size() != 3) fail_at(src_.at(d), "tropism direction must be a list of 3 numbers");
+      if (!d.IsSequence() || d.size() != 3)
+        fail_at(src_.at(d), "tropism direction must be a list of 3 numbers");
       for (int i = 0; i < 3; ++i) t.direction[i] = src_.number(d[i], "a tropism direction component");
       const double n = std::hypot(t.direction[0], t.direction[1], t.direction[2]);
       if (n == 0) fail_at(src_.at(d), "tropism direction must not be zero");
@@ -238,7 +258,9 @@ class Loader {
 
   void read_stand(const YAML::Node& node) {
     if (!node) return;
-    src_.check_map(node, "stand", "rows per_row row_spacing plant_spacing double_rows jitter random_rotation seed positions");
+    src_.check_map(
+        node, "stand",
+        "rows per_row row_spacing plant_spacing double_rows jitter random_rotation seed positions");
     StandSpec s;
     auto positive = [&](const char* key) -> std::optional<double> {
       if (!node[key]) return std::nullopt;
@@ -273,7 +295,8 @@ std::optional<double> Grammar::constant(const std::string& n) const {
 
 ConstantOverride parse_override(const std::string& text) {
   const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw std::invalid_argument(fmt::format("--set {}: expected NAME=VALUE", text));
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument(fmt::format("--set {}: expected NAME=VALUE", text));
   ConstantOverride o;
   o.name = std::string(trim(std::string_view(text).substr(0, eq)));
   const std::string_view v = trim(std::string_view(text).substr(eq + 1));

@@ -36,12 +36,14 @@ void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit
   const std::size_t per_organ =
       sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) + sizeof(OrganInstance);
   const double need =
-      static_cast<double>(n) * (static_cast<double>((first.turtle.organs.size() + 1) * per_organ + first.modules * 10) +
-                                sizeof(PlantPlacement) + sizeof(PlantRecord));
+      static_cast<double>(n) *
+      (static_cast<double>((first.turtle.organs.size() + 1) * per_organ + first.modules * 10) +
+       sizeof(PlantPlacement) + sizeof(PlantRecord));
   const std::size_t limit = memory_limit ? memory_limit : available_memory();
   if (limit && need > static_cast<double>(limit))
     throw std::runtime_error(
-        fmt::format("a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} GB available; "
+        fmt::format("a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} "
+                    "GB available; "
                     "use fewer plants or a coarser --lod",
                     n, need / 1e9, first.turtle.organs.size(), static_cast<double>(limit) / 1e9));
 }
@@ -55,7 +57,8 @@ std::string grammar_path(const GrowRequest& req, const std::string& name) {
 }
 
 /// Derives, interprets and runs the turtle for plant `index` (its `steps` already chosen).
-void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& req, std::size_t index, GrownPlant& out) {
+void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& req, std::size_t index,
+                GrownPlant& out) {
   const DeriveRequest dreq{out.steps, pl.seed, req.max_modules};
   const ModuleString s = derive(g, dreq);
   TurtleConfig tc;
@@ -73,7 +76,8 @@ void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& r
   } catch (const TurtleError& e) {
     // Every grammar error names file, line and column: the place that wrote the module (or its
     // parameter), found by deriving again while tracking where each module came from.
-    if (const auto pos = module_source(g, dreq, true, e.module(), e.parameter())) throw GrammarError(*pos, e.detail());
+    if (const auto pos = module_source(g, dreq, true, e.module(), e.parameter()))
+      throw GrammarError(*pos, e.detail());
     throw;
   }
 }
@@ -108,19 +112,21 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   const std::size_t n = req.plants.size();
   // Every entry point (the command line, a positions file, the Python module) comes through here.
   if (req.lod < 1 || req.lod > kMaxLod)
-    throw std::invalid_argument(fmt::format("the level of detail must lie in 1..{} (got {})", kMaxLod, req.lod));
+    throw std::invalid_argument(
+        fmt::format("the level of detail must lie in 1..{} (got {})", kMaxLod, req.lod));
   const int threads = checked_threads(req.threads);
   if (req.steps && (*req.steps < 0 || *req.steps > kMaxSteps))
-    throw std::invalid_argument(fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, *req.steps));
+    throw std::invalid_argument(
+        fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, *req.steps));
   for (std::size_t p = 0; p < n; ++p) {
     const PlantPlacement& pl = req.plants[p];
     if (pl.steps && (*pl.steps < 0 || *pl.steps > kMaxSteps))
       throw std::invalid_argument(
           fmt::format("plant {}: its derivation steps must lie in 0..{} (got {})", p, kMaxSteps, *pl.steps));
     if (!std::isfinite(pl.x) || !std::isfinite(pl.y) || !std::isfinite(pl.rotation_deg))
-      throw std::invalid_argument(
-          fmt::format("plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x, pl.y,
-                      pl.rotation_deg));
+      throw std::invalid_argument(fmt::format(
+          "plant {}: its position and rotation must be finite numbers (got x {}, y {}, rotation {})", p, pl.x,
+          pl.y, pl.rotation_deg));
     if (std::fabs(pl.x) > kMaxPlantCoordinate || std::fabs(pl.y) > kMaxPlantCoordinate)
       throw std::invalid_argument(
           fmt::format("plant {}: its position (x {:g}, y {:g}) is farther from the origin than "

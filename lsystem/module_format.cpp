@@ -68,7 +68,8 @@ void emit(Writer& w, const Grammar& g, const ModuleString& s) {
         if (k) w.put(',');
         const auto r = std::to_chars(num, num + sizeof num, s.params[p + static_cast<std::size_t>(k)]);
         if (r.ec != std::errc())
-          throw std::range_error("a module parameter does not fit its number field");  // never: 24 characters at most
+          throw std::range_error(
+              "a module parameter does not fit its number field");  // never: 24 characters at most
         w.put(std::string_view(num, static_cast<std::size_t>(r.ptr - num)));
       }
       w.put(')');
@@ -82,7 +83,8 @@ void emit(Writer& w, const Grammar& g, const ModuleString& s) {
 std::string format_number(double v) {
   char num[64];
   const auto r = std::to_chars(num, num + sizeof num, v);
-  if (r.ec != std::errc()) throw std::range_error("a number does not fit its field");  // never: 24 characters at most
+  if (r.ec != std::errc())
+    throw std::range_error("a number does not fit its field");  // never: 24 characters at most
   return std::string(num, r.ptr);
 }
 
@@ -111,8 +113,9 @@ std::string stats_json(const Grammar& g, const ModuleString& s) {
   std::string out = fmt::format("{{\"modules\": {}, \"counts\": {{", s.size());
   bool first = true;
   for (const auto& [name, n] : by_name) {
-    out += fmt::format("{}{}: {}", first ? "" : ", ",
-                       nlohmann::json(name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), n);
+    out +=
+        fmt::format("{}{}: {}", first ? "" : ", ",
+                    nlohmann::json(name).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), n);
     first = false;
   }
   return out + "}}";

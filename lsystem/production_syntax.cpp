@@ -80,16 +80,19 @@ ProductionParts split_production(std::string_view s, const SourcePos& pos) {
   if (auto colons = top_level(s, ":", 0, arrow, pos); !colons.empty()) {
     head_end = colons[0];
     p.condition = make_span(s, colons[0] + 1, arrow);
-    if (p.condition.begin == p.condition.end) fail_at(pos.shifted(static_cast<int>(colons[0])), "empty condition after ':'");
+    if (p.condition.begin == p.condition.end)
+      fail_at(pos.shifted(static_cast<int>(colons[0])), "empty condition after ':'");
   }
   std::size_t pred_begin = 0, pred_end = head_end;
   if (auto lt = top_level(s, "<", 0, head_end, pos); !lt.empty()) {
-    if (lt.size() > 1) fail_at(pos.shifted(static_cast<int>(lt[1])), "a production has at most one '<' before its condition");
+    if (lt.size() > 1)
+      fail_at(pos.shifted(static_cast<int>(lt[1])), "a production has at most one '<' before its condition");
     p.left = make_span(s, 0, lt[0]);
     pred_begin = lt[0] + 1;
   }
   if (auto gt = top_level(s, ">", pred_begin, head_end, pos); !gt.empty()) {
-    if (gt.size() > 1) fail_at(pos.shifted(static_cast<int>(gt[1])), "a production has at most one '>' before its condition");
+    if (gt.size() > 1)
+      fail_at(pos.shifted(static_cast<int>(gt[1])), "a production has at most one '>' before its condition");
     p.right = make_span(s, gt[0] + 1, head_end);
     pred_end = gt[0];
   }
@@ -110,7 +113,8 @@ ProductionParts split_production(std::string_view s, const SourcePos& pos) {
 }
 
 ModuleLexer::ModuleLexer(std::vector<std::string> names) : names_(std::move(names)) {
-  std::stable_sort(names_.begin(), names_.end(), [](const auto& a, const auto& b) { return a.size() > b.size(); });
+  std::stable_sort(names_.begin(), names_.end(),
+                   [](const auto& a, const auto& b) { return a.size() > b.size(); });
 }
 
 std::size_t ModuleLexer::name_length(std::string_view text, std::size_t i) const {

@@ -32,7 +32,8 @@ void RuleBuilder::note_arity(Symbol s, int n, const SourcePos& pos) {
   const int known = g_.symbols.arity(s);
   if (known >= 0 && known != n) {
     const std::string where = seen_[s] ? fmt::format(" at {}", first_use_[s].str()) : std::string();
-    fail_at(pos, "module '{}' is used with {} parameter(s) here but with {}{}; a name has one parameter count",
+    fail_at(pos,
+            "module '{}' is used with {} parameter(s) here but with {}{}; a name has one parameter count",
             g_.symbols.name(s), n, known, where);
   }
   g_.symbols.set_arity(s, n);
@@ -42,7 +43,9 @@ void RuleBuilder::note_arity(Symbol s, int n, const SourcePos& pos) {
   }
 }
 
-const SourcePos* RuleBuilder::first_use(Symbol s) const { return s < seen_.size() && seen_[s] ? &first_use_[s] : nullptr; }
+const SourcePos* RuleBuilder::first_use(Symbol s) const {
+  return s < seen_.size() && seen_[s] ? &first_use_[s] : nullptr;
+}
 
 NameResolver RuleBuilder::resolver(const std::vector<std::string>* formals) const {
   return [this, formals](std::string_view name) -> std::optional<NameRef> {
@@ -55,8 +58,8 @@ NameResolver RuleBuilder::resolver(const std::vector<std::string>* formals) cons
   };
 }
 
-std::vector<SuccessorModule> RuleBuilder::compile_modules(std::string_view text, const Locate& locate, std::size_t base,
-                                                          const NameResolver& resolve) {
+std::vector<SuccessorModule> RuleBuilder::compile_modules(std::string_view text, const Locate& locate,
+                                                          std::size_t base, const NameResolver& resolve) {
   std::vector<SuccessorModule> out;
   for (const RawModule& raw : lexer_.lex(text, locate(base))) {
     SuccessorModule m;
@@ -72,11 +75,13 @@ std::vector<SuccessorModule> RuleBuilder::compile_modules(std::string_view text,
   return out;
 }
 
-std::vector<SuccessorModule> RuleBuilder::module_list(std::string_view text, const Locate& locate, std::string_view) {
+std::vector<SuccessorModule> RuleBuilder::module_list(std::string_view text, const Locate& locate,
+                                                      std::string_view) {
   return compile_modules(text, locate, 0, resolver(nullptr));
 }
 
-void RuleBuilder::check_brackets(const std::vector<SuccessorModule>& modules, const SourcePos& where, std::string_view what) {
+void RuleBuilder::check_brackets(const std::vector<SuccessorModule>& modules, const SourcePos& where,
+                                 std::string_view what) {
   std::vector<const SuccessorModule*> open;
   for (const auto& m : modules) {
     if (m.symbol == g_.symbols.open_bracket()) open.push_back(&m);
@@ -89,8 +94,8 @@ void RuleBuilder::check_brackets(const std::vector<SuccessorModule>& modules, co
   (void)where;
 }
 
-std::vector<ModulePattern> RuleBuilder::patterns(std::string_view text, const Locate& locate, std::size_t base,
-                                                 std::vector<std::string>& formals) {
+std::vector<ModulePattern> RuleBuilder::patterns(std::string_view text, const Locate& locate,
+                                                 std::size_t base, std::vector<std::string>& formals) {
   std::vector<ModulePattern> out;
   for (const RawModule& raw : lexer_.lex(text, locate(base))) {
     ModulePattern p;
@@ -98,7 +103,8 @@ std::vector<ModulePattern> RuleBuilder::patterns(std::string_view text, const Lo
     p.pos = locate(base + raw.offset);
     p.first_slot = static_cast<int>(formals.size());
     if (p.symbol == g_.symbols.open_bracket() || p.symbol == g_.symbols.close_bracket())
-      fail_at(p.pos, "brackets are not allowed in a predecessor or context (contexts skip branches by themselves)");
+      fail_at(p.pos,
+              "brackets are not allowed in a predecessor or context (contexts skip branches by themselves)");
     note_arity(p.symbol, static_cast<int>(raw.args.size()), p.pos);
     for (const auto& a : raw.args) {
       const std::string_view name = trim(a.text);
@@ -125,18 +131,21 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     group.pos = src.locate(parts.predecessor.begin);
     auto context = [&](const Span& s) -> std::vector<ModulePattern> {
       if (!s.present || s.of(text) == "*") return {};
-      if (s.begin == s.end) fail_at(src.locate(s.begin), "empty context; write '*' for any context or leave out '<' / '>'");
+      if (s.begin == s.end)
+        fail_at(src.locate(s.begin), "empty context; write '*' for any context or leave out '<' / '>'");
       return patterns(s.of(text), src.locate, s.begin, formals);
     };
     group.left = context(parts.left);
     const auto pred = patterns(parts.predecessor.of(text), src.locate, parts.predecessor.begin, formals);
     if (pred.size() != 1)
-      fail_at(group.pos, "the predecessor must be one module, got {} in '{}'", pred.size(), parts.predecessor.of(text));
+      fail_at(group.pos, "the predecessor must be one module, got {} in '{}'", pred.size(),
+              parts.predecessor.of(text));
     group.predecessor = pred[0];
     group.right = context(parts.right);
     group.frame_size = static_cast<int>(formals.size());
     if (group.frame_size > kMaxFrame)
-      fail_at(group.pos, "a production binds {} formal parameters; at most {} are supported", group.frame_size, kMaxFrame);
+      fail_at(group.pos, "a production binds {} formal parameters; at most {} are supported",
+              group.frame_size, kMaxFrame);
     const NameResolver resolve = resolver(&formals);
     if (parts.condition.present) {
       group.condition = Expr::compile(parts.condition.of(text), src.locate(parts.condition.begin), resolve);
@@ -144,8 +153,8 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
         // A condition that is always false is legal; it simply never applies.
       }
     }
-    group.key = squeeze(parts.left.of(text)) + "<" + squeeze(parts.predecessor.of(text)) + ">" + squeeze(parts.right.of(text)) +
-                ":" + squeeze(parts.condition.of(text));
+    group.key = squeeze(parts.left.of(text)) + "<" + squeeze(parts.predecessor.of(text)) + ">" +
+                squeeze(parts.right.of(text)) + ":" + squeeze(parts.condition.of(text));
 
     Successor succ;
     succ.modules = compile_modules(parts.successor.of(text), src.locate, parts.successor.begin, resolve);
@@ -163,7 +172,8 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     const SourcePos ppos = src.locate(parts.probability.begin);
     if (has_prob) {
       probability = Expr::compile(parts.probability.of(text), ppos, resolver(nullptr)).eval_constant();
-      if (!(probability >= 0 && probability <= 1)) fail_at(ppos, "a probability must lie in [0, 1], got {}", probability);
+      if (!(probability >= 0 && probability <= 1))
+        fail_at(ppos, "a probability must lie in [0, 1], got {}", probability);
     }
     succ.cumulative = probability;
 
@@ -187,10 +197,11 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     if (g.successors.size() > 1) {
       for (std::size_t k = 0; k < g.successors.size(); ++k)
         if (!explicit_prob[gi][k])
-          fail_at(prob_pos[gi][k],
-                  "productions with the same predecessor, contexts and condition ('{}') form a stochastic group; "
-                  "each needs a probability (': p' after the successor)",
-                  g.key);
+          fail_at(
+              prob_pos[gi][k],
+              "productions with the same predecessor, contexts and condition ('{}') form a stochastic group; "
+              "each needs a probability (': p' after the successor)",
+              g.key);
     }
     double sum = 0;
     for (auto& s : g.successors) {
@@ -213,8 +224,8 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     const auto& ids = t.by_symbol[s];
     if (ids.empty()) continue;
     const RuleGroup& g = t.groups[ids[0]];
-    const bool simple = ids.size() == 1 && g.left.empty() && g.right.empty() && !g.condition && g.successors.size() == 1 &&
-                        g.successors[0].constant;
+    const bool simple = ids.size() == 1 && g.left.empty() && g.right.empty() && !g.condition &&
+                        g.successors.size() == 1 && g.successors[0].constant;
     t.mode[s] = simple ? RewriteMode::constant : RewriteMode::general;
   }
   (void)what;

@@ -21,9 +21,11 @@ class RuleBuilder {
   RuleBuilder(Grammar& g, ModuleLexer lexer);
 
   /// A module list whose arguments are expressions of the grammar's constants (and rand).
-  std::vector<SuccessorModule> module_list(std::string_view text, const Locate& locate, std::string_view what);
+  std::vector<SuccessorModule> module_list(std::string_view text, const Locate& locate,
+                                           std::string_view what);
   /// Throws unless every `[` has its `]` in `modules`.
-  void check_brackets(const std::vector<SuccessorModule>& modules, const SourcePos& where, std::string_view what);
+  void check_brackets(const std::vector<SuccessorModule>& modules, const SourcePos& where,
+                      std::string_view what);
   /// Productions in file order, grouped into stochastic groups, with each symbol's rewrite mode.
   RuleTable rule_table(const std::vector<Source>& sources, std::string_view what);
   /// Turtle symbols take at most one parameter (`|` `$` `[` `]` none), unless declared organs.

@@ -78,11 +78,14 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
     one.symbols.push_back(s.symbols[i]);
     const int ar = std::max(0, g.symbols.arity(s.symbols[i]));
     one.params.append(s.params.data() + p, static_cast<std::size_t>(ar));
-    throw TurtleError(g.file, fmt::format("{}, module {} '{}': {}", config.where, i, format_modules(g, one), what), i, parameter);
+    throw TurtleError(g.file,
+                      fmt::format("{}, module {} '{}': {}", config.where, i, format_modules(g, one), what), i,
+                      parameter);
   };
   // An organ farther than kMaxOrganExtent from the plant's origin along an axis.
   const auto too_far = [](const Vec3d& v) {
-    return !(std::fabs(v.x) <= kMaxOrganExtent && std::fabs(v.y) <= kMaxOrganExtent && std::fabs(v.z) <= kMaxOrganExtent);
+    return !(std::fabs(v.x) <= kMaxOrganExtent && std::fabs(v.y) <= kMaxOrganExtent &&
+             std::fabs(v.z) <= kMaxOrganExtent);
   };
   std::size_t p = 0;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -97,11 +100,12 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
       o.kind = organ->kind;
       o.prototype = organ->prototype;
       for (int k = 0; k < ar && k < 2; ++k) {
-        if (a[k] < 0) fail(i, p, fmt::format("{} parameter {} must not be negative", name_of(o.prototype), k + 1), k);
+        if (a[k] < 0)
+          fail(i, p, fmt::format("{} parameter {} must not be negative", name_of(o.prototype), k + 1), k);
         if (a[k] > kMaxOrganExtent)
           fail(i, p,
-               fmt::format("{} parameter {} is {} m, more than the {} m an organ may measure", name_of(o.prototype), k + 1, a[k],
-                           kMaxOrganExtent),
+               fmt::format("{} parameter {} is {} m, more than the {} m an organ may measure",
+                           name_of(o.prototype), k + 1, a[k], kMaxOrganExtent),
                k);
         o.params[k] = static_cast<float>(a[k]);
       }
@@ -149,7 +153,10 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
             if (l < 0) fail(i, p, "a step length must not be negative", 0);
             st.f.position = st.f.position + st.f.heading * l;
             if (too_far(st.f.position))
-              fail(i, p, fmt::format("the step takes the turtle farther than {} m from the plant's origin", kMaxOrganExtent), 0);
+              fail(i, p,
+                   fmt::format("the step takes the turtle farther than {} m from the plant's origin",
+                               kMaxOrganExtent),
+                   0);
             if (n[0] == 'F' && g.tropism) apply_tropism(st.f, *g.tropism);
             break;
           }

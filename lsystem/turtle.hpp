@@ -51,7 +51,8 @@ struct TurtleConfig {
 class TurtleError : public std::runtime_error {
  public:
   TurtleError(const std::string& file, std::string detail, std::size_t module, int parameter)
-      : std::runtime_error(file + ": " + detail), detail_(std::move(detail)), module_(module), parameter_(parameter) {}
+      : std::runtime_error(file + ": " + detail), detail_(std::move(detail)), module_(module),
+        parameter_(parameter) {}
   const std::string& detail() const { return detail_; }
   /// The module's index in the string.
   std::size_t module() const { return module_; }

@@ -25,7 +25,8 @@ YAML::Node parse_yaml_document(const std::string& text, const std::string& file)
     return YAML::Load(text);
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp stops nesting at a bound of its own and says only "bad file".
-    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: lists and maps nested too deeply");
+    throw GrammarError({file, e.mark.line + 1, e.mark.column + 1},
+                       "malformed YAML: lists and maps nested too deeply");
   } catch (const YAML::Exception& e) {
     throw GrammarError({file, e.mark.line + 1, e.mark.column + 1}, "malformed YAML: " + e.msg);
   }
@@ -72,12 +73,14 @@ double YamlSource::number(const YAML::Node& node, std::string_view what) const {
   return v;
 }
 
-long long YamlSource::integer(const YAML::Node& node, std::string_view what, long long lo, long long hi) const {
+long long YamlSource::integer(const YAML::Node& node, std::string_view what, long long lo,
+                              long long hi) const {
   if (!node.IsScalar()) fail_at(at(node), "{} must be a whole number", what);
   const std::string s = node.Scalar();
   long long v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) fail_at(at(node), "{} must be a whole number, got '{}'", what, s);
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+    fail_at(at(node), "{} must be a whole number, got '{}'", what, s);
   if (v < lo || v > hi) fail_at(at(node), "{} must be between {} and {}, got {}", what, lo, hi, v);
   return v;
 }

@@ -46,7 +46,8 @@ struct AttemptGroup {
 /// Whether the boxes of a pair meet when the moving organ (OBB `x`, no clearance) turns by
 /// `turn`: its box carried and grown by the search clearance against the kept organ's box `y`
 /// grown by its gap (TurnSearch::attempt's first test, with keep_box made the same way).
-CANOPY_HD inline bool turned_boxes_meet(const Obb& x, const Obb& y, const KeepEntry& keep, const Motion& turn, float clearance) {
+CANOPY_HD inline bool turned_boxes_meet(const Obb& x, const Obb& y, const KeepEntry& keep, const Motion& turn,
+                                        float clearance) {
   return obb_overlap(carried_box(x, turn, clearance), grown(y, keep.gap), keep.offset);
 }
 
@@ -90,7 +91,8 @@ struct AttemptSettings {
 struct AttemptStats {
   std::string hardware;   // AttemptRunner::hardware()
   std::size_t lanes = 0;  // lanes that worked
-  std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0, uploaded_bytes = 0;
+  std::uint64_t calls = 0, groups = 0, box_tests = 0, witness_hits = 0, exact_tests = 0, exact_touches = 0,
+                uploaded_bytes = 0;
   double call_s = 0, upload_s = 0, box_s = 0, exact_s = 0;
   /// The device's own clock, where the runner kept it: from the first call's kernels to the
   /// last's, how long some lane's kernels were queued or running, and the calls' spans summed.
@@ -106,8 +108,8 @@ class AttemptRunner {
   /// `changed` lists the organs whose pose changed since the last call (ignored with `all`,
   /// which the first call of a resolution sets). `boxes` stays alive and unchanged until the
   /// next call.
-  virtual void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
-                             bool all) = 0;
+  virtual void update_organs(const Stand& stand, std::span<const Obb> boxes,
+                             std::span<const std::uint32_t> changed, bool all) = 0;
   /// How many batches the runner can answer for at once, each on a lane of its own (its tables
   /// and, on the device, its own stream): one lane's host work then overlaps another's device
   /// work. A lane's calls come from one thread at a time, different lanes' from different
@@ -120,7 +122,8 @@ class AttemptRunner {
   virtual void clear(std::size_t lane) = 0;
   /// Per group, bit i set where a pair touches when turned about axis i of the group's mask
   /// (the lane's tables as they stand now; entries appended since its last call are new).
-  virtual std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  virtual std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables,
+                                              std::span<const AttemptGroup> groups,
                                               const AttemptSettings& settings) = 0;
   /// From now on, whether to keep what only the statistics need (on the device: an event pair
   /// around every kernel and the exact tests' touches); off until asked. Never called while

@@ -6,7 +6,8 @@
 
 namespace canopy {
 
-std::vector<std::uint32_t> HostAttemptRunner::touching(std::size_t, const AttemptTables& t, std::span<const AttemptGroup> groups,
+std::vector<std::uint32_t> HostAttemptRunner::touching(std::size_t, const AttemptTables& t,
+                                                       std::span<const AttemptGroup> groups,
                                                        const AttemptSettings& settings) {
   std::vector<std::uint32_t> out(groups.size(), 0);
   calls_.fetch_add(1, std::memory_order_relaxed);
@@ -26,8 +27,8 @@ std::vector<std::uint32_t> HostAttemptRunner::touching(std::size_t, const Attemp
           const auto xi = static_cast<std::size_t>(x), yi = static_cast<std::size_t>(y.organ);
           if (!turned_boxes_meet(boxes_[xi], boxes_[yi], y, turn, settings.clearance)) continue;
           // At the organ level the boxes decide; otherwise the exact test at the turned pose.
-          if (!settings.exact || organs_touch_either(*stand_, lib_, x, apply(turn, stand_->transforms[xi]), y.organ,
-                                                     stand_->transforms[yi], y.gap, scratch)) {
+          if (!settings.exact || organs_touch_either(*stand_, lib_, x, apply(turn, stand_->transforms[xi]),
+                                                     y.organ, stand_->transforms[yi], y.gap, scratch)) {
             out[g] |= 1u << i;
             break;
           }

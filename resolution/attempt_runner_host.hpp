@@ -14,14 +14,17 @@ namespace canopy {
 class HostAttemptRunner : public AttemptRunner {
  public:
   /// `lanes`: how many batches it takes at once (it keeps no state per batch, so any number).
-  HostAttemptRunner(PrototypeLibrary& lib, int threads, std::size_t lanes = 1) : lib_(lib), threads_(threads), lanes_(lanes) {}
-  void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t>, bool) override {
+  HostAttemptRunner(PrototypeLibrary& lib, int threads, std::size_t lanes = 1)
+      : lib_(lib), threads_(threads), lanes_(lanes) {}
+  void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t>,
+                     bool) override {
     stand_ = &stand, boxes_ = boxes;
   }
   std::size_t lanes() const override { return lanes_; }
   std::string hardware() const override { return "host"; }
   void clear(std::size_t) override {}
-  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables,
+                                      std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override;
   /// Nothing beyond its counts of calls and groups, which cost an atomic add per call.
   void keep_statistics(bool) override {}

@@ -21,6 +21,8 @@ class AttemptSource {
 };
 
 /// The backend's runner source, or null where it has none.
-inline AttemptSource* attempt_source(DetectionBackend& backend) { return dynamic_cast<AttemptSource*>(&backend); }
+inline AttemptSource* attempt_source(DetectionBackend& backend) {
+  return dynamic_cast<AttemptSource*>(&backend);
+}
 
 }  // namespace canopy

@@ -26,10 +26,12 @@ class FallbackRunner : public AttemptRunner {
   void bind(AttemptRunner* first) {
     if (first != first_) told_ = false;  // a runner of its own that has not seen every organ
     first_ = first;
-    if (!host_ || host_->lanes() != first->lanes()) host_.emplace(lib_, omp_get_max_threads(), first->lanes());
+    if (!host_ || host_->lanes() != first->lanes())
+      host_.emplace(lib_, omp_get_max_threads(), first->lanes());
   }
 
-  void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed, bool all) override {
+  void update_organs(const Stand& stand, std::span<const Obb> boxes, std::span<const std::uint32_t> changed,
+                     bool all) override {
     host_->update_organs(stand, boxes, changed, all);  // pointers only: ready to take over
     if (failed_) return;
     try {
@@ -49,7 +51,8 @@ class FallbackRunner : public AttemptRunner {
       fail(e.what());
     }
   }
-  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables,
+                                      std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override {
     if (!failed_) {
       try {
@@ -107,9 +110,9 @@ class AutoBackend : public DetectionBackend, public AttemptSource {
   std::string name() const override { return second_ ? second_->name() : first_->name(); }
   /// After a fallback: the fallback's device, and what failed where.
   std::string device() const override {
-    return second_
-               ? fmt::format("{} (the {} backend on {} failed: {})", second_->device(), first_->name(), first_->device(), why_)
-               : first_->device();
+    return second_ ? fmt::format("{} (the {} backend on {} failed: {})", second_->device(), first_->name(),
+                                 first_->device(), why_)
+                   : first_->device();
   }
   Contacts detect(const Stand& s, const DetectRequest& r) override {
     if (!second_) {
@@ -122,7 +125,8 @@ class AutoBackend : public DetectionBackend, public AttemptSource {
     second_has_tree_ = true;
     return second_->detect(s, r);
   }
-  Contacts redetect(const Stand& s, const DetectRequest& r, const std::vector<std::uint32_t>& moved) override {
+  Contacts redetect(const Stand& s, const DetectRequest& r,
+                    const std::vector<std::uint32_t>& moved) override {
     if (!second_) {
       try {
         return first_->redetect(s, r, moved);
@@ -162,8 +166,8 @@ class AutoBackend : public DetectionBackend, public AttemptSource {
     if (second_) return;
     second_ = make_fallback_();
     why_ = why;
-    fmt::print(stderr, "canopy: note: the {} backend failed ({}); going on with the {} backend\n", first_->name(), why,
-               second_->name());
+    fmt::print(stderr, "canopy: note: the {} backend failed ({}); going on with the {} backend\n",
+               first_->name(), why, second_->name());
   }
 
   std::unique_ptr<DetectionBackend> first_;
@@ -177,7 +181,8 @@ class AutoBackend : public DetectionBackend, public AttemptSource {
 
 }  // namespace
 
-std::unique_ptr<DetectionBackend> make_auto_backend(std::unique_ptr<DetectionBackend> preferred, BackendMaker fallback) {
+std::unique_ptr<DetectionBackend> make_auto_backend(std::unique_ptr<DetectionBackend> preferred,
+                                                    BackendMaker fallback) {
   return std::make_unique<AutoBackend>(std::move(preferred), std::move(fallback));
 }
 

@@ -20,6 +20,7 @@ namespace canopy {
 
 using BackendMaker = std::function<std::unique_ptr<DetectionBackend>()>;
 
-std::unique_ptr<DetectionBackend> make_auto_backend(std::unique_ptr<DetectionBackend> preferred, BackendMaker fallback);
+std::unique_ptr<DetectionBackend> make_auto_backend(std::unique_ptr<DetectionBackend> preferred,
+                                                    BackendMaker fallback);
 
 }  // namespace canopy

@@ -44,7 +44,9 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
   // Sizes first, then every candidate's entries written in parallel into its own ranges.
   std::vector<Candidate*> add;
   for (Candidate* c : cands)
-    if (near ? c->strict && c->near_deg >= 0 && c->tables.near_deg != c->near_deg : c->tables.moving == kNoPair) add.push_back(c);
+    if (near ? c->strict && c->near_deg >= 0 && c->tables.near_deg != c->near_deg
+             : c->tables.moving == kNoPair)
+      add.push_back(c);
   if (add.empty()) return;
   std::size_t n_moving = tables_.moving.size(), n_keep = tables_.keep.size(), n_pairs = tables_.pairs.size(),
               n_axes = tables_.axes.size();
@@ -53,7 +55,8 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
     if (!near) {
       t.moving = static_cast<std::uint32_t>(n_moving), t.axes = static_cast<std::uint32_t>(n_axes);
       t.met_first = static_cast<std::uint32_t>(n_pairs);
-      n_moving += c->moving.size(), n_axes += c->axes.size(), n_keep += c->met_count, n_pairs += c->met_pairs.y.size();
+      n_moving += c->moving.size(), n_axes += c->axes.size(), n_keep += c->met_count,
+          n_pairs += c->met_pairs.y.size();
       t.met_end = static_cast<std::uint32_t>(n_pairs);
     } else {
       t.near_first = static_cast<std::uint32_t>(n_pairs), t.near_deg = c->near_deg;
@@ -66,10 +69,12 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
   {
     std::size_t k = tables_.keep.size();
     for (std::size_t j = 0; j < add.size(); ++j)
-      keep_at[j] = static_cast<std::uint32_t>(k), k += near ? add[j]->keep.size() - add[j]->met_count : add[j]->met_count;
+      keep_at[j] = static_cast<std::uint32_t>(k),
+      k += near ? add[j]->keep.size() - add[j]->met_count : add[j]->met_count;
   }
   // Every new entry is written below (the tables' allocator leaves them unwritten until then).
-  tables_.moving.resize(n_moving), tables_.keep.resize(n_keep), tables_.pairs.resize(n_pairs), tables_.axes.resize(n_axes);
+  tables_.moving.resize(n_moving), tables_.keep.resize(n_keep), tables_.pairs.resize(n_pairs),
+      tables_.axes.resize(n_axes);
   tables_.witness.resize(n_pairs);
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (std::size_t j = 0; j < add.size(); ++j) {
@@ -88,9 +93,10 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
         // The witness the round began with (the organs met touched then; neighbours did not,
         // and have none on the candidate).
         const Witness* w = p < pairs.witness.size() ? &pairs.witness[p] : nullptr;
-        tables_.witness[at] = w && w->latest >= 0 ? std::uint32_t{w->tri_a[w->latest]} << 16 | w->tri_b[w->latest] : kNoWitness;
-        tables_.pairs[at++] =
-            PairEntry{t.moving + static_cast<std::uint32_t>(i), keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
+        tables_.witness[at] =
+            w && w->latest >= 0 ? std::uint32_t{w->tri_a[w->latest]} << 16 | w->tri_b[w->latest] : kNoWitness;
+        tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),
+                                        keep_at[j] + static_cast<std::uint32_t>(pairs.y[p] - keep_from)};
       }
     if (near) continue;
     std::copy(c.moving.begin(), c.moving.end(), tables_.moving.begin() + t.moving);
@@ -98,14 +104,16 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
   }
 }
 
-std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> cands, std::span<const double> deg,
+std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> cands,
+                                                   std::span<const double> deg,
                                                    std::span<const AxisSet> want) {
   const AttemptSettings settings{search_.clearance, search_.config.level != ContactLevel::organ};
   std::vector<std::uint32_t> ok(cands.size(), 0);
   // The turn's cosine and sine, once per candidate (the met and the near groups share them).
   std::vector<double> cos(cands.size()), sin(cands.size());
 #pragma omp parallel for schedule(static) num_threads(threads_) if (cands.size() > kParallelFrom)
-  for (std::size_t j = 0; j < cands.size(); ++j) cos[j] = std::cos(deg[j] * kRad), sin[j] = std::sin(deg[j] * kRad);
+  for (std::size_t j = 0; j < cands.size(); ++j)
+    cos[j] = std::cos(deg[j] * kRad), sin[j] = std::sin(deg[j] * kRad);
   const auto group_of = [&](std::size_t j, bool near, std::uint32_t mask) {
     const Candidate::Tables& t = cands[j]->tables;
     AttemptGroup g;
@@ -144,7 +152,8 @@ std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   {
     const Timed timed{times_.gather};
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
-    for (std::size_t q = 0; q < to_gather.size(); ++q) search_.gather_neighbours(*cands[to_gather[q]], deg[to_gather[q]]);
+    for (std::size_t q = 0; q < to_gather.size(); ++q)
+      search_.gather_neighbours(*cands[to_gather[q]], deg[to_gather[q]]);
   }
   times_.gathers += to_gather.size();
   add_tables(strict, true);
@@ -159,7 +168,8 @@ std::vector<std::uint32_t> BatchedScan::clear_axes(std::span<Candidate* const> c
   return ok;
 }
 
-std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan, int level, std::span<Candidate* const> refine) {
+std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan, int level,
+                                               std::span<Candidate* const> refine) {
   const Timed timed{times_.scan};
   const ResolveConfig& cfg = search_.config;
   const double step = std::max(cfg.scan_step_deg, cfg.angle_tolerance_deg), tol = cfg.angle_tolerance_deg;
@@ -167,7 +177,8 @@ std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan,
   std::vector<Candidate*> live;
   std::vector<double> level_deg;
   for (Candidate* c : scan)
-    if (c->searching()) live.push_back(c), level_deg.push_back(std::min(level * step / c->weight, c->reach_deg));
+    if (c->searching())
+      live.push_back(c), level_deg.push_back(std::min(level * step / c->weight, c->reach_deg));
   // The refinement (TurnSearch::refine): each found candidate's bracket, lo failing, hi separating.
   std::vector<double> lo(refine.size()), hi(refine.size());
   for (std::size_t j = 0; j < refine.size(); ++j) {
@@ -198,7 +209,8 @@ std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan,
     std::vector<Candidate*> act;
     std::vector<double> deg;
     for (std::size_t j = 0; j < live.size(); ++j)
-      if (live[j]->found_axis < 0 && live[j]->axes.size() > first) act.push_back(live[j]), deg.push_back(level_deg[j]);
+      if (live[j]->found_axis < 0 && live[j]->axes.size() > first)
+        act.push_back(live[j]), deg.push_back(level_deg[j]);
     const std::size_t n_scan = act.size();
     std::vector<std::uint32_t> tree_first{0};
     std::vector<std::size_t> of;  // per tree: its candidate
@@ -212,9 +224,11 @@ std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan,
         if (at.depth + 1 >= kSpeculate) continue;
         const double mid = 0.5 * (at.lo + at.hi);
         if (mid - at.lo > tol)
-          nodes[n].left = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{at.lo, mid, -1, -1, at.depth + 1});
+          nodes[n].left = static_cast<std::int32_t>(nodes.size()),
+          nodes.push_back(Node{at.lo, mid, -1, -1, at.depth + 1});
         if (at.hi - mid > tol)
-          nodes[n].right = static_cast<std::int32_t>(nodes.size()), nodes.push_back(Node{mid, at.hi, -1, -1, at.depth + 1});
+          nodes[n].right = static_cast<std::int32_t>(nodes.size()),
+          nodes.push_back(Node{mid, at.hi, -1, -1, at.depth + 1});
       }
       tree_first.push_back(static_cast<std::uint32_t>(nodes.size()));
     }
@@ -240,7 +254,8 @@ std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan,
         for (std::uint32_t n = tree_first[t]; n < tree_first[t + 1]; ++n) {
           const std::size_t at = n_scan + n;
           act[at] = &c, deg[at] = 0.5 * (nodes[n].lo + nodes[n].hi);
-          want[at] = AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], deg[at]) ? 1u : 0u};
+          want[at] =
+              AxisSet{static_cast<std::uint32_t>(a), search_.within_limit(c, c.axes[a], deg[at]) ? 1u : 0u};
         }
       }
     }
@@ -269,7 +284,9 @@ std::vector<Turn> BatchedScan::scan_and_refine(std::span<Candidate* const> scan,
   for (std::size_t j = 0; j < refine.size(); ++j) {
     Candidate& c = *refine[j];
     // The joint's rotation at the last separating midpoint, or the scan's where none separated.
-    const Mat3d best = hi[j] != c.hi ? search_.local_after(c, c.axes[static_cast<std::size_t>(c.found_axis)], hi[j]) : c.local;
+    const Mat3d best = hi[j] != c.hi
+                           ? search_.local_after(c, c.axes[static_cast<std::size_t>(c.found_axis)], hi[j])
+                           : c.local;
     out[j] = Turn{c.mover, best, hi[j]};
   }
   return out;

@@ -26,8 +26,10 @@ class BatchedScan {
   /// Through lane `lane` of the runner (resolution/attempt_batch.hpp), writing into `tables` where
   /// given (the caller keeps them from round to round, so that their memory, hundreds of
   /// megabytes at 10,000 plants, is faulted in once) or into tables of its own.
-  BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads, std::size_t lane = 0, AttemptTables* tables = nullptr)
-      : search_(search), runner_(runner), threads_(threads), lane_(lane), tables_(tables ? *tables : own_tables_) {}
+  BatchedScan(const TurnSearch& search, AttemptRunner& runner, int threads, std::size_t lane = 0,
+              AttemptTables* tables = nullptr)
+      : search_(search), runner_(runner), threads_(threads), lane_(lane),
+        tables_(tables ? *tables : own_tables_) {}
   BatchedScan(const BatchedScan&) = delete;
   BatchedScan& operator=(const BatchedScan&) = delete;
   /// Adds where the host's time went (PlanLaneStats: scan_s to gathers) to `to`.
@@ -52,8 +54,8 @@ class BatchedScan {
   /// Per candidate j, the axes of want[j] that clear every pair it must clear at angle deg[j]
   /// (a mask over the same axes). A strict candidate's neighbours are gathered here when some
   /// axis clears the organs met and they do not cover deg[j] yet.
-  std::vector<std::uint32_t> clear_axes(std::span<TurnSearch::Candidate* const> cands, std::span<const double> deg,
-                                        std::span<const AxisSet> want);
+  std::vector<std::uint32_t> clear_axes(std::span<TurnSearch::Candidate* const> cands,
+                                        std::span<const double> deg, std::span<const AxisSet> want);
 
   const TurnSearch& search_;
   AttemptRunner& runner_;

@@ -12,13 +12,15 @@
 namespace canopy {
 
 /// Segments of the kinds a chain is made of: petiole, rachis, peduncle (leaflets end a chain).
-inline bool chain_kind(OrganKind k) { return k == OrganKind::petiole || k == OrganKind::rachis || k == OrganKind::peduncle; }
+inline bool chain_kind(OrganKind k) {
+  return k == OrganKind::petiole || k == OrganKind::rachis || k == OrganKind::peduncle;
+}
 
 /// Organ k and then its parents, nearest first, while they are chain segments resolution may
 /// turn, at most `most` of them; none that `planned` marks (turning this round on its own
 /// account) where it is given. Just k where k is no chain segment.
-inline std::vector<std::uint32_t> bend_chain(const Stand& s, const ResolveConfig& cfg, std::uint32_t k, int most,
-                                             const std::vector<std::uint8_t>* planned = nullptr) {
+inline std::vector<std::uint32_t> bend_chain(const Stand& s, const ResolveConfig& cfg, std::uint32_t k,
+                                             int most, const std::vector<std::uint8_t>* planned = nullptr) {
   std::vector<std::uint32_t> c{k};
   if (!chain_kind(s.organs[k].kind)) return c;
   for (std::int32_t p = s.organs[k].parent; p >= 0 && static_cast<int>(c.size()) < most;

@@ -39,18 +39,21 @@ bool skip_pair(const Stand& s, const KindMask& collide, std::int32_t x, std::int
 }
 
 bool touched(const ContactGraph& g, std::int32_t x, std::int32_t y) {
-  for (std::uint32_t e = g.first[static_cast<std::size_t>(x)]; e < g.first[static_cast<std::size_t>(x) + 1]; ++e)
+  for (std::uint32_t e = g.first[static_cast<std::size_t>(x)]; e < g.first[static_cast<std::size_t>(x) + 1];
+       ++e)
     if (g.with[e] == y) return true;
   return false;
 }
 
-Mat3d turn_by(const Vec3d& axis, double deg) { return axis_angle(axis, std::cos(deg / kDeg), std::sin(deg / kDeg)); }
+Mat3d turn_by(const Vec3d& axis, double deg) {
+  return axis_angle(axis, std::cos(deg / kDeg), std::sin(deg / kDeg));
+}
 
 /// Whether the chain c (proximal first) turned by deg[i] about `axis` at joint c[i] leaves every
 /// pair it moves as the header says: the organs of k's subtree clear of all, the others meeting
 /// only what they met before.
-bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, const Vec3d& axis, const std::vector<double>& deg,
-                 ExactScratch& scratch) {
+bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, const Vec3d& axis,
+                 const std::vector<double>& deg, ExactScratch& scratch) {
   const Stand& s = ts.stand;
   const std::uint32_t first = c.front(), end = ts.joints.subtree_end(first), k = c.back();
   // The motion of each level: the turns of the joints above it, distal first.
@@ -77,14 +80,16 @@ bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, cons
     const Obb b = carried_box(ts.boxes[x], level[l], 0);
     moved.push_back({static_cast<std::int32_t>(x), l, apply(level[l], s.transforms[x]), b});
     const double ctr[3] = {b.centre.x, b.centre.y, b.centre.z};
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], ctr[a] - b.radius), hi[a] = std::max(hi[a], ctr[a] + b.radius);
+    for (int a = 0; a < 3; ++a)
+      lo[a] = std::min(lo[a], ctr[a] - b.radius), hi[a] = std::max(hi[a], ctr[a] + b.radius);
   }
   // Whether x at its new pose and y (at `ty`, moved by `off`) meet, and whether that is allowed.
   const auto fails = [&](const Moved& x, std::int32_t y, const Affine3f& ty, const Obb& by, Vec3f off) {
     const bool in_k = ts.joints.holds(k, x.organ) || ts.joints.holds(k, y);
     const bool before = touched(ts.touching, x.organ, y);
     const float need = before ? ts.clearance : ts.detect_clearance;
-    if (before && !in_k) return false;  // a contact of the chain's own that the kink would not have moved either
+    if (before && !in_k)
+      return false;  // a contact of the chain's own that the kink would not have moved either
     if (!obb_overlap(grown(x.box, gap), by, off)) return false;
     if (ts.config.level == ContactLevel::organ) return true;
     return organs_touch_either(s, ts.lib, x.organ, x.pose, y, ty, need, scratch);
@@ -92,7 +97,8 @@ bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, cons
   // Pairs within the moving subtree whose motions differ.
   for (std::size_t i = 0; i < moved.size(); ++i)
     for (std::size_t j = i + 1; j < moved.size(); ++j) {
-      if (moved[i].level == moved[j].level || skip_pair(s, ts.collide, moved[i].organ, moved[j].organ)) continue;
+      if (moved[i].level == moved[j].level || skip_pair(s, ts.collide, moved[i].organ, moved[j].organ))
+        continue;
       if (fails(moved[i], moved[j].organ, moved[j].pose, moved[j].box, Vec3f{0, 0, 0})) return false;
     }
   // Everything else within reach: plants near the moved organs' box, their runs, their organs.
@@ -123,7 +129,8 @@ bool bend_passes(const TurnSearch& ts, const std::vector<std::uint32_t>& c, cons
 
 }  // namespace
 
-std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& turns, int threads, SpreadStats* stats) {
+std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& turns, int threads,
+                               SpreadStats* stats) {
   const Stand& s = ts.stand;
   const ResolveConfig& cfg = ts.config;
   if (cfg.bend_joints <= 1) return turns;
@@ -150,7 +157,8 @@ std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& tu
       std::vector<std::uint32_t> chain = bend_chain(s, cfg, t.organ, cfg.bend_joints, &planned);
       std::reverse(chain.begin(), chain.end());  // proximal first
       const int len = static_cast<int>(chain.size());
-      const int want = std::clamp(static_cast<int>(std::ceil(rot->deg / cfg.bend_step_deg)), 2, std::max(2, len));
+      const int want =
+          std::clamp(static_cast<int>(std::ceil(rot->deg / cfg.bend_step_deg)), 2, std::max(2, len));
       // The turn at each of the last m joints of the chain, each within its limit, if the bent
       // pose passes.
       const auto attempt = [&](int m, const std::vector<double>& deg) {
@@ -196,7 +204,8 @@ std::vector<Turn> spread_turns(const TurnSearch& ts, const std::vector<Turn>& tu
   for (std::size_t i = 0; i < turns.size(); ++i) {
     if (kinked[i] == 2 && stats) stats->unbent.push_back(turns[i].organ);
     if (out[i].size() > 1) {
-      const bool free = std::none_of(out[i].begin(), out[i].end(), [&](const Turn& t) { return taken[t.organ] != 0; });
+      const bool free =
+          std::none_of(out[i].begin(), out[i].end(), [&](const Turn& t) { return taken[t.organ] != 0; });
       if (free) {
         for (const Turn& t : out[i]) taken[t.organ] = 1;
       } else {

@@ -30,10 +30,11 @@ void ContactGraph::find_witnesses(const Stand& s, PrototypeLibrary& lib, float c
         const std::int32_t y = with[e];
         if (static_cast<std::int32_t>(x) > y) continue;  // each pair once, by its lower organ
         Witness w;
-        organs_touch_at(s, lib, static_cast<std::int32_t>(x), s.transforms[x], y, s.transforms[static_cast<std::size_t>(y)],
-                        clearance, scratch, &w);
+        organs_touch_at(s, lib, static_cast<std::int32_t>(x), s.transforms[x], y,
+                        s.transforms[static_cast<std::size_t>(y)], clearance, scratch, &w);
         witness[e] = w;
-        for (std::uint32_t f = first[static_cast<std::size_t>(y)]; f < first[static_cast<std::size_t>(y) + 1]; ++f)
+        for (std::uint32_t f = first[static_cast<std::size_t>(y)]; f < first[static_cast<std::size_t>(y) + 1];
+             ++f)
           if (with[f] == static_cast<std::int32_t>(x)) witness[f] = w;
       }
   }

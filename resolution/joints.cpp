@@ -79,7 +79,9 @@ Joints::JointFrame Joints::joint_frame(std::uint32_t k) const {
   return f;
 }
 
-Mat3d Joints::local_after(std::uint32_t k, const Mat3d& turn) const { return local_after(joint_frame(k), turn); }
+Mat3d Joints::local_after(std::uint32_t k, const Mat3d& turn) const {
+  return local_after(joint_frame(k), turn);
+}
 
 void Joints::set_local(std::uint32_t k, const Mat3d& q) {
   if (slot_[k] < 0) {
@@ -91,7 +93,8 @@ void Joints::set_local(std::uint32_t k, const Mat3d& q) {
   }
 }
 
-std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint32_t>& turned, int threads) const {
+std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint32_t>& turned,
+                                          int threads) const {
   std::vector<std::uint32_t> roots = turned;
   std::sort(roots.begin(), roots.end());
   roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
@@ -112,9 +115,9 @@ std::vector<std::uint32_t> Joints::update(Stand& s, const std::vector<std::uint3
       for (std::uint32_t i = k; i < end; ++i) {
         if (i > k) {
           const Motion& up = d[static_cast<std::size_t>(parent_[i]) - k];
-          d[i - k] = slot_[i] >= 0
-                         ? compose(up, rotation_about(to_double(grown_[i].t), local_[static_cast<std::size_t>(slot_[i])]))
-                         : up;
+          d[i - k] = slot_[i] >= 0 ? compose(up, rotation_about(to_double(grown_[i].t),
+                                                                local_[static_cast<std::size_t>(slot_[i])]))
+                                   : up;
         }
         s.transforms[i] = apply(d[i - k], grown_[i]);
       }

@@ -47,12 +47,15 @@ class Joints {
     Mat3d parent, parent_t, local;  // the parent's rotation (D_parent), its transpose, Q_k
   };
   JointFrame joint_frame(std::uint32_t k) const;
-  static Mat3d local_after(const JointFrame& f, const Mat3d& turn) { return f.parent_t * turn * f.parent * f.local; }
+  static Mat3d local_after(const JointFrame& f, const Mat3d& turn) {
+    return f.parent_t * turn * f.parent * f.local;
+  }
   /// Sets organ k's local rotation (as local_after gave it).
   void set_local(std::uint32_t k, const Mat3d& q);
   /// Writes current transforms into `stand` for the subtrees of `turned` organs (on `threads`
   /// threads, 0: all), returns the ids of every organ whose transform was rewritten (sorted).
-  std::vector<std::uint32_t> update(Stand& stand, const std::vector<std::uint32_t>& turned, int threads = 0) const;
+  std::vector<std::uint32_t> update(Stand& stand, const std::vector<std::uint32_t>& turned,
+                                    int threads = 0) const;
   /// Turned joints: organ ids, and how many.
   const std::vector<std::uint32_t>& turned() const { return turned_ids_; }
   std::size_t bytes() const { return bytes_for(grown_.size(), turned_ids_.size()); }

@@ -31,7 +31,8 @@ void Neighbourhood::fit_plant(const Stand& s, std::span<const Obb> boxes, std::s
                    dz = double(bi.centre.z) - run.centre.z;
       r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz) + bi.radius);
       const double c[3] = {bi.centre.x, bi.centre.y, bi.centre.z};
-      for (int a = 0; a < 3; ++a) slo[a] = std::min(slo[a], c[a] - bi.radius), shi[a] = std::max(shi[a], c[a] + bi.radius);
+      for (int a = 0; a < 3; ++a)
+        slo[a] = std::min(slo[a], c[a] - bi.radius), shi[a] = std::max(shi[a], c[a] + bi.radius);
     }
     run.radius = static_cast<float>(r * (1 + 1e-6) + 1e-7);  // rounded up
     const auto down = [](double v) { return static_cast<float>(v - 1e-6 * (1 + std::abs(v))); };
@@ -43,7 +44,8 @@ void Neighbourhood::fit_plant(const Stand& s, std::span<const Obb> boxes, std::s
   reach_[p] = reach;  // the largest horizontal distance of an organ bound from the plant's origin
 }
 
-Neighbourhood::Neighbourhood(const Stand& s, std::span<const Obb> boxes, int threads) : reach_(s.plant_count(), 0) {
+Neighbourhood::Neighbourhood(const Stand& s, std::span<const Obb> boxes, int threads)
+    : reach_(s.plant_count(), 0) {
   run_first_.assign(s.plant_count() + 1, 0);
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     run_first_[p + 1] = run_first_[p] + (s.plants[p].organ_count + kRunLength - 1) / kRunLength;
@@ -52,12 +54,14 @@ Neighbourhood::Neighbourhood(const Stand& s, std::span<const Obb> boxes, int thr
   cell_ = std::max(0.05, 2.0 * max_reach_);
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
     const Vec3d o = s.offset(p);
-    cells_[key(static_cast<std::int64_t>(std::floor(o.x / cell_)), static_cast<std::int64_t>(std::floor(o.y / cell_)))].push_back(
-        static_cast<std::int32_t>(p));
+    cells_[key(static_cast<std::int64_t>(std::floor(o.x / cell_)),
+               static_cast<std::int64_t>(std::floor(o.y / cell_)))]
+        .push_back(static_cast<std::int32_t>(p));
   }
 }
 
-void Neighbourhood::update(const Stand& s, std::span<const Obb> boxes, const std::vector<std::uint8_t>& plants, int threads) {
+void Neighbourhood::update(const Stand& s, std::span<const Obb> boxes,
+                           const std::vector<std::uint8_t>& plants, int threads) {
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     if (plants[p]) fit_plant(s, boxes, p);

@@ -28,7 +28,8 @@ class Neighbourhood {
   /// From every organ's current OBB (`boxes`, no clearance, in its plant's frame).
   Neighbourhood(const Stand& stand, std::span<const Obb> boxes, int threads);
   /// New reaches and runs for the plants flagged in `plants` (their boxes refitted first).
-  void update(const Stand& stand, std::span<const Obb> boxes, const std::vector<std::uint8_t>& plants, int threads);
+  void update(const Stand& stand, std::span<const Obb> boxes, const std::vector<std::uint8_t>& plants,
+              int threads);
   /// Plants whose organs may come within `r` metres of point (x, y) (relative to stand_origin).
   std::vector<std::int32_t> plants_near(const Stand& stand, double x, double y, double r) const;
   /// The organ runs of a plant, in organ order.

@@ -21,8 +21,9 @@ void PhaseTimes::lap(Phase p) {
 }
 
 std::vector<PhaseStat> PhaseTimes::phases() const {
-  static constexpr const char* names[count] = {"setup",       "witnesses",   "candidates", "bookkeeping", "scan",  "pick",
-                                               "last resort", "apply turns", "refit",      "redetect",    "merge", "release"};
+  static constexpr const char* names[count] = {"setup", "witnesses", "candidates",  "bookkeeping",
+                                               "scan",  "pick",      "last resort", "apply turns",
+                                               "refit", "redetect",  "merge",       "release"};
   std::vector<PhaseStat> out;
   for (int p = 0; p < count; ++p) out.push_back({names[p], seconds[p], cpu[p], faults[p]});
   return out;

@@ -47,7 +47,8 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
   }
   for (std::size_t g : slots) local_of[g] = kNoPair;
   const auto candidates_of = [&](std::uint32_t q) {
-    return std::span<const std::uint32_t>(cand_local.data() + local_first[q], local_first[q + 1] - local_first[q]);
+    return std::span<const std::uint32_t>(cand_local.data() + local_first[q],
+                                          local_first[q + 1] - local_first[q]);
   };
   std::vector<TurnSearch::Candidate*>& state = lane.state;
   std::vector<std::uint8_t>&open = lane.open, &want = lane.want;
@@ -73,7 +74,8 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     for (std::size_t k : unrefined) want[k] = 2;
     for (std::uint32_t q : pending) {
       const std::span<const std::uint32_t> ks = candidates_of(q);
-      if (std::any_of(ks.begin(), ks.end(), [&](std::uint32_t k) { return want[k] == 2; })) continue;  // settled
+      if (std::any_of(ks.begin(), ks.end(), [&](std::uint32_t k) { return want[k] == 2; }))
+        continue;  // settled
       for (std::uint32_t k : ks) want[k] |= open[k];
     }
     std::vector<std::size_t> scan;
@@ -83,7 +85,8 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     // Neighbouring candidates (organs of one leaf) test against the same organs: a thread
     // that takes a few in a row finds their poses in its cache. Chunks of up to 8, fewer
     // where the level is short, so that no thread waits long at its end.
-    const int chunk = static_cast<int>(std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
+    const int chunk = static_cast<int>(
+        std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
     times.lap(PhaseTimes::bookkeeping);
     const double prepare_start = now_seconds();
 #pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
@@ -92,7 +95,8 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       const std::size_t k = scan[j];
       const std::uint32_t m = movers[slots[k]];
       const auto me = static_cast<std::size_t>(omp_get_thread_num());
-      if (!state[k]) state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
+      if (!state[k])
+        state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
       // Found: refined to its smallest turn at once, by the same thread (it depends on the
       // candidate alone).
       if (!lane.bulk && search.scan_level(*state[k], level, (*lane.scratches)[me]))
@@ -112,7 +116,8 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     };
     if (lane.bulk) {
       // This level's scan, and the last level's finds each refined to its smallest turn, once.
-      const std::vector<Turn> turns = lane.bulk->scan_and_refine(candidates(scan), level, candidates(unrefined));
+      const std::vector<Turn> turns =
+          lane.bulk->scan_and_refine(candidates(scan), level, candidates(unrefined));
       for (std::size_t j = 0; j < unrefined.size(); ++j) refined[unrefined[j]] = turns[j];
       unrefined.clear();
       for (std::size_t k : scan)

@@ -18,8 +18,9 @@ using planning::Lane;
 using planning::Picks;
 using planning::Round;
 
-Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
-                const TurnSearch& search, const PlanRequest& req, PhaseTimes& times) {
+Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>& contacts,
+                const ContactGraph& graph, const TurnSearch& search, const PlanRequest& req,
+                PhaseTimes& times) {
   const ResolveConfig& cfg = search.config;
   const int threads = req.threads;
   const std::size_t n = contacts.size();
@@ -33,17 +34,21 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
         !(*req.plan_plants)[static_cast<std::size_t>(contacts[i].plant_b)])
       continue;  // known (its organs' neighbours need it) but decides no turn this process keeps
     cands[i] = candidate_movers(s, joints, contacts[i], cfg, why[i]);
-    if (cands[i].size() > static_cast<std::size_t>(cfg.candidates)) cands[i].resize(static_cast<std::size_t>(cfg.candidates));
+    if (cands[i].size() > static_cast<std::size_t>(cfg.candidates))
+      cands[i].resize(static_cast<std::size_t>(cfg.candidates));
   }
   // The movers in organ order, and each one's slot among them: a mark per organ set on all
   // threads, then one pass over the marks (instead of sorting every contact's candidates).
   std::vector<std::uint8_t> is_mover(s.organ_count(), 0);
 #pragma omp parallel for schedule(static, 512) num_threads(threads)
   for (std::size_t i = 0; i < n; ++i)
-    for (std::uint32_t m : cands[i]) std::atomic_ref<std::uint8_t>(is_mover[m]).store(1, std::memory_order_relaxed);
-  const auto slot_of = std::make_unique_for_overwrite<std::uint32_t[]>(s.organ_count());  // read only where marked
+    for (std::uint32_t m : cands[i])
+      std::atomic_ref<std::uint8_t>(is_mover[m]).store(1, std::memory_order_relaxed);
+  const auto slot_of =
+      std::make_unique_for_overwrite<std::uint32_t[]>(s.organ_count());  // read only where marked
   for (std::size_t k = 0; k < s.organ_count(); ++k)
-    if (is_mover[k]) slot_of[k] = static_cast<std::uint32_t>(movers.size()), movers.push_back(static_cast<std::uint32_t>(k));
+    if (is_mover[k])
+      slot_of[k] = static_cast<std::uint32_t>(movers.size()), movers.push_back(static_cast<std::uint32_t>(k));
   const auto slot = [&](std::uint32_t m) { return static_cast<std::size_t>(slot_of[m]); };
   std::vector<std::vector<std::size_t>> cand_slots(n);
 #pragma omp parallel for schedule(static, 512) num_threads(threads)
@@ -60,7 +65,8 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   // The lanes: the first plans on this thread with the caller's pools and phase times; the
   // others (bulk attempts only) on threads of their own.
   const std::size_t n_lanes = req.runner && req.lanes ? req.lanes->lanes() : 1;
-  if (req.runner && n_lanes > req.runner->lanes()) throw std::logic_error("planning: more lanes than the runner has");
+  if (req.runner && n_lanes > req.runner->lanes())
+    throw std::logic_error("planning: more lanes than the runner has");
   std::vector<std::vector<CandidatePool>>& pools = *req.pools;
   if (pools.size() < n_lanes) pools.resize(n_lanes);
   if (req.tables && req.tables->size() < n_lanes) req.tables->resize(n_lanes);
@@ -71,10 +77,12 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     // Every lane on all threads: a lane waiting for the device leaves its cores to the others
     // (4 lanes of 4 threads each plan no faster on a 16-core GPU machine).
     lane.threads = threads;
-    if (pools[l].size() < static_cast<std::size_t>(threads)) pools[l].resize(static_cast<std::size_t>(threads));
+    if (pools[l].size() < static_cast<std::size_t>(threads))
+      pools[l].resize(static_cast<std::size_t>(threads));
     lane.pools = &pools[l];
     lane.scratches = &scratches;
-    if (req.runner) lane.bulk.emplace(search, *req.runner, threads, l, req.tables ? &(*req.tables)[l] : nullptr);
+    if (req.runner)
+      lane.bulk.emplace(search, *req.runner, threads, l, req.tables ? &(*req.tables)[l] : nullptr);
     lane.times = l == 0 ? &times : &quiet;
     lane.local_of.assign(movers.size(), kNoPair);
   }
@@ -90,7 +98,8 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     const std::size_t size = batches ? std::max<std::size_t>(1, (waiting.size() + batches - 1) / batches) : 1;
     batches = (waiting.size() + size - 1) / size;
     const auto batch = [&](std::size_t b) {
-      return std::span<const std::size_t>(waiting).subspan(b * size, std::min(size, waiting.size() - b * size));
+      return std::span<const std::size_t>(waiting).subspan(b * size,
+                                                           std::min(size, waiting.size() - b * size));
     };
     std::vector<Picks> picks(batches);
     // Each lane takes the next batch not taken; any lane may plan any batch. A lane that fails
@@ -161,9 +170,11 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   Plan plan;
   for (std::size_t i = 0; i < n; ++i)
     if (!resolved[i])
-      plan.why[i] = cands[i].empty()
-                        ? why[i]
-                        : fmt::format("no turn within the joint limits of the {} organ(s) tried separates them", cands[i].size());
+      plan.why[i] =
+          cands[i].empty()
+              ? why[i]
+              : fmt::format("no turn within the joint limits of the {} organ(s) tried separates them",
+                            cands[i].size());
   for (const auto& t : turn_of)
     if (t) plan.turns.push_back(*t);
   return plan;

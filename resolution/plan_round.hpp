@@ -70,7 +70,8 @@ struct PlanRequest {
 /// contact its subtree has (so a mover picked by several contacts makes one turn). Movers are
 /// scanned level by level of cost, in parallel, each mover once per level whichever contacts
 /// ask for it; a strict pass (no new contacts) comes first, a relaxed pass takes what is left.
-Plan plan_round(const Stand& stand, const Joints& joints, const std::vector<Contact>& contacts, const ContactGraph& graph,
-                const TurnSearch& search, const PlanRequest& request, PhaseTimes& times);
+Plan plan_round(const Stand& stand, const Joints& joints, const std::vector<Contact>& contacts,
+                const ContactGraph& graph, const TurnSearch& search, const PlanRequest& request,
+                PhaseTimes& times);
 
 }  // namespace canopy

@@ -30,12 +30,14 @@ ResolveResult Resolution::finish() {
     const auto bytes = [](const auto& t) { return t.capacity() * sizeof(t[0]); };
     for (std::size_t l = 0; l < tables.size() && l < lane_stats.size(); ++l) {
       PlanLaneStats& to = lane_stats[l];
-      to.moving_bytes = bytes(tables[l].moving), to.keep_bytes = bytes(tables[l].keep), to.pair_bytes = bytes(tables[l].pairs);
+      to.moving_bytes = bytes(tables[l].moving), to.keep_bytes = bytes(tables[l].keep),
+      to.pair_bytes = bytes(tables[l].pairs);
       to.witness_bytes = bytes(tables[l].witness), to.axis_bytes = bytes(tables[l].axes);
     }
   }
-  auto gone = std::make_shared<std::pair<std::vector<std::vector<CandidatePool>>, std::vector<AttemptTables>>>(std::move(pools),
-                                                                                                               std::move(tables));
+  auto gone =
+      std::make_shared<std::pair<std::vector<std::vector<CandidatePool>>, std::vector<AttemptTables>>>(
+          std::move(pools), std::move(tables));
   BackgroundRelease::instance().hand_over([gone] { gone->first.clear(), gone->second.clear(); });
   times.lap(PhaseTimes::release);
   if (req.statistics) out.stats = statistics();
@@ -43,7 +45,8 @@ ResolveResult Resolution::finish() {
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     if (!mine(contacts[i].plant_a)) continue;
     const auto w = why.find(i);
-    out.unresolved.push_back({contacts[i], w != why.end() ? w->second : "still in contact when resolution stopped: " + out.stop});
+    out.unresolved.push_back(
+        {contacts[i], w != why.end() ? w->second : "still in contact when resolution stopped: " + out.stop});
   }
   // The mean turn as an exact sum of angles in units of 2^-32 degrees, so that it does not depend
   // on how the joints are split between processes.
@@ -60,13 +63,16 @@ ResolveResult Resolution::finish() {
   // The turn each organ carries: the rotation from its grown pose to its current one.
   for (std::size_t k = 0; k < s.organ_count(); ++k)
     if (carried[k] && mine(s.organs[k].plant))
-      out.max_turn_deg = std::max(out.max_turn_deg, rotation_angle_deg(joints.motion(static_cast<std::uint32_t>(k)).r));
+      out.max_turn_deg =
+          std::max(out.max_turn_deg, rotation_angle_deg(joints.motion(static_cast<std::uint32_t>(k)).r));
   for (std::size_t k = 0; k < s.organ_count(); ++k)
     if (mine(s.organs[k].plant)) ++owned_organs, carried_organs += carried[k];
-  const std::vector<std::int64_t> sums = total({moved_joints, angle_units, owned_organs, carried_organs, owned_turned});
+  const std::vector<std::int64_t> sums =
+      total({moved_joints, angle_units, owned_organs, carried_organs, owned_turned});
   if (part) out.max_turn_deg = part->max(out.max_turn_deg), out.max_joint_deg = part->max(out.max_joint_deg);
   out.organs_moved = static_cast<std::size_t>(sums[0]);
-  if (out.organs_moved) out.mean_turn_deg = std::ldexp(static_cast<double>(sums[1]), -32) / static_cast<double>(out.organs_moved);
+  if (out.organs_moved)
+    out.mean_turn_deg = std::ldexp(static_cast<double>(sums[1]), -32) / static_cast<double>(out.organs_moved);
   out.organs_carried = static_cast<std::size_t>(sums[3]);
   const std::vector<std::int64_t> bent = total(bend_counts);
   out.bends = static_cast<std::size_t>(bent[0]), out.bend_joints = static_cast<std::size_t>(bent[1]);
@@ -78,7 +84,8 @@ ResolveResult Resolution::finish() {
 
 }  // namespace resolving
 
-ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest& req, const Contacts& initial) {
+ResolveResult resolve(Stand& s, DetectionBackend& backend, const ResolveRequest& req,
+                      const Contacts& initial) {
   resolving::Resolution r(s, backend, req, initial);
   for (int round = 1; !r.stopped(round); ++round) {
     resolving::Resolution::Round w = r.prepare_round(round);

@@ -130,6 +130,7 @@ struct ResolveResult {
 
 /// Resolves `stand` in place. `initial` holds the contacts at config.level that
 /// `backend.detect(stand, ...)` has just found (the backend keeps its tree for the rounds).
-ResolveResult resolve(Stand& stand, DetectionBackend& backend, const ResolveRequest& request, const Contacts& initial);
+ResolveResult resolve(Stand& stand, DetectionBackend& backend, const ResolveRequest& request,
+                      const Contacts& initial);
 
 }  // namespace canopy

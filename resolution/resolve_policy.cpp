@@ -13,16 +13,18 @@ namespace canopy {
 void ResolveConfig::check() const {
   const auto positive = [](const char* what, double v) {
     if (!std::isfinite(v) || v <= 0)
-      throw std::invalid_argument(fmt::format("resolution: {} must be a finite number above 0 (got {})", what, v));
+      throw std::invalid_argument(
+          fmt::format("resolution: {} must be a finite number above 0 (got {})", what, v));
   };
   if (!std::isfinite(clearance) || clearance < 0)
-    throw std::invalid_argument(
-        fmt::format("resolution: the clearance must be a finite number of metres, at least 0 (got {})", clearance));
+    throw std::invalid_argument(fmt::format(
+        "resolution: the clearance must be a finite number of metres, at least 0 (got {})", clearance));
   positive("the angle tolerance (degrees)", angle_tolerance_deg);
   positive("the scan step (degrees)", scan_step_deg);
   positive("the bend step (degrees)", bend_step_deg);
   if (bend_joints < 1)
-    throw std::invalid_argument(fmt::format("resolution: bend joints must be at least 1 (got {})", bend_joints));
+    throw std::invalid_argument(
+        fmt::format("resolution: bend joints must be at least 1 (got {})", bend_joints));
   for (std::size_t k = 0; k < kind_weight.size(); ++k)
     if (movable[k]) positive(fmt::format("the {} weight", kOrganKindNames[k]).c_str(), kind_weight[k]);
   if (max_rounds < 1 || candidates < 1 || axis_fan < 0 || stall_rounds < 1)
@@ -72,8 +74,8 @@ void chain(const Stand& s, std::int32_t organ, const ResolveConfig& cfg, std::ve
 
 }  // namespace
 
-std::vector<std::uint32_t> candidate_movers(const Stand& s, const Joints& j, const Contact& c, const ResolveConfig& cfg,
-                                            std::string& why) {
+std::vector<std::uint32_t> candidate_movers(const Stand& s, const Joints& j, const Contact& c,
+                                            const ResolveConfig& cfg, std::string& why) {
   std::vector<std::uint32_t> all;
   chain(s, c.organ_a, cfg, all);
   chain(s, c.organ_b, cfg, all);
@@ -84,16 +86,17 @@ std::vector<std::uint32_t> candidate_movers(const Stand& s, const Joints& j, con
   if (all.empty()) {
     const OrganKind ka = s.organs[static_cast<std::size_t>(c.organ_a)].kind,
                     kb = s.organs[static_cast<std::size_t>(c.organ_b)].kind;
-    why = before > 0
-              ? "the two organs turn only together (one subtree holds both)"
-              : fmt::format("neither organ may turn ({} and {}, and no turnable organ carries them)", name_of(ka), name_of(kb));
+    why = before > 0 ? "the two organs turn only together (one subtree holds both)"
+                     : fmt::format("neither organ may turn ({} and {}, and no turnable organ carries them)",
+                                   name_of(ka), name_of(kb));
     return all;
   }
   const bool between = c.plant_a != c.plant_b;
   const auto key = [&](std::uint32_t k) {
     const Affine3f& t = s.transforms[k];
     const float out = between && cfg.outer_first ? std::sqrt(t.t.x * t.t.x + t.t.y * t.t.y) : 0.0f;
-    return std::make_tuple(cfg.kind_rank[static_cast<std::size_t>(s.organs[k].kind)], -out, j.subtree_end(k) - k, ~k);
+    return std::make_tuple(cfg.kind_rank[static_cast<std::size_t>(s.organs[k].kind)], -out,
+                           j.subtree_end(k) - k, ~k);
   };
   std::sort(all.begin(), all.end(), [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
   return all;

@@ -22,12 +22,12 @@
 namespace canopy {
 
 struct ResolveConfig {
-  int max_rounds = 30;                       // detection rounds before giving up
-  int stall_rounds = 5;                      // stop when the contact count has not improved for this many rounds
-  double clearance = 1e-4;                   // metres left between a turned organ and what it met
-  double angle_tolerance_deg = 0.5;          // the smallest separating angle is found to within this
-  double scan_step_deg = 3;                  // angles tried in steps of this before bisection
-  int axis_fan = 12;                         // axes across the organ's width-normal plane tried besides the away axis
+  int max_rounds = 30;               // detection rounds before giving up
+  int stall_rounds = 5;              // stop when the contact count has not improved for this many rounds
+  double clearance = 1e-4;           // metres left between a turned organ and what it met
+  double angle_tolerance_deg = 0.5;  // the smallest separating angle is found to within this
+  double scan_step_deg = 3;          // angles tried in steps of this before bisection
+  int axis_fan = 12;                 // axes across the organ's width-normal plane tried besides the away axis
   ContactLevel level = ContactLevel::exact;  // exact, or organ (OBBs: faster, turns more)
   KindMask movable = default_movable_kinds();
   std::array<int, 7> kind_rank = default_kind_rank();

@@ -20,8 +20,8 @@ const ResolveConfig& checked_config(const ResolveRequest& req, const Contacts& i
   if (cfg.level != ContactLevel::exact && cfg.level != ContactLevel::organ)
     throw std::invalid_argument("resolution detects at the exact or the organ level");
   if (initial.level != cfg.level)
-    throw std::invalid_argument(
-        fmt::format("resolution at the {} level was given contacts of the {} level", name_of(cfg.level), name_of(initial.level)));
+    throw std::invalid_argument(fmt::format("resolution at the {} level was given contacts of the {} level",
+                                            name_of(cfg.level), name_of(initial.level)));
   check_resolution_fits(initial.pairs.size(), req.detect.memory_limit);
   return cfg;
 }
@@ -34,10 +34,11 @@ DetectRequest at_level(DetectRequest d, ContactLevel level) {
 
 }  // namespace
 
-Resolution::Resolution(Stand& stand, DetectionBackend& backend, const ResolveRequest& req, const Contacts& initial)
-    : s(stand), backend(backend), req(req), cfg(checked_config(req, initial)), dreq(at_level(req.detect, cfg.level)),
-      threads(dreq.threads > 0 ? dreq.threads : omp_get_max_threads()), joints(s, threads), boxes(fit_all()),
-      near(s, boxes, threads),
+Resolution::Resolution(Stand& stand, DetectionBackend& backend, const ResolveRequest& req,
+                       const Contacts& initial)
+    : s(stand), backend(backend), req(req), cfg(checked_config(req, initial)),
+      dreq(at_level(req.detect, cfg.level)), threads(dreq.threads > 0 ? dreq.threads : omp_get_max_threads()),
+      joints(s, threads), boxes(fit_all()), near(s, boxes, threads),
       unbendable(s.organ_count(), 0), search{s,
                                              joints,
                                              lib,
@@ -46,11 +47,13 @@ Resolution::Resolution(Stand& stand, DetectionBackend& backend, const ResolveReq
                                              near,
                                              boxes,
                                              touching,
-                                             static_cast<float>(std::max<double>(cfg.clearance, dreq.clearance)),
+                                             static_cast<float>(
+                                                 std::max<double>(cfg.clearance, dreq.clearance)),
                                              dreq.clearance,
                                              &unbendable},
-      contacts(initial.pairs), part(req.partition), left(static_cast<std::size_t>(total({owned_contacts()})[0])),
-      carried(s.organ_count(), 0), moved_now(s.organ_count(), 0), best(left) {
+      contacts(initial.pairs), part(req.partition),
+      left(static_cast<std::size_t>(total({owned_contacts()})[0])), carried(s.organ_count(), 0),
+      moved_now(s.organ_count(), 0), best(left) {
   out.contacts_before = left;
   times.lap(PhaseTimes::setup);
 }
@@ -75,7 +78,8 @@ bool Resolution::stopped(int round) {
   }
   if (left < best) best = left, best_round = round - 1;
   if (round - 1 - best_round >= cfg.stall_rounds) {
-    out.stop = fmt::format("no progress in {} rounds (turns only trade contacts that cannot all be cleared)", cfg.stall_rounds);
+    out.stop = fmt::format("no progress in {} rounds (turns only trade contacts that cannot all be cleared)",
+                           cfg.stall_rounds);
     return true;
   }
   return false;
@@ -109,10 +113,12 @@ bool Resolution::plan_turns(Round& w) {
   const int round = w.record.round;
   PlanRequest preq;
   preq.threads = threads;
-  if (req.progress) preq.planning = [&](std::size_t pending) { req.progress({round, left, now_seconds() - t0, pending}); };
+  if (req.progress)
+    preq.planning = [&](std::size_t pending) { req.progress({round, left, now_seconds() - t0, pending}); };
   preq.plan_plants = part ? &part->plan : nullptr;
   preq.runner = w.runner;
-  if (const std::size_t lanes = w.runner ? std::min(req.bulk_lanes, w.runner->lanes()) : 1; lanes > 1 && !lane_threads)
+  if (const std::size_t lanes = w.runner ? std::min(req.bulk_lanes, w.runner->lanes()) : 1;
+      lanes > 1 && !lane_threads)
     lane_threads.emplace(lanes);
   preq.lanes = w.runner && lane_threads ? &*lane_threads : nullptr;
   preq.batch_contacts = req.batch_contacts;
@@ -124,7 +130,8 @@ bool Resolution::plan_turns(Round& w) {
   // Asked after planning: a runner that fell back to the host half-way says so.
   rr.lanes = preq.lanes ? preq.lanes->lanes() : 1;
   rr.search = w.runner ? w.runner->hardware() : "host";
-  rr.planning = w.runner ? fmt::format("{} attempts, {} lane{}", rr.search, rr.lanes, rr.lanes > 1 ? "s" : "") : "host search";
+  rr.planning = w.runner ? fmt::format("{} attempts, {} lane{}", rr.search, rr.lanes, rr.lanes > 1 ? "s" : "")
+                         : "host search";
   Plan& plan = w.plan;
   why = std::move(plan.why);
   if (part)  // each process turns its own organs; the halo's turns come from their owners
@@ -140,9 +147,10 @@ bool Resolution::plan_turns(Round& w) {
   times.lap(PhaseTimes::apply);
   rr.plan_s = now_seconds() - w.started;
   // This process's own turns and marks (the halo's come from their owners below).
-  w.counts = total({static_cast<std::int64_t>(plan.turns.size()),
-                    static_cast<std::int64_t>(std::count_if(plan.turns.begin(), plan.turns.end(),
-                                                            [](const Turn& turn) { return turn.angle_deg >= 0; }))});
+  w.counts =
+      total({static_cast<std::int64_t>(plan.turns.size()),
+             static_cast<std::int64_t>(std::count_if(plan.turns.begin(), plan.turns.end(),
+                                                     [](const Turn& turn) { return turn.angle_deg >= 0; }))});
   if (w.counts[0] != 0) return true;
   out.stop = "no turn within the joint limits separates the contacts left";
   out.per_round.push_back(rr);
@@ -171,8 +179,10 @@ void Resolution::apply_round(Round& w) {
   w.active.assign(s.plant_count(), 0);
   for (std::uint32_t k : moved) {
     const Affine3f& m = s.transforms[k];
-    for (float v : {m.c0.x, m.c0.y, m.c0.z, m.c1.x, m.c1.y, m.c1.z, m.c2.x, m.c2.y, m.c2.z, m.t.x, m.t.y, m.t.z})
-      if (!std::isfinite(v)) throw std::logic_error(fmt::format("resolution made a non-finite transform for organ {}", k));
+    for (float v :
+         {m.c0.x, m.c0.y, m.c0.z, m.c1.x, m.c1.y, m.c1.z, m.c2.x, m.c2.y, m.c2.z, m.t.x, m.t.y, m.t.z})
+      if (!std::isfinite(v))
+        throw std::logic_error(fmt::format("resolution made a non-finite transform for organ {}", k));
     carried[k] = 1;
     moved_now[k] = 1;
     w.active[static_cast<std::size_t>(s.organs[k].plant)] = 1;
@@ -205,7 +215,8 @@ void Resolution::detect_round(Round& w) {
 
 void Resolution::record_round(Round& w) {
   std::int64_t redetected = 0;
-  for (std::size_t p = 0; p < w.active.size(); ++p) redetected += w.active[p] && mine(static_cast<std::int32_t>(p));
+  for (std::size_t p = 0; p < w.active.size(); ++p)
+    redetected += w.active[p] && mine(static_cast<std::int32_t>(p));
   const std::vector<std::int64_t> sums = total({owned_contacts(), redetected});
   left = static_cast<std::size_t>(sums[0]);
   w.record.turned = static_cast<std::size_t>(w.counts[1]);

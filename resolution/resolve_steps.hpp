@@ -78,7 +78,9 @@ struct Resolution {
   /// Whether this process owns `plant` (every plant without a partition).
   bool mine(std::int32_t plant) const { return !part || part->owned[static_cast<std::size_t>(plant)] != 0; }
   /// Sums over every process (this one alone without a partition).
-  std::vector<std::int64_t> total(std::vector<std::int64_t> v) const { return part ? part->sum(std::move(v)) : v; }
+  std::vector<std::int64_t> total(std::vector<std::int64_t> v) const {
+    return part ? part->sum(std::move(v)) : v;
+  }
   std::int64_t owned_contacts() const {
     return static_cast<std::int64_t>(
         std::count_if(contacts.begin(), contacts.end(), [&](const Contact& c) { return mine(c.plant_a); }));

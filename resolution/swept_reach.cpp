@@ -28,7 +28,8 @@ double swept_reach(const Stand& s, PrototypeLibrary& lib, std::size_t p, const K
     const Affine3f& m = s.transforms[k];
     const Vec3d joint{m.t.x, m.t.y, m.t.z};
     const std::ptrdiff_t parent =
-        r.parent < 0 ? -1 : static_cast<std::ptrdiff_t>(r.parent) - static_cast<std::ptrdiff_t>(pr.first_organ);
+        r.parent < 0 ? -1
+                     : static_cast<std::ptrdiff_t>(r.parent) - static_cast<std::ptrdiff_t>(pr.first_organ);
     const bool parent_moves = parent >= 0 && moves[static_cast<std::size_t>(parent)];
     const Obb b = make_obb(m, lib.get(r).box, 0);
     const double half_diagonal = b.radius;  // the box's bounding sphere about its centre
@@ -36,14 +37,16 @@ double swept_reach(const Stand& s, PrototypeLibrary& lib, std::size_t p, const K
       const Affine3f& pm = s.transforms[pr.first_organ + static_cast<std::size_t>(parent)];
       moves[i] = 1;
       anchor[i] = anchor[static_cast<std::size_t>(parent)];
-      chain[i] = chain[static_cast<std::size_t>(parent)] + norm3(joint.x - pm.t.x, joint.y - pm.t.y, joint.z - pm.t.z);
+      chain[i] = chain[static_cast<std::size_t>(parent)] +
+                 norm3(joint.x - pm.t.x, joint.y - pm.t.y, joint.z - pm.t.z);
     } else if (movable[static_cast<std::size_t>(r.kind)]) {
       moves[i] = 1;
       anchor[i] = joint;
     }
     double out;
     if (moves[i]) {
-      const double extent = norm3(b.centre.x - joint.x, b.centre.y - joint.y, b.centre.z - joint.z) + half_diagonal;
+      const double extent =
+          norm3(b.centre.x - joint.x, b.centre.y - joint.y, b.centre.z - joint.z) + half_diagonal;
       out = std::hypot(anchor[i].x, anchor[i].y) + chain[i] + extent;
     } else {
       out = std::hypot(static_cast<double>(b.centre.x), static_cast<double>(b.centre.y)) + half_diagonal;

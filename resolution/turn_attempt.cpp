@@ -13,7 +13,8 @@ constexpr double kRad = std::numbers::pi / 180;
 
 }  // namespace
 
-bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch, int axis) const {
+bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch,
+                         int axis) const {
   const Stand& s = stand;
   host_state(c);
   const Mat3d r = rotation(c, a, deg);
@@ -30,7 +31,8 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   Affine3f tx;
   const auto pose = [&](std::int32_t x) -> const Affine3f& {
     if (pose_of != x)
-      tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)]) : s.transforms[static_cast<std::size_t>(x)],
+      tx = deg > 0 ? apply(turn, s.transforms[static_cast<std::size_t>(x)])
+                   : s.transforms[static_cast<std::size_t>(x)],
       pose_of = x;
     return tx;
   };
@@ -53,7 +55,8 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   // Whether the triangles that touched last in pair p of `set` touch at this pose: a touch there
   // is a touch of the organs (their boxes overlap then too), found for the price of a few
   // triangle tests.
-  const auto witness_meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p, const Witness& w, int skip = -1) {
+  const auto witness_meets = [&](std::uint32_t set, std::size_t i, std::uint32_t p, const Witness& w,
+                                 int skip = -1) {
     if (w.latest < 0) return -1;
     const PairSet& pairs = set == 0 ? c.met_pairs : c.near_pairs;
     const std::int32_t x = c.moving[i], y = c.keep[pairs.y[p]];
@@ -65,8 +68,9 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
   };
   // What blocked this axis last, kept for the next attempt about it: the pair and, at the exact
   // level, the triangles that touched (the pair's newest witness slot).
-  Candidate::AxisBlock* const memo =
-      axis >= 0 && static_cast<std::size_t>(axis) < c.axis_block.size() ? &c.axis_block[static_cast<std::size_t>(axis)] : nullptr;
+  Candidate::AxisBlock* const memo = axis >= 0 && static_cast<std::size_t>(axis) < c.axis_block.size()
+                                         ? &c.axis_block[static_cast<std::size_t>(axis)]
+                                         : nullptr;
   const auto blocked_by = [&](std::uint32_t set, std::uint32_t i, std::uint32_t p) {
     if (!memo) return false;
     const Witness& w = (set == 0 ? c.met_pairs : c.near_pairs).witness[p];
@@ -136,7 +140,8 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
 }
 
 Mat3d TurnSearch::rotation(Candidate& c, const Vec3d& a, double deg) const {
-  if (deg != c.trig_deg) c.trig_deg = deg, c.trig_cos = std::cos(deg * kRad), c.trig_sin = std::sin(deg * kRad);
+  if (deg != c.trig_deg)
+    c.trig_deg = deg, c.trig_cos = std::cos(deg * kRad), c.trig_sin = std::sin(deg * kRad);
   return axis_angle(a, c.trig_cos, c.trig_sin);
 }
 

@@ -25,7 +25,8 @@ Vec3f offset_into(const Stand& s, std::int32_t into, std::int32_t k) {
 
 }  // namespace
 
-void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg, PairSet& out) const {
+void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to, double max_deg,
+                            PairSet& out) const {
   const Stand& s = stand;
   const std::int32_t plant = s.organs[c.mover].plant;
   out.clear();
@@ -65,7 +66,8 @@ void TurnSearch::link_pairs(const Candidate& c, std::size_t from, std::size_t to
       const double ex = yx[i] - cx.x, ey = yy[i] - cx.y, ez = yz[i] - cx.z;
       const double far = reach + chord + slack;
       // Not: the shells never meet, or too far for the largest turn.
-      pass[i] = static_cast<std::uint8_t>(!(std::abs(dy[i] - dx) - reach > slack) & !(ex * ex + ey * ey + ez * ez > far * far));
+      pass[i] = static_cast<std::uint8_t>(!(std::abs(dy[i] - dx) - reach > slack) &
+                                          !(ex * ex + ey * ey + ez * ez > far * far));
     }
     const OrganRecord& rx_organ = s.organs[static_cast<std::size_t>(x)];
     for (std::size_t i = 0; i < n; ++i) {
@@ -82,7 +84,8 @@ void TurnSearch::Candidate::recycle() {
   Candidate old = std::move(*this);
   *this = Candidate{};
   const auto reuse = [](auto& to, auto& from) { from.clear(), to = std::move(from); };
-  reuse(moving, old.moving), reuse(keep, old.keep), reuse(keep_box, old.keep_box), reuse(keep_off, old.keep_off);
+  reuse(moving, old.moving), reuse(keep, old.keep), reuse(keep_box, old.keep_box),
+      reuse(keep_off, old.keep_off);
   reuse(axes, old.axes), reuse(axis_block, old.axis_block);
   for (auto [to, from] : {std::pair{&met_pairs, &old.met_pairs}, std::pair{&near_pairs, &old.near_pairs}})
     reuse(to->first, from->first), reuse(to->y, from->y), reuse(to->witness, from->witness);
@@ -96,7 +99,8 @@ void TurnSearch::keep_offsets(Candidate& c, std::size_t from) const {
   for (std::size_t i = from; i < c.keep.size(); ++i) {
     const std::int32_t y = c.keep[i];
     const std::int32_t p = stand.organs[static_cast<std::size_t>(y)].plant;
-    if (p != last_plant) off = offset_into(stand, plant, y), last_plant = p;  // neighbours come plant by plant
+    if (p != last_plant)
+      off = offset_into(stand, plant, y), last_plant = p;  // neighbours come plant by plant
     c.keep_off.push_back(off);
   }
 }
@@ -104,10 +108,12 @@ void TurnSearch::keep_offsets(Candidate& c, std::size_t from) const {
 void TurnSearch::host_state(Candidate& c) const {
   c.keep_box.reserve(c.keep.size());
   for (std::size_t i = c.keep_box.size(); i < c.keep.size(); ++i)
-    c.keep_box.push_back(grown(boxes[static_cast<std::size_t>(c.keep[i])], i < c.met_count ? clearance : detect_clearance));
+    c.keep_box.push_back(
+        grown(boxes[static_cast<std::size_t>(c.keep[i])], i < c.met_count ? clearance : detect_clearance));
   // The neighbours did not touch when the round began: no witness yet (met pairs have theirs
   // from prepare).
-  if (c.near_pairs.witness.size() != c.near_pairs.y.size()) c.near_pairs.witness.assign(c.near_pairs.y.size(), Witness{});
+  if (c.near_pairs.witness.size() != c.near_pairs.y.size())
+    c.near_pairs.witness.assign(c.near_pairs.y.size(), Witness{});
 }
 
 TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict) const {
@@ -155,7 +161,8 @@ void TurnSearch::prepare(Candidate& c, std::uint32_t mover, const MetPairs& met_
   c.met_pairs.witness.assign(c.met_pairs.y.size(), Witness{});
   for (std::size_t i = 0; i < c.moving.size(); ++i)
     for (std::uint32_t p = c.met_pairs.first[i]; p < c.met_pairs.first[i + 1]; ++p)
-      if (const Witness* w = touching.witness_of(c.moving[i], c.keep[c.met_pairs.y[p]])) c.met_pairs.witness[p] = *w;
+      if (const Witness* w = touching.witness_of(c.moving[i], c.keep[c.met_pairs.y[p]]))
+        c.met_pairs.witness[p] = *w;
   const Affine3f& tm = s.transforms[mover];
   if (length(away) > 1e-9) c.axes.push_back(normalized(away));
   const Vec3d h = unit(tm.c0), l = unit(tm.c1), u = unit(tm.c2);
@@ -210,7 +217,8 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   thread_local std::vector<std::int32_t> busy;
   busy.clear();
   for (std::int32_t x : c.moving)
-    for (std::uint32_t e = touching.first[static_cast<std::size_t>(x)]; e < touching.first[static_cast<std::size_t>(x) + 1]; ++e)
+    for (std::uint32_t e = touching.first[static_cast<std::size_t>(x)];
+         e < touching.first[static_cast<std::size_t>(x) + 1]; ++e)
       busy.push_back(touching.with[e]);
   std::sort(busy.begin(), busy.end());
   const Vec3d origin = s.offset(static_cast<std::size_t>(plant));
@@ -240,11 +248,12 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
         const double r = raw.radius;
         // The swept box first: it turns most organs of a run away (whether the organ's sphere
         // misses it, every comparison made and one branch taken: which pass is hard to predict).
-        const bool out = (cy.x + r < lo[0]) | (cy.x - r > hi[0]) | (cy.y + r < lo[1]) | (cy.y - r > hi[1]) | (cy.z + r < lo[2]) |
-                         (cy.z - r > hi[2]);
+        const bool out = (cy.x + r < lo[0]) | (cy.x - r > hi[0]) | (cy.y + r < lo[1]) | (cy.y - r > hi[1]) |
+                         (cy.z + r < lo[2]) | (cy.z - r > hi[2]);
         if (out || joints.holds(mover, y) || !collide[static_cast<std::size_t>(s.organs[k].kind)]) continue;
         if (length(cy - c.joint) > reach + raw.radius + clearance) continue;
-        if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y)) continue;
+        if (std::binary_search(c.keep.begin(), c.keep.begin() + static_cast<std::ptrdiff_t>(met), y))
+          continue;
         if (std::binary_search(busy.begin(), busy.end(), y)) continue;
         c.keep.push_back(y);
       }

@@ -83,7 +83,8 @@ struct TurnSearch {
     /// chain (resolution/bend_chain.hpp): turns up to this pass the joint limit whatever the
     /// mover's own joint says (the plan spreads them, resolution/bend_spread.hpp); 0: no chain.
     double chain_deg = 0;
-    std::vector<std::int32_t> moving, keep;  // keep: the organs met first (met_count of them), then neighbours
+    std::vector<std::int32_t> moving,
+        keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;
     /// Per keep organ: its OBB grown by the clearance it must keep (made by attempt, the host's
     /// search, when it first needs them: a batched search never reads them, and at 10,000 plants
@@ -151,7 +152,8 @@ struct TurnSearch {
   /// `local` gets the joint's rotation.
   /// `axis`: the index of `a` in c.axes, so that the attempt starts from what blocked that axis
   /// last (-1: an axis of the caller's own).
-  bool attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch, int axis = -1) const;
+  bool attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local, ExactScratch& scratch,
+               int axis = -1) const;
   /// Whether turning by `deg` about `a` keeps the joint within its limit (attempt's check).
   bool within_limit(Candidate& c, const Vec3d& a, double deg) const;
   /// The joint's local rotation after turning by `deg` about `a` (what attempt gives `local`).

@@ -31,7 +31,8 @@ double mean(const std::vector<double>& v) {
 
 int main(int argc, char** argv) {
   const std::string usage =
-      "usage: bench_architecture [--rows 3] [--per-row 10] [--plant-spacing 0.4] [--row-spacing 1.0] [--seed 1] [--lod 2] "
+      "usage: bench_architecture [--rows 3] [--per-row 10] [--plant-spacing 0.4] [--row-spacing 1.0] [--seed "
+      "1] [--lod 2] "
       "[--csv FILE] GRAMMAR...\n";
   RowLayout layout;
   layout.rows = 3, layout.per_row = 10, layout.row_spacing = 1.0, layout.plant_spacing = 0.4;
@@ -56,21 +57,24 @@ int main(int argc, char** argv) {
       return help_or_refuse("bench_architecture", argv[i], usage);
     }
   }
-  if (grammars.empty() || layout.rows < 1 || layout.per_row < 1 || !(layout.plant_spacing > 0) || !(layout.row_spacing > 0) ||
-      lod < 1 || lod > kMaxLod) {
-    std::fprintf(
-        stderr, "bench_architecture: name a grammar; rows, plants per row, spacings and the level of detail must be positive\n%s",
-        usage.c_str());
+  if (grammars.empty() || layout.rows < 1 || layout.per_row < 1 || !(layout.plant_spacing > 0) ||
+      !(layout.row_spacing > 0) || lod < 1 || lod > kMaxLod) {
+    std::fprintf(stderr,
+                 "bench_architecture: name a grammar; rows, plants per row, spacings and the level of detail "
+                 "must be positive\n%s",
+                 usage.c_str());
     return 2;
   }
   const int bins = 9;
   std::string text =
-      "grammar,plants,density_per_m2,organs_per_plant,triangles_per_plant,leaves_per_plant,height_m,leaf_area_m2,lai,"
+      "grammar,plants,density_per_m2,organs_per_plant,triangles_per_plant,leaves_per_plant,height_m,leaf_"
+      "area_m2,lai,"
       "mean_inclination_deg";
   for (int b = 0; b < bins; ++b) text += fmt::format(",incl_{}_{}", b * 10, b * 10 + 10);
   text += '\n';
-  fmt::print("{:<28} {:>7} {:>9} {:>7} {:>7} {:>9} {:>6} {:>10}  inclination, % of leaf area by 10-degree class\n", "grammar",
-             "organs", "triangles", "leaves", "height", "leaf m2", "LAI", "mean incl");
+  fmt::print(
+      "{:<28} {:>7} {:>9} {:>7} {:>7} {:>9} {:>6} {:>10}  inclination, % of leaf area by 10-degree class\n",
+      "grammar", "organs", "triangles", "leaves", "height", "leaf m2", "LAI", "mean incl");
   for (const std::string& g : grammars) {
     GrowRequest req;
     req.grammar = g;
@@ -88,19 +92,21 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < s.organ_count(); ++i) triangles += lib.get(s.organs[i]).triangle_count();
     for (const PlantRecord& p : s.plants) leaves += p.leaf_count;
     const double n = static_cast<double>(s.plant_count());
-    const LeafAreaIndex lai = leaf_area_index(s, lib, layout.rows, layout.per_row, layout.plant_spacing, layout.row_spacing);
+    const LeafAreaIndex lai =
+        leaf_area_index(s, lib, layout.rows, layout.per_row, layout.plant_spacing, layout.row_spacing);
     const LeafInclination inc = leaf_inclination(s, lib, bins);
     const double height = mean(plant_heights(s, lib)), area = mean(leaflet_area_per_plant(s, lib));
     const double density = 1 / (layout.plant_spacing * layout.row_spacing);
     std::string classes;
-    text += fmt::format("{},{},{:.4f},{:.1f},{:.1f},{:.2f},{:.4f},{:.5f},{:.4f},{:.3f}", g, s.plant_count(), density,
-                        static_cast<double>(s.organ_count()) / n, static_cast<double>(triangles) / n,
+    text += fmt::format("{},{},{:.4f},{:.1f},{:.1f},{:.2f},{:.4f},{:.5f},{:.4f},{:.3f}", g, s.plant_count(),
+                        density, static_cast<double>(s.organ_count()) / n, static_cast<double>(triangles) / n,
                         static_cast<double>(leaves) / n, height, area, lai.lai, inc.mean_deg);
-    for (double f : inc.fraction) classes += fmt::format(" {:>4.1f}", 100 * f), text += fmt::format(",{:.5f}", f);
+    for (double f : inc.fraction)
+      classes += fmt::format(" {:>4.1f}", 100 * f), text += fmt::format(",{:.5f}", f);
     text += '\n';
     fmt::print("{:<28} {:>7.0f} {:>9.0f} {:>7.1f} {:>7.2f} {:>9.3f} {:>6.2f} {:>10.1f} {}\n", g,
-               static_cast<double>(s.organ_count()) / n, static_cast<double>(triangles) / n, static_cast<double>(leaves) / n,
-               height, area, lai.lai, inc.mean_deg, classes);
+               static_cast<double>(s.organ_count()) / n, static_cast<double>(triangles) / n,
+               static_cast<double>(leaves) / n, height, area, lai.lai, inc.mean_deg, classes);
   }
   std::FILE* out = std::fopen(csv.c_str(), "w");
   if (!out || std::fputs(text.c_str(), out) < 0 || std::fclose(out) != 0) {

@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
     else {
       std::string a = argv[i];
       const auto colon = a.rfind(':');
-      if (colon != std::string::npos && colon + 1 < a.size() && std::isdigit(static_cast<unsigned char>(a[colon + 1])))
+      if (colon != std::string::npos && colon + 1 < a.size() &&
+          std::isdigit(static_cast<unsigned char>(a[colon + 1])))
         cases.push_back({a.substr(0, colon), std::atoi(a.c_str() + colon + 1)});
       else cases.push_back({a, -1});
     }
@@ -50,8 +51,8 @@ int main(int argc, char** argv) {
   // Rows are kept until every case has run, so a grammar that fails to load leaves an earlier
   // CSV as it was.
   std::string rows = "grammar,engine,steps,final_modules,modules_written,median_s,modules_per_s\n";
-  fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10} {:>14}\n", "grammar", "steps", "final modules", "modules written", "median s",
-             "Mmodules/s");
+  fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10} {:>14}\n", "grammar", "steps", "final modules",
+             "modules written", "median s", "Mmodules/s");
   for (const Case& c : cases) {
     Grammar g;
     try {
@@ -86,7 +87,8 @@ int main(int argc, char** argv) {
     }
     const double med = median(std::move(times));
     const double rate = static_cast<double>(written) / med;
-    fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10.4f} {:>14.1f}\n", c.file, steps, final_size, written, med, rate / 1e6);
+    fmt::print("{:<40} {:>6} {:>14} {:>16} {:>10.4f} {:>14.1f}\n", c.file, steps, final_size, written, med,
+               rate / 1e6);
     rows += fmt::format("{},canopy,{},{},{},{:.6f},{:.0f}\n", c.file, steps, final_size, written, med, rate);
   }
   std::FILE* out = std::fopen(csv.c_str(), "w");

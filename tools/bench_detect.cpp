@@ -79,20 +79,24 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
-      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ","))
+        sizes.push_back(std::atoi(t));
     } else {
-      return help_or_refuse("bench_detect", argv[i],
-                            "usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--repeats R] [--csv FILE]\n");
+      return help_or_refuse(
+          "bench_detect", argv[i],
+          "usage: bench_detect [--sizes 200,400,...] [--fcl-max N] [--repeats R] [--csv FILE]\n");
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), "w");
   if (!out) return 1;
-  fmt::print(out, "plants,organs_per_plant,triangles_per_plant,threads,method,stage,seconds,pairs,false_positives,missed\n");
+  fmt::print(out,
+             "plants,organs_per_plant,triangles_per_plant,threads,method,stage,seconds,pairs,false_positives,"
+             "missed\n");
   const int all = omp_get_max_threads();
   std::string note;
   auto cpu = cli::make_backend("cpu", note);  // the command line's factory, as `canopy stand --backend cpu`
-  fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9} {:>10} {:>12} {:>8}\n", "plants", "thr", "method", "stage", "seconds", "pairs",
-             "false pos.", "missed");
+  fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9} {:>10} {:>12} {:>8}\n", "plants", "thr", "method", "stage",
+             "seconds", "pairs", "false pos.", "missed");
   for (int n : sizes) {
     const Stand s = default_stand(n);
     PrototypeLibrary lib;
@@ -109,24 +113,29 @@ int main(int argc, char** argv) {
       const auto rows = cpu->detect(s, req).pairs;
       const auto l = static_cast<std::size_t>(level);
       pairs[l] = rows.size();
-      fp[l] =
-          (level == ContactLevel::organ ? rows.size() : implied_pairs(s, m, rows, level == ContactLevel::leaf)) - exact.size();
+      fp[l] = (level == ContactLevel::organ ? rows.size()
+                                            : implied_pairs(s, m, rows, level == ContactLevel::leaf)) -
+              exact.size();
     }
     pairs[3] = exact.size();
     for (int threads : thread_counts(all)) {
       omp_set_num_threads(threads);
-      const auto row = [&](const char* method, const std::string& stage, double sec, std::size_t p, long long f,
-                           long long missed) {
-        fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10} {:>12} {:>8}\n", n, threads, method, stage, sec, p, f, missed);
-        fmt::print(out, "{},{:.1f},{:.0f},{},{},{},{:.6f},{},{},{}\n", n, opp, tpp, threads, method, stage, sec, p, f, missed);
+      const auto row = [&](const char* method, const std::string& stage, double sec, std::size_t p,
+                           long long f, long long missed) {
+        fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10} {:>12} {:>8}\n", n, threads, method, stage, sec,
+                   p, f, missed);
+        fmt::print(out, "{},{:.1f},{:.0f},{},{},{},{:.6f},{},{},{}\n", n, opp, tpp, threads, method, stage,
+                   sec, p, f, missed);
       };
-      for (ContactLevel level : {ContactLevel::plant, ContactLevel::leaf, ContactLevel::organ, ContactLevel::exact}) {
+      for (ContactLevel level :
+           {ContactLevel::plant, ContactLevel::leaf, ContactLevel::organ, ContactLevel::exact}) {
         DetectRequest r;
         r.level = level;
         r.threads = threads;
         const double t = median_time(repeats, [&] { cpu->detect(s, r); });
         const auto l = static_cast<std::size_t>(level);
-        row("mbvt", std::string("to ") + std::string(name_of(level)), t, pairs[l], static_cast<long long>(fp[l]), 0);
+        row("mbvt", std::string("to ") + std::string(name_of(level)), t, pairs[l],
+            static_cast<long long>(fp[l]), 0);
       }
       // The query alone (the paper's "test" phase, what FCL's query time is): the tree built once,
       // then detection to the exact level over it (a re-detection with no organ moved refits
@@ -137,7 +146,8 @@ int main(int argc, char** argv) {
         cpu->detect(s, r);
         std::vector<Contact> again;
         const double t = median_time(repeats, [&] { again = cpu->redetect(s, r, {}).pairs; });
-        if (again != exact) throw std::runtime_error("bench_detect: the query over a built tree gave other pairs");
+        if (again != exact)
+          throw std::runtime_error("bench_detect: the query over a built tree gave other pairs");
         row("mbvt", "query(exact)", t, again.size(), 0, 0);
       }
       // Table 3: build, test (organ level), update.
@@ -154,7 +164,8 @@ int main(int argc, char** argv) {
       std::vector<Contact> boxes;
       const double atest = median_time(repeats, [&] { boxes = tree.overlapping_pairs(s); });
       row("aabb-tree", "build", abuild, 0, -1, -1);
-      row("aabb-tree", "test(organ)", atest, boxes.size(), static_cast<long long>(boxes.size() - exact.size()), 0);
+      row("aabb-tree", "test(organ)", atest, boxes.size(),
+          static_cast<long long>(boxes.size() - exact.size()), 0);
       row("aabb-tree", "update(rebuild)", abuild, 0, -1, -1);
     }
     if (n <= fcl_max) {
@@ -174,7 +185,8 @@ int main(int argc, char** argv) {
           const auto t0 = std::chrono::steady_clock::now();
           auto pairs = fcl.query();
           f = seconds_since(t0);
-          if (k > 0 && pairs != theirs) throw std::runtime_error("bench_detect: FCL's query gave different pairs on a repeat");
+          if (k > 0 && pairs != theirs)
+            throw std::runtime_error("bench_detect: FCL's query gave different pairs on a repeat");
           theirs = std::move(pairs);
         };
         const auto time_ours = [&] {
@@ -184,7 +196,8 @@ int main(int argc, char** argv) {
           t0 = std::chrono::steady_clock::now();
           const bool same_query = cpu->redetect(s, r, {}).pairs == exact;
           query = seconds_since(t0);
-          if (!same_built || !same_query) throw std::runtime_error("bench_detect: canopy's pairs changed beside FCL's");
+          if (!same_built || !same_query)
+            throw std::runtime_error("bench_detect: canopy's pairs changed beside FCL's");
         };
         if (k % 2) time_fcl(), time_ours();
         else time_ours(), time_fcl();
@@ -195,22 +208,28 @@ int main(int argc, char** argv) {
       std::vector<std::pair<int, int>> ours;
       for (const Contact& c : exact) ours.emplace_back(c.organ_a, c.organ_b);
       std::vector<std::pair<int, int>> only_ours, only_fcl;
-      std::set_difference(ours.begin(), ours.end(), theirs.begin(), theirs.end(), std::back_inserter(only_ours));
-      std::set_difference(theirs.begin(), theirs.end(), ours.begin(), ours.end(), std::back_inserter(only_fcl));
+      std::set_difference(ours.begin(), ours.end(), theirs.begin(), theirs.end(),
+                          std::back_inserter(only_ours));
+      std::set_difference(theirs.begin(), theirs.end(), ours.begin(), ours.end(),
+                          std::back_inserter(only_fcl));
       const double f_med = median(f_s), built_med = median(built_s), query_med = median(query_s);
-      fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10}   build {:.3f} s; only canopy {}, only FCL {}\n", n, 1, "fcl",
-                 "to exact", f_med, theirs.size(), fcl.build_s(), only_ours.size(), only_fcl.size());
-      fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10}   beside FCL's: bounds built {:.4f} s\n", n, 1, "mbvt",
-                 "query(beside)", query_med, exact.size(), built_med);
+      fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10}   build {:.3f} s; only canopy {}, only FCL {}\n",
+                 n, 1, "fcl", "to exact", f_med, theirs.size(), fcl.build_s(), only_ours.size(),
+                 only_fcl.size());
+      fmt::print("{:>6} {:>4} {:<10} {:<14} {:>9.4f} {:>10}   beside FCL's: bounds built {:.4f} s\n", n, 1,
+                 "mbvt", "query(beside)", query_med, exact.size(), built_med);
       fmt::print(
-          "{:>6} {:>4} {:<10} FCL's query / canopy's, one thread, taken in turn: {:.2f}x (canopy's bounds built included), "
+          "{:>6} {:>4} {:<10} FCL's query / canopy's, one thread, taken in turn: {:.2f}x (canopy's bounds "
+          "built included), "
           "{:.2f}x (query against query); medians of {} repeats' ratios\n",
           n, 1, "ratio", median(built_ratio), median(query_ratio), repeats);
       fmt::print(out, "{},{:.1f},{:.0f},1,fcl,build,{:.6f},0,-1,-1\n", n, opp, tpp, fcl.build_s());
-      fmt::print(out, "{},{:.1f},{:.0f},1,fcl,to exact,{:.6f},{},{},{}\n", n, opp, tpp, f_med, theirs.size(), only_fcl.size(),
-                 only_ours.size());
-      fmt::print(out, "{},{:.1f},{:.0f},1,mbvt,to exact(beside fcl),{:.6f},{},0,0\n", n, opp, tpp, built_med, exact.size());
-      fmt::print(out, "{},{:.1f},{:.0f},1,mbvt,query(beside fcl),{:.6f},{},0,0\n", n, opp, tpp, query_med, exact.size());
+      fmt::print(out, "{},{:.1f},{:.0f},1,fcl,to exact,{:.6f},{},{},{}\n", n, opp, tpp, f_med, theirs.size(),
+                 only_fcl.size(), only_ours.size());
+      fmt::print(out, "{},{:.1f},{:.0f},1,mbvt,to exact(beside fcl),{:.6f},{},0,0\n", n, opp, tpp, built_med,
+                 exact.size());
+      fmt::print(out, "{},{:.1f},{:.0f},1,mbvt,query(beside fcl),{:.6f},{},0,0\n", n, opp, tpp, query_med,
+                 exact.size());
     }
   }
   std::fclose(out);

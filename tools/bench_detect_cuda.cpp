@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--repeats") && i + 1 < argc) repeats = std::max(1, std::atoi(argv[++i]));
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
-      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ","))
+        sizes.push_back(std::atoi(t));
     } else {
       return help_or_refuse("bench_detect_cuda", argv[i],
                             "usage: bench_detect_cuda [--sizes 2000,4000,...] [--repeats R] [--csv FILE]\n");
@@ -49,13 +50,16 @@ int main(int argc, char** argv) {
   auto cpu = cli::make_backend("cpu", note);
   std::FILE* out = std::fopen(csv.c_str(), "w");
   if (!out) return 1;
-  fmt::print(out,
-             "device,plants,organs_per_plant,triangles_per_plant,level,gpu_load_s,gpu_fit_s,gpu_stage_s,gpu_kernel_s,"
-             "gpu_detect_s,gpu_again_s,cpu_total_s,pairs,false_positives_vs_exact,"
-             "again_plant_s,again_leaf_s,again_organ_s,again_exact_s,again_plant_kernel_s,again_leaf_kernel_s,"
-             "again_organ_kernel_s,again_exact_kernel_s\n");
-  fmt::print("device: {}\n{:>7} {:<6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10}\n", gpu->device(), "plants", "level",
-             "load s", "fit s", "stage s", "kernel s", "detect s", "again s", "cpu s", "pairs", "organ FP");
+  fmt::print(
+      out,
+      "device,plants,organs_per_plant,triangles_per_plant,level,gpu_load_s,gpu_fit_s,gpu_stage_s,gpu_kernel_"
+      "s,"
+      "gpu_detect_s,gpu_again_s,cpu_total_s,pairs,false_positives_vs_exact,"
+      "again_plant_s,again_leaf_s,again_organ_s,again_exact_s,again_plant_kernel_s,again_leaf_kernel_s,"
+      "again_organ_kernel_s,again_exact_kernel_s\n");
+  fmt::print("device: {}\n{:>7} {:<6} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>10}\n",
+             gpu->device(), "plants", "level", "load s", "fit s", "stage s", "kernel s", "detect s",
+             "again s", "cpu s", "pairs", "organ FP");
   for (int n : sizes) {
     GrowRequest req;
     req.grammar = "grammars/tomato.yaml";
@@ -65,7 +69,8 @@ int main(int argc, char** argv) {
     std::size_t tris = 0;
     for (const OrganRecord& r : s.organs) tris += lib.get(r).triangle_count();
     std::size_t exact_pairs = 0;
-    for (ContactLevel level : {ContactLevel::exact, ContactLevel::organ, ContactLevel::leaf, ContactLevel::plant}) {
+    for (ContactLevel level :
+         {ContactLevel::exact, ContactLevel::organ, ContactLevel::leaf, ContactLevel::plant}) {
       DetectRequest dr;
       dr.level = level;
       gpu->detect(s, dr);  // warm-up
@@ -87,7 +92,8 @@ int main(int argc, char** argv) {
         t = std::chrono::steady_clock::now();
         const Contacts d = gpu->redetect(s, dr, {});
         again.push_back(seconds_since(t));
-        for (std::size_t l = 0; l < 4; ++l) level_s[l].push_back(d.seconds[l]), level_kernel_s[l].push_back(d.device_seconds[l]);
+        for (std::size_t l = 0; l < 4; ++l)
+          level_s[l].push_back(d.seconds[l]), level_kernel_s[l].push_back(d.device_seconds[l]);
         if (d.pairs != c.pairs) {
           fmt::print(stderr, "redetect with nothing moved gave another list\n");
           return 1;
@@ -99,14 +105,15 @@ int main(int argc, char** argv) {
         cpu_total.push_back(seconds_since(t));
       }
       if (level == ContactLevel::exact) exact_pairs = c.pairs.size();
-      const long long fp = level == ContactLevel::organ ? static_cast<long long>(c.pairs.size() - exact_pairs) : -1;
-      fmt::print("{:>7} {:<6} {:>9.4f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.4f} {:>9} {:>10}\n", n, name_of(level),
-                 median(load), median(fit), median(stage), median(kernel), median(detect), median(again), median(cpu_total),
-                 c.pairs.size(), fp);
-      fmt::print(out, "{},{},{:.1f},{:.0f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{}", gpu->device(), n,
-                 static_cast<double>(s.organ_count()) / n, static_cast<double>(tris) / n, name_of(level), median(load),
-                 median(fit), median(stage), median(kernel), median(detect), median(again), median(cpu_total), c.pairs.size(),
-                 fp);
+      const long long fp =
+          level == ContactLevel::organ ? static_cast<long long>(c.pairs.size() - exact_pairs) : -1;
+      fmt::print("{:>7} {:<6} {:>9.4f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.4f} {:>9} {:>10}\n",
+                 n, name_of(level), median(load), median(fit), median(stage), median(kernel), median(detect),
+                 median(again), median(cpu_total), c.pairs.size(), fp);
+      fmt::print(out, "{},{},{:.1f},{:.0f},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{}",
+                 gpu->device(), n, static_cast<double>(s.organ_count()) / n, static_cast<double>(tris) / n,
+                 name_of(level), median(load), median(fit), median(stage), median(kernel), median(detect),
+                 median(again), median(cpu_total), c.pairs.size(), fp);
       for (const auto* v : {&level_s, &level_kernel_s})
         for (const auto& x : *v) fmt::print(out, ",{:.6f}", median(x));
       fmt::print(out, "\n");

@@ -42,7 +42,8 @@ double disk_write_mb_s(const std::string& dir, bool sync, std::size_t bytes = st
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string grammar = "grammars/tomato.yaml", csv = "bench/results/generate.csv", dir = "/tmp/canopy-bench-generate";
+  std::string grammar = "grammars/tomato.yaml", csv = "bench/results/generate.csv",
+              dir = "/tmp/canopy-bench-generate";
   std::vector<int> sizes{100, 1000, 10000};
   bool with_export = true;
   for (int i = 1; i < argc; ++i) {
@@ -52,11 +53,12 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--no-export")) with_export = false;
     else if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) {
       sizes.clear();
-      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) sizes.push_back(std::atoi(t));
+      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ","))
+        sizes.push_back(std::atoi(t));
     } else {
-      return help_or_refuse(
-          "bench_generate", argv[i],
-          "usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] [--dir DIR] [--no-export]\n");
+      return help_or_refuse("bench_generate", argv[i],
+                            "usage: bench_generate [--sizes 100,1000,10000] [--grammar FILE] [--csv FILE] "
+                            "[--dir DIR] [--no-export]\n");
     }
   }
   fs::create_directories(dir);
@@ -67,19 +69,24 @@ int main(int argc, char** argv) {
   const int all = omp_get_max_threads();
   std::FILE* out = std::fopen(csv.c_str(), "w");
   if (!out) return 1;
-  fmt::print(out, "plants,threads,stage,seconds,organs,triangles,bytes,organs_per_s,triangles_per_s,mb_per_s,disk_mb_per_s\n");
-  fmt::print("disk write speed, 1 GiB: {:.0f} MB/s into the page cache, {:.0f} MB/s synced to the device\n", cached, disk);
-  fmt::print("{:>7} {:>7} {:<17} {:>9} {:>10} {:>11} {:>12} {:>13} {:>9} {:>9}\n", "plants", "threads", "stage", "seconds",
-             "organs", "triangles", "Morgans/s", "Mtriangles/s", "MB/s", "disk MB/s");
+  fmt::print(out,
+             "plants,threads,stage,seconds,organs,triangles,bytes,organs_per_s,triangles_per_s,mb_per_s,disk_"
+             "mb_per_s\n");
+  fmt::print("disk write speed, 1 GiB: {:.0f} MB/s into the page cache, {:.0f} MB/s synced to the device\n",
+             cached, disk);
+  fmt::print("{:>7} {:>7} {:<17} {:>9} {:>10} {:>11} {:>12} {:>13} {:>9} {:>9}\n", "plants", "threads",
+             "stage", "seconds", "organs", "triangles", "Morgans/s", "Mtriangles/s", "MB/s", "disk MB/s");
   for (int n : sizes) {
     for (int threads : thread_counts(all)) {
       omp_set_num_threads(threads);
       double disk_now = 0;
-      const auto row = [&](const char* stage, double s, std::size_t organs, std::size_t tris, std::size_t bytes) {
-        fmt::print("{:>7} {:>7} {:<17} {:>9.3f} {:>10} {:>11} {:>12.2f} {:>13.1f} {:>9.0f} {:>9.0f}\n", n, threads, stage, s,
-                   organs, tris, organs / s / 1e6, tris / s / 1e6, bytes / s / 1e6, bytes ? disk_now : 0.0);
-        fmt::print(out, "{},{},{},{:.6f},{},{},{},{:.0f},{:.0f},{:.1f},{:.0f}\n", n, threads, stage, s, organs, tris, bytes,
-                   organs / s, tris / s, bytes / s / 1e6, bytes ? disk_now : 0.0);
+      const auto row = [&](const char* stage, double s, std::size_t organs, std::size_t tris,
+                           std::size_t bytes) {
+        fmt::print("{:>7} {:>7} {:<17} {:>9.3f} {:>10} {:>11} {:>12.2f} {:>13.1f} {:>9.0f} {:>9.0f}\n", n,
+                   threads, stage, s, organs, tris, organs / s / 1e6, tris / s / 1e6, bytes / s / 1e6,
+                   bytes ? disk_now : 0.0);
+        fmt::print(out, "{},{},{},{:.6f},{},{},{},{:.0f},{:.0f},{:.1f},{:.0f}\n", n, threads, stage, s,
+                   organs, tris, bytes, organs / s, tris / s, bytes / s / 1e6, bytes ? disk_now : 0.0);
       };
       auto t = std::chrono::steady_clock::now();
       GrowRequest req;
@@ -97,8 +104,10 @@ int main(int argc, char** argv) {
       row("grow", grow_s, stand.organ_count(), tris, 0);
       if (!with_export) continue;
       for (const char* fmt_name : {"glb", "ply", "organs.csv"}) {
-        if (n > 1000 && threads == 1 && std::strcmp(fmt_name, "organs.csv") != 0) continue;  // keep the run short
-        const std::string name = std::strcmp(fmt_name, "organs.csv") == 0 ? "organs.csv" : std::string("stand.") + fmt_name;
+        if (n > 1000 && threads == 1 && std::strcmp(fmt_name, "organs.csv") != 0)
+          continue;  // keep the run short
+        const std::string name =
+            std::strcmp(fmt_name, "organs.csv") == 0 ? "organs.csv" : std::string("stand.") + fmt_name;
         // First the work alone, into /dev/null: what the exporter can do when the disk keeps up.
         t = std::chrono::steady_clock::now();
         {

@@ -108,17 +108,21 @@ int bench_main(int argc, char** argv) {
         return help_or_refuse(
             "bench_light", argv[i],
             "usage: bench_light [--plants 1000,10000] [--threads T] [--errors 0.01,0.005,0.002,0.001]\n"
-            "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--grammar FILE] [--csv FILE]\n"
+            "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--grammar "
+            "FILE] [--csv FILE]\n"
             "                   [--append]\n"
-            "  the default stand of each size; per error: a direct beam and the sky's directions to that standard\n"
-            "  error of the stand's fractions (--errors) or of each plant's, root mean square (--plant-errors)\n");
+            "  the default stand of each size; per error: a direct beam and the sky's directions to that "
+            "standard\n"
+            "  error of the stand's fractions (--errors) or of each plant's, root mean square "
+            "(--plant-errors)\n");
     } catch (const std::exception&) {
       std::fprintf(stderr, "bench_light: %s: not a number or list of numbers\n", argv[i]);
       return 2;
     }
   const ThreadLimit thread_limit(threads);
   const int used_threads = omp_get_max_threads();
-  const std::string commit = first_line(fmt::format("git -C '{}' rev-parse --short HEAD 2>/dev/null", CANOPY_SOURCE_DIR));
+  const std::string commit =
+      first_line(fmt::format("git -C '{}' rev-parse --short HEAD 2>/dev/null", CANOPY_SOURCE_DIR));
   const std::string date = [] {
     const std::time_t t = std::time(nullptr);
     char b[32];
@@ -128,12 +132,16 @@ int bench_main(int argc, char** argv) {
   const std::string where = machine();
   std::string rows;
   const std::string header =
-      "plants,organs,organs_per_plant,triangles_per_plant,threads,mode,error_asked,rays,scene_s,trace_s,total_s,"
-      "cpu_s,rays_per_s,scene_mb,bytes_per_organ,ground_cover,ground_cover_se,direct,direct_se,diffuse,diffuse_se,star,star_se,"
+      "plants,organs,organs_per_plant,triangles_per_plant,threads,mode,error_asked,rays,scene_s,trace_s,"
+      "total_s,"
+      "cpu_s,rays_per_s,scene_mb,bytes_per_organ,ground_cover,ground_cover_se,direct,direct_se,diffuse,"
+      "diffuse_se,star,star_se,"
       "plant_se_rms_direct,plant_se_rms_diffuse\n";
-  fmt::print("bench_light: {} threads, {}; commit {}\n", used_threads, where, commit.empty() ? "unknown" : commit);
-  fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8} {:>8} {:>8} {:>12} {:>9} {:>9} {:>9} {:>9}\n", "plants", "mode", "asked", "rays",
-             "scene s", "trace s", "total s", "rays/s", "direct se", "diff. se", "plant se", "star se");
+  fmt::print("bench_light: {} threads, {}; commit {}\n", used_threads, where,
+             commit.empty() ? "unknown" : commit);
+  fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8} {:>8} {:>8} {:>12} {:>9} {:>9} {:>9} {:>9}\n", "plants", "mode",
+             "asked", "rays", "scene s", "trace s", "total s", "rays/s", "direct se", "diff. se", "plant se",
+             "star se");
   for (double n_d : plants) {
     const int n = static_cast<int>(n_d);
     GrowRequest req;
@@ -165,21 +173,28 @@ int bench_main(int argc, char** argv) {
         for (const auto& e : v) s += e.se * e.se;
         return v.empty() ? 0.0 : std::sqrt(s / static_cast<double>(v.size()));
       };
-      const double diff = r.diffuse ? r.diffuse->fraction.value : NAN, diff_se = r.diffuse ? r.diffuse->fraction.se : NAN;
-      const double star = r.diffuse ? r.diffuse->star.value : NAN, star_se = r.diffuse ? r.diffuse->star.se : NAN;
+      const double diff = r.diffuse ? r.diffuse->fraction.value : NAN,
+                   diff_se = r.diffuse ? r.diffuse->fraction.se : NAN;
+      const double star = r.diffuse ? r.diffuse->star.value : NAN,
+                   star_se = r.diffuse ? r.diffuse->star.se : NAN;
       const double prms_diff = r.diffuse ? rms(r.diffuse->plant) : NAN;
-      fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8.3f} {:>8.3f} {:>8.3f} {:>12.0f} {:>9.5f} {:>9.5f} {:>9.5f} {:>9.5f}\n", n, mode,
-                 asked, r.rays, r.scene_s, r.trace_s, total, static_cast<double>(r.rays) / r.trace_s,
-                 r.direct.empty() ? NAN : r.direct[0].fraction.se, diff_se, r.direct.empty() ? NAN : rms(r.direct[0].plant),
-                 star_se);
+      fmt::print(
+          "{:>7} {:>7} {:>9} {:>10} {:>8.3f} {:>8.3f} {:>8.3f} {:>12.0f} {:>9.5f} {:>9.5f} {:>9.5f} "
+          "{:>9.5f}\n",
+          n, mode, asked, r.rays, r.scene_s, r.trace_s, total, static_cast<double>(r.rays) / r.trace_s,
+          r.direct.empty() ? NAN : r.direct[0].fraction.se, diff_se,
+          r.direct.empty() ? NAN : rms(r.direct[0].plant), star_se);
       rows += fmt::format(
-          "{},{},{:.1f},{:.0f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:"
+          "{},{},{:.1f},{:.0f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f},{:."
+          "6f},{:.6f},{:.6f},{:"
           ".6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
-          n, stand.organ_count(), static_cast<double>(stand.organ_count()) / n, static_cast<double>(triangles) / n, used_threads,
-          mode, asked, r.rays, r.scene_s, r.trace_s, total, cpu, static_cast<double>(r.rays) / r.trace_s, scene_mb,
-          scene_mb * 1048576.0 / static_cast<double>(stand.organ_count()), r.ground.fraction.value, r.ground.fraction.se,
-          r.direct.empty() ? NAN : r.direct[0].fraction.value, r.direct.empty() ? NAN : r.direct[0].fraction.se, diff, diff_se,
-          star, star_se, r.direct.empty() ? NAN : rms(r.direct[0].plant), prms_diff);
+          n, stand.organ_count(), static_cast<double>(stand.organ_count()) / n,
+          static_cast<double>(triangles) / n, used_threads, mode, asked, r.rays, r.scene_s, r.trace_s, total,
+          cpu, static_cast<double>(r.rays) / r.trace_s, scene_mb,
+          scene_mb * 1048576.0 / static_cast<double>(stand.organ_count()), r.ground.fraction.value,
+          r.ground.fraction.se, r.direct.empty() ? NAN : r.direct[0].fraction.value,
+          r.direct.empty() ? NAN : r.direct[0].fraction.se, diff, diff_se, star, star_se,
+          r.direct.empty() ? NAN : rms(r.direct[0].plant), prms_diff);
     };
     // Rays per second: the direct beam alone at a fixed density (about 2 million rays).
     {

@@ -82,34 +82,43 @@ int main(int argc, char** argv) {
     else {
       return help_or_refuse(
           "bench_resolve", argv[i],
-          fmt::format(
-              "usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends cpu,cuda,auto]\n"
-              "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] [--csv FILE] [--append]\n"
-              "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of each level's\n"
-              "                            attempts on the device, the default)\n"
-              "       [--lanes N]         (attempts on the device: batches of contacts planned at once, default {})\n"
-              "       [--batch N]         (contacts per batch of planning at most, default {})\n"
-              "       [--host-runner]     (the CPU backend plans as the device does, level by level in lanes,\n"
-              "                            with the host answering the attempts: the device path's host side\n"
-              "                            where there is no GPU, for profiling; the same turns)\n"
-              "       [--resolve-stats]   (each resolution's statistics on stderr, as canopy stand --resolve-stats)\n"
-              "The heap is in large pages when --backends names cuda, else small (CANOPY_HEAP_PAGES=large|small\n"
-              "overrides; tools/heap_pages.hpp); the CSV's config column says which.\n",
-              ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts));
+          fmt::format("usage: bench_resolve [--sizes 100,1000,10000] [--dense-sizes 100,1000] [--backends "
+                      "cpu,cuda,auto]\n"
+                      "       [--levels exact,organ] [--threads T] [--candidates N] [--axes N] [--step DEG] "
+                      "[--csv FILE] [--append]\n"
+                      "       [--host-search]     (CUDA: the host's candidate-by-candidate search instead of "
+                      "each level's\n"
+                      "                            attempts on the device, the default)\n"
+                      "       [--lanes N]         (attempts on the device: batches of contacts planned at "
+                      "once, default {})\n"
+                      "       [--batch N]         (contacts per batch of planning at most, default {})\n"
+                      "       [--host-runner]     (the CPU backend plans as the device does, level by level "
+                      "in lanes,\n"
+                      "                            with the host answering the attempts: the device path's "
+                      "host side\n"
+                      "                            where there is no GPU, for profiling; the same turns)\n"
+                      "       [--resolve-stats]   (each resolution's statistics on stderr, as canopy stand "
+                      "--resolve-stats)\n"
+                      "The heap is in large pages when --backends names cuda, else small "
+                      "(CANOPY_HEAP_PAGES=large|small\n"
+                      "overrides; tools/heap_pages.hpp); the CSV's config column says which.\n",
+                      ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts));
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
-  const std::string config = fmt::format("candidates={} axes={} step={} heap={}", base.candidates, base.axis_fan,
-                                         base.scan_step_deg, heap_pages_in_use());
+  const std::string config = fmt::format("candidates={} axes={} step={} heap={}", base.candidates,
+                                         base.axis_fan, base.scan_step_deg, heap_pages_in_use());
   if (!append)
     fmt::print(
         out,
-        "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,contacts_before_exact,"
+        "config,threads,backend,device,spacing,plant_spacing_m,row_spacing_m,plants,organs_per_plant,level,"
+        "contacts_before_exact,"
         "contacts_before_level,rounds,organs_moved,organs_carried,mean_turn_deg,max_turn_deg,residual_exact,"
         "residual_level,detect_s,resolve_s,plan_s,redetect_s\n");
-  fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7} {:>7} {:>9} {:>9} {:>9} {:>7}\n", "back", "spacing", "plants",
-             "level", "before", "rounds", "turned", "mean°", "max°", "residual", "detect s", "resolve s", "plan s");
+  fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7} {:>7} {:>9} {:>9} {:>9} {:>7}\n", "back",
+             "spacing", "plants", "level", "before", "rounds", "turned", "mean°", "max°", "residual",
+             "detect s", "resolve s", "plan s");
   const std::vector<Spacing> spacings{{"default", 0.4, 1.0}, {"dense", 0.25, 0.6}};
   for (const std::string& bname : backends) {
     // From the command line's factory: cpu, cuda or auto as `canopy stand --backend` gets them.
@@ -156,18 +165,24 @@ int main(int argc, char** argv) {
           double plan = 0, redetect = 0;
           for (const ResolveRound& x : r.per_round) plan += x.plan_s, redetect += x.detect_s;
           const std::size_t residual = fresh->detect(s, DetectRequest{}).pairs.size();
-          fmt::print("{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7.2f} {:>7.2f} {:>9} {:>9.3f} {:>9.3f} {:>7.3f}\n", bname,
-                     sp.name, n, lname, before_exact, r.rounds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, residual,
-                     detect_s, resolve_s, plan);
+          fmt::print(
+              "{:<5} {:<8} {:>6} {:<6} {:>9} {:>7} {:>8} {:>7.2f} {:>7.2f} {:>9} {:>9.3f} {:>9.3f} "
+              "{:>7.3f}\n",
+              bname, sp.name, n, lname, before_exact, r.rounds, r.organs_moved, r.mean_turn_deg,
+              r.max_turn_deg, residual, detect_s, resolve_s, plan);
           // How the rounds were planned, as they ran (nothing added for the CPU backend's host search).
-          const std::string planned = r.search == "device" ? fmt::format(" device-search lanes={} batch={}", r.lanes, batch)
-                                      : r.search == "host" && backend->name() == "cpu" ? std::string()
-                                                                                       : fmt::format(" {}-search", r.search);
+          const std::string planned =
+              r.search == "device" ? fmt::format(" device-search lanes={} batch={}", r.lanes, batch)
+              : r.search == "host" && backend->name() == "cpu" ? std::string()
+                                                               : fmt::format(" {}-search", r.search);
           fmt::print(out, "{}{},{},", config, planned, threads);
-          fmt::print(out, "{},{},{},{},{},{},{:.1f},{},{},{},{},{},{},{:.4f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n",
-                     backend->name(), backend->device(), sp.name, sp.plant, sp.row, n, static_cast<double>(s.organ_count()) / n,
-                     lname, before_exact, first.pairs.size(), r.rounds, r.organs_moved, r.organs_carried, r.mean_turn_deg,
-                     r.max_turn_deg, residual, r.contacts_after, detect_s, resolve_s, plan, redetect);
+          fmt::print(
+              out,
+              "{},{},{},{},{},{},{:.1f},{},{},{},{},{},{},{:.4f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n",
+              backend->name(), backend->device(), sp.name, sp.plant, sp.row, n,
+              static_cast<double>(s.organ_count()) / n, lname, before_exact, first.pairs.size(), r.rounds,
+              r.organs_moved, r.organs_carried, r.mean_turn_deg, r.max_turn_deg, residual, r.contacts_after,
+              detect_s, resolve_s, plan, redetect);
           std::fflush(out);
         }
   }

@@ -61,10 +61,11 @@ int main(int argc, char** argv) {
     else if (a == "--no-resolve") resolve = false;
     else if (a == "--all-levels") all_levels = true;
     else {
-      return help_or_refuse("bench_scale", argv[i],
-                            "usage: mpirun -np P bench_scale [--sizes 10000,20000] [--backend cpu|cuda|auto] [--threads T]\n"
-                            "                                [--grammar FILE] [--csv FILE] [--no-resolve] [--all-levels]\n",
-                            mpi::rank() == 0);
+      return help_or_refuse(
+          "bench_scale", argv[i],
+          "usage: mpirun -np P bench_scale [--sizes 10000,20000] [--backend cpu|cuda|auto] [--threads T]\n"
+          "                                [--grammar FILE] [--csv FILE] [--no-resolve] [--all-levels]\n",
+          mpi::rank() == 0);
     }
   }
   const int rank = mpi::rank(), ranks = mpi::size();
@@ -78,11 +79,12 @@ int main(int argc, char** argv) {
     }
     if (fresh)
       fmt::print(out,
-                 "ranks,plants,plants_per_rank,largest_tile,organs,generate_s,detect_s,resolve_s,total_s,rounds,comm_s,"
+                 "ranks,plants,plants_per_rank,largest_tile,organs,generate_s,detect_s,resolve_s,total_s,"
+                 "rounds,comm_s,"
                  "comm_per_round_s,contacts_before,contacts_after,plants_per_s_per_rank,backend,device\n");
-    fmt::print("{:>5} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>6} {:>8} {:>10} {:>9} {:>7} {:>12}\n", "ranks", "plants",
-               "per rank", "tile", "grow s", "detect s", "resolve s", "total s", "rounds", "comm s", "comm/round", "before",
-               "after", "plants/s/rank");
+    fmt::print("{:>5} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>6} {:>8} {:>10} {:>9} {:>7} {:>12}\n",
+               "ranks", "plants", "per rank", "tile", "grow s", "detect s", "resolve s", "total s", "rounds",
+               "comm s", "comm/round", "before", "after", "plants/s/rank");
   }
   for (const std::string& size : sizes) {
     const int n = std::stoi(size);
@@ -107,19 +109,24 @@ int main(int argc, char** argv) {
     const std::int64_t organs = mpi::sum({own_organs})[0];
     if (rank != 0) continue;
     const StandReport& r = ts.rep;
-    const double total = timing(r, "generate") + timing(r, "detect") + timing(r, "resolve") + timing(r, "detect_after");
+    const double total =
+        timing(r, "generate") + timing(r, "detect") + timing(r, "resolve") + timing(r, "detect_after");
     const int rounds = ts.resolved ? ts.resolved->rounds : 0;
     const std::size_t before = ts.before.counts[3] ? ts.before.counts[3]->total() : 0;
     const std::size_t after = ts.resolved ? ts.resolved->contacts_after : before;
     const double rate = static_cast<double>(n) / total / ranks;
     const std::string device = r.device.is_string() ? r.device.get<std::string>() : std::string("cpu");
-    fmt::print("{:>5} {:>9} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>6} {:>8.3f} {:>10.4f} {:>9} {:>7} {:>12.0f}\n",
-               ranks, n, n / ranks, largest, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds,
-               comm, rounds ? comm / rounds : 0.0, before, after, rate);
-    if (ts.resolved) fmt::print("      resolution planned with: {} ({} on {})\n", ts.resolved->planning, r.backend, device);
-    fmt::print(out, "{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{:.5f},{},{},{:.1f},{},\"{}\"\n", ranks, n, n / ranks,
-               largest, organs, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total, rounds, comm,
-               rounds ? comm / rounds : 0.0, before, after, rate, r.backend, device);
+    fmt::print(
+        "{:>5} {:>9} {:>9} {:>9} {:>9.2f} {:>9.2f} {:>9.2f} {:>9.2f} {:>6} {:>8.3f} {:>10.4f} {:>9} {:>7} "
+        "{:>12.0f}\n",
+        ranks, n, n / ranks, largest, timing(r, "generate"), timing(r, "detect"), timing(r, "resolve"), total,
+        rounds, comm, rounds ? comm / rounds : 0.0, before, after, rate);
+    if (ts.resolved)
+      fmt::print("      resolution planned with: {} ({} on {})\n", ts.resolved->planning, r.backend, device);
+    fmt::print(out, "{},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{},{:.4f},{:.5f},{},{},{:.1f},{},\"{}\"\n",
+               ranks, n, n / ranks, largest, organs, timing(r, "generate"), timing(r, "detect"),
+               timing(r, "resolve"), total, rounds, comm, rounds ? comm / rounds : 0.0, before, after, rate,
+               r.backend, device);
     std::fflush(out);
   }
   if (out) std::fclose(out);

@@ -8,7 +8,8 @@
 // included), its end (after the run until the process is gone), peak RSS and CPU time, and the
 // write speed of the disk the files go to, measured in the same run.
 // Usage: bench_stand [--sizes 1000,10000,100000] [--backend cpu|cuda|auto] [--formats F] [--glb-compact]
-//                    [--threads T] [--steps N] [--grammar FILE] [--dir DIR] [--disk-mb MB] [--csv FILE] [--append]
+//                    [--threads T] [--steps N] [--grammar FILE] [--dir DIR] [--disk-mb MB] [--csv FILE]
+//                    [--append]
 #include "tools/bench_usage.hpp"
 #include "tools/disk_speed.hpp"
 #include "tools/heap_pages.hpp"
@@ -44,28 +45,40 @@ namespace {
 
 const char* kUsage =
     "usage: bench_stand [--sizes 1000,10000,100000] [--backend cpu|cuda|auto] [--formats F] [--glb-compact]\n"
-    "                   [--threads T] [--steps N] [--grammar FILE] [--dir DIR] [--disk-mb MB] [--csv FILE] [--append]\n"
-    "Runs canopy stand's pipeline (run_stand, canopy stand's defaults) on the default stand of each size, each in a\n"
-    "process of its own, and prints and writes (CSV, default bench/results/stand.csv) its stages: start-up, growth,\n"
-    "tree build, upload, detection, resolution, detection after, export formatting and writing, commit, the end,\n"
-    "peak RSS, device memory and the export's speed as a fraction of the disk's (measured first: --disk-mb MB\n"
-    "written and synced in DIR). Sizes: below 100 one row, else multiples of 100. --formats: default glb up to\n"
-    "10,000 plants, ply above. --backend: default auto. --dir: default a new folder under the system's temporary one.\n";
+    "                   [--threads T] [--steps N] [--grammar FILE] [--dir DIR] [--disk-mb MB] [--csv FILE] "
+    "[--append]\n"
+    "Runs canopy stand's pipeline (run_stand, canopy stand's defaults) on the default stand of each size, "
+    "each in a\n"
+    "process of its own, and prints and writes (CSV, default bench/results/stand.csv) its stages: start-up, "
+    "growth,\n"
+    "tree build, upload, detection, resolution, detection after, export formatting and writing, commit, the "
+    "end,\n"
+    "peak RSS, device memory and the export's speed as a fraction of the disk's (measured first: --disk-mb "
+    "MB\n"
+    "written and synced in DIR). Sizes: below 100 one row, else multiples of 100. --formats: default glb up "
+    "to\n"
+    "10,000 plants, ply above. --backend: default auto. --dir: default a new folder under the system's "
+    "temporary one.\n";
 
 std::int64_t now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
 }
 
 struct Settings {
   std::vector<int> sizes{1000, 10000, 100000};
-  std::string backend = "auto", formats, grammar = "grammars/tomato.yaml", dir, csv = "bench/results/stand.csv";
+  std::string backend = "auto", formats, grammar = "grammars/tomato.yaml", dir,
+              csv = "bench/results/stand.csv";
   bool glb_compact = false, append = false;
   int threads = 0;
   std::optional<int> steps;
   double disk_mb = 1024;
 };
 
-std::string formats_for(const Settings& s, int plants) { return !s.formats.empty() ? s.formats : plants > 10000 ? "ply" : "glb"; }
+std::string formats_for(const Settings& s, int plants) {
+  return !s.formats.empty() ? s.formats : plants > 10000 ? "ply" : "glb";
+}
 
 /// The child: one run of `plants` plants; what it measured goes to `result` as JSON.
 int run_child(const Settings& s, int plants, std::int64_t spawned_ns, const std::string& result) {
@@ -153,7 +166,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--sizes" && has) {
       s.sizes.clear();
-      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ",")) s.sizes.push_back(std::atoi(t));
+      for (char* t = std::strtok(argv[++i], ","); t; t = std::strtok(nullptr, ","))
+        s.sizes.push_back(std::atoi(t));
       continue;
     }
     if (a == "--csv" && has) s.csv = argv[++i];
@@ -166,8 +180,10 @@ int main(int argc, char** argv) {
     else if (a == "--formats" && has) passed.insert(passed.end(), {a, s.formats = argv[++i]});
     else if (a == "--grammar" && has) passed.insert(passed.end(), {a, s.grammar = argv[++i]});
     else if (a == "--dir" && has) passed.insert(passed.end(), {a, s.dir = argv[++i]});
-    else if (a == "--threads" && has) passed.insert(passed.end(), {a, argv[i + 1]}), s.threads = std::atoi(argv[++i]);
-    else if (a == "--steps" && has) passed.insert(passed.end(), {a, argv[i + 1]}), s.steps = std::atoi(argv[++i]);
+    else if (a == "--threads" && has)
+      passed.insert(passed.end(), {a, argv[i + 1]}), s.threads = std::atoi(argv[++i]);
+    else if (a == "--steps" && has)
+      passed.insert(passed.end(), {a, argv[i + 1]}), s.steps = std::atoi(argv[++i]);
     else if (a == "--glb-compact") s.glb_compact = true, passed.push_back(a);
     else return help_or_refuse("bench_stand", argv[i], kUsage);
   }
@@ -179,7 +195,9 @@ int main(int argc, char** argv) {
   }
   for (int n : s.sizes)
     if (n <= 0 || (n > 100 && n % 100)) {
-      fmt::print(stderr, "bench_stand: --sizes: {} is not a size of the default stand (1-100, or a multiple of 100)\n", n);
+      fmt::print(
+          stderr,
+          "bench_stand: --sizes: {} is not a size of the default stand (1-100, or a multiple of 100)\n", n);
       return 2;
     }
   const bool own_dir = s.dir.empty();
@@ -189,8 +207,8 @@ int main(int argc, char** argv) {
   }
   fs::create_directories(s.dir);
   const DiskSpeed disk = measure_disk(s.dir, static_cast<std::uint64_t>(s.disk_mb * (1 << 20)));
-  fmt::print("disk of {}: {:.2f} GB/s written, {:.2f} GB/s written and synced ({:.0f} MB)\n", s.dir, disk.written_gbs,
-             disk.synced_gbs, s.disk_mb * 1.048576);
+  fmt::print("disk of {}: {:.2f} GB/s written, {:.2f} GB/s written and synced ({:.0f} MB)\n", s.dir,
+             disk.written_gbs, disk.synced_gbs, s.disk_mb * 1.048576);
   std::FILE* out = std::fopen(s.csv.c_str(), s.append ? "a" : "w");
   if (!out) {
     fmt::print(stderr, "bench_stand: cannot write {}\n", s.csv);
@@ -198,13 +216,18 @@ int main(int argc, char** argv) {
   }
   if (!s.append)
     fmt::print(out,
-               "plants,organs_per_plant,triangles_per_plant,backend,device,threads,formats,end_to_end_s,startup_s,grow_s,"
-               "tree_build_s,upload_s,detect_s,resolve_s,detect_after_s,export_format_s,export_write_s,export_s,commit_s,"
-               "end_s,cpu_s,peak_rss_gb,device_peak_gb,contacts_before,contacts_after,export_gb,export_gbs,disk_written_gbs,"
+               "plants,organs_per_plant,triangles_per_plant,backend,device,threads,formats,end_to_end_s,"
+               "startup_s,grow_s,"
+               "tree_build_s,upload_s,detect_s,resolve_s,detect_after_s,export_format_s,export_write_s,"
+               "export_s,commit_s,"
+               "end_s,cpu_s,peak_rss_gb,device_peak_gb,contacts_before,contacts_after,export_gb,export_gbs,"
+               "disk_written_gbs,"
                "disk_synced_gbs,export_of_disk\n");
-  fmt::print("{:>7} {:>7} {:>7} {:>6} {:>6} {:>6} {:>6} {:>7} {:>7} {:>6} {:>7} {:>7} {:>6} {:>6} {:>6} {:>7} {:>6}\n", "plants",
-             "total s", "start", "grow", "build", "upload", "detect", "resolve", "after", "format", "write", "commit", "end",
-             "rss GB", "dev GB", "exp GB/s", "of disk");
+  fmt::print(
+      "{:>7} {:>7} {:>7} {:>6} {:>6} {:>6} {:>6} {:>7} {:>7} {:>6} {:>7} {:>7} {:>6} {:>6} {:>6} {:>7} "
+      "{:>6}\n",
+      "plants", "total s", "start", "grow", "build", "upload", "detect", "resolve", "after", "format",
+      "write", "commit", "end", "rss GB", "dev GB", "exp GB/s", "of disk");
   const int threads = s.threads > 0 ? s.threads : omp_get_max_threads();  // what the runs use
   int failed = 0;
   for (int n : s.sizes) {
@@ -223,10 +246,12 @@ int main(int argc, char** argv) {
     const nlohmann::json j = nlohmann::json::parse(in);
     fs::remove(res, ec);
     const nlohmann::json& t = j["timings"];
-    const double startup = num(j, "main_s") + num(t, "startup"), build = num(t, "detect_build"), upload = num(t, "detect_upload");
-    const double detect = num(t, "detect") - build - upload, exp = num(t, "export"), commit = num(j, "commit_s");
-    const double staged = num(t, "startup") + num(t, "generate") + num(t, "target") + num(t, "detect") + num(t, "resolve") +
-                          num(t, "detect_after") + exp;
+    const double startup = num(j, "main_s") + num(t, "startup"), build = num(t, "detect_build"),
+                 upload = num(t, "detect_upload");
+    const double detect = num(t, "detect") - build - upload, exp = num(t, "export"),
+                 commit = num(j, "commit_s");
+    const double staged = num(t, "startup") + num(t, "generate") + num(t, "target") + num(t, "detect") +
+                          num(t, "resolve") + num(t, "detect_after") + exp;
     const double end = c.wall_s - num(j, "main_s") - staged - commit;
     const double gb = num(j, "export_bytes") / 1e9, gbs = exp > 0 ? gb / exp : 0;
     const double organs = num(j, "organs"), tris = num(j, "triangles");
@@ -234,17 +259,21 @@ int main(int argc, char** argv) {
     std::replace(device.begin(), device.end(), ',', ';');  // one CSV field
     const double dev_gb = num(j, "device_peak_bytes") / 1e9;
     fmt::print(
-        "{:>7} {:>7.2f} {:>7.3f} {:>6.2f} {:>6.3f} {:>6.3f} {:>6.3f} {:>7.2f} {:>7.3f} {:>6.2f} {:>7.2f} {:>7.3f} {:>6.3f} "
+        "{:>7} {:>7.2f} {:>7.3f} {:>6.2f} {:>6.3f} {:>6.3f} {:>6.3f} {:>7.2f} {:>7.3f} {:>6.2f} {:>7.2f} "
+        "{:>7.3f} {:>6.3f} "
         "{:>6.2f} {:>6.2f} {:>7.2f} {:>6.2f}\n",
-        n, c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"), num(t, "detect_after"),
-        num(t, "export_format"), num(t, "export_write"), commit, end, c.peak_rss_gb, dev_gb, gbs, gbs / disk.synced_gbs);
+        n, c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"),
+        num(t, "detect_after"), num(t, "export_format"), num(t, "export_write"), commit, end, c.peak_rss_gb,
+        dev_gb, gbs, gbs / disk.synced_gbs);
     fmt::print(out,
-               "{},{:.1f},{:.1f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},"
+               "{},{:.1f},{:.1f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{"
+               ":.4f},{:.4f},{:.4f},"
                "{:.4f},{:.2f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n",
-               n, organs / n, tris / n, j["backend"].get<std::string>(), device, threads, formats_for(s, n), c.wall_s, startup,
-               num(t, "generate"), build, upload, detect, num(t, "resolve"), num(t, "detect_after"), num(t, "export_format"),
-               num(t, "export_write"), exp, commit, end, c.cpu_s, c.peak_rss_gb, dev_gb, num(j, "contacts_before"),
-               num(j, "contacts_after"), gb, gbs, disk.written_gbs, disk.synced_gbs, gbs / disk.synced_gbs);
+               n, organs / n, tris / n, j["backend"].get<std::string>(), device, threads, formats_for(s, n),
+               c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"),
+               num(t, "detect_after"), num(t, "export_format"), num(t, "export_write"), exp, commit, end,
+               c.cpu_s, c.peak_rss_gb, dev_gb, num(j, "contacts_before"), num(j, "contacts_after"), gb, gbs,
+               disk.written_gbs, disk.synced_gbs, gbs / disk.synced_gbs);
     std::fflush(out);
   }
   std::fclose(out);

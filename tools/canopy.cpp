@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
 #endif
   // Large heap pages where the run uses the GPU (tools/heap_pages.hpp); not under mpirun (a rank
   // that runs itself again is not what its launcher started; not tried there).
-  if (!under_mpi) canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")), argv);
+  if (!under_mpi)
+    canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")), argv);
   canopy::keep_freed_memory();
   // Before any thread starts: SIGINT and SIGTERM are taken by a thread that cleans up.
   canopy::cli::start_signal_thread();
@@ -34,9 +35,10 @@ int main(int argc, char** argv) {
   CLI::App app{"canopy: penetration-free plant stands from parametric L-system grammars", "canopy"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(CANOPY_VERSION));
-  std::vector<canopy::cli::Command> commands{
-      canopy::cli::add_derive(app), canopy::cli::add_stand(app), canopy::cli::add_detect(app), canopy::cli::add_sweep(app),
-      canopy::cli::add_render(app), canopy::cli::add_light(app), canopy::cli::add_info(app)};
+  std::vector<canopy::cli::Command> commands{canopy::cli::add_derive(app), canopy::cli::add_stand(app),
+                                             canopy::cli::add_detect(app), canopy::cli::add_sweep(app),
+                                             canopy::cli::add_render(app), canopy::cli::add_light(app),
+                                             canopy::cli::add_info(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

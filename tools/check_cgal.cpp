@@ -32,7 +32,8 @@ using namespace canopy;
 namespace {
 
 /// A triangle that may be degenerate, as CGAL objects: a triangle, up to three segments, or a point.
-bool meet(const Point& a0, const Point& a1, const Point& a2, const Point& b0, const Point& b1, const Point& b2) {
+bool meet(const Point& a0, const Point& a1, const Point& a2, const Point& b0, const Point& b1,
+          const Point& b2) {
   const Triangle ta(a0, a1, a2), tb(b0, b1, b2);
   const bool da = ta.is_degenerate(), db = tb.is_degenerate();
   if (!da && !db) return CGAL::do_intersect(ta, tb);
@@ -80,7 +81,8 @@ double min_distance2(const OrganGeometry& a, const OrganGeometry& b) {
     for (const auto& fb : b.f) {
       const Triangle ta(a.v[fa[0]], a.v[fa[1]], a.v[fa[2]]), tb(b.v[fb[0]], b.v[fb[1]], b.v[fb[2]]);
       if (ta.is_degenerate() || tb.is_degenerate()) {
-        for (int i = 0; i < 3; ++i) best = std::min(best, CGAL::to_double(CGAL::squared_distance(a.v[fa[i]], b.v[fb[0]])));
+        for (int i = 0; i < 3; ++i)
+          best = std::min(best, CGAL::to_double(CGAL::squared_distance(a.v[fa[i]], b.v[fb[0]])));
         continue;
       }
       best = std::min(best, CGAL::to_double(CGAL::squared_distance(ta, tb)));
@@ -92,7 +94,9 @@ double min_distance2(const OrganGeometry& a, const OrganGeometry& b) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    fmt::print(stderr, "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE] [--glb] [--strict]\n");
+    fmt::print(
+        stderr,
+        "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE] [--glb] [--strict]\n");
     return 2;
   }
   const std::string dir = argv[1];
@@ -116,7 +120,8 @@ int main(int argc, char** argv) {
     while (std::getline(in, line)) {
       int a, b, pa, pb;
       char level[16];
-      if (std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &a, &b, &pa, &pb, level) == 5 && std::string(level) == "exact")
+      if (std::sscanf(line.c_str(), "%d,%d,%d,%d,%15s", &a, &b, &pa, &pb, level) == 5 &&
+          std::string(level) == "exact")
         listed.insert({a, b});
     }
   }
@@ -125,7 +130,8 @@ int main(int argc, char** argv) {
     if (!collide[static_cast<std::size_t>(s.organs[a].kind)]) continue;
     for (std::size_t b = a + 1; b < organs.size(); ++b) {
       if (!collide[static_cast<std::size_t>(s.organs[b].kind)]) continue;
-      if (adjacent(s.organs[a], static_cast<std::int32_t>(a), s.organs[b], static_cast<std::int32_t>(b))) continue;
+      if (adjacent(s.organs[a], static_cast<std::int32_t>(a), s.organs[b], static_cast<std::int32_t>(b)))
+        continue;
       const OrganGeometry &ga = organs[a], &gb = organs[b];
       bool apart = false;
       for (int k = 0; k < 3; ++k) apart |= ga.lo[k] > gb.hi[k] + 1e-6 || gb.lo[k] > ga.hi[k] + 1e-6;
@@ -135,8 +141,11 @@ int main(int argc, char** argv) {
       bool hit = false;
       for (std::size_t i = 0; i < ga.f.size() && !hit; ++i)
         for (std::size_t j = 0; j < gb.f.size() && !hit; ++j)
-          hit = meet(ga.v[ga.f[i][0]], ga.v[ga.f[i][1]], ga.v[ga.f[i][2]], gb.v[gb.f[j][0]], gb.v[gb.f[j][1]], gb.v[gb.f[j][2]]);
-      const auto solid = [](PrototypeKind k) { return k == PrototypeKind::cylinder || k == PrototypeKind::sphere; };
+          hit = meet(ga.v[ga.f[i][0]], ga.v[ga.f[i][1]], ga.v[ga.f[i][2]], gb.v[gb.f[j][0]], gb.v[gb.f[j][1]],
+                     gb.v[gb.f[j][2]]);
+      const auto solid = [](PrototypeKind k) {
+        return k == PrototypeKind::cylinder || k == PrototypeKind::sphere;
+      };
       if (!hit && solid(s.organs[b].prototype)) hit = inside_convex(ga.v[0], gb);
       if (!hit && solid(s.organs[a].prototype)) hit = inside_convex(gb.v[0], ga);
       found += hit;
@@ -146,13 +155,15 @@ int main(int argc, char** argv) {
         else {
           ++bad;
           if (bad <= 10)
-            fmt::print("disagree: organs {} {}: CGAL {}, contacts.csv {}, distance {:.3g} m\n", a, b, hit, in_list, d);
+            fmt::print("disagree: organs {} {}: CGAL {}, contacts.csv {}, distance {:.3g} m\n", a, b, hit,
+                       in_list, d);
         }
       }
     }
   }
   fmt::print(
-      "CGAL check of {} ({}) against {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree within 1 um, {} "
+      "CGAL check of {} ({}) against {}: {} organ pairs tested, {} meet by CGAL, {} listed, {} disagree "
+      "within 1 um, {} "
       "disagree\n",
       dir, glb ? "stand.glb" : "stand.obj", contacts_file, tested, found, listed.size(), near, bad);
   return bad == 0 ? 0 : 1;

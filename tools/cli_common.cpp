@@ -23,7 +23,8 @@ CLI::Validator whole_in(long long lo, long long hi) {
       [lo, hi](std::string& in) {
         const auto v = finite_number(in);
         // 2^63 and up do not fit a long long, though INT64_MAX as a double rounds up to 2^63.
-        if (!v || *v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi) || *v >= 0x1p63)
+        if (!v || *v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi) ||
+            *v >= 0x1p63)
           return fmt::format("needs a whole number from {} to {}, got {}", lo, hi, in);
         in = fmt::format("{}", static_cast<long long>(*v));
         return std::string();
@@ -35,7 +36,8 @@ CLI::Validator at_least(double lo) {
   return CLI::Validator(
       [lo](std::string& in) {
         const auto v = finite_number(in);
-        return v && *v >= lo ? std::string() : fmt::format("needs a finite number of at least {}, got {}", lo, in);
+        return v && *v >= lo ? std::string()
+                             : fmt::format("needs a finite number of at least {}, got {}", lo, in);
       },
       "", "at least");
 }
@@ -44,7 +46,8 @@ CLI::Validator above(double lo) {
   return CLI::Validator(
       [lo](std::string& in) {
         const auto v = finite_number(in);
-        return v && *v > lo ? std::string() : fmt::format("needs a finite number greater than {}, got {}", lo, in);
+        return v && *v > lo ? std::string()
+                            : fmt::format("needs a finite number greater than {}, got {}", lo, in);
       },
       "", "above");
 }
@@ -53,7 +56,8 @@ CLI::Validator number_in(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& in) {
         const auto v = finite_number(in);
-        return v && *v >= lo && *v <= hi ? std::string() : fmt::format("needs a number from {} to {}, got {}", lo, hi, in);
+        return v && *v >= lo && *v <= hi ? std::string()
+                                         : fmt::format("needs a number from {} to {}, got {}", lo, hi, in);
       },
       fmt::format("{}..{}", lo, hi), "number in");
 }
@@ -69,7 +73,8 @@ std::string parse_error_line(const CLI::Error& e) {
 }
 
 bool any_row_option(const StandSpec& s) {
-  return s.rows || s.per_row || s.row_spacing || s.plant_spacing || s.double_rows || s.jitter || s.random_rotation || s.seed;
+  return s.rows || s.per_row || s.row_spacing || s.plant_spacing || s.double_rows || s.jitter ||
+         s.random_rotation || s.seed;
 }
 
 /// A row layout from a stand entry (the grammar's or the command line's); unset keys take
@@ -126,8 +131,8 @@ std::string layout_line(const RowLayout& l, const LayoutSources& sources) {
   return line;
 }
 
-GrowRequest grow_request(const std::string& grammar, const std::vector<std::string>& set, std::optional<int> steps, int lod,
-                         int threads, std::size_t max_modules) {
+GrowRequest grow_request(const std::string& grammar, const std::vector<std::string>& set,
+                         std::optional<int> steps, int lod, int threads, std::size_t max_modules) {
   GrowRequest req;
   req.grammar = grammar;
   for (const auto& s : set) req.load.overrides.push_back(parse_override(s));

@@ -20,7 +20,8 @@ inline const CLI::Validator kFinite(
     [](std::string& in) {
       double v = 0;
       std::string error;
-      if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v)) error.append("needs a finite number, got ").append(in);
+      if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v))
+        error.append("needs a finite number, got ").append(in);
       return error;
     },
     "", "finite");
@@ -30,7 +31,8 @@ inline const CLI::Validator kFinite(
 inline const CLI::Validator kSeed(
     [](std::string& in) {
       std::string error;
-      if (!parse_seed(in)) error.append("needs a whole number from 0 to 18446744073709551615, got ").append(in);
+      if (!parse_seed(in))
+        error.append("needs a whole number from 0 to 18446744073709551615, got ").append(in);
       return error;
     },
     "", "seed");
@@ -61,8 +63,8 @@ inline CLI::Validator metres_note(std::string option) {
       [option](std::string& in) {
         double v = 0;
         if (CLI::detail::lexical_cast(in, v) && std::isfinite(v) && v >= 0.1)
-          std::fprintf(stderr, "canopy: note: %s is in metres: %s is %g mm (for %g mm write %g)\n", option.c_str(), in.c_str(),
-                       v * 1000, v, v / 1000);
+          std::fprintf(stderr, "canopy: note: %s is in metres: %s is %g mm (for %g mm write %g)\n",
+                       option.c_str(), in.c_str(), v * 1000, v, v / 1000);
         return std::string();
       },
       "", "metres");
@@ -107,7 +109,7 @@ LayoutChoice choose_layout(const StandSpec& given, const std::optional<StandSpec
 std::string layout_line(const RowLayout& layout, const LayoutSources& sources);
 /// A grow request for `grammar` with the command line's --set, --steps, --lod, --threads and
 /// --max-modules (plants still to be placed).
-GrowRequest grow_request(const std::string& grammar, const std::vector<std::string>& set, std::optional<int> steps, int lod,
-                         int threads, std::size_t max_modules);
+GrowRequest grow_request(const std::string& grammar, const std::vector<std::string>& set,
+                         std::optional<int> steps, int lod, int threads, std::size_t max_modules);
 
 }  // namespace canopy::cli

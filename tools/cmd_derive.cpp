@@ -23,14 +23,17 @@ Command add_derive(CLI::App& root) {
   auto opt = std::make_shared<Options>();
   CLI::App* app = root.add_subcommand("derive", "Print the string a grammar derives, before interpretation");
   app->add_option("GRAMMAR", opt->grammar, "Grammar file (YAML)")->required();
-  app->add_option("--steps", opt->steps, "Derivation steps (default: the grammar's steps)")->transform(whole_in(0, kMaxSteps));
-  app->add_option("--seed", opt->seed, "Seed of the plant's random stream (default: the grammar's seed)")->check(kSeed);
+  app->add_option("--steps", opt->steps, "Derivation steps (default: the grammar's steps)")
+      ->transform(whole_in(0, kMaxSteps));
+  app->add_option("--seed", opt->seed, "Seed of the plant's random stream (default: the grammar's seed)")
+      ->check(kSeed);
   app->add_option("--set", opt->set, "Override a constant: NAME=VALUE (repeatable)");
   app->add_flag("--stats", opt->stats, "Print {\"modules\": N, \"counts\": {...}} instead of the string");
   app->add_flag("--interpreted", opt->interpreted, "Apply the interpretation (homomorphism) before printing");
   app->add_option(
          "--max-modules", opt->max_modules,
-         fmt::format("Stop with an error when the string would exceed this many modules (default {})", kDefaultMaxModules))
+         fmt::format("Stop with an error when the string would exceed this many modules (default {})",
+                     kDefaultMaxModules))
       ->transform(whole_in(1, INT64_MAX));
   return {app, [opt]() {
             LoadOptions lo;

@@ -19,7 +19,8 @@ Command add_detect(CLI::App& root) {
     DetectOptions detect;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* app = root.add_subcommand("detect", "Detect contacts in a stand folder written by canopy stand and print a table");
+  CLI::App* app = root.add_subcommand(
+      "detect", "Detect contacts in a stand folder written by canopy stand and print a table");
   app->add_option("DIR", o->dir, "Stand folder (with organs.csv and plants.csv)")->required();
   app->add_option("--csv", o->csv, "Also write the contacts to this file (contacts.csv columns)");
   o->detect.add_to(*app);
@@ -31,7 +32,8 @@ Command add_detect(CLI::App& root) {
             std::string note;
             auto backend = make_backend(o->detect.backend, note);
             const Contacts c = backend->detect(stand, o->detect.request());
-            fmt::print("stand: {} plants, {} organs (read in {:.3f} s)\n", stand.plant_count(), stand.organ_count(), read_s);
+            fmt::print("stand: {} plants, {} organs (read in {:.3f} s)\n", stand.plant_count(),
+                       stand.organ_count(), read_s);
             print_contacts_table(c, note);
             if (!o->csv.empty()) {
               AtomicFile f(o->csv);

@@ -16,37 +16,40 @@ Command add_info(CLI::App& root) {
   CLI::App* app = root.add_subcommand("info", "Print the version and the detection backends available here");
   auto self_test = std::make_shared<bool>(false);
   app->add_flag("--self-test", *self_test, "Run a small kernel on each CUDA device and check its result");
-  return {app, [self_test]() {
-            fmt::print(
-                "canopy {}\nheap pages: {} (tools/heap_pages.hpp; CANOPY_HEAP_PAGES=large|small)\nbackend cpu: available\n",
-                CANOPY_VERSION, heap_pages_in_use());
+  return {
+      app, [self_test]() {
+        fmt::print(
+            "canopy {}\nheap pages: {} (tools/heap_pages.hpp; CANOPY_HEAP_PAGES=large|small)\nbackend cpu: "
+            "available\n",
+            CANOPY_VERSION, heap_pages_in_use());
 #ifdef CANOPY_HAVE_CUDA
-            const auto report = cuda::query_devices();
-            if (report.devices.empty()) fmt::print("backend cuda: built, no device ({})\n", report.unavailable_reason);
-            for (const auto& d : report.devices) {
-              fmt::print("backend cuda: device {} {} (sm_{}{}, {:.1f} GiB, {} SMs)\n", d.index, d.name, d.major, d.minor,
-                         static_cast<double>(d.memory_bytes) / (1u << 30), d.multiprocessors);
-              if (*self_test) {
-                cuda::self_test(d.index);
-                fmt::print("  self test passed\n");
-              }
-            }
+        const auto report = cuda::query_devices();
+        if (report.devices.empty())
+          fmt::print("backend cuda: built, no device ({})\n", report.unavailable_reason);
+        for (const auto& d : report.devices) {
+          fmt::print("backend cuda: device {} {} (sm_{}{}, {:.1f} GiB, {} SMs)\n", d.index, d.name, d.major,
+                     d.minor, static_cast<double>(d.memory_bytes) / (1u << 30), d.multiprocessors);
+          if (*self_test) {
+            cuda::self_test(d.index);
+            fmt::print("  self test passed\n");
+          }
+        }
 #else
             fmt::print("backend cuda: not built\n");
 #endif
 #ifdef CANOPY_HAVE_EMBREE
-            fmt::print("render: Embree (canopy render)\n");
+        fmt::print("render: Embree (canopy render)\n");
 #else
             fmt::print("render: not built (Embree or libpng missing)\n");
 #endif
 #ifdef CANOPY_WITH_MPI
-            fmt::print("mpi: {} (tiled runs: mpirun -np P canopy stand|sweep ...){}\n", mpi::library_version(),
-                       mpi::launched() ? fmt::format("; this is rank {} of {}", mpi::rank(), mpi::size()) : "");
+        fmt::print("mpi: {} (tiled runs: mpirun -np P canopy stand|sweep ...){}\n", mpi::library_version(),
+                   mpi::launched() ? fmt::format("; this is rank {} of {}", mpi::rank(), mpi::size()) : "");
 #else
             fmt::print("mpi: not built (tiled runs need OpenMPI: libopenmpi-dev)\n");
 #endif
-            return 0;
-          }};
+        return 0;
+      }};
 }
 
 }  // namespace canopy::cli

@@ -13,65 +13,83 @@ namespace canopy::cli {
 
 Command add_light(CLI::App& root) {
   auto o = std::make_shared<LightOptions>();
-  CLI::App* app = root.add_subcommand(
-      "light", "Light interception of a stand: direct beams, diffuse sky, ground cover, STAR; writes light.json and light.csv");
-  app->add_option("SOURCE", o->source,
-                  "A folder written by canopy stand, or a grammar to grow a stand from (with canopy stand's options)")
+  CLI::App* app = root.add_subcommand("light",
+                                      "Light interception of a stand: direct beams, diffuse sky, ground "
+                                      "cover, STAR; writes light.json and light.csv");
+  app->add_option(
+         "SOURCE", o->source,
+         "A folder written by canopy stand, or a grammar to grow a stand from (with canopy stand's options)")
       ->required();
-  app->add_option("--sun", o->suns,
-                  "A direct beam: ELEVATION,AZIMUTH in degrees (azimuth clockwise from north = +Y; repeatable)");
-  app->add_option("--latitude", o->latitude, "Beams from the sun's position: latitude, degrees (north positive)")->check(kFinite);
+  app->add_option(
+      "--sun", o->suns,
+      "A direct beam: ELEVATION,AZIMUTH in degrees (azimuth clockwise from north = +Y; repeatable)");
+  app->add_option("--latitude", o->latitude,
+                  "Beams from the sun's position: latitude, degrees (north positive)")
+      ->check(kFinite);
   app->add_option("--day", o->day, "Beams from the sun's position: day of the year, 1-366");
-  app->add_option("--hours", o->hours, "Beams from the sun's position: local solar times, a list 8,10,12 or a range 8:16:2");
+  app->add_option("--hours", o->hours,
+                  "Beams from the sun's position: local solar times, a list 8,10,12 or a range 8:16:2");
   app->add_option("--sky", o->sky, "Diffuse sky radiance: soc (standard overcast, default) or uniform");
   app->add_option("--sky-directions", o->sky_directions,
                   "Sky directions of equal solid angle (default 46; 0: no diffuse light, no STAR)")
       ->check(CLI::Range(0, 10000));
-  app->add_option("--tile", o->tile, "The periodic tile XMIN,YMIN,XMAX,YMAX in metres (default: the row layout's lattice)");
+  app->add_option("--tile", o->tile,
+                  "The periodic tile XMIN,YMIN,XMAX,YMAX in metres (default: the row layout's lattice)");
   app->add_flag("--no-periodic", o->no_periodic, "An isolated stand: rays do not wrap around the tile");
-  app->add_option("--error", o->error, "Standard error asked of the stand's fractions (default 0.002)")->check(kFinite);
+  app->add_option("--error", o->error, "Standard error asked of the stand's fractions (default 0.002)")
+      ->check(kFinite);
   app->add_option("--plant-error", o->plant_error,
                   "Standard error asked of each plant's fractions too (root mean square over plants)")
       ->check(kFinite);
-  app->add_option("--rays-per-m2", o->rays_per_m2, "Rays per m2 of ground in every direction, instead of --error")
+  app->add_option("--rays-per-m2", o->rays_per_m2,
+                  "Rays per m2 of ground in every direction, instead of --error")
       ->check(kFinite);
-  app->add_option("--layer", o->layer, "Height of the vertical profile's layers, metres (default 0.1)")->check(kFinite);
+  app->add_option("--layer", o->layer, "Height of the vertical profile's layers, metres (default 0.1)")
+      ->check(kFinite);
   app->add_option("--ray-seed", o->ray_seed, "Seed of the rays' positions (default 1)")->check(kSeed);
   // From a grammar: canopy stand's options.
   StandOptions& s = o->stand;
   app->add_option("-o,--out", s.out, "From a grammar: the stand's folder (default out)");
   app->add_option("--steps", s.steps, "From a grammar: derivation steps")->check(CLI::NonNegativeNumber);
   app->add_option("--set", s.set, "From a grammar: override a constant NAME=VALUE (repeatable)");
-  app->add_option("--lod", s.lod, "From a grammar: level of detail (default 2)")->check(CLI::Range(1, kMaxLod));
+  app->add_option("--lod", s.lod, "From a grammar: level of detail (default 2)")
+      ->check(CLI::Range(1, kMaxLod));
   app->add_option("--formats", s.formats, "From a grammar: mesh formats of the stand (default glb)");
-  app->add_option("--max-modules", s.max_modules, "From a grammar: module cap per plant derivation")->check(CLI::PositiveNumber);
+  app->add_option("--max-modules", s.max_modules, "From a grammar: module cap per plant derivation")
+      ->check(CLI::PositiveNumber);
   s.detect.add_to(*app);
   s.resolve.add_to(*app);
   auto* layout = app->add_option_group("layout", "From a grammar: rows or a positions file, as canopy stand");
   layout->add_option("--rows", s.rows.rows, "Number of rows")->check(CLI::PositiveNumber);
   layout->add_option("--per-row", s.rows.per_row, "Plants per row")->check(CLI::PositiveNumber);
-  layout->add_option("--row-spacing", s.rows.row_spacing, "Metres between rows")->check(kFinite)->check(CLI::NonNegativeNumber);
+  layout->add_option("--row-spacing", s.rows.row_spacing, "Metres between rows")
+      ->check(kFinite)
+      ->check(CLI::NonNegativeNumber);
   layout->add_option("--plant-spacing", s.rows.plant_spacing, "Metres between plants in a row")
       ->check(kFinite)
       ->check(CLI::NonNegativeNumber);
   layout->add_option("--double-rows", s.rows.double_rows, "Rows in pairs GAP metres apart")
       ->check(kFinite)
       ->check(CLI::NonNegativeNumber);
-  layout->add_option("--jitter", s.rows.jitter, "Jitter radius, metres")->check(kFinite)->check(CLI::NonNegativeNumber);
+  layout->add_option("--jitter", s.rows.jitter, "Jitter radius, metres")
+      ->check(kFinite)
+      ->check(CLI::NonNegativeNumber);
   layout->add_flag("--random-rotation", s.random_rotation, "Turn each plant by a random angle about Z");
   layout->add_option("--seed", s.rows.seed, "Stand seed")->check(kSeed);
-  layout->add_option("--positions", s.positions, "CSV with columns x,y,rotation,seed (give --tile for a periodic field)");
+  layout->add_option("--positions", s.positions,
+                     "CSV with columns x,y,rotation,seed (give --tile for a periodic field)");
   add_target_options(*app, s.target);
   return {app, [o, app]() {
             o->threads = o->stand.detect.threads;
             // A folder holds its stand: the options that grow one would be ignored, so say so.
             if (std::filesystem::is_directory(o->source))
-              for (const char* name : {"--out", "--steps", "--set", "--lod", "--formats", "--max-modules", "--rows", "--per-row",
-                                       "--row-spacing", "--plant-spacing", "--double-rows", "--jitter", "--random-rotation",
-                                       "--seed", "--positions", "--target-lai", "--target-ground-cover", "--no-resolve"})
+              for (const char* name :
+                   {"--out", "--steps", "--set", "--lod", "--formats", "--max-modules", "--rows", "--per-row",
+                    "--row-spacing", "--plant-spacing", "--double-rows", "--jitter", "--random-rotation",
+                    "--seed", "--positions", "--target-lai", "--target-ground-cover", "--no-resolve"})
                 if (app->count(name) > 0)
-                  throw std::invalid_argument(
-                      fmt::format("{} grows a stand from a grammar: {} is a folder that holds one", name, o->source));
+                  throw std::invalid_argument(fmt::format(
+                      "{} grows a stand from a grammar: {} is a folder that holds one", name, o->source));
             run_light(*o);
             return 0;
           }};

@@ -62,11 +62,13 @@ std::vector<std::uint8_t> flags_from(const Contacts& c, std::size_t organs) {
 }
 
 /// The upper view (oblique or side) over the top view, in a panel of w x h.
-render::Image panel(const render::Scene& scene, const std::vector<std::uint8_t>& hot, int w, int h, render::View upper) {
+render::Image panel(const render::Scene& scene, const std::vector<std::uint8_t>& hot, int w, int h,
+                    render::View upper) {
   render::Image img(w, h);
   const int h1 = h / 2;
   img.paste(scene.render(render::fit_camera(scene.lo(), scene.hi(), upper, w, h1), hot), 0, 0);
-  img.paste(scene.render(render::fit_camera(scene.lo(), scene.hi(), render::View::top, w, h - h1), hot), 0, h1);
+  img.paste(scene.render(render::fit_camera(scene.lo(), scene.hi(), render::View::top, w, h - h1), hot), 0,
+            h1);
   return img;
 }
 #endif
@@ -75,41 +77,51 @@ render::Image panel(const render::Scene& scene, const std::vector<std::uint8_t>&
 
 Command add_render(CLI::App& root) {
   auto o = std::make_shared<RenderOptions>();
-  CLI::App* app = root.add_subcommand("render",
-                                      "PNG pictures of a stand: oblique view over top view, contacts in magenta; from a grammar, "
-                                      "before and after resolution side by side");
-  app->add_option("SOURCE", o->source, "A folder written by canopy stand, or a grammar file to grow a stand from")->required();
+  CLI::App* app = root.add_subcommand(
+      "render",
+      "PNG pictures of a stand: oblique view over top view, contacts in magenta; from a grammar, "
+      "before and after resolution side by side");
+  app->add_option("SOURCE", o->source,
+                  "A folder written by canopy stand, or a grammar file to grow a stand from")
+      ->required();
   app->add_option("-o,--out", o->out, "PNG file to write (default stand.png)");
   app->add_option("--size", o->size, "Picture size WIDTHxHEIGHT in pixels (default 1920x1080)");
-  app->add_option("--view", o->view,
-                  "The upper view: oblique (default, from the front-left and above) or side (level, across the rows)")
+  app->add_option(
+         "--view", o->view,
+         "The upper view: oblique (default, from the front-left and above) or side (level, across the rows)")
       ->check(CLI::IsMember({"oblique", "side"}));
   app->add_option("--rows", o->rows.rows, "From a grammar: rows")->transform(whole_in(1, INT32_MAX));
-  app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")->transform(whole_in(1, INT32_MAX));
+  app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")
+      ->transform(whole_in(1, INT32_MAX));
   app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")
       ->check(kFinite)
       ->check(at_least(0));
   app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")
       ->check(kFinite)
       ->check(at_least(0));
-  app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")->check(kFinite)->check(at_least(0));
+  app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")
+      ->check(kFinite)
+      ->check(at_least(0));
   app->add_flag("--random-rotation", o->random_rotation, "From a grammar: turn each plant at random");
   app->add_option("--seed", o->rows.seed, "From a grammar: stand seed")->check(kSeed);
   app->add_option("--steps", o->steps, "From a grammar: derivation steps")->transform(whole_in(0, kMaxSteps));
   app->add_option("--set", o->set, "From a grammar: override a constant NAME=VALUE (repeatable)");
-  app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")->transform(whole_in(1, kMaxLod));
+  app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")
+      ->transform(whole_in(1, kMaxLod));
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
-  return {
-      app, [o]() -> int {
-        const ThreadLimit thread_limit(o->detect.threads);
-        int w = 0, h = 0;
-        char x = 0;
-        if (std::sscanf(o->size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 || w > 16384 || h > 16384)
-          throw std::invalid_argument(fmt::format("--size: '{}' is not WIDTHxHEIGHT between 16 and 16384", o->size));
+  return {app, [o]() -> int {
+            const ThreadLimit thread_limit(o->detect.threads);
+            int w = 0, h = 0;
+            char x = 0;
+            if (std::sscanf(o->size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 ||
+                w > 16384 || h > 16384)
+              throw std::invalid_argument(
+                  fmt::format("--size: '{}' is not WIDTHxHEIGHT between 16 and 16384", o->size));
 #ifndef CANOPY_HAVE_EMBREE
-        throw std::invalid_argument(
-            "canopy render: this build has no renderer (Embree was not found: apt-get install libembree-dev, then build again)");
+            throw std::invalid_argument(
+                "canopy render: this build has no renderer (Embree was not found: apt-get install "
+                "libembree-dev, then build again)");
 #else
             const auto t0 = std::chrono::steady_clock::now();
             const render::View upper = o->view == "side" ? render::View::side : render::View::oblique;
@@ -160,7 +172,7 @@ Command add_render(CLI::App& root) {
                        static_cast<double>(ru.ru_maxrss) / (1024.0 * 1024.0));
             return 0;
 #endif
-      }};
+          }};
 }
 
 }  // namespace canopy::cli

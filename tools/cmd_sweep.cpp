@@ -40,7 +40,8 @@ std::atomic<bool> g_interrupted{false};
 std::string num(double v) { return fmt::format("{}", v); }
 
 /// One run: grow, detect (every level up to the exact one), resolve; the row of runs.csv.
-RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, DetectionBackend& backend, RunRow row) {
+RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, DetectionBackend& backend,
+               RunRow row) {
   RowLayout layout;
   layout.rows = o.rows;
   layout.per_row = o.per_row;
@@ -55,7 +56,8 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   Stand stand = grow_stand(req);
   row["generate_s"] = fmt::format("{:.4f}", seconds_since(t));
   PrototypeLibrary lib;
-  const LeafAreaIndex lai = leaf_area_index(stand, lib, o.rows, o.per_row, cell.plant_spacing, cell.row_spacing);
+  const LeafAreaIndex lai =
+      leaf_area_index(stand, lib, o.rows, o.per_row, cell.plant_spacing, cell.row_spacing);
   const double n = static_cast<double>(stand.plant_count());
   row["plants"] = std::to_string(stand.plant_count());
   row["organs"] = std::to_string(stand.organ_count());
@@ -89,8 +91,8 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
     row["rounds"] = std::to_string(r.rounds);
     // What is left, at the exact level: resolution's own list when it resolved at that level,
     // else a detection from scratch.
-    row["residual_contacts"] =
-        std::to_string(rc.level == ContactLevel::exact ? r.contacts_after : backend.detect(stand, dreq).pairs.size());
+    row["residual_contacts"] = std::to_string(
+        rc.level == ContactLevel::exact ? r.contacts_after : backend.detect(stand, dreq).pairs.size());
     if (!o.no_light) light_s += light_columns(stand, layout, o, "after", row);
   }
   if (!o.no_light) row["light_s"] = fmt::format("{:.4f}", light_s);
@@ -100,7 +102,8 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
 
 }  // namespace
 
-SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallback& after_run, const SweepRanks* ranks) {
+SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallback& after_run,
+                       const SweepRanks* ranks) {
   SweepOptions o = given;
   const ThreadLimit thread_limit(o.detect.threads);
   const int me = ranks ? ranks->rank : 0, team = ranks ? ranks->size : 1;
@@ -115,9 +118,11 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   if (!o.steps.empty()) {
     steps.clear();
     for (double s : parse_number_list("--steps", o.steps, 0, false)) {
-      if (s != std::floor(s)) throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
+      if (s != std::floor(s))
+        throw std::invalid_argument(fmt::format("--steps: {} is not a whole number", s));
       if (s > kMaxSteps)
-        throw std::invalid_argument(fmt::format("--steps: {} is more than the {} steps a plant may grow", s, kMaxSteps));
+        throw std::invalid_argument(
+            fmt::format("--steps: {} is more than the {} steps a plant may grow", s, kMaxSteps));
       steps.push_back(static_cast<int>(s));
     }
   }
@@ -132,11 +137,14 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   // Jitter and rotation: the options', else the grammar's stand entry's, else the default stand's.
   const StandSpec entry = g.stand.value_or(StandSpec{});
   const char* jitter_from = o.jitter ? "command line" : entry.jitter ? "grammar" : "default";
-  const char* rotation_from = o.random_rotation ? "command line" : entry.random_rotation ? "grammar" : "default";
+  const char* rotation_from = o.random_rotation       ? "command line"
+                              : entry.random_rotation ? "grammar"
+                                                      : "default";
   if (!o.jitter) o.jitter = entry.jitter.value_or(0.02);
   if (!o.random_rotation) o.random_rotation = entry.random_rotation.value_or(true);
   if (!(*o.jitter >= 0) || !std::isfinite(*o.jitter))
-    throw std::invalid_argument(fmt::format("--jitter must be a finite number of metres, at least 0 (got {})", *o.jitter));
+    throw std::invalid_argument(
+        fmt::format("--jitter must be a finite number of metres, at least 0 (got {})", *o.jitter));
   const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
   auto backend = make_backend(o.detect.backend, note, ranks ? ranks->local_rank : 0);
 
@@ -176,10 +184,11 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
   if (print)
     fmt::print(
-        "sweep: {} cells x {} seeds = {} runs of {} x {} plants (jitter {} m from the {}, random rotation {} from the {}), "
+        "sweep: {} cells x {} seeds = {} runs of {} x {} plants (jitter {} m from the {}, random rotation {} "
+        "from the {}), "
         "{} already done; backend {}\n",
-        cells.size(), o.seeds, total, o.rows, o.per_row, *o.jitter, jitter_from, *o.random_rotation ? "on" : "off", rotation_from,
-        finished.size(), note);
+        cells.size(), o.seeds, total, o.rows, o.per_row, *o.jitter, jitter_from,
+        *o.random_rotation ? "on" : "off", rotation_from, finished.size(), note);
   const bool tty = print && isatty(fileno(stderr));
   g_interrupted = false;
   // Ctrl-C ends the sweep after the run in progress (the command line only: a host program such
@@ -221,8 +230,11 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     if (wave + static_cast<std::size_t>(me) < pending.size()) {
       Pending& p = pending[wave + static_cast<std::size_t>(me)];
       if (tty)
-        fmt::print(stderr, "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
-                   p.index + 1, total, p.row["plant_spacing"], p.row["row_spacing"], p.row["steps"], p.seed, seconds_since(t0));
+        fmt::print(
+            stderr,
+            "\r  sweep: run {}/{} (plant spacing {} m, row spacing {} m, steps {}, seed {}), {:.0f} s   ",
+            p.index + 1, total, p.row["plant_spacing"], p.row["row_spacing"], p.row["steps"], p.seed,
+            seconds_since(t0));
       try {
         p.row = run_one(o, *p.cell, p.seed, *backend, p.row);
       } catch (const std::exception& e) {
@@ -246,11 +258,12 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
         }
       }
       if (print && !tty)
-        fmt::print("run {}/{}: plant spacing {} m, row spacing {} m, steps {}, seed {}: {}\n", p.index + 1, total,
-                   row.at("plant_spacing"), row.at("row_spacing"), row.at("steps"), p.seed,
-                   row.at("status") == "ok" ? fmt::format("LAI {}, {} exact contacts between plants per plant", row.at("lai"),
-                                                          row.at("exact_between_per_plant"))
-                                            : "failed: " + row.at("message"));
+        fmt::print("run {}/{}: plant spacing {} m, row spacing {} m, steps {}, seed {}: {}\n", p.index + 1,
+                   total, row.at("plant_spacing"), row.at("row_spacing"), row.at("steps"), p.seed,
+                   row.at("status") == "ok"
+                       ? fmt::format("LAI {}, {} exact contacts between plants per plant", row.at("lai"),
+                                     row.at("exact_between_per_plant"))
+                       : "failed: " + row.at("message"));
     }
   }
   soft.reset();
@@ -263,8 +276,8 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     summary.commit();
   }
   if (print)
-    fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(), runs_path, total,
-               seconds_since(t0));
+    fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(),
+               runs_path, total, seconds_since(t0));
   if (stopped) std::rethrow_exception(stopped);
   SweepOutcome out;
   out.total = total, out.ran = ran, out.failed = failed;
@@ -280,34 +293,42 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
 
 Command add_sweep(CLI::App& root) {
   auto o = std::make_shared<SweepOptions>();
-  CLI::App* app =
-      root.add_subcommand("sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
+  CLI::App* app = root.add_subcommand(
+      "sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
   app->add_option("GRAMMAR", o->grammar, "Grammar file (YAML)")->required();
-  app->add_option("-o,--out", o->out, "Output folder: runs.csv, summary.csv (default sweep); an existing one is resumed");
+  app->add_option("-o,--out", o->out,
+                  "Output folder: runs.csv, summary.csv (default sweep); an existing one is resumed");
   app->add_option("--plant-spacing", o->plant_spacing,
                   "Metres between plants in a row: a list a,b,c or a range start:stop:step (default 0.4)");
   app->add_option("--row-spacing", o->row_spacing, "Metres between rows: list or range (default 1.0)");
   app->add_option("--density", o->density,
-                  "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x row spacing)");
-  app->add_option("--steps", o->steps, "Plant ages in derivation steps: list or range (default: the grammar's)");
-  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")->transform(whole_in(1, INT32_MAX));
+                  "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x "
+                  "row spacing)");
+  app->add_option("--steps", o->steps,
+                  "Plant ages in derivation steps: list or range (default: the grammar's)");
+  app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")
+      ->transform(whole_in(1, INT32_MAX));
   app->add_option("--rows", o->rows, "Rows per stand (default 3)")->transform(whole_in(1, INT32_MAX));
   app->add_option("--per-row", o->per_row, "Plants per row (default 5)")->transform(whole_in(1, INT32_MAX));
   app->add_option("--jitter", o->jitter,
-                  "Jitter radius in metres (default: the grammar's stand entry, else 0.02; plants are turned at random unless "
+                  "Jitter radius in metres (default: the grammar's stand entry, else 0.02; plants are turned "
+                  "at random unless "
                   "the grammar's stand entry says otherwise)")
       ->check(kFinite)
       ->check(at_least(0));
   app->add_option("--lod", o->lod, "Level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
-  app->add_option("--max-modules", o->max_modules, "Module cap per plant derivation (a run past it is recorded as failed)")
+  app->add_option("--max-modules", o->max_modules,
+                  "Module cap per plant derivation (a run past it is recorded as failed)")
       ->transform(whole_in(1, INT64_MAX));
   app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
-  app->add_option("--sun", o->sun, "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
+  app->add_option("--sun", o->sun,
+                  "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
   app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");
   app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")
       ->check(CLI::Range(1, 10000));
-  app->add_option("--light-error", o->light_error, "Light columns: standard error asked of the stand's fractions (default 0.002)")
+  app->add_option("--light-error", o->light_error,
+                  "Light columns: standard error asked of the stand's fractions (default 0.002)")
       ->check(kFinite);
   app->add_flag("--no-light", o->no_light, "Leave the light columns empty");
   o->detect.add_to(*app);
@@ -317,7 +338,8 @@ Command add_sweep(CLI::App& root) {
             if (mpi::launched()) {
               SweepRanks ranks{mpi::rank(), mpi::size(), mpi::local_rank(), [](const std::string& mine) {
                                  std::vector<std::size_t> starts;
-                                 const std::vector<char> all = mpi::allgather_bytes(mine.data(), mine.size(), &starts);
+                                 const std::vector<char> all =
+                                     mpi::allgather_bytes(mine.data(), mine.size(), &starts);
                                  std::vector<std::string> out;
                                  for (std::size_t r = 0; r + 1 < starts.size(); ++r)
                                    out.emplace_back(all.data() + starts[r], starts[r + 1] - starts[r]);

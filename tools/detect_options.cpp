@@ -13,19 +13,24 @@ namespace canopy::cli {
 void DetectOptions::add_to(CLI::App& app) {
   app.add_option("--level", level, "Contact level: plant, leaf, organ or exact (default exact)")
       ->check(CLI::IsMember({"plant", "leaf", "organ", "exact"}));
-  app.add_option("--clearance", clearance, "Organs closer than this many metres count as a contact (default 0)")
+  app.add_option("--clearance", clearance,
+                 "Organs closer than this many metres count as a contact (default 0)")
       ->check(kFinite)
       ->check(at_least(0))
       ->check(metres_note("--clearance"));
   app.add_option("--collide", collide,
-                 "Organ kinds that take part, comma separated (internode, petiole, rachis, leaflet, peduncle, fruit, flower), "
+                 "Organ kinds that take part, comma separated (internode, petiole, rachis, leaflet, "
+                 "peduncle, fruit, flower), "
                  "or all (default all: every organ of the stand's files)");
-  app.add_option("--backend", backend, "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
+  app.add_option("--backend", backend,
+                 "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
-  app.add_option("--threads", threads, "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")
+  app.add_option("--threads", threads,
+                 "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")
       ->transform(thread_count());
   app.add_option("--max-device-memory", max_device_memory,
-                 "CUDA: device memory detection may use, e.g. 512M or 2G (default: what is free); lists that would not fit "
+                 "CUDA: device memory detection may use, e.g. 512M or 2G (default: what is free); lists that "
+                 "would not fit "
                  "are made in batches");
 }
 
@@ -41,7 +46,8 @@ DetectRequest DetectOptions::request() const {
     const std::string unit = used ? max_device_memory.substr(used) : "";
     const double scale = unit.empty() ? 1 : unit == "K" ? 1e3 : unit == "M" ? 1e6 : unit == "G" ? 1e9 : -1;
     if (!used || scale < 0 || !(v > 0))
-      throw std::invalid_argument(fmt::format("--max-device-memory: '{}' is not a size such as 512M or 2G", max_device_memory));
+      throw std::invalid_argument(
+          fmt::format("--max-device-memory: '{}' is not a size such as 512M or 2G", max_device_memory));
     r.max_device_bytes = static_cast<std::size_t>(v * scale);
   }
   return r;
@@ -72,7 +78,8 @@ std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::str
   (void)device_hint;
   const std::string why = "this build has no CUDA backend";
 #endif
-  if (name == "cuda") throw std::invalid_argument(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
+  if (name == "cuda")
+    throw std::invalid_argument(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
   auto cpu = make_cpu_backend();
   note = fmt::format("cpu on {} (auto: no usable GPU: {})", cpu->device(), why);
   return cpu;
@@ -95,7 +102,8 @@ void print_contacts_table(const Contacts& c, const std::string& backend) {
   for (std::size_t l = 0; l < 4; ++l) {
     if (!c.counts[l]) continue;
     const auto& k = *c.counts[l];
-    fmt::print("  {:<6} {:>12} {:>12} {:>12} {:>10.3f}\n", kContactLevelNames[l], k.between, k.within, k.total(), c.seconds[l]);
+    fmt::print("  {:<6} {:>12} {:>12} {:>12} {:>10.3f}\n", kContactLevelNames[l], k.between, k.within,
+               k.total(), c.seconds[l]);
   }
 }
 

@@ -25,9 +25,10 @@ struct DetectOptions {
 /// The backend `name` asks for: cpu, cuda, or auto (where a GPU is present the CUDA backend whole,
 /// its device attempts included, with the CPU's from a CUDA failure on; else the CPU's: resolution/
 /// auto_backend.hpp); `note` says what was picked and why. The command line, the Python module and
-/// the benchmark programs all get their backend here. With several GPUs, `device_hint` modulo their count picks
-/// one (a rank's local rank: one GPU per rank).
-std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note, int device_hint = 0);
+/// the benchmark programs all get their backend here. With several GPUs, `device_hint` modulo their count
+/// picks one (a rank's local rank: one GPU per rank).
+std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note,
+                                               int device_hint = 0);
 
 /// Per-level counts as JSON: {"plant": {"between": n, "within": m, "total": t}, ...}, null for
 /// levels not computed.

@@ -46,7 +46,9 @@ inline DiskSpeed measure_disk(const std::string& dir, std::uint64_t bytes) {
   ::close(fd);
   ::unlink(path.c_str());
   if (!ok) throw std::runtime_error("writing " + path + " failed");
-  const auto gbs = [&](auto a, auto b) { return static_cast<double>(done) / 1e9 / std::chrono::duration<double>(b - a).count(); };
+  const auto gbs = [&](auto a, auto b) {
+    return static_cast<double>(done) / 1e9 / std::chrono::duration<double>(b - a).count();
+  };
   return {gbs(t0, t1), gbs(t0, t2)};
 }
 

@@ -42,7 +42,9 @@ inline HeapPages heap_pages_for(bool gpu_run) {
 /// asks the same three questions, so program and test decide alike on any machine.
 inline bool heap_pages_possible() {
   int major = 0, minor = 0;
-  if (std::sscanf(gnu_get_libc_version(), "%d.%d", &major, &minor) != 2 || major < 2 || (major == 2 && minor < 35)) return false;
+  if (std::sscanf(gnu_get_libc_version(), "%d.%d", &major, &minor) != 2 || major < 2 ||
+      (major == 2 && minor < 35))
+    return false;
   if (access("/proc/self/exe", X_OK) != 0) return false;
   std::ifstream thp("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string modes;

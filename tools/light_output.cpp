@@ -11,7 +11,9 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json estimate(const light::Estimate& e) { return {{"intercepted_fraction", e.value}, {"standard_error", e.se}}; }
+Json estimate(const light::Estimate& e) {
+  return {{"intercepted_fraction", e.value}, {"standard_error", e.se}};
+}
 
 Json beam(const light::DirectionLight& d, const SunSpec* sun) {
   Json j;
@@ -37,7 +39,8 @@ Json by_light(const light::LightResult& r, auto&& pick) {
 
 }  // namespace
 
-Json light_json(const light::LightResult& r, const Stand& s, const LightOptions& o, const std::vector<SunSpec>& suns) {
+Json light_json(const light::LightResult& r, const Stand& s, const LightOptions& o,
+                const std::vector<SunSpec>& suns) {
   Json j;
   j["canopy_version"] = CANOPY_VERSION;
   j["source"] = o.source;
@@ -50,7 +53,8 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   cfg["rays_per_m2"] = o.rays_per_m2 ? Json(*o.rays_per_m2) : Json(nullptr);
   cfg["layer_m"] = o.layer;
   cfg["ray_seed"] = o.ray_seed;
-  if (o.latitude) cfg["latitude"] = *o.latitude, cfg["day"] = o.day ? Json(*o.day) : Json(nullptr), cfg["hours"] = o.hours;
+  if (o.latitude)
+    cfg["latitude"] = *o.latitude, cfg["day"] = o.day ? Json(*o.day) : Json(nullptr), cfg["hours"] = o.hours;
   j["config"] = cfg;
   const Vec3d org = s.stand_origin;
   j["tile"] = {r.tile.x0 + org.x, r.tile.y0 + org.y, r.tile.x1 + org.x, r.tile.y1 + org.y};
@@ -64,7 +68,8 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   j["star"] = r.diffuse ? Json(r.diffuse->star.value) : Json(nullptr);
   j["star_standard_error"] = r.diffuse ? Json(r.diffuse->star.se) : Json(nullptr);
   Json direct = Json::array();
-  for (std::size_t i = 0; i < r.direct.size(); ++i) direct.push_back(beam(r.direct[i], i < suns.size() ? &suns[i] : nullptr));
+  for (std::size_t i = 0; i < r.direct.size(); ++i)
+    direct.push_back(beam(r.direct[i], i < suns.size() ? &suns[i] : nullptr));
   j["direct"] = direct;
   if (r.diffuse) {
     Json d;
@@ -92,7 +97,8 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   Json kinds = Json::object();
   for (std::size_t k = 0; k < light::kKinds; ++k)
     if (present[k])
-      kinds[std::string(kOrganKindNames[k])] = by_light(r, [k](const light::DirectionLight& d) { return d.kind[k]; });
+      kinds[std::string(kOrganKindNames[k])] =
+          by_light(r, [k](const light::DirectionLight& d) { return d.kind[k]; });
   j["kinds"] = kinds;
   Json layers = Json::array();
   for (std::size_t l = 0; l < r.layer_leaf_area.size(); ++l) {
@@ -115,7 +121,8 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
 
 std::string light_csv(const light::LightResult& r, const Stand& s) {
   std::string out = "plant,x,y,leaf_area,ground_cover,ground_cover_se";
-  for (std::size_t i = 0; i < r.direct.size(); ++i) out += fmt::format(",sun{0}_fraction,sun{0}_se,sun{0}_share", i + 1);
+  for (std::size_t i = 0; i < r.direct.size(); ++i)
+    out += fmt::format(",sun{0}_fraction,sun{0}_se,sun{0}_share", i + 1);
   if (r.diffuse) out += ",diffuse_fraction,diffuse_se,diffuse_share,star,star_se";
   out += "\n";
   const double n = static_cast<double>(s.plant_count());
@@ -124,13 +131,14 @@ std::string light_csv(const light::LightResult& r, const Stand& s) {
     return d.fraction.value > 0 ? d.plant[p].value / (n * d.fraction.value) : 0.0;
   };
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    out += fmt::format("{},{},{},{},{},{}", p, s.plants[p].x, s.plants[p].y, r.plant_leaf_area[p], r.ground.plant[p].value,
-                       r.ground.plant[p].se);
-    for (const auto& d : r.direct) out += fmt::format(",{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p));
+    out += fmt::format("{},{},{},{},{},{}", p, s.plants[p].x, s.plants[p].y, r.plant_leaf_area[p],
+                       r.ground.plant[p].value, r.ground.plant[p].se);
+    for (const auto& d : r.direct)
+      out += fmt::format(",{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p));
     if (r.diffuse) {
       const auto& d = *r.diffuse;
-      out +=
-          fmt::format(",{},{},{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p), d.plant_star[p].value, d.plant_star[p].se);
+      out += fmt::format(",{},{},{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p),
+                         d.plant_star[p].value, d.plant_star[p].se);
     }
     out += "\n";
   }

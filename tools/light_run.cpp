@@ -41,14 +41,15 @@ std::vector<SunSpec> parse_suns(const LightOptions& o) {
   }
   const bool solar = o.latitude || o.day || !o.hours.empty();
   if (solar) {
-    if (!o.latitude || !o.day || o.hours.empty()) throw std::invalid_argument("--latitude, --day and --hours go together");
+    if (!o.latitude || !o.day || o.hours.empty())
+      throw std::invalid_argument("--latitude, --day and --hours go together");
     for (double h : parse_number_list("--hours", o.hours, 0, false)) {
 #ifdef CANOPY_HAVE_LIGHT
       const light::SunPosition p = light::solar_position(*o.latitude, *o.day, h);
       if (!(p.elevation_deg > 0))
         throw std::invalid_argument(
-            fmt::format("--hours: at {} h the sun is {:.1f} degrees below the horizon (latitude {}, day {})", h, -p.elevation_deg,
-                        *o.latitude, *o.day));
+            fmt::format("--hours: at {} h the sun is {:.1f} degrees below the horizon (latitude {}, day {})",
+                        h, -p.elevation_deg, *o.latitude, *o.day));
       SunSpec x;
       x.elevation_deg = p.elevation_deg, x.azimuth_deg = p.azimuth_deg, x.hour = h, x.from_hours = true;
       out.push_back(x);
@@ -82,11 +83,14 @@ std::array<double, 4> lattice_tile(const RowLayout& l) {
   const double ps = l.plant_spacing, rs = l.row_spacing;
   if (!(ps > 0) || !(rs > 0))
     throw std::invalid_argument(
-        "the layout's lattice has no area (plant or row spacing 0): give --tile XMIN,YMIN,XMAX,YMAX or --no-periodic");
+        "the layout's lattice has no area (plant or row spacing 0): give --tile XMIN,YMIN,XMAX,YMAX or "
+        "--no-periodic");
   if (l.double_rows) {
     if (l.rows % 2 != 0)
-      throw std::invalid_argument(fmt::format(
-          "double rows repeat by pairs, and the stand has {} rows: give an even --rows, --tile or --no-periodic", l.rows));
+      throw std::invalid_argument(
+          fmt::format("double rows repeat by pairs, and the stand has {} rows: give an even --rows, --tile "
+                      "or --no-periodic",
+                      l.rows));
     const double mid = *l.double_rows / 2;
     return {-ps / 2, mid - rs / 2, (l.per_row - 0.5) * ps, mid + (l.rows / 2 - 0.5) * rs};
   }
@@ -96,7 +100,9 @@ std::array<double, 4> lattice_tile(const RowLayout& l) {
 std::optional<RowLayout> folder_layout(const std::string& dir) {
   const std::string path = dir + "/report.json";
   std::ifstream in(path);
-  if (!in) throw std::invalid_argument(fmt::format("{}: cannot be read (a folder written by canopy stand holds it)", path));
+  if (!in)
+    throw std::invalid_argument(
+        fmt::format("{}: cannot be read (a folder written by canopy stand holds it)", path));
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
@@ -139,11 +145,15 @@ light::LightConfig light_config(const LightOptions& o, const Stand& s, const std
     double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
     for (const PlantRecord& p : s.plants)
       x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
-    const double pad = s.plant_count() > 1 ? 0.5 * std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(s.plant_count())) : 0.5;
-    t = {x0 - std::max(pad, 0.05), y0 - std::max(pad, 0.05), x1 + std::max(pad, 0.05), y1 + std::max(pad, 0.05)};
+    const double pad = s.plant_count() > 1
+                           ? 0.5 * std::sqrt((x1 - x0) * (y1 - y0) / static_cast<double>(s.plant_count()))
+                           : 0.5;
+    t = {x0 - std::max(pad, 0.05), y0 - std::max(pad, 0.05), x1 + std::max(pad, 0.05),
+         y1 + std::max(pad, 0.05)};
   } else {
     throw std::invalid_argument(
-        "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
+        "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or "
+        "--no-periodic)");
   }
   const Vec3d org = s.stand_origin;
   c.tile = {t[0] - org.x, t[1] - org.y, t[2] - org.x, t[3] - org.y};
@@ -156,21 +166,24 @@ LightOutcome run_light(LightOptions o, bool print) {
 #ifndef CANOPY_HAVE_LIGHT
   (void)o, (void)print;
   throw std::invalid_argument(
-      "canopy light: this build has no ray caster (Embree was not found: apt-get install libembree-dev, then build again)");
+      "canopy light: this build has no ray caster (Embree was not found: apt-get install libembree-dev, then "
+      "build again)");
 #else
   const ThreadLimit thread_limit(o.threads);
   {
     // Bad options fail before any work (from a grammar: before the stand is grown and written).
     light::LightConfig v;
     for (const SunSpec& x : parse_suns(o)) v.suns.push_back({x.elevation_deg, x.azimuth_deg});
-    v.sky = light::parse_sky(o.sky), v.sky_directions = o.sky_directions, v.error = o.error, v.plant_error = o.plant_error;
+    v.sky = light::parse_sky(o.sky), v.sky_directions = o.sky_directions, v.error = o.error,
+    v.plant_error = o.plant_error;
     v.rays_per_m2 = o.rays_per_m2, v.layer_m = o.layer, v.tile = {0, 0, 1, 1};
     if (!o.tile.empty()) (void)parse_tile(o.tile);
     light::check_config(v);
     if (!std::filesystem::is_directory(o.source) && o.tile.empty() && !o.no_periodic) {
       if (!o.stand.positions.empty())
         throw std::invalid_argument(
-            "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
+            "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or "
+            "--no-periodic)");
       StandOptions probe = o.stand;
       probe.grammar = o.source;
       RowLayout l = plan_stand(probe).layout;
@@ -206,23 +219,27 @@ LightOutcome run_light(LightOptions o, bool print) {
   files.commit_all();
   if (print) {
     const auto pm = [](const light::Estimate& e) { return fmt::format("{:.4f} +- {:.4f}", e.value, e.se); };
-    fmt::print("light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n",
-               stand.plant_count(), r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai, r.rays,
-               r.trace_s, r.scene_s);
+    fmt::print(
+        "light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n",
+        stand.plant_count(), r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai,
+        r.rays, r.trace_s, r.scene_s);
     fmt::print("  {:<34} {}  ({} rays)\n", "ground cover", pm(r.ground.fraction), r.ground.rays);
     for (std::size_t i = 0; i < r.direct.size(); ++i)
       fmt::print("  {:<34} {}  ({} rays)\n",
-                 fmt::format("sun at {:.1f} deg, azimuth {:.1f}{}", r.direct[i].elevation_deg, r.direct[i].azimuth_deg,
+                 fmt::format("sun at {:.1f} deg, azimuth {:.1f}{}", r.direct[i].elevation_deg,
+                             r.direct[i].azimuth_deg,
                              suns[i].from_hours ? fmt::format(" ({} h)", suns[i].hour) : std::string()),
                  pm(r.direct[i].fraction), r.direct[i].rays);
     if (r.diffuse) {
-      fmt::print("  {:<34} {}  ({} rays)\n",
-                 fmt::format("diffuse ({} sky, {} directions)", light::sky_name(r.sky), r.sky_directions.size()),
-                 pm(r.diffuse->fraction), r.diffuse->rays);
+      fmt::print(
+          "  {:<34} {}  ({} rays)\n",
+          fmt::format("diffuse ({} sky, {} directions)", light::sky_name(r.sky), r.sky_directions.size()),
+          pm(r.diffuse->fraction), r.diffuse->rays);
       fmt::print("  {:<34} {}\n", "STAR (leaflets, over the sky)", pm(r.diffuse->star));
     }
     fmt::print("  {:<34} {:.1f} deg\n", "mean leaflet inclination", r.leaf_angles.mean_inclination_deg);
-    if (r.organs_skipped) fmt::print("  note: {} organs flattened to nothing were left out\n", r.organs_skipped);
+    if (r.organs_skipped)
+      fmt::print("  note: {} organs flattened to nothing were left out\n", r.organs_skipped);
     fmt::print("wrote {}/light.json and {}/light.csv\n", out.dir, out.dir);
   }
   return out;

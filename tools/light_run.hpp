@@ -68,8 +68,8 @@ LightOutcome run_light(LightOptions o, bool print = true);
 
 #ifdef CANOPY_HAVE_LIGHT
 /// The light configuration of `o` for `stand`; `layout`, when known, gives the lattice tile.
-light::LightConfig light_config(const LightOptions& o, const Stand& stand, const std::optional<RowLayout>& layout,
-                                std::vector<SunSpec>& suns);
+light::LightConfig light_config(const LightOptions& o, const Stand& stand,
+                                const std::optional<RowLayout>& layout, std::vector<SunSpec>& suns);
 /// light.json's content and light.csv's text.
 nlohmann::ordered_json light_json(const light::LightResult& r, const Stand& stand, const LightOptions& o,
                                   const std::vector<SunSpec>& suns);

@@ -58,8 +58,8 @@ double component(const tinygltf::Model& m, const tinygltf::Accessor& a, std::siz
   const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
   const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
   const int stride = a.ByteStride(view);
-  const std::size_t at =
-      view.byteOffset + a.byteOffset + i * static_cast<std::size_t>(stride) + static_cast<std::size_t>(k * size);
+  const std::size_t at = view.byteOffset + a.byteOffset + i * static_cast<std::size_t>(stride) +
+                         static_cast<std::size_t>(k * size);
   const unsigned char* p = m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + at;
   double x = 0, scale = 1;
   switch (a.componentType) {
@@ -125,11 +125,14 @@ void read_glb_organs(const std::string& path, std::vector<OrganGeometry>& organs
     const tinygltf::Node& node = m.nodes.at(static_cast<std::size_t>(child));
     if (node.mesh < 0) continue;
     if (!node.rotation.empty() || !node.matrix.empty() || !node.children.empty())
-      throw std::runtime_error(path + ": a plant node with a rotation, matrix or children (instanced glb) is not read");
+      throw std::runtime_error(
+          path + ": a plant node with a rotation, matrix or children (instanced glb) is not read");
     const std::array<double, 3> t = vec3(node.translation, 0), s = vec3(node.scale, 1);
-    const double first = node.extras.Has("first_organ") ? node.extras.Get("first_organ").GetNumberAsDouble() : 0;
+    const double first =
+        node.extras.Has("first_organ") ? node.extras.Get("first_organ").GetNumberAsDouble() : 0;
     for (const tinygltf::Primitive& prim : m.meshes.at(static_cast<std::size_t>(node.mesh)).primitives) {
-      const tinygltf::Accessor& pos = m.accessors.at(static_cast<std::size_t>(prim.attributes.at("POSITION")));
+      const tinygltf::Accessor& pos =
+          m.accessors.at(static_cast<std::size_t>(prim.attributes.at("POSITION")));
       const tinygltf::Accessor& ids = m.accessors.at(static_cast<std::size_t>(prim.attributes.at("_ORGAN")));
       std::vector<std::pair<std::size_t, int>> where(pos.count);  // vertex -> organ, index in it
       for (std::size_t i = 0; i < pos.count; ++i) {
@@ -149,7 +152,8 @@ void read_glb_organs(const std::string& path, std::vector<OrganGeometry>& organs
         const auto a = static_cast<std::size_t>(component(m, idx, i, 0));
         for (int k = 0; k < 3; ++k)
           f[static_cast<std::size_t>(k)] =
-              where.at(static_cast<std::size_t>(component(m, idx, i + static_cast<std::size_t>(k), 0))).second;
+              where.at(static_cast<std::size_t>(component(m, idx, i + static_cast<std::size_t>(k), 0)))
+                  .second;
         organs.at(where.at(a).first).f.push_back(f);
       }
     }

@@ -64,7 +64,8 @@ nlohmann::ordered_json leaf_angles_json(const LeafAngles& a) {
   j["bins"] = bins;
   j["mean_inclination_deg"] = a.mean_inclination_deg;
   nlohmann::ordered_json g = nlohmann::ordered_json::array();
-  for (std::size_t k = 0; k < kGZenithsDeg.size(); ++k) g.push_back({{"zenith_deg", kGZenithsDeg[k]}, {"g", a.g[k]}});
+  for (std::size_t k = 0; k < kGZenithsDeg.size(); ++k)
+    g.push_back({{"zenith_deg", kGZenithsDeg[k]}, {"g", a.g[k]}});
   j["g"] = g;
   return j;
 }
@@ -77,8 +78,8 @@ void print_summary(const StandCounts& c, const StandReport& r, const std::string
   const std::size_t organs = std::accumulate(c.organs.begin(), c.organs.end(), std::size_t{0});
   const std::size_t total = std::accumulate(c.triangles.begin(), c.triangles.end(), std::size_t{0});
   const double n = std::max<double>(1, static_cast<double>(c.organs.size()));
-  fmt::print("stand: {} plants, {} organs ({:.0f} per plant), {} triangles ({:.0f} per plant)\n", c.organs.size(), organs,
-             static_cast<double>(organs) / n, total, static_cast<double>(total) / n);
+  fmt::print("stand: {} plants, {} organs ({:.0f} per plant), {} triangles ({:.0f} per plant)\n",
+             c.organs.size(), organs, static_cast<double>(organs) / n, total, static_cast<double>(total) / n);
   for (const auto& [k, v] : r.timings) fmt::print("  {:<10} {:.3f} s\n", k, v);
   fmt::print("wrote {}\n", dir);
 }

@@ -10,7 +10,8 @@
 namespace canopy::cli {
 
 void ResolveOptions::add_to(CLI::App& app) {
-  app.add_flag("--no-resolve", no_resolve, "Export the stand as grown, without turning organs out of contact");
+  app.add_flag("--no-resolve", no_resolve,
+               "Export the stand as grown, without turning organs out of contact");
   app.add_option("--max-rounds", max_rounds, "Resolution: detection rounds before giving up (default 30)")
       ->transform(whole_in(1, INT32_MAX));
   app.add_option("--resolve-clearance", clearance,
@@ -18,23 +19,29 @@ void ResolveOptions::add_to(CLI::App& app) {
       ->check(kFinite)
       ->check(at_least(0))
       ->check(metres_note("--resolve-clearance"));
-  app.add_option("--resolve-level", level,
-                 "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
-                 "turns organs that never touched)")
+  app.add_option(
+         "--resolve-level", level,
+         "Resolution: turn organs until this level finds nothing: exact (default) or organ (OBBs; faster, "
+         "turns organs that never touched)")
       ->check(CLI::IsMember({"exact", "organ"}));
   app.add_option("--resolve-candidates", candidates,
-                 fmt::format("Resolution: organs per contact that may turn, in policy order (default {})", candidates))
+                 fmt::format("Resolution: organs per contact that may turn, in policy order (default {})",
+                             candidates))
       ->transform(whole_in(1, INT32_MAX));
   app.add_option(
          "--resolve-axes", axis_fan,
-         fmt::format("Resolution: axes tried across an organ's width-normal plane besides the away axis (default {})", axis_fan))
+         fmt::format(
+             "Resolution: axes tried across an organ's width-normal plane besides the away axis (default {})",
+             axis_fan))
       ->transform(whole_in(4, 64));
-  app.add_option("--resolve-step", scan_step,
-                 fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
+  app.add_option(
+         "--resolve-step", scan_step,
+         fmt::format("Resolution: degrees between the turns tried before bisection (default {})", scan_step))
       ->check(kFinite)
       ->check(number_in(0.5, 30));
   app.add_option("--bend-joints", bend_joints,
-                 fmt::format("Resolution: joints of a petiole, rachis or peduncle chain a turn may be spread over, so that it "
+                 fmt::format("Resolution: joints of a petiole, rachis or peduncle chain a turn may be spread "
+                             "over, so that it "
                              "bends instead of kinking (default {}; 1: never)",
                              bend_joints))
       ->transform(whole_in(1, 32));
@@ -43,20 +50,25 @@ void ResolveOptions::add_to(CLI::App& app) {
       ->check(kFinite)
       ->check(number_in(0.5, 60));
   app.add_flag("--resolve-host-search", host_search,
-               "Resolution: on a GPU (--backend cuda, or auto with a GPU), search candidate by candidate on the host's cores "
-               "instead of running each level's attempts on the device in lanes of batches (the same turns; slower on the "
+               "Resolution: on a GPU (--backend cuda, or auto with a GPU), search candidate by candidate on "
+               "the host's cores "
+               "instead of running each level's attempts on the device in lanes of batches (the same turns; "
+               "slower on the "
                "16-core GPU machines)");
   app.add_flag_callback(
       "--resolve-device-search", [this] { host_search = false; },
       "Resolution: each level's attempts on the device on a GPU (--backend cuda or auto; the default there)");
   app.add_option("--resolve-lanes", lanes,
-                 fmt::format("Resolution: with the device's attempts, batches of contacts planned at once, each on a thread and "
+                 fmt::format("Resolution: with the device's attempts, batches of contacts planned at once, "
+                             "each on a thread and "
                              "stream of its own (default {}; 1 to 8; the same turns for any number)",
                              lanes))
       ->transform(whole_in(1, 8));
   app.add_flag("--resolve-stats", stats,
-               "Resolution: print where its time went on stderr at its end: wall and CPU seconds and page faults phase by "
-               "phase, each lane of planning, and the device's attempts (the same turns; measuring costs a little time)");
+               "Resolution: print where its time went on stderr at its end: wall and CPU seconds and page "
+               "faults phase by "
+               "phase, each lane of planning, and the device's attempts (the same turns; measuring costs a "
+               "little time)");
 }
 
 ResolveConfig ResolveOptions::config() const {
@@ -95,8 +107,9 @@ nlohmann::ordered_json ResolveOptions::config_json() const {
           {"outer_first", c.outer_first}};
 }
 
-ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
-                             const Contacts& initial, std::function<void(const ResolveProgress&)> progress,
+ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect,
+                             const ResolveOptions& o, const Contacts& initial,
+                             std::function<void(const ResolveProgress&)> progress,
                              const ResolvePartition* partition) {
   ResolveRequest req;
   req.partition = partition;
@@ -109,8 +122,8 @@ ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const Dete
   if (progress) req.progress = std::move(progress);
   else if (tty)
     req.progress = [](const ResolveProgress& p) {
-      fmt::print(stderr, "\r  resolving: round {}, {} contacts left, {} still being planned, {:.1f} s   ", p.round, p.contacts,
-                 p.unplanned, p.seconds);
+      fmt::print(stderr, "\r  resolving: round {}, {} contacts left, {} still being planned, {:.1f} s   ",
+                 p.round, p.contacts, p.unplanned, p.seconds);
       std::fflush(stderr);
     };
   ResolveResult r = resolve(stand, backend, req, initial);
@@ -161,26 +174,30 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
 
 void print_resolution(const ResolveResult& r) {
   fmt::print(
-      "resolution: {} -> {} contacts in {} rounds, {:.3f} s; {} organs turned (mean {:.2f} deg, max turn {:.2f} deg, "
+      "resolution: {} -> {} contacts in {} rounds, {:.3f} s; {} organs turned (mean {:.2f} deg, max turn "
+      "{:.2f} deg, "
       "largest joint {:.2f} deg), {} organs moved with them; {}\n",
-      r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg, r.max_turn_deg, r.max_joint_deg,
-      r.organs_carried, r.stop);
+      r.contacts_before, r.contacts_after, r.rounds, r.seconds, r.organs_moved, r.mean_turn_deg,
+      r.max_turn_deg, r.max_joint_deg, r.organs_carried, r.stop);
   if (r.bends || r.kinks || r.unbent)
     fmt::print(
-        "  {} turns bent over {} joints of their chains, {} left at one joint, {} past a joint's limit that no bend could take\n",
+        "  {} turns bent over {} joints of their chains, {} left at one joint, {} past a joint's limit that "
+        "no bend could take\n",
         r.bends, r.bend_joints, r.kinks, r.unbent);
   fmt::print("  planned with: {}\n", r.planning);
-  fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s", "detect s");
+  fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9} {:>9}\n", "round", "contacts", "turned", "plants", "plan s",
+             "detect s");
   for (const ResolveRound& x : r.per_round)
-    fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9.3f} {:>9.3f}\n", x.round, x.contacts, x.turned, x.plants_redetected, x.plan_s,
-               x.detect_s);
+    fmt::print("  {:<6} {:>10} {:>8} {:>8} {:>9.3f} {:>9.3f}\n", x.round, x.contacts, x.turned,
+               x.plants_redetected, x.plan_s, x.detect_s);
   const std::size_t show = std::min<std::size_t>(r.unresolved.size(), 10);
   for (std::size_t i = 0; i < show; ++i) {
     const UnresolvedContact& u = r.unresolved[i];
-    fmt::print("  unresolved: organs {} and {} (plants {}, {}): {}\n", u.contact.organ_a, u.contact.organ_b, u.contact.plant_a,
-               u.contact.plant_b, u.reason);
+    fmt::print("  unresolved: organs {} and {} (plants {}, {}): {}\n", u.contact.organ_a, u.contact.organ_b,
+               u.contact.plant_a, u.contact.plant_b, u.reason);
   }
-  if (r.unresolved.size() > show) fmt::print("  ... and {} more (report.json lists them all)\n", r.unresolved.size() - show);
+  if (r.unresolved.size() > show)
+    fmt::print("  ... and {} more (report.json lists them all)\n", r.unresolved.size() - show);
 }
 
 }  // namespace canopy::cli

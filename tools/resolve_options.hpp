@@ -37,8 +37,9 @@ struct ResolveOptions {
 /// Runs resolution with a progress line on stderr when it is a terminal (quiet otherwise).
 /// `progress`, when set, replaces the terminal line. With `o.stats`, prints the statistics on
 /// stderr at the end (tools/resolve_stats.hpp; over tiles, each process its own).
-ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect, const ResolveOptions& o,
-                             const Contacts& initial, std::function<void(const ResolveProgress&)> progress = {},
+ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const DetectRequest& detect,
+                             const ResolveOptions& o, const Contacts& initial,
+                             std::function<void(const ResolveProgress&)> progress = {},
                              const ResolvePartition* partition = nullptr);
 
 /// report.json's "resolution" object.

@@ -30,13 +30,19 @@ sigset_t handled() {
 }
 
 [[noreturn]] void end_by(int sig) {
-  (void)lock_run_paths().release();  // kept: a run moving its folder into place finishes first, and nothing changes after
+  (void)lock_run_paths()
+      .release();  // kept: a run moving its folder into place finishes first, and nothing changes after
   const std::vector<std::string> removed = remove_run_paths();
-  std::string what = removed.empty() ? std::string("no unfinished files to remove") : "removed this run's unfinished output:";
+  std::string what = removed.empty() ? std::string("no unfinished files to remove")
+                                     : "removed this run's unfinished output:";
   for (std::size_t i = 0; i < removed.size() && i < 4; ++i) what += (i ? ", " : " ") + removed[i];
   if (removed.size() > 4) what += fmt::format(" and {} more", removed.size() - 4);
   std::fflush(stdout);
-  fmt::print(stderr, "canopy: stopped by {}: {}\n", sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP", what);
+  fmt::print(stderr, "canopy: stopped by {}: {}\n",
+             sig == SIGINT    ? "SIGINT"
+             : sig == SIGTERM ? "SIGTERM"
+                              : "SIGHUP",
+             what);
   std::fflush(stderr);
   std::signal(sig, SIG_DFL);
   sigset_t one;

@@ -48,7 +48,9 @@ GlbForm glb_form(bool instancing, bool compact, double resolve_clearance) {
   return g;
 }
 
-GlbForm glb_form(const StandOptions& o) { return glb_form(o.glb_instancing, o.glb_compact, o.resolve.clearance); }
+GlbForm glb_form(const StandOptions& o) {
+  return glb_form(o.glb_instancing, o.glb_compact, o.resolve.clearance);
+}
 
 void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
                        const OpenChunks& open, const GlbForm& glb) {
@@ -65,8 +67,8 @@ void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const st
   write_plants_csv(scope, open("plants.csv"));
 }
 
-void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, const GlbForm& glb,
-                       OutputSet& files) {
+void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats,
+                       const GlbForm& glb, OutputSet& files) {
   std::set<std::string> chunked = formats;
   if (glb.instancing && chunked.erase("glb")) write_glb_instanced(stand, lib, files.open(kGlbFile));
   std::deque<ChunkFile> opened;
@@ -76,9 +78,10 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
 }
 
 const std::vector<std::string>& stand_folder_files() {
-  static const std::vector<std::string> names{kGlbFile,      kObjFile,     kMtlFile,       kPlyFile,
-                                              "organs.csv",  "plants.csv", "contacts.csv", "contacts_after.csv",
-                                              "report.json", "light.csv",  "light.json"};
+  static const std::vector<std::string> names{
+      kGlbFile,      kObjFile,     kMtlFile,       kPlyFile,
+      "organs.csv",  "plants.csv", "contacts.csv", "contacts_after.csv",
+      "report.json", "light.csv",  "light.json"};
   return names;
 }
 
@@ -93,10 +96,12 @@ void print_folder_changes(const StagedFolder& folder, const StagedFolder::Commit
   for (const std::string& n : stand_folder_files())
     if (std::find(committed.dropped.begin(), committed.dropped.end(), n) != committed.dropped.end())
       (n.starts_with("stand.") ? meshes : others).push_back(n);
-  if (!meshes.empty()) fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list(meshes));
+  if (!meshes.empty())
+    fmt::print("removed {} left by an earlier run (a format not asked for this time)\n", list(meshes));
   if (!others.empty()) fmt::print("removed {}, which described the earlier stand\n", list(others));
   if (!folder.leftovers_removed().empty())
-    fmt::print("removed what interrupted runs left beside {}: {}\n", folder.dir(), list(folder.leftovers_removed()));
+    fmt::print("removed what interrupted runs left beside {}: {}\n", folder.dir(),
+               list(folder.leftovers_removed()));
   for (const std::string& note : folder.leftover_notes()) fmt::print(stderr, "canopy: note: {}\n", note);
   for (const std::string& note : committed.notes) fmt::print(stderr, "canopy: note: {}\n", note);
 }
@@ -128,7 +133,8 @@ void check_target(const StandOptions& o) {
     throw std::invalid_argument(
         "--target-lai and --target-ground-cover choose a row layout's plant spacing: not with --positions");
   if (o.rows.plant_spacing)
-    throw std::invalid_argument("--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
+    throw std::invalid_argument(
+        "--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
   if (o.target.lai && o.target.ground_cover)
     throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
   if (!(o.target.error >= 1e-5 && o.target.error <= 0.5))
@@ -146,7 +152,8 @@ void check_plan_fits(const StandPlan& plan, std::size_t plants) {
   if (!first.plants.empty() && plants > 0) check_stand_fits(first, plants);
 }
 
-void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan) {
+void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats,
+                  const StandPlan& plan) {
   const RowLayout& layout = plan.layout;
   nlohmann::ordered_json config;
   config["grammar"] = o.grammar;
@@ -169,23 +176,24 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   } else {
     nlohmann::ordered_json sources;
     for (const auto& [field, source] : plan.layout_sources) sources[field] = source;
-    config["layout"] = {
-        {"rows", layout.rows},
-        {"per_row", layout.per_row},
-        {"row_spacing", layout.row_spacing},
-        {"plant_spacing", layout.plant_spacing},
-        {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows) : nlohmann::ordered_json(nullptr)},
-        {"jitter", layout.jitter},
-        {"random_rotation", layout.random_rotation},
-        {"seed", layout.seed},
-        {"sources", sources}};  // per field: command line, grammar or default
+    config["layout"] = {{"rows", layout.rows},
+                        {"per_row", layout.per_row},
+                        {"row_spacing", layout.row_spacing},
+                        {"plant_spacing", layout.plant_spacing},
+                        {"double_rows", layout.double_rows ? nlohmann::ordered_json(*layout.double_rows)
+                                                           : nlohmann::ordered_json(nullptr)},
+                        {"jitter", layout.jitter},
+                        {"random_rotation", layout.random_rotation},
+                        {"seed", layout.seed},
+                        {"sources", sources}};  // per field: command line, grammar or default
   }
   rep.config = config;
   rep.grammar = plan.grammar.name.empty() ? o.grammar : plan.grammar.name;
   rep.seed = o.positions.empty() ? nlohmann::ordered_json(layout.seed) : nlohmann::ordered_json(nullptr);
 }
 
-StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress, Stand* keep) {
+StandOutcome run_stand(StandOptions o, bool print, std::function<void(const ResolveProgress&)> progress,
+                       Stand* keep) {
   const auto t_start = std::chrono::steady_clock::now();
   const ThreadLimit thread_limit(o.detect.threads);
   const std::set<std::string> formats = parse_formats(o.formats);
@@ -213,7 +221,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   // Before growing: options, the grammar, the backend (a device's start), the output folder.
   rep.timings["startup"] = std::chrono::duration<double>(t_grow - t_start).count();
   rep.timings["generate"] = seconds_since(t_grow);
-  if (glb.compact && formats.count("glb")) check_glb_compact(ExportScope::whole(stand));  // refuse before the work
+  if (glb.compact && formats.count("glb"))
+    check_glb_compact(ExportScope::whole(stand));  // refuse before the work
   std::optional<SpacingChoice> target;
   if (o.target.set()) {
     const auto t_target = std::chrono::steady_clock::now();

@@ -64,7 +64,8 @@ void check_target(const StandOptions& o);
 /// Throws before growing when `plants` plants like the plan's first would not fit in memory.
 void check_plan_fits(const StandPlan& plan, std::size_t plants);
 /// report.json's "config" (every option echoed), "grammar" and "seed".
-void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats, const StandPlan& plan);
+void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats,
+                  const StandPlan& plan);
 
 /// How stand.glb is written: a mesh per plant (the default), instanced, or compact.
 struct GlbForm {
@@ -88,8 +89,8 @@ using OpenChunks = std::function<ChunkWriter&(const std::string& name)>;
 void write_stand_files(const ExportScope& scope, PrototypeLibrary& lib, const std::set<std::string>& formats,
                        const OpenChunks& open, const GlbForm& glb = {});
 /// The same for a whole stand in one process, stand.glb in the form `glb`.
-void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats, const GlbForm& glb,
-                       OutputSet& files);
+void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set<std::string>& formats,
+                       const GlbForm& glb, OutputSet& files);
 
 /// The files of a stand folder that a run replaces as a set (StagedFolder's `replaces`): the
 /// meshes, tables and report canopy stand writes, and light.csv, light.json (computed from a
@@ -104,7 +105,7 @@ void print_folder_changes(const StagedFolder& folder, const StagedFolder::Commit
 /// Runs `canopy stand` with `o`: writes the files into o.out, prints the summary when `print`.
 /// `progress`, when set, is called once per resolution round (instead of the terminal line).
 /// `keep`, when set, receives the stand as exported.
-StandOutcome run_stand(StandOptions o, bool print = true, std::function<void(const ResolveProgress&)> progress = {},
-                       Stand* keep = nullptr);
+StandOutcome run_stand(StandOptions o, bool print = true,
+                       std::function<void(const ResolveProgress&)> progress = {}, Stand* keep = nullptr);
 
 }  // namespace canopy::cli

@@ -24,7 +24,8 @@ double tile_area(const RowLayout& l) {
 
 void add_target_options(CLI::App& app, TargetOptions& t) {
   app.add_option("--target-lai", t.lai,
-                 "Choose the plant spacing so the stand's leaf area index (leaflets over the lattice's ground) is this")
+                 "Choose the plant spacing so the stand's leaf area index (leaflets over the lattice's "
+                 "ground) is this")
       ->check(kFinite);
   app.add_option("--target-ground-cover", t.ground_cover,
                  "Choose the plant spacing so the stand's ground cover (periodic, from the zenith) is this")
@@ -36,18 +37,21 @@ void add_target_options(CLI::App& app, TargetOptions& t) {
 
 void place_plants(Stand& stand, const RowLayout& layout) {
   const std::vector<PlantPlacement> at = row_layout(layout);
-  if (at.size() != stand.plant_count()) throw std::invalid_argument("place_plants: the stand is not the layout's rows");
+  if (at.size() != stand.plant_count())
+    throw std::invalid_argument("place_plants: the stand is not the layout's rows");
   for (std::size_t p = 0; p < at.size(); ++p) stand.plants[p].x = at[p].x, stand.plants[p].y = at[p].y;
   if (!at.empty()) stand.stand_origin = {at[0].x, at[0].y, 0};
 }
 
 SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions& t) {
-  if (t.lai && t.ground_cover) throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
+  if (t.lai && t.ground_cover)
+    throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
   if (t.lai && !(*t.lai > 0 && *t.lai <= 1000))
     throw std::invalid_argument(fmt::format("--target-lai: {} is not in (0, 1000]", *t.lai));
   if (t.ground_cover && !(*t.ground_cover > 0 && *t.ground_cover < 1))
     throw std::invalid_argument(fmt::format("--target-ground-cover: {} is not in (0, 1)", *t.ground_cover));
-  if (!(layout.row_spacing > 0)) throw std::invalid_argument("--target-lai and --target-ground-cover need a row spacing above 0");
+  if (!(layout.row_spacing > 0))
+    throw std::invalid_argument("--target-lai and --target-ground-cover need a row spacing above 0");
   const double target = t.lai ? *t.lai : *t.ground_cover;
   SpacingChoice c;
   PrototypeLibrary lib;
@@ -66,8 +70,8 @@ SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions&
     cfg.sky_directions = 0;
     cfg.error = t.error;
     const std::array<double, 4> tile = lattice_tile(l);
-    cfg.tile = {tile[0] - stand.stand_origin.x, tile[1] - stand.stand_origin.y, tile[2] - stand.stand_origin.x,
-                tile[3] - stand.stand_origin.y};
+    cfg.tile = {tile[0] - stand.stand_origin.x, tile[1] - stand.stand_origin.y,
+                tile[2] - stand.stand_origin.x, tile[3] - stand.stand_origin.y};
     const light::LightResult r = light::compute_light(stand, lib, cfg);
     se = r.ground.fraction.se;
     return r.ground.fraction.value;
@@ -76,7 +80,8 @@ SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions&
 #endif
   };
   // A bracket [lo, hi] with figure(lo) >= target >= figure(hi), from the layout's spacing.
-  double lo = std::clamp(layout.plant_spacing > 0 ? layout.plant_spacing : 0.4, kMinSpacing, kMaxSpacing), hi = lo;
+  double lo = std::clamp(layout.plant_spacing > 0 ? layout.plant_spacing : 0.4, kMinSpacing, kMaxSpacing),
+         hi = lo;
   double f = figure(lo);
   if (f >= target) {
     while (f >= target) {
@@ -89,7 +94,8 @@ SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions&
     while (f < target) {
       if (lo <= kMinSpacing)
         throw std::invalid_argument(
-            fmt::format("the target {} cannot be reached at this row spacing and age: at a plant spacing of {} m it is {:.4f}",
+            fmt::format("the target {} cannot be reached at this row spacing and age: at a plant spacing of "
+                        "{} m it is {:.4f}",
                         target, kMinSpacing, f));
       hi = lo, lo = std::max(kMinSpacing, lo / 2), f = figure(lo);
     }

@@ -59,7 +59,8 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
   std::vector<PlantPlacement>& placements = ts.placements;
   on_every_rank([&] {
     formats = parse_formats(o.formats);
-    if (o.glb_instancing) throw std::invalid_argument("--glb-instancing is written by one process only; run it without mpirun");
+    if (o.glb_instancing)
+      throw std::invalid_argument("--glb-instancing is written by one process only; run it without mpirun");
     plan = plan_stand(o);
     dreq = o.detect.request();
     backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());
@@ -84,15 +85,16 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     GrowRequest req = plan.request;
     req.plants.clear();
     for (std::size_t p = 0; p < n; ++p)
-      if (tiling.owner[p] == rank) own.push_back(static_cast<std::uint32_t>(p)), req.plants.push_back(placements[p]);
+      if (tiling.owner[p] == rank)
+        own.push_back(static_cast<std::uint32_t>(p)), req.plants.push_back(placements[p]);
     if (!req.plants.empty()) check_plan_fits(plan, 3 * own.size());
     mine = grow_stand(req);
     PrototypeLibrary lib;
     for (std::size_t p = 0; p < mine.plant_count(); ++p) {
       reach = std::max(reach, swept_reach(mine, lib, p, rc.movable));
-      own_counts.insert(own_counts.end(),
-                        {static_cast<std::int64_t>(own[p]), static_cast<std::int64_t>(mine.plants[p].organ_count),
-                         static_cast<std::int64_t>(mine.plants[p].leaf_count)});
+      own_counts.insert(own_counts.end(), {static_cast<std::int64_t>(own[p]),
+                                           static_cast<std::int64_t>(mine.plants[p].organ_count),
+                                           static_cast<std::int64_t>(mine.plants[p].leaf_count)});
     }
   });
   reach = mpi::max(reach);
@@ -104,7 +106,8 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
       t.first_organ[static_cast<std::size_t>(all[i]) + 1] = all[i + 1];
       t.first_leaf[static_cast<std::size_t>(all[i]) + 1] = all[i + 2];
     }
-    for (std::size_t p = 0; p < n; ++p) t.first_organ[p + 1] += t.first_organ[p], t.first_leaf[p + 1] += t.first_leaf[p];
+    for (std::size_t p = 0; p < n; ++p)
+      t.first_organ[p + 1] += t.first_organ[p], t.first_leaf[p + 1] += t.first_leaf[p];
   }
   const double clearance = std::max(o.detect.clearance, rc.clearance);
   ts.hop = 2 * std::sqrt(2.0) * reach + 2 * clearance + 1e-3 * (1 + reach);
@@ -121,7 +124,8 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     const Stand halo_stand = grow_stand(req);
     t.stand = merge_region(mine, own, halo_stand, halo_ids);
     mine = Stand{};
-    if (n > 0) t.stand.stand_origin = {placements[0].x, placements[0].y, 0};  // the whole stand's, not the tile's
+    if (n > 0)
+      t.stand.stand_origin = {placements[0].x, placements[0].y, 0};  // the whole stand's, not the tile's
     for (std::uint32_t g : t.region) {
       t.owned.push_back(tiling.owner[g] == rank ? 1 : 0);
       t.holders.push_back(t.owned.back() ? tiles_holding(tiling, placements, g, halo) : std::vector<int>{});
@@ -155,10 +159,10 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
       ResolvePartition part;
       part.owned = t.owned;
       for (std::uint32_t g : t.region)  // the plants within one hop of this strip
-        part.plan.push_back(
-            std::abs(ts.tiling.coordinate(ts.placements[g]) -
-                     std::clamp(ts.tiling.coordinate(ts.placements[g]), ts.tiling.lo[static_cast<std::size_t>(rank)],
-                                ts.tiling.hi[static_cast<std::size_t>(rank)])) <= ts.hop);
+        part.plan.push_back(std::abs(ts.tiling.coordinate(ts.placements[g]) -
+                                     std::clamp(ts.tiling.coordinate(ts.placements[g]),
+                                                ts.tiling.lo[static_cast<std::size_t>(rank)],
+                                                ts.tiling.hi[static_cast<std::size_t>(rank)])) <= ts.hop);
       // Time in the collectives (waiting for the slowest rank included).
       const auto timed = [&ts](auto&& f) {
         const auto t0 = std::chrono::steady_clock::now();
@@ -166,9 +170,13 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
         ts.comm_s += seconds_since(t0);
         return r;
       };
-      part.sum = [timed](std::vector<std::int64_t> v) { return timed([&] { return mpi::sum(std::move(v)); }); };
+      part.sum = [timed](std::vector<std::int64_t> v) {
+        return timed([&] { return mpi::sum(std::move(v)); });
+      };
       part.max = [timed](double v) { return timed([&] { return mpi::max(v); }); };
-      part.exchange = [timed, &t](const std::vector<Turn>& mine) { return timed([&] { return exchange_turns(t, mine); }); };
+      part.exchange = [timed, &t](const std::vector<Turn>& mine) {
+        return timed([&] { return exchange_turns(t, mine); });
+      };
       ResolveOptions ro = o.resolve;
       ro.progress = ro.progress && rank == 0;
       resolved = run_resolution(t.stand, *backend, dreq, ro, full, {}, &part);
@@ -213,7 +221,8 @@ void run_stand_tiled(StandOptions o) {
     counts.organs.assign(n, 0);
     for (std::size_t i = 0; i < all.size(); i += 2)
       counts.triangles[static_cast<std::size_t>(all[i])] = static_cast<std::size_t>(all[i + 1]);
-    for (std::size_t p = 0; p < n; ++p) counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
+    for (std::size_t p = 0; p < n; ++p)
+      counts.organs[p] = static_cast<std::size_t>(t.first_organ[p + 1] - t.first_organ[p]);
   }
   {
     // The leaf angles of the owned plants, gathered and summed in plant order as one process does.
@@ -231,7 +240,8 @@ void run_stand_tiled(StandOptions o) {
   mpi::SharedOutputSet files(o.out, stand_folder_files(), ts.ids, n);
   try {
     write_stand_files(
-        scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); }, glb_form(o));
+        scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); },
+        glb_form(o));
     write_contacts_csv(scope, ts.before.pairs, ts.before.level, files.open("contacts.csv"));
     write_contacts_csv(scope, ts.after.pairs, ts.after.level, files.open("contacts_after.csv"));
     rep.timings["export"] = seconds_since(t_export);
@@ -248,8 +258,8 @@ void run_stand_tiled(StandOptions o) {
     print_folder_changes(*files.folder(), files.committed());
     print_summary(counts, rep, o.out);
     if (o.positions.empty()) fmt::print("{}\n", layout_line(ts.plan.layout, ts.plan.layout_sources));
-    fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n", ranks,
-               ts.tiling.axis == 0 ? "x" : "y", ts.halo, ts.reach, t.region.size());
+    fmt::print("tiles: {} ranks, strips across {}, halo {:.2f} m (swept reach {:.3f} m); {} plants here\n",
+               ranks, ts.tiling.axis == 0 ? "x" : "y", ts.halo, ts.reach, t.region.size());
     print_contacts_table(ts.before, ts.backend_note);
     if (ts.resolved) print_resolution(*ts.resolved);
   }

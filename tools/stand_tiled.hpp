@@ -22,8 +22,9 @@ struct Tile {
   Stand stand;
 
   std::size_t local_of(std::int64_t global_plant) const {
-    return static_cast<std::size_t>(std::lower_bound(region.begin(), region.end(), static_cast<std::uint32_t>(global_plant)) -
-                                    region.begin());
+    return static_cast<std::size_t>(
+        std::lower_bound(region.begin(), region.end(), static_cast<std::uint32_t>(global_plant)) -
+        region.begin());
   }
 };
 

@@ -37,21 +37,25 @@ void check_sweep_light(const SweepOptions& o) {
     throw std::invalid_argument(
         fmt::format("--light-error: {} is not in {}..{}", o.light_error, light::kMinError, light::kMaxError));
   light::check_config(sweep_light_config(o));
-  if (o.sky_directions < 1) throw std::invalid_argument("--sky-directions: a sweep's light needs at least 1 (or --no-light)");
+  if (o.sky_directions < 1)
+    throw std::invalid_argument("--sky-directions: a sweep's light needs at least 1 (or --no-light)");
 #else
   throw std::invalid_argument("sweep: this build has no ray caster (Embree was not found): give --no-light");
 #endif
 }
 
-double light_columns(const Stand& stand, const RowLayout& layout, const SweepOptions& o, const std::string& when, RunRow& row) {
+double light_columns(const Stand& stand, const RowLayout& layout, const SweepOptions& o,
+                     const std::string& when, RunRow& row) {
 #ifdef CANOPY_HAVE_LIGHT
   const auto t0 = std::chrono::steady_clock::now();
   light::LightConfig c = sweep_light_config(o);
   const std::array<double, 4> t = lattice_tile(layout);
-  c.tile = {t[0] - stand.stand_origin.x, t[1] - stand.stand_origin.y, t[2] - stand.stand_origin.x, t[3] - stand.stand_origin.y};
+  c.tile = {t[0] - stand.stand_origin.x, t[1] - stand.stand_origin.y, t[2] - stand.stand_origin.x,
+            t[3] - stand.stand_origin.y};
   PrototypeLibrary lib;
   const light::LightResult r = light::compute_light(stand, lib, c);
-  const double se = std::max({r.ground.fraction.se, r.direct[0].fraction.se, r.diffuse->fraction.se, r.diffuse->star.se});
+  const double se =
+      std::max({r.ground.fraction.se, r.direct[0].fraction.se, r.diffuse->fraction.se, r.diffuse->star.se});
   row["ground_cover_" + when] = fmt::format("{:.5f}", r.ground.fraction.value);
   row["direct_" + when] = fmt::format("{:.5f}", r.direct[0].fraction.value);
   row["diffuse_" + when] = fmt::format("{:.5f}", r.diffuse->fraction.value);

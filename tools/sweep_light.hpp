@@ -15,6 +15,7 @@ void check_sweep_light(const SweepOptions& o);
 
 /// Fills ground_cover_WHEN, direct_WHEN, diffuse_WHEN, star_WHEN, mean_inclination_WHEN and
 /// light_se_WHEN (the largest standard error of the four fractions) of `row`; returns seconds.
-double light_columns(const Stand& stand, const RowLayout& layout, const SweepOptions& o, const std::string& when, RunRow& row);
+double light_columns(const Stand& stand, const RowLayout& layout, const SweepOptions& o,
+                     const std::string& when, RunRow& row);
 
 }  // namespace canopy::cli

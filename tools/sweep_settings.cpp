@@ -40,16 +40,18 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
       {"clearance", o.detect.clearance},
       {"collide", kinds},
       {"resolve", resolve},
-      {"light", o.no_light
-                    ? nlohmann::ordered_json(nullptr)
-                    : nlohmann::ordered_json{
-                          {"sun", o.sun}, {"sky", o.sky}, {"sky_directions", o.sky_directions}, {"error", o.light_error}}}};
+      {"light", o.no_light ? nlohmann::ordered_json(nullptr)
+                           : nlohmann::ordered_json{{"sun", o.sun},
+                                                    {"sky", o.sky},
+                                                    {"sky_directions", o.sky_directions},
+                                                    {"error", o.light_error}}}};
   // Only when off: sweeps before it turned every plant, and their sweep.json has no such key.
   if (!o.random_rotation.value_or(true)) out["random_rotation"] = false;
   return out;
 }
 
-void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& settings, std::size_t finished_runs) {
+void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& settings,
+                          std::size_t finished_runs) {
   const std::string path = (std::filesystem::path(dir) / "sweep.json").string();
   if (finished_runs > 0 && std::filesystem::exists(path)) {
     const nlohmann::ordered_json before = read_sweep_settings(path);

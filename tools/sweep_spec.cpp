@@ -30,19 +30,25 @@ double leading_number(const std::string& s, std::size_t& used) {
   }
 }
 
-std::vector<double> parse_number_list(const std::string& name, const std::string& text, double min, bool strict) {
+std::vector<double> parse_number_list(const std::string& name, const std::string& text, double min,
+                                      bool strict) {
   std::vector<double> out;
   if (text.find(':') != std::string::npos) {
     std::vector<std::string> part;
     std::size_t i = 0;
-    for (std::size_t j; (j = text.find(':', i)) != std::string::npos; i = j + 1) part.push_back(text.substr(i, j - i));
+    for (std::size_t j; (j = text.find(':', i)) != std::string::npos; i = j + 1)
+      part.push_back(text.substr(i, j - i));
     part.push_back(text.substr(i));
-    if (part.size() != 3) throw std::invalid_argument(fmt::format("{}: a range is start:stop:step, got '{}'", name, text));
+    if (part.size() != 3)
+      throw std::invalid_argument(fmt::format("{}: a range is start:stop:step, got '{}'", name, text));
     const double a = number(name, part[0]), b = number(name, part[1]), step = number(name, part[2]);
-    if (!(step > 0)) throw std::invalid_argument(fmt::format("{}: the step of '{}' must be positive", name, text));
-    if (b < a) throw std::invalid_argument(fmt::format("{}: the range '{}' is empty (stop below start)", name, text));
+    if (!(step > 0))
+      throw std::invalid_argument(fmt::format("{}: the step of '{}' must be positive", name, text));
+    if (b < a)
+      throw std::invalid_argument(fmt::format("{}: the range '{}' is empty (stop below start)", name, text));
     const auto n = static_cast<long>(std::floor((b - a) / step + 1e-9));
-    if (n > 100000) throw std::invalid_argument(fmt::format("{}: the range '{}' has more than 100,000 values", name, text));
+    if (n > 100000)
+      throw std::invalid_argument(fmt::format("{}: the range '{}' has more than 100,000 values", name, text));
     for (long k = 0; k <= n; ++k) out.push_back(a + static_cast<double>(k) * step);
   } else if (!text.empty()) {
     for (const std::string& item : split_list(text)) {
@@ -53,12 +59,15 @@ std::vector<double> parse_number_list(const std::string& name, const std::string
   if (out.empty()) throw std::invalid_argument(fmt::format("{}: no values given", name));
   for (double v : out)
     if (strict ? !(v > min) : !(v >= min))
-      throw std::invalid_argument(fmt::format("{}: {} must be {} {}", name, v, strict ? "greater than" : "at least", min));
+      throw std::invalid_argument(
+          fmt::format("{}: {} must be {} {}", name, v, strict ? "greater than" : "at least", min));
   return out;
 }
 
-std::vector<SweepCell> sweep_cells(const std::vector<double>& row_spacings, const std::vector<double>& plant_spacings,
-                                   const std::vector<double>& densities, const std::vector<std::optional<int>>& steps) {
+std::vector<SweepCell> sweep_cells(const std::vector<double>& row_spacings,
+                                   const std::vector<double>& plant_spacings,
+                                   const std::vector<double>& densities,
+                                   const std::vector<std::optional<int>>& steps) {
   std::vector<SweepCell> cells;
   for (double row : row_spacings) {
     std::vector<double> plant;

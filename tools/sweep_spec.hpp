@@ -14,7 +14,8 @@ double leading_number(const std::string& s, std::size_t& used);
 /// Parses a list or range of numbers for option `name`; throws std::invalid_argument naming the
 /// option on an empty list, a bad number, a zero or backward step, or a value below `min`
 /// (strictly below when `strict`).
-std::vector<double> parse_number_list(const std::string& name, const std::string& text, double min, bool strict);
+std::vector<double> parse_number_list(const std::string& name, const std::string& text, double min,
+                                      bool strict);
 
 struct SweepCell {
   double plant_spacing = 0.4, row_spacing = 1.0;
@@ -23,7 +24,9 @@ struct SweepCell {
 };
 
 /// The cells in run order: row spacing, then plant spacing (or density), then age.
-std::vector<SweepCell> sweep_cells(const std::vector<double>& row_spacings, const std::vector<double>& plant_spacings,
-                                   const std::vector<double>& densities, const std::vector<std::optional<int>>& steps);
+std::vector<SweepCell> sweep_cells(const std::vector<double>& row_spacings,
+                                   const std::vector<double>& plant_spacings,
+                                   const std::vector<double>& densities,
+                                   const std::vector<std::optional<int>>& steps);
 
 }  // namespace canopy::cli

@@ -23,15 +23,16 @@ const std::vector<std::string> kText{"status", "message"};
 
 /// The columns summary.csv averages: every column but the run's key, status and text.
 bool is_metric(const std::string& c) {
-  return c != "run" && c != "seed" && c != "backend" && c != "plant_spacing" && c != "row_spacing" && c != "steps" &&
-         c != "density" && c != "status" && c != "message";
+  return c != "run" && c != "seed" && c != "backend" && c != "plant_spacing" && c != "row_spacing" &&
+         c != "steps" && c != "density" && c != "status" && c != "message";
 }
 
 /// A cell as a finite number, the whole cell.
 std::optional<double> finite_number(const std::string& s) {
   double v = 0;
   const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
+    return std::nullopt;
   return v;
 }
 
@@ -143,7 +144,8 @@ std::vector<RunRow> read_runs(const std::string& path) {
   std::string line;
   if (!in.next_line(line)) return rows;
   if (line + "\n" != header())
-    throw std::invalid_argument(fmt::format("{}: not a runs.csv of this canopy version (header differs); use another -o", path));
+    throw std::invalid_argument(
+        fmt::format("{}: not a runs.csv of this canopy version (header differs); use another -o", path));
   std::vector<std::string> f;
   while (in.next_line(line)) {
     if (!split_csv(line, f) || f.size() != run_columns().size()) continue;  // a torn last line
@@ -152,10 +154,10 @@ std::vector<RunRow> read_runs(const std::string& path) {
       const std::string& column = run_columns()[i];
       // summary.csv averages these: a value that is not a number is not from canopy sweep.
       if (is_metric(column) && !f[i].empty() && !finite_number(f[i]))
-        throw std::invalid_argument(
-            fmt::format("{}:{}: column '{}' needs a number, got '{}' (not a runs.csv written by canopy sweep; "
-                        "use another -o)",
-                        path, in.line_number(), column, f[i]));
+        throw std::invalid_argument(fmt::format(
+            "{}:{}: column '{}' needs a number, got '{}' (not a runs.csv written by canopy sweep; "
+            "use another -o)",
+            path, in.line_number(), column, f[i]));
       r[column] = f[i];
     }
     rows.push_back(std::move(r));
@@ -194,7 +196,8 @@ void append_run(const std::string& path, const RunRow& row) {
   std::FILE* f = std::fopen(path.c_str(), "a");
   if (!f) throw std::runtime_error(fmt::format("cannot append to {}", path));
   const std::string l = line_of(row);
-  const bool ok = std::fwrite(l.data(), 1, l.size(), f) == l.size() && std::fflush(f) == 0 && fsync(fileno(f)) == 0;
+  const bool ok =
+      std::fwrite(l.data(), 1, l.size(), f) == l.size() && std::fflush(f) == 0 && fsync(fileno(f)) == 0;
   std::fclose(f);
   if (!ok) throw std::runtime_error(fmt::format("cannot append to {}", path));
 }
@@ -227,8 +230,8 @@ std::string summary_csv(const std::vector<RunRow>& rows) {
   out += "\n";
   for (const std::string& key : order) {
     const Cell& c = cells[key];
-    out += fmt::format("{},{},{},{},{},{}", c.first.at("plant_spacing"), c.first.at("row_spacing"), c.first.at("density"),
-                       c.first.at("steps"), c.runs, c.failed);
+    out += fmt::format("{},{},{},{},{},{}", c.first.at("plant_spacing"), c.first.at("row_spacing"),
+                       c.first.at("density"), c.first.at("steps"), c.runs, c.failed);
     for (const std::string& m : metrics) {
       const auto it = c.values.find(m);
       if (it == c.values.end() || it->second.empty()) {

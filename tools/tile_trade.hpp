@@ -12,14 +12,15 @@ ExportScope owned_scope(const Tile& t, const PlantScan& scan);
 /// contacts this rank owns (a contact belongs to the owner of its first plant) and summed over
 /// the ranks. Returns the counts with this rank's own pairs at `level`; `all` gets every pair
 /// at `level` found on the tile (the backend's tree is left at that level).
-Contacts detect_owned(DetectionBackend& backend, const Tile& t, DetectRequest req, ContactLevel level, bool lower_levels,
-                      Contacts* all = nullptr);
+Contacts detect_owned(DetectionBackend& backend, const Tile& t, DetectRequest req, ContactLevel level,
+                      bool lower_levels, Contacts* all = nullptr);
 
 /// Sends this rank's turns to the ranks holding their plants; returns the turns made elsewhere
 /// on this rank's halo plants (local organ ids both ways).
 std::vector<Turn> exchange_turns(const Tile& t, const std::vector<Turn>& mine);
 
 /// Every rank's unresolved contacts, in global ids and contact order.
-std::vector<UnresolvedContact> gather_unresolved(const ExportScope& e, const std::vector<UnresolvedContact>& mine);
+std::vector<UnresolvedContact> gather_unresolved(const ExportScope& e,
+                                                 const std::vector<UnresolvedContact>& mine);
 
 }  // namespace canopy::cli

@@ -1,9 +1,9 @@
 #pragma once
 /// Lanes of 8 floats or ints (GCC vector extensions, one AVX register each) and the few helpers
 /// the CPU backend's 8-at-a-time tests share: organ boxes (collision/lanes/organ_rows.hpp), OBB pairs
-/// (collision/lanes/obb_lanes.hpp) and the exact stage's triangle tests (collision/lanes/triangle_lanes.hpp). Each
-/// such test does per lane the scalar predicate's very operations in its very order, so its
-/// answers are the same bit for bit. Host only: nvcc never reads this file.
+/// (collision/lanes/obb_lanes.hpp) and the exact stage's triangle tests (collision/lanes/triangle_lanes.hpp).
+/// Each such test does per lane the scalar predicate's very operations in its very order, so its answers are
+/// the same bit for bit. Host only: nvcc never reads this file.
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -31,7 +31,9 @@ inline void store8(float* p, F8 v) {
 #endif
 }
 /// The lanes at + t (t < 8) that lie below `count`, as bits: a run's last lanes masked off.
-inline unsigned lanes_below(std::uint32_t count, std::uint32_t at) { return count - at < 8 ? (1u << (count - at)) - 1 : 0xffu; }
+inline unsigned lanes_below(std::uint32_t count, std::uint32_t at) {
+  return count - at < 8 ? (1u << (count - at)) - 1 : 0xffu;
+}
 inline unsigned bits8(I8 m) {
 #if defined(__AVX__)
   return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<F8>(m)));
@@ -48,7 +50,8 @@ inline void transpose8(const float* const* rows, F8* out) {
   __m256 r[8];
   for (int t = 0; t < 8; ++t) r[t] = _mm256_loadu_ps(rows[t]);
   __m256 u[8], v[8];
-  for (int t = 0; t < 8; t += 2) u[t] = _mm256_unpacklo_ps(r[t], r[t + 1]), u[t + 1] = _mm256_unpackhi_ps(r[t], r[t + 1]);
+  for (int t = 0; t < 8; t += 2)
+    u[t] = _mm256_unpacklo_ps(r[t], r[t + 1]), u[t + 1] = _mm256_unpackhi_ps(r[t], r[t + 1]);
   for (int t = 0; t < 8; t += 4) {
     v[t] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(1, 0, 1, 0));
     v[t + 1] = _mm256_shuffle_ps(u[t], u[t + 2], _MM_SHUFFLE(3, 2, 3, 2));
@@ -56,7 +59,8 @@ inline void transpose8(const float* const* rows, F8* out) {
     v[t + 3] = _mm256_shuffle_ps(u[t + 1], u[t + 3], _MM_SHUFFLE(3, 2, 3, 2));
   }
   for (int k = 0; k < 4; ++k) {
-    const __m256 lo = _mm256_permute2f128_ps(v[k], v[k + 4], 0x20), hi = _mm256_permute2f128_ps(v[k], v[k + 4], 0x31);
+    const __m256 lo = _mm256_permute2f128_ps(v[k], v[k + 4], 0x20),
+                 hi = _mm256_permute2f128_ps(v[k], v[k + 4], 0x31);
     std::memcpy(&out[k], &lo, sizeof lo);
     std::memcpy(&out[k + 4], &hi, sizeof hi);
   }

@@ -15,7 +15,8 @@
 namespace canopy {
 
 /// out[t] = make_obb(*transform[t], *local[t], inflate) for t < count (count 1 to 8).
-inline void make_obbs8(const Affine3f* const* transform, const Box3f* const* local, int count, float inflate, Obb* const* out) {
+inline void make_obbs8(const Affine3f* const* transform, const Box3f* const* local, int count, float inflate,
+                       Obb* const* out) {
   using namespace lanes_detail;
   static_assert(sizeof(Affine3f) == 12 * sizeof(float) && sizeof(Box3f) == 6 * sizeof(float));
   const auto abs8 = [](F8 v) {  // fabsf lane by lane: the sign bit cleared

@@ -31,7 +31,8 @@ struct ObbBatch {
   int size = 0;
 
   bool full() const { return size == kLanes; }
-  void add(const Obb& oa, const Obb& ob, Vec3f off, std::int32_t ia, std::int32_t ib, std::int32_t pa, std::int32_t pb) {
+  void add(const Obb& oa, const Obb& ob, Vec3f off, std::int32_t ia, std::int32_t ib, std::int32_t pa,
+           std::int32_t pb) {
     a[size] = &oa, b[size] = &ob;
     __builtin_prefetch(&oa), __builtin_prefetch(&ob);
     offset[0][size] = off.x, offset[1][size] = off.y, offset[2][size] = off.z;
@@ -44,7 +45,8 @@ struct ObbBatch {
 };
 
 namespace lanes_detail {
-static_assert(sizeof(Obb) == 16 * sizeof(float), "an OBB is read as 16 floats: centre, 3 axes, half extents, radius");
+static_assert(sizeof(Obb) == 16 * sizeof(float),
+              "an OBB is read as 16 floats: centre, 3 axes, half extents, radius");
 
 /// out[k] lane t: float k of OBB obbs[t] (centre x y z, the axes' x y z, half extents, radius,
 /// in Obb's order); lanes from `size` on repeat lane 0's OBB.
@@ -83,10 +85,11 @@ inline unsigned ObbBatch::overlapping() const {
       ar[i][j] = abs8(r[i][j]) + kEps;
     }
   for (int i = 0; i < 3; ++i) t[i] = gx * ax[i][0] + gy * ax[i][1] + gz * ax[i][2];
-  for (int i = 0; i < 3; ++i) apart |= abs8(t[i]) > ah[i] + bh[0] * ar[i][0] + bh[1] * ar[i][1] + bh[2] * ar[i][2];
+  for (int i = 0; i < 3; ++i)
+    apart |= abs8(t[i]) > ah[i] + bh[0] * ar[i][0] + bh[1] * ar[i][1] + bh[2] * ar[i][2];
   for (int j = 0; j < 3; ++j)
-    apart |=
-        abs8(t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j]) > ah[0] * ar[0][j] + ah[1] * ar[1][j] + ah[2] * ar[2][j] + bh[j];
+    apart |= abs8(t[0] * r[0][j] + t[1] * r[1][j] + t[2] * r[2][j]) >
+             ah[0] * ar[0][j] + ah[1] * ar[1][j] + ah[2] * ar[2][j] + bh[j];
   for (int i = 0; i < 3; ++i) {
     const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
     for (int j = 0; j < 3; ++j) {

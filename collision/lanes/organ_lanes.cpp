@@ -34,7 +34,8 @@ void LcdLanes::assign_empty(std::size_t lanes) {
 }
 
 void lay_out_lanes(OrganLanes& lanes, const Mbvt& m) {
-  lanes.organs.assign_empty(lay_out(lanes.organ_first, m.clusters.size(), [&](std::size_t c) { return m.clusters[c].count; }));
+  lanes.organs.assign_empty(
+      lay_out(lanes.organ_first, m.clusters.size(), [&](std::size_t c) { return m.clusters[c].count; }));
   lanes.roots.assign(m.clusters.size(), lcd_centred(Lcd{}));
   lanes.pass.assign(m.clusters.size(), PassCluster{});
   const std::size_t cluster_lanes =

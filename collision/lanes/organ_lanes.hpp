@@ -63,7 +63,8 @@ struct LcdLanes : FieldLanes<8> {
     at(lane, 4) = b.hu, at(lane, 5) = b.hv, at(lane, 6) = b.z_lo, at(lane, 7) = b.z_hi;
   }
   LcdCentred get(std::size_t lane) const {
-    return LcdCentred{at(lane, 0), at(lane, 1), at(lane, 2), at(lane, 3), at(lane, 4), at(lane, 5), at(lane, 6), at(lane, 7)};
+    return LcdCentred{at(lane, 0), at(lane, 1), at(lane, 2), at(lane, 3),
+                      at(lane, 4), at(lane, 5), at(lane, 6), at(lane, 7)};
   }
 };
 

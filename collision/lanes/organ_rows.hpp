@@ -44,8 +44,8 @@ inline unsigned group_meeting(const float* g, const Box3f& box, Vec3f offset) {
 /// compares equal) without its 6 additions of zero, which the compiler must keep.
 inline unsigned group_meeting(const float* g, const Box3f& box) {
   const auto c = [g](int k) { return load8(g + BoxLanes::kWidth * static_cast<std::size_t>(k)); };
-  return bits8((box.lo.x <= c(3)) & (c(0) <= box.hi.x) & (box.lo.y <= c(4)) & (c(1) <= box.hi.y) & (box.lo.z <= c(5)) &
-               (c(2) <= box.hi.z));
+  return bits8((box.lo.x <= c(3)) & (c(0) <= box.hi.x) & (box.lo.y <= c(4)) & (c(1) <= box.hi.y) &
+               (box.lo.z <= c(5)) & (c(2) <= box.hi.z));
 }
 /// boxes_meet(box of lane t of group g, box, offset) for the 8 lanes, as bits.
 inline unsigned group_meeting_moved(const float* g, const Box3f& box, Vec3f offset) {
@@ -92,9 +92,9 @@ inline unsigned lanes_meeting_moved(const BoxLanes& l, std::uint32_t lane, const
 /// so a compound-leaf pair whose leaves barely cross costs a few vector tests rather than a row
 /// per organ. a's side goes in slices of 64 organs (a bit each).
 template <typename OnPair>
-inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ia, const Cluster& ca,
-                             const LcdNode& na, std::uint32_t ib, const Cluster& cb, const LcdNode& nb, Vec3f offset,
-                             OnPair&& on_pair) {
+inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, std::uint32_t ia,
+                             const Cluster& ca, const LcdNode& na, std::uint32_t ib, const Cluster& cb,
+                             const LcdNode& nb, Vec3f offset, OnPair&& on_pair) {
   using lanes_detail::lanes_below;
   constexpr std::uint32_t kW = OrganLanes::kWidth, kSlice = 64;
   const Box3f around_a = l.pass[ia].around;
@@ -115,9 +115,11 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
       for (std::uint32_t x0 = xs; x0 < x_end; x0 += kW)
         for (unsigned r = rows[(x0 - xs) / kW]; r; r &= r - 1) {
           const std::uint32_t x = x0 + static_cast<std::uint32_t>(__builtin_ctz(r));
-          for (unsigned mask = lanes_meeting(l.organs, lb + y0, l.organs.get(la + x), offset) & cols; mask; mask &= mask - 1) {
+          for (unsigned mask = lanes_meeting(l.organs, lb + y0, l.organs.get(la + x), offset) & cols; mask;
+               mask &= mask - 1) {
             const std::uint32_t y = nb.first + y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
-            on_pair(static_cast<std::int32_t>(cluster_organs[na.first + x]), static_cast<std::int32_t>(cluster_organs[y]));
+            on_pair(static_cast<std::int32_t>(cluster_organs[na.first + x]),
+                    static_cast<std::int32_t>(cluster_organs[y]));
           }
         }
     }
@@ -130,8 +132,9 @@ inline void lane_block_pairs(const OrganLanes& l, const std::uint32_t* cluster_o
 /// groups and rows of groups and no array of rows (bench_detect: the pass about 6 % faster than
 /// through lane_block_pairs).
 template <typename OnPair>
-inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const PassCluster& ca,
-                                     const PassCluster& cb, Vec3f offset, OnPair&& on_pair) {
+inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs,
+                                     const PassCluster& ca, const PassCluster& cb, Vec3f offset,
+                                     OnPair&& on_pair) {
   constexpr std::uint32_t kW = OrganLanes::kWidth;
   const auto upto = [](std::uint32_t count) { return (1u << count) - 1; };  // count <= 16
   const Box3f around_a = ca.around;
@@ -159,7 +162,8 @@ inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* c
     if (high) meet |= group_meeting(gb + kG, bx, offset) << kW;
     for (meet &= cols; meet; meet &= meet - 1)
       on_pair(static_cast<std::int32_t>(cluster_organs[ca.first + x]),
-              static_cast<std::int32_t>(cluster_organs[cb.first + static_cast<std::uint32_t>(__builtin_ctz(meet))]));
+              static_cast<std::int32_t>(
+                  cluster_organs[cb.first + static_cast<std::uint32_t>(__builtin_ctz(meet))]));
   }
 }
 
@@ -169,12 +173,14 @@ inline void lane_small_cluster_pairs(const OrganLanes& l, const std::uint32_t* c
 /// where any of the 8 meet, the LCD boxes 8 at a time (collision/lanes/lcd_lanes.hpp), rather than an
 /// LCD test and a branch per cluster whose box meets.
 template <typename OnCluster>
-inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb, std::uint32_t q, std::uint32_t from,
-                                      const Box3f& box, const LcdCentred& root, Vec3f offset, OnCluster&& on_cluster) {
+inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb, std::uint32_t q,
+                                      std::uint32_t from, const Box3f& box, const LcdCentred& root,
+                                      Vec3f offset, OnCluster&& on_cluster) {
   const std::uint32_t l0 = l.cluster_first[q];
-  for (std::uint32_t k0 = from / OrganLanes::kWidth * OrganLanes::kWidth; k0 < pb.cluster_count; k0 += OrganLanes::kWidth) {
-    unsigned mask =
-        lanes_detail::group_meeting(l.clusters.group(l0 + k0), box, offset) & lanes_detail::lanes_below(pb.cluster_count, k0);
+  for (std::uint32_t k0 = from / OrganLanes::kWidth * OrganLanes::kWidth; k0 < pb.cluster_count;
+       k0 += OrganLanes::kWidth) {
+    unsigned mask = lanes_detail::group_meeting(l.clusters.group(l0 + k0), box, offset) &
+                    lanes_detail::lanes_below(pb.cluster_count, k0);
     if (k0 < from) mask &= ~0u << (from - k0);
     if (!mask) continue;
     for (mask &= lcd_overlapping8(root, l.root_lanes.group(l0 + k0), offset); mask; mask &= mask - 1)
@@ -186,13 +192,14 @@ inline void lane_clusters_overlapping(const OrganLanes& l, const PlantBound& pb,
 /// `offset` (boxes_meet(cluster i's box, box, offset)), in order; for every cluster of p with
 /// `all`.
 template <typename OnCluster>
-inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& pa, std::uint32_t p, const Box3f& box,
-                                        Vec3f offset, bool all, OnCluster&& on_cluster) {
+inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& pa, std::uint32_t p,
+                                        const Box3f& box, Vec3f offset, bool all, OnCluster&& on_cluster) {
   const std::uint32_t l0 = l.cluster_first[p];
   for (std::uint32_t k0 = 0; k0 < pa.cluster_count; k0 += OrganLanes::kWidth) {
     unsigned mask = lanes_detail::lanes_below(pa.cluster_count, k0);
     if (!all) mask &= lanes_detail::group_meeting_moved(l.clusters.group(l0 + k0), box, offset);
-    for (; mask; mask &= mask - 1) on_cluster(pa.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
+    for (; mask; mask &= mask - 1)
+      on_cluster(pa.first_cluster + k0 + static_cast<std::uint32_t>(__builtin_ctz(mask)));
   }
 }
 
@@ -201,8 +208,8 @@ inline void lane_clusters_meeting_moved(const OrganLanes& l, const PlantBound& p
 /// meet and, in a cluster of at most kMaskOrgans organs, that are not adjacent (in a larger one
 /// every pair whose boxes meet).
 template <typename OnPair>
-inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs, const std::uint64_t* free_after,
-                           const PassCluster& c, OnPair&& on_pair) {
+inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_organs,
+                           const std::uint64_t* free_after, const PassCluster& c, OnPair&& on_pair) {
   const std::uint32_t l0 = c.lane;
   constexpr std::uint32_t kW = OrganLanes::kWidth;
   if (c.count <= 2 * kW) {
@@ -225,7 +232,8 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
     for (; rows; rows &= rows - 1)
       for (unsigned x = static_cast<unsigned>(__builtin_ctz(rows)), mask = hits[x]; mask; mask &= mask - 1)
         on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]),
-                static_cast<std::int32_t>(cluster_organs[c.first + static_cast<std::uint32_t>(__builtin_ctz(mask))]));
+                static_cast<std::int32_t>(
+                    cluster_organs[c.first + static_cast<std::uint32_t>(__builtin_ctz(mask))]));
     return;
   }
   const bool masked = pairs_masked(c.count);
@@ -235,14 +243,16 @@ inline void lane_own_pairs(const OrganLanes& l, const std::uint32_t* cluster_org
     const Box3f bx = lanes_detail::run_box(l.organs.group(l0), x);
     // Whole groups of 8 lanes from the one holding x + 1 (aligned loads), the organs up to x
     // left out (by the mask, or else by hand).
-    for (std::uint32_t y0 = (x + 1) / OrganLanes::kWidth * OrganLanes::kWidth; y0 < c.count; y0 += OrganLanes::kWidth) {
+    for (std::uint32_t y0 = (x + 1) / OrganLanes::kWidth * OrganLanes::kWidth; y0 < c.count;
+         y0 += OrganLanes::kWidth) {
       unsigned wanted = masked ? static_cast<unsigned>(free >> y0) & 0xffu : 0xffu;
       if (y0 <= x) wanted &= ~0u << (x + 1 - y0);
       if (!wanted) continue;
       const unsigned meet = lanes_detail::group_meeting(l.organs.group(l0 + y0), bx);
       for (unsigned mask = meet & wanted & lanes_detail::lanes_below(c.count, y0); mask; mask &= mask - 1) {
         const std::uint32_t y = y0 + static_cast<std::uint32_t>(__builtin_ctz(mask));
-        on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]), static_cast<std::int32_t>(cluster_organs[c.first + y]));
+        on_pair(static_cast<std::int32_t>(cluster_organs[c.first + x]),
+                static_cast<std::int32_t>(cluster_organs[c.first + y]));
       }
     }
   }

@@ -25,14 +25,16 @@ struct FloatBounds {
     for (int k = 0; k < 3; ++k) {
       float lo = static_cast<float>(box[k]), hi = static_cast<float>(box[k + 3]);
       if (static_cast<double>(lo) < box[k]) lo = std::nextafter(lo, std::numeric_limits<float>::infinity());
-      if (static_cast<double>(hi) > box[k + 3]) hi = std::nextafter(hi, -std::numeric_limits<float>::infinity());
+      if (static_cast<double>(hi) > box[k + 3])
+        hi = std::nextafter(hi, -std::numeric_limits<float>::infinity());
       lo_above[k] = lo, hi_below[k] = hi;
     }
   }
   /// The same bounds for a box whose six doubles hold floats exactly (no rounding to correct).
   static FloatBounds of_floats(const double* box) {
     FloatBounds b;
-    for (int k = 0; k < 3; ++k) b.lo_above[k] = static_cast<float>(box[k]), b.hi_below[k] = static_cast<float>(box[k + 3]);
+    for (int k = 0; k < 3; ++k)
+      b.lo_above[k] = static_cast<float>(box[k]), b.hi_below[k] = static_cast<float>(box[k + 3]);
     return b;
   }
 
@@ -45,8 +47,8 @@ namespace lanes_detail {
 /// posed_touch's box test (a float box beyond a double box on some axis).
 inline I8 boxes_apart8(const float* group, const FloatBounds& box) {
   const auto at = [group](int k) { return load8(group + 8 * k); };
-  return (at(9) > box.hi_below[0]) | (at(10) > box.hi_below[1]) | (at(11) > box.hi_below[2]) | (at(12) < box.lo_above[0]) |
-         (at(13) < box.lo_above[1]) | (at(14) < box.lo_above[2]);
+  return (at(9) > box.hi_below[0]) | (at(10) > box.hi_below[1]) | (at(11) > box.hi_below[2]) |
+         (at(12) < box.lo_above[0]) | (at(13) < box.lo_above[1]) | (at(14) < box.lo_above[2]);
 }
 }  // namespace lanes_detail
 
@@ -66,7 +68,8 @@ inline unsigned near_lanes(const float* group, const FloatBounds& box, const Obb
   if (bits8(far) == 0xffu) return 0;
   F8 d[3][3];  // corner minus the OBB's centre
   for (int c = 0; c < 3; ++c)
-    d[c][0] = at(3 * c) - obb.centre.x, d[c][1] = at(3 * c + 1) - obb.centre.y, d[c][2] = at(3 * c + 2) - obb.centre.z;
+    d[c][0] = at(3 * c) - obb.centre.x, d[c][1] = at(3 * c + 1) - obb.centre.y,
+    d[c][2] = at(3 * c + 2) - obb.centre.z;
   for (int k = 0; k < 3; ++k) {
     const Vec3f a = obb.axis[k];
     F8 x[3];
@@ -96,7 +99,8 @@ inline unsigned rejected_lanes(const TrianglePlane& pt, const Vec3f* t, const fl
   // u's plane (TrianglePlane::of): n = (u1 - u0) x (u2 - u0), its projections and length.
   F8 e1[3], e2[3], n[3];
   for (int k = 0; k < 3; ++k) e1[k] = u[1][k] - u[0][k], e2[k] = u[2][k] - u[0][k];
-  n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2],
+  n[2] = e1[0] * e2[1] - e1[1] * e2[0];
   const F8 d0 = dot_u(n, u[0]), d1 = dot_u(n, u[1]), d2 = dot_u(n, u[2]);
   const F8 u_lo = min8(d0, min8(d1, d2)), u_hi = max8(d0, max8(d1, d2)), u_len = sqrt8(dot_u(n, n));
   // t beyond u's plane (pu.beyond(t)).

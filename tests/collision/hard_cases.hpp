@@ -20,22 +20,55 @@ struct TrianglePairCase {
 
 inline std::vector<TrianglePairCase> hard_triangle_pairs() {
   return {
-      {"coplanar, overlapping", {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0.2f, 0.2f, 0}, {1.2f, 0.2f, 0}, {0.2f, 1.2f, 0}}}, true},
-      {"coplanar, one inside", {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0.1f, 0.1f, 0}, {0.2f, 0.1f, 0}, {0.1f, 0.2f, 0}}}, true},
-      {"coplanar, apart", {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0.6f, 0.6f, 0}, {1.6f, 0.6f, 0}, {0.6f, 1.6f, 0}}}, false},
-      {"shared edge, folded up", {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}}, true},
-      {"crossing edges touching at a point", {{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}}, {{{1, -1, 0}, {1, -1, 1}, {1, 1, 0}}}, true},
-      {"a vertex on the face", {{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}}, {{{1, 1, 0}, {2, 2, 3}, {1, 2, 3}}}, true},
-      {"the vertex a hair above the face", {{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}}, {{{1, 1, 1e-6f}, {2, 2, 3}, {1, 2, 3}}}, false},
+      {"coplanar, overlapping",
+       {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+       {{{0.2f, 0.2f, 0}, {1.2f, 0.2f, 0}, {0.2f, 1.2f, 0}}},
+       true},
+      {"coplanar, one inside",
+       {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+       {{{0.1f, 0.1f, 0}, {0.2f, 0.1f, 0}, {0.1f, 0.2f, 0}}},
+       true},
+      {"coplanar, apart",
+       {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+       {{{0.6f, 0.6f, 0}, {1.6f, 0.6f, 0}, {0.6f, 1.6f, 0}}},
+       false},
+      {"shared edge, folded up",
+       {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+       {{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}},
+       true},
+      {"crossing edges touching at a point",
+       {{{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}},
+       {{{1, -1, 0}, {1, -1, 1}, {1, 1, 0}}},
+       true},
+      {"a vertex on the face",
+       {{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}},
+       {{{1, 1, 0}, {2, 2, 3}, {1, 2, 3}}},
+       true},
+      {"the vertex a hair above the face",
+       {{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}},
+       {{{1, 1, 1e-6f}, {2, 2, 3}, {1, 2, 3}}},
+       false},
       {"vertex on vertex", {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{0, 0, 0}, {-1, 0, 0}, {0, 0, -1}}}, true},
       {"a segment through a face",
        {{{0, 0, -1}, {0.2f, 0.2f, 1}, {0.1f, 0.1f, 0}}},
        {{{-1, -1, 0}, {2, -1, 0}, {-1, 2, 0}}},
        true},
-      {"a segment beside a face", {{{5, 5, -1}, {5, 5, 1}, {5, 5, 0}}}, {{{-1, -1, 0}, {2, -1, 0}, {-1, 2, 0}}}, false},
-      {"collinear segments overlapping", {{{0, 0, 0}, {1, 0, 0}, {0.5f, 0, 0}}}, {{{0.5f, 0, 0}, {2, 0, 0}, {1.5f, 0, 0}}}, true},
-      {"collinear segments apart", {{{0, 0, 0}, {1, 0, 0}, {0.5f, 0, 0}}}, {{{1.5f, 0, 0}, {2, 0, 0}, {1.7f, 0, 0}}}, false},
-      {"a point on a face", {{{0.3f, 0.3f, 0}, {0.3f, 0.3f, 0}, {0.3f, 0.3f, 0}}}, {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, true},
+      {"a segment beside a face",
+       {{{5, 5, -1}, {5, 5, 1}, {5, 5, 0}}},
+       {{{-1, -1, 0}, {2, -1, 0}, {-1, 2, 0}}},
+       false},
+      {"collinear segments overlapping",
+       {{{0, 0, 0}, {1, 0, 0}, {0.5f, 0, 0}}},
+       {{{0.5f, 0, 0}, {2, 0, 0}, {1.5f, 0, 0}}},
+       true},
+      {"collinear segments apart",
+       {{{0, 0, 0}, {1, 0, 0}, {0.5f, 0, 0}}},
+       {{{1.5f, 0, 0}, {2, 0, 0}, {1.7f, 0, 0}}},
+       false},
+      {"a point on a face",
+       {{{0.3f, 0.3f, 0}, {0.3f, 0.3f, 0}, {0.3f, 0.3f, 0}}},
+       {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}},
+       true},
       {"a sliver crossing a triangle",
        {{{-1, 0.5f, 0}, {2, 0.5f, 0}, {2, 0.5001f, 0.0001f}}},
        {{{0, 0, -1}, {1, 0, 1}, {0, 1, 1}}},
@@ -84,17 +117,19 @@ inline std::vector<BuiltCase> hard_built_stands() {
   {
     BuiltCase c{"a leaflet tip wholly inside a fruit or a stem, without crossing its surface", {}, {}, {}};
     Built& b = c.built;
-    const auto fruit =
-        b.add(PrototypeKind::sphere, OrganKind::fruit, frame({0, 0, 1}, {0, -1, 0}, {0, 0, 0}, 0.02f, 0.02f), 0.02f);
+    const auto fruit = b.add(PrototypeKind::sphere, OrganKind::fruit,
+                             frame({0, 0, 1}, {0, -1, 0}, {0, 0, 0}, 0.02f, 0.02f), 0.02f);
     // Sphere centred at (0, 0, 0.02), radius 0.02: a 5 mm leaflet near the centre.
     const auto leaf = b.add(PrototypeKind::leaflet, OrganKind::leaflet,
                             frame({1, 0, 0}, {0, 1, 0}, {-0.002f, 0, 0.02f}, 0.005f, 0.003f), 0.005f, 0.003f);
-    const auto stem =
-        b.add(PrototypeKind::cylinder, OrganKind::internode, frame({0, 0, 1}, {0, -1, 0}, {1, 0, 0}, 0.1f, 0.01f), 0.1f, 0.01f);
-    const auto inside_stem = b.add(PrototypeKind::leaflet, OrganKind::leaflet,
-                                   frame({0, 0, 1}, {0, 1, 0}, {1.002f, 0, 0.05f}, 0.01f, 0.004f), 0.01f, 0.004f);
-    const auto outside = b.add(PrototypeKind::leaflet, OrganKind::leaflet,
-                               frame({1, 0, 0}, {0, 1, 0}, {0.03f, 0, 0.02f}, 0.005f, 0.003f), 0.005f, 0.003f);
+    const auto stem = b.add(PrototypeKind::cylinder, OrganKind::internode,
+                            frame({0, 0, 1}, {0, -1, 0}, {1, 0, 0}, 0.1f, 0.01f), 0.1f, 0.01f);
+    const auto inside_stem =
+        b.add(PrototypeKind::leaflet, OrganKind::leaflet,
+              frame({0, 0, 1}, {0, 1, 0}, {1.002f, 0, 0.05f}, 0.01f, 0.004f), 0.01f, 0.004f);
+    const auto outside =
+        b.add(PrototypeKind::leaflet, OrganKind::leaflet,
+              frame({1, 0, 0}, {0, 1, 0}, {0.03f, 0, 0.02f}, 0.005f, 0.003f), 0.005f, 0.003f);
     c.touching = {{fruit, leaf}, {stem, inside_stem}};
     c.apart = {{fruit, outside}, {fruit, stem}};
     out.push_back(c);
@@ -102,8 +137,8 @@ inline std::vector<BuiltCase> hard_built_stands() {
   {
     BuiltCase c{"zero-thickness and zero-length organs", {}, {}, {}};
     Built& b = c.built;
-    const auto blade =
-        b.add(PrototypeKind::leaflet, OrganKind::leaflet, frame({1, 0, 0}, {0, 1, 0}, {0, 0, 0}, 0.1f, 0.05f), 0.1f, 0.05f);
+    const auto blade = b.add(PrototypeKind::leaflet, OrganKind::leaflet,
+                             frame({1, 0, 0}, {0, 1, 0}, {0, 0, 0}, 0.1f, 0.05f), 0.1f, 0.05f);
     // A cylinder of zero length standing on the blade, and one of zero radius through it.
     const auto flat = b.add(PrototypeKind::cylinder, OrganKind::petiole,
                             frame({0, 0, 1}, {0, -1, 0}, {0.03f, 0, 0}, 0.0f, 0.004f), 0.0f, 0.004f);
@@ -119,11 +154,13 @@ inline std::vector<BuiltCase> hard_built_stands() {
     BuiltCase c{"leaflets at scale " + std::to_string(scale), {}, {}, {}};
     Built& b = c.built;
     const float l = 0.1f * scale, w = 0.05f * scale;
-    const auto a = b.add(PrototypeKind::leaflet, OrganKind::leaflet, frame({1, 0, 0}, {0, 1, 0}, {0, 0, 0}, l, w), l, w);
+    const auto a =
+        b.add(PrototypeKind::leaflet, OrganKind::leaflet, frame({1, 0, 0}, {0, 1, 0}, {0, 0, 0}, l, w), l, w);
     // Crossing blade (vertical, through the first's middle) and a parallel one just above.
     const auto x = b.add(PrototypeKind::leaflet, OrganKind::leaflet,
                          frame({0, 1, 0}, {0, 0, 1}, {0.3f * l, -0.2f * l, -0.01f * l}, l, w), l, w);
-    const auto d = b.add(PrototypeKind::leaflet, OrganKind::leaflet, frame({1, 0, 0}, {0, 1, 0}, {0, 0, 0.001f * l}, l, w), l, w);
+    const auto d = b.add(PrototypeKind::leaflet, OrganKind::leaflet,
+                         frame({1, 0, 0}, {0, 1, 0}, {0, 0, 0.001f * l}, l, w), l, w);
     c.touching = {{a, x}};
     c.apart = {{a, d}};
     out.push_back(c);

@@ -75,7 +75,8 @@ inline Stand curved_stand(std::uint64_t seed, int lod) {
   std::uniform_real_distribution<double> u(0, 1);
   GrowRequest req;
   req.grammar = source("grammars/tomato_mature.yaml");
-  for (const char* o : {"bend_min=-80", "bend_max=70", "cup_min=-30", "cup_max=15", "fold_min=0", "fold_max=30"})
+  for (const char* o :
+       {"bend_min=-80", "bend_max=70", "cup_min=-30", "cup_max=15", "fold_min=0", "fold_max=30"})
     req.load.overrides.push_back(parse_override(o));
   const int n = 3 + static_cast<int>(g() % 4);
   const bool cluster = g() % 2;
@@ -117,10 +118,12 @@ inline std::vector<Contact> brute_force_exact(const Stand& s, const KindMask& co
     if (!collide[static_cast<std::size_t>(s.organs[a].kind)]) continue;
     for (std::size_t b = a + 1; b < n; ++b) {
       if (!collide[static_cast<std::size_t>(s.organs[b].kind)]) continue;
-      if (adjacent(s.organs[a], static_cast<std::int32_t>(a), s.organs[b], static_cast<std::int32_t>(b))) continue;
+      if (adjacent(s.organs[a], static_cast<std::int32_t>(a), s.organs[b], static_cast<std::int32_t>(b)))
+        continue;
       bool far = false;
       for (int k = 0; k < 3; ++k)
-        if (box[a][k] > box[b][k + 3] + clearance + 1e-3 || box[b][k] > box[a][k + 3] + clearance + 1e-3) far = true;
+        if (box[a][k] > box[b][k + 3] + clearance + 1e-3 || box[b][k] > box[a][k + 3] + clearance + 1e-3)
+          far = true;
       if (far) continue;
       // Every triangle pair, in the frame of a's plant (as the detection computes them).
       const OrganRecord& ra = s.organs[a];
@@ -141,7 +144,9 @@ inline std::vector<Contact> brute_force_exact(const Stand& s, const KindMask& co
         hit = point_in_convex(d3(va[0]), vb.data(), mb.indices.data(), static_cast<int>(mb.triangle_count()));
       if (!hit && is_solid(ra.prototype))
         hit = point_in_convex(d3(vb[0]), va.data(), ma.indices.data(), static_cast<int>(ma.triangle_count()));
-      if (hit) out.push_back({static_cast<std::int32_t>(a), static_cast<std::int32_t>(b), ra.plant, rb.plant, -1, -1});
+      if (hit)
+        out.push_back(
+            {static_cast<std::int32_t>(a), static_cast<std::int32_t>(b), ra.plant, rb.plant, -1, -1});
     }
   }
   return out;

@@ -15,7 +15,8 @@ using namespace canopy::test;
 namespace {
 
 /// Brute force: project both boxes' corners on all 15 candidate axes (skipping vanished ones).
-bool sat_brute(const Vec3f a_axes[3], const Vec3f a_corners[8], const Vec3f b_axes[3], const Vec3f b_corners[8]) {
+bool sat_brute(const Vec3f a_axes[3], const Vec3f a_corners[8], const Vec3f b_axes[3],
+               const Vec3f b_corners[8]) {
   std::vector<D3> axes;
   for (int i = 0; i < 3; ++i) axes.push_back(d3(a_axes[i])), axes.push_back(d3(b_axes[i]));
   for (int i = 0; i < 3; ++i)
@@ -93,7 +94,8 @@ TEST_CASE("LCD overlap agrees with the brute-force test of the same boxes as OBB
     Lcd l[2];
     Vec3f axes[2][3], corners[2][8];
     for (int k = 0; k < 2; ++k) {
-      l[k] = random_lcd(g, i % 4 == 0 ? 0.3f : u(g) * 3.14159f, 1.0f, 0.05f, 0.5f);  // every fourth pair parallel
+      l[k] = random_lcd(g, i % 4 == 0 ? 0.3f : u(g) * 3.14159f, 1.0f, 0.05f,
+                        0.5f);  // every fourth pair parallel
       axes[k][0] = {l[k].ax, l[k].ay, 0}, axes[k][1] = {-l[k].ay, l[k].ax, 0}, axes[k][2] = {0, 0, 1};
       for (int c = 0; c < 8; ++c) {
         const float su = (c & 1) ? l[k].hi[0] : l[k].lo[0], sv = (c & 2) ? l[k].hi[1] : l[k].lo[1],
@@ -130,7 +132,8 @@ TEST_CASE("an empty LCD box meets nothing, kept as it is or centred") {
   CHECK(met > 100);
 }
 
-TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-aligned boxes and its plant's bounds") {
+TEST_CASE(
+    "every vertex lies in its organ's OBB, its cluster's LCD and axis-aligned boxes and its plant's bounds") {
   const Stand s = random_stand(7);
   PrototypeLibrary lib;
   MbvtConfig cfg;
@@ -159,12 +162,13 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
   for (std::uint32_t ci = 0; ci < m.clusters.size(); ++ci) {
     const Cluster& c = m.clusters[ci];
     const PlantBound& pb = m.plants[static_cast<std::size_t>(c.plant)];
-    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster)).lo.x ==
-          c.box.lo.x);
+    CHECK(m.lanes.clusters
+              .get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster))
+              .lo.x == c.box.lo.x);
     const LcdCentred root = lcd_centred(m.nodes[c.root].box);
     CHECK(std::memcmp(&m.lanes.roots[ci], &root, sizeof root) == 0);  // the root's LCD box, centred
-    const LcdCentred root_lane =
-        m.lanes.root_lanes.get(m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster));
+    const LcdCentred root_lane = m.lanes.root_lanes.get(
+        m.lanes.cluster_first[static_cast<std::size_t>(c.plant)] + (ci - pb.first_cluster));
     CHECK(std::memcmp(&root_lane, &root, sizeof root) == 0);  // and in the plant's LCD lanes
     // The root spans the cluster's organs (the CPU pass takes a one-block cluster's span from it).
     CHECK(m.nodes[c.root].first == c.first);
@@ -194,14 +198,16 @@ TEST_CASE("every vertex lies in its organ's OBB, its cluster's LCD and axis-alig
   }
 }
 
-TEST_CASE("the axis-aligned pre-test never rejects LCD boxes that lcd_overlap accepts, touching ones included") {
+TEST_CASE(
+    "the axis-aligned pre-test never rejects LCD boxes that lcd_overlap accepts, touching ones included") {
   std::mt19937 g(11);
   std::uniform_real_distribution<float> u(-1, 1);
   int overlapping = 0, apart = 0, rejected = 0;
   for (int i = 0; i < 20000; ++i) {
     Lcd l[2];
     // Every fourth pair parallel, every fourth axis-aligned (where the boxes are tightest).
-    for (int k = 0; k < 2; ++k) l[k] = random_lcd(g, i % 4 == 0 ? 0.3f : i % 4 == 1 ? 0.0f : u(g) * 3.14159f, 0.3f, 0.01f, 0.3f);
+    for (int k = 0; k < 2; ++k)
+      l[k] = random_lcd(g, i % 4 == 0 ? 0.3f : i % 4 == 1 ? 0.0f : u(g) * 3.14159f, 0.3f, 0.01f, 0.3f);
     // An offset along a random direction, scaled to where lcd_overlap flips (bisection), then
     // a hair either side of it, and a random scale.
     const Vec3f dir{u(g), u(g), i % 3 == 0 ? 0.0f : 0.5f * u(g)};
@@ -245,7 +251,8 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
   // Organ lanes are made from the OBBs alone: the refit's are the rebuild's, bit for bit.
   CHECK(m.lanes.organ_first == fresh.lanes.organ_first);
   REQUIRE(m.lanes.organs.data.size() == fresh.lanes.organs.data.size());
-  CHECK(std::memcmp(m.lanes.organs.data.data(), fresh.lanes.organs.data.data(), m.lanes.organs.data.size() * sizeof(float)) == 0);
+  CHECK(std::memcmp(m.lanes.organs.data.data(), fresh.lanes.organs.data.data(),
+                    m.lanes.organs.data.size() * sizeof(float)) == 0);
   for (std::size_t c = 0; c < m.clusters.size(); ++c) {
     CHECK(m.lanes.pass[c].around.lo.y == fresh.lanes.pass[c].around.lo.y);
     // The pass records hold the refit tree's own fields.
@@ -262,10 +269,12 @@ TEST_CASE("refit after organs turn equals a rebuild of the same tree") {
     const LcdCentred root = lcd_centred(m.nodes[m.clusters[c].root].box);
     CHECK(std::memcmp(&m.lanes.roots[c], &root, sizeof root) == 0);
     const PlantBound& pb = m.plants[static_cast<std::size_t>(m.clusters[c].plant)];
-    const LcdCentred root_lane =
-        m.lanes.root_lanes.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster));
+    const LcdCentred root_lane = m.lanes.root_lanes.get(
+        m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster));
     CHECK(std::memcmp(&root_lane, &root, sizeof root) == 0);
-    CHECK(m.lanes.clusters.get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] + (c - pb.first_cluster))
+    CHECK(m.lanes.clusters
+              .get(m.lanes.cluster_first[static_cast<std::size_t>(m.clusters[c].plant)] +
+                   (c - pb.first_cluster))
               .hi.z == m.clusters[c].box.hi.z);
   }
   // Boxes contain what they must (axes kept from the first build, so not equal to the fresh ones).
@@ -289,13 +298,15 @@ bool same_bytes(const V& a, const V& b) {
 bool same_tree(const Mbvt& a, const Mbvt& b) {
   bool same = same_bytes(a.obbs, b.obbs) && same_bytes(a.takes_part, b.takes_part) &&
               same_bytes(a.cluster_organs, b.cluster_organs) && same_bytes(a.free_after, b.free_after) &&
-              same_bytes(a.cluster_has_free, b.cluster_has_free) && same_bytes(a.plant_has_free, b.plant_has_free) &&
-              same_bytes(a.clusters, b.clusters) && same_bytes(a.nodes, b.nodes) && same_bytes(a.plants, b.plants) &&
+              same_bytes(a.cluster_has_free, b.cluster_has_free) &&
+              same_bytes(a.plant_has_free, b.plant_has_free) && same_bytes(a.clusters, b.clusters) &&
+              same_bytes(a.nodes, b.nodes) && same_bytes(a.plants, b.plants) &&
               a.max_radius == b.max_radius && same_bytes(a.lanes.organ_first, b.lanes.organ_first) &&
               same_bytes(a.lanes.pass, b.lanes.pass) && same_bytes(a.lanes.roots, b.lanes.roots) &&
               same_bytes(a.lanes.cluster_first, b.lanes.cluster_first);
   return same && same_bytes(a.lanes.organs.data, b.lanes.organs.data) &&
-         same_bytes(a.lanes.clusters.data, b.lanes.clusters.data) && same_bytes(a.lanes.root_lanes.data, b.lanes.root_lanes.data);
+         same_bytes(a.lanes.clusters.data, b.lanes.clusters.data) &&
+         same_bytes(a.lanes.root_lanes.data, b.lanes.root_lanes.data);
 }
 
 }  // namespace
@@ -344,7 +355,8 @@ TEST_CASE("every organ's OBB is make_obb's, whether or not the plants' organs fo
 }
 
 TEST_CASE(
-    "curved leaflets: every vertex lies in its OBB, its cluster's LCD boxes and its plant's bounds, at every level of detail") {
+    "curved leaflets: every vertex lies in its OBB, its cluster's LCD boxes and its plant's bounds, at every "
+    "level of detail") {
   std::set<int> shapes;
   for (int lod = 1; lod <= 4; ++lod) {
     const Stand s = curved_stand(static_cast<std::uint64_t>(lod), lod);

@@ -116,7 +116,8 @@ TEST_CASE("each level's organ pairs contain the next level's") {
     const auto organ = cpu->detect(s, req).pairs;
     for (const Contact& c : organ) {
       CHECK(plants.count({c.plant_a, c.plant_b}));
-      const int ca = cluster_of[static_cast<std::size_t>(c.organ_a)], cb = cluster_of[static_cast<std::size_t>(c.organ_b)];
+      const int ca = cluster_of[static_cast<std::size_t>(c.organ_a)],
+                cb = cluster_of[static_cast<std::size_t>(c.organ_b)];
       CHECK(leaves.count({std::min(ca, cb), std::max(ca, cb)}));
     }
     req.level = ContactLevel::exact;
@@ -156,7 +157,8 @@ std::vector<std::pair<std::int32_t, std::int32_t>> all_overlapping_plants(const 
   std::vector<std::pair<std::int32_t, std::int32_t>> want;
   for (std::size_t p = 0; p < s.plant_count(); ++p)
     for (std::size_t q = p + 1; q < s.plant_count(); ++q)
-      if (plant_bounds_overlap(s, m, p, q)) want.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(q));
+      if (plant_bounds_overlap(s, m, p, q))
+        want.emplace_back(static_cast<std::int32_t>(p), static_cast<std::int32_t>(q));
   return want;
 }
 

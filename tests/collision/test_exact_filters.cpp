@@ -39,8 +39,8 @@ TEST_CASE("the float plane pre-test rejects only pairs farther apart than the cl
     for (float c : {0.0f, 1e-4f, static_cast<float>(d)}) {
       const float margin = c + 1e-5f;
       const TrianglePlane pp = TrianglePlane::of(p[0], p[1], p[2]), pq = TrianglePlane::of(q[0], q[1], q[2]);
-      const bool reject =
-          pp.beyond(q, margin) || pq.beyond(p, margin) || apart_on_edges(p, q, margin) || apart_on_edges(q, p, margin);
+      const bool reject = pp.beyond(q, margin) || pq.beyond(p, margin) || apart_on_edges(p, q, margin) ||
+                          apart_on_edges(q, p, margin);
       if (reject) {
         ++rejected;
         CHECK_MESSAGE(d > c, "trial ", trial, " distance ", d, " clearance ", c);
@@ -92,7 +92,8 @@ TEST_CASE("the OBB filter rejects only triangles farther from the organ than the
         ++rejected;
         CHECK_MESSAGE(d > c, "seed ", seed, " trial ", trial, " distance ", d, " clearance ", c);
         for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
-          const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]], posed.vertices()[mesh.indices[3 * i + 1]],
+          const Vec3f q[3] = {posed.vertices()[mesh.indices[3 * i]],
+                              posed.vertices()[mesh.indices[3 * i + 1]],
                               posed.vertices()[mesh.indices[3 * i + 2]]};
           const bool touches = c > 0 ? triangles_within(t, q, c) : triangles_intersect(t, q);
           CHECK_FALSE(touches);
@@ -132,7 +133,8 @@ TEST_CASE("a long-lived exact scratch answers as a fresh one for poses that chan
   int touching = 0, apart = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const std::int32_t a = static_cast<std::int32_t>(rng() % static_cast<unsigned>(n - 1));
-    const std::int32_t b = a + 1 + static_cast<std::int32_t>(rng() % static_cast<unsigned>(std::min(n - a - 1, 40)));
+    const std::int32_t b =
+        a + 1 + static_cast<std::int32_t>(rng() % static_cast<unsigned>(std::min(n - a - 1, 40)));
     Affine3f ta = s.transforms[static_cast<std::size_t>(a)], tb = s.transforms[static_cast<std::size_t>(b)];
     // Move b onto a (so some pairs touch), then nudge it: by a few mm, or by one float step.
     const Vec3f to_a = ta.t - tb.t;
@@ -144,7 +146,8 @@ TEST_CASE("a long-lived exact scratch answers as a fresh one for poses that chan
     const float c = rng() % 2 ? 0.0f : 1e-4f;
     const bool want = organs_touch_at(s, lib, a, ta, b, tb, c, fresh);
     CHECK_MESSAGE(organs_touch_at(s, lib, a, ta, b, tb, c, kept, &witness) == want, "trial ", trial);
-    CHECK_MESSAGE(organs_touch_at(s, lib, a, ta, b, tb, c, kept_small, &witness_small) == want, "trial ", trial);
+    CHECK_MESSAGE(organs_touch_at(s, lib, a, ta, b, tb, c, kept_small, &witness_small) == want, "trial ",
+                  trial);
     (want ? touching : apart) += 1;
   }
   CHECK(touching > 100);
@@ -177,7 +180,8 @@ TEST_CASE("two solids rejected by their capsules never touch: against the full t
     b.stand.stand_origin = {1e6, 2e5, 0};
     const auto solid = [&](int which, Vec3f at, Vec3f heading) {
       const PrototypeKind kind = (trial >> which) % 3 == 0 ? PrototypeKind::sphere : PrototypeKind::cylinder;
-      const float len = static_cast<float>(0.01 + 0.2 * u01(g)), r = static_cast<float>(0.001 + 0.015 * u01(g));
+      const float len = static_cast<float>(0.01 + 0.2 * u01(g)),
+                  r = static_cast<float>(0.001 + 0.015 * u01(g));
       Vec3f l = cross(heading, unit());
       l = l * (1 / length(l));
       Affine3f m = test::frame(heading, l, at, kind == PrototypeKind::sphere ? r : len, r);
@@ -190,8 +194,8 @@ TEST_CASE("two solids rejected by their capsules never touch: against the full t
     const auto [a, ra] = solid(0, {static_cast<float>(u01(g)), static_cast<float>(u01(g)), 1.0f}, h0);
     // The second starts beside a point of the first's axis, its surface near the first's.
     const Affine3f ta = b.stand.transforms[0];
-    const Vec3f beside =
-        ta.t + ta.c0 * static_cast<float>(u01(g) * 1.2 - 0.1) + unit() * (ra * static_cast<float>(0.5 + 2.5 * u01(g)));
+    const Vec3f beside = ta.t + ta.c0 * static_cast<float>(u01(g) * 1.2 - 0.1) +
+                         unit() * (ra * static_cast<float>(0.5 + 2.5 * u01(g)));
     const std::int32_t bo = solid(1, beside, unit()).first;
     if (two_plants) {
       b.stand.organs[1].plant = 1;
@@ -203,7 +207,8 @@ TEST_CASE("two solids rejected by their capsules never touch: against the full t
     const Stand& s = b.stand;
     const Vec3f db = two_plants ? plant_offset(s, 0, 1) : Vec3f{0, 0, 0};
     for (float c : {0.0f, 1e-4f, 1e-3f}) {
-      const bool apart = solids_apart(s.organs[0].prototype, s.transforms[0], s.organs[1].prototype, s.transforms[1], db, c);
+      const bool apart =
+          solids_apart(s.organs[0].prototype, s.transforms[0], s.organs[1].prototype, s.transforms[1], db, c);
       ExactScratch x;
       const PosedOrgan& pa = x.poses.get(s, lib, a, s.transforms[0], 0);
       const PosedOrgan& pb = x.poses.get(s, lib, bo, s.transforms[1], 0, &pa);
@@ -248,12 +253,14 @@ TEST_CASE("the poses take the OBBs of a tree fit with no clearance: the same bit
     const auto n = static_cast<std::int32_t>(s.organ_count());
     for (std::int32_t a = 0; a < n; ++a)
       for (std::int32_t b = a + 1; b < n; ++b) {
-        if (!m.takes_part[static_cast<std::size_t>(a)] || !m.takes_part[static_cast<std::size_t>(b)]) continue;
-        if (!obb_overlap(
-                m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)],
-                plant_offset(s, s.organs[static_cast<std::size_t>(a)].plant, s.organs[static_cast<std::size_t>(b)].plant)))
+        if (!m.takes_part[static_cast<std::size_t>(a)] || !m.takes_part[static_cast<std::size_t>(b)])
           continue;
-        const bool with = organs_touch(s, lib, a, b, 0, x, m.obbs.data()), without = organs_touch(s, lib, a, b, 0, y);
+        if (!obb_overlap(m.obbs[static_cast<std::size_t>(a)], m.obbs[static_cast<std::size_t>(b)],
+                         plant_offset(s, s.organs[static_cast<std::size_t>(a)].plant,
+                                      s.organs[static_cast<std::size_t>(b)].plant)))
+          continue;
+        const bool with = organs_touch(s, lib, a, b, 0, x, m.obbs.data()),
+                   without = organs_touch(s, lib, a, b, 0, y);
         CHECK(with == without);
         ++pairs;
         touching += with;

@@ -22,12 +22,13 @@ namespace {
 bool same_pose(const PosedOrgan& x, const PosedOrgan& y) {
   return x.tri_lanes.size() == y.tri_lanes.size() &&
          std::memcmp(x.tri_lanes.data(), y.tri_lanes.data(), x.tri_lanes.size() * sizeof(float)) == 0 &&
-         std::memcmp(x.box, y.box, sizeof x.box) == 0 && std::memcmp(&x.obb, &y.obb, sizeof x.obb) == 0 && x.solid == y.solid;
+         std::memcmp(x.box, y.box, sizeof x.box) == 0 && std::memcmp(&x.obb, &y.obb, sizeof x.obb) == 0 &&
+         x.solid == y.solid;
 }
 
 bool same_witness(const Witness& x, const Witness& y) {
-  return std::memcmp(x.tri_a, y.tri_a, sizeof x.tri_a) == 0 && std::memcmp(x.tri_b, y.tri_b, sizeof x.tri_b) == 0 &&
-         x.latest == y.latest;
+  return std::memcmp(x.tri_a, y.tri_a, sizeof x.tri_a) == 0 &&
+         std::memcmp(x.tri_b, y.tri_b, sizeof x.tri_b) == 0 && x.latest == y.latest;
 }
 
 /// Transform t turned by `deg` degrees about the vertical through its origin, as resolution turns
@@ -41,7 +42,9 @@ Affine3f turned(const Affine3f& t, double deg) {
 
 TEST_CASE("posing and the posed test give the same bits from the build target's code and x86-64-v4's") {
   if (!cpu_has_x86_64_v4()) {
-    MESSAGE("this CPU has no AVX-512: only the build target's code runs here (posed_touch_as(Isa::x86_64_v4) not compared)");
+    MESSAGE(
+        "this CPU has no AVX-512: only the build target's code runs here (posed_touch_as(Isa::x86_64_v4) not "
+        "compared)");
     return;
   }
   auto cpu = make_cpu_backend();
@@ -76,7 +79,8 @@ TEST_CASE("posing and the posed test give the same bits from the build target's 
           for (int k = 0; k < 2; ++k) {
             const Isa isa = k == 0 ? Isa::build_target : Isa::x86_64_v4;
             touch[k] = posed_touch_as(isa, pa[0], pb[0], clearance, scratch, &w[k]);
-            again[k] = posed_touch_as(isa, pa[0], pb[0], clearance, scratch, &w[k]);  // from the witness this time
+            again[k] =
+                posed_touch_as(isa, pa[0], pb[0], clearance, scratch, &w[k]);  // from the witness this time
           }
           CHECK(touch[0] == touch[1]);
           CHECK(again[0] == again[1]);
@@ -91,7 +95,8 @@ TEST_CASE("posing and the posed test give the same bits from the build target's 
       }
     }
   }
-  MESSAGE("pairs compared: " << pairs << ", touching " << touching << " (" << with_clearance << " with a clearance)");
+  MESSAGE("pairs compared: " << pairs << ", touching " << touching << " (" << with_clearance
+                             << " with a clearance)");
   CHECK(pairs > 2000);
   CHECK(touching > 200);
   CHECK(touching < pairs);

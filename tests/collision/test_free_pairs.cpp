@@ -35,7 +35,8 @@ std::size_t check_masks(const Stand& s, const Mbvt& m, std::size_t& unmasked_clu
       for (std::uint32_t y = 0; y < cl.count; ++y) {
         const auto a = static_cast<std::int32_t>(m.cluster_organs[cl.first + x]);
         const auto b = static_cast<std::int32_t>(m.cluster_organs[cl.first + y]);
-        const bool want = y > x && !adjacent(s.organs[static_cast<std::size_t>(a)], a, s.organs[static_cast<std::size_t>(b)], b);
+        const bool want = y > x && !adjacent(s.organs[static_cast<std::size_t>(a)], a,
+                                             s.organs[static_cast<std::size_t>(b)], b);
         INFO("cluster " << c << " organs " << x << " " << y);
         CHECK(static_cast<bool>((mask >> y) & 1u) == want);
         free += want;
@@ -56,7 +57,8 @@ std::size_t check_plant_flags(const Stand& s, const Mbvt& m) {
     if (pb.cluster_count > 0) {
       const Cluster& first = m.clusters[pb.first_cluster];
       const Cluster& last = m.clusters[pb.first_cluster + pb.cluster_count - 1];
-      want = organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), first.first, last.first + last.count - first.first);
+      want = organs_hold_free_pair(s.organs.data(), m.cluster_organs.data(), first.first,
+                                   last.first + last.count - first.first);
       for (std::uint32_t c = pb.first_cluster; c < pb.first_cluster + pb.cluster_count; ++c)
         any_cluster |= m.cluster_has_free[c] != 0;
     }
@@ -79,7 +81,8 @@ TEST_CASE("a cluster's free-pair masks mark exactly its pairs that are not adjac
     // width) and of every stem organ at once.
     for (int stem : {8, 63, 64, 65, 100000}) {
       MbvtConfig cfg;
-      cfg.collide = parse_collide_kinds(seed % 2 || stem > 64 ? "all" : "leaflet,petiole,rachis,internode,peduncle");
+      cfg.collide =
+          parse_collide_kinds(seed % 2 || stem > 64 ? "all" : "leaflet,petiole,rachis,internode,peduncle");
       cfg.stem_cluster = stem;
       free += check_masks(s, build_mbvt_topology(s, cfg), unmasked);
     }
@@ -105,7 +108,9 @@ TEST_CASE("a plant's flag says whether its organs hold a free pair, across clust
   CHECK(across_only > 0);
 }
 
-TEST_CASE("free-pair masks of random forests: roots, parents outside the cluster, gaps in the ids, 1 to 65 organs") {
+TEST_CASE(
+    "free-pair masks of random forests: roots, parents outside the cluster, gaps in the ids, 1 to 65 "
+    "organs") {
   std::mt19937 g(7);
   std::size_t free = 0, adjacent_pairs = 0;
   for (int round = 0; round < 400; ++round) {

@@ -40,7 +40,9 @@ TEST_CASE("triangle pairs: coplanar, edge on edge and vertex on face (closed set
   }
 }
 
-TEST_CASE("hand-built stands: containment in solids, zero-thickness and zero-length organs, leaflets 100x smaller and larger") {
+TEST_CASE(
+    "hand-built stands: containment in solids, zero-thickness and zero-length organs, leaflets 100x smaller "
+    "and larger") {
   for (const BuiltCase& c : hard_built_stands()) {
     INFO(c.what);
     for (const auto& [a, b] : c.touching) CHECK(touch(c.built.stand, a, b));
@@ -50,8 +52,9 @@ TEST_CASE("hand-built stands: containment in solids, zero-thickness and zero-len
     req.collide = parse_collide_kinds("all");
     const std::vector<Contact> found = make_cpu_backend()->detect(c.built.stand, req).pairs;
     const auto listed = [&](std::int32_t a, std::int32_t b) {
-      return std::any_of(found.begin(), found.end(),
-                         [&](const Contact& k) { return k.organ_a == std::min(a, b) && k.organ_b == std::max(a, b); });
+      return std::any_of(found.begin(), found.end(), [&](const Contact& k) {
+        return k.organ_a == std::min(a, b) && k.organ_b == std::max(a, b);
+      });
     };
     for (const auto& [a, b] : c.touching) CHECK(listed(a, b));
     for (const auto& [a, b] : c.apart) CHECK_FALSE(listed(a, b));

@@ -33,7 +33,8 @@ TEST_CASE("detection refuses plant pairs or contact lists past its memory, with 
   CHECK(failure([&] {
           cpu->detect(s, req);
         }).starts_with("the plants' bounds meet in more than 27 pairs (plants on or near one spot?)"));
-  req.memory_limit = static_cast<std::size_t>(28 * kBytesPerPlantPair);  // the pairs fit, their contacts do not
+  req.memory_limit =
+      static_cast<std::size_t>(28 * kBytesPerPlantPair);  // the pairs fit, their contacts do not
   CHECK(failure([&] { cpu->detect(s, req); }).starts_with("detection stopped after "));
   req.memory_limit = std::size_t{1} << 30;
   const Contacts c = cpu->detect(s, req);

@@ -72,7 +72,8 @@ TEST_CASE("--backend auto on a GPU: the files of --backend cuda, planned with th
       CHECK(r["resolution"]["contacts_before"].get<std::size_t>() > 0);
       CHECK(r["resolution"]["contacts_after"] == 0);
       CHECK(r["resolution"]["search"] == "device");
-      CHECK(r["resolution"]["planning"] == fmt::format("device attempts, {} lanes", ResolveRequest{}.bulk_lanes));
+      CHECK(r["resolution"]["planning"] ==
+            fmt::format("device attempts, {} lanes", ResolveRequest{}.bulk_lanes));
     }
     MESSAGE(k.name << ": " << reports[1]["resolution"]["contacts_before"] << " contacts, planned with "
                    << reports[1]["resolution"]["planning"] << " on " << reports[1]["device"]);

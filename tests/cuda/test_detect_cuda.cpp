@@ -24,7 +24,8 @@ namespace {
 void same_everywhere(const Stand& s, DetectRequest req, const char* what) {
   auto cpu = make_cpu_backend();
   auto gpu = cuda::make_cuda_backend();
-  for (ContactLevel level : {ContactLevel::plant, ContactLevel::leaf, ContactLevel::organ, ContactLevel::exact}) {
+  for (ContactLevel level :
+       {ContactLevel::plant, ContactLevel::leaf, ContactLevel::organ, ContactLevel::exact}) {
     req.level = level;
     const Contacts a = cpu->detect(s, req), b = gpu->detect(s, req);
     INFO(what << " level " << name_of(level));
@@ -78,7 +79,9 @@ TEST_CASE("CUDA equals CPU with a clearance, on crowded plants, twins and far fr
   same_everywhere(grow_stand(g), DetectRequest{}, "far from the origin");
 }
 
-TEST_CASE("CUDA equals CPU on one plant, with no organ taking part, on plants kilometres apart, and for active plants") {
+TEST_CASE(
+    "CUDA equals CPU on one plant, with no organ taking part, on plants kilometres apart, and for active "
+    "plants") {
   GrowRequest g;
   g.grammar = source("grammars/tomato.yaml");
   g.steps = 14;
@@ -158,9 +161,9 @@ TEST_CASE("CUDA equals CPU on 1,000- and 10,000-plant default stands") {
     const auto t3 = std::chrono::steady_clock::now();
     INFO(n << " plants");
     CHECK(a.pairs == b.pairs);
-    MESSAGE(n << " plants: " << b.pairs.size() << " exact contacts; cpu " << std::chrono::duration<double>(t1 - t0).count()
-              << " s, cuda (stand load included) " << std::chrono::duration<double>(t3 - t2).count() << " s on "
-              << gpu->device());
+    MESSAGE(n << " plants: " << b.pairs.size() << " exact contacts; cpu "
+              << std::chrono::duration<double>(t1 - t0).count() << " s, cuda (stand load included) "
+              << std::chrono::duration<double>(t3 - t2).count() << " s on " << gpu->device());
     // A second detection of the resident stand with nothing moved gives the same list.
     CHECK(gpu->redetect(s, req, {}).pairs == b.pairs);
     for (ContactLevel level : {ContactLevel::organ, ContactLevel::leaf, ContactLevel::plant}) {
@@ -198,12 +201,15 @@ TEST_CASE("resolution on CUDA: the same turns, transforms and contacts as on the
       CHECK(ra.rounds == rb.rounds);
       CHECK(ra.organs_moved == rb.organs_moved);
       CHECK(ra.planning == "host search");
-      CHECK(rb.planning == (device_search ? "device attempts, " + std::to_string(ResolveRequest{}.bulk_lanes) + " lanes"
-                                          : std::string("host search")));
-      CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
+      CHECK(rb.planning == (device_search
+                                ? "device attempts, " + std::to_string(ResolveRequest{}.bulk_lanes) + " lanes"
+                                : std::string("host search")));
+      CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) ==
+            0);
       // Re-detection after the rounds (refit kept on the device) equals a fresh CPU detection.
       CHECK(gpu->detect(b, req.detect).pairs == cpu->detect(a, req.detect).pairs);
-      MESSAGE(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after << " contacts in " << ra.rounds << " rounds");
+      MESSAGE(n << " plants: " << ra.contacts_before << " -> " << ra.contacts_after << " contacts in "
+                << ra.rounds << " rounds");
     }
 }
 
@@ -222,7 +228,9 @@ TEST_CASE("resolution's attempts on every GPU of the machine: the CPU's turns") 
   const ResolveResult ra = resolve(a, *cpu, req, cpu->detect(a, req.detect));
   const std::size_t devices = cuda::query_devices().devices.size();
   if (devices < 2)
-    MESSAGE("one GPU: the lanes' threads and the backend share device 0 (the case of a second GPU is not exercised)");
+    MESSAGE(
+        "one GPU: the lanes' threads and the backend share device 0 (the case of a second GPU is not "
+        "exercised)");
   for (std::size_t d = 0; d < devices; ++d) {
     INFO("device " << d);
     Stand b = grown;
@@ -236,7 +244,9 @@ TEST_CASE("resolution's attempts on every GPU of the machine: the CPU's turns") 
   CANOPY_CUDA_CHECK(cudaSetDevice(0));
 }
 
-TEST_CASE("resolution's attempts on the device: the host search's turns at the organ level, with clearances, crowded") {
+TEST_CASE(
+    "resolution's attempts on the device: the host search's turns at the organ level, with clearances, "
+    "crowded") {
   // Asked for bulk attempts, the CUDA backend runs each level's attempts on the device
   // (BatchedScan + CudaAttemptRunner); the CPU backend searches candidate by candidate on the host.
   struct Case {
@@ -248,8 +258,10 @@ TEST_CASE("resolution's attempts on the device: the host search's turns at the o
     std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts;
   };
   for (const Case& k :
-       {Case{"organ level", ContactLevel::organ, 0, 1e-4, false}, Case{"clearances", ContactLevel::exact, 0.001f, 0.002, false},
-        Case{"crowded", ContactLevel::exact, 0, 1e-4, true}, Case{"one lane", ContactLevel::exact, 0, 1e-4, false, 1},
+       {Case{"organ level", ContactLevel::organ, 0, 1e-4, false},
+        Case{"clearances", ContactLevel::exact, 0.001f, 0.002, false},
+        Case{"crowded", ContactLevel::exact, 0, 1e-4, true},
+        Case{"one lane", ContactLevel::exact, 0, 1e-4, false, 1},
         Case{"batches of 40 contacts, 3 lanes at once", ContactLevel::exact, 0, 1e-4, false, 3, 40},
         Case{"crowded, batches of 25, 8 lanes", ContactLevel::exact, 0, 1e-4, true, 8, 25}}) {
     GrowRequest g;
@@ -277,8 +289,8 @@ TEST_CASE("resolution's attempts on the device: the host search's turns at the o
     CHECK(ra.organs_moved == rb.organs_moved);
     CHECK(ra.mean_turn_deg == rb.mean_turn_deg);
     CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
-    MESSAGE(std::string(k.name) << ": " << ra.contacts_before << " -> " << ra.contacts_after << " contacts, " << ra.organs_moved
-                                << " turned");
+    MESSAGE(std::string(k.name) << ": " << ra.contacts_before << " -> " << ra.contacts_after << " contacts, "
+                                << ra.organs_moved << " turned");
   }
 }
 
@@ -308,7 +320,8 @@ TEST_CASE("a stand that must be batched: the same contacts in batches under --ma
     const double needs_mb = std::stod(message.substr(message.find("needs") + 6));
     req.max_device_bytes = static_cast<std::size_t>(needs_mb * 1e6) + 300000;
     const Contacts batched = gpu->detect(s, req);
-    MESSAGE(name_of(level) << ": " << batched.batches << " batches under " << req.max_device_bytes << " bytes");
+    MESSAGE(name_of(level) << ": " << batched.batches << " batches under " << req.max_device_bytes
+                           << " bytes");
     CHECK(batched.batches > 1);
     CHECK(batched.pairs == want.pairs);
     for (std::size_t l = 0; l <= static_cast<std::size_t>(level); ++l) {
@@ -318,7 +331,9 @@ TEST_CASE("a stand that must be batched: the same contacts in batches under --ma
   }
 }
 
-TEST_CASE("the device stand's organ OBBs are the host's bit for bit, fitted and refitted (the attempts read them)") {
+TEST_CASE(
+    "the device stand's organ OBBs are the host's bit for bit, fitted and refitted (the attempts read "
+    "them)") {
   for (std::uint64_t seed : {3, 8}) {
     INFO("seed " << seed);
     Stand s = random_stand(seed);
@@ -332,7 +347,8 @@ TEST_CASE("the device stand's organ OBBs are the host's bit for bit, fitted and 
     const auto differing = [&] {
       CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
       std::vector<Obb> got(s.organ_count());
-      CANOPY_CUDA_CHECK(cudaMemcpy(got.data(), dev.view().obbs, got.size() * sizeof(Obb), cudaMemcpyDeviceToHost));
+      CANOPY_CUDA_CHECK(
+          cudaMemcpy(got.data(), dev.view().obbs, got.size() * sizeof(Obb), cudaMemcpyDeviceToHost));
       std::size_t n = 0;
       for (std::size_t k = 0; k < got.size(); ++k) {
         const OrganRecord& r = s.organs[k];

@@ -25,9 +25,11 @@ TEST_CASE("region: own and halo plants merged equal one growth of all of them") 
   all.steps = 12;
   std::mt19937_64 g(5);
   for (int i = 0; i < 9; ++i)
-    all.plants.push_back({0.3 * i, 0, 37.0 * i, g() % 100, {}, i % 3 == 0 ? std::optional<int>(9) : std::nullopt});
+    all.plants.push_back(
+        {0.3 * i, 0, 37.0 * i, g() % 100, {}, i % 3 == 0 ? std::optional<int>(9) : std::nullopt});
   const Stand whole = grow_stand(all);
-  for (std::uint64_t split : {0b000000000ull, 0b101010101ull, 0b111100000ull, 0b000011111ull, 0b010011010ull}) {
+  for (std::uint64_t split :
+       {0b000000000ull, 0b101010101ull, 0b111100000ull, 0b000011111ull, 0b010011010ull}) {
     GrowRequest own = all, halo = all;
     own.plants.clear(), halo.plants.clear();
     std::vector<std::uint32_t> own_ids, halo_ids;
@@ -38,8 +40,10 @@ TEST_CASE("region: own and halo plants merged equal one growth of all of them") 
     const Stand merged = merge_region(grow_stand(own), own_ids, grow_stand(halo), halo_ids);
     REQUIRE(merged.organ_count() == whole.organ_count());
     REQUIRE(merged.plant_count() == whole.plant_count());
-    CHECK(std::memcmp(merged.organs.data(), whole.organs.data(), whole.organs.size() * sizeof(OrganRecord)) == 0);
-    CHECK(std::memcmp(merged.transforms.data(), whole.transforms.data(), whole.transforms.size() * sizeof(Affine3f)) == 0);
+    CHECK(std::memcmp(merged.organs.data(), whole.organs.data(), whole.organs.size() * sizeof(OrganRecord)) ==
+          0);
+    CHECK(std::memcmp(merged.transforms.data(), whole.transforms.data(),
+                      whole.transforms.size() * sizeof(Affine3f)) == 0);
     CHECK(merged.params == whole.params);
     CHECK(merged.joint_limit_deg == whole.joint_limit_deg);
     for (std::size_t p = 0; p < whole.plant_count(); ++p) {
@@ -50,7 +54,8 @@ TEST_CASE("region: own and halo plants merged equal one growth of all of them") 
       CHECK(a.leaf_count == b.leaf_count);
       CHECK(a.seed == b.seed);
       CHECK(a.steps == b.steps);
-      CHECK(merged.grammars[static_cast<std::size_t>(a.grammar)] == whole.grammars[static_cast<std::size_t>(b.grammar)]);
+      CHECK(merged.grammars[static_cast<std::size_t>(a.grammar)] ==
+            whole.grammars[static_cast<std::size_t>(b.grammar)]);
     }
   }
 }

@@ -61,7 +61,8 @@ TEST_CASE("tiles: regions hold their own plants and exactly those within the hal
           for (std::size_t p = 0; p < plants.size(); ++p) {
             const double c = t.coordinate(plants[p]);
             const bool own = t.owner[p] == k;
-            const bool near = c >= t.lo[static_cast<std::size_t>(k)] - halo && c <= t.hi[static_cast<std::size_t>(k)] + halo;
+            const bool near = c >= t.lo[static_cast<std::size_t>(k)] - halo &&
+                              c <= t.hi[static_cast<std::size_t>(k)] + halo;
             const bool held = std::binary_search(region.begin(), region.end(), static_cast<std::uint32_t>(p));
             CHECK(held == (own || near));
             const auto holding = tiles_holding(t, plants, p, halo);

@@ -27,7 +27,8 @@ inline const std::string& scratch() {
 /// Writes `bytes` to scratch()/name and returns its path.
 inline std::string put(const std::string& name, std::string_view bytes) {
   const std::string path = scratch() + "/" + name;
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   return path;
 }
 

@@ -17,7 +17,8 @@ namespace {
 class StringChunks final : public canopy::ChunkWriter {
  public:
   void fixed(std::string_view text) override { s += text; }
-  void plants(std::size_t n, std::size_t, const std::function<void(std::size_t, std::string&)>& make) override {
+  void plants(std::size_t n, std::size_t,
+              const std::function<void(std::size_t, std::string&)>& make) override {
     for (std::size_t i = 0; i < n; ++i) make(i, s);
   }
   std::uint64_t offset() const override { return s.size(); }
@@ -27,19 +28,20 @@ class StringChunks final : public canopy::ChunkWriter {
 
 bool same(const canopy::Stand& a, const canopy::Stand& b) {
   const auto bytes_equal = [](const auto& x, const auto& y) {
-    return x.size() == y.size() && (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
+    return x.size() == y.size() &&
+           (x.empty() || std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0);
   };
   if (a.plants.size() != b.plants.size() || a.grammars != b.grammars) return false;
   for (std::size_t p = 0; p < a.plants.size(); ++p) {
     const canopy::PlantRecord &x = a.plants[p], &y = b.plants[p];
     if (std::memcmp(&x.x, &y.x, sizeof x.x) || std::memcmp(&x.y, &y.y, sizeof x.y) ||
-        std::memcmp(&x.rotation_deg, &y.rotation_deg, sizeof x.rotation_deg) || x.seed != y.seed || x.grammar != y.grammar ||
-        x.steps != y.steps || x.first_organ != y.first_organ || x.organ_count != y.organ_count || x.first_leaf != y.first_leaf ||
-        x.leaf_count != y.leaf_count)
+        std::memcmp(&x.rotation_deg, &y.rotation_deg, sizeof x.rotation_deg) || x.seed != y.seed ||
+        x.grammar != y.grammar || x.steps != y.steps || x.first_organ != y.first_organ ||
+        x.organ_count != y.organ_count || x.first_leaf != y.first_leaf || x.leaf_count != y.leaf_count)
       return false;
   }
-  return bytes_equal(a.transforms, b.transforms) && bytes_equal(a.organs, b.organs) && bytes_equal(a.params, b.params) &&
-         bytes_equal(a.joint_limit_deg, b.joint_limit_deg);
+  return bytes_equal(a.transforms, b.transforms) && bytes_equal(a.organs, b.organs) &&
+         bytes_equal(a.params, b.params) && bytes_equal(a.joint_limit_deg, b.joint_limit_deg);
 }
 
 /// What detection, resolution and the exports index by: every organ in its plant's range, a parent
@@ -60,7 +62,8 @@ bool consistent(const canopy::Stand& s) {
       if (id >= n) return false;
       const canopy::OrganRecord& r = s.organs[id];
       if (r.plant != static_cast<std::int32_t>(p)) return false;
-      if (r.parent != -1 && (r.parent < static_cast<std::int32_t>(pr.first_organ) || r.parent >= static_cast<std::int32_t>(id)))
+      if (r.parent != -1 &&
+          (r.parent < static_cast<std::int32_t>(pr.first_organ) || r.parent >= static_cast<std::int32_t>(id)))
         return false;
       if (r.leaf != -1 && (r.leaf < static_cast<std::int32_t>(pr.first_leaf) ||
                            r.leaf >= static_cast<std::int32_t>(pr.first_leaf + pr.leaf_count)))
@@ -68,7 +71,8 @@ bool consistent(const canopy::Stand& s) {
       const float* t = &s.transforms[id].c0.x;
       for (int k = 0; k < 12; ++k)
         if (!std::isfinite(t[k])) return false;
-      if (!std::isfinite(s.params[id][0]) || !std::isfinite(s.params[id][1]) || !std::isfinite(s.joint_limit_deg[id]))
+      if (!std::isfinite(s.params[id][0]) || !std::isfinite(s.params[id][1]) ||
+          !std::isfinite(s.joint_limit_deg[id]))
         return false;
     }
   }

@@ -16,7 +16,8 @@ inline double reference_distance(const Vec3f* p, const Vec3f* q) {
   double d2 = 1e300;
   for (int i = 0; i < 3; ++i) {
     d2 = std::min({d2, point_triangle_dist2(a[i], b), point_triangle_dist2(b[i], a)});
-    for (int j = 0; j < 3; ++j) d2 = std::min(d2, segment_segment_dist2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]));
+    for (int j = 0; j < 3; ++j)
+      d2 = std::min(d2, segment_segment_dist2(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]));
   }
   return std::sqrt(d2);
 }

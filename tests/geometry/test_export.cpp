@@ -93,13 +93,15 @@ TEST_CASE("glb reads back: nodes per plant, organ ids, counts, Y-up positions") 
     for (const auto& prim : mesh.primitives) {
       const auto& ids = model.accessors[static_cast<std::size_t>(prim.attributes.at("_ORGAN"))];
       const auto& view = model.bufferViews[static_cast<std::size_t>(ids.bufferView)];
-      const float* f = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + ids.byteOffset);
+      const float* f =
+          reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + ids.byteOffset);
       for (std::size_t i = 0; i < ids.count; ++i) ++vertices_of[static_cast<int>(f[i])];
       triangles += model.accessors[static_cast<std::size_t>(prim.indices)].count / 3;
       const std::string kind = model.materials[static_cast<std::size_t>(prim.material)].name;
       CHECK(prim.attributes.count("TEXCOORD_0") == (kind == "leaflet" ? 1u : 0u));
       // Every vertex of this primitive belongs to an organ of this kind.
-      for (std::size_t i = 0; i < ids.count; ++i) CHECK(name_of(s.organs[static_cast<std::size_t>(f[i])].kind) == kind);
+      for (std::size_t i = 0; i < ids.count; ++i)
+        CHECK(name_of(s.organs[static_cast<std::size_t>(f[i])].kind) == kind);
     }
     const PlantRecord& pr = s.plants[p];
     CHECK(vertices_of.size() == pr.organ_count);
@@ -115,11 +117,12 @@ TEST_CASE("glb reads back: nodes per plant, organ ids, counts, Y-up positions") 
   const auto& prim = model.meshes[0].primitives[0];
   const auto& acc = model.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))];
   const auto& view = model.bufferViews[static_cast<std::size_t>(acc.bufferView)];
-  const float* v = reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + acc.byteOffset);
+  const float* v =
+      reinterpret_cast<const float*>(model.buffers[0].data.data() + view.byteOffset + acc.byteOffset);
   const auto& ids = model.accessors[static_cast<std::size_t>(prim.attributes.at("_ORGAN"))];
   const auto& iview = model.bufferViews[static_cast<std::size_t>(ids.bufferView)];
-  const std::size_t organ =
-      static_cast<std::size_t>(*reinterpret_cast<const float*>(model.buffers[0].data.data() + iview.byteOffset + ids.byteOffset));
+  const std::size_t organ = static_cast<std::size_t>(
+      *reinterpret_cast<const float*>(model.buffers[0].data.data() + iview.byteOffset + ids.byteOffset));
   const Vec3f local = apply(s.transforms[organ], lib.get(s.organs[organ]).positions[0]);
   CHECK(v[0] == doctest::Approx(local.x).epsilon(1e-6));
   CHECK(v[1] == doctest::Approx(local.z).epsilon(1e-6));
@@ -183,7 +186,8 @@ TEST_CASE("organs.csv reads back bit for bit, and the files are byte-identical a
   export_all(b, d2);
   const Stand back = read_stand(d1);
   REQUIRE(back.organ_count() == a.organ_count());
-  CHECK(std::memcmp(back.transforms.data(), a.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
+  CHECK(std::memcmp(back.transforms.data(), a.transforms.data(), a.transforms.size() * sizeof(Affine3f)) ==
+        0);
   CHECK(std::memcmp(back.organs.data(), a.organs.data(), a.organs.size() * sizeof(OrganRecord)) == 0);
   for (std::size_t p = 0; p < a.plant_count(); ++p) {
     CHECK(back.plants[p].first_organ == a.plants[p].first_organ);
@@ -259,7 +263,8 @@ TEST_CASE("instanced glb: every organ's translation, rotation and scale give bac
       const float* q = floats(ext.Get("ROTATION").GetNumberAsInt());
       const float* sc = floats(ext.Get("SCALE").GetNumberAsInt());
       const float* id = floats(ext.Get("_ORGAN").GetNumberAsInt());
-      const std::size_t n = model.accessors[static_cast<std::size_t>(ext.Get("_ORGAN").GetNumberAsInt())].count;
+      const std::size_t n =
+          model.accessors[static_cast<std::size_t>(ext.Get("_ORGAN").GetNumberAsInt())].count;
       const auto& prim = model.meshes[static_cast<std::size_t>(node.mesh)].primitives[0];
       const float* pos = floats(prim.attributes.at("POSITION"));
       const std::size_t nv = model.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))].count;
@@ -270,7 +275,8 @@ TEST_CASE("instanced glb: every organ's translation, rotation and scale give bac
         REQUIRE(nv == pm.positions.size());
         for (std::size_t k = 0; k < nv; k += 5) {
           // S, then R (unit quaternion), then T: the plant-frame vertex.
-          const Vec3d v{pos[3 * k] * sc[3 * i], pos[3 * k + 1] * sc[3 * i + 1], pos[3 * k + 2] * sc[3 * i + 2]};
+          const Vec3d v{pos[3 * k] * sc[3 * i], pos[3 * k + 1] * sc[3 * i + 1],
+                        pos[3 * k + 2] * sc[3 * i + 2]};
           const Vec3d u{q[4 * i], q[4 * i + 1], q[4 * i + 2]};
           const double w = q[4 * i + 3];
           const Vec3d r = v + cross(u, cross(u, v) + v * w) * 2.0;

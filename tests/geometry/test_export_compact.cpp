@@ -111,10 +111,12 @@ ReadBack check_compact(const Stand& s, const GlbCompactConfig& config) {
     const Vec3d off = s.offset(p);
     std::size_t organs_seen = 0;
     for (const auto& prim : m.meshes[static_cast<std::size_t>(node.mesh)].primitives) {
-      const int pos = prim.attributes.at("POSITION"), nrm = prim.attributes.at("NORMAL"), ids = prim.attributes.at("_ORGAN");
+      const int pos = prim.attributes.at("POSITION"), nrm = prim.attributes.at("NORMAL"),
+                ids = prim.attributes.at("_ORGAN");
       const std::size_t count = m.accessors[static_cast<std::size_t>(pos)].count;
       const int idx = prim.indices;
-      r.wide_indices += m.accessors[static_cast<std::size_t>(idx)].componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+      r.wide_indices +=
+          m.accessors[static_cast<std::size_t>(idx)].componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
       const bool uv = prim.attributes.count("TEXCOORD_0") > 0;
       std::size_t i = 0, t = 0;
       while (i < count) {
@@ -131,7 +133,8 @@ ReadBack check_compact(const Stand& s, const GlbCompactConfig& config) {
           const double want[3] = {off.x + v.x, off.z + v.z, -(off.y + v.y)};
           const double tol = step > 0 ? step / 2 * (1 + 1e-9) : 1e-6;
           for (int c = 0; c < 3; ++c) {
-            const double got = node.translation[static_cast<std::size_t>(c)] + (step > 0 ? step : 1) * component(m, pos, i, c);
+            const double got = node.translation[static_cast<std::size_t>(c)] +
+                               (step > 0 ? step : 1) * component(m, pos, i, c);
             CHECK(std::fabs(got - want[c]) <= tol);
           }
           const Vec3f n = to_y_up(mesh.normals[k]);
@@ -142,7 +145,8 @@ ReadBack check_compact(const Stand& s, const GlbCompactConfig& config) {
               CHECK(std::fabs(component(m, prim.attributes.at("TEXCOORD_0"), i, c) -
                               mesh.prototype->uvs[k][static_cast<std::size_t>(c)]) <= 0.5 / 65535 + 1e-7);
         }
-        for (std::uint32_t k : mesh.prototype->indices) CHECK(component(m, idx, t++, 0) == static_cast<double>(base + k));
+        for (std::uint32_t k : mesh.prototype->indices)
+          CHECK(component(m, idx, t++, 0) == static_cast<double>(base + k));
         ++organs_seen;
       }
       r.vertices += count;
@@ -192,8 +196,8 @@ TEST_CASE("compact glb: 32-bit indices past 65,535 vertices a primitive; more or
   CHECK(r.wide_indices == 1);
   req.steps = 17;  // 131,072 organs in one plant
   const Stand many = grow_stand(req);
-  CHECK_THROWS_WITH_AS(check_glb_compact(ExportScope::whole(many)), doctest::Contains("plant 0 has 131072 organs"),
-                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(check_glb_compact(ExportScope::whole(many)),
+                       doctest::Contains("plant 0 has 131072 organs"), std::invalid_argument);
   PrototypeLibrary lib;
   fs::create_directories(dir + "/out");
   {

@@ -52,7 +52,8 @@ TEST_CASE("a long line across many reads, and one longer than the bound") {
   InputFile in(f, "test file", 1 << 20);
   std::string line;
   REQUIRE(in.next_line(line));
-  CHECK_THROWS_WITH_AS(in.next_line(line), (f + ":2: a line of the test file is longer than the 64 KiB canopy reads").c_str(),
+  CHECK_THROWS_WITH_AS(in.next_line(line),
+                       (f + ":2: a line of the test file is longer than the 64 KiB canopy reads").c_str(),
                        InputRefused);
   std::remove(f.c_str());
 }
@@ -60,18 +61,22 @@ TEST_CASE("a long line across many reads, and one longer than the bound") {
 TEST_CASE("files larger than the limit, by their size or by what is read") {
   const std::string f = write_temp(std::string(2000, 'y'));
   CHECK_THROWS_WITH_AS(InputFile(f, "test file", 1024),
-                       (f + ": the test file is larger than the 1 KiB canopy reads (2000 bytes)").c_str(), InputRefused);
+                       (f + ": the test file is larger than the 1 KiB canopy reads (2000 bytes)").c_str(),
+                       InputRefused);
   CHECK(read_input_file(f, "test file", 2000).size() == 2000);
   std::remove(f.c_str());
   // A file under /proc says its size is 0; what is read counts.
   CHECK_THROWS_WITH_AS(read_input_file("/proc/self/maps", "test file", 16),
-                       "/proc/self/maps: the test file is larger than the 16 bytes canopy reads", InputRefused);
+                       "/proc/self/maps: the test file is larger than the 16 bytes canopy reads",
+                       InputRefused);
 }
 
 TEST_CASE("folders, devices and pipes are refused without waiting or reading") {
-  CHECK_THROWS_WITH_AS(InputFile("/tmp", "test file", 1024), "/tmp: the test file is a folder, not a file", InputRefused);
+  CHECK_THROWS_WITH_AS(InputFile("/tmp", "test file", 1024), "/tmp: the test file is a folder, not a file",
+                       InputRefused);
   CHECK_THROWS_WITH_AS(InputFile("/dev/zero", "test file", 1024),
-                       "/dev/zero: the test file is not a regular file (a device, pipe or socket)", InputRefused);
+                       "/dev/zero: the test file is not a regular file (a device, pipe or socket)",
+                       InputRefused);
   char fifo[] = "/tmp/canopy-fifo-XXXXXX";
   REQUIRE(mkdtemp(fifo));
   const std::string path = std::string(fifo) + "/pipe";

@@ -92,7 +92,8 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   CHECK(message(l).starts_with("--plant-spacing 1e+300 m: plants may stand at most 1e+08 m from the origin"));
   l.plant_spacing = 6e7;
   l.per_row = 3;  // 1.2e8 m for the third plant
-  CHECK(message(l).starts_with("--per-row 3 x --plant-spacing 6e+07 m (+ --jitter 0 m) reaches x = 1.2e+08 m"));
+  CHECK(
+      message(l).starts_with("--per-row 3 x --plant-spacing 6e+07 m (+ --jitter 0 m) reaches x = 1.2e+08 m"));
   l.per_row = 1;
   l.jitter = 2e8;
   CHECK(message(l).starts_with("--jitter 2e+08 m:"));
@@ -174,7 +175,8 @@ TEST_CASE("positions files: missing columns and bad cells name the place") {
   CHECK(error_of("x,y,rotation,seed,steps\n1,2,0,4,2.5\n") ==
         ":2:9: column 'steps' needs a whole number from 0 to 100000, got '2.5'");
   CHECK(error_of("x;y;rotation;seed\n0,5;1;0;4\n") ==
-        ":1: missing column 'x' (the header needs x,y,rotation,seed and may add grammar,steps); the cells are separated by ';' "
+        ":1: missing column 'x' (the header needs x,y,rotation,seed and may add grammar,steps); the cells "
+        "are separated by ';' "
         "or tabs, and positions files use commas");
   CHECK(error_of("") == ": empty positions file (expected a header x,y,rotation,seed)");
 }
@@ -203,7 +205,8 @@ TEST_CASE("positions files: unknown and duplicate columns are refused by name") 
   // A misspelt column was passed over: every plant grew at the default age.
   CHECK(error_of("x,y,rotation,seed,Steps\n0,0,0,1,3\n") ==
         ":1:19: unknown column 'Steps' (the header has x,y,rotation,seed and may add grammar,steps)");
-  CHECK(error_of("x,y,rotation,seed,x\n0,0,0,1,3\n") == ":1:19: column 'x' appears twice in the header (cells 1 and 5)");
+  CHECK(error_of("x,y,rotation,seed,x\n0,0,0,1,3\n") ==
+        ":1:19: column 'x' appears twice in the header (cells 1 and 5)");
   CHECK(error_of("x,y,rotation,seed,\n0,0,0,1,\n") ==
         ":1:19: unknown column '' (the header has x,y,rotation,seed and may add grammar,steps)");
 }
@@ -220,7 +223,8 @@ TEST_CASE("positions files: a grammar cell names a file in the positions file's 
   for (const char* ok : {"tomato.yaml", "sub/young.yaml", "./a/../b.yaml", "a/b/../../c.yaml"})
     CHECK(positions_of(std::string("x,y,rotation,seed,grammar\n0,0,0,1,") + ok + "\n")[0].grammar == ok);
   CHECK(error_of("x,y,rotation,seed,grammar\n0,0,0,1,../../../../etc/shadow\n") ==
-        ":2:9: column 'grammar': '../../../../etc/shadow' leaves the positions file's folder; a grammar cell names a file in the "
+        ":2:9: column 'grammar': '../../../../etc/shadow' leaves the positions file's folder; a grammar cell "
+        "names a file in the "
         "positions file's folder or below it (--any-grammar-path allows others)");
   CHECK(error_of("x,y,rotation,seed,grammar\n0,0,0,1,a/../../b.yaml\n")
             .starts_with(":2:9: column 'grammar': 'a/../../b.yaml' leaves"));
@@ -237,8 +241,10 @@ TEST_CASE("positions files: a grammar cell names a file in the positions file's 
 
 TEST_CASE("positions files that are not regular files are refused before reading") {
   CHECK_THROWS_WITH_AS(read_positions("/dev/zero"),
-                       "/dev/zero: the positions file is not a regular file (a device, pipe or socket)", std::invalid_argument);
-  CHECK_THROWS_WITH_AS(read_positions("/tmp"), "/tmp: the positions file is a folder, not a file", std::invalid_argument);
+                       "/dev/zero: the positions file is not a regular file (a device, pipe or socket)",
+                       std::invalid_argument);
+  CHECK_THROWS_WITH_AS(read_positions("/tmp"), "/tmp: the positions file is a folder, not a file",
+                       std::invalid_argument);
   CHECK_THROWS_AS(read_positions("/tmp/canopy-no-such-positions.csv"), FileNotFound);
 }
 
@@ -250,10 +256,12 @@ TEST_CASE("row layouts name the length that is not finite") {
                        std::invalid_argument);
   l.jitter = 0;
   l.plant_spacing = -1;
-  CHECK_THROWS_WITH_AS(row_layout(l), "the plant spacing must be a finite number of metres, not negative (got -1)",
+  CHECK_THROWS_WITH_AS(row_layout(l),
+                       "the plant spacing must be a finite number of metres, not negative (got -1)",
                        std::invalid_argument);
   l.plant_spacing = 0.4;
   l.double_rows = NAN;
-  CHECK_THROWS_WITH_AS(row_layout(l), "the double-row gap must be a finite number of metres, not negative (got nan)",
+  CHECK_THROWS_WITH_AS(row_layout(l),
+                       "the double-row gap must be a finite number of metres, not negative (got nan)",
                        std::invalid_argument);
 }

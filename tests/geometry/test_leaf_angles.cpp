@@ -22,13 +22,15 @@ Stand disks(const std::vector<double>& inclinations, float r) {
     const float c = static_cast<float>(std::cos(incl * kDeg)), sn = static_cast<float>(std::sin(incl * kDeg));
     Affine3f t;
     t.c0 = {r, 0, 0}, t.c1 = {0, r * c, r * sn}, t.c2 = {0, -r * sn, r * c};
-    s.organs.push_back(o), s.transforms.push_back(t), s.params.push_back({r, 0}), s.joint_limit_deg.push_back(60);
+    s.organs.push_back(o), s.transforms.push_back(t), s.params.push_back({r, 0}),
+        s.joint_limit_deg.push_back(60);
   }
   // A stem that is no leaflet and must not count.
   OrganRecord stem;
   Affine3f st;
   st.c0 = {0, 0, 1}, st.c1 = {0.01f, 0, 0}, st.c2 = {0, 0.01f, 0};
-  s.organs.push_back(stem), s.transforms.push_back(st), s.params.push_back({1, 0.01f}), s.joint_limit_deg.push_back(60);
+  s.organs.push_back(stem), s.transforms.push_back(st), s.params.push_back({1, 0.01f}),
+      s.joint_limit_deg.push_back(60);
   p.organ_count = static_cast<std::uint32_t>(s.organ_count());
   s.plants.push_back(p);
   return s;
@@ -36,11 +38,16 @@ Stand disks(const std::vector<double>& inclinations, float r) {
 
 }  // namespace
 
-TEST_CASE("mean projection: cos theta cos theta_l until the blade turns away, 2 sin theta / pi for vertical blades") {
+TEST_CASE(
+    "mean projection: cos theta cos theta_l until the blade turns away, 2 sin theta / pi for vertical "
+    "blades") {
   for (double th : {0.0, 20.0, 45.0, 70.0, 89.0}) {
     CHECK(mean_projection(th * kDeg, 0) == doctest::Approx(std::cos(th * kDeg)));
-    CHECK(mean_projection(th * kDeg, 90 * kDeg) == doctest::Approx(2 * std::sin(th * kDeg) / std::numbers::pi));
-    if (th + 10 <= 90) CHECK(mean_projection(th * kDeg, 10 * kDeg) == doctest::Approx(std::cos(th * kDeg) * std::cos(10 * kDeg)));
+    CHECK(mean_projection(th * kDeg, 90 * kDeg) ==
+          doctest::Approx(2 * std::sin(th * kDeg) / std::numbers::pi));
+    if (th + 10 <= 90)
+      CHECK(mean_projection(th * kDeg, 10 * kDeg) ==
+            doctest::Approx(std::cos(th * kDeg) * std::cos(10 * kDeg)));
   }
   // Numerically: the mean over azimuth of |cos| at a crossing case.
   const double th = 70 * kDeg, tl = 60 * kDeg;
@@ -66,7 +73,8 @@ TEST_CASE("leaf angles: bins, mean inclination and G of hand-placed disks") {
   CHECK(la.mean_inclination_deg == doctest::Approx((47.0 + 90.0) / 4).epsilon(1e-5));
   for (std::size_t k = 0; k < kGZenithsDeg.size(); ++k) {
     const double th = kGZenithsDeg[k] * kDeg;
-    const double want = (2 * std::cos(th) + mean_projection(th, 47 * kDeg) + 2 * std::sin(th) / std::numbers::pi) / 4;
+    const double want =
+        (2 * std::cos(th) + mean_projection(th, 47 * kDeg) + 2 * std::sin(th) / std::numbers::pi) / 4;
     CHECK(la.g[k] == doctest::Approx(want).epsilon(1e-5));
   }
   // An empty stand: zeros, no division by zero.

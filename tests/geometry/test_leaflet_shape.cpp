@@ -17,22 +17,27 @@ namespace {
 constexpr double kDeg = 180 / std::numbers::pi;
 
 double mesh_area(const PrototypeMesh& m, double aspect) {
-  return transformed_area(m, {{1, 0, 0}, {0, static_cast<float>(aspect), 0}, {0, 0, static_cast<float>(aspect)}, {0, 0, 0}});
+  return transformed_area(
+      m, {{1, 0, 0}, {0, static_cast<float>(aspect), 0}, {0, 0, static_cast<float>(aspect)}, {0, 0, 0}});
 }
 
 bool same_mesh(const PrototypeMesh& a, const PrototypeMesh& b) {
   const auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
   return a.positions.size() == b.positions.size() && a.indices == b.indices && a.uvs == b.uvs &&
          std::memcmp(a.positions.data(), b.positions.data(), bytes(a.positions)) == 0 &&
-         std::memcmp(a.normals.data(), b.normals.data(), bytes(a.normals)) == 0 && std::memcmp(&a.box, &b.box, sizeof a.box) == 0;
+         std::memcmp(a.normals.data(), b.normals.data(), bytes(a.normals)) == 0 &&
+         std::memcmp(&a.box, &b.box, sizeof a.box) == 0;
 }
 
 /// The curved blade's area at the nominal aspect, by quadrature: lengths across are kept, lengths
 /// along are stretched by 1 - bend x (height of the cross-section above the midrib) (the blade
 /// stands on the midrib's normal), so dA = a0 (1 - b a0 Z(|y|)) ds dy over the flat outline.
 double curved_area(const LeafletShape& shape) {
-  const double a0 = kNominalLeafletAspect, b = shape.bend_deg / kDeg, k = shape.cup_deg / kDeg / 0.5, f = shape.fold_deg / kDeg;
-  const auto Z = [&](double u) { return std::fabs(k) > 1e-12 ? (std::cos(f) - std::cos(f + k * u)) / k : u * std::sin(f); };
+  const double a0 = kNominalLeafletAspect, b = shape.bend_deg / kDeg, k = shape.cup_deg / kDeg / 0.5,
+               f = shape.fold_deg / kDeg;
+  const auto Z = [&](double u) {
+    return std::fabs(k) > 1e-12 ? (std::cos(f) - std::cos(f + k * u)) / k : u * std::sin(f);
+  };
   const int n = 2000;
   double area = 0;
   for (int i = 0; i < n; ++i) {
@@ -71,7 +76,8 @@ TEST_CASE("shape codes round-trip, round to their steps and refuse angles out of
 
 TEST_CASE("shape 0 is the flat blade, byte for byte, and only leaflets take a shape") {
   for (int lod = 1; lod <= kMaxLod; ++lod)
-    CHECK(same_mesh(make_prototype(PrototypeKind::leaflet, lod, 0), make_prototype(PrototypeKind::leaflet, lod)));
+    CHECK(same_mesh(make_prototype(PrototypeKind::leaflet, lod, 0),
+                    make_prototype(PrototypeKind::leaflet, lod)));
   CHECK_THROWS(make_prototype(PrototypeKind::cylinder, 2, 5));
   PrototypeLibrary lib;
   CHECK_THROWS(lib.get(PrototypeKind::sphere, 2, 9));
@@ -96,7 +102,8 @@ TEST_CASE("a curved leaflet is the flat blade carried onto its surface, at every
       CHECK(std::fabs(a / af - 1) < 0.08);
       // Triangles wound so that each faces the way its corners' normals do.
       for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-        const Vec3f p = m.positions[m.indices[i]], q = m.positions[m.indices[i + 1]], r = m.positions[m.indices[i + 2]];
+        const Vec3f p = m.positions[m.indices[i]], q = m.positions[m.indices[i + 1]],
+                    r = m.positions[m.indices[i + 2]];
         const Vec3f n = m.normals[m.indices[i]] + m.normals[m.indices[i + 1]] + m.normals[m.indices[i + 2]];
         CHECK(dot(cross(q - p, r - p), n) > 0);
       }

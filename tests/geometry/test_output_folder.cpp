@@ -53,7 +53,8 @@ ino_t inode(const fs::path& p) {
 
 const std::vector<std::string> kStand{"organs.csv", "plants.csv", "report.json", "stand.ply", "light.csv"};
 
-void write_set(const std::string& dir, const std::string& tag, std::vector<std::string> files = {"organs.csv", "plants.csv"}) {
+void write_set(const std::string& dir, const std::string& tag,
+               std::vector<std::string> files = {"organs.csv", "plants.csv"}) {
   OutputSet set(dir, kStand);
   for (const std::string& f : files) set.open(f).write(tag);
   set.commit_all();
@@ -104,7 +105,8 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv", "renders"});
   CHECK(slurp(dir / "organs.csv") == "new");
   CHECK(inode(dir / "notes.txt") == notes);  // the same file, never copied
-  CHECK(fs::status(dir).permissions() == (fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec));
+  CHECK(fs::status(dir).permissions() ==
+        (fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec));
   CHECK(slurp(dir / "renders" / "deep" / "a.png") == "picture");
   CHECK(std::set<std::string>(c.dropped.begin(), c.dropped.end()) ==
         std::set<std::string>{"light.csv", "report.json", "stand.ply"});
@@ -194,13 +196,15 @@ TEST_CASE("readers never see a mix of two sets") {
 TEST_CASE("output folders that cannot be replaced as a whole are refused up front") {
   const fs::path root = temp_dir();
   put(root / "file", "x");
-  CHECK_THROWS_WITH_AS(check_output_dir((root / "file").string()), doctest::Contains("it exists and is not a folder"),
+  CHECK_THROWS_WITH_AS(check_output_dir((root / "file").string()),
+                       doctest::Contains("it exists and is not a folder"), std::runtime_error);
+  CHECK_THROWS_WITH_AS(check_output_dir("/"), doctest::Contains("the file system's root cannot be replaced"),
                        std::runtime_error);
-  CHECK_THROWS_WITH_AS(check_output_dir("/"), doctest::Contains("the file system's root cannot be replaced"), std::runtime_error);
   CHECK_THROWS_AS(check_output_dir("/proc/canopy-cannot-write-here"), std::runtime_error);
   const fs::path here = fs::current_path();
   fs::current_path(root);
-  CHECK_THROWS_WITH_AS(check_output_dir("."), doctest::Contains("it is the working folder"), std::runtime_error);
+  CHECK_THROWS_WITH_AS(check_output_dir("."), doctest::Contains("it is the working folder"),
+                       std::runtime_error);
   CHECK_NOTHROW(check_output_dir("sub/new"));
   fs::current_path(here);
   CHECK(names(root) == std::set<std::string>{"file"});  // the checks leave nothing behind
@@ -267,7 +271,8 @@ TEST_CASE("number formatting checks every conversion") {
   // A number past the field's 64 characters was appended from a buffer never written (1e57 in
   // stand.obj: 860 bytes of stack memory); it is an error now.
   CHECK_THROWS_WITH_AS(append_fixed(out, 1e57, 7),
-                       doctest::Contains("cannot write the number 1.000000e+57 with 7 fixed decimals"), std::range_error);
+                       doctest::Contains("cannot write the number 1.000000e+57 with 7 fixed decimals"),
+                       std::range_error);
   CHECK(out == "123.250");
   append_number(out, 1e300);
   CHECK(out == "123.2501e+300");

@@ -13,7 +13,9 @@
 using namespace canopy;
 
 namespace {
-double mesh_area(const PrototypeMesh& m) { return transformed_area(m, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}}); }
+double mesh_area(const PrototypeMesh& m) {
+  return transformed_area(m, {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}});
+}
 
 /// Every undirected edge of a closed mesh is used by exactly two triangles, once each way.
 bool closed(const PrototypeMesh& m) {
@@ -49,7 +51,8 @@ TEST_CASE("the leaflet is a real ovate, pointed blade") {
   CHECK(leaflet_outline_area() == doctest::Approx(0.69282).epsilon(1e-4));
   // Flat, with UVs and +Z normals; triangles wound counter-clockwise seen from +Z.
   for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-    const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]], c = m.positions[m.indices[i + 2]];
+    const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]],
+                c = m.positions[m.indices[i + 2]];
     CHECK(cross(b - a, c - a).z > 0);
   }
   CHECK(m.uvs.size() == m.positions.size());
@@ -63,7 +66,8 @@ TEST_CASE("cylinders and spheres are closed solids with outward normals") {
       CHECK(closed(m));
       const Vec3f centre = k == PrototypeKind::cylinder ? Vec3f{0.5f, 0, 0} : Vec3f{1, 0, 0};
       for (std::size_t i = 0; i < m.indices.size(); i += 3) {
-        const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]], c = m.positions[m.indices[i + 2]];
+        const Vec3f a = m.positions[m.indices[i]], b = m.positions[m.indices[i + 1]],
+                    c = m.positions[m.indices[i + 2]];
         CHECK(dot(cross(b - a, c - a), (a + b + c) * (1.0f / 3) - centre) > 0);
       }
     }
@@ -88,7 +92,8 @@ TEST_CASE("local boxes are the exact bounds of the vertices") {
 TEST_CASE("every vertex is a corner of a triangle, and the corners in lanes are the triangles' corners") {
   // The exact stage takes an organ's box from its triangles' corners (collision/exact.cpp), the
   // box of its vertices only while every vertex is a corner.
-  for (const PrototypeKind kind : {PrototypeKind::cylinder, PrototypeKind::leaflet, PrototypeKind::sphere, PrototypeKind::disk})
+  for (const PrototypeKind kind :
+       {PrototypeKind::cylinder, PrototypeKind::leaflet, PrototypeKind::sphere, PrototypeKind::disk})
     for (int lod = 1; lod <= kMaxLod; ++lod) {
       const PrototypeMesh m = make_prototype(kind, lod);
       std::vector<char> corner(m.positions.size(), 0);

@@ -42,7 +42,8 @@ std::size_t float_mismatches(std::uint64_t first, std::uint64_t last, std::uint6
   std::size_t bad = 0;
   for (std::uint64_t b = first; b < last; b += step) {
     const float f = float_of(static_cast<std::uint32_t>(b));
-    if (ours(f) != theirs(f) && bad++ == 0) CHECK_MESSAGE(false, "float bits " << b << ": " << ours(f) << " vs " << theirs(f));
+    if (ours(f) != theirs(f) && bad++ == 0)
+      CHECK_MESSAGE(false, "float bits " << b << ": " << ours(f) << " vs " << theirs(f));
   }
   return bad;
 }
@@ -53,13 +54,15 @@ TEST_CASE("shortest_chars writes what std::to_chars writes: floats") {
   CHECK(float_mismatches(0, std::uint64_t(1) << 32, 1021) == 0);
   // Around the whole numbers where the fixed form takes exact digits (2^24 and up) and the
   // points where fixed and scientific are the same length (1e-5, 1e+5 .. 1e+14).
-  for (const float at : {1e-5f, 1e-4f, 1e5f, 1e6f, 1e7f, 16777216.0f, 1e8f, 1e9f, 1e10f, 1e11f, 1e12f, 1e13f, 1e14f, 1e15f}) {
+  for (const float at :
+       {1e-5f, 1e-4f, 1e5f, 1e6f, 1e7f, 16777216.0f, 1e8f, 1e9f, 1e10f, 1e11f, 1e12f, 1e13f, 1e14f, 1e15f}) {
     std::uint32_t bits;
     std::memcpy(&bits, &at, 4);
     CHECK(float_mismatches(bits - 20000, bits + 20000, 1) == 0);
     CHECK(float_mismatches((bits - 20000) | 0x80000000u, (bits + 20000) | 0x80000000u, 1) == 0);
   }
-  for (const float v : {0.0f, -0.0f, 1.0f, -1.0f, 0.1f, 3.0e38f, 1e-45f, 1.17549435e-38f, INFINITY, -INFINITY, NAN, -NAN})
+  for (const float v :
+       {0.0f, -0.0f, 1.0f, -1.0f, 0.1f, 3.0e38f, 1e-45f, 1.17549435e-38f, INFINITY, -INFINITY, NAN, -NAN})
     CHECK(ours(v) == theirs(v));
 }
 
@@ -80,7 +83,8 @@ TEST_CASE("shortest_chars writes what std::to_chars writes: doubles") {
     if (ours(d) != theirs(d) && bad++ == 0) CHECK_MESSAGE(false, ours(d) << " vs " << theirs(d));
   }
   CHECK(bad == 0);
-  for (const double v : {0.0, -0.0, 1.0, 1e22, 9.999999999999999e21, 1e21, 123456789012345678.0, 5e-324, 1.7976931348623157e308,
-                         0.1, 1e-5, 1e-4, 1e15, 1e16, 1e17, double(INFINITY), -double(INFINITY), double(NAN)})
+  for (const double v : {0.0, -0.0, 1.0, 1e22, 9.999999999999999e21, 1e21, 123456789012345678.0, 5e-324,
+                         1.7976931348623157e308, 0.1, 1e-5, 1e-4, 1e15, 1e16, 1e17, double(INFINITY),
+                         -double(INFINITY), double(NAN)})
     CHECK(ours(v) == theirs(v));
 }

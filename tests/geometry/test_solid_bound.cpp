@@ -19,7 +19,8 @@ namespace {
 using LD = long double;
 
 LD point_distance(D3 p, D3 u, LD s, D3 q, D3 v, LD t) {
-  const LD x = p.x + u.x * s - q.x - v.x * t, y = p.y + u.y * s - q.y - v.y * t, z = p.z + u.z * s - q.z - v.z * t;
+  const LD x = p.x + u.x * s - q.x - v.x * t, y = p.y + u.y * s - q.y - v.y * t,
+           z = p.z + u.z * s - q.z - v.z * t;
   return std::sqrt(x * x + y * y + z * z);
 }
 
@@ -33,7 +34,8 @@ LD reference_segment_distance(D3 p, D3 u, D3 q, D3 v) {
       if (point_distance(p, u, s, q, v, a) < point_distance(p, u, s, q, v, b)) hi = b;
       else lo = a;
     }
-    return std::min<LD>({point_distance(p, u, s, q, v, lo), point_distance(p, u, s, q, v, 0), point_distance(p, u, s, q, v, 1)});
+    return std::min<LD>({point_distance(p, u, s, q, v, lo), point_distance(p, u, s, q, v, 0),
+                         point_distance(p, u, s, q, v, 1)});
   };
   LD lo = 0, hi = 1;
   for (int i = 0; i < 200; ++i) {
@@ -79,7 +81,8 @@ TEST_CASE("the segment distance bound never exceeds the least distance, and stay
     crossing += kind == 2;
     const double bound = segments_distance_bound(p, uu, q, vv);
     const LD ref = reference_segment_distance(p, uu, q, vv);
-    CHECK_MESSAGE(static_cast<LD>(bound) <= ref + 1e-12L, "trial ", trial, " bound ", bound, " least ", static_cast<double>(ref));
+    CHECK_MESSAGE(static_cast<LD>(bound) <= ref + 1e-12L, "trial ", trial, " bound ", bound, " least ",
+                  static_cast<double>(ref));
     // Close: within 1e-9 m, the all-but-parallel allowance of 2 (|u| + |v|) sin, and the margin
     // left for the rounding of the lines' closest points (1e-14 (1 + |r| / |u|) / sin^2 of u).
     const D3 n = cross(uu, vv), r = q - p;
@@ -87,11 +90,11 @@ TEST_CASE("the segment distance bound never exceeds the least distance, and stay
     double allowance = sin < 1e-5 ? 2 * (len_u + len_v) * sin : 0;
     if (sin >= 1e-5) {
       const double rn = std::sqrt(dot(r, r));
-      allowance =
-          (1e-12 + 1e-14 * (1 + rn / len_u) / (sin * sin)) * len_u + (1e-12 + 1e-14 * (1 + rn / len_v) / (sin * sin)) * len_v;
+      allowance = (1e-12 + 1e-14 * (1 + rn / len_u) / (sin * sin)) * len_u +
+                  (1e-12 + 1e-14 * (1 + rn / len_v) / (sin * sin)) * len_v;
     }
-    CHECK_MESSAGE(static_cast<LD>(bound) >= ref - allowance - 1e-9L, "trial ", trial, " bound ", bound, " least ",
-                  static_cast<double>(ref));
+    CHECK_MESSAGE(static_cast<LD>(bound) >= ref - allowance - 1e-9L, "trial ", trial, " bound ", bound,
+                  " least ", static_cast<double>(ref));
   }
   CHECK(parallel > 500);
   CHECK(crossing > 500);
@@ -112,7 +115,9 @@ TEST_CASE("a solid's capsule holds every vertex of its posed mesh") {
     // Unequal radial scales and a sheared column on some: the stretch bound must still hold.
     const double r2 = trial % 3 == 0 ? r1 * (0.5 + u01(g)) : r1;
     const D3 shear = trial % 5 == 0 ? h * (0.3 * r1) : D3{0, 0, 0};
-    const auto f = [](D3 v) { return Vec3f{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)}; };
+    const auto f = [](D3 v) {
+      return Vec3f{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+    };
     Affine3f m;
     m.c0 = f(h * (kind == PrototypeKind::cylinder ? length : r1));
     m.c1 = f(l * r1 + shear);
@@ -141,8 +146,10 @@ TEST_CASE("only two solids are ever rejected, and never on non-finite transforms
   const Affine3f far{{0.1f, 0, 0}, {0, 0.01f, 0}, {0, 0, 0.01f}, {0, 0, 1}};
   CHECK(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, 0}, 0));
   CHECK(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::sphere, far, {0, 0, 0}, 0));
-  CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, 0}, 2.0f));    // within the clearance
-  CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, -0.99f}, 0));  // moved onto it
+  CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, 0},
+                           2.0f));  // within the clearance
+  CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::cylinder, far, {0, 0, -0.99f},
+                           0));  // moved onto it
   CHECK_FALSE(solids_apart(PrototypeKind::leaflet, a, PrototypeKind::cylinder, far, {0, 0, 0}, 0));
   CHECK_FALSE(solids_apart(PrototypeKind::cylinder, a, PrototypeKind::disk, far, {0, 0, 0}, 0));
   Affine3f bad = far;

@@ -24,7 +24,8 @@ void add_plant(Stand& s, double x, double y, int n, float r) {
   stem.lod = 1;
   Affine3f t;
   t.c0 = {0, 0, 0.5f}, t.c1 = {0, -0.01f, 0}, t.c2 = {0.01f, 0, 0};
-  s.organs.push_back(stem), s.transforms.push_back(t), s.params.push_back({0.5f, 0.01f}), s.joint_limit_deg.push_back(60);
+  s.organs.push_back(stem), s.transforms.push_back(t), s.params.push_back({0.5f, 0.01f}),
+      s.joint_limit_deg.push_back(60);
   for (int k = 0; k < n; ++k) {
     OrganRecord leaf;
     leaf.plant = plant;
@@ -34,7 +35,8 @@ void add_plant(Stand& s, double x, double y, int n, float r) {
     leaf.lod = 1;
     Affine3f d;
     d.c0 = {r, 0, 0}, d.c1 = {0, r, 0}, d.c2 = {0, 0, r}, d.t = {0, 0, 0.1f * static_cast<float>(k + 1)};
-    s.organs.push_back(leaf), s.transforms.push_back(d), s.params.push_back({r, 0}), s.joint_limit_deg.push_back(60);
+    s.organs.push_back(leaf), s.transforms.push_back(d), s.params.push_back({r, 0}),
+        s.joint_limit_deg.push_back(60);
   }
   p.organ_count = static_cast<std::uint32_t>(s.organ_count()) - p.first_organ;
   s.plants.push_back(p);
@@ -79,7 +81,8 @@ TEST_CASE("leaf inclination: the area of leaflet blades by the angle of their no
     leaf.kind = OrganKind::leaflet;
     leaf.prototype = PrototypeKind::disk;
     leaf.lod = 1;
-    s.organs.push_back(leaf), s.transforms.push_back(t), s.params.push_back({r, 0}), s.joint_limit_deg.push_back(60);
+    s.organs.push_back(leaf), s.transforms.push_back(t), s.params.push_back({r, 0}),
+        s.joint_limit_deg.push_back(60);
   }
   s.plants[0].organ_count = static_cast<std::uint32_t>(s.organ_count());
   PrototypeLibrary lib;

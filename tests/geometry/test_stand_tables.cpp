@@ -21,15 +21,18 @@ const std::string kPlants =
     "0,0,0,0,7,tomato.yaml,6\n"
     "1,0.4,0,90,8,tomato.yaml,6\n";
 const std::string kOrgansHeader =
-    "id,plant,parent,kind,leaf,area,length,prototype,p0,p1,lod,joint_limit,hx,hy,hz,lx,ly,lz,ux,uy,uz,tx,ty,tz\n";
+    "id,plant,parent,kind,leaf,area,length,prototype,p0,p1,lod,joint_limit,hx,hy,hz,lx,ly,lz,ux,uy,uz,tx,ty,"
+    "tz\n";
 /// Two plants: an internode carrying a petiole and a leaflet of compound leaf 0; then plant 1's
 /// internode and leaflet of its compound leaf, id 1.
 const std::vector<std::string> kOrgans{
     "0,0,-1,internode,-1,0.1,0.1,cylinder,0.1,0.01,2,60,0,0,0.1,0,-0.01,0,0.01,0,0,0,0,0",
     "1,0,0,petiole,0,0.1,0.1,cylinder,0.08,0.004,2,60,0.06,0,0.04,0,-0.004,0,0.002,0,-0.003,0,0,0.1",
-    "2,0,1,leaflet,0,0.1,0.1,leaflet,0.07,0.04,2,60,0.02,0.06,0.008,0.03,-0.01,0.02,0.02,-0.001,-0.03,0.1,0.01,0.15",
+    "2,0,1,leaflet,0,0.1,0.1,leaflet,0.07,0.04,2,60,0.02,0.06,0.008,0.03,-0.01,0.02,0.02,-0.001,-0.03,0.1,0."
+    "01,0.15",
     "3,1,-1,internode,-1,0.1,0.1,cylinder,0.1,0.01,2,60,0,0,0.1,0,-0.01,0,0.01,0,0,0,0,0",
-    "4,1,3,leaflet,1,0.1,0.1,leaflet,0.07,0.04,2,60,0.02,0.06,0.008,0.03,-0.01,0.02,0.02,-0.001,-0.03,0.1,0.01,0.15",
+    "4,1,3,leaflet,1,0.1,0.1,leaflet,0.07,0.04,2,60,0.02,0.06,0.008,0.03,-0.01,0.02,0.02,-0.001,-0.03,0.1,0."
+    "01,0.15",
 };
 
 std::string organs_with(std::size_t row, std::size_t column, const std::string& cell) {
@@ -89,37 +92,52 @@ TEST_CASE("a stand folder as canopy writes it reads back") {
 TEST_CASE("an empty organs.csv or plants.csv is not a stand of plants without organs") {
   CHECK(Folder(kPlants, "").error() ==
         "DIR/organs.csv:1: expected the header " + kOrgansHeader.substr(0, kOrgansHeader.size() - 1));
-  CHECK(Folder("", organs_with(99, 0, "")).error() == "DIR/plants.csv:1: expected the header id,x,y,rotation,seed,grammar,steps");
+  CHECK(Folder("", organs_with(99, 0, "")).error() ==
+        "DIR/plants.csv:1: expected the header id,x,y,rotation,seed,grammar,steps");
 }
 
 TEST_CASE("numbers that are not finite, or do not fit, are refused with their place") {
-  CHECK(Folder(kPlants, organs_with(1, 12, "nan")).error() == "DIR/organs.csv:3: column 13 'nan' is not a finite number");
-  CHECK(Folder(kPlants, organs_with(1, 23, "-inf")).error() == "DIR/organs.csv:3: column 24 '-inf' is not a finite number");
-  CHECK(Folder(kPlants, organs_with(0, 14, "1e300")).error() == "DIR/organs.csv:2: column 15 '1e300' is out of range");
+  CHECK(Folder(kPlants, organs_with(1, 12, "nan")).error() ==
+        "DIR/organs.csv:3: column 13 'nan' is not a finite number");
+  CHECK(Folder(kPlants, organs_with(1, 23, "-inf")).error() ==
+        "DIR/organs.csv:3: column 24 '-inf' is not a finite number");
+  CHECK(Folder(kPlants, organs_with(0, 14, "1e300")).error() ==
+        "DIR/organs.csv:2: column 15 '1e300' is out of range");
   CHECK(Folder(kPlants, organs_with(0, 14, "2e6")).error() ==
         "DIR/organs.csv:2: column 15 '2e6' is out of range (at most 1000000 m)");
   CHECK(Folder(kPlants, organs_with(2, 8, "-0.5")).error() ==
         "DIR/organs.csv:4: column 9 '-0.5' is out of range (a size from 0 to 1000000 m)");
   CHECK(Folder(kPlants, organs_with(2, 11, "200")).error() ==
         "DIR/organs.csv:4: column 12 (joint_limit) must lie in [0, 180], got 200");
-  CHECK(Folder(kPlants, organs_with(2, 1, "abc")).error() == "DIR/organs.csv:4: column 2 'abc' is not a valid number");
-  CHECK(
-      Folder("id,x,y,rotation,seed,grammar,steps\n0,nan,0,0,7,t.yaml,6\n1,0,0,0,8,t.yaml,6\n", organs_with(99, 0, "")).error() ==
-      "DIR/plants.csv:2: column 2 'nan' is not a finite number");
+  CHECK(Folder(kPlants, organs_with(2, 1, "abc")).error() ==
+        "DIR/organs.csv:4: column 2 'abc' is not a valid number");
+  CHECK(Folder("id,x,y,rotation,seed,grammar,steps\n0,nan,0,0,7,t.yaml,6\n1,0,0,0,8,t.yaml,6\n",
+               organs_with(99, 0, ""))
+            .error() == "DIR/plants.csv:2: column 2 'nan' is not a finite number");
 }
 
 TEST_CASE("structure that detection would index out of bounds is refused") {
   // A parent before the organs, in another plant, or after the organ itself.
-  CHECK(Folder(kPlants, organs_with(1, 2, "-5")).error() == "DIR/organs.csv:3: parent -5 is not an earlier organ of plant 0");
-  CHECK(Folder(kPlants, organs_with(4, 2, "0")).error() == "DIR/organs.csv:6: parent 0 is not an earlier organ of plant 1");
-  CHECK(Folder(kPlants, organs_with(1, 2, "1")).error() == "DIR/organs.csv:3: parent 1 is not an earlier organ of plant 0");
+  CHECK(Folder(kPlants, organs_with(1, 2, "-5")).error() ==
+        "DIR/organs.csv:3: parent -5 is not an earlier organ of plant 0");
+  CHECK(Folder(kPlants, organs_with(4, 2, "0")).error() ==
+        "DIR/organs.csv:6: parent 0 is not an earlier organ of plant 1");
+  CHECK(Folder(kPlants, organs_with(1, 2, "1")).error() ==
+        "DIR/organs.csv:3: parent 1 is not an earlier organ of plant 0");
   // Compound-leaf ids that skip, go below the plant's first, or are negative.
-  CHECK(
-      Folder(kPlants, organs_with(4, 4, "2147483647")).error().starts_with("DIR/organs.csv:6: leaf 2147483647 is out of order"));
-  CHECK(Folder(kPlants, organs_with(4, 4, "0")).error().starts_with("DIR/organs.csv:6: leaf 0 is out of order"));
-  CHECK(Folder(kPlants, organs_with(1, 4, "-2")).error().starts_with("DIR/organs.csv:3: leaf -2 is out of order"));
-  CHECK(Folder(kPlants, organs_with(3, 1, "5")).error() == "DIR/organs.csv:5: plant 5 is not in DIR/plants.csv");
-  CHECK(Folder(kPlants, organs_with(3, 1, "0")).error() == "DIR/organs.csv:6: parent 3 is not an earlier organ of plant 1");
+  CHECK(Folder(kPlants, organs_with(4, 4, "2147483647"))
+            .error()
+            .starts_with("DIR/organs.csv:6: leaf 2147483647 is out of order"));
+  CHECK(Folder(kPlants, organs_with(4, 4, "0"))
+            .error()
+            .starts_with("DIR/organs.csv:6: leaf 0 is out of order"));
+  CHECK(Folder(kPlants, organs_with(1, 4, "-2"))
+            .error()
+            .starts_with("DIR/organs.csv:3: leaf -2 is out of order"));
+  CHECK(Folder(kPlants, organs_with(3, 1, "5")).error() ==
+        "DIR/organs.csv:5: plant 5 is not in DIR/plants.csv");
+  CHECK(Folder(kPlants, organs_with(3, 1, "0")).error() ==
+        "DIR/organs.csv:6: parent 3 is not an earlier organ of plant 1");
 }
 
 TEST_CASE("a stand folder whose tables are not regular files is refused at once") {

@@ -22,7 +22,8 @@ inline Stand one_organ(PrototypeKind proto, OrganKind kind, int lod, const Affin
   Stand s;
   OrganRecord r;
   r.plant = 0, r.kind = kind, r.prototype = proto, r.lod = static_cast<std::uint8_t>(lod);
-  s.organs.push_back(r), s.transforms.push_back(t), s.params.push_back({1, 1}), s.joint_limit_deg.push_back(60);
+  s.organs.push_back(r), s.transforms.push_back(t), s.params.push_back({1, 1}),
+      s.joint_limit_deg.push_back(60);
   PlantRecord p;
   p.organ_count = 1;
   s.plants.push_back(p);
@@ -43,7 +44,8 @@ inline Stand turbid(const std::string& name, const std::vector<std::string>& set
 }
 
 /// A configuration with no sky, periodic or not over `tile`, to standard error `error`.
-inline light::LightConfig beams(std::vector<light::Beam> suns, light::Box2d tile, bool periodic, double error) {
+inline light::LightConfig beams(std::vector<light::Beam> suns, light::Box2d tile, bool periodic,
+                                double error) {
   light::LightConfig c;
   c.suns = std::move(suns);
   c.sky_directions = 0;

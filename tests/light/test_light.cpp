@@ -36,7 +36,8 @@ Affine3f disk_at(Vec3f c, float r, double tilt) {
 /// the standard error is small beside it.
 void check_area(const light::DirectionLight& d, const light::Box2d& tile, double want) {
   const double got = d.fraction.value * tile.area(), se = d.fraction.se * tile.area();
-  INFO("elevation " << d.elevation_deg << ", azimuth " << d.azimuth_deg << ": got " << got << " +- " << se << ", want " << want);
+  INFO("elevation " << d.elevation_deg << ", azimuth " << d.azimuth_deg << ": got " << got << " +- " << se
+                    << ", want " << want);
   CHECK(std::abs(got - want) <= 4 * se);
   CHECK(se > 0);
   CHECK(se < 0.03 * want);
@@ -49,8 +50,8 @@ const std::vector<light::Beam> kSuns{{90, 0}, {60, 30}, {35, 250}, {15, 120}};
 TEST_CASE("a disk intercepts its area times the cosine of its normal to the sun, over the sun's cosine") {
   const double r = 0.1;
   for (double tilt : {0.0, 40 * kDeg, 90 * kDeg}) {
-    const Stand s =
-        one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at({0.2f, -0.1f, 0.5f}, static_cast<float>(r), tilt));
+    const Stand s = one_organ(PrototypeKind::disk, OrganKind::leaflet, 2,
+                              disk_at({0.2f, -0.1f, 0.5f}, static_cast<float>(r), tilt));
     const light::Box2d tile{-0.25, -0.25, 0.25, 0.25};
     PrototypeLibrary lib;
     const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, false, 0.0005));
@@ -91,7 +92,8 @@ TEST_CASE("periodic bounds: a leaf across the tile's edge, or shading tiles away
   const double r = 0.15;
   // Centred on the tile's right edge, on its corner, and inside with a shadow falling far out.
   for (Vec3f c : {Vec3f{1.0f, 0.5f, 0.4f}, Vec3f{1.0f, 1.0f, 0.4f}, Vec3f{0.5f, 0.5f, 0.9f}}) {
-    const Stand s = one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at(c, static_cast<float>(r), 0));
+    const Stand s =
+        one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at(c, static_cast<float>(r), 0));
     PrototypeLibrary lib;
     const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, true, 0.0005));
     for (const light::DirectionLight& d : res.direct) check_area(d, tile, polygon_area(16, r));
@@ -103,11 +105,13 @@ TEST_CASE("turbid medium: horizontal leaves intercept 1 - (1 - G a / (A cos thet
   const Stand s = turbid("turbid_horizontal");
   PrototypeLibrary lib;
   const double a = organ_area(s, 0, lib), n = static_cast<double>(s.organ_count());
-  const light::LightResult res = light::compute_light(s, lib, beams({{90, 20}, {60, 20}, {30, 20}}, {0, 0, 1, 1}, true, 0.002));
+  const light::LightResult res =
+      light::compute_light(s, lib, beams({{90, 20}, {60, 20}, {30, 20}}, {0, 0, 1, 1}, true, 0.002));
   for (const light::DirectionLight& d : res.direct) {
     const double cz = std::sin(d.elevation_deg * kDeg);
     const double want = 1 - std::pow(1 - cz * a / cz, n);
-    INFO("zenith " << 90 - d.elevation_deg << ": " << d.fraction.value << " +- " << d.fraction.se << ", formula " << want);
+    INFO("zenith " << 90 - d.elevation_deg << ": " << d.fraction.value << " +- " << d.fraction.se
+                   << ", formula " << want);
     CHECK(std::abs(d.fraction.value - want) <= 0.01);
     CHECK(d.fraction.se <= 0.002);
   }
@@ -118,11 +122,13 @@ TEST_CASE("turbid medium: leaves uniform on the sphere intercept 1 - (1 - 0.5 a 
   PrototypeLibrary lib;
   const double a = organ_area(s, 0, lib), n = static_cast<double>(s.organ_count());
   CHECK(n > 65000);  // a draw rejected at the last step is the only disk missing
-  const light::LightResult res = light::compute_light(s, lib, beams({{90, 20}, {60, 200}, {30, 20}}, {0, 0, 1, 1}, true, 0.002));
+  const light::LightResult res =
+      light::compute_light(s, lib, beams({{90, 20}, {60, 200}, {30, 20}}, {0, 0, 1, 1}, true, 0.002));
   for (const light::DirectionLight& d : res.direct) {
     const double cz = std::sin(d.elevation_deg * kDeg);
     const double want = 1 - std::pow(1 - 0.5 * a / cz, n);
-    INFO("zenith " << 90 - d.elevation_deg << ": " << d.fraction.value << " +- " << d.fraction.se << ", formula " << want);
+    INFO("zenith " << 90 - d.elevation_deg << ": " << d.fraction.value << " +- " << d.fraction.se
+                   << ", formula " << want);
     CHECK(std::abs(d.fraction.value - want) <= 0.01);
   }
   for (double g : res.leaf_angles.g) CHECK(g == doctest::Approx(0.5).epsilon(0.01));

@@ -28,7 +28,9 @@ TEST_CASE("sky directions: n of them, weights summing to one, as many per ring a
         // times that over the integral of cos over the hemisphere (pi).
         if (m == SkyModel::uniform)
           for (const SkyDirection& x : d)
-            CHECK(x.weight == doctest::Approx(std::sin(x.elevation_deg * std::numbers::pi / 180) * 2.0 / n).epsilon(0.25));
+            CHECK(
+                x.weight ==
+                doctest::Approx(std::sin(x.elevation_deg * std::numbers::pi / 180) * 2.0 / n).epsilon(0.25));
       }
     }
   CHECK_THROWS_AS(sky_directions(SkyModel::soc, 0), std::invalid_argument);
@@ -42,12 +44,14 @@ TEST_CASE("the standard overcast sky weighs the zenith more than a uniform sky")
   CHECK(s.back().weight < u.back().weight);
   // Exactly: SOC weights of the zenith cap of cos >= c0 are (c^2/2 + 2c^3/3) / (7/6) from c0 to 1.
   const double c0 = 1 - 1.0 / 46;
-  CHECK(s.front().weight == doctest::Approx((0.5 + 2.0 / 3 - c0 * c0 / 2 - 2 * c0 * c0 * c0 / 3) / (7.0 / 6)).epsilon(1e-12));
+  CHECK(s.front().weight ==
+        doctest::Approx((0.5 + 2.0 / 3 - c0 * c0 / 2 - 2 * c0 * c0 * c0 / 3) / (7.0 / 6)).epsilon(1e-12));
   CHECK(u.front().weight == doctest::Approx((0.5 - c0 * c0 / 2) / 0.5).epsilon(1e-12));
 }
 
 TEST_CASE("the sun's position: noon, equinox, solstice, morning and evening") {
-  // Day 172 (about the June solstice): declination 23.45 degrees; at noon elevation 90 - lat + 23.45, due south.
+  // Day 172 (about the June solstice): declination 23.45 degrees; at noon elevation 90 - lat + 23.45, due
+  // south.
   const double decl = 23.45 * std::sin(2 * std::numbers::pi * (284 + 172) / 365.0);
   SunPosition p = solar_position(52, 172, 12);
   CHECK(p.elevation_deg == doctest::Approx(90 - 52 + decl).epsilon(1e-9));

@@ -10,13 +10,17 @@
 
 namespace canopy::test {
 
-inline Grammar grammar(const std::string& yaml, const LoadOptions& o = {}) { return parse_grammar(yaml, "test.yaml", o); }
+inline Grammar grammar(const std::string& yaml, const LoadOptions& o = {}) {
+  return parse_grammar(yaml, "test.yaml", o);
+}
 
 inline std::string derived(const Grammar& g, int steps, std::uint64_t seed = 1) {
   return format_modules(g, derive(g, DeriveRequest{steps, seed, kDefaultMaxModules}));
 }
 
-inline std::string source(const std::string& relative) { return std::string(CANOPY_SOURCE_DIR) + "/" + relative; }
+inline std::string source(const std::string& relative) {
+  return std::string(CANOPY_SOURCE_DIR) + "/" + relative;
+}
 
 /// The error message of what `f` throws as a GrammarError ("" when it throws nothing).
 template <typename F>

@@ -15,12 +15,14 @@ std::string error_of(const std::string& yaml) {
 
 TEST_CASE("malformed YAML") {
   CHECK(error_of("axiom: [F\n").rfind("test.yaml:2:1: malformed YAML", 0) == 0);
-  CHECK(error_of("- a\n- b\n") == "test.yaml:1:1: a grammar file is a YAML map with keys such as axiom and productions");
+  CHECK(error_of("- a\n- b\n") ==
+        "test.yaml:1:1: a grammar file is a YAML map with keys such as axiom and productions");
 }
 
 TEST_CASE("unknown and duplicate keys") {
   CHECK(error_of("axiom: F\nproduction: []\n") ==
-        "test.yaml:2:1: unknown key 'production' in the grammar (expected one of: name seed steps angle step constants "
+        "test.yaml:2:1: unknown key 'production' in the grammar (expected one of: name seed steps angle step "
+        "constants "
         "axiom productions interpretation ignore organs compound_leaf tropism stand modules)");
   CHECK(error_of("axiom: F\norgans:\n  L: {prototype: leaflet, kind: leaflet, colour: red}\n")
             .rfind("test.yaml:3:42: unknown key 'colour' in organ 'L'", 0) == 0);
@@ -30,7 +32,8 @@ TEST_CASE("unknown and duplicate keys") {
 }
 
 TEST_CASE("unknown constant, parameter and function in expressions") {
-  CHECK(error_of("axiom: A(k)\n") == "test.yaml:1:10: unknown name 'k': not a parameter of this production nor a constant");
+  CHECK(error_of("axiom: A(k)\n") ==
+        "test.yaml:1:10: unknown name 'k': not a parameter of this production nor a constant");
   CHECK(error_of("axiom: A(1)\nproductions:\n  - A(x) -> A(y)\n") ==
         "test.yaml:3:15: unknown name 'y': not a parameter of this production nor a constant");
   CHECK(error_of("axiom: A(1)\nproductions:\n  - \"A(x) -> A(blend(x))\"\n") ==
@@ -41,21 +44,25 @@ TEST_CASE("unknown constant, parameter and function in expressions") {
 
 TEST_CASE("parameter counts") {
   CHECK(error_of("axiom: A(1) A(1, 2)\n") ==
-        "test.yaml:1:13: module 'A' is used with 2 parameter(s) here but with 1 at test.yaml:1:8; a name has one "
+        "test.yaml:1:13: module 'A' is used with 2 parameter(s) here but with 1 at test.yaml:1:8; a name has "
+        "one "
         "parameter count");
-  CHECK(error_of("axiom: A(1)\nproductions:\n  - A -> B\n").rfind("test.yaml:3:5: module 'A' is used with 0", 0) == 0);
+  CHECK(error_of("axiom: A(1)\nproductions:\n  - A -> B\n")
+            .rfind("test.yaml:3:5: module 'A' is used with 0", 0) == 0);
   CHECK(error_of("axiom: L(1)\norgans:\n  L: {prototype: leaflet, kind: leaflet}\n") ==
         "test.yaml:1:8: organ 'L' is a leaflet and takes 2 to 5 parameters, but is used with 1");
   CHECK(error_of("axiom: L(1, 1, 1, 1, 1, 1)\norgans:\n  L: {prototype: leaflet, kind: leaflet}\n") ==
         "test.yaml:1:8: organ 'L' is a leaflet and takes 2 to 5 parameters, but is used with 6");
   CHECK(error_of("axiom: I(1, 1, 1)\norgans:\n  I: {prototype: cylinder, kind: internode}\n") ==
         "test.yaml:1:8: organ 'I' is a cylinder and takes 2 parameter(s), but is used with 3");
-  CHECK(error_of("axiom: F(1, 2)\n") == "test.yaml:1:8: turtle symbol 'F' takes at most one parameter, got 2");
+  CHECK(error_of("axiom: F(1, 2)\n") ==
+        "test.yaml:1:8: turtle symbol 'F' takes at most one parameter, got 2");
   CHECK(error_of("axiom: A(1,)\n") == "test.yaml:1:12: empty parameter in 'A'");
 }
 
 TEST_CASE("unbalanced brackets") {
-  CHECK(error_of("axiom: F[+F\n") == "test.yaml:1:9: unbalanced brackets in the axiom: this '[' is never closed");
+  CHECK(error_of("axiom: F[+F\n") ==
+        "test.yaml:1:9: unbalanced brackets in the axiom: this '[' is never closed");
   CHECK(error_of("axiom: F\nproductions:\n  - F -> F]F\n") ==
         "test.yaml:3:11: unbalanced brackets in a successor: ']' closes no '['");
   CHECK(error_of("axiom: A(1\n") == "test.yaml:1:9: '(' after 'A' is never closed");
@@ -63,19 +70,21 @@ TEST_CASE("unbalanced brackets") {
 }
 
 TEST_CASE("division by zero, NaN and infinity") {
-  CHECK(error_of("steps: 1\naxiom: A(0)\nproductions:\n  - A(x) -> A(1/x)\n") == "test.yaml:4:16: division by zero in '1/x'");
+  CHECK(error_of("steps: 1\naxiom: A(0)\nproductions:\n  - A(x) -> A(1/x)\n") ==
+        "test.yaml:4:16: division by zero in '1/x'");
   CHECK(error_of("axiom: A(1/0)\n") == "test.yaml:1:11: division by zero in '1/0'");
   CHECK(error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - A(x) -> A(sqrt(x))\n") ==
         "test.yaml:4:15: 'sqrt(x)' is not a number (NaN)");
-  CHECK(error_of("steps: 3\naxiom: A(10)\nproductions:\n  - A(x) -> A(x^x)\n") == "test.yaml:4:15: 'x^x' is infinite");
+  CHECK(error_of("steps: 3\naxiom: A(10)\nproductions:\n  - A(x) -> A(x^x)\n") ==
+        "test.yaml:4:15: 'x^x' is infinite");
   CHECK(error_of("angle: .nan\naxiom: F\n") == "test.yaml:1:8: angle must be a finite number, got '.nan'");
 }
 
 TEST_CASE("stochastic groups must sum to 1") {
   CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 0.5\"\n  - \"A -> C : 0.4\"\n") ==
         "test.yaml:3:15: the probabilities of the group '<A>:' sum to 0.9, not 1");
-  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 0.5\"\n  - A -> C\n").find("each needs a probability") !=
-        std::string::npos);
+  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 0.5\"\n  - A -> C\n")
+            .find("each needs a probability") != std::string::npos);
   CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 1.5\"\n") ==
         "test.yaml:3:15: a probability must lie in [0, 1], got 1.5");
 }
@@ -89,12 +98,14 @@ TEST_CASE("production syntax") {
   CHECK(error_of("axiom: A\nproductions:\n  - A -> B : 0.5\n") ==
         "test.yaml:3:5: this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");
   CHECK(error_of("axiom: A\nproductions:\n  - A B\n") == "test.yaml:3:5: expected '->' in production 'A B'");
-  CHECK(error_of("axiom: A\nproductions:\n  - \" -> B\"\n") == "test.yaml:3:6: missing predecessor before '->'");
+  CHECK(error_of("axiom: A\nproductions:\n  - \" -> B\"\n") ==
+        "test.yaml:3:6: missing predecessor before '->'");
   CHECK(error_of("axiom: A(1)\nproductions:\n  - \"A(1) -> B\"\n") ==
         "test.yaml:3:8: a formal parameter must be a name, got '1'");
   CHECK(error_of("axiom: A(1, 2)\nproductions:\n  - \"A(x, x) -> B\"\n") ==
         "test.yaml:3:11: formal parameter 'x' appears twice in this production");
-  CHECK(error_of("axiom: A\nproductions:\n  - \"[ < A -> B\"\n").find("brackets are not allowed") != std::string::npos);
+  CHECK(error_of("axiom: A\nproductions:\n  - \"[ < A -> B\"\n").find("brackets are not allowed") !=
+        std::string::npos);
 }
 
 TEST_CASE("grammars that grow exponentially stop at the module cap, not out of memory") {
@@ -110,10 +121,11 @@ TEST_CASE("expressions nested deeper than the parser's bound are a located error
     for (int i = 0; i < n; ++i) s += close;
     return s;
   };
-  const std::string deep = "expression nested too deeply (more than 256 levels of parentheses, unary operators or calls)";
+  const std::string deep =
+      "expression nested too deeply (more than 256 levels of parentheses, unary operators or calls)";
   // Each of these crashed the recursive parser (a signal, not an error) past about 10,000 levels.
-  for (const std::string& e :
-       {nested("(", 30000, ")"), nested("-", 100000, ""), nested("!", 100000, ""), nested("abs(", 50000, ")")}) {
+  for (const std::string& e : {nested("(", 30000, ")"), nested("-", 100000, ""), nested("!", 100000, ""),
+                               nested("abs(", 50000, ")")}) {
     const std::string message = error_of("axiom: A(" + e + ")\n");
     CHECK(message.starts_with("test.yaml:1:"));
     CHECK(message.ends_with(deep));
@@ -133,7 +145,8 @@ TEST_CASE("steps outside 0..100000 are refused wherever they come from") {
                          fmt::format("the derivation steps must lie in 0..100000 (got {})", steps).c_str(),
                          std::invalid_argument);
   CHECK(derived(g, kMaxSteps) == "A");
-  CHECK(error_of("steps: 100001\naxiom: A\n") == "test.yaml:1:8: steps must be between 0 and 100000, got 100001");
+  CHECK(error_of("steps: 100001\naxiom: A\n") ==
+        "test.yaml:1:8: steps must be between 0 and 100000, got 100001");
 }
 
 TEST_CASE("an organ's level of detail has the stand's range, 1..16, with its place") {
@@ -147,7 +160,8 @@ TEST_CASE("a file with none of a grammar's keys is not quoted back") {
         "test.yaml:1:1: not a grammar file (none of its keys is a grammar's, such as axiom or "
         "productions)");
   // A grammar with a misspelt key is still told which key.
-  CHECK(error_of("axiom: F\nproduction: []\n").starts_with("test.yaml:2:1: unknown key 'production' in the grammar"));
+  CHECK(error_of("axiom: F\nproduction: []\n")
+            .starts_with("test.yaml:2:1: unknown key 'production' in the grammar"));
 }
 
 TEST_CASE("grammar files that are not regular files are refused before reading") {
@@ -161,7 +175,8 @@ TEST_CASE("grammar files that are not regular files are refused before reading")
 
 TEST_CASE("YAML nested past yaml-cpp's bound says so") {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
-  const std::string message = error_of("axiom: F\nmodules: " + deep + "\n");  // was "malformed YAML: bad file"
+  const std::string message =
+      error_of("axiom: F\nmodules: " + deep + "\n");  // was "malformed YAML: bad file"
   CHECK(message.starts_with("test.yaml:2:"));
   CHECK(message.ends_with(": malformed YAML: lists and maps nested too deeply"));
 }

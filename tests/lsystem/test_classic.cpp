@@ -10,7 +10,8 @@ namespace {
 
 /// Symbol counts after n steps of a context-free D0L-system by the growth-matrix recurrence
 /// (counts_{k+1} = M counts_k), computed independently of the derivation code.
-std::map<char, std::size_t> recurrence(const std::string& axiom, const std::map<char, std::string>& rules, int n) {
+std::map<char, std::size_t> recurrence(const std::string& axiom, const std::map<char, std::string>& rules,
+                                       int n) {
   std::map<char, std::size_t> c;
   for (char x : axiom) ++c[x];
   for (int k = 0; k < n; ++k) {
@@ -26,7 +27,8 @@ std::map<char, std::size_t> recurrence(const std::string& axiom, const std::map<
   return c;
 }
 
-void check_counts(const std::string& file, const std::string& axiom, const std::map<char, std::string>& rules, int n) {
+void check_counts(const std::string& file, const std::string& axiom, const std::map<char, std::string>& rules,
+                  int n) {
   const Grammar g = load_grammar(source(file));
   CHECK(g.steps == n);
   const ModuleString s = derive(g);
@@ -58,7 +60,8 @@ TEST_CASE("ABOP Figure 1.24a: hand-checked values") {
   const Grammar g = load_grammar(source("grammars/classic/abop_1_24a.yaml"));
   CHECK(derived(g, 1) == "F[+F]F[-F]F");
   // 5 steps: 5^5 F, (5^5 - 1) / 2 of each bracket, (5^5 - 1) / 4 of each turn.
-  CHECK(stats_json(g, derive(g)) == R"({"modules": 7811, "counts": {"+": 781, "-": 781, "F": 3125, "[": 1562, "]": 1562}})");
+  CHECK(stats_json(g, derive(g)) ==
+        R"({"modules": 7811, "counts": {"+": 781, "-": 781, "F": 3125, "[": 1562, "]": 1562}})");
   CHECK(derive(g, DeriveRequest{9, 1, kDefaultMaxModules}).size() == 4882811);
 }
 

@@ -85,7 +85,8 @@ TEST_CASE("constant subexpressions fold at compile time, rand never does") {
 TEST_CASE("errors name the column and what was expected") {
   CHECK(error_of("1 / (x - x)", {2}) == "e:1:3: division by zero in '1 / (x - x)'");
   CHECK(error_of("y + 1") == "e:1:1: unknown name 'y': not a parameter of this production nor a constant");
-  CHECK(error_of("2 * foo(1)") == "e:1:5: unknown function 'foo' (known: sin cos tan sqrt abs min max floor ceil rand)");
+  CHECK(error_of("2 * foo(1)") ==
+        "e:1:5: unknown function 'foo' (known: sin cos tan sqrt abs min max floor ceil rand)");
   CHECK(error_of("sqrt(x)", {-1}) == "e:1:1: 'sqrt(x)' is not a number (NaN)");
   CHECK(error_of("10 ^ 400") == "e:1:1: '10 ^ 400' is infinite");
   CHECK(error_of("(1 + 2").find("expected ')'") != std::string::npos);

@@ -70,5 +70,6 @@ productions:
 
 TEST_CASE("probabilities within 1e-9 of 1 are accepted") {
   CHECK_NOTHROW(
-      grammar("axiom: A\nproductions:\n  - 'A -> B : 0.3333333333'\n  - 'A -> C : 0.3333333333'\n  - 'A -> D : 0.3333333334'\n"));
+      grammar("axiom: A\nproductions:\n  - 'A -> B : 0.3333333333'\n  - 'A -> C : 0.3333333333'\n  - 'A -> D "
+              ": 0.3333333334'\n"));
 }

@@ -45,7 +45,8 @@ axiom: A B C AB ABC A Bx B x D(1)
   const ModuleString a = derive(g, DeriveRequest{0, 1, kDefaultMaxModules});
   const ModuleString b = derive(again, DeriveRequest{0, 1, kDefaultMaxModules});
   REQUIRE(a.size() == b.size());
-  for (std::size_t i = 0; i < a.size(); ++i) CHECK(g.symbols.name(a.symbols[i]) == again.symbols.name(b.symbols[i]));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    CHECK(g.symbols.name(a.symbols[i]) == again.symbols.name(b.symbols[i]));
   // No space where none is needed.
   CHECK(derived(grammar("axiom: F[+F]F\n"), 0) == "F[+F]F");
 }

@@ -100,14 +100,15 @@ TEST_CASE("cylinders advance; leaflets, spheres and disks do not") {
 }
 
 TEST_CASE("tropism bends H towards T by e |H x T| after each cylinder (ABOP 2.2)") {
-  const TurtleResult r = turtle("&(90) I(1, 0.1) I(1, 0.1)", "tropism: {direction: [0, 0, -1], strength: 0.2}\n");
+  const TurtleResult r =
+      turtle("&(90) I(1, 0.1) I(1, 0.1)", "tropism: {direction: [0, 0, -1], strength: 0.2}\n");
   // After the first cylinder H = +X, |H x T| = 1: H turns 0.2 rad towards -Z.
   check_vec(r.organs[1].transform.c0, std::cos(0.2), 0, -std::sin(0.2));
 }
 
 TEST_CASE("structure tree: parents skip closed branches; compound leaves end at their branch") {
-  const TurtleResult r =
-      turtle("I(1,1) [ Leaf P(1,1) [ L(1,1) ] [ L(1,1) ] R(1,1) L(1,1) ] I(1,1) [ I(1,1) ] I(1,1) [ Leaf P(1,1) ]");
+  const TurtleResult r = turtle(
+      "I(1,1) [ Leaf P(1,1) [ L(1,1) ] [ L(1,1) ] R(1,1) L(1,1) ] I(1,1) [ I(1,1) ] I(1,1) [ Leaf P(1,1) ]");
   REQUIRE(r.organs.size() == 10);
   const int parent[] = {-1, 0, 1, 1, 1, 4, 0, 6, 6, 8};
   const int leaf[] = {-1, 0, 0, 0, 0, 0, -1, -1, -1, 1};
@@ -130,8 +131,8 @@ TEST_CASE("structure tree: parents skip closed branches; compound leaves end at 
 TEST_CASE("every organ of the default tomato sits on its parent's joint") {
   const Grammar g = load_grammar(source("grammars/tomato.yaml"));
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    const TurtleResult r =
-        run_turtle(g, interpret(g, derive(g, DeriveRequest{std::nullopt, seed, kDefaultMaxModules}), seed), {});
+    const TurtleResult r = run_turtle(
+        g, interpret(g, derive(g, DeriveRequest{std::nullopt, seed, kDefaultMaxModules}), seed), {});
     REQUIRE(r.organs.size() > 200);
     int roots = 0;
     for (const OrganInstance& o : r.organs) {
@@ -140,7 +141,8 @@ TEST_CASE("every organ of the default tomato sits on its parent's joint") {
         continue;
       }
       const OrganInstance& p = r.organs[static_cast<std::size_t>(o.parent)];
-      const Vec3f joint = p.prototype == PrototypeKind::cylinder ? p.transform.t + p.transform.c0 : p.transform.t;
+      const Vec3f joint =
+          p.prototype == PrototypeKind::cylinder ? p.transform.t + p.transform.c0 : p.transform.t;
       CHECK(length(o.transform.t - joint) < 1e-5f);
     }
     CHECK(roots == 1);
@@ -148,17 +150,20 @@ TEST_CASE("every organ of the default tomato sits on its parent's joint") {
 }
 
 TEST_CASE("negative or non-finite sizes reaching the turtle are errors naming the module") {
-  const Grammar g = grammar(std::string(kOrgans) + "axiom: I(1, 1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\n");
+  const Grammar g =
+      grammar(std::string(kOrgans) + "axiom: I(1, 1)\nsteps: 1\nproductions:\n  - I(a, b) -> I(a - 2, b)\n");
   try {
     run_turtle(g, derive(g), {});
     FAIL("no error");
   } catch (const std::runtime_error& e) {
-    CHECK(std::string(e.what()) == "test.yaml: the plant, module 0 'I(-1,1)': cylinder parameter 1 must not be negative");
+    CHECK(std::string(e.what()) ==
+          "test.yaml: the plant, module 0 'I(-1,1)': cylinder parameter 1 must not be negative");
   }
 }
 
 TEST_CASE(
-    "a non-finite position or rotation, a level of detail out of range, negative steps or threads: refused before growing") {
+    "a non-finite position or rotation, a level of detail out of range, negative steps or threads: refused "
+    "before growing") {
   // grow_stand is where rows, positions files and the Python module's arrays all arrive.
   GrowRequest req;
   req.grammar = source("grammars/tomato.yaml");
@@ -166,27 +171,32 @@ TEST_CASE(
   req.plants.resize(3);
   req.plants[1].seed = 7;
   CHECK(grow_stand(req).plant_count() == 3);
-  const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  const double bad[] = {std::nan(""), std::numeric_limits<double>::infinity(),
+                        -std::numeric_limits<double>::infinity()};
   for (const double v : bad)
     for (int field = 0; field < 3; ++field) {
       GrowRequest r = req;
       (field == 0 ? r.plants[2].x : field == 1 ? r.plants[2].y : r.plants[2].rotation_deg) = v;
       CAPTURE(field);
       CAPTURE(v);
-      CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("plant 2: its position and rotation must be finite numbers"),
+      CHECK_THROWS_WITH_AS(grow_stand(r),
+                           doctest::Contains("plant 2: its position and rotation must be finite numbers"),
                            std::invalid_argument);
     }
   // What the command line's checks refuse, refused here too (the Python module has no others).
   for (const int lod : {0, kMaxLod + 1}) {
     GrowRequest r = req;
     r.lod = lod;
-    CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the level of detail must lie in 1..16"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the level of detail must lie in 1..16"),
+                         std::invalid_argument);
   }
   GrowRequest r = req;
   r.threads = -1;
-  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the thread count must be at least 0"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the thread count must be at least 0"),
+                       std::invalid_argument);
   r.threads = 100000;  // libgomp crashed starting a team this large
-  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the thread count 100000 is more than the"), std::invalid_argument);
+  CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains("the thread count 100000 is more than the"),
+                       std::invalid_argument);
   for (const int steps : {-1, kMaxSteps + 1}) {
     r = req;
     r.steps = steps;
@@ -194,7 +204,8 @@ TEST_CASE(
     CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains(all.c_str()), std::invalid_argument);
     r = req;
     r.plants[1].steps = steps;
-    const std::string one = fmt::format("plant 1: its derivation steps must lie in 0..100000 (got {})", steps);
+    const std::string one =
+        fmt::format("plant 1: its derivation steps must lie in 0..100000 (got {})", steps);
     CHECK_THROWS_WITH_AS(grow_stand(r), doctest::Contains(one.c_str()), std::invalid_argument);
   }
 }
@@ -226,26 +237,31 @@ std::string grow_error(const std::string& yaml) {
 }  // namespace
 
 TEST_CASE("organ parameter errors name the file, line and column of the expression that wrote them") {
-  const std::string organs = "organs:\n  L: {prototype: leaflet, kind: leaflet}\n  I: {prototype: cylinder, kind: internode}\n";
+  const std::string organs =
+      "organs:\n  L: {prototype: leaflet, kind: leaflet}\n  I: {prototype: cylinder, kind: internode}\n";
   // In the axiom: the parameter's own column.
   CHECK(grow_error(organs + "axiom: L(-1,-0.5)\n") ==
         "FILE:4:10: plant 0 (seed 1), module 0 'L(-1,-0.5)': leaflet parameter 1 must not be negative");
   CHECK(grow_error(organs + "axiom: L(1, -0.5)\n") ==
         "FILE:4:13: plant 0 (seed 1), module 0 'L(1,-0.5)': leaflet parameter 2 must not be negative");
   // Computed by a production some steps on, after modules copied unchanged and a constant successor.
-  CHECK(grow_error(organs + "steps: 3\naxiom: F A(1)\nproductions:\n  - F -> F F\n  - A(x) -> I(1, 0.1) A(x - 1)\n"
-                            "interpretation:\n  - A(x) -> L(x, 0.2)\n") ==
+  CHECK(grow_error(organs +
+                   "steps: 3\naxiom: F A(1)\nproductions:\n  - F -> F F\n  - A(x) -> I(1, 0.1) A(x - 1)\n"
+                   "interpretation:\n  - A(x) -> L(x, 0.2)\n") ==
         "FILE:10:15: plant 0 (seed 1), module 11 'L(-2,0.2)': leaflet parameter 1 must not be negative");
   // Sizes that fit a double but not a float were written as inf and NaN.
   CHECK(grow_error(organs + "axiom: L(1e300,1e300)\n") ==
-        "FILE:4:10: plant 0 (seed 1), module 0 'L(1e+300,1e+300)': leaflet parameter 1 is 1e+300 m, more than the 1000000 m an "
+        "FILE:4:10: plant 0 (seed 1), module 0 'L(1e+300,1e+300)': leaflet parameter 1 is 1e+300 m, more "
+        "than the 1000000 m an "
         "organ "
         "may measure");
   CHECK(grow_error(organs + "axiom: F(1e300) L(1, 1)\n") ==
-        "FILE:4:10: plant 0 (seed 1), module 0 'F(1e+300)': the step takes the turtle farther than 1000000 m from the plant's "
+        "FILE:4:10: plant 0 (seed 1), module 0 'F(1e+300)': the step takes the turtle farther than 1000000 m "
+        "from the plant's "
         "origin");
   CHECK(grow_error(organs + "axiom: I(1e6, 1) I(1e6, 1) L(1, 1)\n") ==
-        "FILE:4:28: plant 0 (seed 1), module 2 'L(1,1)': the organ lies farther than 1000000 m from its plant's origin");
+        "FILE:4:28: plant 0 (seed 1), module 2 'L(1,1)': the organ lies farther than 1000000 m from its "
+        "plant's origin");
   CHECK(grow_error(organs + "axiom: L(1e6, 1e6)\n") == "");  // the bound itself is allowed
 }
 
@@ -268,15 +284,17 @@ TEST_CASE("a leaflet's trailing parameters give its curvature; zeros give the fl
   CHECK(b.cup_deg == 0);
   CHECK(b.fold_deg == 0);
   // The transform is the flat leaflet's: the shape lives in the mesh.
-  CHECK(std::memcmp(&turtle("L(0.1, 0.05, -43, -8, 12)").organs.at(0).transform, &turtle("L(0.1, 0.05)").organs.at(0).transform,
-                    sizeof(Affine3f)) == 0);
+  CHECK(std::memcmp(&turtle("L(0.1, 0.05, -43, -8, 12)").organs.at(0).transform,
+                    &turtle("L(0.1, 0.05)").organs.at(0).transform, sizeof(Affine3f)) == 0);
   // An angle past its range is refused, naming the module.
   try {
     turtle("L(0.1, 0.05, -95)");
     FAIL("no error");
   } catch (const std::runtime_error& e) {
-    CHECK(std::string(e.what()).find("leaflet bend must lie in [-80, 70] degrees (got -95)") != std::string::npos);
+    CHECK(std::string(e.what()).find("leaflet bend must lie in [-80, 70] degrees (got -95)") !=
+          std::string::npos);
     CHECK(std::string(e.what()).find("L(0.1,0.05,-95)") != std::string::npos);
   }
-  CHECK_THROWS_WITH(turtle("L(0.1, 0.05, 0, 0, 45)"), doctest::Contains("leaflet fold must lie in [0, 30] degrees (got 45)"));
+  CHECK_THROWS_WITH(turtle("L(0.1, 0.05, 0, 0, 45)"),
+                    doctest::Contains("leaflet fold must lie in [0, 30] degrees (got 45)"));
 }

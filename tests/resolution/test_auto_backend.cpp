@@ -21,7 +21,8 @@ class TestRunner : public HostAttemptRunner {
  public:
   TestRunner(PrototypeLibrary& lib, std::size_t lanes) : HostAttemptRunner(lib, 2, lanes) {}
   std::string hardware() const override { return "test"; }
-  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables, std::span<const AttemptGroup> groups,
+  std::vector<std::uint32_t> touching(std::size_t lane, const AttemptTables& tables,
+                                      std::span<const AttemptGroup> groups,
                                       const AttemptSettings& settings) override {
     if (++calls == fail_at) throw BackendFailure("the test device failed");
     return HostAttemptRunner::touching(lane, tables, groups, settings);
@@ -39,7 +40,8 @@ class TestBackend : public DetectionBackend, public AttemptSource {
     if (fail_detect) throw BackendFailure("the test device is lost");
     return cpu->detect(s, r);
   }
-  Contacts redetect(const Stand& s, const DetectRequest& r, const std::vector<std::uint32_t>& moved) override {
+  Contacts redetect(const Stand& s, const DetectRequest& r,
+                    const std::vector<std::uint32_t>& moved) override {
     return cpu->redetect(s, r, moved);
   }
   AttemptRunner* attempt_runner(const Stand&) override { return &runner; }
@@ -113,7 +115,8 @@ TEST_CASE("auto backend: a failure half-way through the attempts, the same turns
   // the host with the CPU backend.
   CHECK(bulk.result.planning.starts_with("host attempts, 2 lanes"));
   CHECK(wrapped->name() == "cpu");
-  CHECK(wrapped->device().find("the test backend on test device failed: the test device failed") != std::string::npos);
+  CHECK(wrapped->device().find("the test backend on test device failed: the test device failed") !=
+        std::string::npos);
 }
 
 TEST_CASE("auto backend: a failure in detection, the CPU backend's contacts and turns") {

@@ -21,8 +21,8 @@ struct Outcome {
 
 /// `lanes` > 1: batches of `batch` contacts, that many planned at once (each on a thread of its
 /// own, through the runner's lanes). `stats`: ResolveRequest::statistics.
-Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::size_t lanes = 1, std::size_t batch = 8192,
-            bool stats = false) {
+Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::size_t lanes = 1,
+            std::size_t batch = 8192, bool stats = false) {
   auto cpu = make_cpu_backend();
   ResolveRequest req;
   req.statistics = stats;
@@ -133,7 +133,8 @@ TEST_CASE("batched turn search: batches planned at once on several lanes give th
   same(run(s, cfg, 0, false), run(s, cfg, 0, true, 4, 5));
 }
 
-TEST_CASE("resolution statistics: only when asked, every phase and lane and the runner's counts, the same turns") {
+TEST_CASE(
+    "resolution statistics: only when asked, every phase and lane and the runner's counts, the same turns") {
   const Stand s = row_stand(1);
   ResolveConfig cfg;
   const Outcome quiet = run(s, cfg, 0, true, 3, 4);

@@ -140,14 +140,16 @@ TEST_CASE("resolution leaves no contact involving an organ that may turn, on see
     }
     for (std::size_t i = 0; i < s.organ_count(); ++i) {
       const Affine3f& t = s.transforms[i];
-      for (float v : {t.c0.x, t.c0.y, t.c0.z, t.c1.x, t.c1.y, t.c1.z, t.c2.x, t.c2.y, t.c2.z, t.t.x, t.t.y, t.t.z})
+      for (float v :
+           {t.c0.x, t.c0.y, t.c0.z, t.c1.x, t.c1.y, t.c1.z, t.c2.x, t.c2.y, t.c2.z, t.t.x, t.t.y, t.t.z})
         REQUIRE(std::isfinite(v));
     }
     // Attached: each child's base keeps its place in its parent's frame (within 1e-5 m).
     for (std::size_t i = 0; i < s.organ_count(); ++i) {
       const std::int32_t p = s.organs[i].parent;
       if (p < 0) continue;
-      const Vec3d at = local_point(grown.transforms[static_cast<std::size_t>(p)], to_double(grown.transforms[i].t));
+      const Vec3d at =
+          local_point(grown.transforms[static_cast<std::size_t>(p)], to_double(grown.transforms[i].t));
       const Vec3d want = apply_d(s.transforms[static_cast<std::size_t>(p)], at);
       CHECK(length(want - to_double(s.transforms[i].t)) < 1e-5);
     }
@@ -159,7 +161,8 @@ TEST_CASE("resolution leaves no contact involving an organ that may turn, on see
       const Mat3d rel_grown = transpose(pg) * frame(grown.transforms[i]);
       const Mat3d rel_now = transpose(pn) * frame(s.transforms[i]);
       CHECK(rotation_angle_deg(transpose(rel_grown) * rel_now) <= s.joint_limit_deg[i] + 1e-3);
-      if (s.organs[i].kind == OrganKind::internode) CHECK(rotation_angle_deg(transpose(rel_grown) * rel_now) < 1e-3);
+      if (s.organs[i].kind == OrganKind::internode)
+        CHECK(rotation_angle_deg(transpose(rel_grown) * rel_now) < 1e-3);
     }
     // Plants with no turned organ are bit-identical.
     std::vector<std::uint8_t> touched(s.plant_count(), 0);
@@ -168,8 +171,9 @@ TEST_CASE("resolution leaves no contact involving an organ that may turn, on see
         touched[static_cast<std::size_t>(s.organs[i].plant)] = 1;
     std::size_t untouched = 0;
     for (std::uint8_t t : touched) untouched += !t;
-    MESSAGE("seed " << seed << ": " << r.contacts_before << " -> " << r.contacts_after << " contacts, " << r.rounds << " rounds, "
-                    << r.organs_moved << " turned (max " << r.max_turn_deg << " deg), " << untouched << " plants untouched");
+    MESSAGE("seed " << seed << ": " << r.contacts_before << " -> " << r.contacts_after << " contacts, "
+                    << r.rounds << " rounds, " << r.organs_moved << " turned (max " << r.max_turn_deg
+                    << " deg), " << untouched << " plants untouched");
     CHECK(r.max_joint_deg <= 60 + 1e-6);
   }
   CHECK(before > 0);
@@ -222,7 +226,9 @@ TEST_CASE("organ-level resolution clears the OBBs, and so the exact level too") 
   }
 }
 
-TEST_CASE("re-detection told which organs moved reports exactly the pairs with a moved organ, at the organ and exact levels") {
+TEST_CASE(
+    "re-detection told which organs moved reports exactly the pairs with a moved organ, at the organ and "
+    "exact levels") {
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     for (const ContactLevel level : {ContactLevel::organ, ContactLevel::exact}) {
       Stand s = random_stand(200 + seed, 10);
@@ -244,7 +250,8 @@ TEST_CASE("re-detection told which organs moved reports exactly the pairs with a
       turned.erase(std::unique(turned.begin(), turned.end()), turned.end());
       const std::vector<std::uint32_t> moved = joints.update(s, turned);
       std::vector<std::uint8_t> moved_flag(s.organ_count(), 0), active(s.plant_count(), 0);
-      for (std::uint32_t k : moved) moved_flag[k] = 1, active[static_cast<std::size_t>(s.organs[k].plant)] = 1;
+      for (std::uint32_t k : moved)
+        moved_flag[k] = 1, active[static_cast<std::size_t>(s.organs[k].plant)] = 1;
       req.active_plants = &active;
       req.moved_organs = &moved_flag;
       const Contacts again = cpu->redetect(s, req, moved);
@@ -252,7 +259,9 @@ TEST_CASE("re-detection told which organs moved reports exactly the pairs with a
       auto fresh = make_cpu_backend();
       std::vector<Contact> want;
       for (const Contact& c : fresh->detect(s, DetectRequest{level}).pairs)
-        if (moved_flag[static_cast<std::size_t>(c.organ_a)] || moved_flag[static_cast<std::size_t>(c.organ_b)]) want.push_back(c);
+        if (moved_flag[static_cast<std::size_t>(c.organ_a)] ||
+            moved_flag[static_cast<std::size_t>(c.organ_b)])
+          want.push_back(c);
       INFO("seed " << seed << " level " << name_of(level));
       CHECK(again.pairs == want);
       CHECK(!moved.empty());
@@ -271,12 +280,15 @@ TEST_CASE("settings that cannot be met are refused by name, before any work") {
     CAPTURE(v);
     DetectRequest d;
     d.clearance = static_cast<float>(v);
-    CHECK_THROWS_WITH_AS(cpu->detect(s, d), doctest::Contains("detection: the clearance must be a finite number"),
+    CHECK_THROWS_WITH_AS(cpu->detect(s, d),
+                         doctest::Contains("detection: the clearance must be a finite number"),
                          std::invalid_argument);
-    CHECK_THROWS_WITH_AS(cpu->redetect(s, d, {}), doctest::Contains("detection: the clearance"), std::invalid_argument);
+    CHECK_THROWS_WITH_AS(cpu->redetect(s, d, {}), doctest::Contains("detection: the clearance"),
+                         std::invalid_argument);
     ResolveRequest req;
     req.config.scan_step_deg = v;
-    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the scan step (degrees) must be"),
+    CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first),
+                         doctest::Contains("resolution: the scan step (degrees) must be"),
                          std::invalid_argument);
     req.config = ResolveConfig{};
     req.config.clearance = v;
@@ -301,7 +313,9 @@ TEST_CASE("settings that cannot be met are refused by name, before any work") {
   CHECK(cpu->detect(s, DetectRequest{}).pairs == first.pairs);
 }
 
-TEST_CASE("bent chains: turns spread over petiole and rachis joints stay attached, within limits, and clear the stand") {
+TEST_CASE(
+    "bent chains: turns spread over petiole and rachis joints stay attached, within limits, and clear the "
+    "stand") {
   // Mature tomatoes in a row: large drooping leaves of neighbours and of one plant meet.
   std::size_t bends = 0, joints_bent = 0;
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
@@ -319,9 +333,10 @@ TEST_CASE("bent chains: turns spread over petiole and rachis joints stay attache
     const Stand grown = s;
     const ResolveResult r = run(s);
     bends += r.bends, joints_bent += r.bend_joints;
-    MESSAGE("seed " << seed << ": " << r.contacts_before << " -> " << r.contacts_after << " contacts, " << r.bends
-                    << " turns bent over " << r.bend_joints << " joints, " << r.kinks << " left at one joint; mean "
-                    << r.mean_turn_deg << ", max turn " << r.max_turn_deg << ", largest joint " << r.max_joint_deg << " deg");
+    MESSAGE("seed " << seed << ": " << r.contacts_before << " -> " << r.contacts_after << " contacts, "
+                    << r.bends << " turns bent over " << r.bend_joints << " joints, " << r.kinks
+                    << " left at one joint; mean " << r.mean_turn_deg << ", max turn " << r.max_turn_deg
+                    << ", largest joint " << r.max_joint_deg << " deg");
     CHECK(r.contacts_before > 0);
     auto cpu = make_cpu_backend();
     const Contacts after = cpu->detect(s, DetectRequest{});
@@ -333,7 +348,8 @@ TEST_CASE("bent chains: turns spread over petiole and rachis joints stay attache
     for (std::size_t i = 0; i < s.organ_count(); ++i) {
       const std::int32_t p = s.organs[i].parent;
       if (p < 0) continue;
-      const Affine3f &gp = grown.transforms[static_cast<std::size_t>(p)], &np = s.transforms[static_cast<std::size_t>(p)];
+      const Affine3f &gp = grown.transforms[static_cast<std::size_t>(p)],
+                     &np = s.transforms[static_cast<std::size_t>(p)];
       const Vec3d at = local_point(gp, to_double(grown.transforms[i].t));
       CHECK(length(apply_d(np, at) - to_double(s.transforms[i].t)) < 1e-5);
       if (s.organs[static_cast<std::size_t>(p)].prototype == PrototypeKind::cylinder &&
@@ -379,7 +395,8 @@ TEST_CASE("a chain segment may be asked for what its chain's joints can take tog
     ++k;
   const std::vector<std::uint32_t> chain = bend_chain(s, cfg, k, cfg.bend_joints);
   REQUIRE(chain.size() >= 3);
-  for (std::size_t i = 1; i < chain.size(); ++i) CHECK(chain[i] == static_cast<std::uint32_t>(s.organs[chain[i - 1]].parent));
+  for (std::size_t i = 1; i < chain.size(); ++i)
+    CHECK(chain[i] == static_cast<std::uint32_t>(s.organs[chain[i - 1]].parent));
   // As grown, every joint has its whole limit of room: m joints take m x the least of them.
   double least = 1e300;
   for (std::uint32_t c : chain) least = std::min<double>(least, s.joint_limit_deg[c]);
@@ -388,7 +405,8 @@ TEST_CASE("a chain segment may be asked for what its chain's joints can take tog
   // mover's own joint alone is the search's own limit, not a spread).
   const double turned = s.joint_limit_deg[chain[1]] - 10;
   j.set_local(chain[1], j.local_after(chain[1], axis_angle(Vec3d{0, 0, 1}, turned * std::numbers::pi / 180)));
-  CHECK(chain_reach_deg(s, j, cfg, k) == doctest::Approx(10.0 * static_cast<double>(chain.size())).epsilon(1e-9));
+  CHECK(chain_reach_deg(s, j, cfg, k) ==
+        doctest::Approx(10.0 * static_cast<double>(chain.size())).epsilon(1e-9));
   // No chain for a leaflet, nor with one bend joint.
   std::uint32_t leaflet = 0;
   while (s.organs[leaflet].kind != OrganKind::leaflet) ++leaflet;
@@ -403,7 +421,8 @@ TEST_CASE("resolution refuses contacts past its memory, with a clear message, be
   auto cpu = make_cpu_backend();
   const Contacts c = cpu->detect(s, DetectRequest{});
   ResolveRequest rr;
-  rr.detect.memory_limit = static_cast<std::size_t>(static_cast<double>(c.pairs.size()) * kResolutionBytesPerContact) - 1;
+  rr.detect.memory_limit =
+      static_cast<std::size_t>(static_cast<double>(c.pairs.size()) * kResolutionBytesPerContact) - 1;
   rr.config.max_rounds = 1;
   CHECK(failure([&] {
           resolve(s, *cpu, rr, cpu->detect(s, DetectRequest{}));

@@ -42,12 +42,14 @@ struct Setup {
 };
 
 /// The oracle: whether turning `c`'s subtree by rotation r clears what the search asks for.
-bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candidate& c, const Mat3d& r, double deg,
-                   ExactScratch& scratch) {
+bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candidate& c, const Mat3d& r,
+                   double deg, ExactScratch& scratch) {
   const Stand& s = w.stand;
   // Within the mover's joint limit, or (a chain segment) within what a spread over its chain can
   // take (resolution/bend_chain.hpp).
-  if (rotation_angle_deg(Joints::local_after(c.frame, r)) > s.joint_limit_deg[c.mover] && !(deg <= c.chain_deg)) return false;
+  if (rotation_angle_deg(Joints::local_after(c.frame, r)) > s.joint_limit_deg[c.mover] &&
+      !(deg <= c.chain_deg))
+    return false;
   const Motion turn = rotation_about(c.joint, r);
   const auto met = c.keep.begin() + static_cast<std::ptrdiff_t>(c.met_count);
   for (std::int32_t x : c.moving) {
@@ -74,8 +76,8 @@ bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candida
       const Vec3d cy = to_double(w.boxes[k].centre + off);
       if (length(cy - cx) > ox.radius + w.boxes[k].radius + 2.0 * gap + 1e-4) continue;
       const Affine3f& ty = s.transforms[k];
-      const bool touch =
-          x < y ? organs_touch_at(s, w.lib, x, tx, y, ty, gap, scratch) : organs_touch_at(s, w.lib, y, ty, x, tx, gap, scratch);
+      const bool touch = x < y ? organs_touch_at(s, w.lib, x, tx, y, ty, gap, scratch)
+                               : organs_touch_at(s, w.lib, y, ty, x, tx, gap, scratch);
       if (touch) return false;
     }
   }
@@ -84,7 +86,9 @@ bool brute_attempt(Setup& w, const TurnSearch& search, const TurnSearch::Candida
 
 }  // namespace
 
-TEST_CASE("turn search: an attempt clears exactly what brute force over the whole stand says (strict and relaxed)") {
+TEST_CASE(
+    "turn search: an attempt clears exactly what brute force over the whole stand says (strict and "
+    "relaxed)") {
   std::size_t attempts = 0, accepted = 0;
   for (std::uint64_t seed = 1; seed <= 6; ++seed) {
     Setup w(random_stand(100 + seed, 10));
@@ -92,22 +96,29 @@ TEST_CASE("turn search: an attempt clears exactly what brute force over the whol
     w.config.clearance = seed % 2 ? 1e-4 : 0;
     const float detect_clearance = seed % 3 == 0 ? 5e-5f : 0.f;
     Neighbourhood near(w.stand, w.boxes, 1);
-    const TurnSearch search{
-        w.stand,         w.joints,   w.lib,
-        w.config,        w.collide,  near,
-        w.boxes,         w.touching, static_cast<float>(std::max<double>(w.config.clearance, detect_clearance)),
-        detect_clearance};
+    const TurnSearch search{w.stand,
+                            w.joints,
+                            w.lib,
+                            w.config,
+                            w.collide,
+                            near,
+                            w.boxes,
+                            w.touching,
+                            static_cast<float>(std::max<double>(w.config.clearance, detect_clearance)),
+                            detect_clearance};
     std::mt19937_64 g(seed);
     std::uniform_real_distribution<double> u(-1, 1);
     ExactScratch scratch, oracle_scratch;
     for (std::size_t ci = 0; ci < w.contacts.size(); ci += 1 + w.contacts.size() / 12) {
       std::string why;
-      const std::vector<std::uint32_t> movers = candidate_movers(w.stand, w.joints, w.contacts[ci], w.config, why);
+      const std::vector<std::uint32_t> movers =
+          candidate_movers(w.stand, w.joints, w.contacts[ci], w.config, why);
       for (std::size_t mi = 0; mi < movers.size() && mi < 3; ++mi) {
         const std::uint32_t m = movers[mi];
         MetPairs met;
         for (const Contact& k : w.contacts)
-          if (w.joints.holds(m, k.organ_a) != w.joints.holds(m, k.organ_b)) met.emplace_back(k.organ_a, k.organ_b);
+          if (w.joints.holds(m, k.organ_a) != w.joints.holds(m, k.organ_b))
+            met.emplace_back(k.organ_a, k.organ_b);
         for (bool strict : {true, false}) {
           TurnSearch::Candidate c = search.prepare(m, met, strict);
           // Angles growing and shrinking on one candidate (its neighbours gathered for small
@@ -122,8 +133,8 @@ TEST_CASE("turn search: an attempt clears exactly what brute force over the whol
             Mat3d local;
             const bool got = search.attempt(c, axis, deg, local, scratch, own);
             const bool want = brute_attempt(w, search, c, axis_angle(axis, deg * kRad), deg, oracle_scratch);
-            INFO("seed " << seed << " mover " << m << (strict ? " strict" : " relaxed") << " axis " << t << " at " << deg
-                         << " deg");
+            INFO("seed " << seed << " mover " << m << (strict ? " strict" : " relaxed") << " axis " << t
+                         << " at " << deg << " deg");
             CHECK(got == want);
             ++attempts;
             accepted += got;

@@ -25,7 +25,8 @@ void add_disk_plant(Stand& s, double x, float r, float z, OrganKind kind) {
   o.lod = 4;
   Affine3f t;
   t.c0 = {r, 0, 0}, t.c1 = {0, r, 0}, t.c2 = {0, 0, r}, t.t = {0, 0, z};
-  s.organs.push_back(o), s.transforms.push_back(t), s.params.push_back({r, 0}), s.joint_limit_deg.push_back(60);
+  s.organs.push_back(o), s.transforms.push_back(t), s.params.push_back({r, 0}),
+      s.joint_limit_deg.push_back(60);
   p.organ_count = 1;
   s.plants.push_back(p);
 }
@@ -68,7 +69,8 @@ TEST_CASE("render: contact organs magenta where they were placed, others in thei
   const render::Image plain = scene.render(cam, {});
   std::size_t magenta = 0;
   for (int y = 0; y < plain.height; ++y)
-    for (int x = 0; x < plain.width; ++x) magenta += plain.at(x, y)[0] > 200 && plain.at(x, y)[1] < 40 && plain.at(x, y)[2] > 170;
+    for (int x = 0; x < plain.width; ++x)
+      magenta += plain.at(x, y)[0] > 200 && plain.at(x, y)[1] < 40 && plain.at(x, y)[2] > 170;
   CHECK(magenta == 0);
   // PNG round trip.
   const std::string path = (std::filesystem::temp_directory_path() / "canopy_test_render.png").string();

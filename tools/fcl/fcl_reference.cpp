@@ -43,7 +43,8 @@ struct FclScene::Impl {
   double build_s = 0;
 };
 
-FclScene::FclScene(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide) : impl_(std::make_unique<Impl>()) {
+FclScene::FclScene(const Stand& stand, PrototypeLibrary& lib, const KindMask& collide)
+    : impl_(std::make_unique<Impl>()) {
   using Model = fcl::BVHModel<fcl::OBBRSSd>;
   const auto t = std::chrono::steady_clock::now();
   impl_->stand = &stand;

@@ -54,7 +54,9 @@ class Callback {
   std::optional<py::error_already_set> error_;
 };
 
-inline py::object json_to_py(const nlohmann::ordered_json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+inline py::object json_to_py(const nlohmann::ordered_json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
 
 /// A stand owned by Python: arrays handed out view its memory and keep this object alive.
 struct PyStand {
@@ -66,7 +68,9 @@ struct PyStand {
 
 /// A path from str, bytes or os.PathLike (bytes as they are: a file name need not be UTF-8).
 /// (py::str of bytes is their repr, "b'...'", which named a file that does not exist.)
-inline std::string path_of(py::handle h) { return py::module_::import("os").attr("fspath")(h).cast<std::string>(); }
+inline std::string path_of(py::handle h) {
+  return py::module_::import("os").attr("fspath")(h).cast<std::string>();
+}
 
 /// A NumPy view of a stand's memory that NumPy may not write: the stand's arrays change only
 /// through canopy's calls, which check what they are given (a NaN written into a transform was
@@ -82,7 +86,8 @@ inline std::vector<std::string> overrides(const std::map<std::string, double>& s
   return v;
 }
 
-inline DetectRequest detect_request(const std::string& level, double clearance, const std::string& collide, int threads) {
+inline DetectRequest detect_request(const std::string& level, double clearance, const std::string& collide,
+                                    int threads) {
   cli::DetectOptions d;
   d.level = level;
   d.clearance = clearance;
@@ -95,9 +100,9 @@ inline DetectRequest detect_request(const std::string& level, double clearance, 
 }
 
 inline py::array contacts_array(const std::vector<Contact>& pairs) {
-  py::dtype dt =
-      py::dtype::from_args(py::list(py::make_tuple(py::make_tuple("organ_a", "<i4"), py::make_tuple("organ_b", "<i4"),
-                                                   py::make_tuple("plant_a", "<i4"), py::make_tuple("plant_b", "<i4"))));
+  py::dtype dt = py::dtype::from_args(
+      py::list(py::make_tuple(py::make_tuple("organ_a", "<i4"), py::make_tuple("organ_b", "<i4"),
+                              py::make_tuple("plant_a", "<i4"), py::make_tuple("plant_b", "<i4"))));
   py::array out(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(pairs.size())});
   auto* p = static_cast<std::int32_t*>(out.mutable_data());
   for (std::size_t i = 0; i < pairs.size(); ++i)

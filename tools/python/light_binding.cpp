@@ -76,7 +76,8 @@ void bind_light(py::module_& m) {
         o.source = s.grammar;
         for (auto item : kwargs) {
           const std::string k = py::str(item.first);
-          if (!light_option(o, k, item.second)) throw std::invalid_argument(fmt::format("light: unknown option '{}'", k));
+          if (!light_option(o, k, item.second))
+            throw std::invalid_argument(fmt::format("light: unknown option '{}'", k));
         }
         nlohmann::ordered_json j;
         std::string csv;
@@ -84,7 +85,8 @@ void bind_light(py::module_& m) {
           py::gil_scoped_release nogil;
           const ThreadLimit thread_limit(o.threads);
           std::vector<cli::SunSpec> suns;
-          const light::LightConfig cfg = cli::light_config(o, s.stand, o.tile.empty() ? s.layout : std::nullopt, suns);
+          const light::LightConfig cfg =
+              cli::light_config(o, s.stand, o.tile.empty() ? s.layout : std::nullopt, suns);
           PrototypeLibrary lib;
           const light::LightResult r = light::compute_light(s.stand, lib, cfg);
           j = cli::light_json(r, s.stand, o, suns);
@@ -95,9 +97,12 @@ void bind_light(py::module_& m) {
         return out;
 #endif
       },
-      "Light interception (canopy light): suns=[(elevation, azimuth), ...], latitude=, day=, hours=[...], sky='soc', "
-      "sky_directions=46, tile=(xmin, ymin, xmax, ymax), periodic=True, error=0.002, plant_error=, rays_per_m2=, layer=0.1, "
-      "ray_seed=1, threads=0. Returns light.json as a dict, with 'per_plant': light.csv's columns as arrays. The tile "
+      "Light interception (canopy light): suns=[(elevation, azimuth), ...], latitude=, day=, hours=[...], "
+      "sky='soc', "
+      "sky_directions=46, tile=(xmin, ymin, xmax, ymax), periodic=True, error=0.002, plant_error=, "
+      "rays_per_m2=, layer=0.1, "
+      "ray_seed=1, threads=0. Returns light.json as a dict, with 'per_plant': light.csv's columns as arrays. "
+      "The tile "
       "defaults to the lattice of the rows the stand was grown in (or read from).");
 
   m.def(
@@ -138,7 +143,8 @@ void bind_light(py::module_& m) {
         return json_to_py(r.json);
       },
       py::arg("source"), py::arg("options") = py::dict(),
-      "canopy light SOURCE (a stand folder, or a grammar with canopy stand's options and out=DIR): writes light.json and "
+      "canopy light SOURCE (a stand folder, or a grammar with canopy stand's options and out=DIR): writes "
+      "light.json and "
       "light.csv and returns light.json as a dict.");
 }
 

@@ -53,7 +53,8 @@ PYBIND11_MODULE(_canopy, m) {
   m.def(
       "derive",
       [](py::object grammar_arg, std::optional<int> steps, std::optional<std::uint64_t> seed,
-         const std::map<std::string, double>& set, bool stats, bool interpreted, std::size_t max_modules) -> py::object {
+         const std::map<std::string, double>& set, bool stats, bool interpreted,
+         std::size_t max_modules) -> py::object {
         const std::string grammar = path_of(grammar_arg);
         LoadOptions lo;
         for (const auto& s : overrides(set)) lo.overrides.push_back(parse_override(s));
@@ -77,8 +78,8 @@ PYBIND11_MODULE(_canopy, m) {
         return py::str(text);
       },
       py::arg("grammar"), py::kw_only(), py::arg("steps") = py::none(), py::arg("seed") = py::none(),
-      py::arg("set") = std::map<std::string, double>{}, py::arg("stats") = false, py::arg("interpreted") = false,
-      py::arg("max_modules") = kDefaultMaxModules,
+      py::arg("set") = std::map<std::string, double>{}, py::arg("stats") = false,
+      py::arg("interpreted") = false, py::arg("max_modules") = kDefaultMaxModules,
       "The derived string (canopy derive), or with stats=True its module counts as a dict.");
 
   bind_stand(m);
@@ -106,7 +107,8 @@ PYBIND11_MODULE(_canopy, m) {
           else if (k == "plant_spacing") o.rows.plant_spacing = v.cast<double>();
           else if (k == "double_rows") o.rows.double_rows = v.cast<double>();
           else if (k == "jitter") o.rows.jitter = v.cast<double>();
-          else if (k == "random_rotation") o.rows.random_rotation = v.cast<bool>();  // False too: over the grammar's entry
+          else if (k == "random_rotation")
+            o.rows.random_rotation = v.cast<bool>();  // False too: over the grammar's entry
           else if (k == "seed") o.rows.seed = v.cast<std::uint64_t>();
           else if (k == "positions") o.positions = path_of(v);
           else if (k == "any_grammar_path") o.any_grammar_path = v.cast<bool>();
@@ -125,7 +127,8 @@ PYBIND11_MODULE(_canopy, m) {
           else throw std::invalid_argument(fmt::format("stand: unknown option '{}'", k));
         }
         if (!parse_contact_level(o.detect.level))
-          throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", o.detect.level));
+          throw std::invalid_argument(
+              fmt::format("level: '{}' is not plant, leaf, organ or exact", o.detect.level));
         Callback cb(std::move(progress));
         cli::StandOutcome r;
         try {
@@ -139,7 +142,8 @@ PYBIND11_MODULE(_canopy, m) {
         return json_to_py(r.report);
       },
       py::arg("grammar"), py::arg("out"), py::arg("options") = py::dict(), py::arg("progress") = py::none(),
-      "canopy stand GRAMMAR -o OUT with the command line's options (underscores for dashes); returns report.json.");
+      "canopy stand GRAMMAR -o OUT with the command line's options (underscores for dashes); returns "
+      "report.json.");
 
   m.def(
       "sweep",
@@ -201,6 +205,7 @@ PYBIND11_MODULE(_canopy, m) {
         return d;
       },
       py::arg("grammar"), py::arg("out"), py::arg("options") = py::dict(), py::arg("progress") = py::none(),
-      "canopy sweep GRAMMAR -o OUT (lists as Python lists or 'a,b' / 'start:stop:step'); progress(index, total, row) after "
+      "canopy sweep GRAMMAR -o OUT (lists as Python lists or 'a,b' / 'start:stop:step'); progress(index, "
+      "total, row) after "
       "each run. Returns counts; the rows are in OUT/runs.csv and OUT/summary.csv.");
 }

@@ -19,29 +19,37 @@
 namespace canopy::python {
 
 void bind_stand(py::module_& m) {
-  py::class_<PyStand, std::shared_ptr<PyStand>>(m, "Stand", "A stand of plants: organ arrays view its memory.")
+  py::class_<PyStand, std::shared_ptr<PyStand>>(m, "Stand",
+                                                "A stand of plants: organ arrays view its memory.")
       .def_static(
           "grow",
-          [](py::object grammar_arg, std::optional<int> rows, std::optional<int> per_row, std::optional<double> row_spacing,
-             std::optional<double> plant_spacing, std::optional<double> double_rows, std::optional<double> jitter,
-             std::optional<bool> random_rotation, std::optional<std::uint64_t> seed, std::optional<py::array_t<double>> positions,
-             std::optional<int> steps, const std::map<std::string, double>& set, int lod, int threads, std::size_t max_modules) {
+          [](py::object grammar_arg, std::optional<int> rows, std::optional<int> per_row,
+             std::optional<double> row_spacing, std::optional<double> plant_spacing,
+             std::optional<double> double_rows, std::optional<double> jitter,
+             std::optional<bool> random_rotation, std::optional<std::uint64_t> seed,
+             std::optional<py::array_t<double>> positions, std::optional<int> steps,
+             const std::map<std::string, double>& set, int lod, int threads, std::size_t max_modules) {
             const std::string grammar = path_of(grammar_arg);
             GrowRequest req = cli::grow_request(grammar, overrides(set), steps, lod, threads, max_modules);
             StandSpec spec;
-            spec.rows = rows, spec.per_row = per_row, spec.row_spacing = row_spacing, spec.plant_spacing = plant_spacing;
-            spec.double_rows = double_rows, spec.jitter = jitter, spec.random_rotation = random_rotation, spec.seed = seed;
+            spec.rows = rows, spec.per_row = per_row, spec.row_spacing = row_spacing,
+            spec.plant_spacing = plant_spacing;
+            spec.double_rows = double_rows, spec.jitter = jitter, spec.random_rotation = random_rotation,
+            spec.seed = seed;
             if (positions) {
-              if (cli::any_row_option(spec)) throw std::invalid_argument("positions cannot be combined with row options");
+              if (cli::any_row_option(spec))
+                throw std::invalid_argument("positions cannot be combined with row options");
               const auto a = positions->unchecked<2>();
-              if (a.shape(1) != 4) throw std::invalid_argument("positions: an array of rows x, y, rotation, seed (N x 4)");
+              if (a.shape(1) != 4)
+                throw std::invalid_argument("positions: an array of rows x, y, rotation, seed (N x 4)");
               for (py::ssize_t i = 0; i < a.shape(0); ++i) {
                 PlantPlacement p;
                 p.x = a(i, 0), p.y = a(i, 1), p.rotation_deg = a(i, 2);
                 // A whole number in [0, 2^64): a cast would truncate 1.5 and wrap 2^70 without a word.
                 if (!(a(i, 3) >= 0 && a(i, 3) < 0x1p64 && std::floor(a(i, 3)) == a(i, 3)))
-                  throw std::invalid_argument(
-                      fmt::format("positions: row {}: the seed must be a non-negative integer below 2^64, got {}", i, a(i, 3)));
+                  throw std::invalid_argument(fmt::format(
+                      "positions: row {}: the seed must be a non-negative integer below 2^64, got {}", i,
+                      a(i, 3)));
                 p.seed = static_cast<std::uint64_t>(a(i, 3));
                 req.plants.push_back(p);
               }
@@ -49,7 +57,8 @@ void bind_stand(py::module_& m) {
             auto out = std::make_shared<PyStand>();
             if (!positions) {
               const Grammar g = load_grammar(grammar, req.load);
-              out->layout = cli::choose_layout(spec, g.stand).layout;  // field by field over the grammar's entry
+              out->layout =
+                  cli::choose_layout(spec, g.stand).layout;  // field by field over the grammar's entry
               req.plants = row_layout(*out->layout);
             }
             out->grammar = grammar;
@@ -61,11 +70,14 @@ void bind_stand(py::module_& m) {
             return out;
           },
           py::arg("grammar"), py::kw_only(), py::arg("rows") = py::none(), py::arg("per_row") = py::none(),
-          py::arg("row_spacing") = py::none(), py::arg("plant_spacing") = py::none(), py::arg("double_rows") = py::none(),
-          py::arg("jitter") = py::none(), py::arg("random_rotation") = py::none(), py::arg("seed") = py::none(),
-          py::arg("positions") = py::none(), py::arg("steps") = py::none(), py::arg("set") = std::map<std::string, double>{},
-          py::arg("lod") = kDefaultLod, py::arg("threads") = 0, py::arg("max_modules") = kDefaultMaxModules,
-          "Grows a stand: rows (as canopy stand's layout options, each given overriding that field of the grammar's stand "
+          py::arg("row_spacing") = py::none(), py::arg("plant_spacing") = py::none(),
+          py::arg("double_rows") = py::none(), py::arg("jitter") = py::none(),
+          py::arg("random_rotation") = py::none(), py::arg("seed") = py::none(),
+          py::arg("positions") = py::none(), py::arg("steps") = py::none(),
+          py::arg("set") = std::map<std::string, double>{}, py::arg("lod") = kDefaultLod,
+          py::arg("threads") = 0, py::arg("max_modules") = kDefaultMaxModules,
+          "Grows a stand: rows (as canopy stand's layout options, each given overriding that field of the "
+          "grammar's stand "
           "entry) or an N x 4 array "
           "of positions x, y, rotation (degrees), seed.")
       .def_static(
@@ -94,34 +106,41 @@ void bind_stand(py::module_& m) {
           "organs",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
-            py::dtype dt = py::dtype::from_args(py::list(
-                py::make_tuple(py::make_tuple("plant", "<i4"), py::make_tuple("parent", "<i4"), py::make_tuple("leaf", "<i4"),
-                               py::make_tuple("kind", "u1"), py::make_tuple("prototype", "u1"), py::make_tuple("lod", "u1"),
-                               py::make_tuple("reserved", "u1"))));
-            return read_only(py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
-                                       std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))},
-                                       s.stand.organs.data(), self));
+            py::dtype dt = py::dtype::from_args(
+                py::list(py::make_tuple(py::make_tuple("plant", "<i4"), py::make_tuple("parent", "<i4"),
+                                        py::make_tuple("leaf", "<i4"), py::make_tuple("kind", "u1"),
+                                        py::make_tuple("prototype", "u1"), py::make_tuple("lod", "u1"),
+                                        py::make_tuple("reserved", "u1"))));
+            return read_only(
+                py::array(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.organ_count())},
+                          std::vector<py::ssize_t>{static_cast<py::ssize_t>(sizeof(OrganRecord))},
+                          s.stand.organs.data(), self));
           },
-          "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records (no copy; read-only).")
+          "Structured array (plant, parent, leaf, kind, prototype, lod) viewing the stand's organ records "
+          "(no copy; read-only).")
       .def_property_readonly(
           "transforms",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
             const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
-            return read_only(py::array_t<float>({n, py::ssize_t{4}, py::ssize_t{3}},
-                                                {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{12}, py::ssize_t{4}},
-                                                reinterpret_cast<const float*>(s.stand.transforms.data()), self));
+            return read_only(py::array_t<float>(
+                {n, py::ssize_t{4}, py::ssize_t{3}},
+                {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{12}, py::ssize_t{4}},
+                reinterpret_cast<const float*>(s.stand.transforms.data()), self));
           },
-          "float32 array (organs, 4, 3) viewing the plant-frame transforms: rows H*size, L*size, U*size, joint (read-only).")
+          "float32 array (organs, 4, 3) viewing the plant-frame transforms: rows H*size, L*size, U*size, "
+          "joint (read-only).")
       .def_property_readonly(
           "base_points",
           [](py::object self) {
             PyStand& s = self.cast<PyStand&>();
             const auto n = static_cast<py::ssize_t>(s.stand.organ_count());
-            return read_only(py::array_t<float>({n, py::ssize_t{3}}, {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{4}},
-                                                reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self));
+            return read_only(py::array_t<float>(
+                {n, py::ssize_t{3}}, {static_cast<py::ssize_t>(sizeof(Affine3f)), py::ssize_t{4}},
+                reinterpret_cast<const float*>(s.stand.transforms.data()) + 9, self));
           },
-          "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame (read-only).")
+          "float32 array (organs, 3) viewing each organ's base point (joint) in its plant's frame "
+          "(read-only).")
       .def_property_readonly(
           "area",
           [](PyStand& s) {
@@ -145,15 +164,17 @@ void bind_stand(py::module_& m) {
       .def_property_readonly(
           "plants",
           [](PyStand& s) {
-            py::dtype dt = py::dtype::from_args(py::list(py::make_tuple(
-                py::make_tuple("x", "<f8"), py::make_tuple("y", "<f8"), py::make_tuple("rotation", "<f8"),
-                py::make_tuple("seed", "<u8"), py::make_tuple("steps", "<i4"), py::make_tuple("organ_count", "<u4"))));
+            py::dtype dt = py::dtype::from_args(py::list(
+                py::make_tuple(py::make_tuple("x", "<f8"), py::make_tuple("y", "<f8"),
+                               py::make_tuple("rotation", "<f8"), py::make_tuple("seed", "<u8"),
+                               py::make_tuple("steps", "<i4"), py::make_tuple("organ_count", "<u4"))));
             py::array out(dt, std::vector<py::ssize_t>{static_cast<py::ssize_t>(s.stand.plant_count())});
             auto* b = static_cast<char*>(out.mutable_data());
             for (std::size_t i = 0; i < s.stand.plant_count(); ++i) {
               const PlantRecord& r = s.stand.plants[i];
               char* row = b + i * static_cast<std::size_t>(dt.itemsize());
-              std::memcpy(row, &r.x, 8), std::memcpy(row + 8, &r.y, 8), std::memcpy(row + 16, &r.rotation_deg, 8);
+              std::memcpy(row, &r.x, 8), std::memcpy(row + 8, &r.y, 8),
+                  std::memcpy(row + 16, &r.rotation_deg, 8);
               std::memcpy(row + 24, &r.seed, 8);
               const std::int32_t st = r.steps;
               std::memcpy(row + 32, &st, 4), std::memcpy(row + 36, &r.organ_count, 4);
@@ -163,8 +184,8 @@ void bind_stand(py::module_& m) {
           "Structured array of the plants (x, y, rotation, seed, steps, organ_count).")
       .def(
           "detect",
-          [](PyStand& s, const std::string& level, double clearance, const std::string& collide, const std::string& backend,
-             int threads) {
+          [](PyStand& s, const std::string& level, double clearance, const std::string& collide,
+             const std::string& backend, int threads) {
             const DetectRequest req = detect_request(level, clearance, collide, threads);
             std::string note;
             Contacts c;
@@ -186,13 +207,16 @@ void bind_stand(py::module_& m) {
             return out;
           },
           py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0,
-          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("backend") = "auto", py::arg("threads") = 0,
-          "Detects contacts (every organ kind unless collide narrows them): {'contacts': structured array, 'counts': per "
+          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("backend") = "auto",
+          py::arg("threads") = 0,
+          "Detects contacts (every organ kind unless collide narrows them): {'contacts': structured array, "
+          "'counts': per "
           "level, 'backend': name, 'device', 'note': how the backend was chosen}.")
       .def(
           "resolve",
-          [](PyStand& s, const std::string& level, double clearance, double resolve_clearance, const std::string& collide,
-             int max_rounds, const std::string& backend, int threads, py::object progress) {
+          [](PyStand& s, const std::string& level, double clearance, double resolve_clearance,
+             const std::string& collide, int max_rounds, const std::string& backend, int threads,
+             py::object progress) {
             DetectRequest dreq = detect_request("exact", clearance, collide, threads);
             cli::ResolveOptions ro;
             ro.level = level;
@@ -229,15 +253,19 @@ void bind_stand(py::module_& m) {
             s.last = std::move(after);
             return out;
           },
-          py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0, py::arg("resolve_clearance") = 1e-4,
-          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("max_rounds") = 30, py::arg("backend") = "auto",
-          py::arg("threads") = 0, py::arg("progress") = py::none(),
-          "Turns organs out of contact (canopy stand's resolution); progress(round, contacts_left, seconds) is called each "
-          "round, and raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and 'search' say "
+          py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0,
+          py::arg("resolve_clearance") = 1e-4, py::arg("collide") = cli::DetectOptions{}.collide,
+          py::arg("max_rounds") = 30, py::arg("backend") = "auto", py::arg("threads") = 0,
+          py::arg("progress") = py::none(),
+          "Turns organs out of contact (canopy stand's resolution); progress(round, contacts_left, seconds) "
+          "is called each "
+          "round, and raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and "
+          "'search' say "
           "what planned the rounds) with 'contacts_after', 'backend', 'device' and 'note'.")
       .def(
           "export",
-          [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing, bool glb_compact) {
+          [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing,
+             bool glb_compact) {
             const std::string dir = path_of(dir_arg);
             std::string list;
             for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
@@ -253,10 +281,12 @@ void bind_stand(py::module_& m) {
             if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
             files.commit_all();
           },
-          py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"}, py::arg("glb_instancing") = false,
-          py::arg("glb_compact") = false,
-          "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv of the last "
-          "detection or resolution); glb_compact writes stand.glb quantized (KHR_mesh_quantization, positions in steps "
+          py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"},
+          py::arg("glb_instancing") = false, py::arg("glb_compact") = false,
+          "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv "
+          "of the last "
+          "detection or resolution); glb_compact writes stand.glb quantized (KHR_mesh_quantization, "
+          "positions in steps "
           "of at most 50 um, half the default resolution clearance).");
 }
 

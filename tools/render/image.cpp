@@ -28,8 +28,8 @@ void write_png(const Image& img, const std::string& path) {
     throw std::runtime_error(fmt::format("cannot write {}: libpng failed", path));
   }
   png_init_io(png, f.get());
-  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(img.width), static_cast<png_uint_32>(img.height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int y = 0; y < img.height; ++y) png_write_row(png, const_cast<png_bytep>(img.at(0, y)));
   png_write_end(png, nullptr);
@@ -47,7 +47,8 @@ Image read_png(const std::string& path) {
   }
   png_init_io(png, f.get());
   png_read_info(png, info);
-  Image img(static_cast<int>(png_get_image_width(png, info)), static_cast<int>(png_get_image_height(png, info)));
+  Image img(static_cast<int>(png_get_image_width(png, info)),
+            static_cast<int>(png_get_image_height(png, info)));
   if (png_get_bit_depth(png, info) != 8 || png_get_color_type(png, info) != PNG_COLOR_TYPE_RGB) {
     png_destroy_read_struct(&png, &info, nullptr);
     throw std::runtime_error(fmt::format("cannot read {}: not an 8-bit RGB PNG", path));

@@ -24,7 +24,9 @@ Camera fit_camera(Vec3d lo, Vec3d hi, View view, int width, int height) {
   Camera c;
   c.width = width, c.height = height;
   c.centre = (lo + hi) * 0.5;
-  c.dir = view == View::top ? Vec3d{0, 0, -1} : view == View::side ? Vec3d{0, 1, 0} : normalized(Vec3d{0.45, 1.0, -0.75});
+  c.dir = view == View::top    ? Vec3d{0, 0, -1}
+          : view == View::side ? Vec3d{0, 1, 0}
+                               : normalized(Vec3d{0.45, 1.0, -0.75});
   c.right = view == View::top ? Vec3d{1, 0, 0} : normalized(cross(c.dir, Vec3d{0, 0, 1}));
   c.up = cross(c.right, c.dir);
   double mu = 1e-6, mv = 1e-6;
@@ -57,7 +59,8 @@ struct Scene::Impl {
 Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>()), stand_(s) {
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device)
-    throw std::runtime_error(fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
+    throw std::runtime_error(
+        fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
   RTCDevice dev = impl_->device;
   impl_->prototypes.assign(kMeshSlots, nullptr);
   const auto proto_scene = [&](const OrganRecord& r) {
@@ -96,7 +99,8 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
     rtcReleaseGeometry(inst);
     const Box3f& b = lib.get(r).box;
     for (int k = 0; k < 8; ++k) {
-      const Vec3f p = apply(t, Vec3f{(k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 4) ? b.hi.z : b.lo.z});
+      const Vec3f p =
+          apply(t, Vec3f{(k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 4) ? b.hi.z : b.lo.z});
       const Vec3d w = to_double(p) + off;
       lo_ = {std::min(lo_.x, w.x), std::min(lo_.y, w.y), std::min(lo_.z, w.z)};
       hi_ = {std::max(hi_.x, w.x), std::max(hi_.y, w.y), std::max(hi_.z, w.z)};
@@ -105,7 +109,8 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
   if (!(lo_.x <= hi_.x)) lo_ = {-0.5, -0.5, 0}, hi_ = {0.5, 0.5, 1};
   lo_.z = std::min(lo_.z, 0.0);
   rtcCommitScene(impl_->top);
-  if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) throw std::runtime_error("Embree could not build the scene (out of memory?)");
+  if (rtcGetDeviceError(dev) != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree could not build the scene (out of memory?)");
 }
 
 Scene::~Scene() = default;
@@ -117,13 +122,16 @@ Image Scene::render(const Camera& cam, const std::vector<std::uint8_t>& highligh
   const double ground = lo_.z;
   // The soil: the stand's footprint and a margin of a fifth of its size around it.
   const double mx = 0.2 * (hi_.x - lo_.x) + 0.2, my = 0.2 * (hi_.y - lo_.y) + 0.2;
-  const auto on_soil = [&](Vec3d p) { return p.x > lo_.x - mx && p.x < hi_.x + mx && p.y > lo_.y - my && p.y < hi_.y + my; };
+  const auto on_soil = [&](Vec3d p) {
+    return p.x > lo_.x - mx && p.x < hi_.x + mx && p.y > lo_.y - my && p.y < hi_.y + my;
+  };
 #pragma omp parallel for schedule(dynamic, 4)
   for (int y = 0; y < cam.height; ++y) {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     for (int x = 0; x < cam.width; ++x) {
-      const double u = ((x + 0.5) / cam.width * 2 - 1) * cam.half_w, v = (1 - (y + 0.5) / cam.height * 2) * cam.half_h;
+      const double u = ((x + 0.5) / cam.width * 2 - 1) * cam.half_w,
+                   v = (1 - (y + 0.5) / cam.height * 2) * cam.half_h;
       const Vec3d org = cam.centre + cam.right * u + cam.up * v - cam.dir * cam.back;
       RTCRayHit rh{};
       rh.ray.org_x = static_cast<float>(org.x), rh.ray.org_y = static_cast<float>(org.y),
@@ -139,11 +147,13 @@ Image Scene::render(const Camera& cam, const std::vector<std::uint8_t>& highligh
         const Affine3f& t = stand_.transforms[organ];
         // The object-space normal carried to the world by the cofactor matrix of the transform.
         const Vec3d a = to_double(t.c0), b = to_double(t.c1), d = to_double(t.c2);
-        const Vec3d n = normalized(cross(b, d) * rh.hit.Ng_x + cross(d, a) * rh.hit.Ng_y + cross(a, b) * rh.hit.Ng_z);
+        const Vec3d n =
+            normalized(cross(b, d) * rh.hit.Ng_x + cross(d, a) * rh.hit.Ng_y + cross(a, b) * rh.hit.Ng_z);
         const double shade = 0.35 + 0.65 * std::abs(dot(n, light));
         const bool hot = organ < highlight.size() && highlight[organ];
         const Vec3f k = kind_colour(stand_.organs[organ].kind);
-        const float base[3] = {hot ? kContactColour[0] : k.x, hot ? kContactColour[1] : k.y, hot ? kContactColour[2] : k.z};
+        const float base[3] = {hot ? kContactColour[0] : k.x, hot ? kContactColour[1] : k.y,
+                               hot ? kContactColour[2] : k.z};
         for (int i = 0; i < 3; ++i) c[i] = static_cast<float>(base[i] * (hot ? std::max(shade, 0.8) : shade));
       } else if (cam.dir.z < 0 && org.z > ground && on_soil(org + cam.dir * ((ground - org.z) / cam.dir.z))) {
         for (int i = 0; i < 3; ++i) c[i] = soil[i];
@@ -151,7 +161,8 @@ Image Scene::render(const Camera& cam, const std::vector<std::uint8_t>& highligh
         for (int i = 0; i < 3; ++i) c[i] = sky[i];
       }
       std::uint8_t* px = img.at(x, y);
-      for (int i = 0; i < 3; ++i) px[i] = static_cast<std::uint8_t>(std::lround(std::clamp(c[i], 0.0f, 1.0f) * 255));
+      for (int i = 0; i < 3; ++i)
+        px[i] = static_cast<std::uint8_t>(std::lround(std::clamp(c[i], 0.0f, 1.0f) * 255));
     }
   }
   return img;

@@ -3,8 +3,8 @@
 /// each prototype mesh is one Embree scene, and each organ an instance of it carried by its
 /// transform (plant offset added), so a 10,000-plant stand costs a few hundred bytes per organ,
 /// not a copy of its 75 million triangles. Orthographic cameras: an oblique view from the
-/// front-left, a view from above and a level view from the side; organs coloured by kind, Lambert-shaded from both sides,
-/// the highlighted organs (contacts) in magenta, the soil below.
+/// front-left, a view from above and a level view from the side; organs coloured by kind, Lambert-shaded from
+/// both sides, the highlighted organs (contacts) in magenta, the soil below.
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
 #include "tools/render/image.hpp"

@@ -82,7 +82,8 @@ TEST_CASE("eight LCD tests at once agree at the last float where the boxes meet"
     const LcdCentred a = random_root(g);
     LcdCentred b = random_root(g);
     const Vec3f dir{u(g), u(g), i % 3 == 0 ? 0.0f : 0.5f * u(g)};
-    if (!lcd_overlap(a, b, {0, 0, 0}) || lcd_overlap(a, b, dir * 8)) continue;  // the boxes meet at 0, not at 8
+    if (!lcd_overlap(a, b, {0, 0, 0}) || lcd_overlap(a, b, dir * 8))
+      continue;  // the boxes meet at 0, not at 8
     float lo = 0, hi = 8;
     for (int it = 0; it < 80; ++it) {
       const float mid = 0.5f * (lo + hi);

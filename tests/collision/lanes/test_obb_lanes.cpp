@@ -79,9 +79,10 @@ TEST_CASE("eight OBB tests at once give obb_overlap's answer lane by lane") {
   std::vector<Case> cases;
   for (int i = 0; i < 30000; ++i) {
     Case c{random_obb(g, i % 3), random_obb(g, (i / 3) % 3), Vec3f{0, 0, 0}};
-    if (i % 5 == 0) c.offset = {u(g), u(g), 0};                                                      // another plant's frame
-    if (i % 11 == 0) c.offset = {1000 + u(g), -2000 + u(g), 0}, c.b.centre = c.b.centre - c.offset;  // far from the origin
-    if (i % 97 == 0) c.b.centre.y = std::numeric_limits<float>::quiet_NaN();                         // meets nothing
+    if (i % 5 == 0) c.offset = {u(g), u(g), 0};  // another plant's frame
+    if (i % 11 == 0)
+      c.offset = {1000 + u(g), -2000 + u(g), 0}, c.b.centre = c.b.centre - c.offset;  // far from the origin
+    if (i % 97 == 0) c.b.centre.y = std::numeric_limits<float>::quiet_NaN();          // meets nothing
     cases.push_back(c);
   }
   int overlaps = 0;

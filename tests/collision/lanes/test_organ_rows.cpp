@@ -32,8 +32,8 @@ Box3f random_box(std::mt19937& g) {
 /// LCD boxes overlap) and every cluster with itself: candidates by the shared definition and by
 /// the lanes (lane_small_cluster_pairs too, for two clusters of one block each). `blocks` counts
 /// the blocks below the clusters' roots, `small_pairs` the pairs lane_small_cluster_pairs found.
-void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::size_t& blocks, std::uint32_t* largest = nullptr,
-                        std::size_t* small_pairs = nullptr) {
+void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::size_t& blocks,
+                        std::uint32_t* largest = nullptr, std::size_t* small_pairs = nullptr) {
   LevelCount count;
   const auto box_of = [&](std::uint32_t pos) { return obb_aabb(m.obbs[m.cluster_organs[pos]]); };
   for (const auto& [p, q] : plant_level(s, m, count)) {
@@ -45,22 +45,26 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
       for (std::uint32_t j = p == q ? i : pb.first_cluster; j < pb.first_cluster + pb.cluster_count; ++j) {
         const Cluster& cb = m.clusters[j];
         Pairs shared, lanes;
-        const auto into = [](Pairs& out) { return [&out](std::int32_t a, std::int32_t b) { out.emplace_back(a, b); }; };
+        const auto into = [](Pairs& out) {
+          return [&out](std::int32_t a, std::int32_t b) { out.emplace_back(a, b); };
+        };
         if (i == j) {
           // The lanes leave out the adjacent pairs of a cluster whose pairs are masked.
           own_pairs(m.cluster_organs.data(), ca.first, ca.count, box_of, into(shared));
           if (pairs_masked(ca.count))
-            std::erase_if(shared,
-                          [&](const auto& ab) { return adjacent(s.organs[ab.first], ab.first, s.organs[ab.second], ab.second); });
+            std::erase_if(shared, [&](const auto& ab) {
+              return adjacent(s.organs[ab.first], ab.first, s.organs[ab.second], ab.second);
+            });
           lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), m.lanes.pass[i], into(lanes));
         } else {
           if (!lcd_overlap(m.nodes[ca.root].box, m.nodes[cb.root].box, offset)) continue;
-          descend_lcd_trees(m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {
-            blocks += &na != &m.nodes[ca.root] || &nb != &m.nodes[cb.root];  // below a root
-            if (largest) *largest = std::max({*largest, na.count, nb.count});
-            block_pairs(m.cluster_organs.data(), na, nb, offset, box_of, into(shared));
-            lane_block_pairs(m.lanes, m.cluster_organs.data(), i, ca, na, j, cb, nb, offset, into(lanes));
-          });
+          descend_lcd_trees(
+              m.nodes.data(), ca.root, cb.root, offset, [&](const LcdNode& na, const LcdNode& nb) {
+                blocks += &na != &m.nodes[ca.root] || &nb != &m.nodes[cb.root];  // below a root
+                if (largest) *largest = std::max({*largest, na.count, nb.count});
+                block_pairs(m.cluster_organs.data(), na, nb, offset, box_of, into(shared));
+                lane_block_pairs(m.lanes, m.cluster_organs.data(), i, ca, na, j, cb, nb, offset, into(lanes));
+              });
         }
         std::sort(shared.begin(), shared.end());
         std::sort(lanes.begin(), lanes.end());
@@ -70,7 +74,8 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
         // Clusters of one block each: the pass takes them whole, with 16-bit masks.
         if (i != j && ca.count <= kBlockOrgans && cb.count <= kBlockOrgans) {
           Pairs small;
-          lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), m.lanes.pass[i], m.lanes.pass[j], offset, into(small));
+          lane_small_cluster_pairs(m.lanes, m.cluster_organs.data(), m.lanes.pass[i], m.lanes.pass[j], offset,
+                                   into(small));
           std::sort(small.begin(), small.end());
           CHECK(small == shared);
           if (small_pairs) *small_pairs += small.size();
@@ -82,7 +87,8 @@ void compare_candidates(const Stand& s, const Mbvt& m, std::size_t& pairs, std::
 
 }  // namespace
 
-TEST_CASE("eight lanes at once give boxes_meet's answer lane by lane, touching, empty and NaN boxes included") {
+TEST_CASE(
+    "eight lanes at once give boxes_meet's answer lane by lane, touching, empty and NaN boxes included") {
   std::mt19937 g(31);
   std::uniform_real_distribution<float> u(-1, 1);
   int met = 0, missed = 0;
@@ -122,7 +128,9 @@ TEST_CASE("eight lanes at once give boxes_meet's answer lane by lane, touching, 
   CHECK(missed > 10000);
 }
 
-TEST_CASE("eight lanes against a moved box give boxes_meet's answer lane by lane, touching, empty and NaN boxes included") {
+TEST_CASE(
+    "eight lanes against a moved box give boxes_meet's answer lane by lane, touching, empty and NaN boxes "
+    "included") {
   // lanes_meeting_moved: the lanes' boxes unmoved, the one box moved by the offset (a plant's
   // clusters against the other plant's box).
   std::mt19937 g(37);
@@ -173,7 +181,9 @@ TEST_CASE("eight lanes against a moved box give boxes_meet's answer lane by lane
   CHECK(missed > 10000);
 }
 
-TEST_CASE("organ pairs through lanes equal the shared definition on random stands, blocks below the root included") {
+TEST_CASE(
+    "organ pairs through lanes equal the shared definition on random stands, blocks below the root "
+    "included") {
   std::size_t pairs = 0, blocks = 0, sub_blocks = 0, small_pairs = 0;
   std::uint32_t largest_block = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
@@ -227,11 +237,12 @@ TEST_CASE("the clusters found through lanes are those whose boxes meet and whose
         std::vector<std::uint32_t> want, got;
         for (std::uint32_t j = pb.first_cluster + from; j < pb.first_cluster + pb.cluster_count; ++j) {
           if (!boxes_meet(m.clusters[i].box, m.clusters[j].box, offset)) continue;
-          if (lcd_overlap(m.nodes[m.clusters[i].root].box, m.nodes[m.clusters[j].root].box, offset)) want.push_back(j);
+          if (lcd_overlap(m.nodes[m.clusters[i].root].box, m.nodes[m.clusters[j].root].box, offset))
+            want.push_back(j);
           else ++box_only;
         }
-        lane_clusters_overlapping(m.lanes, pb, static_cast<std::uint32_t>(q), from, m.clusters[i].box, m.lanes.roots[i], offset,
-                                  [&](std::uint32_t j) { got.push_back(j); });
+        lane_clusters_overlapping(m.lanes, pb, static_cast<std::uint32_t>(q), from, m.clusters[i].box,
+                                  m.lanes.roots[i], offset, [&](std::uint32_t j) { got.push_back(j); });
         INFO("seed " << seed << " plants " << p << " " << q << " cluster " << i);
         CHECK(got == want);
         found += want.size();

@@ -37,12 +37,14 @@ int compare(const PosedOrgan& p, const double* box, const Obb& obb, float margin
   double vbox[6] = {1e300, 1e300, 1e300, -1e300, -1e300, -1e300};
   for (const Vec3f& v : p.vertices()) {
     const double xyz[3] = {v.x, v.y, v.z};
-    for (int k = 0; k < 3; ++k) vbox[k] = std::min(vbox[k], xyz[k]), vbox[k + 3] = std::max(vbox[k + 3], xyz[k]);
+    for (int k = 0; k < 3; ++k)
+      vbox[k] = std::min(vbox[k], xyz[k]), vbox[k + 3] = std::max(vbox[k + 3], xyz[k]);
   }
   for (int k = 0; k < 6; ++k) CHECK(p.box[k] == vbox[k]);
   int near = 0;
   for (std::size_t i = 0; i < tris; ++i) {
-    const Vec3f t[3] = {p.vertices()[m.indices[3 * i]], p.vertices()[m.indices[3 * i + 1]], p.vertices()[m.indices[3 * i + 2]]};
+    const Vec3f t[3] = {p.vertices()[m.indices[3 * i]], p.vertices()[m.indices[3 * i + 1]],
+                        p.vertices()[m.indices[3 * i + 2]]};
     const float tb[6] = {min_f(t[0].x, min_f(t[1].x, t[2].x)), min_f(t[0].y, min_f(t[1].y, t[2].y)),
                          min_f(t[0].z, min_f(t[1].z, t[2].z)), max_f(t[0].x, max_f(t[1].x, t[2].x)),
                          max_f(t[0].y, max_f(t[1].y, t[2].y)), max_f(t[0].z, max_f(t[1].z, t[2].z))};
@@ -51,7 +53,8 @@ int compare(const PosedOrgan& p, const double* box, const Obb& obb, float margin
     for (int c = 0; c < 3; ++c) {
       const float xyz[3] = {t[c].x, t[c].y, t[c].z};
       for (int k = 0; k < 3; ++k)
-        CHECK(std::memcmp(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats + static_cast<std::size_t>(3 * c + k) * 8 + i % 8],
+        CHECK(std::memcmp(&p.tri_lanes[i / 8 * PosedOrgan::kGroupFloats +
+                                       static_cast<std::size_t>(3 * c + k) * 8 + i % 8],
                           &xyz[k], sizeof(float)) == 0);
     }
     const bool want = meets_in_double(tb, box) && !beyond_obb(t, obb, margin);
@@ -75,7 +78,8 @@ TEST_CASE("triangles near another organ, 8 at a time, are those the scalar box a
     for (int trial = 0; trial < 1500; ++trial) {
       const auto a = static_cast<std::int32_t>(rng() % n);
       // The other organ: one with an id close by (often touching or crossing) or any.
-      const auto b = static_cast<std::int32_t>(trial % 2 ? (static_cast<std::uint32_t>(a) + 1 + rng() % 12) % n : rng() % n);
+      const auto b = static_cast<std::int32_t>(
+          trial % 2 ? (static_cast<std::uint32_t>(a) + 1 + rng() % 12) % n : rng() % n);
       const OrganRecord& ra = s.organs[static_cast<std::size_t>(a)];
       const OrganRecord& rb = s.organs[static_cast<std::size_t>(b)];
       PosedOrgan pa, pb;
@@ -90,7 +94,8 @@ TEST_CASE("triangles near another organ, 8 at a time, are those the scalar box a
           box_b[k] = pb.box[k] - c, box_b[k + 3] = pb.box[k + 3] + c;
         }
         const float margin = static_cast<float>(c) + kRejectSlack;
-        const int found = compare(pa, box_b, pb.obb, margin, differ) + compare(pb, box_a, pa.obb, margin, differ);
+        const int found =
+            compare(pa, box_b, pb.obb, margin, differ) + compare(pb, box_a, pa.obb, margin, differ);
         near += found;
         far += static_cast<int>(pa.mesh->triangle_count() + pb.mesh->triangle_count()) - found;
       }
@@ -124,10 +129,12 @@ TEST_CASE("a box at a triangle's box, a float beyond it or a fraction of a float
     const bool upper = face >= 3;  // the other box's hi on the triangle's lo, or its lo on the triangle's hi
     const float at = pa.tri_box(i, upper ? axis : axis + 3);
     double box[6] = {-1e3, -1e3, -1e3, 1e3, 1e3, 1e3};
-    const float outward = upper ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();
+    const float outward =
+        upper ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();
     const double one_float = std::fabs(static_cast<double>(std::nextafter(at, outward)) - at);
-    for (const double place : {static_cast<double>(at), static_cast<double>(std::nextafter(at, outward)),
-                               at + (upper ? -0.5 : 0.5) * one_float, at + (upper ? 0.25 : -0.25) * one_float}) {
+    for (const double place :
+         {static_cast<double>(at), static_cast<double>(std::nextafter(at, outward)),
+          at + (upper ? -0.5 : 0.5) * one_float, at + (upper ? 0.25 : -0.25) * one_float}) {
       box[upper ? axis + 3 : axis] = place;
       near += compare(pa, box, huge, kRejectSlack, differ);
       ++checked;
@@ -159,12 +166,14 @@ int rejected_differences(const Vec3f* t, const Vec3f (*u)[3], float margin, int&
   int differ = 0;
   unsigned want_bits = 0;
   for (int lane = 0; lane < 8; ++lane) {
-    const bool want = triangles_rejected(pt, t, TrianglePlane::of(u[lane][0], u[lane][1], u[lane][2]), u[lane], margin);
+    const bool want =
+        triangles_rejected(pt, t, TrianglePlane::of(u[lane][0], u[lane][1], u[lane][2]), u[lane], margin);
     rejected += want;
     want_bits |= want ? 1u << lane : 0u;
     differ += want != (((bits >> lane) & 1u) != 0);
   }
-  for (const unsigned w : wanted) differ += __builtin_popcount((rejected_lanes(pt, t, group, margin, w) ^ want_bits) & w);
+  for (const unsigned w : wanted)
+    differ += __builtin_popcount((rejected_lanes(pt, t, group, margin, w) ^ want_bits) & w);
   return differ;
 }
 
@@ -186,9 +195,11 @@ TEST_CASE("a triangle's float rejections against 8 others at once are triangles_
       const Vec3f shift = Vec3f{u(rng), u(rng), u(rng)} * (2 * size * static_cast<float>(lane) / 7.0f);
       for (auto& p : others[lane]) p = base + shift + Vec3f{u(rng), u(rng), u(rng)} * size;
       switch ((trial + lane) % 9) {
-        case 0: others[lane][2] = others[lane][0] + (others[lane][1] - others[lane][0]) * 0.5f; break;  // a sliver
-        case 1: others[lane][1] = others[lane][2] = others[lane][0]; break;                             // a point
-        case 2: others[lane][0] = t[1]; break;                                                          // a shared corner
+        case 0:
+          others[lane][2] = others[lane][0] + (others[lane][1] - others[lane][0]) * 0.5f;
+          break;                                                             // a sliver
+        case 1: others[lane][1] = others[lane][2] = others[lane][0]; break;  // a point
+        case 2: others[lane][0] = t[1]; break;                               // a shared corner
         case 3:
           for (int c = 0; c < 3; ++c) others[lane][c] = t[(c + 1) % 3];
           break;  // t itself
@@ -201,7 +212,8 @@ TEST_CASE("a triangle's float rejections against 8 others at once are triangles_
     if (trial % 50 == 0) others[trial % 8][1].y = std::numeric_limits<float>::quiet_NaN();
     for (const float c : {0.0f, 1e-4f, 0.01f}) {
       int r = 0;
-      differ += rejected_differences(t, others, c + kRejectSlack, r, {1u << (trial % 8), static_cast<unsigned>(rng() & 0xffu)});
+      differ += rejected_differences(t, others, c + kRejectSlack, r,
+                                     {1u << (trial % 8), static_cast<unsigned>(rng() & 0xffu)});
       rejected += r, kept += 8 - r;
     }
   }
@@ -257,7 +269,8 @@ TEST_CASE("the float rejections 8 at a time agree at the last float where they c
   CHECK(rejected > 1000);
 }
 
-TEST_CASE("float bounds of a box of floats are the floats themselves, as the rounding constructor makes them") {
+TEST_CASE(
+    "float bounds of a box of floats are the floats themselves, as the rounding constructor makes them") {
   // posed_touch takes FloatBounds::of_floats for a triangle's box when there is no clearance:
   // the same bounds as FloatBounds' constructor, which corrects any rounding (none here), on
   // signed zeros, tiny, huge and random floats.
@@ -273,7 +286,8 @@ TEST_CASE("float bounds of a box of floats are the floats themselves, as the rou
                            123456.7f};
   for (int i = 0; i < 20000; ++i) {
     double box[6];
-    for (double& v : box) v = g() % 5 == 0 ? special[g() % 8] : u(g) * std::pow(10.0f, static_cast<float>(g() % 9) - 4.0f);
+    for (double& v : box)
+      v = g() % 5 == 0 ? special[g() % 8] : u(g) * std::pow(10.0f, static_cast<float>(g() % 9) - 4.0f);
     const FloatBounds want(box), got = FloatBounds::of_floats(box);
     CHECK(std::memcmp(want.lo_above, got.lo_above, sizeof want.lo_above) == 0);
     CHECK(std::memcmp(want.hi_below, got.hi_below, sizeof want.hi_below) == 0);
