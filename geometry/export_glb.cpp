@@ -2,7 +2,7 @@
 // pass computes every count and POSITION bound; the second pass makes the same numbers again
 // (same float operations) and writes them.
 #include "geometry/export.hpp"
-#include "geometry/glb_container.hpp"
+#include "geometry/glb_stand.hpp"
 #include "geometry/organ_mesh.hpp"
 
 #include "geometry/text_out.hpp"
@@ -43,22 +43,7 @@ Vec3f glb_position(const Vec3d& off, Vec3f v) {
 
 PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std::size_t id_size) {
   PlantLayout L;
-  const PlantRecord& pr = s.plants[p];
-  // Primitives in kind order, organs with UVs (leaflet blades) apart from those without.
-  for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
-    const OrganRecord& r = s.organs[id];
-    const bool uv = r.prototype == PrototypeKind::leaflet;
-    auto it = std::find_if(L.prims.begin(), L.prims.end(),
-                           [&](const Primitive& q) { return q.kind == r.kind && q.uv == uv; });
-    if (it == L.prims.end()) {
-      L.prims.push_back({r.kind, uv, {}});
-      it = L.prims.end() - 1;
-    }
-    it->organs.push_back(static_cast<std::uint32_t>(id));
-  }
-  std::stable_sort(L.prims.begin(), L.prims.end(), [](const Primitive& a, const Primitive& b) {
-    return std::make_pair(a.kind, a.uv) < std::make_pair(b.kind, b.uv);
-  });
+  L.prims = glb::group_primitives<Primitive>(s, p);
   const Vec3d off = s.offset(p);
   OrganMesh mesh;
   for (Primitive& q : L.prims) {
@@ -122,15 +107,11 @@ void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLi
 }
 
 /// A plant's entries in the JSON arrays, numbered after the plants before it (global order).
-struct PlantJson {
-  std::string child, node, mesh, accessors, views;
-};
-
-PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const std::uint64_t* before, bool float_ids,
-                     const std::array<int, 7>& material_of) {
-  PlantJson j;
-  std::size_t nview = before[0], nacc = before[1], offset = before[3];
-  const std::size_t nmesh = before[2];
+glb::PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const glb::Before& before, bool float_ids,
+                          const std::array<int, glb::kKinds>& material_of) {
+  glb::PlantJson j;
+  std::size_t nview = before.views, nacc = before.accessors, offset = before.offset;
+  const std::size_t nmesh = before.meshes;
   j.child = fmt::format("{}{}", plant > 0 ? "," : "", plant + 1);
   if (L.prims.empty()) {  // a plant without organs: a node without a mesh
     j.node = fmt::format(",{{\"name\":\"plant_{}\"}}", plant);
@@ -196,84 +177,27 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   make_meshes(s, lib);
 #pragma omp parallel for schedule(dynamic, 8)
   for (std::size_t i = 0; i < n; ++i) plan[i] = plan_plant(s, e.plants[i], lib, 4);
-
-  // Per plant: bufferViews, accessors, meshes, BIN bytes and the kinds it has, summed over the
-  // plants before it (every process's), so each plant's JSON entries get their global numbers.
-  constexpr int K = 4 + 7;
-  std::vector<std::uint64_t> before(K * n, 0), totals;
+  std::vector<glb::PlantCounts> counts(n);
   for (std::size_t i = 0; i < n; ++i) {
     const PlantLayout& L = plan[i];
-    std::uint64_t* b = &before[K * i];
-    if (!L.prims.empty()) b[0] = 4 + (L.uv_bytes ? 1 : 0), b[2] = 1, b[3] = L.bytes();
+    glb::PlantCounts& c = counts[i];
+    if (!L.prims.empty()) c.views = 4 + (L.uv_bytes ? 1 : 0), c.meshes = 1, c.bytes = L.bytes();
     for (const Primitive& q : L.prims) {
-      b[1] += 4 + (q.uv ? 1 : 0);
-      b[4 + static_cast<std::size_t>(q.kind)] = 1;
+      c.accessors += 4 + (q.uv ? 1 : 0);
+      c.kinds[static_cast<std::size_t>(q.kind)] = true;
     }
   }
-  e.exclusive(before, K, totals);
-  std::array<int, 7> material_of{};
-  std::string materials;
-  int nmat = 0;
-  for (std::size_t k = 0; k < material_of.size(); ++k) {
-    material_of[k] = totals[4 + k] ? nmat++ : -1;
-    if (material_of[k] < 0) continue;
-    if (nmat > 1) materials += ',';
-    materials += material_json(static_cast<OrganKind>(k));
-  }
-  std::vector<PlantJson> json(n);
-#pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t i = 0; i < n; ++i)
-    json[i] = plant_json(e.plant(e.plants[i]), plan[i], &before[K * i], float_ids, material_of);
-  const auto section = [&](std::string PlantJson::*field) {
-    out.plants(n, 256, [&](std::size_t i, std::string& t) { t += json[i].*field; });
-  };
-
-  // The JSON chunk, written directly (a document tree for a large stand costs more than the mesh);
-  // the GLB header and the JSON chunk's length are patched in once its length is known.
-  const std::uint64_t start = out.offset();
-  out.fixed(std::string(20, '\0'));
-  std::string origin;
-  append_number(origin, s.stand_origin.x), origin += ',', append_number(origin, s.stand_origin.z),
-      origin += ',';
-  append_number(origin, -s.stand_origin.y);
-  out.fixed(
-      fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},\"scene\":0,\"scenes\":[{{"
-                  "\"nodes\":[0]}}],"
-                  "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
-                  origin));
-  section(&PlantJson::child);
-  out.fixed("]}");
-  section(&PlantJson::node);
-  out.fixed("]");
-  const std::uint64_t bin_bytes = totals[3];
-  if (totals[2] > 0) {
-    out.fixed(",\"meshes\":[");
-    section(&PlantJson::mesh);
-    out.fixed("],\"accessors\":[");
-    section(&PlantJson::accessors);
-    out.fixed("],\"bufferViews\":[");
-    section(&PlantJson::views);
-    out.fixed(fmt::format("],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]", materials, bin_bytes));
-  }
+  glb::Document doc;
   if (!float_ids)
-    out.fixed(
-        ",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}");
-  out.fixed("}");
-  std::uint64_t json_bytes = out.offset() - start - 20;
-  if (json_bytes % 4) {
-    out.fixed(std::string(4 - json_bytes % 4, ' '));
-    json_bytes = out.offset() - start - 20;
-  }
-  out.patch(start, glb_header(json_bytes, bin_bytes));
-  if (bin_bytes) {  // every block is a multiple of 4 bytes
-    out.fixed(glb_bin_header(bin_bytes));
-    out.plants(n, 1, [&](std::size_t i, std::string& buf) {
-      // Made in place at the end of the chunk (no block of its own to copy).
-      const std::size_t at = buf.size();
-      buf.resize(at + plan[i].bytes());
-      fill_plant(s, e.plants[i], plan[i], lib, float_ids, e.organ_shift[e.plants[i]], buf.data() + at);
-    });
-  }
+    doc.tail =
+        ",\"extras\":{\"_ORGAN\":\"VEC2 of UNSIGNED_SHORT: id = x + 65536 * y (more than 2^24 organs)\"}";
+  doc.json = [&](std::size_t i, const glb::Before& before, const std::array<int, glb::kKinds>& material_of) {
+    return plant_json(e.plant(e.plants[i]), plan[i], before, float_ids, material_of);
+  };
+  doc.fill = [&](std::size_t i, char* at) {
+    fill_plant(s, e.plants[i], plan[i], lib, float_ids, e.organ_shift[e.plants[i]], at);
+  };
+  glb::write_document(e, out, counts, doc);
 }
 
 void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {

@@ -7,7 +7,7 @@
 // position to 4-byte alignment (a second bufferView over the same bytes), so ids cost nothing.
 #include "geometry/export.hpp"
 #include "geometry/glb_compact_layout.hpp"
-#include "geometry/glb_container.hpp"
+#include "geometry/glb_stand.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/text_out.hpp"
 
@@ -27,21 +27,7 @@ using namespace glb_compact;
 
 PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, double max_step) {
   PlantLayout L;
-  const PlantRecord& pr = s.plants[p];
-  for (std::size_t id = pr.first_organ; id < pr.first_organ + pr.organ_count; ++id) {
-    const OrganRecord& r = s.organs[id];
-    const bool uv = r.prototype == PrototypeKind::leaflet;
-    auto it = std::find_if(L.prims.begin(), L.prims.end(),
-                           [&](const Primitive& q) { return q.kind == r.kind && q.uv == uv; });
-    if (it == L.prims.end()) {
-      L.prims.push_back({r.kind, uv, {}});
-      it = L.prims.end() - 1;
-    }
-    it->organs.push_back(static_cast<std::uint32_t>(id));
-  }
-  std::stable_sort(L.prims.begin(), L.prims.end(), [](const Primitive& a, const Primitive& b) {
-    return std::make_pair(a.kind, a.uv) < std::make_pair(b.kind, b.uv);
-  });
+  L.prims = glb::group_primitives<Primitive>(s, p);
   const Vec3d off = s.offset(p);
   OrganMesh mesh;
   Vec3d lo{std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
@@ -119,19 +105,15 @@ void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLi
   }
 }
 
-struct PlantJson {
-  std::string child, node, mesh, accessors, views;
-};
-
 void append_vec(std::string& out, double x, double y, double z) {
   append_number(out, x), out += ',', append_number(out, y), out += ',', append_number(out, z);
 }
 
-PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLayout& L,
-                     const std::uint64_t* before, const std::array<int, 7>& material_of) {
-  PlantJson j;
-  std::size_t nview = before[0], nacc = before[1], offset = before[3];
-  const std::size_t nmesh = before[2];
+glb::PlantJson plant_json(std::int64_t plant, std::int64_t first_organ, const PlantLayout& L,
+                          const glb::Before& before, const std::array<int, glb::kKinds>& material_of) {
+  glb::PlantJson j;
+  std::size_t nview = before.views, nacc = before.accessors, offset = before.offset;
+  const std::size_t nmesh = before.meshes;
   j.child = fmt::format("{}{}", plant > 0 ? "," : "", plant + 1);
   if (L.prims.empty()) {
     j.node = fmt::format(",{{\"name\":\"plant_{}\"}}", plant);
@@ -230,79 +212,26 @@ void write_glb_compact(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter&
 #pragma omp parallel for schedule(dynamic, 8)
   for (std::size_t i = 0; i < n; ++i) plan[i] = plan_plant(s, e.plants[i], lib, config.max_step);
 
-  // Per plant: bufferViews, accessors, meshes, BIN bytes and the kinds it has, summed over the
-  // plants before it (every process's), so each plant's JSON entries get their global numbers.
-  constexpr int K = 4 + 7;
-  std::vector<std::uint64_t> before(K * n, 0), totals;
+  std::vector<glb::PlantCounts> counts(n);
   for (std::size_t i = 0; i < n; ++i) {
     const PlantLayout& L = plan[i];
-    std::uint64_t* b = &before[K * i];
-    if (!L.prims.empty()) b[0] = 4 + (L.uv_vertices ? 1 : 0), b[2] = 1, b[3] = L.bytes();
+    glb::PlantCounts& c = counts[i];
+    if (!L.prims.empty()) c.views = 4 + (L.uv_vertices ? 1 : 0), c.meshes = 1, c.bytes = L.bytes();
     for (const Primitive& q : L.prims) {
-      b[1] += 4 + (q.uv ? 1 : 0);
-      b[4 + static_cast<std::size_t>(q.kind)] = 1;
+      c.accessors += 4 + (q.uv ? 1 : 0);
+      c.kinds[static_cast<std::size_t>(q.kind)] = true;
     }
   }
-  e.exclusive(before, K, totals);
-  std::array<int, 7> material_of{};
-  std::string materials;
-  int nmat = 0;
-  for (std::size_t k = 0; k < material_of.size(); ++k) {
-    material_of[k] = totals[4 + k] ? nmat++ : -1;
-    if (material_of[k] < 0) continue;
-    if (nmat > 1) materials += ',';
-    materials += material_json(static_cast<OrganKind>(k));
-  }
-  std::vector<PlantJson> json(n);
-#pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t i = 0; i < n; ++i) {
+  glb::Document doc;
+  doc.head =
+      ",\"extensionsUsed\":[\"KHR_mesh_quantization\"],\"extensionsRequired\":[\"KHR_mesh_quantization\"]";
+  doc.json = [&](std::size_t i, const glb::Before& before, const std::array<int, glb::kKinds>& material_of) {
     const std::size_t p = e.plants[i];
     const std::int64_t first = static_cast<std::int64_t>(s.plants[p].first_organ) + e.organ_shift[p];
-    json[i] = plant_json(e.plant(p), first, plan[i], &before[K * i], material_of);
-  }
-  const auto section = [&](std::string PlantJson::*field) {
-    out.plants(n, 256, [&](std::size_t i, std::string& t) { t += json[i].*field; });
+    return plant_json(e.plant(p), first, plan[i], before, material_of);
   };
-
-  const std::uint64_t start = out.offset();
-  out.fixed(std::string(20, '\0'));
-  std::string origin;
-  append_vec(origin, s.stand_origin.x, s.stand_origin.z, -s.stand_origin.y);
-  out.fixed(fmt::format(
-      "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}},"
-      "\"extensionsUsed\":[\"KHR_mesh_quantization\"],\"extensionsRequired\":[\"KHR_mesh_quantization\"],"
-      "\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],"
-      "\"children\":[",
-      origin));
-  section(&PlantJson::child);
-  out.fixed("]}");
-  section(&PlantJson::node);
-  out.fixed("]");
-  const std::uint64_t bin_bytes = totals[3];
-  if (totals[2] > 0) {
-    out.fixed(",\"meshes\":[");
-    section(&PlantJson::mesh);
-    out.fixed("],\"accessors\":[");
-    section(&PlantJson::accessors);
-    out.fixed("],\"bufferViews\":[");
-    section(&PlantJson::views);
-    out.fixed(fmt::format("],\"materials\":[{}],\"buffers\":[{{\"byteLength\":{}}}]", materials, bin_bytes));
-  }
-  out.fixed("}");
-  std::uint64_t json_bytes = out.offset() - start - 20;
-  if (json_bytes % 4) {
-    out.fixed(std::string(4 - json_bytes % 4, ' '));
-    json_bytes = out.offset() - start - 20;
-  }
-  out.patch(start, glb_header(json_bytes, bin_bytes));
-  if (bin_bytes) {
-    out.fixed(glb_bin_header(bin_bytes));
-    out.plants(n, 1, [&](std::size_t i, std::string& buf) {
-      const std::size_t at = buf.size();
-      buf.resize(at + plan[i].bytes());  // zeros, made in place at the end of the chunk
-      fill_plant(s, e.plants[i], plan[i], lib, buf.data() + at);
-    });
-  }
+  doc.fill = [&](std::size_t i, char* at) { fill_plant(s, e.plants[i], plan[i], lib, at); };
+  glb::write_document(e, out, counts, doc);
 }
 
 void write_glb_compact(const Stand& s, PrototypeLibrary& lib, AtomicFile& out,

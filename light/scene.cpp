@@ -1,6 +1,6 @@
 #include "light/scene.hpp"
 
-#include "light/embree_mesh.hpp"
+#include "light/embree_stand.hpp"
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
@@ -15,97 +15,19 @@
 namespace canopy::light {
 
 struct Scene::Impl {
-  RTCDevice device = nullptr;
-  RTCScene top = nullptr;
-  std::vector<RTCScene> prototypes;
-  ~Impl() {
-    if (top) rtcReleaseScene(top);
-    for (RTCScene s : prototypes)
-      if (s) rtcReleaseScene(s);
-    if (device) rtcReleaseDevice(device);
-  }
+  EmbreeStand embree;
+  Impl(const Stand& s, PrototypeLibrary& lib) : embree(s, lib) {}
 };
 
-namespace {
-
-/// A mesh in its local z = 0 plane: a disk, or a leaflet that is not curved.
-bool flat(const OrganRecord& r) {
-  return r.prototype == PrototypeKind::disk || (r.prototype == PrototypeKind::leaflet && r.shape == 0);
-}
-
-}  // namespace
-
-Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>()) {
-  // Embree's build threads: as many as the run's OpenMP team (--threads N means N throughout).
-  impl_->device = rtcNewDevice(fmt::format("threads={}", std::max(1, omp_get_max_threads())).c_str());
-  if (!impl_->device)
-    throw std::runtime_error(
-        fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
-  RTCDevice dev = impl_->device;
-  // One scene per mesh: prototype, level of detail and, for a leaflet, its curved shape.
-  impl_->prototypes.assign(kMeshSlots, nullptr);
-  const auto proto_scene = [&](const OrganRecord& r) {
-    RTCScene& sc = impl_->prototypes[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
-    if (sc) return sc;
-    sc = prototype_scene(dev, lib.get(r));
-    return sc;
-  };
-  impl_->top = rtcNewScene(dev);
-  const double inf = std::numeric_limits<double>::infinity();
-  lo_ = {inf, inf, inf}, hi_ = {-inf, -inf, -inf};
-  for (std::size_t i = 0; i < s.organ_count(); ++i) {
-    const OrganRecord& r = s.organs[i];
-    Affine3f t = s.transforms[i];
-    const Vec3d a = to_double(t.c0), b = to_double(t.c1);
-    if (!(std::abs(dot(cross(a, b), to_double(t.c2))) > 0)) {
-      // A flat blade lies in its local z = 0 plane, so its third column moves nothing: any
-      // column off the blade's plane gives Embree an invertible transform and the same blade.
-      const Vec3d n = cross(a, b);
-      if (!flat(r) || !(length(n) > 0)) {
-        ++skipped_;
-        continue;
-      }
-      t.c2 = to_float(normalized(n) * std::sqrt(length(n)));
-    }
-    const Vec3d off = s.offset(static_cast<std::size_t>(r.plant));
-    const float xfm[12] = {t.c0.x,
-                           t.c0.y,
-                           t.c0.z,
-                           t.c1.x,
-                           t.c1.y,
-                           t.c1.z,
-                           t.c2.x,
-                           t.c2.y,
-                           t.c2.z,
-                           static_cast<float>(t.t.x + off.x),
-                           static_cast<float>(t.t.y + off.y),
-                           static_cast<float>(t.t.z + off.z)};
-    RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, proto_scene(r));
-    rtcSetGeometryTimeStepCount(inst, 1);
-    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-    rtcCommitGeometry(inst);
-    rtcAttachGeometryByID(impl_->top, inst, static_cast<unsigned>(i));
-    rtcReleaseGeometry(inst);
-    const Box3f& bx = lib.get(r).box;
-    for (int k = 0; k < 8; ++k) {
-      const Vec3f p = apply(
-          t, Vec3f{(k & 1) ? bx.hi.x : bx.lo.x, (k & 2) ? bx.hi.y : bx.lo.y, (k & 4) ? bx.hi.z : bx.lo.z});
-      const Vec3d w = to_double(p) + off;
-      lo_ = {std::min(lo_.x, w.x), std::min(lo_.y, w.y), std::min(lo_.z, w.z)};
-      hi_ = {std::max(hi_.x, w.x), std::max(hi_.y, w.y), std::max(hi_.z, w.z)};
-    }
-  }
-  if (!(lo_.x <= hi_.x)) lo_ = {0, 0, 0}, hi_ = {0, 0, 0};
+Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>(s, lib)) {
+  skipped_ = impl_->embree.skipped();
+  if (!impl_->embree.bounds(lo_, hi_)) lo_ = {0, 0, 0}, hi_ = {0, 0, 0};
   // A margin well above float rounding at the stand's extent: the ray's float origin and Embree's
   // float boxes never clip a hit at the box's edge (a wider box only traces a copy more often).
   const double pad =
       1e-5 * (1 + std::max({std::abs(lo_.x), std::abs(lo_.y), std::abs(hi_.x), std::abs(hi_.y), hi_.z}));
   lo_ = lo_ - Vec3d{pad, pad, pad}, hi_ = hi_ + Vec3d{pad, pad, pad};
   lo_.z = std::min(lo_.z, 0.0);
-  rtcCommitScene(impl_->top);
-  if (rtcGetDeviceError(dev) != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree could not build the light scene (out of memory?)");
 }
 
 Scene::~Scene() = default;
@@ -145,7 +67,7 @@ Hit Scene::trace(Vec3d org, Vec3d dir, double t_max) const {
     rh.ray.dir_z = static_cast<float>(dir.z);
     rh.ray.tnear = static_cast<float>(t0), rh.ray.tfar = static_cast<float>(t1), rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(impl_->top, &ctx, &rh);
+    rtcIntersect1(impl_->embree.scene(), &ctx, &rh);
     if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID && rh.ray.tfar < best.t)
       best.organ = rh.hit.instID[0], best.t = rh.ray.tfar;
   };

@@ -2,7 +2,7 @@
 
 #include "geometry/organ_mesh.hpp"
 
-#include "light/embree_mesh.hpp"
+#include "light/embree_stand.hpp"
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
@@ -45,72 +45,13 @@ Camera fit_camera(Vec3d lo, Vec3d hi, View view, int width, int height) {
 }
 
 struct Scene::Impl {
-  RTCDevice device = nullptr;
-  RTCScene top = nullptr;
-  std::vector<RTCScene> prototypes;
-  ~Impl() {
-    if (top) rtcReleaseScene(top);
-    for (RTCScene s : prototypes)
-      if (s) rtcReleaseScene(s);
-    if (device) rtcReleaseDevice(device);
-  }
+  light::EmbreeStand embree;
+  Impl(const Stand& s, PrototypeLibrary& lib) : embree(s, lib) {}
 };
 
-Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>()), stand_(s) {
-  impl_->device = rtcNewDevice(nullptr);
-  if (!impl_->device)
-    throw std::runtime_error(
-        fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
-  RTCDevice dev = impl_->device;
-  impl_->prototypes.assign(kMeshSlots, nullptr);
-  const auto proto_scene = [&](const OrganRecord& r) {
-    RTCScene& sc = impl_->prototypes[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
-    if (sc) return sc;
-    sc = light::prototype_scene(dev, lib.get(r));
-    return sc;
-  };
-  impl_->top = rtcNewScene(dev);
-  const double inf = std::numeric_limits<double>::infinity();
-  lo_ = {inf, inf, inf}, hi_ = {-inf, -inf, -inf};
-  for (std::size_t i = 0; i < s.organ_count(); ++i) {
-    const OrganRecord& r = s.organs[i];
-    const Affine3f& t = s.transforms[i];
-    const Vec3d det3 = cross(to_double(t.c0), to_double(t.c1));
-    if (!(std::abs(dot(det3, to_double(t.c2))) > 0)) continue;  // a flat or empty organ shows nothing
-    const Vec3d off = s.offset(static_cast<std::size_t>(r.plant));
-    const float xfm[12] = {t.c0.x,
-                           t.c0.y,
-                           t.c0.z,
-                           t.c1.x,
-                           t.c1.y,
-                           t.c1.z,
-                           t.c2.x,
-                           t.c2.y,
-                           t.c2.z,
-                           static_cast<float>(t.t.x + off.x),
-                           static_cast<float>(t.t.y + off.y),
-                           static_cast<float>(t.t.z + off.z)};
-    RTCGeometry inst = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(inst, proto_scene(r));
-    rtcSetGeometryTimeStepCount(inst, 1);
-    rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
-    rtcCommitGeometry(inst);
-    rtcAttachGeometryByID(impl_->top, inst, static_cast<unsigned>(i));
-    rtcReleaseGeometry(inst);
-    const Box3f& b = lib.get(r).box;
-    for (int k = 0; k < 8; ++k) {
-      const Vec3f p =
-          apply(t, Vec3f{(k & 1) ? b.hi.x : b.lo.x, (k & 2) ? b.hi.y : b.lo.y, (k & 4) ? b.hi.z : b.lo.z});
-      const Vec3d w = to_double(p) + off;
-      lo_ = {std::min(lo_.x, w.x), std::min(lo_.y, w.y), std::min(lo_.z, w.z)};
-      hi_ = {std::max(hi_.x, w.x), std::max(hi_.y, w.y), std::max(hi_.z, w.z)};
-    }
-  }
-  if (!(lo_.x <= hi_.x)) lo_ = {-0.5, -0.5, 0}, hi_ = {0.5, 0.5, 1};
+Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>(s, lib)), stand_(s) {
+  if (!impl_->embree.bounds(lo_, hi_)) lo_ = {-0.5, -0.5, 0}, hi_ = {0.5, 0.5, 1};
   lo_.z = std::min(lo_.z, 0.0);
-  rtcCommitScene(impl_->top);
-  if (rtcGetDeviceError(dev) != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree could not build the scene (out of memory?)");
 }
 
 Scene::~Scene() = default;
@@ -140,7 +81,7 @@ Image Scene::render(const Camera& cam, const std::vector<std::uint8_t>& highligh
       rh.ray.dir_z = static_cast<float>(cam.dir.z);
       rh.ray.tnear = 0, rh.ray.tfar = std::numeric_limits<float>::infinity(), rh.ray.mask = 0xffffffffu;
       rh.hit.geomID = RTC_INVALID_GEOMETRY_ID, rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(impl_->top, &ctx, &rh);
+      rtcIntersect1(impl_->embree.scene(), &ctx, &rh);
       float c[3];
       if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
         const std::size_t organ = rh.hit.instID[0];
