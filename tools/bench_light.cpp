@@ -179,13 +179,13 @@ int bench_main(int argc, char** argv) {
                    star_se = r.diffuse ? r.diffuse->star.se : NAN;
       const double prms_diff = r.diffuse ? rms(r.diffuse->plant) : NAN;
       fmt::print(
-          "{:>7} {:>7} {:>9} {:>10} {:>8.3f} {:>8.3f} {:>8.3f} {:>12.0f} {:>9.5f} {:>9.5f} {:>9.5f} "
+          "{:>7} {:>7} {:>9.6g} {:>10} {:>8.3f} {:>8.3f} {:>8.3f} {:>12.0f} {:>9.5f} {:>9.5f} {:>9.5f} "
           "{:>9.5f}\n",
           n, mode, asked, r.rays, r.scene_s, r.trace_s, total, static_cast<double>(r.rays) / r.trace_s,
           r.direct.empty() ? NAN : r.direct[0].fraction.se, diff_se,
           r.direct.empty() ? NAN : rms(r.direct[0].plant), star_se);
       rows += fmt::format(
-          "{},{},{:.1f},{:.0f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f},{:."
+          "{},{},{:.1f},{:.0f},{},{},{:.6g},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f},{:."
           "6f},{:.6f},{:.6f},{:"
           ".6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
           n, stand.organ_count(), static_cast<double>(stand.organ_count()) / n,

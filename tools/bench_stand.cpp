@@ -101,6 +101,7 @@ int run_child(const Settings& s, int plants, std::int64_t spawned_ns, const std:
     j["main_s"] = main_s;
     j["returned_s"] = (now_ns() - spawned_ns) * 1e-9;
     j["timings"] = r.report["timings_s"];
+    j["peak_memory"] = r.report["peak_memory_gb"];
     j["commit_s"] = r.commit_s;
     j["export_bytes"] = r.export_bytes;
     j["organs"] = r.report["counts"]["organs"];
@@ -215,14 +216,16 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!s.append)
-    fmt::print(out,
-               "plants,organs_per_plant,triangles_per_plant,backend,device,threads,formats,end_to_end_s,"
-               "startup_s,grow_s,"
-               "tree_build_s,upload_s,detect_s,resolve_s,detect_after_s,export_format_s,export_write_s,"
-               "export_s,commit_s,"
-               "end_s,cpu_s,peak_rss_gb,device_peak_gb,contacts_before,contacts_after,export_gb,export_gbs,"
-               "disk_written_gbs,"
-               "disk_synced_gbs,export_of_disk\n");
+    fmt::print(
+        out,
+        "plants,organs_per_plant,triangles_per_plant,backend,device,threads,formats,end_to_end_s,"
+        "startup_s,grow_s,"
+        "tree_build_s,upload_s,detect_s,resolve_s,detect_after_s,export_format_s,export_write_s,"
+        "export_s,commit_s,"
+        "end_s,cpu_s,peak_rss_gb,peak_grow_gb,peak_detect_gb,peak_resolve_gb,peak_export_gb,device_peak_gb,"
+        "contacts_before,contacts_after,export_gb,export_gbs,"
+        "disk_written_gbs,"
+        "disk_synced_gbs,export_of_disk\n");
   fmt::print(
       "{:>7} {:>7} {:>7} {:>6} {:>6} {:>6} {:>6} {:>7} {:>7} {:>6} {:>7} {:>7} {:>6} {:>6} {:>6} {:>7} "
       "{:>6}\n",
@@ -258,6 +261,7 @@ int main(int argc, char** argv) {
     std::string device = j["device"].is_string() ? j["device"].get<std::string>() : "";
     std::replace(device.begin(), device.end(), ',', ';');  // one CSV field
     const double dev_gb = num(j, "device_peak_bytes") / 1e9;
+    const nlohmann::json& m = j["peak_memory"];
     fmt::print(
         "{:>7} {:>7.2f} {:>7.3f} {:>6.2f} {:>6.3f} {:>6.3f} {:>6.3f} {:>7.2f} {:>7.3f} {:>6.2f} {:>7.2f} "
         "{:>7.3f} {:>6.3f} "
@@ -265,15 +269,19 @@ int main(int argc, char** argv) {
         n, c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"),
         num(t, "detect_after"), num(t, "export_format"), num(t, "export_write"), commit, end, c.peak_rss_gb,
         dev_gb, gbs, gbs / disk.synced_gbs);
-    fmt::print(out,
-               "{},{:.1f},{:.1f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{"
-               ":.4f},{:.4f},{:.4f},"
-               "{:.4f},{:.2f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n",
-               n, organs / n, tris / n, j["backend"].get<std::string>(), device, threads, formats_for(s, n),
-               c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"),
-               num(t, "detect_after"), num(t, "export_format"), num(t, "export_write"), exp, commit, end,
-               c.cpu_s, c.peak_rss_gb, dev_gb, num(j, "contacts_before"), num(j, "contacts_after"), gb, gbs,
-               disk.written_gbs, disk.synced_gbs, gbs / disk.synced_gbs);
+    fmt::print("{:>7} peak resident GB by stage: grow {:.2f}, detect {:.2f}, resolve {:.2f}, export {:.2f}\n",
+               "", num(m, "generate"), num(m, "detect"), num(m, "resolve"), num(m, "export"));
+    fmt::print(
+        out,
+        "{},{:.1f},{:.1f},{},{},{},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{:.4f},{"
+        ":.4f},{:.4f},{:.4f},"
+        "{:.4f},{:.2f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f}\n",
+        n, organs / n, tris / n, j["backend"].get<std::string>(), device, threads, formats_for(s, n),
+        c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"),
+        num(t, "detect_after"), num(t, "export_format"), num(t, "export_write"), exp, commit, end, c.cpu_s,
+        c.peak_rss_gb, num(m, "generate"), num(m, "detect"), num(m, "resolve"), num(m, "export"), dev_gb,
+        num(j, "contacts_before"), num(j, "contacts_after"), gb, gbs, disk.written_gbs, disk.synced_gbs,
+        gbs / disk.synced_gbs);
     std::fflush(out);
   }
   std::fclose(out);

@@ -41,6 +41,10 @@ nlohmann::ordered_json report_json(const StandCounts& c, const StandReport& r) {
   nlohmann::ordered_json t;
   for (const auto& [k, v] : r.timings) t[k] = v;
   j["timings_s"] = t;
+  nlohmann::ordered_json m = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : r.peak_memory)
+    if (v > 0) m[k] = v;
+  j["peak_memory_gb"] = m;
   j["backend"] = r.backend;
   j["device"] = r.device;
   j["backend_choice"] = r.backend_choice;
@@ -81,6 +85,10 @@ void print_summary(const StandCounts& c, const StandReport& r, const std::string
   fmt::print("stand: {} plants, {} organs ({:.0f} per plant), {} triangles ({:.0f} per plant)\n",
              c.organs.size(), organs, static_cast<double>(organs) / n, total, static_cast<double>(total) / n);
   for (const auto& [k, v] : r.timings) fmt::print("  {:<10} {:.3f} s\n", k, v);
+  std::string peaks;
+  for (const auto& [k, v] : r.peak_memory)
+    if (v > 0) peaks += fmt::format("{}{} {:.2f}", peaks.empty() ? "" : ", ", k, v);
+  if (!peaks.empty()) fmt::print("  peak memory (GB): {}\n", peaks);
   fmt::print("wrote {}\n", dir);
 }
 

@@ -17,6 +17,9 @@ struct StandReport {
   std::string grammar;
   nlohmann::ordered_json seed;
   std::map<std::string, double> timings;  // seconds per stage
+  /// Per stage: the process's resident peak during it, GB (tools/stage_memory.hpp; empty or 0
+  /// where the system does not say).
+  std::map<std::string, double> peak_memory;
   /// The backend and device that ran, taken after the last detection (a backend that fell back
   /// half-way names the one that finished, and its device says what failed), and how the
   /// backend was chosen (make_backend's note: asked for, or what auto found).

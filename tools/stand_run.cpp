@@ -10,6 +10,7 @@
 #include "tools/report.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/stand_run.hpp"
+#include "tools/stage_memory.hpp"
 
 #include <fmt/format.h>
 
@@ -216,8 +217,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   if (o.target.set()) check_target(o);
   const auto t_grow = std::chrono::steady_clock::now();
   GrowTimings gt;
+  StagePeak grow_peak;
   Stand stand = grow_stand(req, &gt);
   StandReport rep;
+  rep.peak_memory["generate"] = grow_peak.gb();
   // Before growing: options, the grammar, the backend (a device's start), the output folder.
   rep.timings["startup"] = std::chrono::duration<double>(t_grow - t_start).count();
   rep.timings["generate"] = seconds_since(t_grow);
@@ -232,8 +235,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
 
   // Detection at the level asked for; contacts.csv and contacts_before come from it.
   const auto t_detect = std::chrono::steady_clock::now();
+  StagePeak detect_peak;
   const Contacts contacts = backend->detect(stand, dreq);
   rep.timings["detect"] = seconds_since(t_detect);
+  rep.peak_memory["detect"] = detect_peak.gb();
   rep.timings["detect_build"] = contacts.build_s;  // parts of "detect": the bounding volumes,
   rep.timings["detect_upload"] = contacts.load_s;  // the stand's trip to the device
   const std::string first_backend = backend->name();
@@ -244,6 +249,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   std::optional<ResolveResult> resolved;
   if (!o.resolve.no_resolve) {
     const auto t_resolve = std::chrono::steady_clock::now();
+    StagePeak resolve_peak;
     const ResolveConfig rc = o.resolve.config();
     DetectRequest at = dreq;
     at.level = rc.level;
@@ -251,9 +257,12 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     const Contacts start = dreq.level == rc.level ? contacts : backend->detect(stand, at);
     resolved = run_resolution(stand, *backend, dreq, o.resolve, start, progress);
     rep.timings["resolve"] = seconds_since(t_resolve);
+    rep.peak_memory["resolve"] = resolve_peak.gb();
     const auto t_check = std::chrono::steady_clock::now();
+    StagePeak check_peak;
     after = backend->detect(stand, dreq);
     rep.timings["detect_after"] = seconds_since(t_check);
+    rep.peak_memory["detect_after"] = check_peak.gb();
     rep.resolution = resolution_json(*resolved);
   }
   rep.contacts_after = counts_json(after);
@@ -263,10 +272,12 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
 
   PrototypeLibrary lib;
   const auto t_export = std::chrono::steady_clock::now();
+  StagePeak export_peak;
   write_stand_files(stand, lib, formats, glb, files);
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));
   write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   rep.timings["export"] = seconds_since(t_export);
+  rep.peak_memory["export"] = export_peak.gb();
   // The export's bytes are made on all threads while a writer thread writes the previous ones:
   // formatting is the time it did not wait for writes, writing the time spent in them.
   const WriteTimes written = files.times();

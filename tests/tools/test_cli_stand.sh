@@ -15,6 +15,15 @@ check "files" "contacts.csv contacts_after.csv organs.csv plants.csv report.json
 check "plants.csv rows" "7" "$(wc -l < "$out/plants.csv" | tr -d ' ')"
 organs=$(($(wc -l < "$out/organs.csv") - 1))
 check "report organs" "$organs" "$(python3 -c "import json;print(json.load(open('$out/report.json'))['counts']['organs'])")"
+# The resident peak of each stage, where the kernel lets a process reset its high-water mark.
+if python3 -c "open('/proc/self/clear_refs', 'w').write('5')" 2>/dev/null; then
+  check "report peak memory per stage" "detect detect_after export generate resolve: in (0, 64) GB" \
+    "$(python3 -c "import json;m=json.load(open('$out/report.json'))['peak_memory_gb']
+print(' '.join(sorted(m)) + (': in (0, 64) GB' if all(0 < v < 64 for v in m.values()) else ': out of range'))")"
+  check "terminal peak memory" "1" "$(grep -c '^  peak memory (GB): detect ' "$tmp/log")"
+else
+  echo "report peak memory: not checked here (/proc/self/clear_refs cannot be written)"
+fi
 
 # glTF validator (npm gltf-validator, installed by scripts/setup.sh) and assimp (Debian assimp-utils).
 validator="$src/tests/tools/node/validate_gltf.js"

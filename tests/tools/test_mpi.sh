@@ -26,7 +26,7 @@ strip_report() {
   python3 -c "
 import json, sys
 j = json.load(open(sys.argv[1]))
-j.pop('timings_s', None); j.pop('device', None)
+j.pop('timings_s', None); j.pop('peak_memory_gb', None); j.pop('device', None)
 r = j.get('resolution')
 if r:
     for x in r['rounds']: x.pop('plan_s'); x.pop('detect_s')
