@@ -2,7 +2,8 @@
 /// The process's resident peak stage by stage: Linux keeps the high-water mark of resident memory
 /// (VmHWM in /proc/self/status) and resets it to the current size when "5" is written to
 /// /proc/self/clear_refs, so a stage's peak is the mark read at its end after a reset at its
-/// start. Where /proc lacks either (not Linux, or a restricted container) peaks read 0 and the
+/// start (which resets the maxrss that wait4 and getrusage report as well: a run's peak is then
+/// the largest of its stages'). Where /proc lacks either (not Linux, or a restricted container) peaks read 0 and the
 /// report leaves them out.
 #include <cstdint>
 #include <cstdio>
