@@ -191,10 +191,10 @@ void write_glb_instanced(const Stand& s, PrototypeLibrary& lib, AtomicFile& out)
       "instancing\"],"
       "\"extensionsRequired\":[\"EXT_mesh_gpu_instancing\"],\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],"
       "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"rotation\":[-0.70710678118654757,0,0,0."
-      "70710678118654757],"
-      "\"children\":[{}]}}{}{}{}{}]",
-      origin, children, plant_nodes.empty() ? "" : ",", plant_nodes, instance_nodes.empty() ? "" : ",",
-      instance_nodes);
+      "70710678118654757]"
+      "{}}}{}{}{}{}]",
+      origin, children.empty() ? std::string() : ",\"children\":[" + children + "]",
+      plant_nodes.empty() ? "" : ",", plant_nodes, instance_nodes.empty() ? "" : ",", instance_nodes);
   if (nmesh > 0)
     text += fmt::format(
         ",\"meshes\":[{}],\"accessors\":[{}],\"bufferViews\":[{}],\"materials\":[{}],\"buffers\":[{{"

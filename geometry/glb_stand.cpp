@@ -51,10 +51,10 @@ void write_document(const ExportScope& e, ChunkWriter& out, const std::vector<Pl
   out.fixed(
       fmt::format("{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"canopy\"}}{},\"scene\":0,\"scenes\":[{{"
                   "\"nodes\":[0]}}],"
-                  "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}],\"children\":[",
-                  doc.head, origin));
+                  "\"nodes\":[{{\"name\":\"stand\",\"translation\":[{}]{}",
+                  doc.head, origin, e.plants_total ? ",\"children\":[" : ""));
   section(&PlantJson::child);
-  out.fixed("]}");
+  out.fixed(e.plants_total ? "]}" : "}");  // glTF forbids an empty children list
   section(&PlantJson::node);
   out.fixed("]");
   const std::uint64_t bin_bytes = totals[3];

@@ -40,6 +40,15 @@ EmbreeStand::EmbreeStand(const Stand& s, PrototypeLibrary& lib) {
   if (!device_)
     throw std::runtime_error(
         fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
+  try {
+    build(s, lib);
+  } catch (...) {
+    release();  // a constructor that throws runs no destructor
+    throw;
+  }
+}
+
+void EmbreeStand::build(const Stand& s, PrototypeLibrary& lib) {
   meshes_.assign(kMeshSlots, nullptr);
   top_ = rtcNewScene(device_);
   const double inf = std::numeric_limits<double>::infinity();
@@ -90,10 +99,8 @@ EmbreeStand::EmbreeStand(const Stand& s, PrototypeLibrary& lib) {
     }
   }
   rtcCommitScene(top_);
-  if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) {
-    release();  // a constructor that throws runs no destructor
+  if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
     throw std::runtime_error("Embree could not build the scene (out of memory?)");
-  }
 }
 
 void EmbreeStand::release() {

@@ -31,6 +31,7 @@ class EmbreeStand {
   std::size_t skipped() const { return skipped_; }
 
  private:
+  void build(const Stand& stand, PrototypeLibrary& lib);
   void release();
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
