@@ -49,6 +49,7 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
   /// (`load_s`); then every box fitted on the device (`build_s`) and the stages.
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
+    use_device();
     double t = now_seconds();
     lib_ = std::make_unique<PrototypeLibrary>();
     attempts_.reset();  // its tables belong to the stand held before
@@ -69,6 +70,7 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
   /// attempts).
   AttemptRunner* attempt_runner(const Stand& s) override {
     if (!tree_ || tree_->takes_part.size() != s.organ_count()) return nullptr;
+    use_device();
     if (!attempts_) attempts_ = std::make_unique<CudaAttemptRunner>(dev_);
     return attempts_.get();
   }
@@ -78,6 +80,7 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     check_request(req);
     if (!tree_ || tree_->takes_part.size() != s.organ_count())
       throw std::logic_error("redetect: no tree of this stand from an earlier detect()");
+    use_device();
     const double t = now_seconds();
     dev_.refit(s, *tree_, moved);  // on the device: only the moved organs' transforms travel
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
@@ -85,6 +88,10 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
   }
 
  private:
+  /// The backend's device made current on the calling thread: the backend may have been made on
+  /// another (canopy stand starts it while the stand grows), and a thread's device is its own.
+  void use_device() const { CANOPY_CUDA_CHECK(cudaSetDevice(device_)); }
+
   /// Bytes of the stage lists held now (free for the next batch's lists).
   std::size_t list_bytes() const {
     return cluster_pairs_.size() * sizeof(ClusterPair) +

@@ -24,10 +24,11 @@ std::string bytes_of(const fs::path& p) {
   return s.str();
 }
 
-/// report.json without what differs between the two runs by design: the timings, the backend
-/// asked for (config.backend) and how it was chosen (backend_choice).
+/// report.json without what differs between the two runs by design: the timings and memory
+/// peaks, the backend asked for (config.backend) and how it was chosen (backend_choice).
 nlohmann::ordered_json comparable(nlohmann::ordered_json r) {
   r.erase("timings_s");
+  r.erase("peak_memory_gb");
   r.erase("backend_choice");
   r["config"].erase("backend");
   for (auto& round : r["resolution"]["rounds"]) round.erase("plan_s"), round.erase("detect_s");

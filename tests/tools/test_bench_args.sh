@@ -74,6 +74,11 @@ if [ -x "$dir/bench_stand" ]; then
   check "bench_stand run fields" "34 34" "$(awk -F, '{print NF}' "$csv" | paste -sd' ')"
   check "bench_stand run row" "3,cpu,glb" "$(sed -n 2p "$csv" | cut -d, -f1,4,7)"
   check "bench_stand run contacts after" "0" "$(sed -n 2p "$csv" | cut -d, -f29)"
+  if python3 -c "
+with open('/proc/self/clear_refs', 'w') as f: f.write('5')" 2>/dev/null; then
+    check "bench_stand peaks (run, grow, detect, resolve, export) above 0" "5" \
+      "$(sed -n 2p "$csv" | cut -d, -f22-26 | tr ',' '\n' | awk '$1 > 0' | wc -l | tr -d ' ')"
+  fi
   check "bench_stand leaves its folder empty" "" "$(ls -A "$tmp/stand")"
 fi
 
