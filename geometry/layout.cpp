@@ -1,6 +1,7 @@
 #include "geometry/layout.hpp"
 
 #include "geometry/input_file.hpp"
+#include "geometry/mix64.hpp"
 
 #include <fmt/format.h>
 
@@ -15,17 +16,10 @@
 namespace canopy {
 namespace {
 
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 /// A small stream for jitter and rotation draws (splitmix64), apart from the plants' own.
 struct LayoutStream {
   std::uint64_t state;
-  double uniform() { return static_cast<double>(mix(state++) >> 11) * 0x1.0p-53; }
+  double uniform() { return static_cast<double>(mix64(state++) >> 11) * 0x1.0p-53; }
 };
 
 std::string_view trim(std::string_view s) {
@@ -96,7 +90,8 @@ void check_reach(const RowLayout& l) {
 }  // namespace
 
 std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant) {
-  return mix(mix(stand_seed) ^ (plant * 0xd1b54a32d192ed03ULL)) >> 1;  // 63 bits: prints as a plain number
+  return mix64(mix64(stand_seed) ^ (plant * 0xd1b54a32d192ed03ULL)) >>
+         1;  // 63 bits: prints as a plain number
 }
 
 std::optional<std::uint64_t> parse_seed(std::string_view text) {
@@ -122,7 +117,7 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
   check_reach(l);
   std::vector<PlantPlacement> out;
   out.reserve(static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.per_row));
-  LayoutStream rng{mix(l.seed ^ 0x6c61796f7574ULL)};
+  LayoutStream rng{mix64(l.seed ^ 0x6c61796f7574ULL)};
   for (int r = 0; r < l.rows; ++r) {
     const double y = l.double_rows ? (r / 2) * l.row_spacing + (r % 2) * *l.double_rows : r * l.row_spacing;
     for (int k = 0; k < l.per_row; ++k) {

@@ -1,5 +1,7 @@
 #include "light/sampler.hpp"
 
+#include "geometry/mix64.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -7,13 +9,6 @@
 
 namespace canopy::light {
 namespace {
-
-std::uint64_t mix(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
 
 double unit(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
 
@@ -44,12 +39,12 @@ Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t 
   const double t_max = top / s.z;          // distance from the start to the ground
   const double cw = g.region.width() / static_cast<double>(g.nx),
                ch = g.region.height() / static_cast<double>(g.ny);
-  const std::uint64_t base = mix(job.seed ^ mix(job.stream * 0xd1b54a32d192ed03ULL));
+  const std::uint64_t base = mix64(job.seed ^ mix64(job.stream * 0xd1b54a32d192ed03ULL));
   const std::int32_t last_layer = static_cast<std::int32_t>(job.layers) - 1;
   const auto outcome = [&](std::uint64_t i, std::uint64_t j) {
-    const std::uint64_t h = mix(base ^ mix(j * 0x9e3779b97f4a7c15ULL ^ mix(i)));
+    const std::uint64_t h = mix64(base ^ mix64(j * kGoldenGamma ^ mix64(i)));
     const Vec3d ground{g.region.x0 + (static_cast<double>(i) + unit(h)) * cw,
-                       g.region.y0 + (static_cast<double>(j) + unit(mix(h))) * ch, 0};
+                       g.region.y0 + (static_cast<double>(j) + unit(mix64(h))) * ch, 0};
     const Vec3d org = ground + s * t_max;
     const Hit hit = scene.trace(org, d, t_max);
     Outcome o;

@@ -1,6 +1,8 @@
 #pragma once
 /// The per-plant random stream: xoshiro256** (Blackman & Vigna 2018) seeded by splitmix64, so a
 /// plant's draws depend on its own seed alone and are the same on every platform.
+#include "geometry/mix64.hpp"
+
 #include <cstdint>
 
 namespace canopy {
@@ -27,10 +29,9 @@ class Rng {
   double uniform(double a, double b) { return a + (b - a) * uniform(); }
 
   static std::uint64_t splitmix64(std::uint64_t& x) {
-    std::uint64_t z = (x += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
+    const std::uint64_t z = mix64(x);
+    x += kGoldenGamma;
+    return z;
   }
 
  private:
