@@ -15,27 +15,6 @@
 namespace canopy::cli {
 
 /// The high-water mark of resident memory in bytes (0 where unknown).
-inline std::uint64_t peak_memory_bytes();
-
-/// The largest high-water mark seen before a reset, process-wide (bytes).
-inline std::atomic<std::uint64_t>& peak_before_resets() {
-  static std::atomic<std::uint64_t> bytes{0};
-  return bytes;
-}
-
-/// Resets the high-water mark to what is resident now, first keeping the mark it had in
-/// peak_before_resets; false where the kernel refuses.
-inline bool reset_peak_memory() {
-  const std::uint64_t mark = peak_memory_bytes();
-  std::uint64_t kept = peak_before_resets().load();
-  while (mark > kept && !peak_before_resets().compare_exchange_weak(kept, mark)) {
-  }
-  std::FILE* f = std::fopen("/proc/self/clear_refs", "w");
-  if (!f) return false;
-  const bool ok = std::fputs("5", f) >= 0;
-  return std::fclose(f) == 0 && ok;
-}
-
 inline std::uint64_t peak_memory_bytes() {
   std::ifstream in("/proc/self/status");
   std::string key;
@@ -47,10 +26,26 @@ inline std::uint64_t peak_memory_bytes() {
   return 0;
 }
 
+/// The largest high-water mark seen before a reset, process-wide (bytes).
+inline std::atomic<std::uint64_t> peak_before_resets{0};
+
+/// Resets the high-water mark to what is resident now, first keeping the mark it had in
+/// peak_before_resets; false where the kernel refuses.
+inline bool reset_peak_memory() {
+  const std::uint64_t mark = peak_memory_bytes();
+  std::uint64_t kept = peak_before_resets.load();
+  while (mark > kept && !peak_before_resets.compare_exchange_weak(kept, mark)) {
+  }
+  std::FILE* f = std::fopen("/proc/self/clear_refs", "w");
+  if (!f) return false;
+  const bool ok = std::fputs("5", f) >= 0;
+  return std::fclose(f) == 0 && ok;
+}
+
 /// The process's resident peak since it started, resets included (bytes; 0 where unknown).
 inline std::uint64_t process_peak_bytes() {
   const std::uint64_t now = peak_memory_bytes();
-  const std::uint64_t kept = peak_before_resets().load();
+  const std::uint64_t kept = peak_before_resets.load();
   return now > kept ? now : kept;
 }
 

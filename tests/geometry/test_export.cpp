@@ -1,6 +1,7 @@
 // Exports read back: glTF (tinygltf), OBJ and PLY parsed here, organs.csv round trip, byte-identical
 // reruns at any thread count.
 #include "geometry/export.hpp"
+#include "tests/geometry/test_files.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "lsystem/grow.hpp"
 
@@ -22,20 +23,11 @@
 using namespace canopy;
 namespace fs = std::filesystem;
 
+using canopy::testing::slurp;
+
 namespace {
 
-std::string temp_dir() {
-  char name[] = "/tmp/canopy-export-XXXXXX";
-  REQUIRE(mkdtemp(name) != nullptr);
-  return name;
-}
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string temp_dir() { return canopy::testing::temp_dir("export"); }
 
 Stand small_stand(int threads = 0, double x0 = 0) {
   GrowRequest req;

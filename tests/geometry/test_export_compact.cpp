@@ -5,6 +5,7 @@
 // refused. (Validator, three.js and the exact-predicate check on the quantized triangles run in
 // the cli_stand and cgal_check suites.)
 #include "geometry/export.hpp"
+#include "tests/geometry/test_files.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "lsystem/grow.hpp"
 
@@ -26,11 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string temp_dir() {
-  char name[] = "/tmp/canopy-compact-XXXXXX";
-  REQUIRE(mkdtemp(name) != nullptr);
-  return name;
-}
+std::string temp_dir() { return canopy::testing::temp_dir("compact"); }
 
 GrowRequest request(const std::string& grammar, int steps, double x0 = 0) {
   GrowRequest req;

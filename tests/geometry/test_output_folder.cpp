@@ -1,5 +1,6 @@
 // Output folders replaced as one unit, temporary names of dead runs, checked number formatting.
 #include "geometry/atomic_file.hpp"
+#include "tests/geometry/test_files.hpp"
 #include "geometry/run_files.hpp"
 #include "geometry/staged_folder.hpp"
 #include "geometry/text_out.hpp"
@@ -19,23 +20,14 @@
 using namespace canopy;
 namespace fs = std::filesystem;
 
+using canopy::testing::slurp;
+
 namespace {
 
 // A pid above any the kernel hands out (pid_max is at most 2^22): a process that has ended.
 const std::string kDeadTag = "1073741000-5";
 
-std::string temp_dir() {
-  char name[] = "/tmp/canopy-folder-XXXXXX";
-  REQUIRE(mkdtemp(name) != nullptr);
-  return name;
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string temp_dir() { return canopy::testing::temp_dir("folder"); }
 
 void put(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
