@@ -1,5 +1,7 @@
 #include "light/embree_stand.hpp"
 
+#include "light/raster_stand.hpp"
+
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -28,11 +30,6 @@ RTCScene mesh_scene(RTCDevice dev, const PrototypeMesh& m) {
   return sc;
 }
 
-/// A mesh in its local z = 0 plane: a disk, or a leaflet that is not curved.
-bool flat(const OrganRecord& r) {
-  return r.prototype == PrototypeKind::disk || (r.prototype == PrototypeKind::leaflet && r.shape == 0);
-}
-
 }  // namespace
 
 EmbreeStand::EmbreeStand(const Stand& s, PrototypeLibrary& lib) {
@@ -51,20 +48,18 @@ EmbreeStand::EmbreeStand(const Stand& s, PrototypeLibrary& lib) {
 void EmbreeStand::build(const Stand& s, PrototypeLibrary& lib) {
   meshes_.assign(kMeshSlots, nullptr);
   top_ = rtcNewScene(device_);
-  const double inf = std::numeric_limits<double>::infinity();
-  lo_ = {inf, inf, inf}, hi_ = {-inf, -inf, -inf};
   for (std::size_t i = 0; i < s.organ_count(); ++i) {
     const OrganRecord& r = s.organs[i];
     Affine3f t = s.transforms[i];
+    if (left_out(r, t)) {
+      ++skipped_;
+      continue;
+    }
     const Vec3d a = to_double(t.c0), b = to_double(t.c1);
     if (!(std::abs(dot(cross(a, b), to_double(t.c2))) > 0)) {
       // A flat blade lies in its local z = 0 plane, so its third column moves nothing: any
       // column off the blade's plane gives Embree an invertible transform and the same blade.
       const Vec3d n = cross(a, b);
-      if (!flat(r) || !(length(n) > 0)) {
-        ++skipped_;
-        continue;
-      }
       t.c2 = to_float(normalized(n) * std::sqrt(length(n)));
     }
     RTCScene& mesh = meshes_[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
@@ -89,14 +84,11 @@ void EmbreeStand::build(const Stand& s, PrototypeLibrary& lib) {
     rtcCommitGeometry(inst);
     rtcAttachGeometryByID(top_, inst, static_cast<unsigned>(i));
     rtcReleaseGeometry(inst);
-    const Box3f& bx = lib.get(r).box;
-    for (int k = 0; k < 8; ++k) {
-      const Vec3f p = apply(
-          t, Vec3f{(k & 1) ? bx.hi.x : bx.lo.x, (k & 2) ? bx.hi.y : bx.lo.y, (k & 4) ? bx.hi.z : bx.lo.z});
-      const Vec3d w = to_double(p) + off;
-      lo_ = {std::min(lo_.x, w.x), std::min(lo_.y, w.y), std::min(lo_.z, w.z)};
-      hi_ = {std::max(hi_.x, w.x), std::max(hi_.y, w.y), std::max(hi_.z, w.z)};
-    }
+  }
+  std::size_t left = 0;
+  if (!stand_box(s, lib, lo_, hi_, left)) {
+    const double inf = std::numeric_limits<double>::infinity();
+    lo_ = {inf, inf, inf}, hi_ = {-inf, -inf, -inf};
   }
   rtcCommitScene(top_);
   if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)

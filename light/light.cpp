@@ -2,7 +2,9 @@
 
 #include "geometry/clock.hpp"
 #include "geometry/stand_metrics.hpp"
+#include "geometry/available_memory.hpp"
 #include "light/leaf_layers.hpp"
+#include "light/raster_stand.hpp"
 #include "light/sampler.hpp"
 
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 namespace canopy::light {
@@ -20,12 +23,59 @@ double sq(double x) { return x * x; }
 struct Run {
   const Stand& stand;
   const LightConfig& cfg;
-  const Scene& scene;
+  Scene& scene;
   const OrganIndex& organs;
   std::size_t layers;
   const std::vector<double>& plant_leaf_area;
   double leaf_area;
-  std::uint64_t rays = 0;
+  PrototypeLibrary& lib;
+  std::uint64_t rays = 0, raster_rays = 0;
+  std::size_t raster_passes = 0;
+  double raster_s = 0;
+  std::unique_ptr<RasterStand> raster;  // made on the first rasterized pass
+  std::unique_ptr<std::uint64_t[]> cells;
+  std::size_t cells_size = 0;
+
+  /// Whether a pass of `n` rays is drawn rather than traced: as asked, else when drawing is the
+  /// cheaper and its cells (8 bytes a ray) fit: in a quarter of the host's available memory, or
+  /// in the device's.
+  bool rasterizes(double n) {
+    if (cfg.caster == Caster::trace) return false;
+    if (cfg.caster == Caster::automatic) {
+      if (cfg.device ? !cfg.device->fits(static_cast<std::uint64_t>(n))
+                     : n * 8 > 0.25 * static_cast<double>(memory_available()))
+        return false;
+      if (!raster) raster = std::make_unique<RasterStand>(stand, lib);
+      // A device draws a pass for less than the ray caster's scene costs to build: all its passes.
+      return cfg.device || n >= kRasterRaysPerTriangle * static_cast<double>(raster->triangles());
+    }
+    return true;
+  }
+
+  /// The pass's tally from drawing the stand over its cells (drawn and counted on the device
+  /// where given).
+  Tally draw(const DirectionJob& job) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!raster) raster = std::make_unique<RasterStand>(stand, lib);
+    const std::size_t n = job.grid.rays();
+    const RasterGrid g = raster_grid(job);
+    Tally t;
+    if (cfg.device) {
+      std::vector<std::uint64_t> counts(tally_slots(stand.plant_count(), layers));
+      cfg.device->count(raster->view(), g, job.layer_m, static_cast<std::int32_t>(layers), counts.data());
+      t = Tally::from_slots(counts.data(), n, stand.plant_count(), layers);
+    } else {
+      if (n > cells_size)
+        cells.reset(), cells = std::make_unique_for_overwrite<std::uint64_t[]>(n), cells_size = n;
+      const auto m = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+      for (std::int64_t c = 0; c < m; ++c) cells[static_cast<std::size_t>(c)] = 0;
+      rasterize(raster->view(), g, cells.get());
+      t = tally_cells(cells.get(), job, organs, stand.plant_count());
+    }
+    raster_rays += t.rays, ++raster_passes, raster_s += seconds_since(t0);
+    return t;
+  }
 
   /// The ground sampled for light from `toward`: the tile when periodic, else the ground the
   /// stand's box can shade.
@@ -84,7 +134,14 @@ struct Run {
     job.stream = stream;
     job.layer_m = cfg.layer_m;
     job.layers = layers;
-    const Tally t = trace_direction(scene, organs, stand.plant_count(), job);
+    job.periodic = cfg.periodic;
+    Tally t;
+    if (rasterizes(static_cast<double>(job.grid.rays()))) {
+      t = draw(job);
+    } else {
+      scene.build();
+      t = trace_direction(scene, organs, stand.plant_count(), job);
+    }
     rays += t.rays;
     return evaluate(t, reg, toward);
   }
@@ -117,10 +174,13 @@ struct Run {
 
   /// The exponent a of error ~ rays^-a. Independent rays fall at 0.5 and a jittered grid over
   /// smooth outlines at 0.75 (the default stand's plants measured 0.66-0.69 in bench_light), so
-  /// the first step from a first pass takes 0.5, which overshoots rather than falls short, but
-  /// grows the count at most kFirstStep times; later steps take the exponent the last two passes
-  /// show, within [0.5, 0.75].
-  static constexpr double kFirstStep = 16;
+  /// the first step from a first pass takes 0.5, which overshoots rather than falls short; later
+  /// steps take the exponent the last two passes show, within [0.5, 0.75]. A step grows the count
+  /// at most kMaxStep times: the exponent steepens as the cells come to resolve the leaflets (few
+  /// rays per plant behave as independent ones), so a long step from an exponent measured on
+  /// coarse passes overshoots (each plant to 0.002 at 10,000 plants reached 0.0008 with 2.7 G
+  /// rays when only the first step was bounded).
+  static constexpr double kMaxStep = 16;
   static constexpr std::uint64_t kRounds = 16;  // passes grow at least 1.2 times: the limit stops them first
   static double decay(double n0, double r0, double n1, double r1) {
     if (!(n1 > 1.05 * n0) || !(r0 > 0) || !(r1 > 0)) return 0.5;
@@ -139,7 +199,7 @@ struct Run {
       const double a = n_prev > 0 ? decay(n_prev, r_prev, n, r) : 0.5;
       const double grow = std::max(1.2, 1.1 * std::pow(r, 1 / a));
       n_prev = n, r_prev = r;
-      d = trace(toward, n * (round == 1 ? std::min(grow, kFirstStep) : grow), id << 8 | round);
+      d = trace(toward, n * std::min(grow, kMaxStep), id << 8 | round);
       r = shortfall(d.fraction.se, plant_rms(d.plant));
     }
     return d;
@@ -218,7 +278,7 @@ struct Run {
       for (std::size_t i = 0; i < sky.size(); ++i) {
         const double have = static_cast<double>(d[i].rays);
         double want = std::max(1.1 * n[i], 1.2 * have);
-        if (round == 1) want = std::min(want, kFirstStep * have);
+        want = std::min(want, kMaxStep * have);
         if (1.1 * n[i] > have) d[i] = trace(to[i], want, (first_id + i) << 8 | round);
       }
       c = combine(d, sky);
@@ -229,6 +289,17 @@ struct Run {
 };
 
 }  // namespace
+
+Caster parse_caster(const std::string& name) {
+  if (name == "auto") return Caster::automatic;
+  if (name == "trace") return Caster::trace;
+  if (name == "raster") return Caster::raster;
+  throw std::invalid_argument(fmt::format("--caster: '{}' is not auto, trace or raster", name));
+}
+
+const char* caster_name(Caster c) {
+  return c == Caster::trace ? "trace" : c == Caster::raster ? "raster" : "auto";
+}
 
 void check_config(const LightConfig& c) {
   const auto error_ok = [](double e) { return e >= kMinError && e <= kMaxError; };
@@ -282,7 +353,7 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   r.layer_leaf_area = layer_leaf_area(stand, lib, cfg.layer_m, layers);
 
   const auto t_trace = std::chrono::steady_clock::now();
-  Run run{stand, cfg, scene, organs, layers, r.plant_leaf_area, r.leaf_area};
+  Run run{stand, cfg, scene, organs, layers, r.plant_leaf_area, r.leaf_area, lib, 0, 0, 0, 0, {}, {}, 0};
   r.ground = run.beam({0, 0, 1}, 0);
   for (std::size_t i = 0; i < cfg.suns.size(); ++i) {
     const Beam& b = cfg.suns[i];
@@ -300,8 +371,11 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
     }
     r.diffuse = run.combine(r.sky_directions, sky);
   }
-  r.trace_s = seconds_since(t_trace);
+  r.trace_s = seconds_since(t_trace) - scene.build_s();
+  r.scene_s += scene.build_s();
   r.rays = run.rays;
+  r.raster_rays = run.raster_rays, r.raster_passes = run.raster_passes, r.raster_s = run.raster_s;
+  if (run.raster_passes) r.raster_device = cfg.device ? cfg.device->name() : "host";
   return r;
 }
 

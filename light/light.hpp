@@ -14,6 +14,7 @@
 #include "geometry/leaf_angles.hpp"
 #include "geometry/prototype.hpp"
 #include "geometry/stand.hpp"
+#include "light/raster_device.hpp"
 #include "light/scene.hpp"
 #include "light/sky.hpp"
 #include "light/tally.hpp"
@@ -21,6 +22,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace canopy::light {
@@ -33,6 +35,21 @@ struct Beam {
 inline constexpr double kMinError = 1e-5, kMaxError = 0.5;
 inline constexpr double kMaxRaysPerDirection = 2e9;
 inline constexpr std::size_t kMaxLayers = 100000;
+
+/// How a pass's rays are answered: each traced through the Embree scene, or all at once by
+/// drawing the stand's triangles over the cells (light/raster.hpp; the same rays and, up to rays
+/// that graze an edge, the same hits), or whichever is cheaper (the default): with a GPU
+/// (LightConfig::device) every pass is drawn (a pass of 10,000 plants takes about 4 ms there, the
+/// Embree scene 1.2 s to build on 16 cores); on the host, passes of many rays.
+enum class Caster { automatic, trace, raster };
+
+/// "auto", "trace" or "raster"; throws std::invalid_argument naming --caster otherwise.
+Caster parse_caster(const std::string& name);
+const char* caster_name(Caster c);
+
+/// `automatic` rasterizes a pass from this many rays per triangle drawn: there tracing costs
+/// about as much as drawing on the host (bench_light's per-plant rows, 2-core machine).
+inline constexpr double kRasterRaysPerTriangle = 0.065;
 
 struct LightConfig {
   std::vector<Beam> suns;
@@ -47,6 +64,9 @@ struct LightConfig {
   std::uint64_t seed = 1;
   int pilot_rays = 4096;      // rays of the first pass that sizes each beam's count
   int sky_pilot_rays = 1024;  // per sky direction
+  Caster caster = Caster::automatic;
+  /// Where given, draws the rasterized passes (a GPU); else the host's threads do.
+  RasterDevice* device = nullptr;
 };
 /// Throws std::invalid_argument naming the option on a value out of range.
 void check_config(const LightConfig& c);
@@ -82,7 +102,10 @@ struct LightResult {
   std::optional<DirectionLight> diffuse;  // the sky's directions combined with their weights
   std::size_t organs_skipped = 0;         // flattened solids, not in the scene
   std::uint64_t rays = 0;                 // every ray traced, first passes included
-  double scene_s = 0, trace_s = 0;
+  std::uint64_t raster_rays = 0;          // of them, answered by rasterizing
+  std::size_t raster_passes = 0;
+  std::string raster_device;  // what drew them ("host" or the device's name)
+  double scene_s = 0, trace_s = 0, raster_s = 0;
 };
 
 /// Computes the light of `stand` as asked. Throws std::invalid_argument on a bad request and

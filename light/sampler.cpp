@@ -1,6 +1,6 @@
 #include "light/sampler.hpp"
 
-#include "geometry/mix64.hpp"
+#include "light/raster_stand.hpp"
 
 #include <omp.h>
 
@@ -8,12 +8,6 @@
 #include <cmath>
 
 namespace canopy::light {
-namespace {
-
-double unit(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }
-
-}  // namespace
-
 OrganIndex::OrganIndex(const Stand& s) : plant(s.organ_count()), kind(s.organ_count()) {
   for (std::size_t i = 0; i < s.organ_count(); ++i)
     plant[i] = s.organs[i].plant, kind[i] = static_cast<std::uint8_t>(s.organs[i].kind);
@@ -34,28 +28,16 @@ Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t 
                       const DirectionJob& job) {
   Tally total(plants, job.layers);
   const Grid& g = job.grid;
+  const RasterGrid cells = raster_grid(job);
   const Vec3d s = job.toward, d{-s.x, -s.y, -s.z};
   const double top = scene.hi().z + 1e-3;  // rays start above everything
   const double t_max = top / s.z;          // distance from the start to the ground
-  const double cw = g.region.width() / static_cast<double>(g.nx),
-               ch = g.region.height() / static_cast<double>(g.ny);
-  const std::uint64_t base = mix64(job.seed ^ mix64(job.stream * 0xd1b54a32d192ed03ULL));
-  const std::int32_t last_layer = static_cast<std::int32_t>(job.layers) - 1;
   const auto outcome = [&](std::uint64_t i, std::uint64_t j) {
-    const std::uint64_t h = mix64(base ^ mix64(j * kGoldenGamma ^ mix64(i)));
-    const Vec3d ground{g.region.x0 + (static_cast<double>(i) + unit(h)) * cw,
-                       g.region.y0 + (static_cast<double>(j) + unit(mix64(h))) * ch, 0};
+    Vec3d ground;
+    cell_point(cells, i, j, ground.x, ground.y);
     const Vec3d org = ground + s * t_max;
     const Hit hit = scene.trace(org, d, t_max);
-    Outcome o;
-    if (hit.organ < 0) return o;
-    const auto k = static_cast<std::size_t>(hit.organ);
-    o.plant = organs.plant[k];
-    o.kind = organs.kind[k];
-    o.leaflet = o.kind == static_cast<std::uint8_t>(OrganKind::leaflet);
-    const double z = org.z + d.z * hit.t;
-    o.layer = std::clamp(static_cast<std::int32_t>(std::floor(z / job.layer_m)), 0, last_layer);
-    return o;
+    return outcome_of(hit.organ, org.z + d.z * hit.t, organs, job.layer_m, job.layers);
   };
 #pragma omp parallel
   {

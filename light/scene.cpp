@@ -1,6 +1,8 @@
 #include "light/scene.hpp"
 
+#include "geometry/clock.hpp"
 #include "light/embree_stand.hpp"
+#include "light/raster_stand.hpp"
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
@@ -19,9 +21,8 @@ struct Scene::Impl {
   Impl(const Stand& s, PrototypeLibrary& lib) : embree(s, lib) {}
 };
 
-Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>(s, lib)) {
-  skipped_ = impl_->embree.skipped();
-  if (!impl_->embree.bounds(lo_, hi_)) lo_ = {0, 0, 0}, hi_ = {0, 0, 0};
+Scene::Scene(const Stand& s, PrototypeLibrary& lib) : stand_(s), lib_(lib) {
+  if (!stand_box(s, lib, lo_, hi_, skipped_)) lo_ = {0, 0, 0}, hi_ = {0, 0, 0};
   // A margin well above float rounding at the stand's extent: the ray's float origin and Embree's
   // float boxes never clip a hit at the box's edge (a wider box only traces a copy more often).
   const double pad =
@@ -31,6 +32,13 @@ Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Imp
 }
 
 Scene::~Scene() = default;
+
+void Scene::build() {
+  if (impl_) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  impl_ = std::make_unique<Impl>(stand_, lib_);
+  build_s_ = seconds_since(t0);
+}
 
 namespace {
 

@@ -27,7 +27,8 @@ struct Hit {
 
 class Scene {
  public:
-  /// Throws std::runtime_error when Embree cannot start or build the scene.
+  /// The stand's bounds now; the Embree scene when first asked for (build()). Keeps references
+  /// to `stand` and `lib`.
   Scene(const Stand& stand, PrototypeLibrary& lib);
   ~Scene();
   Scene(const Scene&) = delete;
@@ -42,12 +43,21 @@ class Scene {
   /// Makes the traces periodic over tiles of `size` (x, y; metres); size 0 switches it off.
   void set_period(double x, double y) { px_ = x, py_ = y; }
 
-  /// The nearest organ hit by the ray from `org` along unit `dir` with t in [0, t_max].
+  /// Builds the Embree scene unless built (on the calling thread, before any trace): a run
+  /// whose passes are all rasterized never needs it. Throws std::runtime_error when Embree
+  /// cannot start or build it.
+  void build();
+  double build_s() const { return build_s_; }
+
+  /// The nearest organ hit by the ray (build() first) from `org` along unit `dir` with t in [0, t_max].
   Hit trace(Vec3d org, Vec3d dir, double t_max) const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  const Stand& stand_;
+  PrototypeLibrary& lib_;
+  double build_s_ = 0;
   Vec3d lo_, hi_;
   std::size_t skipped_ = 0;
   double px_ = 0, py_ = 0;

@@ -12,6 +12,7 @@
 #include "lsystem/grow.hpp"
 #include "tools/bench_timing.hpp"
 #include "tools/bench_usage.hpp"
+#include "tools/light_device.hpp"
 #include "tools/process_memory.hpp"
 
 #include <fmt/format.h>
@@ -25,6 +26,7 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,8 @@ int bench_main(int argc, char** argv) {
   std::string csv = "bench/results/light.csv";
   std::string grammar = std::string(CANOPY_SOURCE_DIR) + "/grammars/tomato.yaml";
   bool append = false;
+  light::Caster caster = light::Caster::automatic;
+  std::string backend = "auto";
   for (int i = 1; i < argc; ++i) try {
       if (!std::strcmp(argv[i], "--plants") && i + 1 < argc) plants = numbers(argv[++i]);
       else if (!std::strcmp(argv[i], "--errors") && i + 1 < argc) errors = numbers(argv[++i]);
@@ -104,13 +108,21 @@ int bench_main(int argc, char** argv) {
       } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
       else if (!std::strcmp(argv[i], "--grammar") && i + 1 < argc) grammar = argv[++i];
       else if (!std::strcmp(argv[i], "--append")) append = true;
-      else
+      else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) backend = argv[++i];
+      else if (!std::strcmp(argv[i], "--caster") && i + 1 < argc) {
+        if (const std::string name = argv[++i]; name == "trace" || name == "raster" || name == "auto")
+          caster = light::parse_caster(name);
+        else {
+          std::fprintf(stderr, "bench_light: --caster: '%s' is not auto, trace or raster\n", name.c_str());
+          return 2;
+        }
+      } else
         return help_or_refuse(
             "bench_light", argv[i],
             "usage: bench_light [--plants 1000,10000] [--threads T] [--errors 0.01,0.005,0.002,0.001]\n"
             "                   [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--grammar "
             "FILE] [--csv FILE]\n"
-            "                   [--append]\n"
+            "                   [--append] [--caster auto|trace|raster] [--backend auto|cpu|cuda]\n"
             "  the default stand of each size; per error: a direct beam and the sky's directions to that "
             "standard\n"
             "  error of the stand's fractions (--errors) or of each plant's, root mean square "
@@ -120,6 +132,15 @@ int bench_main(int argc, char** argv) {
       return 2;
     }
   const ThreadLimit thread_limit(threads);
+  // Where rasterized passes are drawn: the command line's factory (canopy light --backend).
+  std::string device_note;
+  std::unique_ptr<light::RasterDevice> device;
+  try {
+    device = cli::make_light_device(backend, device_note);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_light: %s\n", e.what());
+    return 2;
+  }
   const int used_threads = omp_get_max_threads();
   const std::string commit =
       first_line(fmt::format("git -C '{}' rev-parse --short HEAD 2>/dev/null", CANOPY_SOURCE_DIR));
@@ -136,9 +157,9 @@ int bench_main(int argc, char** argv) {
       "total_s,"
       "cpu_s,rays_per_s,scene_mb,bytes_per_organ,ground_cover,ground_cover_se,direct,direct_se,diffuse,"
       "diffuse_se,star,star_se,"
-      "plant_se_rms_direct,plant_se_rms_diffuse\n";
-  fmt::print("bench_light: {} threads, {}; commit {}\n", used_threads, where,
-             commit.empty() ? "unknown" : commit);
+      "plant_se_rms_direct,plant_se_rms_diffuse,caster,raster_device,rays_rasterized,raster_s\n";
+  fmt::print("bench_light: {} threads, {}; commit {}; rasterized passes on {}\n", used_threads, where,
+             commit.empty() ? "unknown" : commit, device_note);
   fmt::print("{:>7} {:>7} {:>9} {:>10} {:>8} {:>8} {:>8} {:>12} {:>9} {:>9} {:>9} {:>9}\n", "plants", "mode",
              "asked", "rays", "scene s", "trace s", "total s", "rays/s", "direct se", "diff. se", "plant se",
              "star se");
@@ -162,6 +183,8 @@ int bench_main(int argc, char** argv) {
     light::LightConfig base;
     base.suns = {{sun_e, sun_a}};
     base.sky_directions = sky;
+    base.caster = caster;
+    base.device = device.get();
     base.tile = {-0.2, -0.5, (per_row - 0.5) * 0.4, rows_n - 0.5};
     const auto run = [&](const std::string& mode, double asked, light::LightConfig c) {
       const double cpu0 = cpu_seconds();
@@ -185,16 +208,18 @@ int bench_main(int argc, char** argv) {
           r.direct.empty() ? NAN : r.direct[0].fraction.se, diff_se,
           r.direct.empty() ? NAN : rms(r.direct[0].plant), star_se);
       rows += fmt::format(
-          "{},{},{:.1f},{:.0f},{},{},{:.6g},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f},{:."
+          "{},{},{:.1f},{:.0f},{},{},{:.6g},{},{:.4f},{:.4f},{:.4f},{:.4f},{:.0f},{:.1f},{:.0f},{:.6f},{:.6f}"
+          ",{:."
           "6f},{:.6f},{:.6f},{:"
-          ".6f},{:.6f},{:.6f},{:.6f},{:.6f}\n",
+          ".6f},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{},{:.4f}\n",
           n, stand.organ_count(), static_cast<double>(stand.organ_count()) / n,
           static_cast<double>(triangles) / n, used_threads, mode, asked, r.rays, r.scene_s, r.trace_s, total,
           cpu, static_cast<double>(r.rays) / r.trace_s, scene_mb,
           scene_mb * 1048576.0 / static_cast<double>(stand.organ_count()), r.ground.fraction.value,
           r.ground.fraction.se, r.direct.empty() ? NAN : r.direct[0].fraction.value,
           r.direct.empty() ? NAN : r.direct[0].fraction.se, diff, diff_se, star, star_se,
-          r.direct.empty() ? NAN : rms(r.direct[0].plant), prms_diff);
+          r.direct.empty() ? NAN : rms(r.direct[0].plant), prms_diff, light::caster_name(caster),
+          r.raster_passes ? r.raster_device : std::string("none"), r.raster_rays, r.raster_s);
     };
     // Rays per second: the direct beam alone at a fixed density (about 2 million rays).
     {

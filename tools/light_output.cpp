@@ -53,6 +53,7 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   cfg["rays_per_m2"] = o.rays_per_m2 ? Json(*o.rays_per_m2) : Json(nullptr);
   cfg["layer_m"] = o.layer;
   cfg["ray_seed"] = o.ray_seed;
+  cfg["caster"] = o.caster;
   if (o.latitude)
     cfg["latitude"] = *o.latitude, cfg["day"] = o.day ? Json(*o.day) : Json(nullptr), cfg["hours"] = o.hours;
   j["config"] = cfg;
@@ -115,7 +116,10 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   j["leaf_angles"] = leaf_angles_json(r.leaf_angles);
   j["rays"] = r.rays;
   j["organs_skipped"] = r.organs_skipped;
-  j["timings_s"] = {{"scene", r.scene_s}, {"trace", r.trace_s}};
+  j["rays_rasterized"] = r.raster_rays;
+  j["raster_passes"] = r.raster_passes;
+  j["raster_device"] = r.raster_passes ? Json(r.raster_device) : Json(nullptr);
+  j["timings_s"] = {{"scene", r.scene_s}, {"trace", r.trace_s}, {"raster", r.raster_s}};
   return j;
 }
 

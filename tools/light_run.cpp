@@ -1,6 +1,8 @@
 // canopy light's run: the stand (a folder or a grammar), the tile, the light, the files.
 #include "tools/light_run.hpp"
 
+#include "tools/light_device.hpp"
+
 #include "geometry/export.hpp"
 #include "geometry/thread_limit.hpp"
 #include "tools/cli_common.hpp"
@@ -134,6 +136,7 @@ light::LightConfig light_config(const LightOptions& o, const Stand& s, const std
   c.rays_per_m2 = o.rays_per_m2;
   c.layer_m = o.layer;
   c.seed = o.ray_seed;
+  c.caster = light::parse_caster(o.caster);
   std::array<double, 4> t{};
   if (!o.tile.empty()) {
     t = parse_tile(o.tile);
@@ -177,6 +180,7 @@ LightOutcome run_light(LightOptions o, bool print) {
     v.sky = light::parse_sky(o.sky), v.sky_directions = o.sky_directions, v.error = o.error,
     v.plant_error = o.plant_error;
     v.rays_per_m2 = o.rays_per_m2, v.layer_m = o.layer, v.tile = {0, 0, 1, 1};
+    v.caster = light::parse_caster(o.caster);
     if (!o.tile.empty()) (void)parse_tile(o.tile);
     light::check_config(v);
     if (!std::filesystem::is_directory(o.source) && o.tile.empty() && !o.no_periodic) {
@@ -191,6 +195,9 @@ LightOutcome run_light(LightOptions o, bool print) {
       (void)lattice_tile(l);
     }
   }
+  // Where rasterized passes are drawn (a GPU as --backend chooses one): refused before any work.
+  std::string device_note;
+  const std::unique_ptr<light::RasterDevice> device = make_light_device(o.stand.detect.backend, device_note);
   Stand stand;
   std::optional<RowLayout> layout;
   LightOutcome out;
@@ -208,7 +215,8 @@ LightOutcome run_light(LightOptions o, bool print) {
   }
   if (!o.tile.empty()) layout.reset();
   std::vector<SunSpec> suns;
-  const light::LightConfig cfg = light_config(o, stand, layout, suns);
+  light::LightConfig cfg = light_config(o, stand, layout, suns);
+  cfg.device = device.get();
   PrototypeLibrary lib;
   const light::LightResult r = light::compute_light(stand, lib, cfg);
   out.json = light_json(r, stand, o, suns);
@@ -223,6 +231,9 @@ LightOutcome run_light(LightOptions o, bool print) {
         "light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n",
         stand.plant_count(), r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai,
         r.rays, r.trace_s, r.scene_s);
+    if (r.raster_passes)
+      fmt::print("  {} of them answered by drawing the stand in {} passes ({:.2f} s, on {})\n", r.raster_rays,
+                 r.raster_passes, r.raster_s, device ? device_note : std::string("the host's threads"));
     fmt::print("  {:<34} {}  ({} rays)\n", "ground cover", pm(r.ground.fraction), r.ground.rays);
     for (std::size_t i = 0; i < r.direct.size(); ++i)
       fmt::print("  {:<34} {}  ({} rays)\n",

@@ -35,6 +35,7 @@ struct LightOptions {
   std::optional<double> rays_per_m2;
   double layer = 0.1;
   std::uint64_t ray_seed = 1;
+  std::string caster = "auto";  // auto, trace or raster (light::Caster)
   int threads = 0;
   StandOptions stand;
 };

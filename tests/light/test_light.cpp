@@ -16,36 +16,7 @@ using namespace canopy;
 using canopy::test::beams;
 using canopy::test::one_organ;
 using canopy::test::turbid;
-
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180;
-
-/// Area of the regular k-gon of circumradius r (the disk prototype's mesh at lod L has 8 L sides).
-double polygon_area(int k, double r) { return 0.5 * k * r * r * std::sin(2 * std::numbers::pi / k); }
-
-/// A disk of radius r centred at c, its normal tilted by `tilt` from +Z toward +Y.
-Affine3f disk_at(Vec3f c, float r, double tilt) {
-  const float ct = static_cast<float>(std::cos(tilt)), st = static_cast<float>(std::sin(tilt));
-  Affine3f t;
-  t.c0 = {r, 0, 0}, t.c1 = {0, r * ct, -r * st}, t.c2 = {0, r * st, r * ct}, t.t = c;
-  return t;
-}
-
-/// The intercepted area (fraction x tile area) agrees with `want` within 4 standard errors, and
-/// the standard error is small beside it.
-void check_area(const light::DirectionLight& d, const light::Box2d& tile, double want) {
-  const double got = d.fraction.value * tile.area(), se = d.fraction.se * tile.area();
-  INFO("elevation " << d.elevation_deg << ", azimuth " << d.azimuth_deg << ": got " << got << " +- " << se
-                    << ", want " << want);
-  CHECK(std::abs(got - want) <= 4 * se);
-  CHECK(se > 0);
-  CHECK(se < 0.03 * want);
-}
-
-const std::vector<light::Beam> kSuns{{90, 0}, {60, 30}, {35, 250}, {15, 120}};
-
-}  // namespace
+using namespace canopy::test::shadows;
 
 TEST_CASE("a disk intercepts its area times the cosine of its normal to the sun, over the sun's cosine") {
   const double r = 0.1;

@@ -35,12 +35,30 @@ check "kinds sum to the stand" "True" "$(json "$tmp/a/light.json" "abs(sum(k['di
 
 # The folder gives the same figures; so does any thread count (light.csv byte for byte).
 cp "$tmp/a/light.json" "$tmp/grammar.json"; cp "$tmp/a/light.csv" "$tmp/grammar.csv"
-"$canopy" light "$tmp/a" "${light[@]}" --threads 1 >"$tmp/log" 2>&1
+"$canopy" light "$tmp/a" "${light[@]}" --threads 1 --backend cpu >"$tmp/log" 2>&1
 check "from the folder: exit" "0" "$?"
 strip() { python3 -c "import json; j=json.load(open('$1')); j.pop('timings_s'); j.pop('source'); print(json.dumps(j))"; }
 check "folder = grammar" "$(strip "$tmp/grammar.json")" "$(strip "$tmp/a/light.json")"
 cmp -s "$tmp/grammar.csv" "$tmp/a/light.csv"
 check "light.csv: one thread = all" "0" "$?"
+
+# Rays answered by drawing the stand (--caster raster) or traced one by one (trace): the same rays,
+# the same fractions but for rays grazing an edge.
+"$canopy" light "$tmp/a" "${light[@]}" --backend cpu --caster trace >"$tmp/log" 2>&1
+check "trace: no ray drawn" "0 None" "$(json "$tmp/a/light.json" "j['rays_rasterized'], j['raster_device']")"
+cp "$tmp/a/light.json" "$tmp/traced.json"
+"$canopy" light "$tmp/a" "${light[@]}" --backend cpu --caster raster >"$tmp/log" 2>&1
+check "raster: exit" "0" "$?"
+check "raster: every ray drawn, on the host" "True host raster" "$(json "$tmp/a/light.json" "j['rays_rasterized'] == j['rays'], j['raster_device'], j['config']['caster']")"
+check "raster: the traced fractions" "True" "$(python3 -c "
+import json; a=json.load(open('$tmp/traced.json')); b=json.load(open('$tmp/a/light.json'))
+print(a['rays'] == b['rays'] and all(abs(x['intercepted_fraction'] - y['intercepted_fraction']) < 1e-3 for x, y in zip(a['direct'] + [a['diffuse']], b['direct'] + [b['diffuse']])))")"
+"$canopy" light "$tmp/a" --caster rays >"$tmp/o" 2>"$tmp/e"
+check "unknown caster refused" "1 1" "$([ $? -ne 0 ] && echo 1 || echo 0) $(grep -c 'caster' "$tmp/e")"
+if [ ! -e /dev/nvidiactl ]; then
+  "$canopy" light "$tmp/a" --backend cuda --sky-directions 0 >"$tmp/o" 2>"$tmp/e"
+  check "--backend cuda without a GPU refused" "2 1" "$? $(grep -c 'no usable GPU' "$tmp/e")"
+fi
 
 # report.json's leaf angles: 18 bins of 5 degrees whose fractions sum to one; the same in light.json.
 check "leaf angles bins" "18 True" "$(json "$tmp/a/report.json" "len(j['leaf_angles']['bins']), abs(sum(b['fraction'] for b in j['leaf_angles']['bins']) - 1) < 1e-12")"

@@ -2,6 +2,7 @@
 // grammar, returning light.json as a dict (with light.csv's columns as NumPy arrays for a Stand).
 #include "geometry/split_list.hpp"
 #include "geometry/thread_limit.hpp"
+#include "tools/light_device.hpp"
 #include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
 
@@ -38,6 +39,8 @@ bool light_option(cli::LightOptions& o, const std::string& k, py::handle v) {
   else if (k == "layer") o.layer = v.cast<double>();
   else if (k == "ray_seed") o.ray_seed = v.cast<std::uint64_t>();
   else if (k == "threads") o.threads = v.cast<int>();
+  else if (k == "caster") o.caster = v.cast<std::string>();
+  else if (k == "backend") o.stand.detect.backend = v.cast<std::string>();
   else return false;
   return true;
 }
@@ -85,8 +88,12 @@ void bind_light(py::module_& m) {
           py::gil_scoped_release nogil;
           const ThreadLimit thread_limit(o.threads);
           std::vector<cli::SunSpec> suns;
-          const light::LightConfig cfg =
+          light::LightConfig cfg =
               cli::light_config(o, s.stand, o.tile.empty() ? s.layout : std::nullopt, suns);
+          std::string note;
+          const std::unique_ptr<light::RasterDevice> device =
+              cli::make_light_device(o.stand.detect.backend, note);
+          cfg.device = device.get();
           PrototypeLibrary lib;
           const light::LightResult r = light::compute_light(s.stand, lib, cfg);
           j = cli::light_json(r, s.stand, o, suns);
