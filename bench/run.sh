@@ -214,8 +214,15 @@ step_scale() {
 step_light() {
   if [ "$quick" = 1 ]; then "$BIN/bench_light" --plants 1000 --errors 0.01 --plant-errors 0.05 --csv "$work/light.csv"
   else
-    "$BIN/bench_light" --plants 1000 --errors 0.01,0.005,0.002,0.001 --plant-errors 0.05,0.02,0.01 --csv "$work/light.csv"
-    "$BIN/bench_light" --plants 10000 --errors 0.01,0.002 --plant-errors 0.05 --csv "$work/light.csv" --append
+    # The command's default (auto): a GPU, where there is one, draws every pass; the host traces.
+    if [ -e /dev/nvidiactl ]; then
+      "$BIN/bench_light" --plants 1000 --errors 0.01,0.005,0.002,0.001 --plant-errors 0.05,0.02,0.01,0.002 --csv "$work/light.csv"
+      "$BIN/bench_light" --plants 10000 --errors 0.01,0.002 --plant-errors 0.05,0.01,0.002 --csv "$work/light.csv" --append
+      light_append=--append
+    fi
+    "$BIN/bench_light" --caster trace --plants 1000 --errors 0.01,0.005,0.002,0.001 --plant-errors 0.05,0.02,0.01 \
+      --csv "$work/light.csv" ${light_append:-}
+    "$BIN/bench_light" --caster trace --plants 10000 --errors 0.01,0.002 --plant-errors 0.05 --csv "$work/light.csv" --append
   fi
   stamp "$work/light.csv" light.csv
 }

@@ -36,19 +36,18 @@ struct Run {
   std::unique_ptr<std::uint64_t[]> cells;
   std::size_t cells_size = 0;
 
-  /// Whether a pass of `n` rays is drawn rather than traced: as asked, else when drawing is the
-  /// cheaper and its cells (8 bytes a ray) fit: in a quarter of the host's available memory, or
-  /// in the device's.
-  bool rasterizes(double n) {
+  /// Whether a pass of `n` rays is drawn rather than traced: as asked, or (automatic) on a GPU
+  /// whose memory holds its cells (8 bytes a ray). Drawing on the host, its cells must fit in
+  /// a quarter of the memory available.
+  bool rasterizes(double n) const {
     if (cfg.caster == Caster::trace) return false;
-    if (cfg.caster == Caster::automatic) {
-      if (cfg.device ? !cfg.device->fits(static_cast<std::uint64_t>(n))
-                     : n * 8 > 0.25 * static_cast<double>(memory_available()))
-        return false;
-      if (!raster) raster = std::make_unique<RasterStand>(stand, lib);
-      // A device draws a pass for less than the ray caster's scene costs to build: all its passes.
-      return cfg.device || n >= kRasterRaysPerTriangle * static_cast<double>(raster->triangles());
-    }
+    if (cfg.device) return cfg.device->fits(static_cast<std::uint64_t>(n));
+    if (cfg.caster == Caster::automatic) return false;
+    if (n * 8 > 0.25 * static_cast<double>(memory_available()))
+      throw std::invalid_argument(fmt::format(
+          "--caster raster: the cells of {:.3g} rays do not fit in a quarter of the memory available; ask "
+          "for a larger --error or --plant-error, or --caster trace",
+          n));
     return true;
   }
 

@@ -127,22 +127,27 @@ CANOPY_HD inline void raster_triangle(const RasterGrid& g, const Vec3d p[3], std
     i1 = i1 >= g.nx ? g.nx - 1 : i1, j1 = j1 >= g.ny ? g.ny - 1 : j1;
   }
   const double inv = 1 / area2;
+  // The wrapped indices advance with the unwrapped ones (one modulo per triangle, not per cell).
+  std::int64_t j = g.periodic ? wrap(j0, g.ny) : j0;
   for (std::int64_t jj = j0; jj <= j1; ++jj) {
-    const std::int64_t j = g.periodic ? wrap(jj, g.ny) : jj;
+    std::int64_t i = g.periodic ? wrap(i0, g.nx) : i0;
     for (std::int64_t ii = i0; ii <= i1; ++ii) {
-      const std::int64_t i = g.periodic ? wrap(ii, g.nx) : ii;
       double x, y;
       cell_point(g, static_cast<std::uint64_t>(i), static_cast<std::uint64_t>(j), x, y);
       x += static_cast<double>(ii - i) * g.cw, y += static_cast<double>(jj - j) * g.ch;  // the copy's point
       const double w0 = ((gx[1] - x) * (gy[2] - y) - (gx[2] - x) * (gy[1] - y)) * inv;
       const double w1 = ((gx[2] - x) * (gy[0] - y) - (gx[0] - x) * (gy[2] - y)) * inv;
       const double w2 = 1 - w0 - w1;
-      if (w0 < 0 || w1 < 0 || w2 < 0) continue;
-      const double z = w0 * p[0].z + w1 * p[1].z + w2 * p[2].z;
-      if (!(z >= 0)) continue;  // below the ground: the ray ended before it
-      put(static_cast<std::uint64_t>(j) * static_cast<std::uint64_t>(g.nx) + static_cast<std::uint64_t>(i),
-          hit_key(z, organ));
+      if (w0 >= 0 && w1 >= 0 && w2 >= 0) {
+        const double z = w0 * p[0].z + w1 * p[1].z + w2 * p[2].z;
+        if (z >= 0)  // below the ground the ray has ended
+          put(static_cast<std::uint64_t>(j) * static_cast<std::uint64_t>(g.nx) +
+                  static_cast<std::uint64_t>(i),
+              hit_key(z, organ));
+      }
+      if (++i == g.nx && g.periodic) i = 0;
     }
+    if (++j == g.ny && g.periodic) j = 0;
   }
 }
 
