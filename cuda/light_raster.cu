@@ -112,10 +112,7 @@ __global__ void count_cells(light::RasterGrid g, const unsigned long long* cells
 struct LightRaster::Impl {
   int device = 0;
   std::string name;
-  // The stand as uploaded, and what it was uploaded from.
-  const void* from_transforms = nullptr;
-  const void* from_positions = nullptr;
-  std::uint64_t from_organs = 0;
+  std::uint64_t generation = 0;  // of the stand uploaded (0: none)
   DeviceBuffer<Vec3f> positions;
   DeviceBuffer<std::uint32_t> indices, tri_first, tri_count, vertex_first;
   DeviceBuffer<Affine3f> transforms;
@@ -134,7 +131,8 @@ struct LightRaster::Impl {
     b.upload_at(0, src, n);
   }
   void upload(const light::RasterView& v) {
-    if (v.transforms == from_transforms && v.positions == from_positions && v.organs == from_organs) return;
+    if (v.generation != 0 && v.generation == generation) return;
+    generation = 0;  // a failed upload leaves no stand behind
     put(positions, v.positions, v.vertices);
     put(indices, v.indices, 3 * v.mesh_triangles);
     put(tri_first, v.slot_tri_first, v.slots);
@@ -152,7 +150,7 @@ struct LightRaster::Impl {
     view.transforms = transforms.get(), view.slot = slot.get(), view.plant = plant.get();
     view.kind = kind.get();
     view.offset = offset.get();
-    from_transforms = v.transforms, from_positions = v.positions, from_organs = v.organs;
+    generation = v.generation;
   }
 };
 

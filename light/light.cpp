@@ -30,36 +30,37 @@ struct Run {
   double leaf_area;
   PrototypeLibrary& lib;
   std::uint64_t rays = 0, raster_rays = 0;
-  std::size_t raster_passes = 0;
+  std::size_t raster_passes = 0, device_passes = 0;
   double raster_s = 0;
   std::unique_ptr<RasterStand> raster;  // made on the first rasterized pass
   std::unique_ptr<std::uint64_t[]> cells;
   std::size_t cells_size = 0;
 
-  /// Whether a pass of `n` rays is drawn rather than traced: as asked, or (automatic) on a GPU
-  /// whose memory holds its cells (8 bytes a ray). Drawing on the host, its cells must fit in
-  /// a quarter of the memory available.
-  bool rasterizes(double n) const {
-    if (cfg.caster == Caster::trace) return false;
-    if (cfg.device) return cfg.device->fits(static_cast<std::uint64_t>(n));
-    if (cfg.caster == Caster::automatic) return false;
+  enum class Way { trace, device, host };
+  /// How a pass of `n` rays is answered: drawn on the GPU where one is given and its memory holds
+  /// the cells (8 bytes a ray); else traced (automatic), or drawn on the host (raster) when its
+  /// cells fit in a quarter of the memory available.
+  Way way(double n) const {
+    if (cfg.caster == Caster::trace) return Way::trace;
+    if (cfg.device && cfg.device->fits(static_cast<std::uint64_t>(n))) return Way::device;
+    if (cfg.caster == Caster::automatic) return Way::trace;
     if (n * 8 > 0.25 * static_cast<double>(memory_available()))
       throw std::invalid_argument(fmt::format(
           "--caster raster: the cells of {:.3g} rays do not fit in a quarter of the memory available; ask "
           "for a larger --error or --plant-error, or --caster trace",
           n));
-    return true;
+    return Way::host;
   }
 
   /// The pass's tally from drawing the stand over its cells (drawn and counted on the device
   /// where given).
-  Tally draw(const DirectionJob& job) {
+  Tally draw(const DirectionJob& job, bool on_device) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!raster) raster = std::make_unique<RasterStand>(stand, lib);
     const std::size_t n = job.grid.rays();
     const RasterGrid g = raster_grid(job);
     Tally t;
-    if (cfg.device) {
+    if (on_device) {
       std::vector<std::uint64_t> counts(tally_slots(stand.plant_count(), layers));
       cfg.device->count(raster->view(), g, job.layer_m, static_cast<std::int32_t>(layers), counts.data());
       t = Tally::from_slots(counts.data(), n, stand.plant_count(), layers);
@@ -72,7 +73,7 @@ struct Run {
       rasterize(raster->view(), g, cells.get());
       t = tally_cells(cells.get(), job, organs, stand.plant_count());
     }
-    raster_rays += t.rays, ++raster_passes, raster_s += seconds_since(t0);
+    raster_rays += t.rays, ++raster_passes, device_passes += on_device, raster_s += seconds_since(t0);
     return t;
   }
 
@@ -135,8 +136,8 @@ struct Run {
     job.layers = layers;
     job.periodic = cfg.periodic;
     Tally t;
-    if (rasterizes(static_cast<double>(job.grid.rays()))) {
-      t = draw(job);
+    if (const Way w = way(static_cast<double>(job.grid.rays())); w != Way::trace) {
+      t = draw(job, w == Way::device);
     } else {
       scene.build();
       t = trace_direction(scene, organs, stand.plant_count(), job);
@@ -352,7 +353,7 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   r.layer_leaf_area = layer_leaf_area(stand, lib, cfg.layer_m, layers);
 
   const auto t_trace = std::chrono::steady_clock::now();
-  Run run{stand, cfg, scene, organs, layers, r.plant_leaf_area, r.leaf_area, lib, 0, 0, 0, 0, {}, {}, 0};
+  Run run{stand, cfg, scene, organs, layers, r.plant_leaf_area, r.leaf_area, lib, 0, 0, 0, 0, 0, {}, {}, 0};
   r.ground = run.beam({0, 0, 1}, 0);
   for (std::size_t i = 0; i < cfg.suns.size(); ++i) {
     const Beam& b = cfg.suns[i];
@@ -374,7 +375,7 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   r.scene_s += scene.build_s();
   r.rays = run.rays;
   r.raster_rays = run.raster_rays, r.raster_passes = run.raster_passes, r.raster_s = run.raster_s;
-  if (run.raster_passes) r.raster_device = cfg.device ? cfg.device->name() : "host";
+  if (run.raster_passes) r.raster_device = run.device_passes ? cfg.device->name() : "host";
   return r;
 }
 

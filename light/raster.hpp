@@ -44,6 +44,8 @@ struct RasterView {
   const std::uint8_t* kind = nullptr;    // per organ (OrganKind)
   const Vec3d* offset = nullptr;         // per plant, relative to stand_origin
   std::uint64_t organs = 0, plants = 0, vertices = 0, mesh_triangles = 0, slots = 0;
+  /// Unique to the RasterStand the view is of (a device keeps what it uploaded for it).
+  std::uint64_t generation = 0;
 };
 
 CANOPY_HD inline double unit_interval(std::uint64_t h) { return static_cast<double>(h >> 11) * 0x1.0p-53; }

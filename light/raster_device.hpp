@@ -16,7 +16,7 @@ class RasterDevice {
   /// Draws the stand `v` over `g` and counts its cells' answers as tally_cells does (light/
   /// raster_stand.hpp): `counts` (host memory, tally_slots(v.plants, layers) numbers) gets the
   /// counters in tally_slot's order. A run draws one stand many times: what the device uploads
-  /// for `v` is kept while `v.organs` and its arrays stay the same. Throws std::runtime_error
+  /// for `v` is kept for the next call with the same `v.generation`. Throws std::runtime_error
   /// when the device fails.
   virtual void count(const RasterView& v, const RasterGrid& g, double layer_m, std::int32_t layers,
                      std::uint64_t* counts) = 0;

@@ -80,6 +80,8 @@ RasterStand::RasterStand(const Stand& s, PrototypeLibrary& lib)
   view_.offset = offset_.data();
   view_.organs = s.organ_count(), view_.plants = s.plant_count(), view_.vertices = positions_.size();
   view_.mesh_triangles = indices_.size() / 3, view_.slots = kMeshSlots;
+  static std::atomic<std::uint64_t> made{0};
+  view_.generation = ++made;
 }
 
 RasterGrid raster_grid(const DirectionJob& job) {

@@ -34,7 +34,7 @@ struct DirectionJob {
   std::uint64_t stream = 0;  // the direction's own stream of cell points
   double layer_m = 0.1;      // height layers of the profile
   std::size_t layers = 1;
-  bool periodic = true;      // the grid covers the tile, which repeats (for the rasterizer)
+  bool periodic = true;  // the grid covers the tile, which repeats (for the rasterizer)
 };
 
 /// Traces every ray of the job and counts what they hit (OpenMP threads over grid rows).

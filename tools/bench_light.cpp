@@ -108,8 +108,13 @@ int bench_main(int argc, char** argv) {
       } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
       else if (!std::strcmp(argv[i], "--grammar") && i + 1 < argc) grammar = argv[++i];
       else if (!std::strcmp(argv[i], "--append")) append = true;
-      else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) backend = argv[++i];
-      else if (!std::strcmp(argv[i], "--caster") && i + 1 < argc) {
+      else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) {
+        backend = argv[++i];
+        if (backend != "auto" && backend != "cpu" && backend != "cuda") {
+          std::fprintf(stderr, "bench_light: --backend: '%s' is not auto, cpu or cuda\n", backend.c_str());
+          return 2;
+        }
+      } else if (!std::strcmp(argv[i], "--caster") && i + 1 < argc) {
         if (const std::string name = argv[++i]; name == "trace" || name == "raster" || name == "auto")
           caster = light::parse_caster(name);
         else {
@@ -176,7 +181,8 @@ int bench_main(int argc, char** argv) {
     const double mb0 = resident_mb();
     double scene_mb = 0;
     {
-      const light::Scene scene(stand, lib);
+      light::Scene scene(stand, lib);
+      scene.build();
       scene_mb = resident_mb() - mb0;
     }
     const int rows_n = n < 100 ? 1 : (n + 99) / 100, per_row = n < 100 ? n : 100;

@@ -47,11 +47,10 @@ Command add_light(CLI::App& root) {
   app->add_option("--layer", o->layer, "Height of the vertical profile's layers, metres (default 0.1)")
       ->check(kFinite);
   app->add_option("--ray-seed", o->ray_seed, "Seed of the rays' positions (default 1)")->check(kSeed);
-  app->add_option(
-         "--caster", o->caster,
-         "How a pass's rays are answered: trace (Embree, ray by ray), raster (the stand's triangles "
-         "drawn over the rays' cells, on a GPU where --backend finds one) or auto (default: whichever "
-         "costs less for the pass)")
+  app->add_option("--caster", o->caster,
+                  "How a pass's rays are answered: trace (Embree, ray by ray), raster (the stand's triangles "
+                  "drawn over the rays' cells, on a GPU where --backend finds one, else on the host) or auto "
+                  "(default: drawn on a GPU, traced on the host)")
       ->check(CLI::IsMember({"auto", "trace", "raster"}));
   // From a grammar: canopy stand's options.
   StandOptions& s = o->stand;

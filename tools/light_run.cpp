@@ -197,7 +197,9 @@ LightOutcome run_light(LightOptions o, bool print) {
   }
   // Where rasterized passes are drawn (a GPU as --backend chooses one): refused before any work.
   std::string device_note;
-  const std::unique_ptr<light::RasterDevice> device = make_light_device(o.stand.detect.backend, device_note);
+  // (--caster trace draws nothing: no GPU is started for it.)
+  const std::unique_ptr<light::RasterDevice> device =
+      o.caster == "trace" ? nullptr : make_light_device(o.stand.detect.backend, device_note);
   Stand stand;
   std::optional<RowLayout> layout;
   LightOutcome out;

@@ -52,7 +52,7 @@ check "raster: exit" "0" "$?"
 check "raster: every ray drawn, on the host" "True host raster" "$(json "$tmp/a/light.json" "j['rays_rasterized'] == j['rays'], j['raster_device'], j['config']['caster']")"
 check "raster: the traced fractions" "True" "$(python3 -c "
 import json; a=json.load(open('$tmp/traced.json')); b=json.load(open('$tmp/a/light.json'))
-print(a['rays'] == b['rays'] and all(abs(x['intercepted_fraction'] - y['intercepted_fraction']) < 1e-3 for x, y in zip(a['direct'] + [a['diffuse']], b['direct'] + [b['diffuse']])))")"
+print(all(abs(x['intercepted_fraction'] - y['intercepted_fraction']) < 1e-3 for x, y in zip(a['direct'] + [a['diffuse']], b['direct'] + [b['diffuse']])))")"
 "$canopy" light "$tmp/a" --caster rays >"$tmp/o" 2>"$tmp/e"
 check "unknown caster refused" "1 1" "$([ $? -ne 0 ] && echo 1 || echo 0) $(grep -c 'caster' "$tmp/e")"
 if [ ! -e /dev/nvidiactl ]; then

@@ -92,7 +92,7 @@ void bind_light(py::module_& m) {
               cli::light_config(o, s.stand, o.tile.empty() ? s.layout : std::nullopt, suns);
           std::string note;
           const std::unique_ptr<light::RasterDevice> device =
-              cli::make_light_device(o.stand.detect.backend, note);
+              o.caster == "trace" ? nullptr : cli::make_light_device(o.stand.detect.backend, note);
           cfg.device = device.get();
           PrototypeLibrary lib;
           const light::LightResult r = light::compute_light(s.stand, lib, cfg);
@@ -108,7 +108,8 @@ void bind_light(py::module_& m) {
       "sky='soc', "
       "sky_directions=46, tile=(xmin, ymin, xmax, ymax), periodic=True, error=0.002, plant_error=, "
       "rays_per_m2=, layer=0.1, "
-      "ray_seed=1, caster='auto', backend='auto', threads=0. Returns light.json as a dict, with 'per_plant': light.csv's columns as arrays. "
+      "ray_seed=1, caster='auto', backend='auto', threads=0. Returns light.json as a dict, with 'per_plant': "
+      "light.csv's columns as arrays. "
       "The tile "
       "defaults to the lattice of the rows the stand was grown in (or read from).");
 
