@@ -47,7 +47,7 @@ struct Run {
     if (n * 8 > 0.25 * static_cast<double>(memory_available()))
       throw std::invalid_argument(fmt::format(
           "--caster raster: the cells of {:.3g} rays do not fit in a quarter of the memory available; ask "
-          "for a larger --error or --plant-error, or --caster trace",
+          "for a larger --error or --plant-error, fewer --rays-per-m2, or --caster trace",
           n));
     return Way::host;
   }

@@ -22,8 +22,10 @@ void DetectOptions::add_to(CLI::App& app) {
                  "Organ kinds that take part, comma separated (internode, petiole, rachis, leaflet, "
                  "peduncle, fruit, flower), "
                  "or all (default all: every organ of the stand's files)");
-  app.add_option("--backend", backend,
-                 "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present)")
+  app.add_option(
+         "--backend", backend,
+         "Detection backend: cpu, cuda or auto (default auto: CUDA when a GPU is present); for canopy "
+         "light also where drawn passes run")
       ->check(CLI::IsMember({"cpu", "cuda", "auto"}));
   app.add_option("--threads", threads,
                  "CPU threads for every phase of the run (default: all cores, or OMP_NUM_THREADS)")
@@ -35,6 +37,9 @@ void DetectOptions::add_to(CLI::App& app) {
 }
 
 DetectRequest DetectOptions::request() const {
+  // The Python module hands the name over unchecked (the command line checks it as it parses).
+  if (backend != "cpu" && backend != "cuda" && backend != "auto")
+    throw std::invalid_argument(fmt::format("--backend: '{}' is not cpu, cuda or auto", backend));
   DetectRequest r;
   r.level = *parse_contact_level(level);
   r.clearance = static_cast<float>(clearance);

@@ -14,6 +14,8 @@
 namespace canopy::cli {
 
 std::unique_ptr<light::RasterDevice> make_light_device(const std::string& backend, std::string& note) {
+  if (backend != "cpu" && backend != "cuda" && backend != "auto")
+    throw std::invalid_argument(fmt::format("--backend: '{}' is not cpu, cuda or auto", backend));
   if (backend == "cpu") {
     note = "host (asked for)";
     return nullptr;

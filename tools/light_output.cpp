@@ -54,6 +54,7 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   cfg["layer_m"] = o.layer;
   cfg["ray_seed"] = o.ray_seed;
   cfg["caster"] = o.caster;
+  cfg["backend"] = o.stand.detect.backend;
   if (o.latitude)
     cfg["latitude"] = *o.latitude, cfg["day"] = o.day ? Json(*o.day) : Json(nullptr), cfg["hours"] = o.hours;
   j["config"] = cfg;

@@ -151,3 +151,16 @@ def test_reading_a_stand_refuses_what_canopy_does_not_write(tmp_path):
     (out / "organs.csv").write_text("")
     with pytest.raises(RuntimeError, match="organs.csv:1: expected the header"):
         canopy.Stand.read(str(out))
+
+
+def test_unknown_backend_and_caster_refused(tmp_path):
+    # The command line checks --backend as it parses; the module's keywords reach the same check.
+    with pytest.raises(ValueError, match="--backend: 'gpu' is not cpu, cuda or auto"):
+        canopy.stand(TOMATO, tmp_path / "s", rows=1, per_row=2, steps=4, backend="gpu")
+    assert not (tmp_path / "s").exists()
+    out = tmp_path / "l"
+    canopy.stand(TOMATO, out, rows=1, per_row=2, steps=4, backend="cpu")
+    with pytest.raises(ValueError, match="--backend: 'CUDA' is not cpu, cuda or auto"):
+        canopy.light(str(out), suns=[(60, 180)], backend="CUDA")
+    with pytest.raises(ValueError, match="--caster: 'bogus' is not auto, trace or raster"):
+        canopy.light(str(out), suns=[(60, 180)], caster="bogus")
