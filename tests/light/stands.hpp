@@ -1,6 +1,7 @@
 #pragma once
 // Stands for the light suites: single hand-placed organs with analytic shadows, and the
 // turbid-medium test grammars of grammars/test/.
+#include "geometry/layout.hpp"
 #include "geometry/stand.hpp"
 #include "light/light.hpp"
 #include "lsystem/grow.hpp"
@@ -45,15 +46,31 @@ inline Stand turbid(const std::string& name, const std::vector<std::string>& set
   return grow_stand(req);
 }
 
-/// A configuration with no sky, periodic or not over `tile`, to standard error `error`.
-inline light::LightConfig beams(std::vector<light::Beam> suns, light::Box2d tile, bool periodic,
-                                double error) {
+/// Two rows of three default tomatoes grown `steps` steps, level of detail 1, turned at random and
+/// jittered by up to `jitter` metres (the layout's stream `seed`).
+inline Stand tomato_rows(int steps, double jitter, std::uint64_t seed) {
+  GrowRequest req;
+  req.grammar = source("grammars/tomato.yaml");
+  req.steps = steps;
+  req.lod = 1;
+  RowLayout layout;
+  layout.rows = 2, layout.per_row = 3, layout.random_rotation = true, layout.jitter = jitter;
+  layout.seed = seed;
+  req.plants = row_layout(layout);
+  return grow_stand(req);
+}
+
+/// A configuration with no sky, periodic or not over `tile`, to standard error `error`, its rays
+/// answered as `caster` says.
+inline light::LightConfig beams(std::vector<light::Beam> suns, light::Box2d tile, bool periodic, double error,
+                                light::Caster caster = light::Caster::automatic) {
   light::LightConfig c;
   c.suns = std::move(suns);
   c.sky_directions = 0;
   c.tile = tile;
   c.periodic = periodic;
   c.error = error;
+  c.caster = caster;
   return c;
 }
 
@@ -83,6 +100,9 @@ inline void check_area(const light::DirectionLight& d, const light::Box2d& tile,
   CHECK(se > 0);
   CHECK(se < 0.03 * want);
 }
+
+/// Both ways of answering rays: the analytic shadows hold for each.
+inline constexpr light::Caster kCasters[] = {light::Caster::trace, light::Caster::raster};
 
 inline const std::vector<light::Beam> kSuns{{90, 0}, {60, 30}, {35, 250}, {15, 120}};
 

@@ -1,6 +1,6 @@
-// canopy light against analytic answers: the shadow of a disk and of a thin square slab from
-// any sun (isolated and across the periodic tile's edge), and turbid-medium canopies whose
-// intercepted fraction and STAR follow from the probability that a random leaf covers a point.
+// canopy light against analytic answers, its rays traced and drawn: the shadow of a disk and of a
+// thin square slab from any sun (isolated and across the periodic tile's edge), and turbid-medium canopies
+// whose intercepted fraction and STAR follow from the probability that a random leaf covers a point.
 #include "geometry/leaflet_shape.hpp"
 #include "geometry/organ_mesh.hpp"
 #include "geometry/thread_limit.hpp"
@@ -20,25 +20,26 @@ using namespace canopy::test::shadows;
 
 TEST_CASE("a disk intercepts its area times the cosine of its normal to the sun, over the sun's cosine") {
   const double r = 0.1;
-  for (double tilt : {0.0, 40 * kDeg, 90 * kDeg}) {
-    const Stand s = one_organ(PrototypeKind::disk, OrganKind::leaflet, 2,
-                              disk_at({0.2f, -0.1f, 0.5f}, static_cast<float>(r), tilt));
-    const light::Box2d tile{-0.25, -0.25, 0.25, 0.25};
-    PrototypeLibrary lib;
-    const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, false, 0.0005));
-    const Vec3d n{0, std::sin(tilt), std::cos(tilt)};
-    for (const light::DirectionLight& d : res.direct) {
-      const Vec3d to = light::toward(d.elevation_deg, d.azimuth_deg);
-      const double want = polygon_area(16, r) * std::abs(dot(n, to)) / to.z;
-      if (want < 1e-4) {  // edge-on: nothing to see but a sliver
-        CHECK(d.fraction.value * tile.area() < 1e-4);
-        continue;
+  for (const light::Caster caster : kCasters)
+    for (double tilt : {0.0, 40 * kDeg, 90 * kDeg}) {
+      const Stand s = one_organ(PrototypeKind::disk, OrganKind::leaflet, 2,
+                                disk_at({0.2f, -0.1f, 0.5f}, static_cast<float>(r), tilt));
+      const light::Box2d tile{-0.25, -0.25, 0.25, 0.25};
+      PrototypeLibrary lib;
+      const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, false, 0.0005, caster));
+      const Vec3d n{0, std::sin(tilt), std::cos(tilt)};
+      for (const light::DirectionLight& d : res.direct) {
+        const Vec3d to = light::toward(d.elevation_deg, d.azimuth_deg);
+        const double want = polygon_area(16, r) * std::abs(dot(n, to)) / to.z;
+        if (want < 1e-4) {  // edge-on: nothing to see but a sliver
+          CHECK(d.fraction.value * tile.area() < 1e-4);
+          continue;
+        }
+        check_area(d, tile, want);
       }
-      check_area(d, tile, want);
+      // Ground cover: the disk seen from the zenith.
+      if (tilt == 0.0) check_area(res.ground, tile, polygon_area(16, r));
     }
-    // Ground cover: the disk seen from the zenith.
-    if (tilt == 0.0) check_area(res.ground, tile, polygon_area(16, r));
-  }
 }
 
 TEST_CASE("a thin square slab casts the shadow of a box") {
@@ -49,12 +50,14 @@ TEST_CASE("a thin square slab casts the shadow of a box") {
   const Stand s = one_organ(PrototypeKind::cylinder, OrganKind::leaflet, 1, t);
   const light::Box2d tile{-0.25, -0.25, 0.25, 0.25};
   PrototypeLibrary lib;
-  const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, false, 0.0005));
-  for (const light::DirectionLight& d : res.direct) {
-    const Vec3d to = light::toward(d.elevation_deg, d.azimuth_deg);
-    // A box's area seen along u is the sum of its faces' areas times |cos| over a pair each.
-    const double across = a * a * std::abs(to.z) + a * 2 * h * std::abs(to.x) + a * 2 * h * std::abs(to.y);
-    check_area(d, tile, across / to.z);
+  for (const light::Caster caster : kCasters) {
+    const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, false, 0.0005, caster));
+    for (const light::DirectionLight& d : res.direct) {
+      const Vec3d to = light::toward(d.elevation_deg, d.azimuth_deg);
+      // A box's area seen along u is the sum of its faces' areas times |cos| over a pair each.
+      const double across = a * a * std::abs(to.z) + a * 2 * h * std::abs(to.x) + a * 2 * h * std::abs(to.y);
+      check_area(d, tile, across / to.z);
+    }
   }
 }
 
@@ -62,14 +65,15 @@ TEST_CASE("periodic bounds: a leaf across the tile's edge, or shading tiles away
   const light::Box2d tile{0, 0, 1, 1};
   const double r = 0.15;
   // Centred on the tile's right edge, on its corner, and inside with a shadow falling far out.
-  for (Vec3f c : {Vec3f{1.0f, 0.5f, 0.4f}, Vec3f{1.0f, 1.0f, 0.4f}, Vec3f{0.5f, 0.5f, 0.9f}}) {
-    const Stand s =
-        one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at(c, static_cast<float>(r), 0));
-    PrototypeLibrary lib;
-    const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, true, 0.0005));
-    for (const light::DirectionLight& d : res.direct) check_area(d, tile, polygon_area(16, r));
-    check_area(res.ground, tile, polygon_area(16, r));
-  }
+  for (const light::Caster caster : kCasters)
+    for (Vec3f c : {Vec3f{1.0f, 0.5f, 0.4f}, Vec3f{1.0f, 1.0f, 0.4f}, Vec3f{0.5f, 0.5f, 0.9f}}) {
+      const Stand s =
+          one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at(c, static_cast<float>(r), 0));
+      PrototypeLibrary lib;
+      const light::LightResult res = light::compute_light(s, lib, beams(kSuns, tile, true, 0.0005, caster));
+      for (const light::DirectionLight& d : res.direct) check_area(d, tile, polygon_area(16, r));
+      check_area(res.ground, tile, polygon_area(16, r));
+    }
 }
 
 TEST_CASE("turbid medium: horizontal leaves intercept 1 - (1 - G a / (A cos theta))^N with G = cos theta") {
@@ -149,45 +153,42 @@ TEST_CASE("diffuse light of horizontal leaves: every sky direction sees the same
   CHECK(weights == doctest::Approx(1.0).epsilon(1e-12));
 }
 
-TEST_CASE("the same fractions on any thread count") {
-  GrowRequest req;
-  req.grammar = canopy::test::source("grammars/tomato.yaml");
-  req.steps = 12;
-  req.lod = 1;
-  RowLayout layout;
-  layout.rows = 2, layout.per_row = 3, layout.random_rotation = true, layout.jitter = 0.02;
-  req.plants = row_layout(layout);
-  const Stand s = grow_stand(req);
+TEST_CASE("the same fractions on any thread count, traced or drawn") {
+  const Stand s = canopy::test::tomato_rows(12, 0.02, 1);
   light::LightConfig c = beams({{40, 70}}, {-0.2, -0.5, 1.0, 1.5}, true, 0.004);
   c.sky_directions = 12;
   c.plant_error = 0.004;
-  light::LightResult one, two;
-  {
-    const ThreadLimit t(1);
-    PrototypeLibrary lib;
-    one = light::compute_light(s, lib, c);
-  }
-  {
-    const ThreadLimit t(2);
-    PrototypeLibrary lib;
-    two = light::compute_light(s, lib, c);
-  }
-  const auto same = [](const light::DirectionLight& x, const light::DirectionLight& y) {
-    CHECK(x.rays == y.rays);
-    CHECK(x.fraction.value == y.fraction.value);
-    CHECK(x.fraction.se == y.fraction.se);
-    CHECK(x.star.value == y.star.value);
-    for (std::size_t l = 0; l < x.layer.size(); ++l) CHECK(x.layer[l].value == y.layer[l].value);
-    for (std::size_t p = 0; p < x.plant.size(); ++p) {
-      CHECK(x.plant[p].value == y.plant[p].value);
-      CHECK(x.plant[p].se == y.plant[p].se);
-      CHECK(x.plant_star[p].value == y.plant_star[p].value);
+  for (const light::Caster caster : {light::Caster::trace, light::Caster::raster}) {
+    c.caster = caster;
+    light::LightResult one, two;
+    {
+      const ThreadLimit t(1);
+      PrototypeLibrary lib;
+      one = light::compute_light(s, lib, c);
     }
-  };
-  same(one.ground, two.ground);
-  same(one.direct[0], two.direct[0]);
-  same(*one.diffuse, *two.diffuse);
-  CHECK(one.rays == two.rays);
+    {
+      const ThreadLimit t(2);
+      PrototypeLibrary lib;
+      two = light::compute_light(s, lib, c);
+    }
+    CHECK(one.raster_rays == (caster == light::Caster::raster ? one.rays : 0));
+    const auto same = [](const light::DirectionLight& x, const light::DirectionLight& y) {
+      CHECK(x.rays == y.rays);
+      CHECK(x.fraction.value == y.fraction.value);
+      CHECK(x.fraction.se == y.fraction.se);
+      CHECK(x.star.value == y.star.value);
+      for (std::size_t l = 0; l < x.layer.size(); ++l) CHECK(x.layer[l].value == y.layer[l].value);
+      for (std::size_t p = 0; p < x.plant.size(); ++p) {
+        CHECK(x.plant[p].value == y.plant[p].value);
+        CHECK(x.plant[p].se == y.plant[p].se);
+        CHECK(x.plant_star[p].value == y.plant_star[p].value);
+      }
+    };
+    same(one.ground, two.ground);
+    same(one.direct[0], two.direct[0]);
+    same(*one.diffuse, *two.diffuse);
+    CHECK(one.rays == two.rays);
+  }
 }
 
 TEST_CASE("a curved leaflet casts the shadow of its own curved mesh, not of the flat blade") {
