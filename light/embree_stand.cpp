@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 
 namespace canopy::light {
@@ -51,10 +50,7 @@ void EmbreeStand::build(const Stand& s, PrototypeLibrary& lib) {
   for (std::size_t i = 0; i < s.organ_count(); ++i) {
     const OrganRecord& r = s.organs[i];
     Affine3f t = s.transforms[i];
-    if (left_out(r, t)) {
-      ++skipped_;
-      continue;
-    }
+    if (left_out(r, t)) continue;
     const Vec3d a = to_double(t.c0), b = to_double(t.c1);
     if (!(std::abs(dot(cross(a, b), to_double(t.c2))) > 0)) {
       // A flat blade lies in its local z = 0 plane, so its third column moves nothing: any
@@ -85,11 +81,6 @@ void EmbreeStand::build(const Stand& s, PrototypeLibrary& lib) {
     rtcAttachGeometryByID(top_, inst, static_cast<unsigned>(i));
     rtcReleaseGeometry(inst);
   }
-  std::size_t left = 0;
-  if (!stand_box(s, lib, lo_, hi_, left)) {
-    const double inf = std::numeric_limits<double>::infinity();
-    lo_ = {inf, inf, inf}, hi_ = {-inf, -inf, -inf};
-  }
   rtcCommitScene(top_);
   if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
     throw std::runtime_error("Embree could not build the scene (out of memory?)");
@@ -101,12 +92,6 @@ void EmbreeStand::release() {
     if (sc) rtcReleaseScene(sc);
   if (device_) rtcReleaseDevice(device_);
   top_ = nullptr, meshes_.clear(), device_ = nullptr;
-}
-
-bool EmbreeStand::bounds(Vec3d& lo, Vec3d& hi) const {
-  if (!(lo_.x <= hi_.x)) return false;
-  lo = lo_, hi = hi_;
-  return true;
 }
 
 }  // namespace canopy::light

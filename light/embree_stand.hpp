@@ -23,12 +23,9 @@ class EmbreeStand {
   EmbreeStand(const EmbreeStand&) = delete;
   EmbreeStand& operator=(const EmbreeStand&) = delete;
 
+  /// Organs left out are those light/raster_stand.hpp's left_out() names; their box and count
+  /// are stand_box()'s.
   RTCScene scene() const { return top_; }
-  /// The union of the instanced organs' boxes (metres, relative to stand_origin); false when no
-  /// organ is in the scene.
-  bool bounds(Vec3d& lo, Vec3d& hi) const;
-  /// Organs left out because their transform flattens a solid to nothing.
-  std::size_t skipped() const { return skipped_; }
 
  private:
   void build(const Stand& stand, PrototypeLibrary& lib);
@@ -36,8 +33,6 @@ class EmbreeStand {
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::vector<RTCScene> meshes_;
-  Vec3d lo_, hi_;
-  std::size_t skipped_ = 0;
 };
 
 }  // namespace canopy::light

@@ -56,7 +56,7 @@ struct Run {
   /// where given).
   Tally draw(const DirectionJob& job, bool on_device) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!raster) raster = std::make_unique<RasterStand>(stand, lib);
+    if (!raster) raster = std::make_unique<RasterStand>(stand, lib, organs);
     const std::size_t n = job.grid.rays();
     const RasterGrid g = raster_grid(job);
     Tally t;

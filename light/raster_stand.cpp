@@ -1,5 +1,7 @@
 #include "light/raster_stand.hpp"
 
+#include "light/tally_grid.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -46,16 +48,14 @@ bool stand_box(const Stand& s, PrototypeLibrary& lib, Vec3d& lo_out, Vec3d& hi_o
   return true;
 }
 
-RasterStand::RasterStand(const Stand& s, PrototypeLibrary& lib)
+RasterStand::RasterStand(const Stand& s, PrototypeLibrary& lib, const OrganIndex& organs)
     : tri_first_(kMeshSlots, 0), tri_count_(kMeshSlots, 0), vertex_first_(kMeshSlots, 0),
-      slot_(s.organ_count(), -1), plant_(s.organ_count()), kind_(s.organ_count()), offset_(s.plant_count()) {
+      slot_(s.organ_count(), -1), offset_(s.plant_count()) {
   if (s.organ_count() >= std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("light: more organs than the rasterizer numbers (2^32 - 1)");
   std::vector<bool> used(kMeshSlots, false);
   for (std::size_t i = 0; i < s.organ_count(); ++i) {
     const OrganRecord& r = s.organs[i];
-    plant_[i] = r.plant;
-    kind_[i] = static_cast<std::uint8_t>(r.kind);
     if (left_out(r, s.transforms[i])) continue;
     const int slot = mesh_slot(r.prototype, r.lod, r.shape);
     slot_[i] = static_cast<std::int16_t>(slot);
@@ -75,8 +75,8 @@ RasterStand::RasterStand(const Stand& s, PrototypeLibrary& lib)
   view_.positions = positions_.data(), view_.indices = indices_.data();
   view_.slot_tri_first = tri_first_.data(), view_.slot_tri_count = tri_count_.data();
   view_.slot_vertex_first = vertex_first_.data();
-  view_.transforms = s.transforms.data(), view_.slot = slot_.data(), view_.plant = plant_.data();
-  view_.kind = kind_.data();
+  view_.transforms = s.transforms.data(), view_.slot = slot_.data(), view_.plant = organs.plant.data();
+  view_.kind = organs.kind.data();
   view_.offset = offset_.data();
   view_.organs = s.organ_count(), view_.plants = s.plant_count(), view_.vertices = positions_.size();
   view_.mesh_triangles = indices_.size() / 3, view_.slots = kMeshSlots;
@@ -119,28 +119,11 @@ Outcome outcome_of(std::int64_t organ, double z, const OrganIndex& organs, doubl
 
 Tally tally_cells(const std::uint64_t* cells, const DirectionJob& job, const OrganIndex& organs,
                   std::size_t plants) {
-  Tally total(plants, job.layers);
-  const Grid& g = job.grid;
-  const auto ny = static_cast<std::int64_t>(g.ny);
-  const auto at = [&](std::uint64_t c) {
-    const std::uint64_t key = cells[c];
+  const std::uint64_t nx = job.grid.nx;
+  return tally_grid(job.grid, plants, job.layers, 16, [&](std::uint64_t i, std::uint64_t j) {
+    const std::uint64_t key = cells[j * nx + i];
     return outcome_of(key_organ(key), key_height(key), organs, job.layer_m, job.layers);
-  };
-#pragma omp parallel
-  {
-    Tally mine(plants, job.layers);
-#pragma omp for schedule(dynamic, 16) nowait
-    for (std::int64_t j = 0; j < ny; ++j) {
-      const std::uint64_t row = static_cast<std::uint64_t>(j) * g.nx;
-      for (std::uint64_t i = 0; i < g.nx; i += 2) {
-        const Outcome a = at(row + i), b = at(row + i + 1);
-        mine.add(a), mine.add(b), mine.add_pair(a, b);
-      }
-    }
-#pragma omp critical
-    total += mine;
-  }
-  return total;
+  });
 }
 
 }  // namespace canopy::light

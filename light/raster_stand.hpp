@@ -1,6 +1,7 @@
 #pragma once
 /// The stand as the rasterizer draws it (light/raster.hpp): the meshes of the slots the organs
-/// use, laid end to end, beside per-organ slots and plants; the transforms are the Stand's own.
+/// use, laid end to end, beside per-organ slots; the transforms are the Stand's own and each
+/// organ's plant and kind the OrganIndex's (light/sampler.hpp).
 /// Also the host's drawing of a direction's cells and their tally, which a device's drawing
 /// (light/raster_device.hpp) shares.
 #include "geometry/prototype.hpp"
@@ -24,8 +25,8 @@ bool stand_box(const Stand& s, PrototypeLibrary& lib, Vec3d& lo, Vec3d& hi, std:
 
 class RasterStand {
  public:
-  /// Keeps a reference to `s` (its transforms are drawn in place).
-  RasterStand(const Stand& s, PrototypeLibrary& lib);
+  /// Keeps references to `s` (its transforms are drawn in place) and `organs`.
+  RasterStand(const Stand& s, PrototypeLibrary& lib, const OrganIndex& organs);
   RasterStand(const RasterStand&) = delete;
   RasterStand& operator=(const RasterStand&) = delete;
   const RasterView& view() const { return view_; }
@@ -36,8 +37,6 @@ class RasterStand {
   std::vector<Vec3f> positions_;
   std::vector<std::uint32_t> indices_, tri_first_, tri_count_, vertex_first_;
   std::vector<std::int16_t> slot_;
-  std::vector<std::int32_t> plant_;
-  std::vector<std::uint8_t> kind_;
   std::vector<Vec3d> offset_;
   RasterView view_;
   std::uint64_t triangles_ = 0;

@@ -1,6 +1,7 @@
 #include "light/sampler.hpp"
 
 #include "light/raster_stand.hpp"
+#include "light/tally_grid.hpp"
 
 #include <omp.h>
 
@@ -26,7 +27,6 @@ Grid make_grid(const Box2d& region, double rays) {
 
 Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t plants,
                       const DirectionJob& job) {
-  Tally total(plants, job.layers);
   const Grid& g = job.grid;
   const RasterGrid cells = raster_grid(job);
   const Vec3d s = job.toward, d{-s.x, -s.y, -s.z};
@@ -39,19 +39,7 @@ Tally trace_direction(const Scene& scene, const OrganIndex& organs, std::size_t 
     const Hit hit = scene.trace(org, d, t_max);
     return outcome_of(hit.organ, org.z + d.z * hit.t, organs, job.layer_m, job.layers);
   };
-#pragma omp parallel
-  {
-    Tally mine(plants, job.layers);
-#pragma omp for schedule(dynamic, 1) nowait
-    for (std::uint64_t j = 0; j < g.ny; ++j)
-      for (std::uint64_t i = 0; i < g.nx; i += 2) {
-        const Outcome a = outcome(i, j), b = outcome(i + 1, j);
-        mine.add(a), mine.add(b), mine.add_pair(a, b);
-      }
-#pragma omp critical
-    total += mine;
-  }
-  return total;
+  return tally_grid(g, plants, job.layers, 1, outcome);
 }
 
 }  // namespace canopy::light

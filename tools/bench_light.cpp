@@ -108,17 +108,13 @@ int bench_main(int argc, char** argv) {
       } else if (!std::strcmp(argv[i], "--csv") && i + 1 < argc) csv = argv[++i];
       else if (!std::strcmp(argv[i], "--grammar") && i + 1 < argc) grammar = argv[++i];
       else if (!std::strcmp(argv[i], "--append")) append = true;
-      else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc) {
-        backend = argv[++i];
-        if (backend != "auto" && backend != "cpu" && backend != "cuda") {
-          std::fprintf(stderr, "bench_light: --backend: '%s' is not auto, cpu or cuda\n", backend.c_str());
-          return 2;
-        }
-      } else if (!std::strcmp(argv[i], "--caster") && i + 1 < argc) {
-        if (const std::string name = argv[++i]; name == "trace" || name == "raster" || name == "auto")
-          caster = light::parse_caster(name);
-        else {
-          std::fprintf(stderr, "bench_light: --caster: '%s' is not auto, trace or raster\n", name.c_str());
+      else if (!std::strcmp(argv[i], "--backend") && i + 1 < argc)
+        backend = argv[++i];  // the factory checks it
+      else if (!std::strcmp(argv[i], "--caster") && i + 1 < argc) {
+        try {
+          caster = light::parse_caster(argv[++i]);
+        } catch (const std::invalid_argument& e) {
+          std::fprintf(stderr, "bench_light: %s\n", e.what());
           return 2;
         }
       } else

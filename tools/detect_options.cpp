@@ -37,9 +37,7 @@ void DetectOptions::add_to(CLI::App& app) {
 }
 
 DetectRequest DetectOptions::request() const {
-  // The Python module hands the name over unchecked (the command line checks it as it parses).
-  if (backend != "cpu" && backend != "cuda" && backend != "auto")
-    throw std::invalid_argument(fmt::format("--backend: '{}' is not cpu, cuda or auto", backend));
+  check_backend_name(backend);
   DetectRequest r;
   r.level = *parse_contact_level(level);
   r.clearance = static_cast<float>(clearance);
@@ -56,6 +54,11 @@ DetectRequest DetectOptions::request() const {
     r.max_device_bytes = static_cast<std::size_t>(v * scale);
   }
   return r;
+}
+
+void check_backend_name(const std::string& name) {
+  if (name != "cpu" && name != "cuda" && name != "auto")
+    throw std::invalid_argument(fmt::format("--backend: '{}' is not cpu, cuda or auto", name));
 }
 
 std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note, int device_hint) {

@@ -27,6 +27,10 @@ struct DetectOptions {
 /// auto_backend.hpp); `note` says what was picked and why. The command line, the Python module and
 /// the benchmark programs all get their backend here. With several GPUs, `device_hint` modulo their count
 /// picks one (a rank's local rank: one GPU per rank).
+/// Throws std::invalid_argument naming --backend unless `name` is cpu, cuda or auto (the Python
+/// module hands names over unchecked; the command line checks them as it parses).
+void check_backend_name(const std::string& name);
+
 std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::string& note,
                                                int device_hint = 0);
 

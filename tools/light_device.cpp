@@ -1,5 +1,6 @@
 #include "tools/light_device.hpp"
 
+#include "tools/detect_options.hpp"
 #include "tools/heap_pages.hpp"
 
 #ifdef CANOPY_HAVE_CUDA
@@ -14,8 +15,7 @@
 namespace canopy::cli {
 
 std::unique_ptr<light::RasterDevice> make_light_device(const std::string& backend, std::string& note) {
-  if (backend != "cpu" && backend != "cuda" && backend != "auto")
-    throw std::invalid_argument(fmt::format("--backend: '{}' is not cpu, cuda or auto", backend));
+  check_backend_name(backend);
   if (backend == "cpu") {
     note = "host (asked for)";
     return nullptr;

@@ -51,8 +51,8 @@ TEST_CASE("light raster: the GPU counts every field as the host does") {
   for (std::uint64_t seed : {5u, 6u, 5u}) {
     const Stand s = tomato_rows(3, 8, seed);
     PrototypeLibrary lib;
-    const light::RasterStand raster(s, lib);
     const light::OrganIndex organs(s);
+    const light::RasterStand raster(s, lib, organs);
     const light::Box2d tile{-0.2, -0.5, 3.0, 2.5};
     std::uint64_t stream = seed;
     for (const light::Beam b : std::vector<light::Beam>{{90, 0}, {50, 140}, {12, 300}})

@@ -26,7 +26,8 @@ std::size_t disagreements(const Stand& s, PrototypeLibrary& lib, Vec3d to, const
   light::Scene scene(s, lib);
   if (periodic) scene.set_period(region.width(), region.height());
   scene.build();
-  const light::RasterStand raster(s, lib);
+  const light::OrganIndex organs(s);
+  const light::RasterStand raster(s, lib, organs);
   light::DirectionJob job;
   job.toward = to, job.grid = light::make_grid(region, rays), job.seed = 3, job.stream = 9;
   job.periodic = periodic;

@@ -3,6 +3,7 @@
 #include "geometry/organ_mesh.hpp"
 
 #include "light/embree_stand.hpp"
+#include "light/raster_stand.hpp"
 
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
@@ -50,7 +51,8 @@ struct Scene::Impl {
 };
 
 Scene::Scene(const Stand& s, PrototypeLibrary& lib) : impl_(std::make_unique<Impl>(s, lib)), stand_(s) {
-  if (!impl_->embree.bounds(lo_, hi_)) lo_ = {-0.5, -0.5, 0}, hi_ = {0.5, 0.5, 1};
+  std::size_t left_out = 0;
+  if (!light::stand_box(s, lib, lo_, hi_, left_out)) lo_ = {-0.5, -0.5, 0}, hi_ = {0.5, 0.5, 1};
   lo_.z = std::min(lo_.z, 0.0);
 }
 
