@@ -30,9 +30,16 @@ struct Primitive {
            -std::numeric_limits<float>::max()};
 };
 
+/// Indices are UNSIGNED_SHORT where every primitive of the plant has at most 65,535 vertices
+/// (its largest index below 65,535, the value glTF keeps for primitive restart), UNSIGNED_INT
+/// otherwise: a sixth fewer bytes for the default plant (12 of 40 bytes per triangle were
+/// indices). The plant's block stays a multiple of 4 bytes, so the next plant's floats stay aligned.
+constexpr std::size_t kShortIndexVertices = 65535;
+
 struct PlantLayout {
   std::vector<Primitive> prims;
   std::size_t pos_bytes = 0, uv_bytes = 0, id_bytes = 0, index_bytes = 0;
+  std::size_t index_size = 4;  // bytes per index: 2 or 4
   std::size_t bytes() const { return 2 * pos_bytes + uv_bytes + id_bytes + index_bytes; }
 };
 
@@ -60,8 +67,12 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
     L.pos_bytes += 12 * q.vertices;
     if (q.uv) L.uv_bytes += 8 * q.vertices;
     L.id_bytes += id_size * q.vertices;
-    L.index_bytes += 4 * q.indices;
+    L.index_bytes += q.indices;
   }
+  const bool short_indices = std::all_of(L.prims.begin(), L.prims.end(),
+                                         [](const Primitive& q) { return q.vertices <= kShortIndexVertices; });
+  L.index_size = short_indices ? 2 : 4;
+  L.index_bytes = (L.index_size * L.index_bytes + 3) / 4 * 4;
   return L;
 }
 
@@ -97,13 +108,20 @@ void fill_plant(const Stand& s, std::size_t p, const PlantLayout& L, PrototypeLi
           std::memcpy(ids, h, 4), ids += 4;
         }
       }
-      for (std::uint32_t k : pm.indices) {
-        const std::uint32_t v = base + k;
-        std::memcpy(idx, &v, 4), idx += 4;
-      }
+      if (L.index_size == 2)
+        for (std::uint32_t k : pm.indices) {
+          const auto v = static_cast<std::uint16_t>(base + k);
+          std::memcpy(idx, &v, 2), idx += 2;
+        }
+      else
+        for (std::uint32_t k : pm.indices) {
+          const std::uint32_t v = base + k;
+          std::memcpy(idx, &v, 4), idx += 4;
+        }
       base += static_cast<std::uint32_t>(mesh.positions.size());
     }
   }
+  std::memset(idx, 0, static_cast<std::size_t>(out + L.bytes() - idx));  // the block's padding
 }
 
 /// A plant's entries in the JSON arrays, numbered after the plants before it (global order).
@@ -154,14 +172,14 @@ glb::PlantJson plant_json(std::int64_t plant, const PlantLayout& L, const glb::B
     if (q.uv) attrs += fmt::format(",\"TEXCOORD_0\":{}", accessor(vuv, o_uv, 5126, q.vertices, "VEC2"));
     attrs += fmt::format(",\"_ORGAN\":{}", float_ids ? accessor(vid, o_id, 5126, q.vertices, "SCALAR")
                                                      : accessor(vid, o_id, 5123, q.vertices, "VEC2"));
-    const std::size_t aidx = accessor(vidx, o_idx, 5125, q.indices, "SCALAR");
+    const std::size_t aidx = accessor(vidx, o_idx, L.index_size == 2 ? 5123 : 5125, q.indices, "SCALAR");
     if (!prims.empty()) prims += ',';
     prims += fmt::format("{{\"attributes\":{{{}}},\"indices\":{},\"material\":{},\"mode\":4}}", attrs, aidx,
                          material_of[static_cast<std::size_t>(q.kind)]);
     o_pos += 12 * q.vertices;
     if (q.uv) o_uv += 8 * q.vertices;
     o_id += 4 * q.vertices;
-    o_idx += 4 * q.indices;
+    o_idx += L.index_size * q.indices;
   }
   j.mesh = fmt::format("{}{{\"name\":\"plant_{}\",\"primitives\":[{}]}}", nmesh > 0 ? "," : "", plant, prims);
   return j;

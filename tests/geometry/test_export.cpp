@@ -122,6 +122,86 @@ TEST_CASE("glb reads back: nodes per plant, organ ids, counts, Y-up positions") 
   fs::remove_all(dir);
 }
 
+/// Every triangle of every primitive, read through its indices (UNSIGNED_SHORT or UNSIGNED_INT),
+/// is its organ's prototype triangle: its corners carry one organ id and sit at the organ's first
+/// vertex plus the prototype's indices. Returns the index component types seen.
+static std::set<int> check_glb_triangles(const Stand& s, const std::string& file) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  REQUIRE(loader.LoadBinaryFromFile(&model, &err, &warn, file));
+  PrototypeLibrary lib;
+  std::set<int> types;
+  const auto bytes = [&](const tinygltf::Accessor& a) {
+    const auto& v = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    return model.buffers[0].data.data() + v.byteOffset + a.byteOffset;
+  };
+  for (std::size_t p = 0; p < s.plant_count(); ++p) {
+    const auto& mesh = model.meshes[static_cast<std::size_t>(model.nodes[p + 1].mesh)];
+    std::size_t most = 0;  // the plant's largest primitive, in vertices
+    for (const auto& prim : mesh.primitives)
+      most = std::max(most, model.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))].count);
+    for (const auto& prim : mesh.primitives) {
+      const auto& ia = model.accessors[static_cast<std::size_t>(prim.indices)];
+      types.insert(ia.componentType);
+      // The plant's primitives share one index size: short where its largest fits below 65,535.
+      CHECK(ia.componentType == (most <= 65535 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                                              : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT));
+      const auto index = [&](std::size_t k) -> std::uint32_t {
+        if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+          std::uint16_t v;
+          std::memcpy(&v, bytes(ia) + 2 * k, 2);
+          return v;
+        }
+        std::uint32_t v;
+        std::memcpy(&v, bytes(ia) + 4 * k, 4);
+        return v;
+      };
+      const auto& ida = model.accessors[static_cast<std::size_t>(prim.attributes.at("_ORGAN"))];
+      const float* ids = reinterpret_cast<const float*>(bytes(ida));
+      std::map<std::uint32_t, std::uint32_t> first_vertex;  // organ -> its first vertex here
+      for (std::uint32_t v = 0; v < ida.count; ++v) first_vertex.emplace(static_cast<std::uint32_t>(ids[v]), v);
+      std::map<std::uint32_t, std::size_t> seen;  // organ -> indices read
+      std::size_t wrong = 0;                      // indices that are not the prototype's
+      for (std::size_t k = 0; k < ia.count; ++k) {
+        const std::uint32_t v = index(k);
+        REQUIRE(v < ida.count);
+        const auto organ = static_cast<std::uint32_t>(ids[v]);
+        const PrototypeMesh& pm = lib.get(s.organs[organ]);
+        const std::size_t at = seen[organ]++;
+        REQUIRE(at < pm.indices.size());
+        wrong += v != first_vertex.at(organ) + pm.indices[at];
+      }
+      CHECK(wrong == 0);
+      for (const auto& [organ, n] : seen) CHECK(n == lib.get(s.organs[organ]).indices.size());
+    }
+  }
+  return types;
+}
+
+TEST_CASE("glb indices: each organ's own triangles, short where a plant's primitives fit") {
+  const std::string dir = temp_dir();
+  const auto write = [&](const Stand& s) {
+    PrototypeLibrary lib;
+    OutputSet files(dir);
+    write_glb(s, lib, files.open("stand.glb"));
+    files.commit_all();
+  };
+  const Stand small = small_stand();
+  write(small);
+  CHECK(check_glb_triangles(small, dir + "/stand.glb") == std::set<int>{TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+  // One mature plant at the finest level of detail: its leaflets pass 65,535 vertices.
+  GrowRequest req;
+  req.grammar = std::string(CANOPY_SOURCE_DIR) + "/grammars/tomato_mature.yaml";
+  req.plants = {PlantPlacement{}, PlantPlacement{}};
+  req.plants[1].x = 1;
+  req.lod = 16;
+  const Stand big = grow_stand(req);
+  write(big);
+  CHECK(check_glb_triangles(big, dir + "/stand.glb").count(TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("obj and ply read back: groups, faces and ids per organ") {
   const Stand s = small_stand();
   const std::string dir = temp_dir();
