@@ -68,7 +68,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
   // same contacts scanned at every level and the same picks, one level later.
   std::vector<std::size_t> unrefined;
   for (int level = 1; !pending.empty(); ++level) {
-    ++lane.levels;
+    const double level_start = now_seconds();
     tell(0);
     std::fill(want.begin(), want.end(), 0);
     for (std::size_t k : unrefined) want[k] = 2;
@@ -82,6 +82,18 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     for (std::size_t k = 0; k < slots.size(); ++k)
       if (want[k] == 1) scan.push_back(k);
     if (scan.empty() && unrefined.empty()) break;
+    ++lane.levels;
+    const std::size_t size_class = PlanLaneStats::size_class(scan.size() + unrefined.size());
+    // A level searched on the host: every level without a runner, and a runner's levels once
+    // they are small (PlanRequest::host_levels_below). The last level's finds are refined here
+    // then, and this level's at once, as the host's search does: a contact picks the same turn
+    // at the level where its candidate was found instead of the next, the same turn either way.
+    const bool host = !lane.bulk || scan.size() + unrefined.size() < request.host_levels_below;
+    if (host && lane.bulk) ++lane.host_levels;
+    if (host && !unrefined.empty()) {
+      for (std::size_t k : unrefined) scan.push_back(k);
+      unrefined.clear();
+    }
     // Neighbouring candidates (organs of one leaf) test against the same organs: a thread
     // that takes a few in a row finds their poses in its cache. Chunks of up to 8, fewer
     // where the level is short, so that no thread waits long at its end.
@@ -97,9 +109,9 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       const auto me = static_cast<std::size_t>(omp_get_thread_num());
       if (!state[k])
         state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
-      // Found: refined to its smallest turn at once, by the same thread (it depends on the
-      // candidate alone).
-      if (!lane.bulk && search.scan_level(*state[k], level, (*lane.scratches)[me]))
+      // Found (now, or by the runner at the last level): refined to its smallest turn at once,
+      // by the same thread (it depends on the candidate alone).
+      if (host && search.scan_level(*state[k], level, (*lane.scratches)[me]))
         refined[k] = search.refine(*state[k], (*lane.scratches)[me]);
       open[k] = state[k]->searching();
       if (times.on) {
@@ -114,7 +126,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       for (std::size_t k : ks) out.push_back(state[k]);
       return out;
     };
-    if (lane.bulk) {
+    if (!host) {
       // This level's scan, and the last level's finds each refined to its smallest turn, once.
       const std::vector<Turn> turns =
           lane.bulk->scan_and_refine(candidates(scan), level, candidates(unrefined));
@@ -142,6 +154,8 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     });
     unplanned -= before - pending.size();
     times.lap(PhaseTimes::pick);
+    ++lane.levels_by_size[size_class];
+    lane.seconds_by_size[size_class] += now_seconds() - level_start;
   }
   unplanned -= pending.size();  // left to the relaxed pass or the last resort
   lane.batch_s += now_seconds() - batch_start;

@@ -20,7 +20,7 @@ namespace canopy::planning {
 struct Lane {
   int threads = 1;
   std::vector<CandidatePool>* pools = nullptr;     // one per thread of the lane
-  std::vector<ExactScratch>* scratches = nullptr;  // the host's search (which has one lane)
+  std::vector<ExactScratch>* scratches = nullptr;  // one per thread, for the host's search
   std::optional<BatchedScan> bulk;
   PhaseTimes* times = nullptr;
   std::vector<std::size_t> slots;       // the batch's movers (slots into the round's movers)
@@ -30,7 +30,9 @@ struct Lane {
   std::vector<std::optional<Turn>> refined;
   /// Seconds in batches, in the candidates' preparation, and levels run (PlanLaneStats).
   double batch_s = 0, prepare_s = 0;
-  std::size_t levels = 0;
+  std::size_t levels = 0, host_levels = 0;
+  std::array<std::size_t, PlanLaneStats::kLevelSizes> levels_by_size{};
+  std::array<double, PlanLaneStats::kLevelSizes> seconds_by_size{};
 };
 
 /// (mover slot, turn) for each contact of a batch that picked one.

@@ -72,6 +72,9 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
   if (req.tables && req.tables->size() < n_lanes) req.tables->resize(n_lanes);
   PhaseTimes quiet;
   std::vector<Lane> lanes(n_lanes);
+  // The other lanes' own scratches, for the levels they search on the host (a lane's threads
+  // number theirs from 0, as lane 0's do).
+  std::vector<std::vector<ExactScratch>> lane_scratches(n_lanes - 1);
   for (std::size_t l = 0; l < n_lanes; ++l) {
     Lane& lane = lanes[l];
     // Every lane on all threads: a lane waiting for the device leaves its cores to the others
@@ -80,7 +83,8 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     if (pools[l].size() < static_cast<std::size_t>(threads))
       pools[l].resize(static_cast<std::size_t>(threads));
     lane.pools = &pools[l];
-    lane.scratches = &scratches;
+    if (l > 0) lane_scratches[l - 1].resize(static_cast<std::size_t>(threads));
+    lane.scratches = l == 0 ? &scratches : &lane_scratches[l - 1];
     if (req.runner)
       lane.bulk.emplace(search, *req.runner, threads, l, req.tables ? &(*req.tables)[l] : nullptr);
     lane.times = l == 0 ? &times : &quiet;
@@ -126,6 +130,9 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     for (std::size_t l = 0; l < lanes.size(); ++l) {
       PlanLaneStats& to = (*req.lane_stats)[l];
       to.batch_s += lanes[l].batch_s, to.prepare_s += lanes[l].prepare_s, to.levels += lanes[l].levels;
+      to.host_levels += lanes[l].host_levels;
+      for (std::size_t k = 0; k < PlanLaneStats::kLevelSizes; ++k)
+        to.levels_by_size[k] += lanes[l].levels_by_size[k], to.seconds_by_size[k] += lanes[l].seconds_by_size[k];
       if (lanes[l].bulk) lanes[l].bulk->add_stats(to);
     }
   }

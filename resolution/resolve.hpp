@@ -74,6 +74,11 @@ struct ResolveRequest {
   /// contacts: fewer levels one after another per lane than two batches each (8,192; faster on a
   /// GPU, bench_resolve at 10,000 plants), for more memory at the peak on the CPU backend (8 %).
   std::size_t batch_contacts = kDefaultBatchContacts;
+  /// With bulk attempts: a level of a batch that scans and refines fewer candidates than this is
+  /// searched by the host's threads instead (and every later level of the batch: they only get
+  /// smaller). The tail of a batch, a few candidates that keep failing up to their reach, costs
+  /// a runner a round trip or two per level whatever its size; the turns are the same either way.
+  std::size_t host_levels_below = kDefaultHostLevelsBelow;
   /// Collect ResolveResult::stats: where the time went phase by phase (wall, CPU, page faults),
   /// lane by lane of planning, and what the runner of bulk attempts did (on the device, with a
   /// pair of events around every kernel). Off: none of it is measured; the turns are the same.

@@ -5,6 +5,7 @@
 /// (`canopy stand --resolve-stats`, tools/resolve_stats.hpp).
 #include "resolution/attempt_batch.hpp"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -25,6 +26,15 @@ struct PlanLaneStats {
   double batch_s = 0;      // in batches
   double prepare_s = 0;    // preparing and scanning candidates on the host
   std::size_t levels = 0;  // cost levels run
+  std::size_t host_levels = 0;  // of them, with a runner: levels searched on the host (the small ones)
+  /// Levels and their seconds by how many candidates each scanned or refined: fewer than 16,
+  /// 256, 4,096, and more (a level's round trips to a runner cost the same for 1 or 10,000).
+  static constexpr std::size_t kLevelSizes = 4;
+  std::array<std::size_t, kLevelSizes> levels_by_size{};
+  std::array<double, kLevelSizes> seconds_by_size{};
+  static std::size_t size_class(std::size_t candidates) {
+    return candidates < 16 ? 0 : candidates < 256 ? 1 : candidates < 4096 ? 2 : 3;
+  }
   /// With bulk attempts (resolution/batched_scan.hpp): scanning and refining, of which the
   /// joint-limit checks, the table writes, the neighbour gathers (`gathers` of them) and the
   /// runner's calls.

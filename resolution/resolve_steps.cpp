@@ -122,6 +122,7 @@ bool Resolution::plan_turns(Round& w) {
     lane_threads.emplace(lanes);
   preq.lanes = w.runner && lane_threads ? &*lane_threads : nullptr;
   preq.batch_contacts = req.batch_contacts;
+  preq.host_levels_below = req.host_levels_below;
   preq.pools = &pools;
   preq.tables = &tables;
   preq.lane_stats = req.statistics ? &lane_stats : nullptr;

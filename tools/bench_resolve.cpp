@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};
   int threads = 0;
   bool append = false, device_search = true, host_runner = false, stats = false;
-  std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts;
+  std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts,
+              host_below = ResolveRequest{}.host_levels_below;
   ResolveConfig base;
   std::string csv = "bench/results/resolve.csv";
   for (int i = 1; i < argc; ++i) {
@@ -79,6 +80,8 @@ int main(int argc, char** argv) {
       lanes = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     else if (!std::strcmp(argv[i], "--batch") && i + 1 < argc)
       batch = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
+    else if (!std::strcmp(argv[i], "--host-below") && i + 1 < argc)
+      host_below = static_cast<std::size_t>(std::max(0, std::atoi(argv[++i])));
     else {
       return help_or_refuse(
           "bench_resolve", argv[i],
@@ -92,6 +95,9 @@ int main(int argc, char** argv) {
                       "       [--lanes N]         (attempts on the device: batches of contacts planned at "
                       "once, default {})\n"
                       "       [--batch N]         (contacts per batch of planning at most, default {})\n"
+                      "       [--host-below N]    (attempts on the device: levels of fewer candidates "
+                      "searched on the host,\n"
+                      "                            default {}; 0: every level on the device)\n"
                       "       [--host-runner]     (the CPU backend plans as the device does, level by level "
                       "in lanes,\n"
                       "                            with the host answering the attempts: the device path's "
@@ -102,13 +108,14 @@ int main(int argc, char** argv) {
                       "The heap is in large pages when --backends names cuda, else small "
                       "(CANOPY_HEAP_PAGES=large|small\n"
                       "overrides; tools/heap_pages.hpp); the CSV's config column says which.\n",
-                      ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts));
+                      ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts,
+                      ResolveRequest{}.host_levels_below));
     }
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
-  const std::string config = fmt::format("candidates={} axes={} step={} heap={}", base.candidates,
-                                         base.axis_fan, base.scan_step_deg, heap_pages_in_use());
+  const std::string config = fmt::format("candidates={} axes={} step={} heap={} host_below={}", base.candidates,
+                                         base.axis_fan, base.scan_step_deg, heap_pages_in_use(), host_below);
   if (!append)
     fmt::print(
         out,
@@ -149,6 +156,7 @@ int main(int argc, char** argv) {
           if (host_runner && bname == "cpu") req.attempts = &runner;
           req.bulk_lanes = lanes;
           req.batch_contacts = batch;
+          req.host_levels_below = host_below;
           req.statistics = stats;
           req.config.level = *parse_contact_level(lname);
           auto fresh = make_cpu_backend();  // the independent counts before and after

@@ -55,8 +55,15 @@ std::string resolve_stats_text(const ResolveStats& s) {
   out += "\n";
   for (std::size_t l = 0; l < s.lanes.size(); ++l) {
     const PlanLaneStats& x = s.lanes[l];
-    out += fmt::format("planning lane {}: {:.3f} s in batches, {} levels, candidates prepared in {:.3f} s\n",
-                       l, x.batch_s, x.levels, x.prepare_s);
+    out += fmt::format(
+        "planning lane {}: {:.3f} s in batches, {} levels ({} of them on the host), candidates prepared in "
+        "{:.3f} s\n",
+        l, x.batch_s, x.levels, x.scan_s == 0 && x.moving_bytes == 0 ? x.levels : x.host_levels, x.prepare_s);
+    out += fmt::format(
+        "planning lane {} levels by candidates (<16, <256, <4096, more): {} in {:.3f} s, {} in {:.3f} s, {} in "
+        "{:.3f} s, {} in {:.3f} s\n",
+        l, x.levels_by_size[0], x.seconds_by_size[0], x.levels_by_size[1], x.seconds_by_size[1],
+        x.levels_by_size[2], x.seconds_by_size[2], x.levels_by_size[3], x.seconds_by_size[3]);
     if (x.scan_s == 0 && x.moving_bytes == 0) continue;  // the host's search: no batched scan
     out += fmt::format(
         "batched scan (lane {}): scan and refine {:.3f} s, of which limits {:.3f} s, tables {:.3f} s, {} "

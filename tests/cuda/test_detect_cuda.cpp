@@ -256,6 +256,9 @@ TEST_CASE(
     double clearance;
     bool crowded;
     std::size_t lanes = ResolveRequest{}.bulk_lanes, batch = ResolveRequest{}.batch_contacts;
+    /// Levels of fewer candidates searched on the host: none (every level on the device) unless
+    /// the case says so.
+    std::size_t host_below = 0;
   };
   for (const Case& k :
        {Case{"organ level", ContactLevel::organ, 0, 1e-4, false},
@@ -263,7 +266,10 @@ TEST_CASE(
         Case{"crowded", ContactLevel::exact, 0, 1e-4, true},
         Case{"one lane", ContactLevel::exact, 0, 1e-4, false, 1},
         Case{"batches of 40 contacts, 3 lanes at once", ContactLevel::exact, 0, 1e-4, false, 3, 40},
-        Case{"crowded, batches of 25, 8 lanes", ContactLevel::exact, 0, 1e-4, true, 8, 25}}) {
+        Case{"crowded, batches of 25, 8 lanes", ContactLevel::exact, 0, 1e-4, true, 8, 25},
+        Case{"small levels on the host (the default)", ContactLevel::exact, 0, 1e-4, false,
+             ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts, ResolveRequest{}.host_levels_below},
+        Case{"crowded, levels below 16 on the host, 2 lanes", ContactLevel::exact, 0, 1e-4, true, 2, 40, 16}}) {
     GrowRequest g;
     g.grammar = source("grammars/tomato.yaml");
     g.plants = default_stand_layout(k.crowded ? 12 : 40);
@@ -274,7 +280,7 @@ TEST_CASE(
     ResolveRequest req;
     req.config.level = k.level;
     req.bulk_attempts = true;  // the CPU backend has no runner: it searches on the host
-    req.bulk_lanes = k.lanes, req.batch_contacts = k.batch;
+    req.bulk_lanes = k.lanes, req.batch_contacts = k.batch, req.host_levels_below = k.host_below;
     req.config.clearance = k.clearance;
     req.config.max_rounds = k.crowded ? 5 : req.config.max_rounds;
     req.detect.level = k.level;

@@ -21,8 +21,9 @@ struct Outcome {
 
 /// `lanes` > 1: batches of `batch` contacts, that many planned at once (each on a thread of its
 /// own, through the runner's lanes). `stats`: ResolveRequest::statistics.
+/// `host_below`: levels of fewer candidates searched on the host (0: every level in bulk).
 Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::size_t lanes = 1,
-            std::size_t batch = 8192, bool stats = false) {
+            std::size_t batch = 8192, bool stats = false, std::size_t host_below = 0) {
   auto cpu = make_cpu_backend();
   ResolveRequest req;
   req.statistics = stats;
@@ -31,6 +32,7 @@ Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::
   req.detect.level = cfg.level;
   req.bulk_lanes = lanes;
   req.batch_contacts = batch;
+  req.host_levels_below = host_below;
   PrototypeLibrary lib;
   HostAttemptRunner runner(lib, 2, lanes);
   if (bulk) req.attempts = &runner;
@@ -131,6 +133,37 @@ TEST_CASE("batched turn search: batches planned at once on several lanes give th
   cfg.max_rounds = 4;
   const Stand s = random_stand(11, 12);
   same(run(s, cfg, 0, false), run(s, cfg, 0, true, 4, 5));
+}
+
+TEST_CASE("batched turn search: small levels searched on the host give the same turns") {
+  // Thresholds that send a batch's tail to the host partway through (a level's finds then
+  // refined on the host, not in the runner's next call), and one that sends every level there.
+  struct Case {
+    const char* name;
+    Stand stand;
+    ResolveConfig cfg;
+  };
+  ResolveConfig crowded;
+  crowded.max_rounds = 4;
+  const Case cases[] = {{"rows, seed 2", row_stand(2), {}}, {"crowded, seed 12", random_stand(12, 12), crowded}};
+  for (const Case& k : cases) {
+    INFO("case " << k.name);
+    const Outcome host = run(k.stand, k.cfg, 0, false);
+    std::size_t mixed = 0;  // runs whose lanes searched levels both ways
+    for (std::size_t below : {4, 24, 100000}) {
+      INFO("host below " << below);
+      const Outcome hybrid = run(k.stand, k.cfg, 0, true, 2, 64, true, below);
+      same(host, hybrid);
+      std::size_t levels = 0, on_host = 0;
+      for (const PlanLaneStats& l : hybrid.result.stats.lanes) levels += l.levels, on_host += l.host_levels;
+      CHECK(on_host > 0);
+      if (below == 100000) CHECK(on_host == levels);
+      mixed += on_host < levels;
+      REQUIRE(hybrid.result.stats.attempts);
+      if (below < 100000) CHECK(hybrid.result.stats.attempts->calls > 0);
+    }
+    CHECK(mixed >= 1);
+  }
 }
 
 TEST_CASE(
