@@ -46,7 +46,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
   std::string device() const override { return name_; }
 
   /// The tree's shape on the host (the stand's structure alone), stand and shape uploaded
-  /// (`load_s`); then every box fitted on the device (`build_s`) and the stages.
+  /// (`load_s`); then every box fitted on the device (`build_s`: the shape and the fit) and the
+  /// stages.
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
     use_device();
@@ -54,13 +55,16 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     lib_ = std::make_unique<PrototypeLibrary>();
     attempts_.reset();  // its tables belong to the stand held before
     tree_ = build_mbvt_topology(s, mbvt_config(req));
-    dev_.load(s, *tree_, *lib_, plants_with_free_pairs(s, *tree_));
+    const std::vector<std::uint8_t> self = plants_with_free_pairs(s, *tree_);
+    const double shape_s = now_seconds() - t;
+    t = now_seconds();
+    dev_.load(s, *tree_, *lib_, self);
     plants_.reset();
     const double load_s = now_seconds() - t;
     t = now_seconds();
     dev_.fit(req.clearance);
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
-    Contacts out = run(req, now_seconds() - t);
+    Contacts out = run(req, shape_s + now_seconds() - t);
     out.load_s = load_s;
     return out;
   }
