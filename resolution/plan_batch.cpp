@@ -51,11 +51,12 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
                                           local_first[q + 1] - local_first[q]);
   };
   std::vector<TurnSearch::Candidate*>& state = lane.state;
-  std::vector<std::uint8_t>&open = lane.open, &want = lane.want;
+  std::vector<std::uint8_t>&open = lane.open, &want = lane.want, &handed = lane.handed;
   std::vector<std::optional<Turn>>& refined = lane.refined;
   state.assign(slots.size(), nullptr);
   open.assign(slots.size(), 1);
   want.assign(slots.size(), 0);
+  handed.assign(slots.size(), 0);
   refined.assign(slots.size(), std::nullopt);
   std::vector<CandidatePool>& pools = *lane.pools;
   for (CandidatePool& p : pools) p.used = 0;  // the last batch's candidates are free again
@@ -90,8 +91,14 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     // at the level where its candidate was found instead of the next, the same turn either way.
     const bool host = !lane.bulk || scan.size() + unrefined.size() < request.host_levels_below;
     if (host && lane.bulk) ++lane.host_levels;
-    if (host && !unrefined.empty()) {
-      for (std::size_t k : unrefined) scan.push_back(k);
+    // The runner's finds of the last level handed to the host: their contacts pick among them
+    // alone, as they would have at this level through the runner (a candidate that this level
+    // finds for another contact costs more, but could tie to the last bit near its reach).
+    std::fill(handed.begin(), handed.end(), 0);
+    const bool handing = host && !unrefined.empty();
+    if (handing) {
+      for (std::size_t k : unrefined) scan.push_back(k), handed[k] = 1;
+      lane.handed_over += unrefined.size();
       unrefined.clear();
     }
     // Neighbouring candidates (organs of one leaf) test against the same organs: a thread
@@ -142,8 +149,10 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     std::erase_if(pending, [&](std::uint32_t q) {
       std::optional<std::size_t> pick;
       double cost = 0;
-      for (std::uint32_t k : candidates_of(q)) {
-        if (!refined[k]) continue;
+      const std::span<const std::uint32_t> ks = candidates_of(q);
+      const bool settled = handing && std::any_of(ks.begin(), ks.end(), [&](std::uint32_t k) { return handed[k]; });
+      for (std::uint32_t k : ks) {
+        if (!refined[k] || (settled && !handed[k])) continue;
         const double c = refined[k]->angle_deg * state[k]->weight;
         if (!pick || c < cost) pick = k, cost = c;
       }

@@ -26,11 +26,11 @@ struct Lane {
   std::vector<std::size_t> slots;       // the batch's movers (slots into the round's movers)
   std::vector<std::uint32_t> local_of;  // per mover of the round: its place among slots, or kNoPair
   std::vector<TurnSearch::Candidate*> state;
-  std::vector<std::uint8_t> open, want;  // not made yet or still searching; wanted at this level
+  std::vector<std::uint8_t> open, want, handed;  // handed: found by the runner, refined on the host  // not made yet or still searching; wanted at this level
   std::vector<std::optional<Turn>> refined;
   /// Seconds in batches, in the candidates' preparation, and levels run (PlanLaneStats).
   double batch_s = 0, prepare_s = 0;
-  std::size_t levels = 0, host_levels = 0;
+  std::size_t levels = 0, host_levels = 0, handed_over = 0;
   std::array<std::size_t, PlanLaneStats::kLevelSizes> levels_by_size{};
   std::array<double, PlanLaneStats::kLevelSizes> seconds_by_size{};
 };

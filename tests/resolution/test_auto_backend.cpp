@@ -60,6 +60,7 @@ struct Outcome {
 
 Outcome run(Stand s, DetectionBackend& backend) {
   ResolveRequest req;
+  req.host_levels_below = 0;  // every level through the runner: the calls the tests count and fail
   const Contacts first = backend.detect(s, req.detect);
   ResolveResult r = resolve(s, backend, req, first);
   return {std::move(r), std::move(s), first};

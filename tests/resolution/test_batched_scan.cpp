@@ -149,13 +149,14 @@ TEST_CASE("batched turn search: small levels searched on the host give the same 
   for (const Case& k : cases) {
     INFO("case " << k.name);
     const Outcome host = run(k.stand, k.cfg, 0, false);
-    std::size_t mixed = 0;  // runs whose lanes searched levels both ways
+    std::size_t mixed = 0, handed = 0;  // runs whose lanes searched levels both ways; finds handed over
     for (std::size_t below : {4, 24, 100000}) {
       INFO("host below " << below);
       const Outcome hybrid = run(k.stand, k.cfg, 0, true, 2, 64, true, below);
       same(host, hybrid);
       std::size_t levels = 0, on_host = 0;
-      for (const PlanLaneStats& l : hybrid.result.stats.lanes) levels += l.levels, on_host += l.host_levels;
+      for (const PlanLaneStats& l : hybrid.result.stats.lanes)
+        levels += l.levels, on_host += l.host_levels, handed += l.handed_over;
       CHECK(on_host > 0);
       if (below == 100000) CHECK(on_host == levels);
       mixed += on_host < levels;
@@ -163,6 +164,7 @@ TEST_CASE("batched turn search: small levels searched on the host give the same 
       if (below < 100000) CHECK(hybrid.result.stats.attempts->calls > 0);
     }
     CHECK(mixed >= 1);
+    CHECK(handed > 0);  // a switch with the runner's finds still to refine
   }
 }
 
