@@ -37,9 +37,9 @@ struct Contacts {
   std::vector<Contact> pairs;                       // at `level`, sorted
   std::array<std::optional<LevelCount>, 4> counts;  // every level up to `level`
   std::array<double, 4> seconds{};                  // time spent per level
-  double build_s = 0;  // bounding volume build or refit (CUDA: the tree's shape on the host and the fit)
-  double load_s = 0;   // CUDA: stand and tree shape uploaded (detect, not redetect)
-  std::size_t batches = 1;                 // CUDA: batches of plant pairs the stages ran in
+  double build_s = 0;       // bounding volume build or refit (CUDA: the tree's shape on the host and the fit)
+  double load_s = 0;        // CUDA: stand and tree shape uploaded (detect, not redetect)
+  std::size_t batches = 1;  // CUDA: batches of plant pairs the stages ran in
   std::array<double, 4> device_seconds{};  // CUDA: kernel time per level from CUDA events
 };
 

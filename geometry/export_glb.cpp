@@ -69,8 +69,8 @@ PlantLayout plan_plant(const Stand& s, std::size_t p, PrototypeLibrary& lib, std
     L.id_bytes += id_size * q.vertices;
     L.index_bytes += q.indices;
   }
-  const bool short_indices = std::all_of(L.prims.begin(), L.prims.end(),
-                                         [](const Primitive& q) { return q.vertices <= kShortIndexVertices; });
+  const bool short_indices = std::all_of(
+      L.prims.begin(), L.prims.end(), [](const Primitive& q) { return q.vertices <= kShortIndexVertices; });
   L.index_size = short_indices ? 2 : 4;
   L.index_bytes = (L.index_size * L.index_bytes + 3) / 4 * 4;
   return L;

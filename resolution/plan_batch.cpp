@@ -150,7 +150,8 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       std::optional<std::size_t> pick;
       double cost = 0;
       const std::span<const std::uint32_t> ks = candidates_of(q);
-      const bool settled = handing && std::any_of(ks.begin(), ks.end(), [&](std::uint32_t k) { return handed[k]; });
+      const bool settled =
+          handing && std::any_of(ks.begin(), ks.end(), [&](std::uint32_t k) { return handed[k]; });
       for (std::uint32_t k : ks) {
         if (!refined[k] || (settled && !handed[k])) continue;
         const double c = refined[k]->angle_deg * state[k]->weight;

@@ -26,7 +26,9 @@ struct Lane {
   std::vector<std::size_t> slots;       // the batch's movers (slots into the round's movers)
   std::vector<std::uint32_t> local_of;  // per mover of the round: its place among slots, or kNoPair
   std::vector<TurnSearch::Candidate*> state;
-  std::vector<std::uint8_t> open, want, handed;  // handed: found by the runner, refined on the host  // not made yet or still searching; wanted at this level
+  // Per candidate: not made yet or still searching; wanted at this level; found by the runner
+  // and refined on the host (the level where the host takes over).
+  std::vector<std::uint8_t> open, want, handed;
   std::vector<std::optional<Turn>> refined;
   /// Seconds in batches, in the candidates' preparation, and levels run (PlanLaneStats).
   double batch_s = 0, prepare_s = 0;

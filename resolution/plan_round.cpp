@@ -131,8 +131,10 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
       PlanLaneStats& to = (*req.lane_stats)[l];
       to.batch_s += lanes[l].batch_s, to.prepare_s += lanes[l].prepare_s, to.levels += lanes[l].levels;
       to.host_levels += lanes[l].host_levels, to.handed_over += lanes[l].handed_over;
-      for (std::size_t k = 0; k < PlanLaneStats::kLevelSizes; ++k)
-        to.levels_by_size[k] += lanes[l].levels_by_size[k], to.seconds_by_size[k] += lanes[l].seconds_by_size[k];
+      for (std::size_t k = 0; k < PlanLaneStats::kLevelSizes; ++k) {
+        to.levels_by_size[k] += lanes[l].levels_by_size[k];
+        to.seconds_by_size[k] += lanes[l].seconds_by_size[k];
+      }
       if (lanes[l].bulk) lanes[l].bulk->add_stats(to);
     }
   }

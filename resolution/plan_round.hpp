@@ -57,7 +57,7 @@ struct PlanRequest {
   /// Batches planned at once with a runner, one per lane of these (lane 0 the caller's; null:
   /// one at a time). At most the runner's lanes.
   LaneThreads* lanes = nullptr;
-  std::size_t batch_contacts = kDefaultBatchContacts;  // contacts per batch
+  std::size_t batch_contacts = kDefaultBatchContacts;       // contacts per batch
   std::size_t host_levels_below = kDefaultHostLevelsBelow;  // ResolveRequest::host_levels_below
   /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
   std::vector<std::vector<CandidatePool>>* pools = nullptr;

@@ -114,8 +114,9 @@ int main(int argc, char** argv) {
   }
   std::FILE* out = std::fopen(csv.c_str(), append ? "a" : "w");
   if (!out) return 1;
-  const std::string config = fmt::format("candidates={} axes={} step={} heap={} host_below={}", base.candidates,
-                                         base.axis_fan, base.scan_step_deg, heap_pages_in_use(), host_below);
+  const std::string config =
+      fmt::format("candidates={} axes={} step={} heap={} host_below={}", base.candidates, base.axis_fan,
+                  base.scan_step_deg, heap_pages_in_use(), host_below);
   if (!append)
     fmt::print(
         out,

@@ -268,8 +268,10 @@ TEST_CASE(
         Case{"batches of 40 contacts, 3 lanes at once", ContactLevel::exact, 0, 1e-4, false, 3, 40},
         Case{"crowded, batches of 25, 8 lanes", ContactLevel::exact, 0, 1e-4, true, 8, 25},
         Case{"small levels on the host (the default)", ContactLevel::exact, 0, 1e-4, false,
-             ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts, ResolveRequest{}.host_levels_below},
-        Case{"crowded, levels below 16 on the host, 2 lanes", ContactLevel::exact, 0, 1e-4, true, 2, 40, 16}}) {
+             ResolveRequest{}.bulk_lanes, ResolveRequest{}.batch_contacts,
+             ResolveRequest{}.host_levels_below},
+        Case{"crowded, levels below 16 on the host, 2 lanes", ContactLevel::exact, 0, 1e-4, true, 2, 40,
+             16}}) {
     GrowRequest g;
     g.grammar = source("grammars/tomato.yaml");
     g.plants = default_stand_layout(k.crowded ? 12 : 40);

@@ -145,8 +145,8 @@ static std::set<int> check_glb_triangles(const Stand& s, const std::string& file
       const auto& ia = model.accessors[static_cast<std::size_t>(prim.indices)];
       types.insert(ia.componentType);
       // The plant's primitives share one index size: short where its largest fits below 65,535.
-      CHECK(ia.componentType == (most <= 65535 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
-                                              : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT));
+      CHECK(ia.componentType ==
+            (most <= 65535 ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT));
       const auto index = [&](std::size_t k) -> std::uint32_t {
         if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
           std::uint16_t v;
@@ -160,7 +160,8 @@ static std::set<int> check_glb_triangles(const Stand& s, const std::string& file
       const auto& ida = model.accessors[static_cast<std::size_t>(prim.attributes.at("_ORGAN"))];
       const float* ids = reinterpret_cast<const float*>(bytes(ida));
       std::map<std::uint32_t, std::uint32_t> first_vertex;  // organ -> its first vertex here
-      for (std::uint32_t v = 0; v < ida.count; ++v) first_vertex.emplace(static_cast<std::uint32_t>(ids[v]), v);
+      for (std::uint32_t v = 0; v < ida.count; ++v)
+        first_vertex.emplace(static_cast<std::uint32_t>(ids[v]), v);
       std::map<std::uint32_t, std::size_t> seen;  // organ -> indices read
       std::size_t wrong = 0;                      // indices that are not the prototype's
       for (std::size_t k = 0; k < ia.count; ++k) {
@@ -189,7 +190,8 @@ TEST_CASE("glb indices: each organ's own triangles, short where a plant's primit
   };
   const Stand small = small_stand();
   write(small);
-  CHECK(check_glb_triangles(small, dir + "/stand.glb") == std::set<int>{TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+  CHECK(check_glb_triangles(small, dir + "/stand.glb") ==
+        std::set<int>{TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
   // One mature plant at the finest level of detail: its leaflets pass 65,535 vertices.
   GrowRequest req;
   req.grammar = std::string(CANOPY_SOURCE_DIR) + "/grammars/tomato_mature.yaml";

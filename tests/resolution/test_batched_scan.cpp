@@ -145,7 +145,8 @@ TEST_CASE("batched turn search: small levels searched on the host give the same 
   };
   ResolveConfig crowded;
   crowded.max_rounds = 4;
-  const Case cases[] = {{"rows, seed 2", row_stand(2), {}}, {"crowded, seed 12", random_stand(12, 12), crowded}};
+  const Case cases[] = {{"rows, seed 2", row_stand(2), {}},
+                        {"crowded, seed 12", random_stand(12, 12), crowded}};
   for (const Case& k : cases) {
     INFO("case " << k.name);
     const Outcome host = run(k.stand, k.cfg, 0, false);
