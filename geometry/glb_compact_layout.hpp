@@ -1,6 +1,7 @@
 #pragma once
 /// The compact glb's layout of one plant (geometry/export_glb_compact.cpp): its primitives, the
 /// node's corner and step, the sizes of its views, and the quantization of its attributes.
+#include "geometry/glb_stand.hpp"
 #include "geometry/organ_kind.hpp"
 #include "geometry/vec.hpp"
 
@@ -24,8 +25,7 @@ struct Primitive {
            std::numeric_limits<double>::max()};
   Vec3d hi{-std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(),
            -std::numeric_limits<double>::max()};
-  // 65535 is the restart value that glTF forbids in UNSIGNED_SHORT indices.
-  int index_size() const { return vertices <= 65535 ? 2 : 4; }
+  int index_size() const { return static_cast<int>(glb::index_size_for(vertices)); }
   std::size_t index_bytes() const { return (static_cast<std::size_t>(index_size()) * indices + 3) / 4 * 4; }
 };
 

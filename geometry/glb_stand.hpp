@@ -17,6 +17,10 @@ namespace canopy::glb {
 
 inline constexpr std::size_t kKinds = 7;  // organ kinds, one material each
 
+/// Bytes per index for a primitive of `vertices` vertices: UNSIGNED_SHORT while its largest
+/// index stays below 65,535 (the value glTF keeps for primitive restart), else UNSIGNED_INT.
+inline std::size_t index_size_for(std::size_t vertices) { return vertices <= 65535 ? 2 : 4; }
+
 /// What a plant adds to the document; the sums over the plants before it number its entries.
 struct PlantCounts {
   std::uint64_t views = 0, accessors = 0, meshes = 0, bytes = 0;

@@ -84,17 +84,18 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       if (want[k] == 1) scan.push_back(k);
     if (scan.empty() && unrefined.empty()) break;
     ++lane.levels;
-    const std::size_t size_class = PlanLaneStats::size_class(scan.size() + unrefined.size());
+    const std::size_t level_size = scan.size() + unrefined.size();  // candidates scanned or refined
     // A level searched on the host: every level without a runner, and a runner's levels once
     // they are small (PlanRequest::host_levels_below). The last level's finds are refined here
     // then, and this level's at once, as the host's search does: a contact picks the same turn
     // at the level where its candidate was found instead of the next, the same turn either way.
-    const bool host = !lane.bulk || scan.size() + unrefined.size() < request.host_levels_below;
-    if (host && lane.bulk) ++lane.host_levels;
+    const bool host = !lane.bulk || level_size < request.host_levels_below;
+    if (host) ++lane.host_levels;
     // The runner's finds of the last level handed to the host: their contacts pick among them
     // alone, as they would have at this level through the runner (a candidate that this level
-    // finds for another contact costs more, but could tie to the last bit near its reach).
-    std::fill(handed.begin(), handed.end(), 0);
+    // finds for another contact costs more, but could tie to the last bit near its reach). This
+    // happens once a batch at most (the host keeps every later level, and leaves nothing
+    // unrefined), so the marks are read only at the level that sets them.
     const bool handing = host && !unrefined.empty();
     if (handing) {
       for (std::size_t k : unrefined) scan.push_back(k), handed[k] = 1;
@@ -164,6 +165,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     });
     unplanned -= before - pending.size();
     times.lap(PhaseTimes::pick);
+    const std::size_t size_class = PlanLaneStats::size_class(level_size);
     ++lane.levels_by_size[size_class];
     lane.seconds_by_size[size_class] += now_seconds() - level_start;
   }

@@ -26,7 +26,7 @@ struct PlanLaneStats {
   double batch_s = 0;           // in batches
   double prepare_s = 0;         // preparing and scanning candidates on the host
   std::size_t levels = 0;       // cost levels run
-  std::size_t host_levels = 0;  // of them, with a runner: levels searched on the host (the small ones)
+  std::size_t host_levels = 0;  // of them, searched on the host (all, or with a runner the small ones)
   std::size_t handed_over = 0;  // candidates the runner found and the host refined (at a switch)
   /// Levels and their seconds by how many candidates each scanned or refined: fewer than 16,
   /// 256, 4,096, and more (a level's round trips to a runner cost the same for 1 or 10,000).

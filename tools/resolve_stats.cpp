@@ -58,8 +58,7 @@ std::string resolve_stats_text(const ResolveStats& s) {
     out += fmt::format(
         "planning lane {}: {:.3f} s in batches, {} levels ({} of them on the host, {} finds handed to it), "
         "candidates prepared in {:.3f} s\n",
-        l, x.batch_s, x.levels, x.scan_s == 0 && x.moving_bytes == 0 ? x.levels : x.host_levels,
-        x.handed_over, x.prepare_s);
+        l, x.batch_s, x.levels, x.host_levels, x.handed_over, x.prepare_s);
     out += fmt::format(
         "planning lane {} levels by candidates (<16, <256, <4096, more): {} in {:.3f} s, {} in {:.3f} s, {} "
         "in "
