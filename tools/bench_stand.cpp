@@ -13,6 +13,7 @@
 #include "tools/bench_usage.hpp"
 #include "tools/disk_speed.hpp"
 #include "tools/heap_pages.hpp"
+#include "tools/process_end.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/stand_run.hpp"
 #ifdef CANOPY_HAVE_CUDA
@@ -95,6 +96,7 @@ int run_child(const Settings& s, int plants, std::int64_t spawned_ns, const std:
   o.random_rotation = true;
   o.detect.backend = s.backend;
   o.detect.threads = s.threads;
+  o.ends_process = true;  // as canopy stand: main ends the process (tools/process_end.hpp)
   try {
     const cli::StandOutcome r = cli::run_stand(o, /*print=*/false);
     nlohmann::ordered_json j;
@@ -192,7 +194,7 @@ int main(int argc, char** argv) {
     // As canopy's main: the heap's pages chosen (a rerun of this process) before anything else.
     use_heap_pages(heap_pages_for(command_runs_on_gpu(argc, argv, "auto")), argv);
     keep_freed_memory();
-    return run_child(s, child, spawned, result);
+    return end_process(run_child(s, child, spawned, result));
   }
   for (int n : s.sizes)
     if (n <= 0 || (n > 100 && n % 100)) {

@@ -2,6 +2,7 @@
 #include "lsystem/error.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/heap_pages.hpp"
+#include "tools/process_end.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/signals.hpp"
 
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
   }
   try {
     for (auto& c : commands)
-      if (c.app->parsed()) return c.run();
+      if (c.app->parsed()) return canopy::end_process(c.run(), under_mpi);
   } catch (const canopy::GrammarError& e) {
     fmt::print(stderr, "canopy: error: {}\n", e.what());
     return 1;

@@ -84,6 +84,7 @@ Command add_stand(CLI::App& root) {
               return 0;
             }
 #endif
+            o->ends_process = true;  // canopy's main ends it (tools/process_end.hpp)
             run_stand(*o);
             return 0;
           }};

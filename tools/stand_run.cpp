@@ -8,6 +8,7 @@
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/heap_pages.hpp"
+#include "tools/process_end.hpp"
 #include "tools/report.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/stand_run.hpp"
@@ -327,6 +328,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   out.export_bytes = written.bytes;
   out.commit_s = commit_s;
   if (keep) *keep = std::move(stand);
+  else if (o.ends_process) leave_to_process_end(false, std::move(stand), std::move(backend));
   return out;
 }
 

@@ -39,6 +39,10 @@ struct StandOptions {
   DetectOptions detect;
   ResolveOptions resolve;
   TargetOptions target;  // --target-lai / --target-ground-cover choose the plant spacing
+  /// Set by a caller whose process ends right after the run (canopy stand, bench_stand's run of
+  /// one size): the stand and the backend are left to the process's end rather than freed
+  /// (tools/process_end.hpp).
+  bool ends_process = false;
 };
 
 struct StandOutcome {
