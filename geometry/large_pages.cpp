@@ -41,6 +41,18 @@ void unmap_large(void* p, std::size_t bytes) noexcept {
   if (p) munmap(p, rounded(bytes));
 }
 
+void advise_large_pages(void* p, std::size_t bytes) noexcept {
+#ifdef MADV_HUGEPAGE
+  if (!p || bytes < kLargeArrayBytes) return;
+  const auto base = reinterpret_cast<std::uintptr_t>(p);
+  const std::uintptr_t first = (base + kHugePage - 1) / kHugePage * kHugePage,
+                       last = (base + bytes) / kHugePage * kHugePage;
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#else
+  (void)p, (void)bytes;
+#endif
+}
+
 #else
 
 void* map_large(std::size_t bytes) {
@@ -50,6 +62,8 @@ void* map_large(std::size_t bytes) {
 }
 
 void unmap_large(void* p, std::size_t) noexcept { std::free(p); }
+
+void advise_large_pages(void*, std::size_t) noexcept {}
 
 #endif
 

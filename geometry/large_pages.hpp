@@ -16,5 +16,10 @@ inline constexpr std::size_t kLargeArrayBytes = std::size_t{4} << 20;
 void* map_large(std::size_t bytes);
 /// Gives back what map_large(bytes) returned.
 void unmap_large(void* p, std::size_t bytes) noexcept;
+/// Asks for huge pages on the whole 2 MiB pages inside [p, p + bytes) of memory not touched yet
+/// (a std::vector's reserve() of kLargeArrayBytes or more, before it is resized): for an array
+/// of a type the program cannot give map_large's allocator (geometry/first_touch.hpp). Advice
+/// only; nothing happens for smaller ranges or where the system refuses.
+void advise_large_pages(void* p, std::size_t bytes) noexcept;
 
 }  // namespace canopy
