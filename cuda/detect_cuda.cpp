@@ -41,7 +41,6 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     name_ = r.devices[static_cast<std::size_t>(device)].name;
     CANOPY_CUDA_CHECK(cudaSetDevice(device));
     counters_.resize(1);
-    dev_.reserve_staging();
   }
   std::string name() const override { return "cuda"; }
   std::string device() const override { return name_; }

@@ -1,7 +1,6 @@
 #pragma once
 /// The owner of a device array (RAII) and the views kernels take by value.
 #include "cuda/check.hpp"
-#include "cuda/pinned_upload.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -78,11 +77,6 @@ class DeviceBuffer {
   void upload(const std::vector<T>& v) {
     resize(v.size());
     if (!v.empty()) CANOPY_CUDA_CHECK(cudaMemcpy(p_, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
-  }
-  /// The same through pinned staging blocks; the copy may still run until `via.finish()`.
-  void upload(const std::vector<T>& v, PinnedUpload& via) {
-    resize(v.size());
-    via.copy(p_, v.data(), v.size() * sizeof(T));
   }
   std::vector<T> download(std::size_t n) const {
     std::vector<T> v(n);

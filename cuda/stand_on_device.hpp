@@ -25,8 +25,6 @@ class StandOnDevice {
   /// After organs `moved` turned: their transforms up, their OBBs, their plants' cluster boxes
   /// and plant bounds refit on the device.
   void refit(const Stand& s, const Mbvt& m, const std::vector<std::uint32_t>& moved);
-  /// The pinned blocks the stand's upload goes through, allocated now (the backend's start).
-  void reserve_staging() { staging_.reserve(); }
   /// The largest plant radius fitted (one float down).
   float max_radius() const;
   /// The clearance the organs' OBBs were fitted with: at 0 they are, bit for bit, the host's
@@ -45,7 +43,6 @@ class StandOnDevice {
   std::size_t bytes() const { return bytes_; }
 
  private:
-  PinnedUpload staging_;
   DeviceBuffer<Affine3f> transforms_;
   DeviceBuffer<OrganRecord> organs_;
   DeviceBuffer<Obb> obbs_;
