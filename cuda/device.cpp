@@ -23,4 +23,18 @@ DeviceReport query_devices() {
   return r;
 }
 
+int current_device() noexcept {
+  int d = -1;
+  if (cudaGetDevice(&d) != cudaSuccess) {
+    cudaGetLastError();
+    return -1;
+  }
+  return d;
+}
+
+void reset_device(int device) noexcept {
+  if (device < 0 || cudaSetDevice(device) != cudaSuccess || cudaDeviceReset() != cudaSuccess)
+    cudaGetLastError();
+}
+
 }  // namespace canopy::cuda

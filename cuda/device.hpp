@@ -30,6 +30,14 @@ DeviceReport query_devices();
 /// the binary's sm_90 / PTX code loads and runs there. Throws CudaError on failure.
 void self_test(int device);
 
+/// The calling thread's current device (the one a backend made current on it); -1 where there
+/// is none.
+int current_device() noexcept;
+
+/// Ends this process's use of `device`: its context and everything in it destroyed
+/// (cudaDeviceReset), for a process that will not use the device again; errors are ignored.
+void reset_device(int device) noexcept;
+
 /// The shared triangle predicates (geometry/triangle_test.hpp and triangle_distance.hpp) run on
 /// the current device: for each pair (a's three vertices, then b's), whether the triangles meet,
 /// or with a positive `clearance` whether they lie within it. Lets the tests hold the device's

@@ -13,6 +13,9 @@
 #include "tools/resolve_options.hpp"
 #include "tools/stand_run.hpp"
 #include "tools/stage_memory.hpp"
+#ifdef CANOPY_HAVE_CUDA
+#include "cuda/device.hpp"
+#endif
 
 #include <fmt/format.h>
 
@@ -22,6 +25,7 @@
 #include <filesystem>
 #include <future>
 #include <set>
+#include <thread>
 
 namespace canopy::cli {
 std::set<std::string> parse_formats(const std::string& list) {
@@ -284,6 +288,23 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   rep.backend = backend->name();  // what ran to the end (auto may have fallen back)
   rep.device = backend->device();
   rep.backend_choice = backend_note;
+  // A process that ends after this run needs the backend no more: it is freed, and a GPU's
+  // context destroyed, on a thread of its own while the files are written, instead of when the
+  // process ends (tools/process_end.hpp).
+  std::jthread releasing;
+  if (o.ends_process) {
+#ifdef CANOPY_HAVE_CUDA
+    const int gpu = rep.backend == "cuda" ? cuda::current_device() : -1;
+#else
+    const int gpu = -1;
+#endif
+    releasing = std::jthread([b = std::move(backend), gpu]() mutable {
+      b.reset();
+#ifdef CANOPY_HAVE_CUDA
+      if (gpu >= 0) cuda::reset_device(gpu);
+#endif
+    });
+  }
 
   PrototypeLibrary lib;
   const auto t_export = std::chrono::steady_clock::now();
