@@ -32,6 +32,10 @@ int current_device() noexcept {
   return d;
 }
 
+void select_device(int device) noexcept {
+  if (device < 0 || cudaSetDevice(device) != cudaSuccess) cudaGetLastError();
+}
+
 void reset_device(int device) noexcept {
   if (device < 0 || cudaSetDevice(device) != cudaSuccess || cudaDeviceReset() != cudaSuccess)
     cudaGetLastError();

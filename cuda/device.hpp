@@ -34,6 +34,9 @@ void self_test(int device);
 /// is none.
 int current_device() noexcept;
 
+/// Makes `device` the calling thread's current device; errors are ignored.
+void select_device(int device) noexcept;
+
 /// Ends this process's use of `device`: its context and everything in it destroyed
 /// (cudaDeviceReset), for a process that will not use the device again; errors are ignored.
 void reset_device(int device) noexcept;

@@ -299,6 +299,9 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     const int gpu = -1;
 #endif
     releasing = std::jthread([b = std::move(backend), gpu]() mutable {
+#ifdef CANOPY_HAVE_CUDA
+      if (gpu >= 0) cuda::select_device(gpu);  // the backend's buffers are freed on its device
+#endif
       b.reset();
 #ifdef CANOPY_HAVE_CUDA
       if (gpu >= 0) cuda::reset_device(gpu);
@@ -349,7 +352,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   out.export_bytes = written.bytes;
   out.commit_s = commit_s;
   if (keep) *keep = std::move(stand);
-  else if (o.ends_process) leave_to_process_end(false, std::move(stand), std::move(backend));
+  else if (o.ends_process) leave_to_process_end(false, std::move(stand));
   return out;
 }
 

@@ -40,8 +40,8 @@ struct StandOptions {
   ResolveOptions resolve;
   TargetOptions target;  // --target-lai / --target-ground-cover choose the plant spacing
   /// Set by a caller whose process ends right after the run (canopy stand, bench_stand's run of
-  /// one size): the stand and the backend are left to the process's end rather than freed
-  /// (tools/process_end.hpp).
+  /// one size): the backend is freed (and a GPU's context destroyed) while the files are written,
+  /// and the stand is left to the process's end rather than freed (tools/process_end.hpp).
   bool ends_process = false;
 };
 
