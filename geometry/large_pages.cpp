@@ -45,8 +45,7 @@ void advise_large_pages(void* p, std::size_t bytes) noexcept {
 #ifdef MADV_HUGEPAGE
   if (!p || bytes < kLargeArrayBytes) return;
   const auto base = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t first = (base + kHugePage - 1) / kHugePage * kHugePage,
-                       last = (base + bytes) / kHugePage * kHugePage;
+  const std::uintptr_t first = rounded(base), last = (base + bytes) / kHugePage * kHugePage;
   if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #else
   (void)p, (void)bytes;

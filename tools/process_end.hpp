@@ -3,7 +3,7 @@
 /// stand and tearing down a GPU's context cost a run time its user waits for and gains nothing
 /// from: the kernel takes the memory back, and the driver the device's, when the process is gone.
 /// So a command ends the process at once (std::_Exit, after flushing its output) and leaves its
-/// largest objects to it (leave_to_process_end); canopy stand also frees its backend and destroys
+/// stand to it (leave_to_process_end); canopy stand also frees its backend and destroys
 /// the GPU's context (cuda::reset_device) on a thread of its own while its files are written
 /// (tools/stand_run.cpp), since the driver's part of a process's end takes its time whether the
 /// process frees or not. bench_stand --backend cuda on an H100 machine, from the files' commit to
@@ -18,7 +18,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string_view>
-#include <tuple>
 #include <type_traits>
 #include <utility>
 
@@ -46,17 +45,17 @@ inline int end_process(int rc, bool under_mpi = false) {
   std::_Exit(rc);
 }
 
-/// Moves `objects` where nothing frees them: for a caller whose process ends by end_process right
-/// after (a stand of millions of organs, a backend holding a GPU's buffers). Where the process
-/// will end normally (quick_process_end false) they are freed here, as their owner would have.
-template <class... T>
-void leave_to_process_end(bool under_mpi, T&&... objects) {
-  using Held = std::tuple<std::decay_t<T>...>;
-  if (!quick_process_end(under_mpi)) {
-    Held freed_now(std::forward<T>(objects)...);
+/// Moves `object` where nothing frees it, for a caller whose process ends by end_process right
+/// after (a stand of millions of organs); where the process will end normally
+/// (quick_process_end() false) it is freed here, as its owner would have.
+template <class T>
+void leave_to_process_end(T&& object) {
+  using Held = std::decay_t<T>;
+  if (!quick_process_end()) {
+    Held freed_now(std::forward<T>(object));
     return;
   }
-  [[maybe_unused]] const Held* left = new Held(std::forward<T>(objects)...);
+  [[maybe_unused]] const Held* left = new Held(std::forward<T>(object));
 }
 
 }  // namespace canopy

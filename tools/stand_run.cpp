@@ -300,12 +300,13 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
 #endif
     releasing = std::jthread([b = std::move(backend), gpu]() mutable {
 #ifdef CANOPY_HAVE_CUDA
-      if (gpu >= 0) cuda::select_device(gpu);  // the backend's buffers are freed on its device
+      if (gpu >= 0) {
+        cuda::select_device(gpu);  // the backend's buffers are freed on its device
+        b.reset();
+        cuda::reset_device(gpu);
+      }
 #endif
       b.reset();
-#ifdef CANOPY_HAVE_CUDA
-      if (gpu >= 0) cuda::reset_device(gpu);
-#endif
     });
   }
 
@@ -352,7 +353,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   out.export_bytes = written.bytes;
   out.commit_s = commit_s;
   if (keep) *keep = std::move(stand);
-  else if (o.ends_process) leave_to_process_end(false, std::move(stand));
+  else if (o.ends_process) leave_to_process_end(std::move(stand));
   return out;
 }
 
