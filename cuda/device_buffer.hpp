@@ -1,6 +1,7 @@
 #pragma once
 /// The owner of a device array (RAII) and the views kernels take by value.
 #include "cuda/check.hpp"
+#include "cuda/pinned_upload.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -77,6 +78,11 @@ class DeviceBuffer {
   void upload(const std::vector<T>& v) {
     resize(v.size());
     if (!v.empty()) CANOPY_CUDA_CHECK(cudaMemcpy(p_, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
+  }
+  /// The same, queued on `via`: copied by via.finish() (v must stay as it is until then).
+  void upload(const std::vector<T>& v, PinnedUpload& via) {
+    resize(v.size());
+    via.copy(p_, v.data(), v.size() * sizeof(T));
   }
   std::vector<T> download(std::size_t n) const {
     std::vector<T> v(n);

@@ -34,20 +34,22 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib,
     y1 = p ? std::max(y1, s.plants[p].y) : s.plants[p].y;
   }
   span_ = std::max(x1 - x0_, y1 - y0_);
-  transforms_.upload(s.transforms);
-  organs_.upload(s.organs);
+  // The stand's arrays are queued and copied together by finish() (cuda/pinned_upload.hpp).
+  transforms_.upload(s.transforms, staging_);
+  organs_.upload(s.organs, staging_);
   obbs_.resize(s.organ_count());
-  cluster_organs_.upload(m.cluster_organs);
-  clusters_.upload(m.clusters);
-  nodes_.upload(m.nodes);
-  plants_.upload(m.plants);
-  origins_.upload(origins);
+  cluster_organs_.upload(m.cluster_organs, staging_);
+  clusters_.upload(m.clusters, staging_);
+  nodes_.upload(m.nodes, staging_);
+  plants_.upload(m.plants, staging_);
+  origins_.upload(origins, staging_);
   self_.upload(self);
   max_radius_.resize(1);
   positions_.upload(positions);
   indices_.upload(indices);
   meshes_.upload(meshes);
   boxes_.upload(boxes);
+  staging_.finish();
   view_ = {transforms_.get(), organs_.get(), obbs_.get(),   cluster_organs_.get(),
            clusters_.get(),   nodes_.get(),  plants_.get(), positions_.get(),
            indices_.get(),    meshes_.get(), origins_.get()};

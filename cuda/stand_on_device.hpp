@@ -43,6 +43,7 @@ class StandOnDevice {
   std::size_t bytes() const { return bytes_; }
 
  private:
+  PinnedUpload staging_;
   DeviceBuffer<Affine3f> transforms_;
   DeviceBuffer<OrganRecord> organs_;
   DeviceBuffer<Obb> obbs_;

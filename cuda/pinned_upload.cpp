@@ -1,0 +1,93 @@
+#include "cuda/pinned_upload.hpp"
+
+#include "cuda/check.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <exception>
+#include <thread>
+
+namespace canopy::cuda {
+
+PinnedUpload::~PinnedUpload() {
+  for (Worker& w : workers_) {
+    if (w.stream) cudaStreamSynchronize(w.stream), cudaStreamDestroy(w.stream);
+    for (int i = 0; i < 2; ++i) {
+      if (w.done[i]) cudaEventDestroy(w.done[i]);
+      if (w.host[i]) cudaFreeHost(w.host[i]);
+    }
+  }
+}
+
+void PinnedUpload::allocate() {
+  CANOPY_CUDA_CHECK(cudaGetDevice(&device_));
+  workers_.resize(kWorkers);
+  for (Worker& w : workers_) {
+    CANOPY_CUDA_CHECK(cudaStreamCreateWithFlags(&w.stream, cudaStreamNonBlocking));
+    for (int i = 0; i < 2; ++i) {
+      CANOPY_CUDA_CHECK(cudaHostAlloc(&w.host[i], kBlock, cudaHostAllocDefault));
+      CANOPY_CUDA_CHECK(cudaEventCreateWithFlags(&w.done[i], cudaEventDisableTiming));
+      CANOPY_CUDA_CHECK(cudaEventRecord(w.done[i], w.stream));
+    }
+  }
+}
+
+void PinnedUpload::copy(void* dst, const void* src, std::size_t bytes) {
+  if (bytes) jobs_.push_back({static_cast<char*>(dst), static_cast<const char*>(src), bytes});
+}
+
+void PinnedUpload::run(Worker& w, std::size_t lo, std::size_t hi) const {
+  CANOPY_CUDA_CHECK(cudaSetDevice(device_));  // a thread's current device is its own
+  int next = 0;
+  std::size_t at = 0;  // the queued bytes before job j
+  for (const Job& j : jobs_) {
+    const std::size_t from = std::max(lo, at), to = std::min(hi, at + j.bytes);
+    for (std::size_t k = from; k < to; k += kBlock) {
+      const std::size_t n = std::min(kBlock, to - k);
+      const int b = next;
+      next ^= 1;
+      CANOPY_CUDA_CHECK(cudaEventSynchronize(w.done[b]));  // the block's last copy has left it
+      std::memcpy(w.host[b], j.src + (k - at), n);
+      CANOPY_CUDA_CHECK(cudaMemcpyAsync(j.dst + (k - at), w.host[b], n, cudaMemcpyHostToDevice, w.stream));
+      CANOPY_CUDA_CHECK(cudaEventRecord(w.done[b], w.stream));
+    }
+    at += j.bytes;
+  }
+  CANOPY_CUDA_CHECK(cudaStreamSynchronize(w.stream));
+}
+
+void PinnedUpload::finish() {
+  std::size_t total = 0;
+  for (const Job& j : jobs_) total += j.bytes;
+  if (total < kStagedFrom) {
+    for (const Job& j : jobs_) CANOPY_CUDA_CHECK(cudaMemcpy(j.dst, j.src, j.bytes, cudaMemcpyHostToDevice));
+    jobs_.clear();
+    return;
+  }
+  if (workers_.empty()) allocate();
+  // A load replaces what kernels of any stream may still read: they finish first.
+  CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
+  const auto share = [&](int w) { return total * static_cast<std::size_t>(w) / workers_.size(); };
+  std::vector<std::exception_ptr> failed(workers_.size());
+  {
+    std::vector<std::jthread> threads;
+    for (int w = 1; w < static_cast<int>(workers_.size()); ++w)
+      threads.emplace_back([&, w] {
+        try {
+          run(workers_[static_cast<std::size_t>(w)], share(w), share(w + 1));
+        } catch (...) {
+          failed[static_cast<std::size_t>(w)] = std::current_exception();
+        }
+      });
+    try {
+      run(workers_[0], 0, share(1));
+    } catch (...) {
+      failed[0] = std::current_exception();
+    }
+  }
+  jobs_.clear();
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
+}
+
+}  // namespace canopy::cuda
