@@ -12,18 +12,10 @@ std::vector<std::size_t> triangles_per_plant(const Stand& s, PrototypeLibrary& l
   return t;
 }
 
-void write_report(const Stand& s, PrototypeLibrary& lib, const StandReport& r, AtomicFile& out) {
-  out.write(report_json(s, lib, r).dump(2) + "\n");
-}
-
 StandCounts stand_counts(const Stand& s, PrototypeLibrary& lib) {
   StandCounts c{s.stand_origin, std::vector<std::size_t>(s.plant_count()), triangles_per_plant(s, lib)};
   for (std::size_t p = 0; p < s.plant_count(); ++p) c.organs[p] = s.plants[p].organ_count;
   return c;
-}
-
-nlohmann::ordered_json report_json(const Stand& s, PrototypeLibrary& lib, const StandReport& r) {
-  return report_json(stand_counts(s, lib), r);
 }
 
 nlohmann::ordered_json report_json(const StandCounts& c, const StandReport& r) {
@@ -72,10 +64,6 @@ nlohmann::ordered_json leaf_angles_json(const LeafAngles& a) {
     g.push_back({{"zenith_deg", kGZenithsDeg[k]}, {"g", a.g[k]}});
   j["g"] = g;
   return j;
-}
-
-void print_summary(const Stand& s, PrototypeLibrary& lib, const StandReport& r, const std::string& dir) {
-  print_summary(stand_counts(s, lib), r, dir);
 }
 
 void print_summary(const StandCounts& c, const StandReport& r, const std::string& dir) {

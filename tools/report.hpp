@@ -46,9 +46,6 @@ StandCounts stand_counts(const Stand& stand, PrototypeLibrary& lib);
 
 /// report.json's content.
 nlohmann::ordered_json report_json(const StandCounts& counts, const StandReport& r);
-nlohmann::ordered_json report_json(const Stand& stand, PrototypeLibrary& lib, const StandReport& r);
-void write_report(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, AtomicFile& out);
-void print_summary(const Stand& stand, PrototypeLibrary& lib, const StandReport& r, const std::string& dir);
 void print_summary(const StandCounts& counts, const StandReport& r, const std::string& dir);
 
 }  // namespace canopy::cli

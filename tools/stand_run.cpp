@@ -328,7 +328,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   if (target) rep.config["target"] = target_json(o.target, *target);
   rep.leaf_angles = leaf_angles_json(leaf_angles(leaf_angle_sums(stand, lib)));
   rep.timings["total"] = seconds_since(t_start);
-  write_report(stand, lib, rep, files.open("report.json"));
+  // The counts walk every organ's mesh: made once for the file, the summary and the caller.
+  const StandCounts counts = stand_counts(stand, lib);
+  nlohmann::ordered_json report = report_json(counts, rep);
+  files.open("report.json").write(report.dump(2) + "\n");
   const auto t_commit = std::chrono::steady_clock::now();
   const StagedFolder::Committed committed = files.commit_all();
   const double commit_s = seconds_since(t_commit);
@@ -339,7 +342,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
                  o.target.lai ? *o.target.lai : *o.target.ground_cover, target->plant_spacing,
                  o.target.lai ? "LAI" : "ground cover", target->reached,
                  o.target.lai ? std::string() : fmt::format(" +- {:.4f}", target->standard_error));
-    print_summary(stand, lib, rep, o.out);
+    print_summary(counts, rep, o.out);
     if (o.positions.empty()) fmt::print("{}\n", layout_line(plan.layout, plan.layout_sources));
     print_contacts_table(contacts, backend_note);
     if (rep.backend != first_backend)
@@ -347,7 +350,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     if (resolved) print_resolution(*resolved);
   }
   StandOutcome out;
-  out.report = report_json(stand, lib, rep);
+  out.report = std::move(report);
   out.contacts_before = contacts.pairs.size();
   out.contacts_after = after.pairs.size();
   out.export_bytes = written.bytes;
