@@ -365,12 +365,13 @@ StagedFolder::Committed StagedFolder::commit() {
   for (std::uint64_t id : created_ids_) unregister_run_path(id);
   lock.unlock();
   if (!old_path.empty()) {
-    // Only what the new folder has too (linked), the earlier set and dead runs' temporaries go.
+    // Only files the new folder has a file of the same name for (linked, or written again by the
+    // new set), the earlier set and dead runs' temporaries go.
     Fd old_fd(old_path), new_fd(dir_);
     for (const std::string& n : names_in(old_path)) {
       if (is_folder_at(old_fd.fd, n)) continue;
       if (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end() || is_dead_temporary(n) ||
-          same_file_at(old_fd.fd, new_fd.fd, n))
+          same_file_at(old_fd.fd, new_fd.fd, n) || (exists_at(new_fd.fd, n) && !is_folder_at(new_fd.fd, n)))
         ::unlinkat(old_fd.fd, n.c_str(), 0);
     }
     if (::rmdir(old_path.c_str()) != 0)

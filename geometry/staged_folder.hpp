@@ -7,8 +7,8 @@
 /// that opens the folder sees the earlier set or the new one, never a mix.
 ///
 /// What a replaced folder keeps: every entry of the earlier folder except the files named in
-/// `replaces` (the earlier set, dropped whether the new set has them or not) and dead runs'
-/// temporary files. Other files (the user's, a sweep's tables) are hard-linked into the new folder
+/// `replaces` (the earlier set, dropped whether the new set has them or not), the files the new
+/// set writes again (the new ones replace them) and dead runs' temporary files. Other files (the user's, a sweep's tables) are hard-linked into the new folder
 /// before the swap, so they are never absent; other folders are moved into it just before the
 /// swap. Nothing is ever removed recursively: a folder that cannot be carried across keeps the
 /// earlier folder in place under its staging name, and commit() says so.

@@ -107,6 +107,24 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   fs::remove_all(root);
 }
 
+TEST_CASE("a set that writes a file the folder has replaces it, leaving nothing beside the folder") {
+  // canopy light's set: no list of files it replaces, only the files it writes again.
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  write_set(dir.string(), "stand", {"organs.csv", "plants.csv"});
+  for (const char* tag : {"first", "second"}) {
+    OutputSet set(dir.string());
+    set.open("light.csv").write(tag);
+    set.open("light.json").write(tag);
+    CHECK(set.commit_all().notes.empty());
+    CHECK(names(dir) == std::set<std::string>{"light.csv", "light.json", "organs.csv", "plants.csv"});
+    CHECK(slurp(dir / "light.csv") == tag);
+    CHECK(slurp(dir / "organs.csv") == "stand");
+    CHECK(names(root) == std::set<std::string>{"out"});
+  }
+  fs::remove_all(root);
+}
+
 TEST_CASE("a symbolic link to the folder stays, its target is replaced") {
   const fs::path root = temp_dir();
   write_set((root / "real").string(), "old");
