@@ -23,7 +23,6 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
-#include <thread>
 
 namespace canopy {
 namespace {
@@ -134,8 +133,9 @@ void prefetch_plant(const Stand& s, const Mbvt& m, std::int32_t q) {
 class CpuBackend : public DetectionBackend {
  public:
   std::string name() const override { return "cpu"; }
+  /// The threads the caller's runs get (its --threads or OMP_NUM_THREADS), not the machine's.
   std::string device() const override {
-    return fmt::format("{} CPU threads", std::max(1u, std::thread::hardware_concurrency()));
+    return fmt::format("{} CPU threads", std::max(1, omp_get_max_threads()));
   }
 
   Contacts detect(const Stand& s, const DetectRequest& req) override {

@@ -87,7 +87,7 @@ std::unique_ptr<DetectionBackend> make_backend(const std::string& name, std::str
   const std::string why = "this build has no CUDA backend";
 #endif
   if (name == "cuda")
-    throw std::invalid_argument(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
+    throw std::runtime_error(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
   auto cpu = make_cpu_backend();
   note = fmt::format("cpu on {} (auto: no usable GPU: {})", cpu->device(), why);
   return cpu;

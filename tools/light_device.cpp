@@ -37,7 +37,7 @@ std::unique_ptr<light::RasterDevice> make_light_device(const std::string& backen
   why = "this build has no CUDA backend";
 #endif
   if (backend == "cuda")
-    throw std::invalid_argument(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
+    throw std::runtime_error(fmt::format("--backend cuda: no usable GPU ({}); use --backend cpu", why));
   note = fmt::format("host (auto: {})", why);
   return nullptr;
 }

@@ -165,6 +165,7 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   const RowLayout& layout = plan.layout;
   nlohmann::ordered_json config;
   config["grammar"] = o.grammar;
+  config["out"] = o.out;
   config["steps"] = o.steps ? nlohmann::ordered_json(*o.steps) : nlohmann::ordered_json(nullptr);
   config["set"] = o.set;
   config["lod"] = o.lod;
@@ -177,6 +178,9 @@ void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::s
   config["collide"] = o.detect.collide;
   config["backend"] = o.detect.backend;
   config["threads"] = o.detect.threads;
+  config["max_device_memory"] = o.detect.max_device_memory.empty()
+                                    ? nlohmann::ordered_json(nullptr)
+                                    : nlohmann::ordered_json(o.detect.max_device_memory);
   config["resolve"] = o.resolve.config_json();
   if (!o.positions.empty()) {
     config["layout"] = {{"positions", o.positions}};

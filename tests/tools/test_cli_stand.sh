@@ -149,6 +149,11 @@ for f in stand.glb stand.obj stand.ply organs.csv plants.csv contacts.csv contac
 done
 check "threads 1 and 2: resolution identical" "$(report "$tmp/t1" "{k: v for k, v in r['resolution'].items() if k != 'rounds'}")" \
   "$(report "$tmp/t2" "{k: v for k, v in r['resolution'].items() if k != 'rounds'}")"
+# The CPU backend's device names the run's threads, not the machine's.
+for t in 1 2; do
+  [ "$(report "$tmp/t$t" "r['backend']")" = cpu ] &&
+    check "threads $t: device" "$t CPU threads" "$(report "$tmp/t$t" "r['device']")"
+done
 "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 --steps 14 \
   --level organ -o "$tmp/lv" >/dev/null 2>&1
 check "organ level rows" "1" "$(tail -n +2 "$tmp/lv/contacts.csv" | awk -F, '$5!="organ"' | wc -l | awk '{print ($1==0)}')"
@@ -298,6 +303,14 @@ check "no resolve-stats, no statistics" "0" "$(grep -c 'resolution phases' "$tmp
 for f in organs.csv contacts.csv contacts_after.csv stand.obj; do
   check "resolve-stats same $f" "same" "$(cmp -s "$tmp/heap_small/$f" "$tmp/stats/$f" && echo same || echo different)"
 done
+
+# --backend cuda on a machine without a GPU: an error of the run (exit 1), nothing written.
+if [ ! -e /dev/nvidiactl ]; then
+  "$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 10 --backend cuda -o "$tmp/nogpu" \
+    >"$tmp/o" 2>"$tmp/e"
+  check "--backend cuda without a GPU refused" "1 1 absent" \
+    "$? $(grep -c 'no usable GPU' "$tmp/e") $([ -e "$tmp/nogpu" ] && echo present || echo absent)"
+fi
 
 # Help lines for every option.
 help=$("$canopy" stand --help)

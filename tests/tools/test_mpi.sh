@@ -21,12 +21,13 @@ if ! timeout 120 mpirun --oversubscribe -np 2 true >"$tmp/mpirun.log" 2>&1; then
   exit 77
 fi
 
-# The report without what may differ between runs: timings, the device name, per-round seconds.
+# The report without what may differ between runs: timings, the device name, per-round seconds,
+# the output folder.
 strip_report() {
   python3 -c "
 import json, sys
 j = json.load(open(sys.argv[1]))
-j.pop('timings_s', None); j.pop('peak_memory_gb', None); j.pop('device', None)
+j.pop('timings_s', None); j.pop('peak_memory_gb', None); j.pop('device', None); j['config'].pop('out', None)
 r = j.get('resolution')
 if r:
     for x in r['rounds']: x.pop('plan_s'); x.pop('detect_s')
