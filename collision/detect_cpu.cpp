@@ -18,6 +18,8 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <exception>
+
 #include <algorithm>
 #include <atomic>
 #include <memory>
@@ -240,60 +242,72 @@ class CpuBackend : public DetectionBackend {
         budget ? static_cast<std::size_t>(static_cast<double>(budget) / kBytesPerContact) : SIZE_MAX;
     std::atomic<std::size_t> listed{0}, done{0};
     std::atomic<bool> over{false};
+    // An exception may not leave the parallel region (std::terminate): the first one met (out
+    // of memory inside one huge plant pair, which the budget sees only after it) is kept, the
+    // other threads stop, and it is thrown after the region.
+    std::exception_ptr failed;
+    std::atomic<bool> failing{false};
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (std::size_t w = 0; w < work.size(); ++w) {
-      if (over.load(std::memory_order_relaxed)) continue;
-      const auto [p, q] = work[w];
-      if (w + 2 < work.size() && work[w + 2].q != q) prefetch_plant(s, m, work[w + 2].q);
-      const PlantBound& pa = m.plants[static_cast<std::size_t>(p)];
-      const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
-      const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
-      Collector& col = per[static_cast<std::size_t>(omp_get_thread_num())];
-      const std::size_t held = col.leaf.size() + col.organ.size();
-      // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the other
-      // plant's box (8 of p's clusters at a time), then each cluster's.
-      lane_clusters_meeting_moved(
-          m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
-            const PassCluster& ca = m.lanes.pass[i];
-            if (p == q && !passed_over(i, i) && ca.has_free) {  // within one cluster: all its pairs
-              col.leaf_pair(p, q, i, i);
-              if (req.level != ContactLevel::leaf)
-                lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), ca,
-                               [&](std::int32_t a, std::int32_t b) {
-                                 organ_pair(m, a, b, offset, col, p, q, pairs_masked(ca.count));
-                               });
-            }
-            const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
-            lane_clusters_overlapping(
-                m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, m.lanes.roots[i], offset,
-                [&](std::uint32_t j) {
-                  const PassCluster& cb = m.lanes.pass[j];
-                  if (passed_over(i, j)) return;
-                  col.leaf_pair(p, q, i, j);
-                  if (req.level == ContactLevel::leaf) return;
-                  const auto block = [&](const LcdNode& na, const LcdNode& nb) {
-                    lane_block_pairs(
-                        m.lanes, m.cluster_organs.data(), i, m.clusters[i], na, j, m.clusters[j], nb, offset,
-                        [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
-                  };
-                  // Two clusters of one block each (a tomato's compound leaves): the descent would hand
-                  // their roots straight over, and a root spans its cluster's organs; the clusters' own
-                  // lanes are taken, the nodes left unread.
-                  static_assert(kBlockOrgans == 2 * OrganLanes::kWidth,
-                                "lane_small_cluster_pairs takes clusters of one block");
-                  if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
-                    lane_small_cluster_pairs(
-                        m.lanes, m.cluster_organs.data(), ca, cb, offset,
-                        [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
-                  else
-                    descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset, block);
-                });
-          });
-      done.fetch_add(1, std::memory_order_relaxed);
-      if (const std::size_t grown = col.leaf.size() + col.organ.size() - held)
-        if (listed.fetch_add(grown, std::memory_order_relaxed) + grown > most)
-          over.store(true, std::memory_order_relaxed);
+      if (over.load(std::memory_order_relaxed) || failing.load(std::memory_order_relaxed)) continue;
+      try {
+        const auto [p, q] = work[w];
+        if (w + 2 < work.size() && work[w + 2].q != q) prefetch_plant(s, m, work[w + 2].q);
+        const PlantBound& pa = m.plants[static_cast<std::size_t>(p)];
+        const PlantBound& pb = m.plants[static_cast<std::size_t>(q)];
+        const Vec3f offset = p == q ? Vec3f{0, 0, 0} : plant_offset(s, p, q);
+        Collector& col = per[static_cast<std::size_t>(omp_get_thread_num())];
+        const std::size_t held = col.leaf.size() + col.organ.size();
+        // Axis-aligned pre-tests that never reject what the LCD test accepts (lcd_aabb): the other
+        // plant's box (8 of p's clusters at a time), then each cluster's.
+        lane_clusters_meeting_moved(
+            m.lanes, pa, static_cast<std::uint32_t>(p), pb.box, offset, p == q, [&](std::uint32_t i) {
+              const PassCluster& ca = m.lanes.pass[i];
+              if (p == q && !passed_over(i, i) && ca.has_free) {  // within one cluster: all its pairs
+                col.leaf_pair(p, q, i, i);
+                if (req.level != ContactLevel::leaf)
+                  lane_own_pairs(m.lanes, m.cluster_organs.data(), m.free_after.data(), ca,
+                                 [&](std::int32_t a, std::int32_t b) {
+                                   organ_pair(m, a, b, offset, col, p, q, pairs_masked(ca.count));
+                                 });
+              }
+              const std::uint32_t from = p == q ? i + 1 - pb.first_cluster : 0;  // local index in plant q
+              lane_clusters_overlapping(
+                  m.lanes, pb, static_cast<std::uint32_t>(q), from, ca.box, m.lanes.roots[i], offset,
+                  [&](std::uint32_t j) {
+                    const PassCluster& cb = m.lanes.pass[j];
+                    if (passed_over(i, j)) return;
+                    col.leaf_pair(p, q, i, j);
+                    if (req.level == ContactLevel::leaf) return;
+                    const auto block = [&](const LcdNode& na, const LcdNode& nb) {
+                      lane_block_pairs(m.lanes, m.cluster_organs.data(), i, m.clusters[i], na, j,
+                                       m.clusters[j], nb, offset, [&](std::int32_t x, std::int32_t y) {
+                                         organ_pair(m, x, y, offset, col, p, q);
+                                       });
+                    };
+                    // Two clusters of one block each (a tomato's compound leaves): the descent would hand
+                    // their roots straight over, and a root spans its cluster's organs; the clusters' own
+                    // lanes are taken, the nodes left unread.
+                    static_assert(kBlockOrgans == 2 * OrganLanes::kWidth,
+                                  "lane_small_cluster_pairs takes clusters of one block");
+                    if (ca.count <= kBlockOrgans && cb.count <= kBlockOrgans)
+                      lane_small_cluster_pairs(
+                          m.lanes, m.cluster_organs.data(), ca, cb, offset,
+                          [&](std::int32_t x, std::int32_t y) { organ_pair(m, x, y, offset, col, p, q); });
+                    else
+                      descend_lcd_trees(m.nodes.data(), m.clusters[i].root, m.clusters[j].root, offset,
+                                        block);
+                  });
+            });
+        done.fetch_add(1, std::memory_order_relaxed);
+        if (const std::size_t grown = col.leaf.size() + col.organ.size() - held)
+          if (listed.fetch_add(grown, std::memory_order_relaxed) + grown > most)
+            over.store(true, std::memory_order_relaxed);
+      } catch (...) {
+        if (!failing.exchange(true)) failed = std::current_exception();
+      }
     }
+    if (failed) std::rethrow_exception(failed);
     if (over)
       throw std::runtime_error(
           fmt::format("detection stopped after {} of {} plant pairs: its contact lists (over {} pairs) "
@@ -344,29 +358,37 @@ class CpuBackend : public DetectionBackend {
     // The tree's OBBs are the poses' own (make_obb at the stand's transforms) where it was fit with
     // no clearance: the poses take them rather than make them again.
     const Obb* tree_obbs = m.config.clearance == 0 ? m.obbs.data() : nullptr;
+    std::exception_ptr exact_failed;  // as in the pass above
+    std::atomic<bool> exact_failing{false};
 #pragma omp parallel num_threads(threads)
     {
       ExactScratch& scratch = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
       scratch.poses.forget();
 #pragma omp for schedule(dynamic, 64)
       for (std::size_t i = 0; i < organ.size(); ++i) {
-        // The records and transforms of the pair twelve on (both lines a 48-byte transform may
-        // span): the pass before has pushed them out of the caches, and a pair's first organs
-        // are too far apart for the hardware to see a stream. Both organs' lines, twelve pairs
-        // ahead: the distance bench_detect measured best.
-        if (i + 12 < organ.size())
-          for (const std::int32_t id : {organ[i + 12].organ_a, organ[i + 12].organ_b}) {
-            const auto k = static_cast<std::size_t>(id);
-            __builtin_prefetch(&s.transforms[k]);
-            __builtin_prefetch(reinterpret_cast<const char*>(&s.transforms[k]) + 47);
-            __builtin_prefetch(&s.organs[k]);
-            if (tree_obbs) __builtin_prefetch(&tree_obbs[k]);
-          }
-        hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch, tree_obbs)
-                     ? 1
-                     : 0;
+        if (exact_failing.load(std::memory_order_relaxed)) continue;
+        try {
+          // The records and transforms of the pair twelve on (both lines a 48-byte transform may
+          // span): the pass before has pushed them out of the caches, and a pair's first organs
+          // are too far apart for the hardware to see a stream. Both organs' lines, twelve pairs
+          // ahead: the distance bench_detect measured best.
+          if (i + 12 < organ.size())
+            for (const std::int32_t id : {organ[i + 12].organ_a, organ[i + 12].organ_b}) {
+              const auto k = static_cast<std::size_t>(id);
+              __builtin_prefetch(&s.transforms[k]);
+              __builtin_prefetch(reinterpret_cast<const char*>(&s.transforms[k]) + 47);
+              __builtin_prefetch(&s.organs[k]);
+              if (tree_obbs) __builtin_prefetch(&tree_obbs[k]);
+            }
+          hit[i] = organs_touch(s, lib, organ[i].organ_a, organ[i].organ_b, req.clearance, scratch, tree_obbs)
+                       ? 1
+                       : 0;
+        } catch (...) {
+          if (!exact_failing.exchange(true)) exact_failed = std::current_exception();
+        }
       }
     }
+    if (exact_failed) std::rethrow_exception(exact_failed);
     out.pairs = keep_hits(organ, hit);
     std::sort(out.pairs.begin(), out.pairs.end());
     out.counts[3] = count_pairs(out.pairs);

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   canopy::keep_freed_memory();
   // Before any thread starts: SIGINT and SIGTERM are taken by a thread that cleans up.
   canopy::cli::start_signal_thread();
+  canopy::cli::end_on_terminate();
 #ifdef CANOPY_WITH_MPI
   // Under mpirun every rank runs the same command; MPI is started only there.
   std::optional<canopy::mpi::Session> mpi;

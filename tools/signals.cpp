@@ -7,6 +7,9 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <new>
+#include <string>
 #include <pthread.h>
 #include <thread>
 #include <unistd.h>
@@ -59,6 +62,30 @@ extern "C" void soft_handler(int) {
 }
 
 }  // namespace
+
+void end_on_terminate() {
+  std::set_terminate([] {
+    std::string what;
+    if (const std::exception_ptr e = std::current_exception()) {
+      try {
+        std::rethrow_exception(e);
+      } catch (const std::bad_alloc&) {
+        what = "out of memory";
+      } catch (const std::exception& x) {
+        what = x.what();
+      } catch (...) {
+        what = "an unknown exception";
+      }
+    }
+    (void)lock_run_paths().release();  // kept: nothing changes on disk after the clean-up
+    remove_run_paths();
+    std::fflush(stdout);
+    fmt::print(stderr, "canopy: error: {}\n", what.empty() ? "internal error (terminated)" : what);
+    std::fflush(stderr);
+    if (what.empty()) std::abort();
+    _exit(1);
+  });
+}
 
 void start_signal_thread() {
   if (g_thread_started.exchange(true)) return;

@@ -15,6 +15,12 @@ namespace canopy::cli {
 /// after anything that runs the program again (tools/heap_pages.hpp).
 void start_signal_thread();
 
+/// An exception that cannot be thrown on (one leaving a parallel region or a thread) ends the
+/// command as an error does, not with an abort: what the run has on disk that is not in place is
+/// removed, `canopy: error: out of memory` (or the exception's message) is printed and the exit
+/// status is 1. A std::terminate without an exception removes the same and aborts.
+void end_on_terminate();
+
 /// While one lives, the first SIGINT sets `flag` instead of ending the run (canopy sweep ends
 /// after the run in progress); a second SIGINT, or SIGTERM, ends the run at once. Without the
 /// signal thread (the Python module keeps its host's handlers) it installs a plain handler.
