@@ -165,12 +165,14 @@ void SharedFile::plants(std::size_t n, std::size_t batch,
 }
 
 SharedOutputSet::SharedOutputSet(const std::string& dir, std::vector<std::string> replaces,
-                                 std::vector<std::int64_t> ids, std::uint64_t plants_total)
+                                 std::string marker, std::vector<std::int64_t> ids,
+                                 std::uint64_t plants_total)
     : ids_(std::move(ids)), plants_total_(plants_total) {
   std::string error;
   if (rank() == 0) {
     try {
-      folder_ = std::make_unique<StagedFolder>(dir, std::move(replaces));
+      folder_ = std::make_unique<StagedFolder>(dir, std::move(replaces), std::move(marker));
+      folder_->make();
       staging_ = folder_->staging();
     } catch (const std::exception& e) {
       error = e.what();

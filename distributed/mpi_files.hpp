@@ -51,11 +51,12 @@ class SharedFile final : public ChunkWriter {
 };
 
 /// The files of one tiled run in `dir`: collective. Rank 0 makes the staging folder (replacing
-/// `replaces` of the earlier folder, see StagedFolder) and tells the others where it is.
+/// `replaces` of the earlier folder where it holds `marker`, see StagedFolder) and tells the
+/// others where it is.
 class SharedOutputSet {
  public:
-  SharedOutputSet(const std::string& dir, std::vector<std::string> replaces, std::vector<std::int64_t> ids,
-                  std::uint64_t plants_total);
+  SharedOutputSet(const std::string& dir, std::vector<std::string> replaces, std::string marker,
+                  std::vector<std::int64_t> ids, std::uint64_t plants_total);
   ~SharedOutputSet();  // rank 0 removes the staging folder unless committed
   SharedFile& open(const std::string& name);
   /// Collective: closes every file, checks that every rank wrote without error, then rank 0

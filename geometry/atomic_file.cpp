@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstring>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <filesystem>
 #include <stdexcept>
 #include <unistd.h>
@@ -29,9 +30,36 @@ void remove_dead_temporaries(const std::string& path) {
   }
 }
 
+/// Where a write of `path` goes: a symbolic link's target (the link stays), followed through up
+/// to 40 links.
+std::string link_target(const std::string& path) {
+  fs::path p(path);
+  std::error_code ec;
+  for (int hops = 0; hops < 40 && fs::is_symlink(p, ec); ++hops) {
+    const fs::path to = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = to.is_absolute() ? to : p.parent_path() / to;
+  }
+  return p.string();
+}
+
 }  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  // What is there and is not a regular file is written in place (a FIFO, /dev/stdout, a device:
+  // a rename would replace it); a folder is refused; a symbolic link's target is replaced, the
+  // link stays.
+  struct stat st;
+  if (::stat(path_.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode)) throw std::runtime_error(fmt::format("cannot write {}: it is a folder", path_));
+    if (!S_ISREG(st.st_mode)) {
+      direct_ = true;
+      f_ = std::fopen(path_.c_str(), "wb");
+      if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", path_, std::strerror(errno)));
+      return;
+    }
+  }
+  path_ = link_target(path_);
   remove_dead_temporaries(path_);
   tmp_ = fmt::format("{}.tmp-{}", path_, process_tag());
   const auto lock = lock_run_paths();  // registered before it exists: a signal's clean-up sees it
@@ -40,7 +68,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   if (!f_) {
     const std::string reason = std::strerror(errno);
     unregister_run_path(registered_);
-    throw std::runtime_error(fmt::format("cannot write {}: {}", tmp_, reason));
+    throw std::runtime_error(fmt::format("cannot write {} (its temporary {}): {}", path_, tmp_, reason));
   }
   std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
 }
@@ -48,6 +76,17 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
 AtomicFile::AtomicFile(std::string path, Direct) : path_(std::move(path)), direct_(true) {
   f_ = std::fopen(path_.c_str(), "wb");
   if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", path_, std::strerror(errno)));
+  std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
+}
+
+AtomicFile::AtomicFile(int fd, std::string path, Unnamed)
+    : path_(std::move(path)), direct_(true), unnamed_(true) {
+  f_ = ::fdopen(fd, "wb");
+  if (!f_) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd);
+    throw std::runtime_error(fmt::format("cannot write {}: {}", path_, reason));
+  }
   std::setvbuf(f_, nullptr, _IOFBF, 1 << 20);
 }
 
@@ -103,6 +142,16 @@ void AtomicFile::write_raw(const void* data, std::size_t n) {
     throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
 }
 
+void AtomicFile::sync() {
+  if (!f_) return;
+  const auto t = std::chrono::steady_clock::now();
+  const bool bad = std::fflush(f_) != 0 || std::ferror(f_) != 0 || ::fsync(fileno(f_)) != 0;
+  const int err = errno;
+  const double s = seconds_since(t);
+  times_.busy_s += s, times_.waited_s += s;
+  if (bad) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(err)));
+}
+
 void AtomicFile::close() {
   if (!f_) return;
   const auto t = std::chrono::steady_clock::now();
@@ -134,14 +183,21 @@ void AtomicFile::commit() {
   }
 }
 
-OutputSet::OutputSet(const std::string& dir, std::vector<std::string> replaces)
-    : folder_(dir, std::move(replaces)) {}
+OutputSet::OutputSet(const std::string& dir, std::vector<std::string> replaces, std::string marker)
+    : folder_(dir, std::move(replaces), std::move(marker)) {}
 
 AtomicFile& OutputSet::open(const std::string& name) {
-  // Under the registry's lock: once a signal's clean-up holds it, no file appears in the staging
-  // folder behind its back.
-  const auto lock = lock_run_paths();
-  files_.push_back(std::make_unique<AtomicFile>(folder_.path(name), AtomicFile::Direct{}));
+  names_.reserve(names_.size() + 1);
+  if (const int fd = folder_.unnamed_file(); fd >= 0) {
+    files_.push_back(std::make_unique<AtomicFile>(fd, folder_.dir() + "/" + name, AtomicFile::Unnamed{}));
+  } else {
+    // Under the registry's lock: once a signal's clean-up holds it, no file appears in the
+    // staging folder behind its back.
+    const std::string path = folder_.path(name);
+    const auto lock = lock_run_paths();
+    files_.push_back(std::make_unique<AtomicFile>(path, AtomicFile::Direct{}));
+  }
+  names_.push_back(name);
   return *files_.back();
 }
 
@@ -152,9 +208,16 @@ WriteTimes OutputSet::times() const {
 }
 
 StagedFolder::Committed OutputSet::commit_all() {
-  for (auto& f : files_) f->close();  // every file complete before the folder is swapped in
+  // Every file complete and on disk before it gets a name, and before the folder is swapped in.
+  for (std::size_t i = 0; i < files_.size(); ++i)
+    if (files_[i]->unnamed()) {
+      files_[i]->sync();
+      folder_.link_in(fileno(files_[i]->get()), names_[i]);
+    }
+  for (auto& f : files_) f->close();
   for (const auto& f : files_) closed_ += f->times();
   files_.clear();
+  names_.clear();
   return folder_.commit();
 }
 

@@ -35,6 +35,10 @@ class AtomicFile {
   /// staging folder).
   struct Direct {};
   AtomicFile(std::string path, Direct);
+  /// An unnamed file already open on `fd` (StagedFolder::unnamed_file), owned from here on;
+  /// `path` names it in messages.
+  struct Unnamed {};
+  AtomicFile(int fd, std::string path, Unnamed);
   ~AtomicFile();  // removes the temporary file unless committed
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
@@ -48,8 +52,11 @@ class AtomicFile {
   /// The exporting thread waited `seconds` for a writer thread.
   void add_waited(double seconds) { times_.waited_s += seconds; }
   const WriteTimes& times() const { return times_; }
+  /// Flushes and syncs the open file; throws on a write error.
+  void sync();
   /// Flushes and closes; throws on a write error. The file is not yet in place.
   void close();
+  bool unnamed() const { return unnamed_; }
   /// Syncs the closed temporary file, renames it to its final name and syncs the folder.
   void commit();
   const std::string& path() const { return path_; }
@@ -60,17 +67,20 @@ class AtomicFile {
   std::uint64_t registered_ = 0;
   bool committed_ = false;
   bool direct_ = false;
+  bool unnamed_ = false;
   WriteTimes times_;
   void write_raw(const void* data, std::size_t n);
 };
 
-/// The files of one stand: each written in full into a staging folder, then swapped in together,
-/// replacing the folder's earlier files named in `replaces` (see StagedFolder).
+/// The files of one stand: each written in full as an unnamed file (or into the staging folder),
+/// then linked into the staging folder and swapped in together, replacing the folder's earlier
+/// files named in `replaces` (see StagedFolder).
 class OutputSet {
  public:
-  explicit OutputSet(const std::string& dir, std::vector<std::string> replaces = {});
+  explicit OutputSet(const std::string& dir, std::vector<std::string> replaces = {}, std::string marker = {});
   AtomicFile& open(const std::string& name);
-  /// Closes every file (throwing on a write error), then StagedFolder::commit.
+  /// Syncs every file and links the unnamed ones into the staging folder, closes them (throwing
+  /// on a write error), then StagedFolder::commit.
   StagedFolder::Committed commit_all();
   /// The final folder.
   const std::string& dir() const { return folder_.dir(); }
@@ -81,6 +91,7 @@ class OutputSet {
  private:
   StagedFolder folder_;
   std::vector<std::unique_ptr<AtomicFile>> files_;
+  std::vector<std::string> names_;  // beside files_
   WriteTimes closed_;
 };
 

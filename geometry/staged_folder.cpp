@@ -183,8 +183,8 @@ void check_output_dir(const std::string& dir) {
   ::rmdir(probe.c_str());
 }
 
-StagedFolder::StagedFolder(const std::string& dir, std::vector<std::string> replaces)
-    : replaces_(std::move(replaces)) {
+StagedFolder::StagedFolder(const std::string& dir, std::vector<std::string> replaces, std::string marker)
+    : replaces_(std::move(replaces)), marker_(std::move(marker)) {
   try {
     open(dir);
   } catch (...) {
@@ -197,38 +197,78 @@ StagedFolder::StagedFolder(const std::string& dir, std::vector<std::string> repl
 
 void StagedFolder::open(const std::string& dir) {
   dir_ = output_folder(dir);
+  named_ = dir;
   const fs::path p(dir_);
-  staging_place(p, dir);
+  base_ = staging_place(p, dir).string();
   parent_ = p.parent_path().string();
   name_ = p.filename().string();
+  remove_leftovers();
+  staging_ = fmt::format("{}/.{}{}{}-{}", parent_, name_, kStagingMark, process_tag(), g_staging_count++);
+}
+
+void StagedFolder::make() {
+  if (made_) return;
+  const auto lock = lock_run_paths();
   // The folders missing above the output, made now and removed again if the run fails.
+  const fs::path p(dir_);
   std::vector<fs::path> missing;
   for (fs::path a = p.parent_path(); !fs::exists(fs::symlink_status(a)) && a != a.root_path();
        a = a.parent_path())
     missing.push_back(a);
   for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-    const auto lock = lock_run_paths();
     if (::mkdir(it->c_str(), 0777) == 0) {
       created_.push_back(it->string());
       created_ids_.push_back(register_run_path(it->string(), RunPath::created_folder));
     } else if (errno != EEXIST) {
       throw std::runtime_error(
-          fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, it->string(), why()));
+          fmt::format("cannot create the output folder {}: cannot make {}: {}", named_, it->string(), why()));
     }
   }
-  remove_leftovers();
-  const auto lock = lock_run_paths();
-  staging_ = fmt::format("{}/.{}{}{}-{}", parent_, name_, kStagingMark, process_tag(), g_staging_count++);
   if (::mkdir(staging_.c_str(), 0777) != 0)
     throw std::runtime_error(
-        fmt::format("cannot create the output folder {}: cannot make {}: {}", dir, staging_, why()));
+        fmt::format("cannot create the output folder {}: cannot make {}: {}", named_, staging_, why()));
   staging_id_ = register_run_path(staging_, RunPath::staging);
+  made_ = true;
+}
+
+std::string StagedFolder::path(const std::string& name) {
+  make();
+  return staging_ + "/" + name;
+}
+
+int StagedFolder::unnamed_file() const {
+  // O_TMPFILE: on a file system without it (or a kernel before 3.11) the open fails, and the
+  // files are written under their names in the staging folder instead. Linking one in later
+  // goes through /proc/self/fd, which must be there.
+  const int fd = ::open(base_.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  if (fd < 0) return -1;
+  if (::access(fmt::format("/proc/self/fd/{}", fd).c_str(), F_OK) != 0) {
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+bool StagedFolder::unnamed_file_possible() const {
+  const int fd = unnamed_file();
+  if (fd < 0) return false;
+  ::close(fd);
+  return true;
+}
+
+void StagedFolder::link_in(int fd, const std::string& name) {
+  make();
+  const auto lock = lock_run_paths();  // no file appears behind a signal's clean-up
+  const std::string to = staging_ + "/" + name;
+  if (::linkat(AT_FDCWD, fmt::format("/proc/self/fd/{}", fd).c_str(), AT_FDCWD, to.c_str(),
+               AT_SYMLINK_FOLLOW) != 0)
+    throw std::runtime_error(fmt::format("cannot write {}: {}", to, why()));
 }
 
 StagedFolder::~StagedFolder() {
   if (committed_) return;
   const auto lock = lock_run_paths();
-  if (!staging_.empty()) remove_flat_folder(staging_);
+  if (made_) remove_flat_folder(staging_);
   unregister_run_path(staging_id_);
   for (auto it = created_.rbegin(); it != created_.rend(); ++it) ::rmdir(it->c_str());
   for (std::uint64_t id : created_ids_) unregister_run_path(id);
@@ -279,6 +319,7 @@ void StagedFolder::remove_leftovers() {
 }
 
 StagedFolder::Committed StagedFolder::commit() {
+  make();  // a set of no files is an empty folder
   Committed out;
   // Every file's data on disk, then the folder's entries: a crash after the swap finds whole files.
   for (const std::string& n : names_in(staging_)) {
@@ -306,6 +347,8 @@ StagedFolder::Committed StagedFolder::commit() {
     Fd old_fd(dir_), new_fd(staging_);
     if (old_fd.fd < 0 || new_fd.fd < 0)
       throw std::runtime_error(fmt::format("cannot open {} or {}: {}", dir_, staging_, why()));
+    // A folder without the marker holds no earlier set: files of those names are the user's.
+    earlier_set_ = marker_.empty() || exists_at(old_fd.fd, marker_);
     // The earlier folder's other entries carried across: files linked (present in both until the
     // swap), folders moved (absent from the earlier folder for the instant before the swap).
     std::vector<std::string> moved;
@@ -317,7 +360,7 @@ StagedFolder::Committed StagedFolder::commit() {
         else stuck = true;
         continue;
       }
-      if (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end()) {
+      if (earlier_set_ && std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end()) {
         out.dropped.push_back(n);
         continue;
       }
@@ -370,8 +413,9 @@ StagedFolder::Committed StagedFolder::commit() {
     Fd old_fd(old_path), new_fd(dir_);
     for (const std::string& n : names_in(old_path)) {
       if (is_folder_at(old_fd.fd, n)) continue;
-      if (std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end() || is_dead_temporary(n) ||
-          same_file_at(old_fd.fd, new_fd.fd, n) || (exists_at(new_fd.fd, n) && !is_folder_at(new_fd.fd, n)))
+      if ((earlier_set_ && std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end()) ||
+          is_dead_temporary(n) || same_file_at(old_fd.fd, new_fd.fd, n) ||
+          (exists_at(new_fd.fd, n) && !is_folder_at(new_fd.fd, n)))
         ::unlinkat(old_fd.fd, n.c_str(), 0);
     }
     if (::rmdir(old_path.c_str()) != 0)

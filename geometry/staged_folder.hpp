@@ -1,17 +1,21 @@
 #pragma once
 /// A folder whose set of files is replaced as one unit (docs/design.md "Export files": a run replaces the
 /// folder's stand as one unit; docs/design.md "Output folders and failures"). The files are
-/// written into a staging folder beside it, ".NAME.canopy-PID-START-K" (geometry/run_files.hpp),
-/// synced with the folder, and swapped in with one renameat2(RENAME_EXCHANGE) (one rename when
-/// the folder is new); the earlier folder, now at the staging name, is then removed. A reader
-/// that opens the folder sees the earlier set or the new one, never a mix.
+/// written as unnamed files (O_TMPFILE) of the file system the folder is on, which vanish with
+/// the process however it ends; once all are complete they are synced and linked into a staging
+/// folder beside it, ".NAME.canopy-PID-START-K" (geometry/run_files.hpp), made only then, and
+/// swapped in with one renameat2(RENAME_EXCHANGE) (one rename when the folder is new); the
+/// earlier folder, now at the staging name, is then removed. Where unnamed files cannot be made,
+/// the staging folder is made at the first file and the files are written into it by name. A
+/// reader that opens the folder sees the earlier set or the new one, never a mix.
 ///
 /// What a replaced folder keeps: every entry of the earlier folder except the files named in
 /// `replaces` (the earlier set, dropped whether the new set has them or not), the files the new
-/// set writes again (the new ones replace them) and dead runs' temporary files. Other files (the user's, a sweep's tables) are hard-linked into the new folder
-/// before the swap, so they are never absent; other folders are moved into it just before the
-/// swap. Nothing is ever removed recursively: a folder that cannot be carried across keeps the
-/// earlier folder in place under its staging name, and commit() says so.
+/// set writes again (the new ones replace them) and dead runs' temporary files. Other files (the
+/// user's, a sweep's tables) are hard-linked into the new folder before the swap, so they are
+/// never absent; other folders are moved into it just before the swap. Nothing is ever removed recursively: a
+/// folder that cannot be carried across keeps the earlier folder in place under its staging name, and
+/// commit() says so.
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -33,19 +37,33 @@ void check_output_dir(const std::string& dir);
 
 class StagedFolder {
  public:
-  /// Makes the folders missing above `dir` and the staging folder beside it; first removes what
-  /// dead runs left beside `dir` (their staging folders), putting back into `dir` anything of
-  /// the user's that such a run had carried across. `replaces`: see above.
-  StagedFolder(const std::string& dir, std::vector<std::string> replaces);
+  /// Removes what dead runs left beside `dir` (their staging folders), putting back into `dir`
+  /// anything of the user's that such a run had carried across. The folders missing above `dir`
+  /// and the staging folder are made later, when the first file is linked in or named.
+  /// `replaces`: see above; with a `marker`, only an earlier folder that holds a file of that
+  /// name holds an earlier set (a stand folder holds organs.csv): elsewhere files of those names
+  /// are the user's, kept unless the new set writes them again.
+  StagedFolder(const std::string& dir, std::vector<std::string> replaces, std::string marker = {});
   /// Not committed: removes the staging folder and the folders made for it.
   ~StagedFolder();
   StagedFolder(const StagedFolder&) = delete;
   StagedFolder& operator=(const StagedFolder&) = delete;
 
   const std::string& dir() const { return dir_; }
+  /// Makes the staging folder (and the folders missing above `dir`) now, for writers that name
+  /// their files themselves (MPI ranks writing one shared file).
+  void make();
+  /// The staging folder's name (the folder exists once made, a file linked in or named).
   const std::string& staging() const { return staging_; }
-  /// A file of the staging folder.
-  std::string path(const std::string& name) const { return staging_ + "/" + name; }
+  /// A file of the staging folder (made now, with the folders missing above it).
+  std::string path(const std::string& name);
+  /// A new unnamed file, open for writing, on the file system of the folder, or -1 where this
+  /// file system or machine cannot make one.
+  int unnamed_file() const;
+  /// Whether unnamed_file() can make one here (one made and dropped).
+  bool unnamed_file_possible() const;
+  /// Links unnamed file `fd` into the staging folder (made now) as `name`.
+  void link_in(int fd, const std::string& name);
 
   struct Committed {
     std::vector<std::string> dropped;  // names in `replaces` the earlier folder had and the new set has not
@@ -63,8 +81,11 @@ class StagedFolder {
  private:
   void open(const std::string& dir);
   void remove_leftovers();
-  std::string dir_, parent_, name_, staging_;
+  std::string dir_, named_, base_, parent_, name_, staging_;
+  bool made_ = false;
   std::vector<std::string> replaces_;
+  std::string marker_;
+  bool earlier_set_ = true;
   std::uint64_t staging_id_ = 0;
   std::vector<std::uint64_t> created_ids_;
   std::vector<std::string> created_;

@@ -226,7 +226,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   // The staging folder beside the output (dead runs' leftovers removed first): the files go
   // there and the folder is swapped in once they are complete; a failed or interrupted run
   // removes it, so the output folder is as it was (none made when it had none).
-  OutputSet files(o.out, stand_folder_files());
+  OutputSet files(o.out, stand_folder_files(), kStandFolderMarker);
   GrowRequest& req = plan.request;
   const RowLayout& layout = plan.layout;
   if (o.positions.empty()) {

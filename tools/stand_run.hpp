@@ -101,6 +101,9 @@ void write_stand_files(const Stand& stand, PrototypeLibrary& lib, const std::set
 /// stand, so they go with it). Everything else in the folder is kept. Every stand writer (the
 /// command line, tiled runs, the Python module) replaces these.
 const std::vector<std::string>& stand_folder_files();
+/// The file every stand folder holds: a folder without it holds no earlier stand, and files of
+/// the names above there are the user's (kept unless a run writes them again).
+inline constexpr const char* kStandFolderMarker = "organs.csv";
 /// Says on standard output which files of the earlier stand the swap dropped (a mesh format not
 /// asked for this time, light tables) and which dead runs' leftovers were removed, and on
 /// standard error what was kept against the plan (nothing when all went as planned).

@@ -237,7 +237,7 @@ void run_stand_tiled(StandOptions o) {
     for (const Owned& x : mpi::allgather(mine)) per_plant[static_cast<std::size_t>(x.plant)] = x.sums;
     rep.leaf_angles = leaf_angles_json(leaf_angles(per_plant));
   }
-  mpi::SharedOutputSet files(o.out, stand_folder_files(), ts.ids, n);
+  mpi::SharedOutputSet files(o.out, stand_folder_files(), kStandFolderMarker, ts.ids, n);
   try {
     write_stand_files(
         scope, lib, ts.formats, [&](const std::string& name) -> ChunkWriter& { return files.open(name); },

@@ -107,6 +107,24 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   fs::remove_all(root);
 }
 
+TEST_CASE("a set's files have no name until the set is complete") {
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "a" / "out";
+  OutputSet set(dir.string(), kStand);
+  if (!set.folder().unnamed_file_possible()) {
+    MESSAGE("unnamed files are not made on this file system: the files are named in a staging folder");
+    return;
+  }
+  set.open("organs.csv").write("half of a");
+  set.open("plants.csv").write("table");
+  CHECK(names(root).empty());  // no staging folder, not even the folder above the output
+  set.commit_all();
+  CHECK(names(root) == std::set<std::string>{"a"});
+  CHECK(names(dir) == std::set<std::string>{"organs.csv", "plants.csv"});
+  CHECK(slurp(dir / "organs.csv") == "half of a");
+  fs::remove_all(root);
+}
+
 TEST_CASE("a set that writes a file the folder has replaces it, leaving nothing beside the folder") {
   // canopy light's set: no list of files it replaces, only the files it writes again.
   const fs::path root = temp_dir();
@@ -122,6 +140,34 @@ TEST_CASE("a set that writes a file the folder has replaces it, leaving nothing 
     CHECK(slurp(dir / "organs.csv") == "stand");
     CHECK(names(root) == std::set<std::string>{"out"});
   }
+  fs::remove_all(root);
+}
+
+TEST_CASE("a folder without the set's marker holds no earlier set: its files of those names are kept") {
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  fs::create_directories(dir);
+  put(dir / "stand.ply", "the user's own mesh");
+  put(dir / "report.json", "the user's notes");
+  StagedFolder::Committed c;
+  {
+    OutputSet set(dir.string(), kStand, "organs.csv");
+    set.open("organs.csv").write("new");
+    set.open("report.json").write("new");
+    c = set.commit_all();
+  }
+  CHECK(names(dir) == std::set<std::string>{"organs.csv", "report.json", "stand.ply"});
+  CHECK(slurp(dir / "stand.ply") == "the user's own mesh");  // not written again: kept
+  CHECK(slurp(dir / "report.json") == "new");                // written again: replaced
+  CHECK(c.dropped.empty());
+  // Once the folder holds a set (its marker), the set's files go with it.
+  {
+    OutputSet set(dir.string(), kStand, "organs.csv");
+    set.open("organs.csv").write("newer");
+    c = set.commit_all();
+  }
+  CHECK(names(dir) == std::set<std::string>{"organs.csv"});
+  CHECK(names(root) == std::set<std::string>{"out"});
   fs::remove_all(root);
 }
 

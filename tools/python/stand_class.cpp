@@ -276,7 +276,7 @@ void bind_stand(py::module_& m) {
             const ThreadLimit thread_limit(0);  // refuses an OMP_NUM_THREADS past canopy's maximum
             PrototypeLibrary lib;
             // The folder's earlier stand is replaced as a set, as canopy stand does.
-            OutputSet files(dir, cli::stand_folder_files());
+            OutputSet files(dir, cli::stand_folder_files(), cli::kStandFolderMarker);
             cli::write_stand_files(s.stand, lib, fs, glb, files);
             if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
             files.commit_all();
