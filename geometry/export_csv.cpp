@@ -201,6 +201,11 @@ Stand read_stand(const std::string& dir) {
       throw std::runtime_error(fmt::format("{}:{}: plant ids must run 0, 1, 2, ...", pfile, ln));
     pr.x = finite(parse<double>(c[1], pfile, ln, 2), c[1], pfile, ln, 2);
     pr.y = finite(parse<double>(c[2], pfile, ln, 3), c[2], pfile, ln, 3);
+    if (std::abs(pr.x) > kMaxPlantCoordinate || std::abs(pr.y) > kMaxPlantCoordinate)
+      throw std::runtime_error(
+          fmt::format("{}:{}: the plant at ({}, {}) lies more than {:g} m from the origin, "
+                      "as canopy stand never places one",
+                      pfile, ln, c[1], c[2], kMaxPlantCoordinate));
     pr.rotation_deg = finite(parse<double>(c[3], pfile, ln, 4), c[3], pfile, ln, 4);
     pr.seed = parse<std::uint64_t>(c[4], pfile, ln, 5);
     const std::string g(c[5]);

@@ -343,12 +343,25 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   Scene scene(stand, lib);
   if (cfg.periodic) scene.set_period(cfg.tile.width(), cfg.tile.height());
   r.organs_skipped = scene.skipped();
+  if (cfg.periodic && scene.hi().x > scene.lo().x) {
+    const double w = scene.hi().x - scene.lo().x, h = scene.hi().y - scene.lo().y;
+    const double copies = std::ceil(w / cfg.tile.width()) * std::ceil(h / cfg.tile.height());
+    if (!(copies <= kMaxTileCopies))
+      throw std::invalid_argument(
+          fmt::format("--tile: a tile of {:.3g} x {:.3g} m under a stand {:.3g} x {:.3g} m wide puts {:.3g} "
+                      "copies of the stand "
+                      "over each point (at most {}): give a tile nearer the stand's size (its lattice: plant "
+                      "spacing x row "
+                      "spacing per plant)",
+                      cfg.tile.width(), cfg.tile.height(), w, h, copies, kMaxTileCopies));
+  }
   const OrganIndex organs(stand);
   r.scene_s = seconds_since(t_scene);
   const double layers_d = std::ceil(std::max(scene.hi().z, 0.0) / cfg.layer_m);
   if (layers_d > static_cast<double>(kMaxLayers))
     throw std::invalid_argument(
-        fmt::format("--layer: {} m cuts the stand into more than {} layers", cfg.layer_m, kMaxLayers));
+        fmt::format("--layer: {} m cuts the stand ({:.3g} m tall) into more than {} layers", cfg.layer_m,
+                    scene.hi().z, kMaxLayers));
   const std::size_t layers = std::max<std::size_t>(1, static_cast<std::size_t>(layers_d));
   r.layer_leaf_area = layer_leaf_area(stand, lib, cfg.layer_m, layers);
 

@@ -35,6 +35,9 @@ struct Beam {
 inline constexpr double kMinError = 1e-5, kMaxError = 0.5;
 inline constexpr double kMaxRaysPerDirection = 2e9;
 inline constexpr std::size_t kMaxLayers = 100000;
+/// Copies of the stand over any point of a periodic tile, at most: a tile far smaller than the
+/// stand makes every ray cross that many copies of it (a 1 mm tile under a 1 m plant, a million).
+inline constexpr double kMaxTileCopies = 1000;
 
 /// How a pass's rays are answered: each traced through the Embree scene, or all at once by
 /// drawing the stand's triangles over the cells (light/raster.hpp; the same rays and, up to rays

@@ -14,9 +14,9 @@ void DetectOptions::add_to(CLI::App& app) {
   app.add_option("--level", level, "Contact level: plant, leaf, organ or exact (default exact)")
       ->check(CLI::IsMember({"plant", "leaf", "organ", "exact"}));
   app.add_option("--clearance", clearance,
-                 "Organs closer than this many metres count as a contact (default 0)")
+                 "Organs closer than this many metres count as a contact (default 0, at most 100)")
       ->check(kFinite)
-      ->check(at_least(0))
+      ->check(number_in(0, kMaxClearance))
       ->check(metres_note("--clearance"));
   app.add_option("--collide", collide,
                  "Organ kinds that take part, comma separated (internode, petiole, rachis, leaflet, "

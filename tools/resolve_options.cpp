@@ -14,10 +14,11 @@ void ResolveOptions::add_to(CLI::App& app) {
                "Export the stand as grown, without turning organs out of contact");
   app.add_option("--max-rounds", max_rounds, "Resolution: detection rounds before giving up (default 30)")
       ->transform(whole_in(1, INT32_MAX));
-  app.add_option("--resolve-clearance", clearance,
-                 "Resolution: metres left between a turned organ and what it met (default 0.0001)")
+  app.add_option(
+         "--resolve-clearance", clearance,
+         "Resolution: metres left between a turned organ and what it met (default 0.0001, at most 100)")
       ->check(kFinite)
-      ->check(at_least(0))
+      ->check(number_in(0, kMaxClearance))
       ->check(metres_note("--resolve-clearance"));
   app.add_option(
          "--resolve-level", level,

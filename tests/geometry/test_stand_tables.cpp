@@ -96,6 +96,15 @@ TEST_CASE("an empty organs.csv or plants.csv is not a stand of plants without or
         "DIR/plants.csv:1: expected the header id,x,y,rotation,seed,grammar,steps");
 }
 
+TEST_CASE("a plant farther from the origin than canopy stand places one is refused") {
+  const std::string far =
+      "id,x,y,rotation,seed,grammar,steps\n0,0,0,0,7,tomato.yaml,6\n1,1e12,0,90,8,tomato.yaml,6\n";
+  CHECK(Folder(far, organs_with(99, 0, "")).error() ==
+        "DIR/plants.csv:3: the plant at (1e12, 0) lies more than 1e+08 m from the origin, as canopy stand "
+        "never "
+        "places one");
+}
+
 TEST_CASE("numbers that are not finite, or do not fit, are refused with their place") {
   CHECK(Folder(kPlants, organs_with(1, 12, "nan")).error() ==
         "DIR/organs.csv:3: column 13 'nan' is not a finite number");

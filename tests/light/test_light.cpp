@@ -76,6 +76,15 @@ TEST_CASE("periodic bounds: a leaf across the tile's edge, or shading tiles away
     }
 }
 
+TEST_CASE("a periodic tile far smaller than the stand is refused, one near its size is not") {
+  // A disk 0.3 m across: a 1 mm tile puts 300 x 300 copies of it over each point, a 10 cm tile 3 x 3.
+  const Stand s = one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at({0, 0, 0.4f}, 0.15f, 0));
+  PrototypeLibrary lib;
+  CHECK_THROWS_WITH_AS(light::compute_light(s, lib, beams({{90, 0}}, {0, 0, 0.001, 0.001}, true, 0.01)),
+                       doctest::Contains("--tile: a tile of 0.001 x 0.001 m"), std::invalid_argument);
+  CHECK_NOTHROW(light::compute_light(s, lib, beams({{90, 0}}, {0, 0, 0.1, 0.1}, true, 0.01)));
+}
+
 TEST_CASE("turbid medium: horizontal leaves intercept 1 - (1 - G a / (A cos theta))^N with G = cos theta") {
   const Stand s = turbid("turbid_horizontal");
   PrototypeLibrary lib;

@@ -44,6 +44,10 @@ check "derive --steps 1e3 reads as 1000" "0" "$rc"
 # Range errors say their bound as written, on one line (NonNegativeNumber printed 309 digits).
 run stand "$g" --jitter -1 -o s
 check "--jitter -1" "105:canopy: error: --jitter: needs a finite number of at least 0, got -1:1" "$rc:$(err):$(lines)"
+run stand "$g" --clearance 1e38 -o s
+check "--clearance 1e38" "105:canopy: error: --clearance: needs a number from 0 to 100, got 1e38" "$rc:$(err)"
+run stand "$g" --resolve-clearance 1e100 -o s
+check "--resolve-clearance 1e100" "105:canopy: error: --resolve-clearance: needs a number from 0 to 100, got 1e100" "$rc:$(err)"
 run stand "$g" --lod 17 -o s
 check "--lod 17" "105:canopy: error: --lod: needs a whole number from 1 to 16, got 17" "$rc:$(err)"
 run stand "$g" --rows 0 -o s
