@@ -6,6 +6,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <unordered_set>
 #include <vector>
 
 namespace canopy {
@@ -101,12 +102,10 @@ bool YamlSource::boolean(const YAML::Node& node, std::string_view what) const {
 
 void YamlSource::check_map(const YAML::Node& node, std::string_view what, std::string_view allowed) const {
   if (!node.IsMap()) fail_at(at(node), "{} must be a map", what);
-  std::vector<std::string> seen;
+  std::unordered_set<std::string> seen;  // a set: a list made 100,000 constants take 14 s
   for (const auto& kv : node) {
     const std::string key = kv.first.Scalar();
-    for (const auto& k : seen)
-      if (k == key) fail_at(at(kv.first), "key '{}' appears twice in {}", key, what);
-    seen.push_back(key);
+    if (!seen.insert(key).second) fail_at(at(kv.first), "key '{}' appears twice in {}", key, what);
     if (allowed.empty()) continue;  // any key
     bool ok = false;
     std::size_t i = 0;

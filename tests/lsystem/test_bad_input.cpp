@@ -89,6 +89,14 @@ TEST_CASE("stochastic groups must sum to 1") {
         "test.yaml:3:15: a probability must lie in [0, 1], got 1.5");
 }
 
+TEST_CASE("a key twice in a map, productions of one group apart") {
+  CHECK(error_of("axiom: A\nconstants:\n  a: 1\n  b: 2\n  a: 3\n") ==
+        "test.yaml:5:3: key 'a' appears twice in constants");
+  // Productions of one predecessor, context and condition form one group wherever they stand.
+  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 0.5\"\n  - \"B -> C\"\n  - \"A -> C : 0.4\"\n") ==
+        "test.yaml:3:15: the probabilities of the group '<A>:' sum to 0.9, not 1");
+}
+
 TEST_CASE("invalid UTF-8 in module names (found by the fuzzer)") {
   CHECK(error_of("axiom: F\xc2\xc2\n") == "test.yaml:1:9: invalid UTF-8 in a module name");
   CHECK(error_of("axiom: F\xc3\xa9\n") == "");  // a well-formed two-byte name is fine
