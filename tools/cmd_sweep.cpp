@@ -126,6 +126,17 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       steps.push_back(static_cast<int>(s));
     }
   }
+  // The runs asked for, bounded before any list of them is made (a few ranges multiply fast).
+  const double runs = static_cast<double>(rows_sp.size()) *
+                      static_cast<double>(dens.empty() ? plant_sp.size() : dens.size()) *
+                      static_cast<double>(steps.size()) * static_cast<double>(o.seeds);
+  if (runs > kMaxSweepRuns)
+    throw std::invalid_argument(fmt::format(
+        "sweep: {} row spacings x {} {} x {} ages x {} seeds = {:.4g} runs, more than the {:g} a sweep "
+        "takes: "
+        "give shorter lists or fewer seeds",
+        rows_sp.size(), dens.empty() ? plant_sp.size() : dens.size(),
+        dens.empty() ? "plant spacings" : "densities", steps.size(), o.seeds, runs, kMaxSweepRuns));
   (void)o.detect.request();
   check_sweep_light(o);
   const LoadOptions load = [&] {
@@ -303,7 +314,8 @@ Command add_sweep(CLI::App& root) {
   app->add_option("--row-spacing", o->row_spacing, "Metres between rows: list or range (default 1.0)");
   app->add_option("--density", o->density,
                   "Plants per m2 (list or range) instead of --plant-spacing: plant spacing = 1 / (density x "
-                  "row spacing)");
+                  "row spacing)")
+      ->excludes("--plant-spacing");
   app->add_option("--steps", o->steps,
                   "Plant ages in derivation steps: list or range (default: the grammar's)");
   app->add_option("--seeds", o->seeds, "Stand seeds per cell, 1..N (default 3)")

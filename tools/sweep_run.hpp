@@ -13,6 +13,9 @@
 
 namespace canopy::cli {
 
+/// The runs (cells x seeds) a sweep takes at most: a million runs of the smallest stand are days.
+inline constexpr double kMaxSweepRuns = 1e6;
+
 /// Every option of `canopy sweep` (the command line's names).
 struct SweepOptions {
   std::string grammar, out = "sweep";

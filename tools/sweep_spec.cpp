@@ -46,9 +46,11 @@ std::vector<double> parse_number_list(const std::string& name, const std::string
       throw std::invalid_argument(fmt::format("{}: the step of '{}' must be positive", name, text));
     if (b < a)
       throw std::invalid_argument(fmt::format("{}: the range '{}' is empty (stop below start)", name, text));
-    const auto n = static_cast<long>(std::floor((b - a) / step + 1e-9));
-    if (n > 100000)
+    // n + 1 values: start, then n steps (checked as a double, before a cast could overflow).
+    const double last = std::floor((b - a) / step + 1e-9);
+    if (!(last < 100000))
       throw std::invalid_argument(fmt::format("{}: the range '{}' has more than 100,000 values", name, text));
+    const auto n = static_cast<long>(last);
     for (long k = 0; k <= n; ++k) out.push_back(a + static_cast<double>(k) * step);
   } else if (!text.empty()) {
     for (const std::string& item : split_list(text)) {

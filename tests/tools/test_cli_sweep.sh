@@ -140,6 +140,13 @@ bad "fractional steps" "10.5 is not a whole number" --steps 10.5
 bad "sun below the horizon" "elevation -5 is not above the horizon" --sun -5,10
 bad "sun not a pair" "'60' is not ELEVATION,AZIMUTH" --sun 60
 bad "light error" "\-\-light-error: 0 is not in" --light-error 0
+bad "range of 100,001 values" "has more than 100,000 values" --plant-spacing 1:100001:1
+bad "range past a long" "has more than 100,000 values" --plant-spacing 0:1e30:1
+bad "too many runs" "= 1.001e+13 runs, more than the 1e+06 a sweep takes" --plant-spacing 0.001:100:0.001 --steps 0:1000:1 --seeds 100000
+# --density and --plant-spacing are two ways to say one thing: refused together (the parser's).
+rm -rf "$tmp/bad"
+"$canopy" sweep "$g" --density 5 --plant-spacing 0.3 -o "$tmp/bad" >"$tmp/o" 2>"$tmp/e"
+check "density with plant spacing" "108 1 0" "$? $(grep -c 'excludes' "$tmp/e") $([ -e "$tmp/bad" ] && echo 1 || echo 0)"
 
 help=$("$canopy" sweep --help)
 for opt in --plant-spacing --row-spacing --density --steps --seeds --rows --per-row --jitter --retry-failed --no-resolve --sun --sky \
