@@ -276,7 +276,14 @@ class Loader {
     s.jitter = positive("jitter");
     if (node["random_rotation"]) s.random_rotation = src_.boolean(node["random_rotation"], "random_rotation");
     if (node["seed"]) s.seed = static_cast<std::uint64_t>(src_.integer(node["seed"], "seed", 0, INT64_MAX));
-    if (node["positions"]) s.positions = src_.string(node["positions"], "positions");
+    if (node["positions"]) {
+      s.positions = src_.string(node["positions"], "positions");
+      for (const char* row : {"rows", "per_row", "row_spacing", "plant_spacing", "double_rows", "jitter",
+                              "random_rotation", "seed"})
+        if (node[row])
+          fail_at(src_.at(node[row]), "stand: '{}' is a row layout's, and this stand is a positions file's",
+                  row);
+    }
     g_.stand = s;
   }
 

@@ -124,6 +124,10 @@ StandPlan plan_stand(StandOptions& o) {
   StandPlan plan;
   plan.request = grow_request(o.grammar, o.set, o.steps, o.lod, o.detect.threads, o.max_modules);
   plan.grammar = load_grammar(o.grammar, plan.request.load);
+  // The grammar's stand entry may name a positions file (relative to the grammar's folder): the
+  // layout when the command line gives none.
+  if (o.positions.empty() && !any_row_option(o.rows) && plan.grammar.stand && plan.grammar.stand->positions)
+    o.positions = (std::filesystem::path(o.grammar).parent_path() / *plan.grammar.stand->positions).string();
   if (!o.positions.empty()) {
     plan.request.plants = read_positions(o.positions, o.any_grammar_path);
     plan.request.relative_to = std::filesystem::path(o.positions).parent_path().string();

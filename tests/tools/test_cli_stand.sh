@@ -163,6 +163,19 @@ check "leaf level rows have no organs" "0" "$(tail -n +2 "$tmp/lf/contacts.csv" 
 # The grammar's stand entry applies without layout options.
 "$canopy" stand "$src/grammars/sunflower.yaml" --steps 4 -o "$tmp/g" >/dev/null 2>&1
 check "grammar stand entry" "41" "$(wc -l < "$tmp/g/plants.csv" | tr -d ' ')"
+# A stand entry naming a positions file (beside the grammar) lays the plants out from it; row
+# options on the command line take its place; row keys beside it are refused.
+mkdir -p "$tmp/gp"
+printf 'x,y,rotation,seed\n0,0,0,1\n2,0,0,2\n0,3,0,3\n' > "$tmp/gp/pp.csv"
+sed 's/^stand:.*/stand: {positions: pp.csv}/' "$src/grammars/sunflower.yaml" > "$tmp/gp/g.yaml"
+"$canopy" stand "$tmp/gp/g.yaml" --steps 4 -o "$tmp/gpo" >/dev/null 2>&1
+check "grammar positions entry" "0 0,0;2,0;0,3" \
+  "$? $(tail -n +2 "$tmp/gpo/plants.csv" | cut -d, -f2,3 | paste -sd';')"
+"$canopy" stand "$tmp/gp/g.yaml" --steps 4 --rows 1 --per-row 2 -o "$tmp/gpo" >/dev/null 2>&1
+check "row options over a positions entry" "3" "$(wc -l < "$tmp/gpo/plants.csv" | tr -d ' ')"
+sed 's/^stand:.*/stand: {positions: pp.csv, rows: 2}/' "$src/grammars/sunflower.yaml" > "$tmp/gp/g2.yaml"
+"$canopy" stand "$tmp/gp/g2.yaml" --steps 4 -o "$tmp/gpo2" >/dev/null 2>"$tmp/e"
+check "positions entry with rows refused" "1 1" "$? $(grep -c "'rows' is a row layout's" "$tmp/e")"
 # A row option changes only that field of the grammar's stand entry (tomato.yaml: one row of 100,
 # 1.0 m x 0.4 m, random rotation, 2 cm jitter, seed 1): the plants of the entry with every field
 # written out but that one, and report.json and the terminal say where each value came from.
