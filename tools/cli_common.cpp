@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+
 namespace canopy::cli {
 
 namespace {
@@ -21,6 +23,13 @@ std::optional<double> finite_number(const std::string& in) {
 CLI::Validator whole_in(long long lo, long long hi) {
   return CLI::Validator(
       [lo, hi](std::string& in) {
+        // Digits alone are read exactly (as a double, numbers near 2^63 rounded past the bound).
+        long long whole = 0;
+        const char* end = in.data() + in.size();
+        if (const auto [at, ec] = std::from_chars(in.data(), end, whole); ec == std::errc() && at == end)
+          return whole >= lo && whole <= hi
+                     ? std::string()
+                     : fmt::format("needs a whole number from {} to {}, got {}", lo, hi, in);
         const auto v = finite_number(in);
         // 2^63 and up do not fit a long long, though INT64_MAX as a double rounds up to 2^63.
         if (!v || *v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi) ||

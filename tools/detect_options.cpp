@@ -51,6 +51,9 @@ DetectRequest DetectOptions::request() const {
     if (!used || scale < 0 || !(v > 0))
       throw std::invalid_argument(
           fmt::format("--max-device-memory: '{}' is not a size such as 512M or 2G", max_device_memory));
+    if (!(v * scale <= 1e15))  // a petabyte: more than any device holds, and a size_t still
+      throw std::invalid_argument(
+          fmt::format("--max-device-memory: '{}' is more than 1e15 bytes (1000000G)", max_device_memory));
     r.max_device_bytes = static_cast<std::size_t>(v * scale);
   }
   return r;

@@ -48,6 +48,12 @@ run stand "$g" --clearance 1e38 -o s
 check "--clearance 1e38" "105:canopy: error: --clearance: needs a number from 0 to 100, got 1e38" "$rc:$(err)"
 run stand "$g" --resolve-clearance 1e100 -o s
 check "--resolve-clearance 1e100" "105:canopy: error: --resolve-clearance: needs a number from 0 to 100, got 1e100" "$rc:$(err)"
+run derive "$g" --max-modules 9223372036854775807 --stats
+check "--max-modules at the top of its range" "0" "$rc"
+run derive "$g" --max-modules 9223372036854775808 --stats
+check "--max-modules past its range" "105:canopy: error: --max-modules: needs a whole number from 1 to 9223372036854775807, got 9223372036854775808" "$rc:$(err)"
+run stand "$g" --max-device-memory 99999999999999999999G -o s
+check "--max-device-memory past a petabyte" "2:canopy: error: --max-device-memory: '99999999999999999999G' is more than 1e15 bytes (1000000G)" "$rc:$(err)"
 run stand "$g" --lod 17 -o s
 check "--lod 17" "105:canopy: error: --lod: needs a whole number from 1 to 16, got 17" "$rc:$(err)"
 run stand "$g" --rows 0 -o s
