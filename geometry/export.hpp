@@ -56,6 +56,10 @@ void write_glb_compact(const ExportScope& scope, PrototypeLibrary& lib, ChunkWri
 /// Throws std::invalid_argument naming a plant of the scope with more organs than the compact glb
 /// numbers (kCompactOrgansPerPlant), so a run can refuse before its work rather than at export.
 void check_glb_compact(const ExportScope& scope);
+/// Throws, as the export would, when stand.glb (the default form) cannot fit the GLB format's
+/// 4 GiB: checked on a lower bound of its binary chunk (every organ's vertices with position,
+/// normal and id, its indices at 16 bits), so a run can refuse before its work.
+void check_glb_fits(const Stand& stand, PrototypeLibrary& lib);
 void write_organs_csv(const ExportScope& scope, PrototypeLibrary& lib, ChunkWriter& out);
 void write_plants_csv(const ExportScope& scope, ChunkWriter& out);
 

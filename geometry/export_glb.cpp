@@ -211,6 +211,21 @@ void write_glb(const ExportScope& e, PrototypeLibrary& lib, ChunkWriter& out) {
   glb::write_document(e, out, counts, doc);
 }
 
+void check_glb_fits(const Stand& s, PrototypeLibrary& lib) {
+  std::uint64_t bin = 0;
+  for (const OrganRecord& r : s.organs) {
+    const PrototypeMesh& m = lib.get(r);
+    bin += 28 * static_cast<std::uint64_t>(m.positions.size()) +
+           2 * static_cast<std::uint64_t>(m.indices.size());
+  }
+  if (bin > 0xffffffffULL)
+    throw std::runtime_error(
+        fmt::format("stand.glb would exceed 4 GiB, the GLB limit (at least {:.1f} GB for these {} plants); "
+                    "export fewer plants, "
+                    "use --glb-instancing, or obj/ply",
+                    static_cast<double>(bin) / 1e9, s.plant_count()));
+}
+
 void write_glb(const Stand& s, PrototypeLibrary& lib, AtomicFile& out) {
   ChunkFile f(out);
   write_glb(ExportScope::whole(s), lib, f);

@@ -251,8 +251,10 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const auto t_wait = std::chrono::steady_clock::now();
   if (starting.valid()) backend = starting.get();
   rep.timings["startup"] = std::chrono::duration<double>(t_grow - t_start).count() + seconds_since(t_wait);
-  if (glb.compact && formats.count("glb"))
-    check_glb_compact(ExportScope::whole(stand));  // refuse before the work
+  // Refused before the work: a compact glb's plant with too many organs, a glb past 4 GiB.
+  PrototypeLibrary lib;
+  if (glb.compact && formats.count("glb")) check_glb_compact(ExportScope::whole(stand));
+  if (!glb.compact && !glb.instancing && formats.count("glb")) check_glb_fits(stand, lib);
   std::optional<SpacingChoice> target;
   if (o.target.set()) {
     const auto t_target = std::chrono::steady_clock::now();
@@ -318,7 +320,6 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     });
   }
 
-  PrototypeLibrary lib;
   const auto t_export = std::chrono::steady_clock::now();
   StagePeak export_peak;
   write_stand_files(stand, lib, formats, glb, files);

@@ -317,6 +317,11 @@ for f in organs.csv contacts.csv contacts_after.csv stand.obj; do
   check "resolve-stats same $f" "same" "$(cmp -s "$tmp/heap_small/$f" "$tmp/stats/$f" && echo same || echo different)"
 done
 
+# A glb past the format's 4 GiB is refused before detection, not at the export.
+"$canopy" stand "$src/grammars/tomato.yaml" --rows 15 --per-row 100 --lod 16 -o "$tmp/big" >/dev/null 2>"$tmp/e"
+check "glb past 4 GiB refused early" "1 1 0 absent" \
+  "$? $(grep -c 'stand.glb would exceed 4 GiB' "$tmp/e") $(grep -c detection "$tmp/e") $([ -e "$tmp/big" ] && echo present || echo absent)"
+
 # --backend cuda on a machine without a GPU: an error of the run (exit 1), nothing written.
 if [ ! -e /dev/nvidiactl ]; then
   "$canopy" stand "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --steps 10 --backend cuda -o "$tmp/nogpu" \
