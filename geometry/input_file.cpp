@@ -77,6 +77,7 @@ bool InputFile::next_line(std::string& line, std::size_t max_line) {
     if (nl != std::string::npos) {
       if (nl - at_ > max_line) break;
       line.assign(buf_, at_, nl - at_);
+      if (!line.empty() && line.back() == '\r') line.pop_back();  // a file with Windows line ends
       at_ = nl + 1;
       ++line_;
       return true;
@@ -86,6 +87,7 @@ bool InputFile::next_line(std::string& line, std::size_t max_line) {
     if (!fill()) {
       if (at_ == buf_.size()) return false;
       line.assign(buf_, at_, std::string::npos);  // a last line without '\n'
+      if (!line.empty() && line.back() == '\r') line.pop_back();
       at_ = buf_.size();
       ++line_;
       return true;

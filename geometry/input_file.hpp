@@ -53,7 +53,7 @@ class InputFile {
   InputFile(const InputFile&) = delete;
   InputFile& operator=(const InputFile&) = delete;
 
-  /// The next line, without its '\n'; false at the end of the file. `max_line` bounds it.
+  /// The next line, without its '\n' (or "\r\n"); false at the end of the file. `max_line` bounds it.
   bool next_line(std::string& line, std::size_t max_line = kMaxCsvLineBytes);
   /// Lines read so far (the number of the line next_line gave last).
   int line_number() const { return line_; }

@@ -248,11 +248,22 @@ class Loader {
     if (const auto& d = node["direction"]) {
       if (!d.IsSequence() || d.size() != 3)
         fail_at(src_.at(d), "tropism direction must be a list of 3 numbers");
-      for (int i = 0; i < 3; ++i) t.direction[i] = src_.number(d[i], "a tropism direction component");
+      for (int i = 0; i < 3; ++i) {
+        t.direction[i] = src_.number(d[i], "a tropism direction component");
+        // A direction is normalised in float: components past 1e6 could overflow it.
+        if (!(std::abs(t.direction[i]) <= 1e6))
+          fail_at(src_.at(d[i]), "a tropism direction component must lie in -1e6..1e6, got {}",
+                  t.direction[i]);
+      }
       const double n = std::hypot(t.direction[0], t.direction[1], t.direction[2]);
       if (n == 0) fail_at(src_.at(d), "tropism direction must not be zero");
     }
-    if (const auto& s = node["strength"]) t.strength = src_.number(s, "tropism strength");
+    if (const auto& s = node["strength"]) {
+      t.strength = src_.number(s, "tropism strength");
+      // The bend per step is strength x |H x T| radians: past 100 it only spins the heading.
+      if (!(std::abs(t.strength) <= 100))
+        fail_at(src_.at(s), "tropism strength must lie in -100..100, got {}", t.strength);
+    }
     g_.tropism = t;
   }
 

@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 
+#include <cstring>
+
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -87,6 +89,19 @@ TEST_CASE("a stand folder as canopy writes it reads back") {
   CHECK(s.plants[1].first_organ == 3);
   CHECK(s.plants[1].first_leaf == 1);
   CHECK(s.plants[1].leaf_count == 1);
+}
+
+TEST_CASE("tables saved with Windows line ends read back the same") {
+  const auto crlf = [](std::string t) {
+    for (std::size_t at = 0; (at = t.find('\n', at)) != std::string::npos; at += 2) t.insert(at, "\r");
+    return t;
+  };
+  const Folder unix_ends(kPlants, organs_with(99, 0, "")),
+      windows_ends(crlf(kPlants), crlf(organs_with(99, 0, "")));
+  REQUIRE(windows_ends.error() == "");
+  const Stand a = read_stand(unix_ends.dir), b = read_stand(windows_ends.dir);
+  CHECK(a.organ_count() == b.organ_count());
+  CHECK(std::memcmp(a.transforms.data(), b.transforms.data(), a.transforms.size() * sizeof(Affine3f)) == 0);
 }
 
 TEST_CASE("an empty organs.csv or plants.csv is not a stand of plants without organs") {

@@ -89,6 +89,14 @@ TEST_CASE("stochastic groups must sum to 1") {
         "test.yaml:3:15: a probability must lie in [0, 1], got 1.5");
 }
 
+TEST_CASE("tropism within its bounds") {
+  CHECK(error_of("axiom: F\ntropism: {direction: [0, 0, -1], strength: 1e300}\n") ==
+        "test.yaml:2:44: tropism strength must lie in -100..100, got 1e+300");
+  CHECK(error_of("axiom: F\ntropism: {direction: [1e300, 0, -1], strength: 0.2}\n") ==
+        "test.yaml:2:23: a tropism direction component must lie in -1e6..1e6, got 1e+300");
+  CHECK(error_of("axiom: F\ntropism: {direction: [0, 0, -1], strength: -0.5}\n") == "");
+}
+
 TEST_CASE("a key twice in a map, productions of one group apart") {
   CHECK(error_of("axiom: A\nconstants:\n  a: 1\n  b: 2\n  a: 3\n") ==
         "test.yaml:5:3: key 'a' appears twice in constants");
