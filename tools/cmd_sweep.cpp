@@ -167,7 +167,11 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   if (me == 0) {
     nlohmann::json a;
     try {
-      std::filesystem::create_directories(o.out);
+      std::error_code made;
+      std::filesystem::create_directories(o.out, made);
+      if (made || !std::filesystem::is_directory(o.out))
+        throw std::runtime_error(fmt::format("cannot create the sweep folder {}: {}", o.out,
+                                             made ? made.message() : "it exists and is not a folder"));
       std::vector<RunRow> done = read_runs(runs_path);
       check_sweep_settings(o.out, sweep_settings(o), done.size());
       if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
