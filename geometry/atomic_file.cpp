@@ -10,6 +10,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <filesystem>
+#include <new>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -49,12 +50,15 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   // What is there and is not a regular file is written in place (a FIFO, /dev/stdout, a device:
   // a rename would replace it); a folder is refused; a symbolic link's target is replaced, the
   // link stays.
+  // Names under /dev and /proc (/dev/stdout, /proc/self/fd/1) are written in place too, whatever
+  // they lead to: /dev/stdout redirected to a file is that file, to be appended to, not replaced.
   struct stat st;
   if (::stat(path_.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) throw std::runtime_error(fmt::format("cannot write {}: it is a folder", path_));
-    if (!S_ISREG(st.st_mode)) {
+    if (!S_ISREG(st.st_mode) || path_.starts_with("/dev/") || path_.starts_with("/proc/")) {
       direct_ = true;
-      f_ = std::fopen(path_.c_str(), "wb");
+      // Appended to: /dev/stdout opened anew would otherwise cut a file the shell appends to.
+      f_ = std::fopen(path_.c_str(), "ab");
       if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", path_, std::strerror(errno)));
       return;
     }
@@ -188,8 +192,18 @@ OutputSet::OutputSet(const std::string& dir, std::vector<std::string> replaces, 
 
 AtomicFile& OutputSet::open(const std::string& name) {
   names_.reserve(names_.size() + 1);
+  files_.reserve(files_.size() + 1);
+  std::string final_path = folder_.dir() + "/" + name;
   if (const int fd = folder_.unnamed_file(); fd >= 0) {
-    files_.push_back(std::make_unique<AtomicFile>(fd, folder_.dir() + "/" + name, AtomicFile::Unnamed{}));
+    // Nothing may throw between the open and the file's owner: the constructor owns fd even when
+    // it throws; only the allocation before it can fail without it.
+    std::unique_ptr<AtomicFile> f(new (std::nothrow)
+                                      AtomicFile(fd, std::move(final_path), AtomicFile::Unnamed{}));
+    if (!f) {
+      ::close(fd);
+      throw std::bad_alloc();
+    }
+    files_.push_back(std::move(f));  // room reserved above
   } else {
     // Under the registry's lock: once a signal's clean-up holds it, no file appears in the
     // staging folder behind its back.

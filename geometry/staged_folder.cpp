@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <dirent.h>
 #include <fcntl.h>
@@ -88,6 +89,25 @@ std::string staging_tag(std::string_view rest) {
 }
 
 std::atomic<unsigned> g_staging_count{0};
+
+/// The process's umask, read once from /proc/self/status (umask() would set it to read it, which
+/// other threads could see); -1 where it cannot be read.
+int process_umask() {
+  static const int mask = [] {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    if (!f) return -1;
+    char line[256];
+    int m = -1;
+    while (std::fgets(line, sizeof line, f))
+      if (std::strncmp(line, "Umask:", 6) == 0) {
+        m = static_cast<int>(std::strtol(line + 6, nullptr, 8));
+        break;
+      }
+    std::fclose(f);
+    return m;
+  }();
+  return mask;
+}
 
 }  // namespace
 
@@ -242,11 +262,24 @@ int StagedFolder::unnamed_file() const {
   // goes through /proc/self/fd, which must be there.
   const int fd = ::open(base_.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
   if (fd < 0) return -1;
-  if (::access(fmt::format("/proc/self/fd/{}", fd).c_str(), F_OK) != 0) {
+  char proc[48];
+  std::snprintf(proc, sizeof proc, "/proc/self/fd/%d", fd);
+  if (::access(proc, F_OK) != 0) {
     ::close(fd);
     return -1;
   }
+  // Kernels before 6.0 left the umask off O_TMPFILE files on file systems without POSIX ACLs:
+  // the mode a named file would get (0666 less the umask) is set here.
+  if (const int mask = process_umask(); mask >= 0) ::fchmod(fd, 0666 & ~static_cast<mode_t>(mask));
   return fd;
+}
+
+bool StagedFolder::superseded_at(int dirfd, const std::string& name) const {
+  struct stat now;
+  if (::fstatat(dirfd, name.c_str(), &now, AT_SYMLINK_NOFOLLOW) != 0) return false;
+  for (const auto& [n, ino] : superseded_)
+    if (n == name) return ino == now.st_ino;
+  return false;
 }
 
 bool StagedFolder::unnamed_file_possible() const {
@@ -354,7 +387,14 @@ StagedFolder::Committed StagedFolder::commit() {
     std::vector<std::string> moved;
     bool stuck = false;  // an entry of the user's that could be neither linked nor moved
     for (const std::string& n : names_in(dir_)) {
-      if (exists_at(new_fd.fd, n)) continue;  // the new set's file of that name wins
+      if (exists_at(new_fd.fd, n)) {
+        // The new set's file of that name wins: the earlier one (this very file, should another
+        // be saved under its name before the swap) goes with the earlier folder.
+        struct stat was;
+        if (!is_folder_at(old_fd.fd, n) && ::fstatat(old_fd.fd, n.c_str(), &was, AT_SYMLINK_NOFOLLOW) == 0)
+          superseded_.emplace_back(n, was.st_ino);
+        continue;
+      }
       if (is_folder_at(old_fd.fd, n)) {
         if (::renameat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str()) == 0) moved.push_back(n);
         else stuck = true;
@@ -414,8 +454,7 @@ StagedFolder::Committed StagedFolder::commit() {
     for (const std::string& n : names_in(old_path)) {
       if (is_folder_at(old_fd.fd, n)) continue;
       if ((earlier_set_ && std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end()) ||
-          is_dead_temporary(n) || same_file_at(old_fd.fd, new_fd.fd, n) ||
-          (exists_at(new_fd.fd, n) && !is_folder_at(new_fd.fd, n)))
+          is_dead_temporary(n) || same_file_at(old_fd.fd, new_fd.fd, n) || superseded_at(old_fd.fd, n))
         ::unlinkat(old_fd.fd, n.c_str(), 0);
     }
     if (::rmdir(old_path.c_str()) != 0)

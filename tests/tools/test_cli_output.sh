@@ -66,10 +66,19 @@ set -m
 sums() { (cd "$1" && md5sum organs.csv plants.csv report.json stand.glb); }
 before=$(sums "$out")
 long=(--rows 3 --per-row 100 --backend cpu --formats glb,obj,ply)
+# Waits until process $1 writes its files (it then holds unnamed files: its open files read
+# "(deleted)"), at most 20 s.
+writing() {
+  for _ in $(seq 1 4000); do
+    ls -l /proc/$1/fd 2>/dev/null | grep -q '(deleted)' && return 0
+    sleep 0.005
+  done
+  return 1
+}
 for sig in INT TERM; do
   "$canopy" stand "$g" "${long[@]}" -o "$out" >/dev/null 2>"$tmp/e$sig" &
   pid=$!
-  sleep 0.1
+  writing $pid
   kill -$sig $pid
   wait $pid
   rc=$?
@@ -83,14 +92,7 @@ done
 for when in start export; do
   "$canopy" stand "$g" "${long[@]}" -o "$out" >/dev/null 2>&1 &
   pid=$!
-  if [ $when = start ]; then
-    sleep 0.1
-  else
-    for _ in $(seq 1 1000); do
-      ls -l /proc/$pid/fd 2>/dev/null | grep -q '(deleted)' && break
-      sleep 0.005
-    done
-  fi
+  if [ $when = start ]; then sleep 0.1; else writing $pid; fi
   kill -KILL $pid 2>/dev/null
   wait $pid 2>/dev/null
   rc=$?
@@ -128,7 +130,7 @@ check "after the kills: nothing beside" "0" "$(hidden "$tmp")"
 # stay unless the run writes them again.
 mkdir -p "$tmp/mine" && echo "my mesh" > "$tmp/mine/stand.obj" && echo "notes" > "$tmp/mine/notes.txt"
 "$canopy" stand "$g" "${small[@]}" -o "$tmp/mine" >/dev/null 2>&1
-check "user's folder: their stand.obj kept" "my mesh|notes" "$(cat "$tmp/mine/stand.obj")|$(cat "$tmp/mine/notes.txt")"
+check "user's folder: their stand.obj kept" "0 my mesh|notes" "$? $(cat "$tmp/mine/stand.obj")|$(cat "$tmp/mine/notes.txt")"
 # canopy detect --csv: never over the stand it reads; a link stays a link, a FIFO a FIFO.
 sums_nr=$(md5sum < "$tmp/mine/organs.csv")
 "$canopy" detect "$tmp/mine" --csv "$tmp/mine/organs.csv" >/dev/null 2>"$tmp/e"
@@ -137,9 +139,13 @@ echo old > "$tmp/target.csv" && ln -sf target.csv "$tmp/link.csv"
 "$canopy" detect "$tmp/mine" --csv "$tmp/link.csv" >/dev/null 2>&1
 check "detect --csv through a link" "link organ_a,organ_b,plant_a,plant_b,level" \
   "$([ -L "$tmp/link.csv" ] && echo link || echo replaced) $(head -1 "$tmp/target.csv")"
+echo "before" > "$tmp/log.txt"
+"$canopy" detect "$tmp/mine" --csv /dev/stdout >>"$tmp/log.txt" 2>/dev/null
+check "detect --csv /dev/stdout appends to the redirected file" "before 1" \
+  "$(head -1 "$tmp/log.txt") $(grep -c '^organ_a,organ_b,plant_a,plant_b,level$' "$tmp/log.txt")"
 mkfifo "$tmp/fifo"
-cat "$tmp/fifo" > "$tmp/from_fifo" &
-"$canopy" detect "$tmp/mine" --csv "$tmp/fifo" >/dev/null 2>&1
+timeout 20 cat "$tmp/fifo" > "$tmp/from_fifo" &
+timeout 20 "$canopy" detect "$tmp/mine" --csv "$tmp/fifo" >/dev/null 2>&1
 wait $!
 check "detect --csv into a FIFO" "fifo organ_a,organ_b,plant_a,plant_b,level" \
   "$([ -p "$tmp/fifo" ] && echo fifo || echo replaced) $(head -1 "$tmp/from_fifo")"
