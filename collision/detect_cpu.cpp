@@ -13,12 +13,11 @@
 #include "collision/lanes/obb_lanes.hpp"
 #include "collision/lanes/organ_rows.hpp"
 #include "geometry/clock.hpp"
+#include "geometry/first_exception.hpp"
 #include "geometry/organ_mesh.hpp"
 
 #include <fmt/format.h>
 #include <omp.h>
-
-#include <exception>
 
 #include <algorithm>
 #include <atomic>
@@ -242,14 +241,12 @@ class CpuBackend : public DetectionBackend {
         budget ? static_cast<std::size_t>(static_cast<double>(budget) / kBytesPerContact) : SIZE_MAX;
     std::atomic<std::size_t> listed{0}, done{0};
     std::atomic<bool> over{false};
-    // An exception may not leave the parallel region (std::terminate): the first one met (out
-    // of memory inside one huge plant pair, which the budget sees only after it) is kept, the
-    // other threads stop, and it is thrown after the region.
-    std::exception_ptr failed;
-    std::atomic<bool> failing{false};
+    // The first exception met (out of memory inside one huge plant pair, which the budget sees
+    // only after it) stops the other threads and is thrown after the region.
+    FirstException failed;
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
     for (std::size_t w = 0; w < work.size(); ++w) {
-      if (over.load(std::memory_order_relaxed) || failing.load(std::memory_order_relaxed)) continue;
+      if (over.load(std::memory_order_relaxed) || failed.caught()) continue;
       try {
         const auto [p, q] = work[w];
         if (w + 2 < work.size() && work[w + 2].q != q) prefetch_plant(s, m, work[w + 2].q);
@@ -304,10 +301,10 @@ class CpuBackend : public DetectionBackend {
           if (listed.fetch_add(grown, std::memory_order_relaxed) + grown > most)
             over.store(true, std::memory_order_relaxed);
       } catch (...) {
-        if (!failing.exchange(true)) failed = std::current_exception();
+        failed.keep();
       }
     }
-    if (failed) std::rethrow_exception(failed);
+    failed.rethrow();
     if (over)
       throw std::runtime_error(
           fmt::format("detection stopped after {} of {} plant pairs: its contact lists (over {} pairs) "
@@ -358,15 +355,14 @@ class CpuBackend : public DetectionBackend {
     // The tree's OBBs are the poses' own (make_obb at the stand's transforms) where it was fit with
     // no clearance: the poses take them rather than make them again.
     const Obb* tree_obbs = m.config.clearance == 0 ? m.obbs.data() : nullptr;
-    std::exception_ptr exact_failed;  // as in the pass above
-    std::atomic<bool> exact_failing{false};
+    FirstException exact_failed;  // as in the pass above
 #pragma omp parallel num_threads(threads)
     {
       ExactScratch& scratch = scratch_[static_cast<std::size_t>(omp_get_thread_num())];
       scratch.poses.forget();
 #pragma omp for schedule(dynamic, 64)
       for (std::size_t i = 0; i < organ.size(); ++i) {
-        if (exact_failing.load(std::memory_order_relaxed)) continue;
+        if (exact_failed.caught()) continue;
         try {
           // The records and transforms of the pair twelve on (both lines a 48-byte transform may
           // span): the pass before has pushed them out of the caches, and a pair's first organs
@@ -384,11 +380,11 @@ class CpuBackend : public DetectionBackend {
                        ? 1
                        : 0;
         } catch (...) {
-          if (!exact_failing.exchange(true)) exact_failed = std::current_exception();
+          exact_failed.keep();
         }
       }
     }
-    if (exact_failed) std::rethrow_exception(exact_failed);
+    exact_failed.rethrow();
     out.pairs = keep_hits(organ, hit);
     std::sort(out.pairs.begin(), out.pairs.end());
     out.counts[3] = count_pairs(out.pairs);

@@ -1,6 +1,7 @@
 #include "distributed/mpi_files.hpp"
 
 #include "distributed/mpi_comm.hpp"
+#include "geometry/first_exception.hpp"
 #include "geometry/run_files.hpp"
 
 #include <fmt/format.h>
@@ -123,7 +124,7 @@ void SharedFile::plants(std::size_t n, std::size_t batch,
   if (!spill) throw std::runtime_error(fmt::format("cannot write {}", spill_path));
   for (std::size_t w0 = 0; w0 < batches; w0 += wave) {
     std::vector<std::string> text(std::min(wave, batches - w0));
-    std::exception_ptr failed;  // thrown after the region: an exception must not leave it
+    FirstException failed;  // thrown after the region: an exception must not leave it
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t b = 0; b < text.size(); ++b) try {
         for (std::size_t i = (w0 + b) * batch; i < std::min(n, (w0 + b + 1) * batch); ++i) {
@@ -132,10 +133,9 @@ void SharedFile::plants(std::size_t n, std::size_t batch,
           sizes[i] = text[b].size() - before;
         }
       } catch (...) {
-#pragma omp critical(canopy_spill_plants)
-        if (!failed) failed = std::current_exception();
+        failed.keep();
       }
-    if (failed) std::rethrow_exception(failed);
+    failed.rethrow();
     for (const std::string& t : text)
       if (std::fwrite(t.data(), 1, t.size(), spill.get()) != t.size())
         throw std::runtime_error(fmt::format("cannot write {} bytes to {}", t.size(), spill_path));

@@ -47,17 +47,16 @@ std::string link_target(const std::string& path) {
 }  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  // What is there and is not a regular file is written in place (a FIFO, /dev/stdout, a device:
-  // a rename would replace it); a folder is refused; a symbolic link's target is replaced, the
-  // link stays.
-  // Names under /dev and /proc (/dev/stdout, /proc/self/fd/1) are written in place too, whatever
-  // they lead to: /dev/stdout redirected to a file is that file, to be appended to, not replaced.
+  // What is there and is not a regular file (a FIFO, a device), and any name under /dev or /proc
+  // whatever it leads to (/dev/stdout redirected to a file is that file), is appended to in place:
+  // a rename would replace it. A folder is refused; a symbolic link's target is replaced, the link
+  // stays.
   struct stat st;
   if (::stat(path_.c_str(), &st) == 0) {
     if (S_ISDIR(st.st_mode)) throw std::runtime_error(fmt::format("cannot write {}: it is a folder", path_));
     if (!S_ISREG(st.st_mode) || path_.starts_with("/dev/") || path_.starts_with("/proc/")) {
       direct_ = true;
-      // Appended to: /dev/stdout opened anew would otherwise cut a file the shell appends to.
+      // Appended: /dev/stdout opened anew with "wb" would cut a file the shell appends to.
       f_ = std::fopen(path_.c_str(), "ab");
       if (!f_) throw std::runtime_error(fmt::format("cannot write {}: {}", path_, std::strerror(errno)));
       return;

@@ -1,12 +1,12 @@
 #include "geometry/organ_mesh.hpp"
 
 #include "geometry/atomic_file.hpp"
+#include "geometry/first_exception.hpp"
 
 #include <omp.h>
 
 #include <array>
 #include <chrono>
-#include <exception>
 #include <future>
 
 namespace canopy {
@@ -65,22 +65,20 @@ void write_ordered(AtomicFile& out, std::size_t n, std::size_t chunk,
   for (std::size_t first = 0; first < chunks; first += wave, cur ^= 1) {
     const std::size_t last = std::min(chunks, first + wave);
     std::vector<std::string>& b = bufs[cur];
-    // An exception must not leave an OpenMP region (that ends the program): the first is kept
-    // and thrown once the wave is done.
-    std::exception_ptr failed;
+    // The first exception is thrown once the wave is done (geometry/first_exception.hpp).
+    FirstException failed;
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::size_t c = first; c < last; ++c) {
       try {
         b[c - first].clear();
         write(c * chunk, std::min(n, (c + 1) * chunk), b[c - first]);
       } catch (...) {
-#pragma omp critical(canopy_write_ordered)
-        if (!failed) failed = std::current_exception();
+        failed.keep();
       }
     }
-    if (failed) {
+    if (failed.caught()) {
       if (writing.valid()) writing.wait();
-      std::rethrow_exception(failed);
+      failed.rethrow();
     }
     wait(writing, out);
     writing = std::async(std::launch::async, [&out, &b, count = last - first] {

@@ -90,6 +90,12 @@ std::string staging_tag(std::string_view rest) {
 
 std::atomic<unsigned> g_staging_count{0};
 
+/// "/proc/self/fd/N": the path through which an open file, unnamed ones too, can be linked.
+struct ProcFd {
+  char path[32];
+  explicit ProcFd(int fd) { std::snprintf(path, sizeof path, "/proc/self/fd/%d", fd); }
+};
+
 /// The process's umask, read once from /proc/self/status (umask() would set it to read it, which
 /// other threads could see); -1 where it cannot be read.
 int process_umask() {
@@ -262,9 +268,7 @@ int StagedFolder::unnamed_file() const {
   // goes through /proc/self/fd, which must be there.
   const int fd = ::open(base_.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
   if (fd < 0) return -1;
-  char proc[48];
-  std::snprintf(proc, sizeof proc, "/proc/self/fd/%d", fd);
-  if (::access(proc, F_OK) != 0) {
+  if (::access(ProcFd(fd).path, F_OK) != 0) {
     ::close(fd);
     return -1;
   }
@@ -272,14 +276,6 @@ int StagedFolder::unnamed_file() const {
   // the mode a named file would get (0666 less the umask) is set here.
   if (const int mask = process_umask(); mask >= 0) ::fchmod(fd, 0666 & ~static_cast<mode_t>(mask));
   return fd;
-}
-
-bool StagedFolder::superseded_at(int dirfd, const std::string& name) const {
-  struct stat now;
-  if (::fstatat(dirfd, name.c_str(), &now, AT_SYMLINK_NOFOLLOW) != 0) return false;
-  for (const auto& [n, ino] : superseded_)
-    if (n == name) return ino == now.st_ino;
-  return false;
 }
 
 bool StagedFolder::unnamed_file_possible() const {
@@ -293,8 +289,7 @@ void StagedFolder::link_in(int fd, const std::string& name) {
   make();
   const auto lock = lock_run_paths();  // no file appears behind a signal's clean-up
   const std::string to = staging_ + "/" + name;
-  if (::linkat(AT_FDCWD, fmt::format("/proc/self/fd/{}", fd).c_str(), AT_FDCWD, to.c_str(),
-               AT_SYMLINK_FOLLOW) != 0)
+  if (::linkat(AT_FDCWD, ProcFd(fd).path, AT_FDCWD, to.c_str(), AT_SYMLINK_FOLLOW) != 0)
     throw std::runtime_error(fmt::format("cannot write {}: {}", to, why()));
 }
 
@@ -369,6 +364,21 @@ StagedFolder::Committed StagedFolder::commit() {
   struct stat st;
   const bool earlier = ::lstat(dir_.c_str(), &st) == 0;
   std::string old_path;  // where the earlier folder is once the new one is in place
+  // A folder without the marker holds no earlier set: files of those names are the user's.
+  bool earlier_set = true;
+  const auto in_earlier_set = [&](const std::string& n) {
+    return earlier_set && std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end();
+  };
+  // The earlier files the new set writes again, by inode: a file saved under such a name
+  // between the listing and the swap is not one of them.
+  std::vector<std::pair<std::string, ino_t>> superseded;
+  const auto still_superseded = [&](int dirfd, const std::string& n) {
+    struct stat now;
+    if (::fstatat(dirfd, n.c_str(), &now, AT_SYMLINK_NOFOLLOW) != 0) return false;
+    for (const auto& [name, ino] : superseded)
+      if (name == n) return ino == now.st_ino;
+    return false;
+  };
   if (!earlier) {
     if (::rename(staging_.c_str(), dir_.c_str()) != 0)
       throw std::runtime_error(fmt::format("cannot move {} to {}: {}", staging_, dir_, why()));
@@ -380,19 +390,17 @@ StagedFolder::Committed StagedFolder::commit() {
     Fd old_fd(dir_), new_fd(staging_);
     if (old_fd.fd < 0 || new_fd.fd < 0)
       throw std::runtime_error(fmt::format("cannot open {} or {}: {}", dir_, staging_, why()));
-    // A folder without the marker holds no earlier set: files of those names are the user's.
-    earlier_set_ = marker_.empty() || exists_at(old_fd.fd, marker_);
+    earlier_set = marker_.empty() || exists_at(old_fd.fd, marker_);
     // The earlier folder's other entries carried across: files linked (present in both until the
     // swap), folders moved (absent from the earlier folder for the instant before the swap).
     std::vector<std::string> moved;
     bool stuck = false;  // an entry of the user's that could be neither linked nor moved
     for (const std::string& n : names_in(dir_)) {
       if (exists_at(new_fd.fd, n)) {
-        // The new set's file of that name wins: the earlier one (this very file, should another
-        // be saved under its name before the swap) goes with the earlier folder.
+        // The new set's file of that name wins: the earlier one goes with the earlier folder.
         struct stat was;
         if (!is_folder_at(old_fd.fd, n) && ::fstatat(old_fd.fd, n.c_str(), &was, AT_SYMLINK_NOFOLLOW) == 0)
-          superseded_.emplace_back(n, was.st_ino);
+          superseded.emplace_back(n, was.st_ino);
         continue;
       }
       if (is_folder_at(old_fd.fd, n)) {
@@ -400,7 +408,7 @@ StagedFolder::Committed StagedFolder::commit() {
         else stuck = true;
         continue;
       }
-      if (earlier_set_ && std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end()) {
+      if (in_earlier_set(n)) {
         out.dropped.push_back(n);
         continue;
       }
@@ -453,8 +461,8 @@ StagedFolder::Committed StagedFolder::commit() {
     Fd old_fd(old_path), new_fd(dir_);
     for (const std::string& n : names_in(old_path)) {
       if (is_folder_at(old_fd.fd, n)) continue;
-      if ((earlier_set_ && std::find(replaces_.begin(), replaces_.end(), n) != replaces_.end()) ||
-          is_dead_temporary(n) || same_file_at(old_fd.fd, new_fd.fd, n) || superseded_at(old_fd.fd, n))
+      if (in_earlier_set(n) || is_dead_temporary(n) || same_file_at(old_fd.fd, new_fd.fd, n) ||
+          still_superseded(old_fd.fd, n))
         ::unlinkat(old_fd.fd, n.c_str(), 0);
     }
     if (::rmdir(old_path.c_str()) != 0)

@@ -17,11 +17,9 @@
 /// folder that cannot be carried across keeps the earlier folder in place under its staging name, and
 /// commit() says so.
 #include <cstdint>
-#include <sys/types.h>
 #include <fstream>
 #include <functional>
 #include <string>
-#include <utility>
 #include <vector>
 
 namespace canopy {
@@ -83,14 +81,10 @@ class StagedFolder {
  private:
   void open(const std::string& dir);
   void remove_leftovers();
-  /// Whether `name` in folder `dirfd` is still the earlier file the new set wrote again.
-  bool superseded_at(int dirfd, const std::string& name) const;
   std::string dir_, named_, base_, parent_, name_, staging_;
   bool made_ = false;
   std::vector<std::string> replaces_;
   std::string marker_;
-  bool earlier_set_ = true;
-  std::vector<std::pair<std::string, ino_t>> superseded_;  // earlier files the new set writes again
   std::uint64_t staging_id_ = 0;
   std::vector<std::uint64_t> created_ids_;
   std::vector<std::string> created_;
