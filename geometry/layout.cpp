@@ -224,6 +224,7 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
       return v;
     };
     PlantPlacement p;
+    p.source_line = line_no;
     p.x = coordinate("x");
     p.y = coordinate("y");
     p.rotation_deg = number("rotation");

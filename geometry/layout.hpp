@@ -35,6 +35,7 @@ struct PlantPlacement {
   std::uint64_t seed = 0;
   std::string grammar;       // empty: the stand's grammar
   std::optional<int> steps;  // empty: the grammar's (or the command line's) steps
+  int source_line = 0;       // its line in the positions file (0: not read from one), for messages
 };
 
 struct RowLayout {

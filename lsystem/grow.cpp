@@ -57,6 +57,18 @@ std::string grammar_path(const GrowRequest& req, const std::string& name) {
   return name;
 }
 
+/// The grammar a placement names; a file that cannot be opened is reported with the positions
+/// file's line that names it.
+Grammar load_placement_grammar(const GrowRequest& req, const PlantPlacement& pl) {
+  try {
+    return load_grammar(grammar_path(req, pl.grammar), req.load);
+  } catch (const GrammarFileError& e) {
+    if (pl.grammar.empty() || pl.source_line <= 0 || req.positions_file.empty()) throw;
+    throw GrammarFileError(e.pos(), fmt::format("{} (named by {}:{}, column 'grammar': '{}')", e.message(),
+                                                req.positions_file, pl.source_line, pl.grammar));
+  }
+}
+
 /// Derives, interprets and runs the turtle for plant `index` (its `steps` already chosen).
 void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& req, std::size_t index,
                 GrownPlant& out) {
@@ -88,7 +100,7 @@ void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& r
 void check_stand_fits(const GrowRequest& req, std::size_t plants) {
   if (req.plants.empty()) return;
   const PlantPlacement& pl = req.plants[0];
-  const Grammar g = load_grammar(grammar_path(req, pl.grammar), req.load);
+  const Grammar g = load_placement_grammar(req, pl);
   GrownPlant first;
   first.steps = pl.steps.value_or(req.steps.value_or(g.steps));
   grow_plant(g, pl, req, 0, first);
@@ -102,11 +114,12 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   // Each grammar file is loaded once.
   std::map<std::string, int> index;
   std::vector<std::unique_ptr<Grammar>> grammars;
-  auto grammar_index = [&](const std::string& name) {
+  auto grammar_index = [&](const PlantPlacement& pl) {
+    const std::string& name = pl.grammar;
     const std::string path = grammar_path(req, name);
     auto it = index.find(path);
     if (it != index.end()) return it->second;
-    grammars.push_back(std::make_unique<Grammar>(load_grammar(path, req.load)));
+    grammars.push_back(std::make_unique<Grammar>(load_placement_grammar(req, pl)));
     stand.grammars.push_back(name.empty() ? req.grammar : name);
     return index[path] = static_cast<int>(grammars.size() - 1);
   };
@@ -136,7 +149,7 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   }
   std::vector<GrownPlant> grown(n);
   for (std::size_t p = 0; p < n; ++p) {
-    grown[p].grammar = grammar_index(req.plants[p].grammar);
+    grown[p].grammar = grammar_index(req.plants[p]);
     const Grammar& g = *grammars[static_cast<std::size_t>(grown[p].grammar)];
     grown[p].steps = req.plants[p].steps.value_or(req.steps.value_or(g.steps));
   }

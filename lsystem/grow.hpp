@@ -17,6 +17,7 @@ struct GrowRequest {
   std::string grammar;                 // the stand's grammar file
   std::vector<PlantPlacement> plants;  // a placement may name another grammar (positions files)
   std::string relative_to;             // folder for relative grammar paths in placements
+  std::string positions_file;          // the file the placements were read from, for messages
   LoadOptions load;                    // --set overrides, applied to every grammar
   std::optional<int> steps;            // overrides every grammar's steps (a placement's own wins)
   int lod = 2;

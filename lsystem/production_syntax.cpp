@@ -40,6 +40,23 @@ bool valid_utf8(std::string_view s) {
   return true;
 }
 
+std::optional<UnusableCharacter> unusable_character(std::string_view s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const std::size_t n = std::min(utf8_length(c), s.size() - i);
+    char32_t cp = n == 1 ? c : c & (0x7f >> n);
+    for (std::size_t k = 1; k < n; ++k) cp = (cp << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3f);
+    if (cp < 0x20 || (cp >= 0x7f && cp <= 0x9f)) return UnusableCharacter{i, cp, "a control character"};
+    // Spaces a word processor or web page puts in for a plain one; and the byte-order mark.
+    if (cp == 0xa0 || cp == 0x1680 || (cp >= 0x2000 && cp <= 0x200b) || cp == 0x2028 || cp == 0x2029 ||
+        cp == 0x202f || cp == 0x205f || cp == 0x3000 || cp == 0xfeff)
+      return UnusableCharacter{
+          i, cp, "a no-break, zero-width or other Unicode space; separate modules with plain spaces"};
+    i += n;
+  }
+  return std::nullopt;
+}
+
 namespace {
 
 /// Offsets of every top-level occurrence of `tok` in [from, to), checking parentheses.
@@ -140,6 +157,9 @@ std::vector<RawModule> ModuleLexer::lex(std::string_view text, const SourcePos& 
     m.offset = i;
     const std::size_t len = name_length(text, i);
     if (!valid_utf8(text.substr(i, len))) fail_at(at(i), "invalid UTF-8 in a module name");
+    if (const auto bad = unusable_character(text.substr(i, len)))
+      fail_at(at(i + bad->offset), "character U+{:04X} cannot be part of a module name: {}",
+              static_cast<std::uint32_t>(bad->code_point), bad->what);
     m.name = std::string(text.substr(i, len));
     i += len;
     std::size_t j = i;

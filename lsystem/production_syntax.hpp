@@ -4,6 +4,7 @@
 #include "lsystem/error.hpp"
 
 #include <string>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -53,6 +54,17 @@ std::size_t utf8_length(unsigned char c);
 
 /// Whether `s` is well-formed UTF-8.
 bool valid_utf8(std::string_view s);
+
+/// A character no module name may hold: its byte offset, its code point and what it is.
+struct UnusableCharacter {
+  std::size_t offset = 0;
+  char32_t code_point = 0;
+  const char* what = "";
+};
+/// The first control character (C0 other than the white space lexers skip, DEL, C1) or
+/// look-alike space (no-break, zero-width, ideographic, the byte-order mark) in well-formed
+/// UTF-8 `s`; none: a usable name.
+std::optional<UnusableCharacter> unusable_character(std::string_view s);
 
 std::string_view trim(std::string_view s);
 /// Offset of the first non-blank character of `s` within `s`.

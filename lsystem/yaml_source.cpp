@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/depthguard.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <unordered_set>
@@ -13,7 +14,19 @@ namespace canopy {
 
 std::string read_grammar_file(const std::string& path) {
   try {
-    return read_input_file(path, "grammar file", kMaxGrammarBytes);
+    std::string text = read_input_file(path, "grammar file", kMaxGrammarBytes);
+    // YAML cannot hold a NUL byte (yaml-cpp would report something else, somewhere else): a
+    // binary or corrupt file, named at the byte.
+    if (text.starts_with("\xFF\xFE") || text.starts_with("\xFE\xFF"))
+      throw GrammarError({path, 1, 1}, "the file is UTF-16 text; a grammar is UTF-8 (save it as UTF-8)");
+    if (const std::size_t nul = text.find('\0'); nul != std::string::npos) {
+      const std::size_t line_start = text.rfind('\n', nul) + 1;  // npos + 1 == 0
+      const int line = 1 + static_cast<int>(std::count(
+                               text.begin(), text.begin() + static_cast<std::ptrdiff_t>(nul), '\n'));
+      throw GrammarError({path, line, static_cast<int>(nul - line_start) + 1},
+                         "a NUL byte: a grammar is UTF-8 text (is this a binary or corrupt file?)");
+    }
+    return text;
   } catch (const FileNotFound&) {
     throw GrammarFileError({path, 0, 0}, "cannot open the grammar file");
   } catch (const InputRefused& e) {

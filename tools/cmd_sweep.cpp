@@ -338,15 +338,23 @@ Command add_sweep(CLI::App& root) {
                   "Module cap per plant derivation (a run past it is recorded as failed)")
       ->transform(whole_in(1, INT64_MAX));
   app->add_flag("--retry-failed", o->retry_failed, "On resuming, run again the runs recorded as failed");
-  app->add_option("--sun", o->sun,
-                  "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
-  app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");
-  app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")
-      ->check(CLI::Range(1, 10000));
-  app->add_option("--light-error", o->light_error,
-                  "Light columns: standard error asked of the stand's fractions (default 0.002)")
-      ->check(kFinite);
-  app->add_flag("--no-light", o->no_light, "Leave the light columns empty");
+  CLI::Option* sun = app->add_option(
+      "--sun", o->sun, "Light columns: the direct beam ELEVATION,AZIMUTH in degrees (default 60,180)");
+  CLI::Option* sky = app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");
+  CLI::Option* sky_directions =
+      app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")
+          ->check(CLI::Range(1, 10000));
+  CLI::Option* light_error =
+      app->add_option("--light-error", o->light_error,
+                      "Light columns: standard error asked of the stand's fractions (default 0.002)")
+          ->check(kFinite);
+  // The light options say how the light columns are made: with --no-light there are none, and a
+  // setting given there would be read (and its mistakes kept) by no one.
+  app->add_flag("--no-light", o->no_light, "Leave the light columns empty")
+      ->excludes(sun)
+      ->excludes(sky)
+      ->excludes(sky_directions)
+      ->excludes(light_error);
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
   return {app, [o]() {

@@ -131,6 +131,7 @@ StandPlan plan_stand(StandOptions& o) {
   if (!o.positions.empty()) {
     plan.request.plants = read_positions(o.positions, o.any_grammar_path);
     plan.request.relative_to = std::filesystem::path(o.positions).parent_path().string();
+    plan.request.positions_file = o.positions;
   } else {
     // Command-line row options override the grammar's stand entry field by field.
     LayoutChoice choice = choose_layout(o.rows, plan.grammar.stand);

@@ -158,6 +158,12 @@ std::vector<RunRow> read_runs(const std::string& path) {
             "{}:{}: column '{}' needs a number, got '{}' (not a runs.csv written by canopy sweep; "
             "use another -o)",
             path, in.line_number(), column, f[i]));
+      // A resumed sweep reruns what failed and keeps what is ok: no third kind of run.
+      if (column == "status" && f[i] != "ok" && f[i] != "failed")
+        throw std::invalid_argument(fmt::format(
+            "{}:{}: column 'status' needs 'ok' or 'failed', got '{}' (not a runs.csv written by canopy "
+            "sweep; use another -o)",
+            path, in.line_number(), f[i]));
       r[column] = f[i];
     }
     rows.push_back(std::move(r));

@@ -1,6 +1,10 @@
 // Every bad input gives one located line: file:line:column: what was expected.
 #include "helpers.hpp"
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
 using namespace canopy;
 using namespace canopy::test;
 
@@ -108,6 +112,42 @@ TEST_CASE("a key twice in a map, productions of one group apart") {
 TEST_CASE("invalid UTF-8 in module names (found by the fuzzer)") {
   CHECK(error_of("axiom: F\xc2\xc2\n") == "test.yaml:1:9: invalid UTF-8 in a module name");
   CHECK(error_of("axiom: F\xc3\xa9\n") == "");  // a well-formed two-byte name is fine
+}
+
+TEST_CASE("control characters and look-alike spaces are not module names") {
+  // Each was a module of its own, printed back as it came (a no-break space pasted from a web
+  // page looks like the plain space that separates modules).
+  CHECK(error_of("axiom: \"A\\u0001B\"\n") ==
+        "test.yaml:1:10: character U+0001 cannot be part of a module name: a control character");
+  CHECK(error_of("axiom: A\x7f\n") ==
+        "test.yaml:1:9: character U+007F cannot be part of a module name: a control character");
+  CHECK(error_of("axiom: A\xc2\xa0" "B\n") ==
+        "test.yaml:1:9: character U+00A0 cannot be part of a module name: a no-break, zero-width or other "
+        "Unicode space; separate modules with plain spaces");
+  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B\xe2\x80\x8b\"\n").starts_with(
+      "test.yaml:3:12: character U+200B cannot be part of a module name"));
+  CHECK(error_of("axiom: A\t B \xc3\xa9 \xe2\x88\x9a\n") == "");  // tabs separate; other letters are modules
+}
+
+TEST_CASE("a grammar file with a NUL byte or in UTF-16 is named at the byte, before YAML reads it") {
+  const auto path = std::filesystem::temp_directory_path() / "canopy_test_bad_input_nul.yaml";
+  auto load = [&](const std::string& bytes) {
+    {
+      std::ofstream f(path, std::ios::binary);
+      f << bytes;
+    }
+    const std::string e = grammar_error([&] { load_grammar(path.string()); });
+    return e.substr(std::min(e.size(), path.string().size()));
+  };
+  // yaml-cpp said "unknown escape character: B" for the first, and read past the second.
+  CHECK(load(std::string("axiom: A\0B\n", 11)) ==
+        ":1:9: a NUL byte: a grammar is UTF-8 text (is this a binary or corrupt file?)");
+  CHECK(load(std::string("name: t\n# note\0\naxiom: A\n", 25)) ==
+        ":2:7: a NUL byte: a grammar is UTF-8 text (is this a binary or corrupt file?)");
+  CHECK(load(std::string("\xff\xfe" "a\0x\0", 6)) ==
+        ":1:1: the file is UTF-16 text; a grammar is UTF-8 (save it as UTF-8)");
+  CHECK(load("axiom: AB\n") == "");
+  std::filesystem::remove(path);
 }
 
 TEST_CASE("production syntax") {

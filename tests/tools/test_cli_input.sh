@@ -108,6 +108,8 @@ p 'x,y,rotation,seed,grammar\n0,0,0,1,../not_a_grammar\n' --any-grammar-path
 check "a YAML map that is not a grammar" "1:canopy: error: pos/../not_a_grammar:1:1: not a grammar file (none of its keys is a grammar's, such as axiom or productions)" "$rc:$(err)"
 p 'x,y,rotation,seed,grammar,steps\n0,0,0,1,sub/t.yaml,4\n0.5,0,0,2,,4\n'
 check "a grammar below the folder" "0" "$rc"
+p 'x,y,rotation,seed,grammar\n0,0,0,1,\n0.5,0,0,2,sub/none.yaml\n'
+check "a missing grammar named with its positions line" "1:canopy: error: pos/sub/none.yaml: cannot open the grammar file (named by pos/p.csv:3, column 'grammar': 'sub/none.yaml')" "$rc:$(err)"
 p 'x,y,rotation,seed\n0,0,0,1\n'
 mkfifo pos/fifo
 run stand "$g" --positions pos/fifo --steps 4 -o ps
@@ -149,6 +151,12 @@ import csv; r=list(csv.reader(open('sw/runs.csv'))); i=r[0].index('lai'); r[1][i
 csv.writer(open('sw/runs.csv','w'), lineterminator='\n').writerows(r)"
 sweep --seeds 2
 check "runs.csv with a word for a number" "2:canopy: error: sw/runs.csv:2: column 'lai' needs a number, got 'abc' (not a runs.csv written by canopy sweep; use another -o)" "$rc:$(err)"
+cp runs.good sw/runs.csv
+python3 -c "
+import csv; r=list(csv.reader(open('sw/runs.csv'))); i=r[0].index('status'); r[1][i]='maybe'
+csv.writer(open('sw/runs.csv','w'), lineterminator='\n').writerows(r)"
+sweep --seeds 2
+check "runs.csv with another status" "2:canopy: error: sw/runs.csv:2: column 'status' needs 'ok' or 'failed', got 'maybe' (not a runs.csv written by canopy sweep; use another -o)" "$rc:$(err)"
 cp runs.good sw/runs.csv
 # Printing the differing setting recursed once per level: a stack overflow.
 python3 -c "print('{\"rows\": ' + '[' * 100000 + ']' * 100000 + '}')" > sw/sweep.json

@@ -151,6 +151,9 @@ check "sweep -o a file" "1 1" "$? $(grep -c "cannot create the sweep folder $tmp
 rm -rf "$tmp/bad"
 "$canopy" sweep "$g" --density 5 --plant-spacing 0.3 -o "$tmp/bad" >"$tmp/o" 2>"$tmp/e"
 check "density with plant spacing" "108 1 0" "$? $(grep -c 'excludes' "$tmp/e") $([ -e "$tmp/bad" ] && echo 1 || echo 0)"
+# A light setting with --no-light was taken unread, mistakes and all (--sun junk ran).
+"$canopy" sweep "$g" --no-light --sun junk -o "$tmp/bad" >"$tmp/o" 2>"$tmp/e"
+check "light option with --no-light" "108 1 0" "$? $(grep -c 'excludes' "$tmp/e") $([ -e "$tmp/bad" ] && echo 1 || echo 0)"
 
 help=$("$canopy" sweep --help)
 for opt in --plant-spacing --row-spacing --density --steps --seeds --rows --per-row --jitter --retry-failed --no-resolve --sun --sky \
