@@ -68,6 +68,11 @@ OMP_NUM_THREADS=100000 timeout 60 "$canopy" stand "$g" --steps 4 --backend cpu -
 check "OMP_NUM_THREADS=100000" "2:canopy: error: OMP_NUM_THREADS asks for 100000 threads, more than the 1024 canopy runs at most; set it lower or give a thread count" "$rc:$(err)"
 OMP_NUM_THREADS=100000 timeout 60 "$canopy" stand "$g" --steps 4 --backend cpu --threads 2 -o s2 >/dev/null 2>"$tmp/err"; rc=$?
 check "OMP_NUM_THREADS=100000 with --threads 2" "0" "$rc"
+# libgomp only warns about a count it cannot read and runs on every core.
+OMP_NUM_THREADS=abc timeout 60 "$canopy" stand "$g" --steps 4 --backend cpu -o s3 >/dev/null 2>"$tmp/err"; rc=$?
+check "OMP_NUM_THREADS=abc" "2:canopy: error: OMP_NUM_THREADS='abc' is not a thread count (a whole number from 1, or a comma-separated list of them); set it right, unset it or give a thread count" "$rc:$(grep canopy "$tmp/err")"
+OMP_NUM_THREADS=' 2,1 ' timeout 60 "$canopy" stand "$g" --steps 4 --backend cpu -o s3 >/dev/null 2>"$tmp/err"; rc=$?
+check "OMP_NUM_THREADS=' 2,1 '" "0:" "$rc:$(err)"
 
 # Organ parameters: non-finite, negative or past float range are errors at the expression that
 # wrote them (1e300 was written as inf and NaN into organs.csv and the meshes, and exit 0).
