@@ -269,9 +269,12 @@ class Loader {
 
   void read_stand(const YAML::Node& node) {
     if (!node) return;
-    src_.check_map(
-        node, "stand",
-        "rows per_row row_spacing plant_spacing double_rows jitter random_rotation seed positions");
+    // A stand entry is a row layout (these keys) or a positions file, not both.
+    static constexpr const char* kRowKeys[] = {"rows",        "per_row", "row_spacing",     "plant_spacing",
+                                               "double_rows", "jitter",  "random_rotation", "seed"};
+    std::string keys;
+    for (const char* k : kRowKeys) keys += std::string(k) + " ";
+    src_.check_map(node, "stand", keys + "positions");
     StandSpec s;
     auto positive = [&](const char* key) -> std::optional<double> {
       if (!node[key]) return std::nullopt;
@@ -289,8 +292,7 @@ class Loader {
     if (node["seed"]) s.seed = static_cast<std::uint64_t>(src_.integer(node["seed"], "seed", 0, INT64_MAX));
     if (node["positions"]) {
       s.positions = src_.string(node["positions"], "positions");
-      for (const char* row : {"rows", "per_row", "row_spacing", "plant_spacing", "double_rows", "jitter",
-                              "random_rotation", "seed"})
+      for (const char* row : kRowKeys)
         if (node[row])
           fail_at(src_.at(node[row]), "stand: '{}' is a row layout's, and this stand is a positions file's",
                   row);
