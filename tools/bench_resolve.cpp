@@ -16,6 +16,7 @@
 #include "tools/bench_usage.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/heap_pages.hpp"
+#include "tools/process_rerun.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/resolve_stats.hpp"
 
@@ -47,7 +48,7 @@ struct Spacing {
 }  // namespace
 
 int main(int argc, char** argv) {
-  canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "cpu")), argv);
+  canopy::rerun_for_run(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "cpu")), true, argv);
   canopy::keep_freed_memory();
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};

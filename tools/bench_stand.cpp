@@ -13,6 +13,7 @@
 #include "tools/bench_usage.hpp"
 #include "tools/disk_speed.hpp"
 #include "tools/heap_pages.hpp"
+#include "tools/process_rerun.hpp"
 #include "tools/process_end.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/stand_run.hpp"
@@ -192,7 +193,7 @@ int main(int argc, char** argv) {
   }
   if (child >= 0) {
     // As canopy's main: the heap's pages chosen (a rerun of this process) before anything else.
-    use_heap_pages(heap_pages_for(command_runs_on_gpu(argc, argv, "auto")), argv);
+    rerun_for_run(heap_pages_for(command_runs_on_gpu(argc, argv, "auto")), true, argv);
     keep_freed_memory();
     return end_process(run_child(s, child, spawned, result));
   }
@@ -275,8 +276,8 @@ int main(int argc, char** argv) {
         "{:>7.3f} {:>6.3f} "
         "{:>6.2f} {:>6.2f} {:>7.2f} {:>6.2f}\n",
         n, c.wall_s, startup, num(t, "generate"), build, upload, detect, num(t, "resolve"),
-        num(t, "detect_after"), num(t, "export_format"), num(t, "export_write"), commit, end, peak_gb,
-        dev_gb, gbs, gbs / disk.synced_gbs);
+        num(t, "detect_after"), num(t, "export_format"), num(t, "export_write"), commit, end, peak_gb, dev_gb,
+        gbs, gbs / disk.synced_gbs);
     fmt::print("{:>7} peak resident GB by stage: grow {:.2f}, detect {:.2f}, resolve {:.2f}, export {:.2f}\n",
                "", num(m, "generate"), num(m, "detect"), num(m, "resolve"), num(m, "export"));
     fmt::print(

@@ -2,6 +2,7 @@
 #include "lsystem/error.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/heap_pages.hpp"
+#include "tools/process_rerun.hpp"
 #include "tools/process_end.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/signals.hpp"
@@ -21,10 +22,12 @@ int main(int argc, char** argv) {
 #else
   const bool under_mpi = false;
 #endif
-  // Large heap pages where the run uses the GPU (tools/heap_pages.hpp); not under mpirun (a rank
+  // Large heap pages where the run uses the GPU, OpenMP waits asleep for the commands that run
+  // parallel work (tools/process_rerun.hpp); not under mpirun (a rank
   // that runs itself again is not what its launcher started; not tried there).
   if (!under_mpi)
-    canopy::use_heap_pages(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")), argv);
+    canopy::rerun_for_run(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")),
+                          canopy::command_runs_parallel(argc, argv), argv);
   canopy::keep_freed_memory();
   // Before any thread starts: SIGINT and SIGTERM are taken by a thread that cleans up.
   canopy::cli::start_signal_thread();

@@ -1,6 +1,7 @@
 // canopy info: version, the detection backends this build and machine offer, and the renderer.
 #include "tools/cli_common.hpp"
 #include "tools/heap_pages.hpp"
+#include "tools/process_rerun.hpp"
 
 #include <fmt/format.h>
 #ifdef CANOPY_HAVE_CUDA
@@ -22,6 +23,7 @@ Command add_info(CLI::App& root) {
             "canopy {}\nheap pages: {} (tools/heap_pages.hpp; CANOPY_HEAP_PAGES=large|small)\nbackend cpu: "
             "available\n",
             CANOPY_VERSION, heap_pages_in_use());
+        fmt::print("openmp waits: {} (tools/process_rerun.hpp)\n", waits_described());
 #ifdef CANOPY_HAVE_CUDA
         const auto report = cuda::query_devices();
         if (report.devices.empty())

@@ -4,7 +4,8 @@
 /// pairs, each level's groups); in 4 KiB pages that is about 190,000 page faults a run. glibc
 /// (2.35 and later) asks the kernel for transparent huge pages on its heap when the tunable
 /// glibc.malloc.hugetlb=1 is set, which it reads only when a process starts: so a program that
-/// wants it sets the tunable and runs itself again, once, before doing anything else.
+/// wants it sets the tunable and runs itself again, once, before doing anything else
+/// (tools/process_rerun.hpp).
 ///
 /// On a 16-core GPU machine large pages take the planning's page faults from about 190,000 to
 /// a few thousand and make the 10,000-plant CUDA resolution faster (bench_resolve, alternated
@@ -35,7 +36,8 @@ inline HeapPages heap_pages_for(bool gpu_run) {
   return gpu_run ? HeapPages::large : HeapPages::small;
 }
 
-/// Whether this machine can give the heap large pages, the three things use_heap_pages needs:
+/// Whether this machine can give the heap large pages, the three things a rerun for them needs
+/// (tools/process_rerun.hpp):
 /// the kernel offers transparent huge pages (its setting can be read and is not [never]; where
 /// /sys is not mounted it cannot, and the pages stay small), glibc reads the tunable (2.35 and
 /// later), and the program can run itself again (/proc/self/exe). tests/tools/test_cli_stand.sh
@@ -53,28 +55,6 @@ inline bool heap_pages_possible() {
 
 /// Whether the machine has an NVIDIA GPU's device files: what `--backend auto` would run on.
 inline bool gpu_device_files() { return access("/dev/nvidiactl", F_OK) == 0; }
-
-/// With HeapPages::large, runs this program again (the same arguments, the same environment
-/// plus glibc.malloc.hugetlb=1) unless that is set already, the machine cannot give large pages
-/// (heap_pages_possible), the run is under valgrind, or this process is such a rerun. Returns only when it
-/// does not run itself again (the exec failing included: the run goes on in small pages).
-/// Call first thing in main, before threads, MPI or the GPU are started.
-inline void use_heap_pages(HeapPages pages, char** argv) {
-  if (pages != HeapPages::large || std::getenv("CANOPY_HEAP_RERUN")) return;
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  const std::string before = tunables ? tunables : "";
-  if (before.find("glibc.malloc.hugetlb") != std::string::npos) return;
-  if (const char* preload = std::getenv("LD_PRELOAD"); preload && std::strstr(preload, "vgpreload")) return;
-  if (!heap_pages_possible()) return;
-  const std::string after = before.empty() ? "glibc.malloc.hugetlb=1" : before + ":glibc.malloc.hugetlb=1";
-  setenv("GLIBC_TUNABLES", after.c_str(), 1);
-  setenv("CANOPY_HEAP_RERUN", "1", 1);
-  execv("/proc/self/exe", argv);
-  // Not run again: as we were.
-  if (tunables) setenv("GLIBC_TUNABLES", before.c_str(), 1);
-  else unsetenv("GLIBC_TUNABLES");
-  unsetenv("CANOPY_HEAP_RERUN");
-}
 
 /// "large" where this process runs with glibc.malloc.hugetlb=1 on a machine that can give them,
 /// else "small" (for reports).

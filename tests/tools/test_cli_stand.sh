@@ -303,6 +303,32 @@ for f in organs.csv contacts.csv contacts_after.csv stand.obj; do
   check "heap pages same $f" "same" "$(cmp -s "$tmp/heap_small/$f" "$tmp/heap_large/$f" && echo same || echo different)"
 done
 
+# OpenMP waits: a stand run runs itself again with OMP_WAIT_POLICY=passive (tools/process_rerun.hpp)
+# unless the user set a policy or a spin count; the files are the same either way.
+waits_of() {  # ENV...: OMP_WAIT_POLICY in the environment of a running canopy stand, once it has rerun
+  env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u CANOPY_RERUN "$@" "$canopy" stand "$src/grammars/tomato.yaml" \
+    --rows 4 --per-row 100 --steps 14 --no-resolve --backend cpu -o "$tmp/waits" >/dev/null 2>&1 &
+  local pid=$! seen="" i
+  for i in $(seq 200); do
+    local e
+    e=$(tr '\0' '\n' 2>/dev/null <"/proc/$pid/environ") || break
+    [ -n "$e" ] && seen=$e
+    grep -q '^CANOPY_RERUN=' <<<"$e" && break
+    sleep 0.01
+  done
+  wait "$pid"
+  grep '^OMP_WAIT_POLICY=' <<<"$seen" || echo unset
+}
+check "waits passive by default" "OMP_WAIT_POLICY=passive" "$(waits_of)"
+check "waits as the user set them" "OMP_WAIT_POLICY=active" "$(waits_of OMP_WAIT_POLICY=active)"
+check "a spin count is left alone" "unset" "$(waits_of GOMP_SPINCOUNT=1000)"
+check "info says so" "1" "$(env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT "$canopy" info | grep -c '^openmp waits: passive in stand')"
+GOMP_SPINCOUNT=300000 "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation \
+  --seed 4 --steps 14 --formats obj --backend cpu -o "$tmp/spinning" >/dev/null 2>&1
+for f in organs.csv contacts.csv contacts_after.csv stand.obj; do
+  check "waits same $f" "same" "$(cmp -s "$tmp/heap_small/$f" "$tmp/spinning/$f" && echo same || echo different)"
+done
+
 # --resolve-stats: where resolution's time went, on stderr, phase by phase and lane by lane (the
 # library collects, the tool prints); the files those of the same run without it.
 "$canopy" stand "$src/grammars/tomato.yaml" --rows 2 --per-row 3 --jitter 0.02 --random-rotation --seed 4 --steps 14 \
