@@ -23,14 +23,20 @@ std::optional<double> finite_number(const std::string& in) {
 CLI::Validator whole_in(long long lo, long long hi) {
   return CLI::Validator(
       [lo, hi](std::string& in) {
-        // Digits alone are read exactly (as a double, numbers near 2^63 rounded past the bound).
-        long long whole = 0;
+        // Decimal only, rewritten in canonical form: CLI11 reads a leading 0 as octal ("010" was
+        // 8 plants) and takes 0x; digits alone are read exactly (as a double, numbers near 2^63
+        // rounded past the bound).
+        const char* first = in.data() + (in.starts_with('+') ? 1 : 0);
         const char* end = in.data() + in.size();
-        if (const auto [at, ec] = std::from_chars(in.data(), end, whole); ec == std::errc() && at == end)
-          return whole >= lo && whole <= hi
-                     ? std::string()
-                     : fmt::format("needs a whole number from {} to {}, got {}", lo, hi, in);
-        const auto v = finite_number(in);
+        long long whole = 0;
+        if (const auto [at, ec] = std::from_chars(first, end, whole); ec == std::errc() && at == end) {
+          if (whole < lo || whole > hi)
+            return fmt::format("needs a whole number from {} to {}, got {}", lo, hi, in);
+          in = fmt::format("{}", whole);
+          return std::string();
+        }
+        std::optional<double> v;
+        if (double d = 0; std::from_chars(first, end, d).ptr == end && std::isfinite(d)) v = d;
         // 2^63 and up do not fit a long long, though INT64_MAX as a double rounds up to 2^63.
         if (!v || *v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi) ||
             *v >= 0x1p63)

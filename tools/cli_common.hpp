@@ -27,12 +27,13 @@ inline const CLI::Validator kFinite(
     "", "finite");
 
 /// A seed: a whole number in [0, 2^64). CLI11 reads an unsigned option with strtoull, which takes
-/// "-1" and "18446744073709551616" to 2^64 - 1 without a word.
+/// "-1" and "18446744073709551616" to 2^64 - 1 without a word, and a leading 0 as octal: the
+/// value is rewritten in decimal (register with ->transform()).
 inline const CLI::Validator kSeed(
     [](std::string& in) {
       std::string error;
-      if (!parse_seed(in))
-        error.append("needs a whole number from 0 to 18446744073709551615, got ").append(in);
+      if (const auto seed = parse_seed(in)) in = std::to_string(*seed);
+      else error.append("needs a whole number from 0 to 18446744073709551615, got ").append(in);
       return error;
     },
     "", "seed");

@@ -26,7 +26,7 @@ Command add_derive(CLI::App& root) {
   app->add_option("--steps", opt->steps, "Derivation steps (default: the grammar's steps)")
       ->transform(whole_in(0, kMaxSteps));
   app->add_option("--seed", opt->seed, "Seed of the plant's random stream (default: the grammar's seed)")
-      ->check(kSeed);
+      ->transform(kSeed);
   app->add_option("--set", opt->set, "Override a constant: NAME=VALUE (repeatable)");
   app->add_flag("--stats", opt->stats, "Print {\"modules\": N, \"counts\": {...}} instead of the string");
   app->add_flag("--interpreted", opt->interpreted, "Apply the interpretation (homomorphism) before printing");

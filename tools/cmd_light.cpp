@@ -32,7 +32,7 @@ Command add_light(CLI::App& root) {
   app->add_option("--sky", o->sky, "Diffuse sky radiance: soc (standard overcast, default) or uniform");
   app->add_option("--sky-directions", o->sky_directions,
                   "Sky directions of equal solid angle (default 46; 0: no diffuse light, no STAR)")
-      ->check(CLI::Range(0, 10000));
+      ->transform(whole_in(0, 10000));
   app->add_option("--tile", o->tile,
                   "The periodic tile XMIN,YMIN,XMAX,YMAX in metres (default: the row layout's lattice)");
   app->add_flag("--no-periodic", o->no_periodic, "An isolated stand: rays do not wrap around the tile");
@@ -46,7 +46,7 @@ Command add_light(CLI::App& root) {
       ->check(kFinite);
   app->add_option("--layer", o->layer, "Height of the vertical profile's layers, metres (default 0.1)")
       ->check(kFinite);
-  app->add_option("--ray-seed", o->ray_seed, "Seed of the rays' positions (default 1)")->check(kSeed);
+  app->add_option("--ray-seed", o->ray_seed, "Seed of the rays' positions (default 1)")->transform(kSeed);
   app->add_option("--caster", o->caster,
                   "How a pass's rays are answered: trace (Embree, ray by ray), raster (the stand's triangles "
                   "drawn over the rays' cells, on a GPU where --backend finds one, else on the host) or auto "
@@ -55,18 +55,18 @@ Command add_light(CLI::App& root) {
   // From a grammar: canopy stand's options.
   StandOptions& s = o->stand;
   app->add_option("-o,--out", s.out, "From a grammar: the stand's folder (default out)");
-  app->add_option("--steps", s.steps, "From a grammar: derivation steps")->check(CLI::NonNegativeNumber);
+  app->add_option("--steps", s.steps, "From a grammar: derivation steps")->transform(whole_in(0, kMaxSteps));
   app->add_option("--set", s.set, "From a grammar: override a constant NAME=VALUE (repeatable)");
   app->add_option("--lod", s.lod, "From a grammar: level of detail (default 2)")
-      ->check(CLI::Range(1, kMaxLod));
+      ->transform(whole_in(1, kMaxLod));
   app->add_option("--formats", s.formats, "From a grammar: mesh formats of the stand (default glb)");
   app->add_option("--max-modules", s.max_modules, "From a grammar: module cap per plant derivation")
-      ->check(CLI::PositiveNumber);
+      ->transform(whole_in(1, INT64_MAX));
   s.detect.add_to(*app);
   s.resolve.add_to(*app);
   auto* layout = app->add_option_group("layout", "From a grammar: rows or a positions file, as canopy stand");
-  layout->add_option("--rows", s.rows.rows, "Number of rows")->check(CLI::PositiveNumber);
-  layout->add_option("--per-row", s.rows.per_row, "Plants per row")->check(CLI::PositiveNumber);
+  layout->add_option("--rows", s.rows.rows, "Number of rows")->transform(whole_in(1, INT32_MAX));
+  layout->add_option("--per-row", s.rows.per_row, "Plants per row")->transform(whole_in(1, INT32_MAX));
   layout->add_option("--row-spacing", s.rows.row_spacing, "Metres between rows")
       ->check(kFinite)
       ->check(CLI::NonNegativeNumber);
@@ -80,7 +80,7 @@ Command add_light(CLI::App& root) {
       ->check(kFinite)
       ->check(CLI::NonNegativeNumber);
   layout->add_flag("--random-rotation", s.random_rotation, "Turn each plant by a random angle about Z");
-  layout->add_option("--seed", s.rows.seed, "Stand seed")->check(kSeed);
+  layout->add_option("--seed", s.rows.seed, "Stand seed")->transform(kSeed);
   layout->add_option("--positions", s.positions,
                      "CSV with columns x,y,rotation,seed (give --tile for a periodic field)");
   add_target_options(*app, s.target);

@@ -103,7 +103,7 @@ Command add_render(CLI::App& root) {
       ->check(kFinite)
       ->check(at_least(0));
   app->add_flag("--random-rotation", o->random_rotation, "From a grammar: turn each plant at random");
-  app->add_option("--seed", o->rows.seed, "From a grammar: stand seed")->check(kSeed);
+  app->add_option("--seed", o->rows.seed, "From a grammar: stand seed")->transform(kSeed);
   app->add_option("--steps", o->steps, "From a grammar: derivation steps")->transform(whole_in(0, kMaxSteps));
   app->add_option("--set", o->set, "From a grammar: override a constant NAME=VALUE (repeatable)");
   app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")

@@ -67,7 +67,7 @@ Command add_stand(CLI::App& root) {
       ->add_option("--seed", o->rows.seed,
                    "Stand seed: plant seeds, jitter and rotations derive from it (default: the grammar's "
                    "stand entry, else 1)")
-      ->check(kSeed);
+      ->transform(kSeed);
   layout->add_option("--positions", o->positions,
                      "CSV with columns x,y,rotation,seed and optional grammar,steps");
   add_target_options(*app, o->target);

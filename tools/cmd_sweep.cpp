@@ -343,7 +343,7 @@ Command add_sweep(CLI::App& root) {
   CLI::Option* sky = app->add_option("--sky", o->sky, "Light columns: sky radiance soc (default) or uniform");
   CLI::Option* sky_directions =
       app->add_option("--sky-directions", o->sky_directions, "Light columns: sky directions (default 46)")
-          ->check(CLI::Range(1, 10000));
+          ->transform(whole_in(1, 10000));
   CLI::Option* light_error =
       app->add_option("--light-error", o->light_error,
                       "Light columns: standard error asked of the stand's fractions (default 0.002)")

@@ -58,6 +58,19 @@ run stand "$g" --lod 17 -o s
 check "--lod 17" "105:canopy: error: --lod: needs a whole number from 1 to 16, got 17" "$rc:$(err)"
 run stand "$g" --rows 0 -o s
 check "--rows 0" "105:canopy: error: --rows: needs a whole number from 1 to 2147483647, got 0" "$rc:$(err)"
+# Whole numbers are decimal: CLI11 read a leading 0 as octal (010 plants were 8) and took 0x.
+run stand "$g" --steps 4 --rows 1 --per-row 010 --no-resolve --backend cpu -o s
+check "--per-row 010 is ten" "0:1" "$rc:$(grep -c '^stand: 10 plants' "$tmp/out")"
+run derive "$g" --steps 09
+check "--steps 09 is nine" "0" "$rc"
+run derive "$g" --steps 3 --seed 010
+cp "$tmp/out" seed010
+run derive "$g" --steps 3 --seed 10
+check "--seed 010 is ten" "same" "$(cmp -s seed010 "$tmp/out" && echo same || echo different)"
+run stand "$g" --max-modules 0x100000 -o s
+check "--max-modules 0x100000" "105:canopy: error: --max-modules: needs a whole number from 1 to 9223372036854775807, got 0x100000" "$rc:$(err)"
+run light "$g" --sky-directions -1 -o s
+check "light --sky-directions -1" "105:canopy: error: --sky-directions: needs a whole number from 0 to 10000, got -1" "$rc:$(err)"
 run stand "$g" --no-such-option -o s
 check "unknown option: one line" "109:1:1" "$rc:$(grep -c '^canopy: error: ' "$tmp/err"):$(lines)"
 
