@@ -1,6 +1,7 @@
 // canopy sweep: a spacing / density x age experiment, several seeds per cell, one CSV row per
 // run (resumable), and a summary per cell.
 #include "geometry/atomic_file.hpp"
+#include "tools/json_text.hpp"
 #include "geometry/clock.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/stand_metrics.hpp"
@@ -184,7 +185,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     } catch (const std::exception& e) {
       a["error"] = e.what(), a["bad_input"] = false;
     }
-    answer = a.dump();
+    answer = json_text(a);
   }
   if (ranks) answer = ranks->gather(answer)[0];
   {
@@ -256,7 +257,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
         p.row["status"] = "failed";
         p.row["message"] = e.what();
       }
-      mine = nlohmann::json(p.row).dump();
+      mine = json_text(nlohmann::json(p.row));
     }
     const std::vector<std::string> rows = ranks ? ranks->gather(mine) : std::vector<std::string>{mine};
     for (std::size_t k = 0; k < rows.size() && wave + k < pending.size(); ++k) {

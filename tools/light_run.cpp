@@ -1,5 +1,6 @@
 // canopy light's run: the stand (a folder or a grammar), the tile, the light, the files.
 #include "tools/light_run.hpp"
+#include "tools/json_text.hpp"
 
 #include "tools/light_device.hpp"
 
@@ -224,7 +225,7 @@ LightOutcome run_light(LightOptions o, bool print) {
   out.json = light_json(r, stand, o, suns);
   out.csv = light_csv(r, stand);
   OutputSet files(out.dir);
-  files.open("light.json").write(out.json.dump(2) + "\n");
+  files.open("light.json").write(json_text(out.json, 2) + "\n");
   files.open("light.csv").write(out.csv);
   files.commit_all();
   if (print) {

@@ -1,5 +1,6 @@
 // canopy stand's run: grow, detect, resolve, export, report.
 #include "geometry/clock.hpp"
+#include "tools/json_text.hpp"
 #include "geometry/export.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/split_list.hpp"
@@ -341,7 +342,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   // The counts walk every organ's mesh: made once for the file, the summary and the caller.
   const StandCounts counts = stand_counts(stand, lib);
   nlohmann::ordered_json report = report_json(counts, rep);
-  files.open("report.json").write(report.dump(2) + "\n");
+  files.open("report.json").write(json_text(report, 2) + "\n");
   const auto t_commit = std::chrono::steady_clock::now();
   const StagedFolder::Committed committed = files.commit_all();
   const double commit_s = seconds_since(t_commit);

@@ -11,6 +11,7 @@
 // within one hop are planned (they make every decision an own turn depends on); the rest of the
 // halo supplies their candidates' contacts and surroundings.
 #include "resolution/swept_reach.hpp"
+#include "tools/json_text.hpp"
 #include "distributed/mpi_comm.hpp"
 #include "distributed/mpi_files.hpp"
 #include "distributed/region.hpp"
@@ -247,7 +248,7 @@ void run_stand_tiled(StandOptions o) {
     rep.timings["export"] = seconds_since(t_export);
     describe_run(rep, o, ts.formats, ts.plan);
     rep.timings["total"] = seconds_since(ts.start);
-    files.open("report.json").root_text(report_json(counts, rep).dump(2) + "\n");
+    files.open("report.json").root_text(json_text(report_json(counts, rep), 2) + "\n");
   } catch (const std::exception& e) {
     // The files are written collectively: a rank that fails part way cannot wait for the others.
     files.remove_temporaries();

@@ -1,4 +1,5 @@
 #include "tools/sweep_settings.hpp"
+#include "tools/json_text.hpp"
 #include "tools/sweep_table.hpp"
 
 #include "collision/mbvt.hpp"
@@ -55,8 +56,11 @@ void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& 
   const std::string path = (std::filesystem::path(dir) / "sweep.json").string();
   if (finished_runs > 0 && std::filesystem::exists(path)) {
     const nlohmann::ordered_json before = read_sweep_settings(path);
+    // As written (a name's bytes that are not UTF-8 became U+FFFD), so that a resumed sweep
+    // compares like with like.
+    const nlohmann::ordered_json now = nlohmann::ordered_json::parse(json_text(settings));
     std::string differs;
-    for (const auto& [key, value] : settings.items()) {
+    for (const auto& [key, value] : now.items()) {
       if (key == "grammar") continue;  // the file's document is compared, not the path naming it
       // A sweep begun by a canopy of before grammar_digest kept the digest of the file's bytes.
       if (key == "grammar_digest" && before.contains(key) &&
@@ -64,7 +68,7 @@ void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& 
         continue;
       if (!before.contains(key) || before.at(key) != value)
         differs += fmt::format("{}{} {} -> {}", differs.empty() ? "" : "; ", key,
-                               before.contains(key) ? before.at(key).dump() : "(none)", value.dump());
+                               before.contains(key) ? json_text(before.at(key)) : "(none)", json_text(value));
     }
     if (!differs.empty())
       throw std::invalid_argument(
@@ -74,7 +78,7 @@ void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& 
     return;
   }
   AtomicFile out(path);
-  out.write(settings.dump(2) + "\n");
+  out.write(json_text(settings, 2) + "\n");
   out.commit();
 }
 

@@ -71,6 +71,14 @@ run stand "$g" --max-modules 0x100000 -o s
 check "--max-modules 0x100000" "105:canopy: error: --max-modules: needs a whole number from 1 to 9223372036854775807, got 0x100000" "$rc:$(err)"
 run light "$g" --sky-directions -1 -o s
 check "light --sky-directions -1" "105:canopy: error: --sky-directions: needs a whole number from 0 to 10000, got -1" "$rc:$(err)"
+# Linux names are bytes: a folder or grammar named with bytes that are not UTF-8 runs to the end
+# (report.json's dump threw there: "[json.exception.type_error.316] invalid UTF-8 byte").
+cp "$g" "$(printf 'g\xfe.yaml')"
+run stand "$(printf 'g\xfe.yaml')" --steps 4 --rows 1 --per-row 2 --backend cpu -o "$(printf 'bad\xffname')"
+check "a name that is not UTF-8" "0:1" "$rc:$(python3 -c "import json; print(json.load(open(b'bad\xffname/report.json'))['config']['out'] == 'bad\ufffdname' and 1 or 0)")"
+run sweep "$(printf 'g\xfe.yaml')" --steps 4 --rows 1 --per-row 2 --plant-spacing 0.4 --seeds 1 --no-light --backend cpu -o "$(printf 'sw\xff')"
+run sweep "$(printf 'g\xfe.yaml')" --steps 4 --rows 1 --per-row 2 --plant-spacing 0.4 --seeds 2 --no-light --backend cpu -o "$(printf 'sw\xff')"
+check "a sweep so named resumes" "0" "$rc"
 run stand "$g" --no-such-option -o s
 check "unknown option: one line" "109:1:1" "$rc:$(grep -c '^canopy: error: ' "$tmp/err"):$(lines)"
 
