@@ -221,12 +221,14 @@ WriteTimes OutputSet::times() const {
 }
 
 StagedFolder::Committed OutputSet::commit_all() {
-  // Every file complete and on disk before it gets a name, and before the folder is swapped in.
+  // Every file complete and on disk before any gets a name: the staging folder appears only
+  // once all are synced, so that a SIGKILL leaves it behind only in the milliseconds of linking
+  // and swapping (synced one by one between links, the window was the whole sync, a second or
+  // more for a 100-plant stand on the 2-core machine's disk).
+  for (const auto& f : files_)
+    if (f->unnamed()) f->sync();
   for (std::size_t i = 0; i < files_.size(); ++i)
-    if (files_[i]->unnamed()) {
-      files_[i]->sync();
-      folder_.link_in(fileno(files_[i]->get()), names_[i]);
-    }
+    if (files_[i]->unnamed()) folder_.link_in(fileno(files_[i]->get()), names_[i]);
   for (auto& f : files_) f->close();
   for (const auto& f : files_) closed_ += f->times();
   files_.clear();
