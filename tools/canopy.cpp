@@ -6,6 +6,7 @@
 #include "tools/process_end.hpp"
 #include "tools/process_memory.hpp"
 #include "tools/signals.hpp"
+#include "tools/standard_streams.hpp"
 
 #include <fmt/format.h>
 
@@ -17,6 +18,7 @@
 #include <new>
 
 int main(int argc, char** argv) {
+  canopy::cli::hold_standard_descriptors();
 #ifdef CANOPY_WITH_MPI
   const bool under_mpi = canopy::mpi::launched();
 #else
@@ -55,7 +57,7 @@ int main(int argc, char** argv) {
   }
   try {
     for (auto& c : commands)
-      if (c.app->parsed()) return canopy::end_process(c.run(), under_mpi);
+      if (c.app->parsed()) return canopy::end_process(canopy::cli::checked_output(c.run()), under_mpi);
   } catch (const canopy::GrammarError& e) {
     fmt::print(stderr, "canopy: error: {}\n", e.what());
     return 1;

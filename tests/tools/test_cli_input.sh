@@ -79,6 +79,18 @@ check "a name that is not UTF-8" "0:1" "$rc:$(python3 -c "import json; print(jso
 run sweep "$(printf 'g\xfe.yaml')" --steps 4 --rows 1 --per-row 2 --plant-spacing 0.4 --seeds 1 --no-light --backend cpu -o "$(printf 'sw\xff')"
 run sweep "$(printf 'g\xfe.yaml')" --steps 4 --rows 1 --per-row 2 --plant-spacing 0.4 --seeds 2 --no-light --backend cpu -o "$(printf 'sw\xff')"
 check "a sweep so named resumes" "0" "$rc"
+# Standard output is a command's result: one that cannot be written fails the run (detect's table
+# was lost with exit 0); a closed one is not handed to the first file opened.
+if [ -w /dev/full ]; then
+  timeout 60 "$canopy" info >/dev/full 2>"$tmp/err"; rc=$?
+  check "info > /dev/full" "1:canopy: error: writing standard output failed: No space left on device" "$rc:$(err)"
+  timeout 60 "$canopy" derive "$g" --steps 2 >/dev/full 2>"$tmp/err"; rc=$?
+  check "derive > /dev/full" "1:canopy: error: writing standard output failed: No space left on device" "$rc:$(err)"
+fi
+timeout 60 "$canopy" info >&- 2>"$tmp/err"; rc=$?
+check "info >&-" "1:canopy: error: writing standard output failed: Bad file descriptor" "$rc:$(err)"
+timeout 60 "$canopy" stand "$g" --steps 4 --rows 1 --per-row 2 --backend cpu -o closed >&- 2>"$tmp/err"; rc=$?
+check "stand >&-: files as with output" "1:0" "$rc:$(grep -c 'stand:' closed/organs.csv closed/report.json | awk -F: '{s+=$2} END {print s}')"
 run stand "$g" --no-such-option -o s
 check "unknown option: one line" "109:1:1" "$rc:$(grep -c '^canopy: error: ' "$tmp/err"):$(lines)"
 
