@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace canopy {
@@ -269,6 +270,21 @@ double Expr::eval(const double* frame, Rng& rng) const { return run(frame, &rng)
 
 double Expr::eval_constant() const { return run(nullptr, nullptr); }
 
+namespace {
+
+// A NaN or an infinity is an error at the expression's place (docs/grammar.md), found by the check
+// of the result: so the operations that would hide one (a comparison, && || !, min and max, pow
+// with a 0 exponent, rand's bounds) carry it on instead, NaN if either operand is NaN, else inf.
+double bad(double a, double b = 0) {
+  return std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN()
+                                        : std::numeric_limits<double>::infinity();
+}
+double compared(double a, double b, bool answer) {
+  return std::isfinite(a) && std::isfinite(b) ? (answer ? 1 : 0) : bad(a, b);
+}
+
+}  // namespace
+
 double Expr::run(const double* frame, Rng* rng) const {
   if (code_.size() == 1 && code_[0].op == Op::Const) return code_[0].value;
   double st[kMaxStack + 1];
@@ -280,8 +296,8 @@ double Expr::run(const double* frame, Rng* rng) const {
       case Op::Const: st[++sp] = in.value; break;
       case Op::Param: st[++sp] = frame[in.arg]; break;
       case Op::Neg: st[sp] = -st[sp]; break;
-      case Op::Not: st[sp] = st[sp] == 0 ? 1 : 0; break;
-      case Op::ToBool: st[sp] = st[sp] != 0 ? 1 : 0; break;
+      case Op::Not: st[sp] = std::isfinite(st[sp]) ? (st[sp] == 0 ? 1 : 0) : bad(st[sp]); break;
+      case Op::ToBool: st[sp] = std::isfinite(st[sp]) ? (st[sp] != 0 ? 1 : 0) : bad(st[sp]); break;
       case Op::Add:
         --sp;
         st[sp] += st[sp + 1];
@@ -301,39 +317,43 @@ double Expr::run(const double* frame, Rng* rng) const {
         break;
       case Op::Pow:
         --sp;
-        st[sp] = std::pow(st[sp], st[sp + 1]);
+        st[sp] = std::isfinite(st[sp]) && std::isfinite(st[sp + 1]) ? std::pow(st[sp], st[sp + 1])
+                                                                    : bad(st[sp], st[sp + 1]);
         break;
       case Op::Lt:
         --sp;
-        st[sp] = st[sp] < st[sp + 1];
+        st[sp] = compared(st[sp], st[sp + 1], st[sp] < st[sp + 1]);
         break;
       case Op::Gt:
         --sp;
-        st[sp] = st[sp] > st[sp + 1];
+        st[sp] = compared(st[sp], st[sp + 1], st[sp] > st[sp + 1]);
         break;
       case Op::Le:
         --sp;
-        st[sp] = st[sp] <= st[sp + 1];
+        st[sp] = compared(st[sp], st[sp + 1], st[sp] <= st[sp + 1]);
         break;
       case Op::Ge:
         --sp;
-        st[sp] = st[sp] >= st[sp + 1];
+        st[sp] = compared(st[sp], st[sp + 1], st[sp] >= st[sp + 1]);
         break;
       case Op::Eq:
         --sp;
-        st[sp] = st[sp] == st[sp + 1];
+        st[sp] = compared(st[sp], st[sp + 1], st[sp] == st[sp + 1]);
         break;
       case Op::Ne:
         --sp;
-        st[sp] = st[sp] != st[sp + 1];
+        st[sp] = compared(st[sp], st[sp + 1], st[sp] != st[sp + 1]);
         break;
       case Op::AndJump:
-        if (st[sp] == 0) pc = in.arg - 1;
+        if (!std::isfinite(st[sp])) {
+          st[sp] = bad(st[sp]);
+          pc = in.arg - 1;
+        } else if (st[sp] == 0) pc = in.arg - 1;
         else --sp;
         break;
       case Op::OrJump:
-        if (st[sp] != 0) {
-          st[sp] = 1;
+        if (!std::isfinite(st[sp]) || st[sp] != 0) {
+          st[sp] = std::isfinite(st[sp]) ? 1 : bad(st[sp]);
           pc = in.arg - 1;
         } else --sp;
         break;
@@ -350,7 +370,8 @@ double Expr::run(const double* frame, Rng* rng) const {
         double m = st[sp - k + 1];
         for (int j = 1; j < k; ++j) {
           const double v = st[sp - k + 1 + j];
-          m = in.op == Op::Min ? std::fmin(m, v) : std::fmax(m, v);
+          m = std::isfinite(m) && std::isfinite(v) ? (in.op == Op::Min ? std::fmin(m, v) : std::fmax(m, v))
+                                                   : bad(m, v);
         }
         sp -= k - 1;
         st[sp] = m;
@@ -360,7 +381,8 @@ double Expr::run(const double* frame, Rng* rng) const {
         if (!rng)
           fail_at(pos_.shifted(in.column), "rand() cannot be used here (only in productions and the axiom)");
         --sp;
-        st[sp] = rng->uniform(st[sp], st[sp + 1]);
+        st[sp] = std::isfinite(st[sp]) && std::isfinite(st[sp + 1]) ? rng->uniform(st[sp], st[sp + 1])
+                                                                    : bad(st[sp], st[sp + 1]);
         break;
       }
     }

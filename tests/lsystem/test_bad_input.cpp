@@ -84,6 +84,30 @@ TEST_CASE("division by zero, NaN and infinity") {
   CHECK(error_of("angle: .nan\naxiom: F\n") == "test.yaml:1:8: angle must be a finite number, got '.nan'");
 }
 
+TEST_CASE("a NaN or infinity inside an expression is not hidden by what comes after it") {
+  // A comparison, min or max, && || !, pow with exponent 0 gave a finite answer: the condition
+  // sqrt(-1) > 1 was false, min(sqrt(-1), 1) was 1 (found by a probe).
+  const auto cond = [](const std::string& c) {
+    return error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - \"A(x) : " + c + " -> B\"\n");
+  };
+  CHECK(cond("sqrt(x) > 1") == "test.yaml:4:13: 'sqrt(x) > 1' is not a number (NaN)");
+  CHECK(cond("sqrt(x) != sqrt(x)") == "test.yaml:4:13: 'sqrt(x) != sqrt(x)' is not a number (NaN)");
+  CHECK(cond("1e308*10 > x") == "test.yaml:4:13: '1e308*10 > x' is infinite");
+  CHECK(cond("x < 0 || sqrt(x) > 1") == "");  // short-circuit: sqrt(x) is never evaluated
+  CHECK(cond("x > 0 && sqrt(x) > 1") == "");
+  CHECK(cond("x < 0 && !(sqrt(x) > 1)") == "test.yaml:4:13: 'x < 0 && !(sqrt(x) > 1)' is not a number (NaN)");
+  CHECK(cond("sqrt(x) > 1 || x < 0") == "test.yaml:4:13: 'sqrt(x) > 1 || x < 0' is not a number (NaN)");
+  CHECK(error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - A(x) -> A(min(sqrt(x),1))\n") ==
+        "test.yaml:4:15: 'min(sqrt(x),1)' is not a number (NaN)");
+  CHECK(error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - A(x) -> A(max(1,1e308*10))\n") ==
+        "test.yaml:4:15: 'max(1,1e308*10)' is infinite");
+  CHECK(error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - A(x) -> A(sqrt(x)^0)\n") ==
+        "test.yaml:4:15: 'sqrt(x)^0' is not a number (NaN)");
+  CHECK(error_of("axiom: A(min(sqrt(-1),1))\n") == "test.yaml:1:10: 'min(sqrt(-1),1)' is not a number (NaN)");
+  CHECK(error_of("steps: 1\naxiom: A(2)\nproductions:\n  - \"A(x) : x > 1 && min(x,3) >= 2 -> B(max(x,1))\"\n") ==
+        "");
+}
+
 TEST_CASE("stochastic groups must sum to 1") {
   CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B : 0.5\"\n  - \"A -> C : 0.4\"\n") ==
         "test.yaml:3:15: the probabilities of the group '<A>:' sum to 0.9, not 1");
