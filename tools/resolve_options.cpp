@@ -70,6 +70,15 @@ void ResolveOptions::add_to(CLI::App& app) {
                "faults phase by "
                "phase, each lane of planning, and the device's attempts (the same turns; measuring costs a "
                "little time)");
+  // What tunes a resolution is refused without one (its values were echoed into report.json and
+  // used by no one); --resolve-clearance stays: the compact glb's step follows it.
+  CLI::Option* none = app.get_option("--no-resolve");
+  for (const char* tuning : {"--max-rounds", "--resolve-level", "--resolve-candidates", "--resolve-axes",
+                             "--resolve-step", "--bend-joints", "--bend-step", "--resolve-host-search",
+                             "--resolve-device-search", "--resolve-lanes", "--resolve-stats"})
+    none->excludes(app.get_option(tuning));
+  // Two ways to say where a level's attempts run: one of them.
+  app.get_option("--resolve-host-search")->excludes(app.get_option("--resolve-device-search"));
 }
 
 ResolveConfig ResolveOptions::config() const {

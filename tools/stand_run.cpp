@@ -58,6 +58,11 @@ GlbForm glb_form(bool instancing, bool compact, double resolve_clearance) {
 }
 
 GlbForm glb_form(const StandOptions& o) {
+  // A form of a file not written would be taken without a word and echoed into report.json.
+  if ((o.glb_instancing || o.glb_compact) && !parse_formats(o.formats).count("glb"))
+    throw std::invalid_argument(
+        fmt::format("{} is a form of stand.glb, and --formats {} writes none: add glb",
+                    o.glb_compact ? "--glb-compact" : "--glb-instancing", o.formats));
   return glb_form(o.glb_instancing, o.glb_compact, o.resolve.clearance);
 }
 

@@ -71,6 +71,13 @@ run stand "$g" --max-modules 0x100000 -o s
 check "--max-modules 0x100000" "105:canopy: error: --max-modules: needs a whole number from 1 to 9223372036854775807, got 0x100000" "$rc:$(err)"
 run light "$g" --sky-directions -1 -o s
 check "light --sky-directions -1" "105:canopy: error: --sky-directions: needs a whole number from 0 to 10000, got -1" "$rc:$(err)"
+# Options that would be taken and used by no one are refused.
+run stand "$g" --no-resolve --max-rounds 5 -o s
+check "--no-resolve with --max-rounds" "108:canopy: error: --no-resolve excludes --max-rounds" "$rc:$(err)"
+run stand "$g" --resolve-host-search --resolve-device-search -o s
+check "host and device search" "108:canopy: error: --resolve-host-search excludes --resolve-device-search" "$rc:$(err)"
+run stand "$g" --formats obj --glb-compact -o s
+check "--glb-compact without a glb" "2:canopy: error: --glb-compact is a form of stand.glb, and --formats obj writes none: add glb" "$rc:$(err)"
 # Linux names are bytes: a folder or grammar named with bytes that are not UTF-8 runs to the end
 # (report.json's dump threw there: "[json.exception.type_error.316] invalid UTF-8 byte").
 cp "$g" "$(printf 'g\xfe.yaml')"
