@@ -117,6 +117,14 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   auto grammar_index = [&](const PlantPlacement& pl) {
     const std::string& name = pl.grammar;
     const std::string path = grammar_path(req, name);
+    // plants.csv names each plant's grammar in a cell of its line (geometry/export_csv.cpp).
+    if (path.find_first_of("\n\r") != std::string::npos) {
+      std::string shown;  // on the message's one line
+      for (char c : path) shown += c == '\n' ? "\\n" : c == '\r' ? "\\r" : std::string(1, c);
+      throw std::invalid_argument(fmt::format(
+          "the grammar file's path holds a line break, which plants.csv cannot record: rename it ('{}')",
+          shown));
+    }
     auto it = index.find(path);
     if (it != index.end()) return it->second;
     grammars.push_back(std::make_unique<Grammar>(load_placement_grammar(req, pl)));

@@ -86,6 +86,17 @@ check "a name that is not UTF-8" "0:1" "$rc:$(python3 -c "import json; print(jso
 run sweep "$(printf 'g\xfe.yaml')" --steps 4 --rows 1 --per-row 2 --plant-spacing 0.4 --seeds 1 --no-light --backend cpu -o "$(printf 'sw\xff')"
 run sweep "$(printf 'g\xfe.yaml')" --steps 4 --rows 1 --per-row 2 --plant-spacing 0.4 --seeds 2 --no-light --backend cpu -o "$(printf 'sw\xff')"
 check "a sweep so named resumes" "0" "$rc"
+# plants.csv's grammar cell holds any path: quoted where it has a comma or a quote (the stand was
+# written and could not be read back: "expected 7 cells, got 8"); a line break is refused first.
+mkdir -p "odd dir"
+cp "$g" 'odd dir/a,b"c.yaml'
+run stand 'odd dir/a,b"c.yaml' --steps 4 --rows 1 --per-row 2 --backend cpu -o oddname
+run detect oddname --backend cpu
+check "a grammar path with a comma and a quote reads back" "0" "$rc"
+check "its cell as RFC 4180 quotes it" "2" "$(grep -c ',"odd dir/a,b""c.yaml",4$' oddname/plants.csv)"
+cp "$g" "$(printf 'n\nl.yaml')"
+run stand "$(printf 'n\nl.yaml')" --steps 4 --rows 1 --per-row 2 --backend cpu -o nl
+check "a grammar path with a line break" "2:canopy: error: the grammar file's path holds a line break, which plants.csv cannot record: rename it ('n\\nl.yaml')" "$rc:$(err)"
 # Standard output is a command's result: one that cannot be written fails the run (detect's table
 # was lost with exit 0); a closed one is not handed to the first file opened.
 if [ -w /dev/full ]; then
