@@ -1,7 +1,6 @@
 // canopy sweep: a spacing / density x age experiment, several seeds per cell, one CSV row per
 // run (resumable), and a summary per cell.
 #include "geometry/atomic_file.hpp"
-#include "tools/json_text.hpp"
 #include "geometry/clock.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/stand_metrics.hpp"
@@ -9,6 +8,7 @@
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
+#include "tools/json_text.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/signals.hpp"
 #include "tools/sweep_spec.hpp"
@@ -22,9 +22,12 @@
 #endif
 
 #include <fmt/format.h>
+#include <fcntl.h>
 #include <nlohmann/json.hpp>
+#include <sys/file.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -165,6 +168,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   // Rank 0 reads runs.csv and tells the others what is done, or why the sweep cannot go on: then
   // every rank stops with that error instead of waiting for rank 0.
   std::string answer;
+  int sweep_lock = -1;  // rank 0's lock on the folder, never closed: it ends with the process
   if (me == 0) {
     nlohmann::json a;
     try {
@@ -173,6 +177,13 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       if (made || !std::filesystem::is_directory(o.out))
         throw std::runtime_error(fmt::format("cannot create the sweep folder {}: {}", o.out,
                                              made ? made.message() : "it exists and is not a folder"));
+      // One sweep writes a folder at a time: two at once each ran every cell and appended its own
+      // rows, and summary.csv pooled the duplicates. The lock is the folder's own (flock on its
+      // descriptor, held until this process ends; the kernel lets it go however the process ends).
+      sweep_lock = ::open(o.out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (sweep_lock >= 0 && ::flock(sweep_lock, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
+        throw std::invalid_argument(fmt::format(
+            "sweep: another canopy sweep is writing {}; wait for it to end, or give another -o", o.out));
       std::vector<RunRow> done = read_runs(runs_path);
       check_sweep_settings(o.out, sweep_settings(o), done.size());
       if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
