@@ -100,6 +100,28 @@ std::array<double, 4> lattice_tile(const RowLayout& l) {
   return {-ps / 2, -rs / 2, (l.per_row - 0.5) * ps, (l.rows - 0.5) * rs};
 }
 
+namespace {
+
+/// The row layout a stand's report.json gives (none for a positions file); `path` names it.
+template <typename Json>
+std::optional<RowLayout> report_layout(const Json& j, const std::string& path) {
+  try {
+    const auto& l = j.at("config").at("layout");
+    if (l.contains("positions")) return std::nullopt;
+    RowLayout r;
+    r.rows = l.at("rows").template get<int>();
+    r.per_row = l.at("per_row").template get<int>();
+    r.row_spacing = l.at("row_spacing").template get<double>();
+    r.plant_spacing = l.at("plant_spacing").template get<double>();
+    if (!l.at("double_rows").is_null()) r.double_rows = l.at("double_rows").template get<double>();
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(fmt::format("{}: no layout in its config ({})", path, e.what()));
+  }
+}
+
+}  // namespace
+
 std::optional<RowLayout> folder_layout(const std::string& dir) {
   const std::string path = dir + "/report.json";
   std::ifstream in(path);
@@ -109,18 +131,10 @@ std::optional<RowLayout> folder_layout(const std::string& dir) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
-    const auto& l = j.at("config").at("layout");
-    if (l.contains("positions")) return std::nullopt;
-    RowLayout r;
-    r.rows = l.at("rows").get<int>();
-    r.per_row = l.at("per_row").get<int>();
-    r.row_spacing = l.at("row_spacing").get<double>();
-    r.plant_spacing = l.at("plant_spacing").get<double>();
-    if (!l.at("double_rows").is_null()) r.double_rows = l.at("double_rows").get<double>();
-    return r;
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(fmt::format("{}: no layout in its config ({})", path, e.what()));
   }
+  return report_layout(j, path);
 }
 
 #ifdef CANOPY_HAVE_LIGHT
@@ -185,13 +199,14 @@ LightOutcome run_light(LightOptions o, bool print) {
     if (!o.tile.empty()) (void)parse_tile(o.tile);
     light::check_config(v);
     if (!std::filesystem::is_directory(o.source) && o.tile.empty() && !o.no_periodic) {
-      if (!o.stand.positions.empty())
-        throw std::invalid_argument(
-            "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or "
-            "--no-periodic)");
       StandOptions probe = o.stand;
       probe.grammar = o.source;
       RowLayout l = plan_stand(probe).layout;
+      // The command line's positions file, or the one the grammar's stand entry names.
+      if (!probe.positions.empty())
+        throw std::invalid_argument(
+            "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or "
+            "--no-periodic)");
       if (o.stand.target.set()) l.plant_spacing = 1;  // chosen later: any spacing above 0
       (void)lattice_tile(l);
     }
@@ -201,39 +216,48 @@ LightOutcome run_light(LightOptions o, bool print) {
   // (--caster trace draws nothing: no GPU is started for it.)
   const std::unique_ptr<light::RasterDevice> device =
       o.caster == "trace" ? nullptr : make_light_device(o.stand.detect.backend, device_note);
-  Stand stand;
-  std::optional<RowLayout> layout;
   LightOutcome out;
+  std::vector<SunSpec> suns;
+  std::optional<light::LightResult> result;
+  std::size_t plants = 0;
+  // The light of `stand` (laid out as `layout`) into `files`.
+  const auto light_files = [&](const Stand& stand, std::optional<RowLayout> layout, OutputSet& files) {
+    if (!o.tile.empty()) layout.reset();
+    light::LightConfig cfg = light_config(o, stand, layout, suns);
+    cfg.device = device.get();
+    PrototypeLibrary lib;
+    result = light::compute_light(stand, lib, cfg);
+    out.json = light_json(*result, stand, o, suns);
+    out.csv = light_csv(*result, stand);
+    plants = stand.plant_count();
+    files.open("light.json").write(json_text(out.json, 2) + "\n");
+    files.open("light.csv").write(out.csv);
+  };
   if (std::filesystem::is_directory(o.source)) {
-    stand = read_stand(o.source);
-    layout = folder_layout(o.source);
+    const Stand stand = read_stand(o.source);
     out.dir = o.source;
+    OutputSet files(out.dir);
+    light_files(stand, folder_layout(o.source), files);
+    files.commit_all();
   } else {
     o.stand.grammar = o.source;
     o.stand.detect.threads = o.threads;
-    run_stand(o.stand, print, {}, &stand);
     out.dir = o.stand.out;
-    // The layout as run (a target chooses its plant spacing), from the report just written.
-    layout = folder_layout(out.dir);
+    // The light is made with the stand's files and put in place with them: a refusal that needs
+    // the grown stand (a tile under which it repeats too often, rays past the limit) leaves the
+    // folder as it was. The layout is the one run (a target chooses its plant spacing).
+    o.stand.more_files = [&](const Stand& stand, const nlohmann::ordered_json& report, OutputSet& files) {
+      light_files(stand, report_layout(report, out.dir + "/report.json"), files);
+    };
+    run_stand(o.stand, print);
   }
-  if (!o.tile.empty()) layout.reset();
-  std::vector<SunSpec> suns;
-  light::LightConfig cfg = light_config(o, stand, layout, suns);
-  cfg.device = device.get();
-  PrototypeLibrary lib;
-  const light::LightResult r = light::compute_light(stand, lib, cfg);
-  out.json = light_json(r, stand, o, suns);
-  out.csv = light_csv(r, stand);
-  OutputSet files(out.dir);
-  files.open("light.json").write(json_text(out.json, 2) + "\n");
-  files.open("light.csv").write(out.csv);
-  files.commit_all();
+  const light::LightResult& r = *result;
   if (print) {
     const auto pm = [](const light::Estimate& e) { return fmt::format("{:.4f} +- {:.4f}", e.value, e.se); };
     fmt::print(
         "light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n",
-        stand.plant_count(), r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai,
-        r.rays, r.trace_s, r.scene_s);
+        plants, r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai, r.rays,
+        r.trace_s, r.scene_s);
     if (r.raster_passes)
       fmt::print("  {} of them answered by drawing the stand in {} passes ({:.2f} s, on {})\n", r.raster_rays,
                  r.raster_passes, r.raster_s, device ? device_note : std::string("the host's threads"));

@@ -348,6 +348,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const StandCounts counts = stand_counts(stand, lib);
   nlohmann::ordered_json report = report_json(counts, rep);
   files.open("report.json").write(json_text(report, 2) + "\n");
+  if (o.more_files) o.more_files(stand, report, files);
   const auto t_commit = std::chrono::steady_clock::now();
   const StagedFolder::Committed committed = files.commit_all();
   const double commit_s = seconds_since(t_commit);

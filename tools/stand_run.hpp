@@ -43,6 +43,10 @@ struct StandOptions {
   /// one size): the backend is freed (and a GPU's context destroyed) while the files are written,
   /// and the stand is left to the process's end rather than freed (tools/process_end.hpp).
   bool ends_process = false;
+  /// Called once the stand's own files are made and report.json's text is known, before any is
+  /// put in place: more files for the same folder (canopy light's light.json and light.csv, from
+  /// the stand as resolved and the report as written). What it throws leaves the folder as it was.
+  std::function<void(const Stand&, const nlohmann::ordered_json& report, OutputSet& files)> more_files;
 };
 
 struct StandOutcome {

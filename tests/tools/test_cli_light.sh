@@ -81,6 +81,18 @@ check "positions: message" "1" "$(grep -c 'has no lattice: give its tile with --
 check "positions with --tile" "[-0.3, -0.5, 0.8, 0.5] True" "$(json "$tmp/p/light.json" "j['tile'], j['periodic']")"
 "$canopy" light "$tmp/p" --sky-directions 0 --no-periodic --error 0.01 >/dev/null 2>&1
 check "positions isolated" "False" "$(json "$tmp/p/light.json" "j['periodic']")"
+# From a grammar, what is refused once the stand is grown leaves no folder: the light is made
+# with the stand's files and put in place with them (a tile under which the stand repeats 7e5
+# times was refused after the stand was written).
+"$canopy" light "$g" --rows 1 --per-row 2 --steps 10 --backend cpu --tile 0,0,0.001,0.001 -o "$tmp/tiny" >"$tmp/o" 2>"$tmp/e"
+check "tiny tile: refused, no folder" "2 1 0" "$? $(grep -c 'copies of the stand over each point' "$tmp/e") $(ls -d "$tmp/tiny" "$tmp"/.tiny* 2>/dev/null | wc -l)"
+# A grammar whose stand entry is a positions file has no lattice either: refused before growing.
+mkdir -p "$tmp/gp"
+sed 's/^stand:.*$//' "$g" > "$tmp/gp/t.yaml"
+printf '\nstand: {positions: pos.csv}\n' >> "$tmp/gp/t.yaml"
+cp "$tmp/pos.csv" "$tmp/gp/pos.csv"
+"$canopy" light "$tmp/gp/t.yaml" --steps 10 --backend cpu -o "$tmp/gpo" >"$tmp/o" 2>"$tmp/e"
+check "grammar's positions: refused, no folder" "2 1 0" "$? $(grep -c 'has no lattice' "$tmp/e") $(ls -d "$tmp/gpo" 2>/dev/null | wc -l)"
 
 # Bad options: exit 2, one line, light.json left as it was.
 cp "$tmp/a/light.json" "$tmp/before.json"
