@@ -72,7 +72,7 @@ void check_reach(const RowLayout& l) {
   const double x = (l.per_row - 1) * l.plant_spacing + l.jitter;
   if (x > kMaxPlantCoordinate)
     throw std::invalid_argument(fmt::format(
-        "--per-row {} x --plant-spacing {:g} m (+ --jitter {:g} m) reaches x = {:g} m: plants may "
+        "--per-row {} x --plant-spacing {:g} m (+ --jitter {:g} m) reaches x = {:.10g} m: plants may "
         "stand at most {:g} m from the origin",
         l.per_row, l.plant_spacing, l.jitter, x, kMaxPlantCoordinate));
   double y = (l.rows - 1) * l.row_spacing;
@@ -81,7 +81,7 @@ void check_reach(const RowLayout& l) {
       y = std::max(y, (r / 2) * l.row_spacing + (r % 2) * *l.double_rows);
   if (y + l.jitter > kMaxPlantCoordinate)
     throw std::invalid_argument(fmt::format(
-        "--rows {} x --row-spacing {:g} m{} (+ --jitter {:g} m) reaches y = {:g} m: plants may "
+        "--rows {} x --row-spacing {:g} m{} (+ --jitter {:g} m) reaches y = {:.10g} m: plants may "
         "stand at most {:g} m from the origin",
         l.rows, l.row_spacing, l.double_rows ? fmt::format(" with --double-rows {:g} m", *l.double_rows) : "",
         l.jitter, y + l.jitter, kMaxPlantCoordinate));

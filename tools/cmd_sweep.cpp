@@ -136,7 +136,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
                       static_cast<double>(steps.size()) * static_cast<double>(o.seeds);
   if (runs > kMaxSweepRuns)
     throw std::invalid_argument(fmt::format(
-        "sweep: {} row spacings x {} {} x {} ages x {} seeds = {:.4g} runs, more than the {:g} a sweep "
+        "sweep: {} row spacings x {} {} x {} ages x {} seeds = {:.15g} runs, more than the {:.0f} a sweep "
         "takes: "
         "give shorter lists or fewer seeds",
         rows_sp.size(), dens.empty() ? plant_sp.size() : dens.size(),

@@ -93,7 +93,7 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   l.plant_spacing = 6e7;
   l.per_row = 3;  // 1.2e8 m for the third plant
   CHECK(
-      message(l).starts_with("--per-row 3 x --plant-spacing 6e+07 m (+ --jitter 0 m) reaches x = 1.2e+08 m"));
+      message(l).starts_with("--per-row 3 x --plant-spacing 6e+07 m (+ --jitter 0 m) reaches x = 120000000 m"));
   l.per_row = 1;
   l.jitter = 2e8;
   CHECK(message(l).starts_with("--jitter 2e+08 m:"));
@@ -104,7 +104,7 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   CHECK(message(l).empty());
   l.double_rows = 9e7;  // the second row of the second pair at 1.1e8
   CHECK(message(l).starts_with(
-      "--rows 4 x --row-spacing 2e+07 m with --double-rows 9e+07 m (+ --jitter 0 m) reaches y = 1.1e+08 m"));
+      "--rows 4 x --row-spacing 2e+07 m with --double-rows 9e+07 m (+ --jitter 0 m) reaches y = 110000000 m"));
   // At the bound itself: accepted.
   RowLayout edge;
   edge.per_row = 2;

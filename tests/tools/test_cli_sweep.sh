@@ -142,7 +142,7 @@ bad "sun not a pair" "'60' is not ELEVATION,AZIMUTH" --sun 60
 bad "light error" "\-\-light-error: 0 is not in" --light-error 0
 bad "range of 100,001 values" "has more than 100,000 values" --plant-spacing 1:100001:1
 bad "range past a long" "has more than 100,000 values" --plant-spacing 0:1e30:1
-bad "too many runs" "= 1.001e+13 runs, more than the 1e+06 a sweep takes" --plant-spacing 0.001:100:0.001 --steps 0:1000:1 --seeds 100000
+bad "too many runs" "= 10010000000000 runs, more than the 1000000 a sweep takes" --plant-spacing 0.001:100:0.001 --steps 0:1000:1 --seeds 100000
 # -o naming a file: refused by name.
 touch "$tmp/afile"
 "$canopy" sweep "$g" --seeds 1 -o "$tmp/afile" >"$tmp/o" 2>"$tmp/e"
