@@ -321,8 +321,12 @@ ConstantOverride parse_override(const std::string& text) {
   o.name = std::string(trim(std::string_view(text).substr(0, eq)));
   const std::string_view v = trim(std::string_view(text).substr(eq + 1));
   const auto r = std::from_chars(v.data(), v.data() + v.size(), o.value);
+  if (r.ec == std::errc::result_out_of_range && r.ptr == v.data() + v.size())
+    throw std::invalid_argument(
+        fmt::format("--set {}: '{}' is out of a double's range (about 1e-308 to 1e308 in size)", text, v));
   if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(o.value))
-    throw std::invalid_argument(fmt::format("--set {}: '{}' is not a finite number", text, v));
+    throw std::invalid_argument(fmt::format(
+        "--set {}: '{}' is not a finite number (a value, not an expression: 6, not 2*3)", text, v));
   return o;
 }
 

@@ -62,10 +62,14 @@ std::string grammar_path(const GrowRequest& req, const std::string& name) {
 Grammar load_placement_grammar(const GrowRequest& req, const PlantPlacement& pl) {
   try {
     return load_grammar(grammar_path(req, pl.grammar), req.load);
-  } catch (const GrammarFileError& e) {
-    if (pl.grammar.empty() || pl.source_line <= 0 || req.positions_file.empty()) throw;
-    throw GrammarFileError(e.pos(), fmt::format("{} (named by {}:{}, column 'grammar': '{}')", e.message(),
-                                                req.positions_file, pl.source_line, pl.grammar));
+  } catch (const GrammarError& e) {
+    // A file that cannot be used as a whole (missing, a folder, a device): its place is the line
+    // that names it. An error at a line of the grammar itself names that line already.
+    if (pl.grammar.empty() || pl.source_line <= 0 || req.positions_file.empty() || e.pos().line > 0) throw;
+    const std::string message = fmt::format("{} (named by {}:{}, column 'grammar': '{}')", e.message(),
+                                            req.positions_file, pl.source_line, pl.grammar);
+    if (dynamic_cast<const GrammarFileError*>(&e)) throw GrammarFileError(e.pos(), message);
+    throw GrammarError(e.pos(), message);
   }
 }
 

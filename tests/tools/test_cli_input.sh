@@ -166,6 +166,10 @@ p 'x,y,rotation,seed,grammar,steps\n0,0,0,1,sub/t.yaml,4\n0.5,0,0,2,,4\n'
 check "a grammar below the folder" "0" "$rc"
 p 'x,y,rotation,seed,grammar\n0,0,0,1,\n0.5,0,0,2,sub/none.yaml\n'
 check "a missing grammar named with its positions line" "1:canopy: error: pos/sub/none.yaml: cannot open the grammar file (named by pos/p.csv:3, column 'grammar': 'sub/none.yaml')" "$rc:$(err)"
+p 'x,y,rotation,seed,grammar\n0,0,0,1,sub\n'
+check "a folder named as a grammar, with its positions line" "1:canopy: error: pos/sub: the grammar file is a folder, not a file (named by pos/p.csv:2, column 'grammar': 'sub')" "$rc:$(err)"
+run derive "$g" --set a=2*3
+check "--set with an expression" "2:canopy: error: --set a=2*3: '2*3' is not a finite number (a value, not an expression: 6, not 2*3)" "$rc:$(err)"
 p 'x,y,rotation,seed\n0,0,0,1\n'
 mkfifo pos/fifo
 run stand "$g" --positions pos/fifo --steps 4 -o ps
