@@ -52,7 +52,7 @@ class Loader {
               "not a grammar file (none of its keys is a grammar's, such as axiom or productions)");
     src_.check_map(root, "the grammar", kTopKeys);
     if (root["name"]) g_.name = src_.string(root["name"], "name");
-    if (root["seed"]) g_.seed = static_cast<std::uint64_t>(src_.integer(root["seed"], "seed", 0, INT64_MAX));
+    if (root["seed"]) g_.seed = src_.seed(root["seed"], "seed");
     if (root["steps"]) g_.steps = static_cast<int>(src_.integer(root["steps"], "steps", 0, kMaxSteps));
     if (root["angle"]) g_.angle = src_.number(root["angle"], "angle");
     if (root["step"]) g_.step = src_.number(root["step"], "step");
@@ -289,7 +289,7 @@ class Loader {
     s.double_rows = positive("double_rows");
     s.jitter = positive("jitter");
     if (node["random_rotation"]) s.random_rotation = src_.boolean(node["random_rotation"], "random_rotation");
-    if (node["seed"]) s.seed = static_cast<std::uint64_t>(src_.integer(node["seed"], "seed", 0, INT64_MAX));
+    if (node["seed"]) s.seed = src_.seed(node["seed"], "seed");
     if (node["positions"]) {
       s.positions = src_.string(node["positions"], "positions");
       for (const char* row : kRowKeys)

@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -31,6 +32,7 @@ class YamlSource {
 
   double number(const YAML::Node& node, std::string_view what) const;
   long long integer(const YAML::Node& node, std::string_view what, long long lo, long long hi) const;
+  std::uint64_t seed(const YAML::Node& node, std::string_view what) const;
   std::string string(const YAML::Node& node, std::string_view what) const;
   bool boolean(const YAML::Node& node, std::string_view what) const;
   /// Throws unless `node` is a map; checks every key against `allowed` (space separated;

@@ -104,7 +104,8 @@ TEST_CASE("a NaN or infinity inside an expression is not hidden by what comes af
   CHECK(error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - A(x) -> A(sqrt(x)^0)\n") ==
         "test.yaml:4:15: 'sqrt(x)^0' is not a number (NaN)");
   CHECK(error_of("axiom: A(min(sqrt(-1),1))\n") == "test.yaml:1:10: 'min(sqrt(-1),1)' is not a number (NaN)");
-  CHECK(error_of("steps: 1\naxiom: A(2)\nproductions:\n  - \"A(x) : x > 1 && min(x,3) >= 2 -> B(max(x,1))\"\n") ==
+  CHECK(error_of(
+            "steps: 1\naxiom: A(2)\nproductions:\n  - \"A(x) : x > 1 && min(x,3) >= 2 -> B(max(x,1))\"\n") ==
         "");
 }
 
@@ -138,6 +139,17 @@ TEST_CASE("invalid UTF-8 in module names (found by the fuzzer)") {
   CHECK(error_of("axiom: F\xc3\xa9\n") == "");  // a well-formed two-byte name is fine
 }
 
+TEST_CASE("a grammar's seeds take what --seed takes, 0 to 2^64 - 1") {
+  // The top-level seed stopped at 2^63 - 1 and the stand entry's refused 2^64 - 1 as not whole.
+  CHECK(error_of("seed: 18446744073709551615\naxiom: F\nstand: {seed: 18446744073709551615}\n") == "");
+  CHECK(grammar("seed: 18446744073709551615\naxiom: F\n").seed == 18446744073709551615ull);
+  CHECK(error_of("seed: 18446744073709551616\naxiom: F\n") ==
+        "test.yaml:1:7: seed must be a whole number from 0 to 18446744073709551615, got "
+        "'18446744073709551616'");
+  CHECK(error_of("axiom: F\nstand: {seed: -1}\n") ==
+        "test.yaml:2:15: seed must be a whole number from 0 to 18446744073709551615, got '-1'");
+}
+
 TEST_CASE("control characters and look-alike spaces are not module names") {
   // Each was a module of its own, printed back as it came (a no-break space pasted from a web
   // page looks like the plain space that separates modules).
@@ -145,11 +157,12 @@ TEST_CASE("control characters and look-alike spaces are not module names") {
         "test.yaml:1:10: character U+0001 cannot be part of a module name: a control character");
   CHECK(error_of("axiom: A\x7f\n") ==
         "test.yaml:1:9: character U+007F cannot be part of a module name: a control character");
-  CHECK(error_of("axiom: A\xc2\xa0" "B\n") ==
+  CHECK(error_of("axiom: A\xc2\xa0"
+                 "B\n") ==
         "test.yaml:1:9: character U+00A0 cannot be part of a module name: a no-break, zero-width or other "
         "Unicode space; separate modules with plain spaces");
-  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B\xe2\x80\x8b\"\n").starts_with(
-      "test.yaml:3:12: character U+200B cannot be part of a module name"));
+  CHECK(error_of("axiom: A\nproductions:\n  - \"A -> B\xe2\x80\x8b\"\n")
+            .starts_with("test.yaml:3:12: character U+200B cannot be part of a module name"));
   CHECK(error_of("axiom: A\t B \xc3\xa9 \xe2\x88\x9a\n") == "");  // tabs separate; other letters are modules
 }
 
@@ -168,8 +181,9 @@ TEST_CASE("a grammar file with a NUL byte or in UTF-16 is named at the byte, bef
         ":1:9: a NUL byte: a grammar is UTF-8 text (is this a binary or corrupt file?)");
   CHECK(load(std::string("name: t\n# note\0\naxiom: A\n", 25)) ==
         ":2:7: a NUL byte: a grammar is UTF-8 text (is this a binary or corrupt file?)");
-  CHECK(load(std::string("\xff\xfe" "a\0x\0", 6)) ==
-        ":1:1: the file is UTF-16 text; a grammar is UTF-8 (save it as UTF-8)");
+  CHECK(load(std::string("\xff\xfe"
+                         "a\0x\0",
+                         6)) == ":1:1: the file is UTF-16 text; a grammar is UTF-8 (save it as UTF-8)");
   CHECK(load("axiom: AB\n") == "");
   std::filesystem::remove(path);
 }
