@@ -168,7 +168,14 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   // Rank 0 reads runs.csv and tells the others what is done, or why the sweep cannot go on: then
   // every rank stops with that error instead of waiting for rank 0.
   std::string answer;
-  int sweep_lock = -1;  // rank 0's lock on the folder, never closed: it ends with the process
+  // Rank 0's lock on the folder, let go when the sweep ends (the Python module runs sweeps one
+  // after another in one process) or, killed, with the process.
+  struct FolderLock {
+    int fd = -1;
+    ~FolderLock() {
+      if (fd >= 0) ::close(fd);
+    }
+  } sweep_lock;
   if (me == 0) {
     nlohmann::json a;
     try {
@@ -180,8 +187,8 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       // One sweep writes a folder at a time: two at once each ran every cell and appended its own
       // rows, and summary.csv pooled the duplicates. The lock is the folder's own (flock on its
       // descriptor, held until this process ends; the kernel lets it go however the process ends).
-      sweep_lock = ::open(o.out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-      if (sweep_lock >= 0 && ::flock(sweep_lock, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
+      sweep_lock.fd = ::open(o.out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (sweep_lock.fd >= 0 && ::flock(sweep_lock.fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
         throw std::invalid_argument(fmt::format(
             "sweep: another canopy sweep is writing {}; wait for it to end, or give another -o", o.out));
       std::vector<RunRow> done = read_runs(runs_path);
