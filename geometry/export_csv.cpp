@@ -1,5 +1,7 @@
 // organs.csv and plants.csv, and reading a stand back from them.
 #include "geometry/export.hpp"
+
+#include "geometry/csv_field.hpp"
 #include "geometry/atomic_file.hpp"
 #include "geometry/input_file.hpp"
 #include "geometry/layout.hpp"
@@ -31,7 +33,8 @@ constexpr const char* kPlantHeader = "id,x,y,rotation,seed,grammar,steps\n";
 /// A header as a message quotes it, on the message's one line.
 std::string_view without_newline(std::string_view header) { return header.substr(0, header.size() - 1); }
 
-/// Splits a CSV line without quoting (canopy never writes commas inside cells).
+/// Splits an organs.csv line: its cells are numbers and names, never quoted (plants.csv, whose
+/// grammar cell is free text, goes through split_csv).
 std::vector<std::string_view> cells(std::string_view line) {
   std::vector<std::string_view> out;
   std::size_t start = 0;
@@ -40,47 +43,6 @@ std::vector<std::string_view> cells(std::string_view line) {
       out.push_back(line.substr(start, i - start));
       start = i + 1;
     }
-  return out;
-}
-
-/// plants.csv's grammar cell: the path as it is, or quoted as RFC 4180 quotes (doubled quotes
-/// inside) where it holds a comma or a quote. The one cell of canopy's tables that is free text; a
-/// path with a line break is refused before a stand is grown (lsystem/grow.cpp).
-std::string grammar_cell(const std::string& path) {
-  if (path.find_first_of(",\"") == std::string::npos) return path;
-  std::string q = "\"";
-  for (char c : path) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-/// A plants.csv row's seven cells: five from the left and steps from the right around the grammar
-/// cell, which is unquoted where it was quoted (grammar_cell). Fewer than seven: a short row.
-std::vector<std::string> plant_cells(std::string_view line) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (int k = 0; k < 5; ++k) {
-    const std::size_t comma = line.find(',', start);
-    if (comma == std::string_view::npos) break;
-    out.emplace_back(line.substr(start, comma - start));
-    start = comma + 1;
-  }
-  const std::size_t last = line.rfind(',');
-  if (out.size() < 5 || last == std::string_view::npos || last < start) {
-    for (std::string_view c : cells(line.substr(std::min(start, line.size())))) out.emplace_back(c);
-    return out;
-  }
-  std::string_view g = line.substr(start, last - start);
-  if (g.size() >= 2 && g.front() == '"' && g.back() == '"') {
-    std::string u;
-    for (std::size_t i = 1; i + 1 < g.size(); ++i) {
-      u += g[i];
-      if (g[i] == '"' && g[i + 1] == '"') ++i;
-    }
-    out.push_back(std::move(u));
-  } else {
-    out.emplace_back(g);
-  }
-  out.emplace_back(line.substr(last + 1));
   return out;
 }
 
@@ -197,7 +159,9 @@ void write_plants_csv(const ExportScope& e, ChunkWriter& out) {
     append_number(t, pr.y);
     t += ',';
     append_number(t, pr.rotation_deg);
-    t += fmt::format(",{},{},{}\n", pr.seed, grammar_cell(s.grammars[static_cast<std::size_t>(pr.grammar)]),
+    // The grammar's path, the table's one free-text cell, quoted where it holds a comma or a quote (a
+    // path with a line break is refused before a stand is grown, lsystem/grow.cpp).
+    t += fmt::format(",{},{},{}\n", pr.seed, csv_field(s.grammars[static_cast<std::size_t>(pr.grammar)]),
                      pr.steps);
   });
 }
@@ -233,9 +197,11 @@ Stand read_stand(const std::string& dir) {
   if (!pin->next_line(line) || line + "\n" != kPlantHeader)
     throw std::runtime_error(
         fmt::format("{}:1: expected the header {}", pfile, without_newline(kPlantHeader)));
+  std::vector<std::string> c;
   while (pin->next_line(line)) {
     const int ln = pin->line_number();
-    const auto c = plant_cells(line);
+    if (!split_csv(line, c))
+      throw std::runtime_error(fmt::format("{}:{}: a quoted cell is not closed", pfile, ln));
     if (c.size() != 7)
       throw std::runtime_error(fmt::format("{}:{}: expected 7 cells, got {}", pfile, ln, c.size()));
     PlantRecord pr;

@@ -1,6 +1,7 @@
 #include "lsystem/yaml_source.hpp"
 
 #include "geometry/input_file.hpp"
+#include "geometry/layout.hpp"
 
 #include <yaml-cpp/depthguard.h>
 
@@ -100,13 +101,11 @@ long long YamlSource::integer(const YAML::Node& node, std::string_view what, lon
 }
 
 std::uint64_t YamlSource::seed(const YAML::Node& node, std::string_view what) const {
-  // A seed takes every value the command line's --seed takes: 0 to 2^64 - 1.
+  // A seed takes every value the command line's --seed and a positions file's seed cell take.
   const std::string s = node.IsScalar() ? node.Scalar() : std::string();
-  std::uint64_t v = 0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (!node.IsScalar() || s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size())
-    fail_at(at(node), "{} must be a whole number from 0 to 18446744073709551615, got '{}'", what, s);
-  return v;
+  const auto v = node.IsScalar() ? parse_seed(s) : std::nullopt;
+  if (!v) fail_at(at(node), "{} must be a whole number from 0 to 18446744073709551615, got '{}'", what, s);
+  return *v;
 }
 
 std::string YamlSource::string(const YAML::Node& node, std::string_view what) const {

@@ -186,7 +186,8 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
                                              made ? made.message() : "it exists and is not a folder"));
       // One sweep writes a folder at a time: two at once each ran every cell and appended its own
       // rows, and summary.csv pooled the duplicates. The lock is the folder's own (flock on its
-      // descriptor, held until this process ends; the kernel lets it go however the process ends).
+      // descriptor, held by sweep_lock until the sweep returns; the kernel lets it go however the
+      // process ends).
       sweep_lock.fd = ::open(o.out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
       if (sweep_lock.fd >= 0 && ::flock(sweep_lock.fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
         throw std::invalid_argument(fmt::format(

@@ -1,5 +1,7 @@
 #include "tools/sweep_table.hpp"
 
+#include "geometry/csv_field.hpp"
+
 #include "geometry/input_file.hpp"
 #include "geometry/atomic_file.hpp"
 
@@ -34,29 +36,6 @@ std::optional<double> finite_number(const std::string& s) {
   if (s.empty() || r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
     return std::nullopt;
   return v;
-}
-
-/// Splits one CSV line (quoted fields with doubled quotes); false when a quote is left open.
-bool split_csv(const std::string& line, std::vector<std::string>& out) {
-  out.clear();
-  std::string f;
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') f += '"', ++i;
-      else if (c == '"') quoted = false;
-      else f += c;
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      out.push_back(f), f.clear();
-    } else {
-      f += c;
-    }
-  }
-  out.push_back(f);
-  return !quoted;
 }
 
 std::string line_of(const RunRow& r) {
@@ -122,13 +101,6 @@ const std::vector<std::string>& run_columns() {
                                           "backend",
                                           "message"};
   return c;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c == '\n' ? ' ' : c);
-  return q + "\"";
 }
 
 std::string run_key(const RunRow& r) {

@@ -37,7 +37,4 @@ void append_run(const std::string& path, const RunRow& row);
 /// failures, and mean / standard deviation of every numeric column of finished runs.
 std::string summary_csv(const std::vector<RunRow>& rows);
 
-/// A CSV field: quoted when it holds a comma, quote or newline.
-std::string csv_field(const std::string& s);
-
 }  // namespace canopy::cli
