@@ -43,6 +43,26 @@ std::atomic<bool> g_interrupted{false};
 
 std::string num(double v) { return fmt::format("{}", v); }
 
+/// Rows of an earlier sweep whose spacing is one of this sweep's within a rounding (ranges wrote
+/// 0.30000000000000004 before they were tidied to 0.3) take this sweep's text for it, so that
+/// resuming finds them done and the summary keeps one cell.
+void adopt_spacings(std::vector<RunRow>& rows, const std::vector<SweepCell>& cells) {
+  const auto adopt = [&](std::string& text, auto value_of) {
+    std::size_t used = 0;
+    const double v = leading_number(text, used);
+    if (used == 0 || used != text.size()) return;
+    for (const SweepCell& c : cells)
+      if (const double w = value_of(c); v != w && std::abs(v - w) <= 1e-12 * std::abs(w)) {
+        text = num(w);
+        return;
+      }
+  };
+  for (RunRow& r : rows) {
+    adopt(r["plant_spacing"], [](const SweepCell& c) { return c.plant_spacing; });
+    adopt(r["row_spacing"], [](const SweepCell& c) { return c.row_spacing; });
+  }
+}
+
 /// One run: grow, detect (every level up to the exact one), resolve; the row of runs.csv.
 RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, DetectionBackend& backend,
                RunRow row) {
@@ -195,6 +215,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       std::vector<RunRow> done = read_runs(runs_path);
       check_sweep_settings(o.out, sweep_settings(o), done.size());
       if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
+      adopt_spacings(done, cells);
       write_runs(runs_path, done);  // drops a torn last line
       std::set<std::string> keys;
       for (const RunRow& r : done) keys.insert(run_key(r));

@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
 namespace canopy::cli {
 namespace {
@@ -53,7 +55,19 @@ double light_columns(const Stand& stand, const RowLayout& layout, const SweepOpt
   c.tile = {t[0] - stand.stand_origin.x, t[1] - stand.stand_origin.y, t[2] - stand.stand_origin.x,
             t[3] - stand.stand_origin.y};
   PrototypeLibrary lib;
-  const light::LightResult r = light::compute_light(stand, lib, c);
+  const light::LightResult r = [&] {
+    try {
+      return light::compute_light(stand, lib, c);
+    } catch (const std::invalid_argument& e) {
+      // A sweep has no --tile: its tile is the layout's lattice, so say which spacings made it.
+      const std::string what = e.what();
+      if (what.rfind("--tile: ", 0) != 0) throw;
+      throw std::invalid_argument(fmt::format(
+          "the light's tile is the stand's lattice ({:.3g} x {:.3g} m from the plant and row spacings) and is too "
+          "small for light: {}; sweep larger spacings, or give --no-light",
+          t[2] - t[0], t[3] - t[1], what.substr(8, what.find(": give") - 8)));
+    }
+  }();
   const double se =
       std::max({r.ground.fraction.se, r.direct[0].fraction.se, r.diffuse->fraction.se, r.diffuse->star.se});
   row["ground_cover_" + when] = fmt::format("{:.5f}", r.ground.fraction.value);

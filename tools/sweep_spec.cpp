@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -51,7 +52,14 @@ std::vector<double> parse_number_list(const std::string& name, const std::string
     if (!(last < 100000))
       throw std::invalid_argument(fmt::format("{}: the range '{}' has more than 100,000 values", name, text));
     const auto n = static_cast<long>(last);
-    for (long k = 0; k <= n; ++k) out.push_back(a + static_cast<double>(k) * step);
+    // start + k x step carries the step's rounding (0.1:0.5:0.1 made 0.30000000000000004): a
+    // value is the double nearest its first 12 significant digits where that moves it by less
+    // than a millionth of the step (so no two values of a range ever merge).
+    for (long k = 0; k <= n; ++k) {
+      const double raw = a + static_cast<double>(k) * step;
+      const double tidy = std::stod(fmt::format("{:.12g}", raw));
+      out.push_back(std::abs(tidy - raw) < 1e-6 * step ? tidy : raw);
+    }
   } else if (!text.empty()) {
     for (const std::string& item : split_list(text)) {
       if (item.empty()) throw std::invalid_argument(fmt::format("{}: empty item in '{}'", name, text));
@@ -59,6 +67,11 @@ std::vector<double> parse_number_list(const std::string& name, const std::string
     }
   }
   if (out.empty()) throw std::invalid_argument(fmt::format("{}: no values given", name));
+  // A value given twice made its runs twice, and the summary pooled them as one cell.
+  std::vector<double> sorted = out;
+  std::sort(sorted.begin(), sorted.end());
+  if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+    throw std::invalid_argument(fmt::format("{}: {} is given twice in '{}'", name, *twice, text));
   for (double v : out)
     if (strict ? !(v > min) : !(v >= min))
       throw std::invalid_argument(

@@ -119,8 +119,18 @@ std::vector<RunRow> read_runs(const std::string& path) {
     throw std::invalid_argument(
         fmt::format("{}: not a runs.csv of this canopy version (header differs); use another -o", path));
   std::vector<std::string> f;
+  std::map<std::string, int> seen;  // run key -> its line
+  int torn = 0;                     // a line that is not a whole row, dropped if it is the last
   while (in.next_line(line)) {
-    if (!split_csv(line, f) || f.size() != run_columns().size()) continue;  // a torn last line
+    if (torn)
+      throw std::invalid_argument(fmt::format(
+          "{}:{}: not a whole row of {} columns, and not the last line (a sweep that is killed tears "
+          "only its last line); mend or delete that line, or use another -o",
+          path, torn, run_columns().size()));
+    if (!split_csv(line, f) || f.size() != run_columns().size()) {
+      torn = in.line_number();
+      continue;
+    }
     RunRow r;
     for (std::size_t i = 0; i < f.size(); ++i) {
       const std::string& column = run_columns()[i];
@@ -138,6 +148,12 @@ std::vector<RunRow> read_runs(const std::string& path) {
             path, in.line_number(), f[i]));
       r[column] = f[i];
     }
+    // A sweep writes each run once; a second row of a run was pooled in the summary as another.
+    if (const auto [it, fresh] = seen.emplace(run_key(r), in.line_number()); !fresh)
+      throw std::invalid_argument(fmt::format(
+          "{}:{}: the run of line {} again (plant spacing {}, row spacing {}, steps {}, seed {}); "
+          "delete one of the two lines, or use another -o",
+          path, in.line_number(), it->second, r["plant_spacing"], r["row_spacing"], r["steps"], r["seed"]));
     rows.push_back(std::move(r));
   }
   return rows;

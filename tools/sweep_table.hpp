@@ -20,9 +20,9 @@ using RunRow = std::map<std::string, std::string>;
 std::string run_key(const RunRow& r);
 
 /// Rows of an existing runs.csv (a missing file gives none; a torn last line, from a run killed
-/// while writing, is dropped). Throws std::invalid_argument when the header is not ours, a
-/// measured column holds something other than a number, or the file is not a regular file of at
-/// most kMaxRunsCsvBytes.
+/// while writing, is dropped). Throws std::invalid_argument when the header is not ours, a line
+/// other than the last is not a whole row, a run has two rows, a measured column holds something
+/// other than a number, or the file is not a regular file of at most kMaxRunsCsvBytes.
 std::vector<RunRow> read_runs(const std::string& path);
 /// sweep.json as an earlier run of the sweep wrote it: a JSON object of at most
 /// kMaxSweepJsonBytes nested at most 16 levels; throws std::invalid_argument naming the file

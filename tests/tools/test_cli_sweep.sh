@@ -122,6 +122,33 @@ check "failed: kept on resume" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/lo
   -o "$tmp/f" >"$tmp/log6" 2>&1
 check "failed: retried" "1" "$(grep -c '^sweep: 1 runs made now (1 failed)' "$tmp/log6")"
 
+# A range's values are the decimals it names (0.1:0.3:0.1 made 0.30000000000000004); a sweep begun
+# with such a value resumes with it done and keeps one cell for it.
+tiny() { "$canopy" sweep "$g" --plant-spacing 0.1:0.3:0.1 --rows 1 --per-row 2 --seeds 1 --steps 3 --no-light --backend cpu -o "$tmp/r"; }
+tiny >"$tmp/o" 2>&1
+check "range values" "0.1 0.2 0.3" "$(col "$tmp/r/runs.csv" plant_spacing)"
+sed -i 's/^2,0.3,/2,0.30000000000000004,/' "$tmp/r/runs.csv"
+tiny >"$tmp/o" 2>&1
+check "earlier range value resumes" "0 1" "$? $(grep -c '^sweep: 0 runs made now' "$tmp/o")"
+check "earlier range value adopted" "0.1 0.2 0.3|3" "$(col "$tmp/r/runs.csv" plant_spacing)|$(($(wc -l < "$tmp/r/summary.csv") - 1))"
+# runs.csv as only a sweep writes it: a run's second row (pooled in the summary as another seed)
+# and a torn line that is not the last (only a kill tears, and only the last) are refused by line.
+cp "$tmp/r/runs.csv" "$tmp/r.good"
+sed -n 3p "$tmp/r.good" >> "$tmp/r/runs.csv"
+tiny >"$tmp/o" 2>"$tmp/e"
+check "a run twice in runs.csv" "2 1" "$? $(grep -c 'runs.csv:5: the run of line 3 again (plant spacing 0.2' "$tmp/e")"
+cp "$tmp/r.good" "$tmp/r/runs.csv"
+sed -i '3s/,ok,.*$/,ok,9/' "$tmp/r/runs.csv"
+tiny >"$tmp/o" 2>"$tmp/e"
+check "a torn middle line" "2 1" "$? $(grep -c 'runs.csv:3: not a whole row of 43 columns, and not the last line' "$tmp/e")"
+check "refusals leave runs.csv" "$(sed 3d "$tmp/r.good")" "$(sed 3d "$tmp/r/runs.csv")"
+
+# A sweep's light tile is its lattice (it has no --tile): a spacing too small for light fails the
+# run naming the spacings.
+"$canopy" sweep "$g" --plant-spacing 0.0001 --row-spacing 0.001 --rows 2 --per-row 3 --seeds 1 --steps 8 --backend cpu \
+  -o "$tmp/small" >"$tmp/o" 2>&1
+check "tiny lattice: the run fails" "3 1" "$? $(grep -c "failed: the light's tile is the stand's lattice (0.0003 x 0.002 m" "$tmp/o")"
+
 # Bad specifications: a clear error, exit 2, no folder.
 bad() {  # bad NAME PATTERN ARGS...
   local name=$1 pattern=$2; shift 2
@@ -136,6 +163,8 @@ bad "negative spacing" "\-\-plant-spacing: -0.3 must be greater than 0" --plant-
 bad "zero step" "step of '0.3:0.5:0' must be positive" --row-spacing 0.3:0.5:0
 bad "not a number" "'abc' is not a number" --density 2,abc
 bad "empty item" "empty item in '0.3,,0.4'" --plant-spacing 0.3,,0.4
+bad "a value twice" "\-\-plant-spacing: 0.3 is given twice in '0.3,0.2,0.3'" --plant-spacing 0.3,0.2,0.3
+bad "a density twice" "\-\-density: 2 is given twice" --density 2,3,2.0
 bad "fractional steps" "10.5 is not a whole number" --steps 10.5
 bad "sun below the horizon" "elevation -5 is not above the horizon" --sun -5,10
 bad "sun not a pair" "'60' is not ELEVATION,AZIMUTH" --sun 60
