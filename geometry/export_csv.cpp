@@ -33,6 +33,21 @@ constexpr const char* kPlantHeader = "id,x,y,rotation,seed,grammar,steps\n";
 /// A header as a message quotes it, on the message's one line.
 std::string_view without_newline(std::string_view header) { return header.substr(0, header.size() - 1); }
 
+/// The next row of a table canopy wrote: blank lines at its end (an editor's) end it, and a blank
+/// line with rows after it is refused by line.
+bool next_row(InputFile& in, std::string& line) {
+  if (!in.next_line(line)) return false;
+  if (!line.empty()) return true;
+  const int blank = in.line_number();
+  std::string rest;
+  while (in.next_line(rest))
+    if (!rest.empty())
+      throw std::runtime_error(
+          fmt::format("{}:{}: a blank line inside the table (rows follow on line {})", in.path(), blank,
+                      in.line_number()));
+  return false;
+}
+
 /// Splits an organs.csv line: its cells are numbers and names, never quoted (plants.csv, whose
 /// grammar cell is free text, goes through split_csv).
 std::vector<std::string_view> cells(std::string_view line) {
@@ -198,7 +213,7 @@ Stand read_stand(const std::string& dir) {
     throw std::runtime_error(
         fmt::format("{}:1: expected the header {}", pfile, without_newline(kPlantHeader)));
   std::vector<std::string> c;
-  while (pin->next_line(line)) {
+  while (next_row(*pin, line)) {
     const int ln = pin->line_number();
     if (!split_csv(line, c))
       throw std::runtime_error(fmt::format("{}:{}: a quoted cell is not closed", pfile, ln));
@@ -243,7 +258,7 @@ Stand read_stand(const std::string& dir) {
   // organ appears (as the turtle numbers them), so the plants' leaf ranges follow each other.
   std::int32_t plant = -1;
   std::uint32_t next_leaf = 0;
-  while (oin->next_line(line)) {
+  while (next_row(*oin, line)) {
     const int ln = oin->line_number();
     const auto c = cells(line);
     if (c.size() != columns)

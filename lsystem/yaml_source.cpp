@@ -37,7 +37,19 @@ std::string read_grammar_file(const std::string& path) {
 
 YAML::Node parse_yaml_document(const std::string& text, const std::string& file) {
   try {
-    return YAML::Load(text);
+    std::vector<YAML::Node> docs = YAML::LoadAll(text);
+    // A grammar is one document: a second after '---' was read by nobody, its rules and organs
+    // silently missing from the plants.
+    // (An empty one, a trailing '---', holds nothing to miss.)
+    const auto extra = std::find_if(docs.begin() + std::min<std::ptrdiff_t>(1, std::ssize(docs)), docs.end(),
+                                    [](const YAML::Node& d) { return !d.IsNull(); });
+    if (extra != docs.end()) {
+      const YAML::Mark m = extra->Mark();
+      throw GrammarError({file, m.line >= 0 ? m.line + 1 : 0, m.line >= 0 ? m.column + 1 : 0},
+                         "a second YAML document: a grammar is one document (merge it into the first, or "
+                         "remove the '---' that starts it)");
+    }
+    return docs.empty() ? YAML::Node() : docs[0];
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp stops nesting at a bound of its own and says only "bad file".
     throw GrammarError({file, e.mark.line + 1, e.mark.column + 1},

@@ -27,9 +27,14 @@ int main(int argc, char** argv) {
   // Large heap pages where the run uses the GPU, OpenMP waits asleep for the commands that run
   // parallel work (tools/process_rerun.hpp); not under mpirun (a rank
   // that runs itself again is not what its launcher started; not tried there).
-  if (!under_mpi)
-    canopy::rerun_for_run(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")),
-                          canopy::command_runs_parallel(argc, argv), argv);
+  try {
+    if (!under_mpi)
+      canopy::rerun_for_run(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "auto")),
+                            canopy::command_runs_parallel(argc, argv), argv);
+  } catch (const std::invalid_argument& e) {  // the environment's settings, read before any option
+    fmt::print(stderr, "canopy: error: {}\n", e.what());
+    return 2;
+  }
   canopy::keep_freed_memory();
   // Before any thread starts: SIGINT and SIGTERM are taken by a thread that cleans up.
   canopy::cli::start_signal_thread();

@@ -4,6 +4,9 @@
 #include "tools/process_rerun.hpp"
 
 #include <fmt/format.h>
+
+#include <stdexcept>
+#include <string>
 #ifdef CANOPY_HAVE_CUDA
 #include "cuda/device.hpp"
 #endif
@@ -39,6 +42,14 @@ Command add_info(CLI::App& root) {
 #else
             fmt::print("backend cuda: not built\n");
 #endif
+        // A self-test asked for and not run is a failure, not a silence that reads as a pass.
+        std::string untested;
+#ifdef CANOPY_HAVE_CUDA
+        if (*self_test && report.devices.empty())
+          untested = fmt::format("no CUDA device to test ({})", report.unavailable_reason);
+#else
+            if (*self_test) untested = "this build has no CUDA backend";
+#endif
 #ifdef CANOPY_HAVE_EMBREE
         fmt::print("render: Embree (canopy render)\n");
 #else
@@ -50,6 +61,7 @@ Command add_info(CLI::App& root) {
 #else
             fmt::print("mpi: not built (tiled runs need OpenMPI: libopenmpi-dev)\n");
 #endif
+        if (!untested.empty()) throw std::runtime_error("--self-test: " + untested);
         return 0;
       }};
 }

@@ -13,6 +13,7 @@
 /// more system time than small ones, the CPU backend's resolutions are slower. Hence the
 /// default: large pages where the run uses the GPU, small ones otherwise.
 /// CANOPY_HEAP_PAGES=large or =small in the environment overrides the choice.
+#include <fmt/format.h>
 #include <gnu/libc-version.h>
 #include <unistd.h>
 
@@ -20,6 +21,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -27,11 +29,15 @@ namespace canopy {
 
 enum class HeapPages { small, large };
 
-/// CANOPY_HEAP_PAGES if set to "large" or "small", else `gpu_run ? large : small`.
+/// CANOPY_HEAP_PAGES if set to "large" or "small", else `gpu_run ? large : small`; throws
+/// std::invalid_argument when it is set to anything else.
 inline HeapPages heap_pages_for(bool gpu_run) {
   if (const char* v = std::getenv("CANOPY_HEAP_PAGES")) {
     if (!std::strcmp(v, "large")) return HeapPages::large;
     if (!std::strcmp(v, "small")) return HeapPages::small;
+    // A misspelt value was passed over and the run took the default unannounced.
+    throw std::invalid_argument(fmt::format(
+        "CANOPY_HEAP_PAGES='{}' is neither 'large' nor 'small' (unset it for canopy's own choice)", v));
   }
   return gpu_run ? HeapPages::large : HeapPages::small;
 }

@@ -188,6 +188,15 @@ TEST_CASE("a grammar file with a NUL byte or in UTF-16 is named at the byte, bef
   std::filesystem::remove(path);
 }
 
+TEST_CASE("a grammar is one YAML document") {
+  // The second document's rules were read by nobody and missing from the plants, silently.
+  CHECK(error_of("axiom: A\n---\nproductions:\n  - A -> B\n") ==
+        "test.yaml:3:1: a second YAML document: a grammar is one document (merge it into the first, or "
+        "remove the '---' that starts it)");
+  CHECK(error_of("---\naxiom: A\n...\n") == "");  // markers around one document
+  CHECK(error_of("axiom: A\n---\n") == "");        // a trailing marker holds nothing to miss
+}
+
 TEST_CASE("production syntax") {
   CHECK(error_of("axiom: A\nproductions:\n  - A -> B : 0.5\n") ==
         "test.yaml:3:5: this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");

@@ -175,6 +175,18 @@ mkfifo pos/fifo
 run stand "$g" --positions pos/fifo --steps 4 -o ps
 check "positions from a pipe" "2:canopy: error: pos/fifo: the positions file is not a regular file (a device, pipe or socket)" "$rc:$(err)"
 
+# The environment's settings are held to their values: a misspelt heap-page choice was taken as
+# the default unannounced.
+CANOPY_HEAP_PAGES=huge run info
+check "CANOPY_HEAP_PAGES=huge" "2:canopy: error: CANOPY_HEAP_PAGES='huge' is neither 'large' nor 'small' (unset it for canopy's own choice)" "$rc:$(err)"
+# A self-test asked for passes on every GPU or fails: never silent where there is none to test.
+run info --self-test
+if grep -q '^backend cuda: device' "$tmp/out"; then
+  check "info --self-test on a GPU" "0:$(grep -c '^backend cuda: device' "$tmp/out")" "$rc:$(grep -c 'self test passed' "$tmp/out")"
+else
+  check "info --self-test without a GPU" "1:1" "$rc:$(grep -c '^canopy: error: --self-test: \(no CUDA device to test\|this build has no CUDA backend\)' "$tmp/err")"
+fi
+
 # canopy detect reads back only what canopy writes.
 run stand "$g" --rows 1 --per-row 2 --steps 6 --backend cpu -o st
 check "stand for detect" "0" "$rc"
@@ -195,6 +207,13 @@ check "detect: parent out of range" "1:canopy: error: parent/organs.csv:3: paren
 rm -rf empty; cp -r st empty; : > empty/organs.csv
 run detect empty --backend cpu
 check "detect: empty organs.csv" "1:1" "$rc:$(grep -c '^canopy: error: empty/organs.csv:1: expected the header id,plant,parent,' "$tmp/err")"
+# Blank lines after the last row (an editor's) end a table; one with rows after it is refused.
+rm -rf blank; cp -r st blank; printf '\n\n' >> blank/organs.csv; printf '\n' >> blank/plants.csv
+run detect blank --backend cpu
+check "detect: blank lines at the end" "0" "$rc"
+sed -i '3s/^/\n/' blank/organs.csv
+run detect blank --backend cpu
+check "detect: a blank line inside" "1:canopy: error: blank/organs.csv:3: a blank line inside the table (rows follow on line 4)" "$rc:$(err)"
 run detect st --backend cpu --threads 100000
 check "detect --threads 100000" "105:canopy: error: --threads: needs a whole number from 0 to 1024, got 100000" "$rc:$(err)"
 run detect st --backend cpu
