@@ -85,6 +85,8 @@ class OutputSet {
   /// The final folder.
   const std::string& dir() const { return folder_.dir(); }
   const StagedFolder& folder() const { return folder_; }
+  /// See StagedFolder::require_folder.
+  void require_folder(FolderIdentity read) { folder_.require_folder(read); }
   /// The files' write times and bytes, summed (those already committed included).
   WriteTimes times() const;
 

@@ -117,6 +117,12 @@ int process_umask() {
 
 }  // namespace
 
+FolderIdentity folder_identity(const std::string& dir) {
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return {};
+  return {static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino)};
+}
+
 void open_in_one_set(const std::string& dir, const std::function<void()>& open_all) {
   // The change time too: a folder made after the one read may get its inode number.
   const auto identity = [&] {
@@ -364,6 +370,17 @@ StagedFolder::Committed StagedFolder::commit() {
   struct stat st;
   const bool earlier = ::lstat(dir_.c_str(), &st) == 0;
   std::string old_path;  // where the earlier folder is once the new one is in place
+  const auto replaced_meanwhile = [&](const struct stat& now) {
+    return required_ && !(FolderIdentity{static_cast<std::uint64_t>(now.st_dev),
+                                         static_cast<std::uint64_t>(now.st_ino)} == *required_);
+  };
+  const auto refuse_replaced = [&] {
+    return std::runtime_error(fmt::format(
+        "{} was replaced by another run while this one read it; nothing of this run was written (run it "
+        "again on the folder as it is now)",
+        dir_));
+  };
+  if (required_ && (!earlier || replaced_meanwhile(st))) throw refuse_replaced();
   // A folder without the marker holds no earlier set: files of those names are the user's.
   bool earlier_set = true;
   const auto in_earlier_set = [&](const std::string& n) {
@@ -426,6 +443,13 @@ StagedFolder::Committed StagedFolder::commit() {
     const auto put_back = [&] {
       for (const std::string& n : moved) ::renameat(new_fd.fd, n.c_str(), old_fd.fd, n.c_str());
     };
+    // Checked again at the last moment: the entries were carried from the folder read.
+    struct stat old_now, dir_now;
+    if (required_ && (::fstat(old_fd.fd, &old_now) != 0 || replaced_meanwhile(old_now) ||
+                      ::stat(dir_.c_str(), &dir_now) != 0 || replaced_meanwhile(dir_now))) {
+      put_back();
+      throw refuse_replaced();
+    }
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) == 0) {
       old_path = staging_;
     } else if (errno == EINVAL || errno == ENOSYS || errno == EOPNOTSUPP) {

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,13 @@ std::string output_folder(const std::string& dir);
 /// existing ancestor when it is new. Throws std::runtime_error "cannot create the output folder
 /// DIR: why".
 void check_output_dir(const std::string& dir);
+
+/// Which folder a path names now (device and inode; zeros where there is none).
+struct FolderIdentity {
+  std::uint64_t dev = 0, ino = 0;
+  bool operator==(const FolderIdentity&) const = default;
+};
+FolderIdentity folder_identity(const std::string& dir);
 
 class StagedFolder {
  public:
@@ -64,6 +72,10 @@ class StagedFolder {
   bool unnamed_file_possible() const;
   /// Links unnamed file `fd` into the staging folder (made now) as `name`.
   void link_in(int fd, const std::string& name);
+  /// The files were made from the folder `read` (canopy light DIR reads a stand and adds its
+  /// light): commit() refuses, leaving `dir` as it is, where `dir` is by then another folder or
+  /// none (another run replaced it meanwhile; the light would join a stand it was not made for).
+  void require_folder(FolderIdentity read) { required_ = read; }
 
   struct Committed {
     std::vector<std::string> dropped;  // names in `replaces` the earlier folder had and the new set has not
@@ -90,6 +102,7 @@ class StagedFolder {
   std::vector<std::string> created_;
   std::vector<std::string> leftovers_, leftover_notes_;
   bool committed_ = false;
+  std::optional<FolderIdentity> required_;
 };
 
 /// Opens `files[i]` on `paths[i]` (files of folder `dir`) so that all come from one set: the

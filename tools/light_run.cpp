@@ -235,8 +235,10 @@ LightOutcome run_light(LightOptions o, bool print) {
   };
   if (std::filesystem::is_directory(o.source)) {
     const Stand stand = read_stand(o.source);
+    const FolderIdentity read = folder_identity(o.source);  // read_stand read one set of this folder
     out.dir = o.source;
     OutputSet files(out.dir);
+    files.require_folder(read);  // a stand written there meanwhile does not take this light
     light_files(stand, folder_layout(o.source), files);
     files.commit_all();
   } else {

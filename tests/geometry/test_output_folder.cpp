@@ -107,6 +107,45 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   fs::remove_all(root);
 }
 
+TEST_CASE("files made from a folder that another run replaced meanwhile are not put in") {
+  // canopy light DIR reads the stand and adds its light; a stand written to DIR in between would
+  // have taken a light made for the stand before it.
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  write_set(dir.string(), "first", {"organs.csv", "plants.csv"});
+  const FolderIdentity read = folder_identity(dir.string());
+  CHECK(read.ino == inode(dir));
+  CHECK(folder_identity((root / "none").string()) == FolderIdentity{});
+  {
+    OutputSet same(dir.string());  // nothing replaced it: the light joins the stand
+    same.require_folder(read);
+    same.open("light.csv").write("light of the first");
+    same.commit_all();
+  }
+  CHECK(slurp(dir / "light.csv") == "light of the first");
+  CHECK(slurp(dir / "organs.csv") == "first");
+  const FolderIdentity second_read = folder_identity(dir.string());  // the swap made a new folder
+  write_set(dir.string(), "second", {"organs.csv", "plants.csv"});  // another run, meanwhile
+  {
+    OutputSet late(dir.string());
+    late.require_folder(second_read);
+    late.open("light.csv").write("light of the first, again");
+    CHECK_THROWS_WITH(late.commit_all(), doctest::Contains("was replaced by another run while this one read it"));
+  }
+  CHECK(slurp(dir / "organs.csv") == "second");
+  CHECK(!fs::exists(dir / "light.csv"));  // the second stand dropped the first's light; this one is not put in
+  CHECK(names(root) == std::set<std::string>{"out"});  // no staging folder left
+  fs::remove_all(dir);
+  {
+    OutputSet gone(dir.string());  // the folder removed meanwhile: nothing made in its place
+    gone.require_folder(second_read);
+    gone.open("light.csv").write("x");
+    CHECK_THROWS(gone.commit_all());
+  }
+  CHECK(names(root).empty());
+  fs::remove_all(root);
+}
+
 TEST_CASE("a set's files have no name until the set is complete") {
   const fs::path root = temp_dir();
   const fs::path dir = root / "a" / "out";
