@@ -110,7 +110,9 @@ void SharedFile::plants(std::size_t n, std::size_t batch,
   const std::size_t batches = (n + batch - 1) / batch;
   const std::size_t wave = 4 * static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
   std::vector<std::uint64_t> sizes(n, 0);
-  const std::string spill_path = fmt::format("{}.spill-rank{}", path_, rank());
+  // Named as a temporary file of this process: where a kill leaves it (in the staging folder of
+  // a run that never swapped), the next run's clean-up knows it for a dead run's (is_dead_temporary).
+  const std::string spill_path = fmt::format("{}.spill-rank{}.tmp-{}", path_, rank(), process_tag());
   const std::uint64_t registered = register_run_path(spill_path, RunPath::file);  // a signal removes it
   struct Remove {
     const std::string& path;

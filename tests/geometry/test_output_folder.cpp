@@ -316,6 +316,7 @@ TEST_CASE("temporary names carry their process; a dead one's are removed, a live
     CHECK(tag_is_dead(std::to_string(::getpid()) + "-1"));
   CHECK(is_dead_temporary("stand.glb.tmp-" + kDeadTag));
   CHECK(is_dead_temporary("stand.glb.tmp-mpi.rank3"));
+  CHECK(is_dead_temporary("stand.glb.spill-rank0.tmp-" + kDeadTag));  // an MPI rank's, killed (mpi_files.cpp)
   CHECK_FALSE(is_dead_temporary("stand.glb.tmp-" + process_tag()));
   CHECK_FALSE(is_dead_temporary("notes.tmp-draft"));
 
