@@ -121,13 +121,23 @@ std::vector<std::string> remove_run_paths() {
   Registry& r = registry();
   std::lock_guard lock(r.mutex);
   std::vector<std::string> removed;
+  // Out of memory (this runs from the terminate handler too) loses a name from the list, never a
+  // removal.
+  const auto note = [&](const std::string& path) {
+    try {
+      removed.push_back(path);
+    } catch (...) {
+    }
+  };
   for (const Entry& e : r.entries)
-    if (e.kind == RunPath::file && ::unlink(e.path.c_str()) == 0) removed.push_back(e.path);
-  for (const Entry& e : r.entries)
-    if (e.kind == RunPath::staging && fs::exists(fs::symlink_status(e.path)) && remove_flat_folder(e.path))
-      removed.push_back(e.path);
+    if (e.kind == RunPath::file && ::unlink(e.path.c_str()) == 0) note(e.path);
+  for (const Entry& e : r.entries) {
+    std::error_code ec;
+    if (e.kind == RunPath::staging && fs::exists(fs::symlink_status(e.path, ec)) && remove_flat_folder(e.path))
+      note(e.path);
+  }
   for (auto it = r.entries.rbegin(); it != r.entries.rend(); ++it)
-    if (it->kind == RunPath::created_folder && ::rmdir(it->path.c_str()) == 0) removed.push_back(it->path);
+    if (it->kind == RunPath::created_folder && ::rmdir(it->path.c_str()) == 0) note(it->path);
   r.entries.clear();
   return removed;
 }

@@ -64,9 +64,12 @@ extern "C" void soft_handler(int) {
 }  // namespace
 
 void end_on_terminate() {
+  // Nothing here allocates where it can help it: the handler may run for an out-of-memory error,
+  // and an exception thrown from it would end the process in a second terminate, silently.
   std::set_terminate([] {
-    std::string what;
-    if (const std::exception_ptr e = std::current_exception()) {
+    const char* what = nullptr;  // points into the exception, which `e` keeps alive
+    const std::exception_ptr e = std::current_exception();
+    if (e) {
       try {
         std::rethrow_exception(e);
       } catch (const std::bad_alloc&) {
@@ -78,11 +81,17 @@ void end_on_terminate() {
       }
     }
     (void)lock_run_paths().release();  // kept: nothing changes on disk after the clean-up
-    remove_run_paths();
+    try {
+      remove_run_paths();
+    } catch (...) {
+      // the list of what was removed could not be made; what could be removed was
+    }
     std::fflush(stdout);
-    fmt::print(stderr, "canopy: error: {}\n", what.empty() ? "internal error (terminated)" : what);
+    std::fputs("canopy: error: ", stderr);
+    std::fputs(what && *what ? what : "internal error (terminated)", stderr);
+    std::fputs("\n", stderr);
     std::fflush(stderr);
-    if (what.empty()) std::abort();
+    if (!what || !*what) std::abort();
     _exit(1);
   });
 }
