@@ -79,6 +79,12 @@ CLI::Validator number_in(double lo, double hi) {
 
 CLI::Validator thread_count() { return whole_in(0, max_threads()); }
 
+void one_value_per_use(CLI::App& app) {
+  for (CLI::Option* o : app.get_options())
+    if (!o->get_positional() && o->get_expected_max() > 1) o->allow_extra_args(false);
+  for (CLI::App* sub : app.get_subcommands({})) one_value_per_use(*sub);
+}
+
 std::string parse_error_line(const CLI::Error& e) {
   std::string m = e.what();
   for (char& c : m)

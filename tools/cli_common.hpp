@@ -58,6 +58,10 @@ CLI::Validator thread_count();
 /// The one-line form of a command-line parse error: `canopy: error: ...` (CLI11's own text, its
 /// line breaks joined, without the "Run with --help" line).
 std::string parse_error_line(const CLI::Error& e);
+/// Every repeatable option (`--set`, `--sun`, ...) of `app` and its subcommands takes one value
+/// each time it is given: CLI11 let a list option take the words after it, so `canopy derive
+/// --set r=2 GRAMMAR` took the grammar as a second --set and refused the command.
+void one_value_per_use(CLI::App& app);
 
 /// A distance in metres that is rarely meant above 0.1 m (a clearance): a larger value runs as
 /// asked, with a note on stderr saying what it means, since millimetres typed where metres are

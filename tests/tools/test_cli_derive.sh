@@ -29,6 +29,12 @@ out=$("$canopy" derive "$tmp/exp.yaml" --max-modules 100000 2>"$tmp/err"); rc=$?
 check "cap exit" "1" "$rc"
 check "cap stdout" "" "$out"
 check "cap message" "1" "$(grep -c 'exceeds the module cap of 100000 modules at step 17' "$tmp/err")"
+# A repeatable option takes one value a use: options may come before the grammar (the grammar
+# after --set was taken as a second --set, and the command refused for want of a grammar).
+check "--set before the grammar" "A(5,6)" "$("$canopy" derive --set a=5 --set b=6 "$tmp/s.yaml")"
+check "--set before the grammar, an option after" '{"modules": 1, "counts": {"A": 1}}' "$("$canopy" derive --set a=5 "$tmp/s.yaml" --stats)"
+out=$("$canopy" derive "$tmp/s.yaml" --set a=5 b=6 2>"$tmp/err"); rc=$?
+check "--set takes one value a use" "109" "$rc"
 out=$("$canopy" derive "$tmp/s.yaml" --set zz=1 2>"$tmp/err"); rc=$?
 check "--set unknown exit" "2" "$rc"
 check "--set unknown message" "canopy: error: --set zz: $tmp/s.yaml has no constant 'zz' (its constants: a, b)" "$(cat "$tmp/err")"
