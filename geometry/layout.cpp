@@ -45,16 +45,43 @@ const char* grammar_cell_refusal(std::string_view cell) {
   return nullptr;
 }
 
-std::vector<std::pair<std::string_view, int>> split(std::string_view line) {
-  std::vector<std::pair<std::string_view, int>> cells;
-  std::size_t start = 0;
-  for (std::size_t i = 0; i <= line.size(); ++i)
-    if (i == line.size() || line[i] == ',') {
-      const std::string_view raw = line.substr(start, i - start);
-      const std::string_view cell = trim(raw);
-      cells.emplace_back(cell, static_cast<int>(start + (cell.empty() ? 0 : cell.data() - raw.data())) + 1);
-      start = i + 1;
+/// One line's cells as RFC 4180 writes them (a cell in double quotes may hold commas, and "" in it
+/// is a quote; canopy's plants.csv quotes a grammar path so), white space around a cell outside
+/// its quotes dropped; each with the column it begins at (1-based). `open_quote` is set to the
+/// column of a quote left open (0 when none).
+std::vector<std::pair<std::string, int>> split(std::string_view line, int& open_quote) {
+  std::vector<std::pair<std::string, int>> cells;
+  open_quote = 0;
+  std::size_t i = 0;
+  for (;;) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    const int column = static_cast<int>(i) + 1;
+    std::string cell;
+    if (i < line.size() && line[i] == '"') {
+      const std::size_t quote = i++;
+      bool closed = false;
+      for (; i < line.size(); ++i) {
+        if (line[i] != '"') cell += line[i];
+        else if (i + 1 < line.size() && line[i + 1] == '"') cell += '"', ++i;
+        else {
+          closed = true;
+          ++i;
+          break;
+        }
+      }
+      if (!closed) open_quote = static_cast<int>(quote) + 1;
+      const std::size_t end = std::min(line.find(',', i), line.size());
+      cell += std::string(trim(line.substr(i, end - i)));  // text after the closing quote, as it is
+      i = end;
+    } else {
+      const std::size_t end = std::min(line.find(',', i), line.size());
+      cell = std::string(trim(line.substr(i, end - i)));
+      i = end;
     }
+    cells.emplace_back(std::move(cell), column);
+    if (i >= line.size()) break;
+    ++i;  // the comma
+  }
   return cells;
 }
 
@@ -163,7 +190,12 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
     // A spreadsheet's "CSV UTF-8" export starts with a byte-order mark: not part of the header.
     if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
     if (trim(line).empty() || trim(line)[0] == '#') continue;
-    const auto cells = split(line);
+    int open_quote = 0;
+    const auto cells = split(line, open_quote);
+    if (open_quote)
+      throw std::invalid_argument(
+          fmt::format("{}:{}:{}: a quoted cell is not closed (a quote inside one is written \"\")", path,
+                      line_no, open_quote));
     if (col.empty()) {
       for (std::size_t i = 0; i < cells.size(); ++i)
         col.emplace(std::string(cells[i].first), static_cast<int>(i));
@@ -171,7 +203,7 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
         if (!col.count(need)) {
           // A spreadsheet set to a decimal comma separates its "CSV" cells with ';'.
           const bool other_separator =
-              cells.size() == 1 && cells[0].first.find_first_of(";\t") != std::string_view::npos;
+              cells.size() == 1 && cells[0].first.find_first_of(";\t") != std::string::npos;
           throw std::invalid_argument(fmt::format(
               "{}:{}: missing column '{}' (the header needs x,y,rotation,seed and may add grammar,steps){}",
               path, line_no, need,

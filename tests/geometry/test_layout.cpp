@@ -153,6 +153,23 @@ TEST_CASE("positions files: any column order, optional grammar and steps") {
   CHECK_FALSE(p[1].steps.has_value());
 }
 
+TEST_CASE("positions files: cells quoted as RFC 4180 writes them") {
+  // A spreadsheet quotes every cell; a grammar path with a comma is quoted as plants.csv writes it.
+  const auto p = positions_of(
+      "\"x\",\"y\",\"rotation\",\"seed\",\"grammar\"\n\"0.5\",\"1\",\"30\",\"7\",\"a,b.yaml\"\n"
+      " 2 , \"3\" ,0,8,\"say \"\"hi\"\".yaml\"\n");
+  REQUIRE(p.size() == 2);
+  CHECK(p[0].x == 0.5);
+  CHECK(p[0].seed == 7);
+  CHECK(p[0].grammar == "a,b.yaml");
+  CHECK(p[1].x == 2);
+  CHECK(p[1].y == 3);
+  CHECK(p[1].grammar == "say \"hi\".yaml");
+  CHECK(error_of("x,y,rotation,seed\n1,\"2,0,4\n") ==
+        ":2:3: a quoted cell is not closed (a quote inside one is written \"\")");
+  CHECK(error_of("x,y,rotation,seed\n1,\"\",0,4\n") == ":2:3: column 'y' needs a finite number, got ''");
+}
+
 TEST_CASE("positions files from a spreadsheet: a byte-order mark and CRLF line ends") {
   const auto p = positions_of("\xEF\xBB\xBFx,y,rotation,seed\r\n0.5,1,30,7\r\n");
   REQUIRE(p.size() == 1);
