@@ -40,7 +40,8 @@ Json by_light(const light::LightResult& r, auto&& pick) {
 }  // namespace
 
 Json light_json(const light::LightResult& r, const Stand& s, const LightOptions& o,
-                const std::vector<SunSpec>& suns) {
+                const LightSetup& setup) {
+  const std::vector<SunSpec>& suns = setup.suns;
   Json j;
   j["canopy_version"] = CANOPY_VERSION;
   j["source"] = o.source;
@@ -58,8 +59,7 @@ Json light_json(const light::LightResult& r, const Stand& s, const LightOptions&
   if (o.latitude)
     cfg["latitude"] = *o.latitude, cfg["day"] = o.day ? Json(*o.day) : Json(nullptr), cfg["hours"] = o.hours;
   j["config"] = cfg;
-  const Vec3d org = s.stand_origin;
-  j["tile"] = {r.tile.x0 + org.x, r.tile.y0 + org.y, r.tile.x1 + org.x, r.tile.y1 + org.y};
+  j["tile"] = setup.tile;
   j["periodic"] = r.periodic;
   j["plants"] = s.plant_count();
   j["leaf_area"] = r.leaf_area;

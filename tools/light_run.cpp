@@ -139,10 +139,10 @@ std::optional<RowLayout> folder_layout(const std::string& dir) {
 
 #ifdef CANOPY_HAVE_LIGHT
 light::LightConfig light_config(const LightOptions& o, const Stand& s, const std::optional<RowLayout>& layout,
-                                std::vector<SunSpec>& suns) {
+                                LightSetup& setup) {
   light::LightConfig c;
-  suns = parse_suns(o);
-  for (const SunSpec& x : suns) c.suns.push_back({x.elevation_deg, x.azimuth_deg});
+  setup.suns = parse_suns(o);
+  for (const SunSpec& x : setup.suns) c.suns.push_back({x.elevation_deg, x.azimuth_deg});
   c.sky = light::parse_sky(o.sky);
   c.sky_directions = o.sky_directions;
   c.periodic = !o.no_periodic;
@@ -175,6 +175,7 @@ light::LightConfig light_config(const LightOptions& o, const Stand& s, const std
   }
   const Vec3d org = s.stand_origin;
   c.tile = {t[0] - org.x, t[1] - org.y, t[2] - org.x, t[3] - org.y};
+  setup.tile = t;
   light::check_config(c);
   return c;
 }
@@ -217,17 +218,17 @@ LightOutcome run_light(LightOptions o, bool print) {
   const std::unique_ptr<light::RasterDevice> device =
       o.caster == "trace" ? nullptr : make_light_device(o.stand.detect.backend, device_note);
   LightOutcome out;
-  std::vector<SunSpec> suns;
+  LightSetup setup;
   std::optional<light::LightResult> result;
   std::size_t plants = 0;
   // The light of `stand` (laid out as `layout`) into `files`.
   const auto light_files = [&](const Stand& stand, std::optional<RowLayout> layout, OutputSet& files) {
     if (!o.tile.empty()) layout.reset();
-    light::LightConfig cfg = light_config(o, stand, layout, suns);
+    light::LightConfig cfg = light_config(o, stand, layout, setup);
     cfg.device = device.get();
     PrototypeLibrary lib;
     result = light::compute_light(stand, lib, cfg);
-    out.json = light_json(*result, stand, o, suns);
+    out.json = light_json(*result, stand, o, setup);
     out.csv = light_csv(*result, stand);
     plants = stand.plant_count();
     files.open("light.json").write(json_text(out.json, 2) + "\n");
@@ -268,7 +269,7 @@ LightOutcome run_light(LightOptions o, bool print) {
       fmt::print("  {:<34} {}  ({} rays)\n",
                  fmt::format("sun at {:.1f} deg, azimuth {:.1f}{}", r.direct[i].elevation_deg,
                              r.direct[i].azimuth_deg,
-                             suns[i].from_hours ? fmt::format(" ({} h)", suns[i].hour) : std::string()),
+                             setup.suns[i].from_hours ? fmt::format(" ({} h)", setup.suns[i].hour) : std::string()),
                  pm(r.direct[i].fraction), r.direct[i].rays);
     if (r.diffuse) {
       fmt::print(

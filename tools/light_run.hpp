@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,12 +69,19 @@ struct LightOutcome {
 LightOutcome run_light(LightOptions o, bool print = true);
 
 #ifdef CANOPY_HAVE_LIGHT
+/// What light_config chose beside the configuration: the beams as given, and the tile in world
+/// coordinates as given or made (light.json echoes it; the configuration's is relative to the
+/// stand's origin, which does not round-trip: -1 came back as -0.9999999999999999).
+struct LightSetup {
+  std::vector<SunSpec> suns;
+  std::array<double, 4> tile{};
+};
 /// The light configuration of `o` for `stand`; `layout`, when known, gives the lattice tile.
 light::LightConfig light_config(const LightOptions& o, const Stand& stand,
-                                const std::optional<RowLayout>& layout, std::vector<SunSpec>& suns);
+                                const std::optional<RowLayout>& layout, LightSetup& setup);
 /// light.json's content and light.csv's text.
 nlohmann::ordered_json light_json(const light::LightResult& r, const Stand& stand, const LightOptions& o,
-                                  const std::vector<SunSpec>& suns);
+                                  const LightSetup& setup);
 std::string light_csv(const light::LightResult& r, const Stand& stand);
 #endif
 

@@ -71,6 +71,12 @@ check "solar: exit" "0" "$?"
 check "solar: position" "61.45 180.0 12.0" "$(json "$tmp/a/light.json" "'%.2f %.1f %.1f' % (j['direct'][0]['elevation'], j['direct'][0]['azimuth'], j['direct'][0]['solar_hour'])")"
 check "no sky: no diffuse, no star" "None None" "$(json "$tmp/a/light.json" "j['diffuse'], j['star']")"
 
+# light.json's tile is the tile as given, or the lattice as made, in world coordinates (it was
+# carried through the jittered first plant's origin and back: -1 came out -0.9999999999999999).
+"$canopy" light "$tmp/a" --tile -1,-1,2,2 --sun 90,0 --sky-directions 0 --error 0.01 >/dev/null 2>&1
+check "--tile echoed exactly" "[-1.0, -1.0, 2.0, 2.0]" "$(json "$tmp/a/light.json" "j['tile']")"
+"$canopy" light "$tmp/a" --sun 90,0 --sky-directions 0 --error 0.01 >/dev/null 2>&1
+check "lattice tile exactly" "[-0.2, -0.5, 1.0, 1.5]" "$(json "$tmp/a/light.json" "j['tile']")"
 # A positions file needs its tile; --tile or --no-periodic.
 printf 'x,y,rotation,seed\n0,0,0,1\n0.5,0.1,90,2\n' > "$tmp/pos.csv"
 "$canopy" stand "$g" --positions "$tmp/pos.csv" --steps 10 --backend cpu -o "$tmp/p" >/dev/null 2>&1

@@ -87,16 +87,16 @@ void bind_light(py::module_& m) {
         {
           py::gil_scoped_release nogil;
           const ThreadLimit thread_limit(o.threads);
-          std::vector<cli::SunSpec> suns;
+          cli::LightSetup setup;
           light::LightConfig cfg =
-              cli::light_config(o, s.stand, o.tile.empty() ? s.layout : std::nullopt, suns);
+              cli::light_config(o, s.stand, o.tile.empty() ? s.layout : std::nullopt, setup);
           std::string note;
           const std::unique_ptr<light::RasterDevice> device =
               o.caster == "trace" ? nullptr : cli::make_light_device(o.stand.detect.backend, note);
           cfg.device = device.get();
           PrototypeLibrary lib;
           const light::LightResult r = light::compute_light(s.stand, lib, cfg);
-          j = cli::light_json(r, s.stand, o, suns);
+          j = cli::light_json(r, s.stand, o, setup);
           csv = cli::light_csv(r, s.stand);
         }
         py::dict out = json_to_py(j);
