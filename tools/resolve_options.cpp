@@ -159,7 +159,8 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
                     {"plant_a", u.contact.plant_a},
                     {"plant_b", u.contact.plant_b},
                     {"reason", u.reason}});
-  return {{"iterations", r.rounds},
+  return {{"ran", true},
+          {"iterations", r.rounds},
           {"converged", r.converged},
           {"stop", r.stop},
           {"contacts_before", r.contacts_before},
@@ -180,6 +181,17 @@ nlohmann::ordered_json resolution_json(const ResolveResult& r) {
           {"search", r.search},
           {"lanes", r.lanes},
           {"rounds", rounds}};
+}
+
+nlohmann::ordered_json resolution_not_run_json(const Contacts& c) {
+  ResolveResult none;
+  const auto& k = c.counts[static_cast<std::size_t>(c.level)];
+  none.contacts_before = none.contacts_after = k ? k->total() : c.pairs.size();
+  none.converged = none.contacts_after == 0;
+  none.stop = "not run (--no-resolve)";
+  nlohmann::ordered_json j = resolution_json(none);
+  j["ran"] = false;
+  return j;
 }
 
 void print_resolution(const ResolveResult& r) {

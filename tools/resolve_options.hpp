@@ -44,6 +44,10 @@ ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const Dete
 
 /// report.json's "resolution" object.
 nlohmann::ordered_json resolution_json(const ResolveResult& r);
+/// report.json's `resolution` with --no-resolve: the same fields as a loop of no rounds reports
+/// (`ran` false, nothing turned, the contacts of `c` at its level before and after), so a reader
+/// of `resolution.iterations` finds it either way.
+nlohmann::ordered_json resolution_not_run_json(const Contacts& c);
 void print_resolution(const ResolveResult& r);
 
 }  // namespace canopy::cli

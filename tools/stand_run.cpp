@@ -300,6 +300,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     rep.timings["detect_after"] = seconds_since(t_check);
     rep.peak_memory["detect_after"] = check_peak.gb();
     rep.resolution = resolution_json(*resolved);
+  } else {
+    rep.resolution = resolution_not_run_json(contacts);
   }
   rep.contacts_after = counts_json(after);
   rep.backend = backend->name();  // what ran to the end (auto may have fallen back)

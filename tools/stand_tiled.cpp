@@ -187,6 +187,8 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
       after = detect_owned(*backend, t, dreq, dreq.level, lower_levels);
       rep.timings["detect_after"] = seconds_since(t_check);
       rep.resolution = resolution_json(*resolved);
+    } else {
+      rep.resolution = resolution_not_run_json(before);
     }
     rep.contacts_after = counts_json(after);
     rep.backend = backend->name();  // what ran to the end (auto may have fallen back)
