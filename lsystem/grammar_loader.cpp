@@ -78,7 +78,7 @@ class Loader {
  private:
   void read_constants(const YAML::Node& node) {
     std::vector<bool> applied(options_.overrides.size(), false);
-    if (node) {
+    if (node && !node.IsNull()) {  // `constants:` with nothing after it: none
       src_.check_map(node, "constants", "");
       for (const auto& kv : node) {
         const std::string name = kv.first.Scalar();
@@ -166,7 +166,7 @@ class Loader {
   }
 
   void read_organs(const YAML::Node& node, RuleBuilder& builder) {
-    if (!node) return;
+    if (!node || node.IsNull()) return;  // `organs:` with nothing after it: none
     src_.check_map(node, "organs", "");
     for (const auto& kv : node) {
       const std::string name = kv.first.Scalar();

@@ -154,7 +154,8 @@ void YamlSource::check_map(const YAML::Node& node, std::string_view what, std::s
 }
 
 void YamlSource::check_sequence(const YAML::Node& node, std::string_view what) const {
-  if (!node.IsSequence()) fail_at(at(node), "{} must be a list", what);
+  // A key with nothing after it (`productions:`) is YAML's null: an empty list, as `[]`.
+  if (!node.IsSequence() && !node.IsNull()) fail_at(at(node), "{} must be a list", what);
 }
 
 }  // namespace canopy

@@ -197,6 +197,14 @@ TEST_CASE("a grammar is one YAML document") {
   CHECK(error_of("axiom: A\n---\n") == "");        // a trailing marker holds nothing to miss
 }
 
+TEST_CASE("a list or map key with nothing after it is empty, as [] or {}") {
+  // YAML reads `productions:` alone as null; it was 'productions must be a list'.
+  for (const char* key : {"productions", "interpretation", "ignore", "modules", "constants", "organs"})
+    CHECK(error_of(std::string("axiom: A B\n") + key + ":\n") == "");
+  CHECK(error_of("axiom: A\nproductions: 3\n") == "test.yaml:2:14: productions must be a list");
+  CHECK(error_of("axiom: A\nconstants: 3\n") == "test.yaml:2:12: constants must be a map");
+}
+
 TEST_CASE("production syntax") {
   CHECK(error_of("axiom: A\nproductions:\n  - A -> B : 0.5\n") ==
         "test.yaml:3:5: this production reads as a YAML map because of ': '; quote it: - \"A -> B : ...\"");
