@@ -1,6 +1,7 @@
 #include "lsystem/rule_builder.hpp"
 
 #include <cctype>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <unordered_map>
@@ -19,6 +20,34 @@ std::string squeeze(std::string_view s) {
   std::string out;
   for (char c : s)
     if (!std::isspace(static_cast<unsigned char>(c))) out += c;
+  return out;
+}
+
+/// `text` (a condition) without white space and with each formal parameter written as its slot
+/// ("$0", "$1", ...): `x > 0` of A(x) and `y > 0` of A(y) are one condition.
+std::string canonical_condition(std::string_view text, const std::vector<std::string>& formals) {
+  std::string out;
+  const auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  for (std::size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+    } else if (std::isdigit(static_cast<unsigned char>(c)) || c == '.') {  // a number, exponent and all
+      const std::size_t b = i++;
+      while (i < text.size() && (word(text[i]) || text[i] == '.' ||
+                                 ((text[i] == '+' || text[i] == '-') && (text[i - 1] == 'e' || text[i - 1] == 'E'))))
+        ++i;
+      out += text.substr(b, i - b);
+    } else if (word(c)) {
+      const std::size_t b = i;
+      while (i < text.size() && word(text[i])) ++i;
+      const std::string_view name = text.substr(b, i - b);
+      const auto f = std::find(formals.begin(), formals.end(), name);
+      out += f == formals.end() ? std::string(name) : "$" + std::to_string(f - formals.begin());
+    } else {
+      out += c, ++i;
+    }
+  }
   return out;
 }
 
@@ -160,6 +189,25 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     }
     group.key = squeeze(parts.left.of(text)) + "<" + squeeze(parts.predecessor.of(text)) + ">" +
                 squeeze(parts.right.of(text)) + ":" + squeeze(parts.condition.of(text));
+    // What makes productions one group: the modules matched (symbol and parameter count, the
+    // names of the formals aside; a context left out and '*' alike), then the condition with
+    // its formals by slot. The frame's slots are positional, so a group's successors each read
+    // the parameters they name.
+    std::string same;
+    {
+      std::vector<const ModulePattern*> all;
+      for (const auto& p : group.left) all.push_back(&p);
+      all.push_back(&group.predecessor);
+      for (const auto& p : group.right) all.push_back(&p);
+      const std::size_t pred_at = group.left.size();
+      for (std::size_t k = 0; k < all.size(); ++k) {
+        const int end = k + 1 < all.size() ? all[k + 1]->first_slot : group.frame_size;
+        if (k == pred_at) same += '<';
+        same += std::to_string(all[k]->symbol) + "(" + std::to_string(end - all[k]->first_slot) + ")";
+        if (k == pred_at) same += '>';
+      }
+      same += ":" + canonical_condition(parts.condition.of(text), formals);
+    }
 
     Successor succ;
     succ.modules = compile_modules(parts.successor.of(text), src.locate, parts.successor.begin, resolve);
@@ -182,7 +230,7 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     }
     succ.cumulative = probability;
 
-    const auto [at, added] = group_of.try_emplace(group.key, static_cast<int>(t.groups.size()));
+    const auto [at, added] = group_of.try_emplace(same, static_cast<int>(t.groups.size()));
     const int gi = at->second;
     if (added) {
       t.groups.push_back(std::move(group));

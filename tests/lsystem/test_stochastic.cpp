@@ -1,6 +1,9 @@
 // Stochastic productions: reproducible from the plant's seed, frequencies as written.
 #include "helpers.hpp"
 
+#include <set>
+#include <string>
+
 using namespace canopy;
 using namespace canopy::test;
 
@@ -72,4 +75,33 @@ TEST_CASE("probabilities within 1e-9 of 1 are accepted") {
   CHECK_NOTHROW(
       grammar("axiom: A\nproductions:\n  - 'A -> B : 0.3333333333'\n  - 'A -> C : 0.3333333333'\n  - 'A -> D "
               ": 0.3333333334'\n"));
+}
+
+TEST_CASE("a group is its modules and condition, whatever its formals are named") {
+  // `A(x) -> B : 0.5` and `A(y) -> C : 0.5` match the same modules: one group (it was two, each
+  // summing to 0.5). Each successor reads the parameters it names by their place.
+  const Grammar g = grammar(R"g(
+steps: 1
+axiom: A(3) A(3) A(3) A(3) A(3) A(3) A(3) A(3)
+productions:
+  - "A(x) : x > 2 -> B(x) : 0.5"
+  - "A(y) :y>2-> C(y * 2) : 0.5"
+  - "A(z) : z > 1 -> D(z)"
+)g");
+  std::set<std::string> seen;
+  for (std::uint64_t s = 0; s < 50; ++s) {
+    const std::string d = derived(g, 1, s);
+    for (std::size_t at = 0; (at = d.find_first_of("BCD", at)) != std::string::npos; ++at)
+      seen.insert(d.substr(at, d.find(')', at) - at + 1));
+  }
+  CHECK(seen == std::set<std::string>{"B(3)", "C(6)"});  // the z > 1 production never applies
+  // A formal in one production and a constant of that name in another are other conditions.
+  CHECK(grammar_error([] {
+          grammar("constants: {x: 1}\naxiom: A(3)\nproductions:\n  - \"A(x) : x > 2 -> B : 0.5\"\n"
+                  "  - \"A(y) : x > 2 -> C : 0.5\"\n");
+        }).find("sum to 0.5, not 1") != std::string::npos);
+  // Contexts count: with and without a left context are two productions.
+  CHECK(grammar_error([] {
+          grammar("axiom: B A(1)\nproductions:\n  - \"B < A(x) -> C : 0.5\"\n  - \"A(y) -> D : 0.5\"\n");
+        }).find("sum to 0.5, not 1") != std::string::npos);
 }
