@@ -7,11 +7,20 @@
 namespace canopy {
 namespace {
 
-[[noreturn]] void cap_exceeded(std::size_t cap, std::size_t step) {
+/// The cap passed: named at the production whose successor made the string pass it (where none
+/// applied yet, the axiom). `step`: the derivation step, 0 for the axiom, -1 the interpretation.
+[[noreturn]] void cap_exceeded(const Grammar& g, std::size_t cap, int step, const SourcePos* where) {
+  SourcePos at = where ? *where : g.axiom.empty() ? SourcePos{g.file, 0, 0} : g.axiom.front().pos;
+  if (at.file.empty()) at.file = g.file;
+  if (step == 0)
+    throw ModuleCapError(fmt::format("{}: the axiom has more than the module cap of {} modules (raise --max-modules)",
+                                     at.str(), cap));
+  const std::string when = step > 0 ? fmt::format(" at step {}, as this production applied", step)
+                                    : std::string(" in the interpretation, as this production applied");
   throw ModuleCapError(fmt::format(
-      "the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
+      "{}: the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
       "many steps; lower --steps or raise --max-modules)",
-      cap, step == 0 ? std::string() : fmt::format(" at step {}", step)));
+      at.str(), cap, when));
 }
 
 /// Copies a module's `n` parameters, starting at params[offset], into the production's frame.
@@ -85,7 +94,8 @@ using Origins = PodBuffer<const SuccessorModule*>;
 /// Both forms draw the same numbers, so the tracked run derives the same string.
 template <bool Track>
 void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out,
-                  Rng& rng, std::size_t max_modules, const Origins* in_origin, Origins* out_origin) {
+                  Rng& rng, std::size_t max_modules, int step, const Origins* in_origin, Origins* out_origin) {
+  const SourcePos* applied = nullptr;  // the production applied last: where the cap is named
   if constexpr (Track) out_origin->clear();
   out.symbols.clear();
   out.params.clear();
@@ -118,10 +128,12 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
       if constexpr (Track) out_origin->append(in_origin->data() + i, j - i);
       i = j - 1;
       p = q;
-      if (out.symbols.size() > max_modules) cap_exceeded(max_modules, 0);
+      if (out.symbols.size() > max_modules) cap_exceeded(g, max_modules, step, applied);
       continue;
     } else if (mode == RewriteMode::constant) {
-      const Successor& sc = table.groups[table.by_symbol[x][0]].successors[0];
+      const RuleGroup& rg = table.groups[table.by_symbol[x][0]];
+      const Successor& sc = rg.successors[0];
+      applied = &rg.pos;
       out.symbols.append(sc.constant_symbols.data(), sc.constant_symbols.size());
       out.params.append(sc.constant_params.data(), sc.constant_params.size());
       if constexpr (Track)
@@ -170,6 +182,7 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
           }
         }
         matched = true;
+        applied = &rg.pos;
         break;
       }
       if (!matched) {
@@ -179,15 +192,15 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
       }
     }
     p += static_cast<std::size_t>(ar);
-    if (out.symbols.size() > max_modules) cap_exceeded(max_modules, 0);
+    if (out.symbols.size() > max_modules) cap_exceeded(g, max_modules, step, applied);
   }
 }
 
 }  // namespace
 
 void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
-             std::size_t max_modules) {
-  rewrite_step<false>(g, table, in, out, rng, max_modules, nullptr, nullptr);
+             std::size_t max_modules, int step) {
+  rewrite_step<false>(g, table, in, out, rng, max_modules, step, nullptr, nullptr);
 }
 
 ModuleString derive(const Grammar& g, const DeriveRequest& req) {
@@ -197,15 +210,11 @@ ModuleString derive(const Grammar& g, const DeriveRequest& req) {
         fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, steps));
   Rng rng(req.seed.value_or(g.seed));
   ModuleString cur = evaluate_axiom(g, rng);
-  if (cur.size() > req.max_modules) cap_exceeded(req.max_modules, 0);
+  if (cur.size() > req.max_modules) cap_exceeded(g, req.max_modules, 0, nullptr);
   if (g.productions.empty()) return cur;
   ModuleString next;
   for (int step = 1; step <= steps; ++step) {
-    try {
-      rewrite(g, g.productions, cur, next, rng, req.max_modules);
-    } catch (const ModuleCapError&) {
-      cap_exceeded(req.max_modules, static_cast<std::size_t>(step));
-    }
+    rewrite(g, g.productions, cur, next, rng, req.max_modules, step);
     std::swap(cur, next);
   }
   return cur;
@@ -225,7 +234,7 @@ ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint6
   if (g.interpretation.empty()) return derived;
   Rng rng = interpretation_stream(seed);
   ModuleString out;
-  rewrite(g, g.interpretation, derived, out, rng, max_modules);
+  rewrite(g, g.interpretation, derived, out, rng, max_modules, -1);
   return out;
 }
 
@@ -240,13 +249,13 @@ std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& re
   ModuleString next;
   if (!g.productions.empty())
     for (int step = 1; step <= steps; ++step) {
-      rewrite_step<true>(g, g.productions, cur, next, rng, req.max_modules, &origin, &next_origin);
+      rewrite_step<true>(g, g.productions, cur, next, rng, req.max_modules, step, &origin, &next_origin);
       std::swap(cur, next);
       std::swap(origin, next_origin);
     }
   if (interpreted && !g.interpretation.empty()) {
     Rng irng = interpretation_stream(seed);
-    rewrite_step<true>(g, g.interpretation, cur, next, irng, req.max_modules, &origin, &next_origin);
+    rewrite_step<true>(g, g.interpretation, cur, next, irng, req.max_modules, -1, &origin, &next_origin);
     std::swap(origin, next_origin);
   }
   if (module >= origin.size() || !origin[module]) return std::nullopt;

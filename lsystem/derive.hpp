@@ -39,9 +39,11 @@ ModuleString interpret(const Grammar& g, const ModuleString& derived, std::uint6
 std::optional<SourcePos> module_source(const Grammar& g, const DeriveRequest& req, bool interpreted,
                                        std::size_t module, int parameter = -1);
 
-/// One parallel rewriting step of `in` by `table` into `out`.
+/// One parallel rewriting step of `in` by `table` into `out`. Past `max_modules` it throws
+/// ModuleCapError naming the production that passed the cap and `step` (the derivation's step;
+/// -1 for the interpretation).
 void rewrite(const Grammar& g, const RuleTable& table, const ModuleString& in, ModuleString& out, Rng& rng,
-             std::size_t max_modules);
+             std::size_t max_modules, int step = 0);
 
 /// Context neighbours (ABOP §1.8): for each module, the nearest preceding module on its path to
 /// the root and the next module on the same axis, skipping whole branches and ignored names; -1

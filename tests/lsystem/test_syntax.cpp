@@ -141,7 +141,20 @@ TEST_CASE("module cap stops exponential growth with a clear error") {
     derive(g, DeriveRequest{40, 1, 1000});
     FAIL("no error");
   } catch (const ModuleCapError& e) {
-    CHECK(std::string(e.what()).find("module cap of 1000 modules at step 10") != std::string::npos);
+    // Named at the production that passed the cap, as every grammar error is.
+    CHECK(std::string(e.what()).starts_with(
+        "test.yaml:3:5: the derived string exceeds the module cap of 1000 modules at step 10, as this "
+        "production applied"));
   }
   CHECK(derive(g, DeriveRequest{9, 1, 1000}).size() == 512);
+  const Grammar fib = grammar("axiom: A\nproductions:\n  - A -> B\n  - B -> A B\n");
+  CHECK_THROWS_WITH(derive(fib, DeriveRequest{40, 1, 100}),
+                    doctest::Contains("test.yaml:4:5: the derived string exceeds the module cap of 100 "
+                                        "modules at step 11"));
+  CHECK_THROWS_WITH(derive(grammar("axiom: A A A\n"), DeriveRequest{0, 1, 2}),
+                    "test.yaml:1:8: the axiom has more than the module cap of 2 modules (raise --max-modules)");
+  const Grammar wide = grammar("axiom: A\ninterpretation:\n  - A -> A A A A A A\n");
+  CHECK_THROWS_WITH(interpret(wide, derive(wide, DeriveRequest{0, 1, 5}), 1, 5),
+                    doctest::Contains("test.yaml:3:5: the derived string exceeds the module cap of 5 "
+                                        "modules in the interpretation"));
 }
