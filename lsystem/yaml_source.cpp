@@ -2,6 +2,7 @@
 
 #include "geometry/input_file.hpp"
 #include "geometry/layout.hpp"
+#include "lsystem/scalar_places.hpp"
 
 #include <yaml-cpp/depthguard.h>
 
@@ -68,25 +69,21 @@ SourcePos YamlSource::at(const YAML::Node& node) const {
 SourcePos YamlSource::at(const YAML::Node& node, std::size_t offset) const {
   SourcePos p = at(node);
   const YAML::Mark m = node.Mark();
-  if (m.pos < 0 || static_cast<std::size_t>(m.pos) >= text_.size()) return p;
+  if (m.pos < 0 || static_cast<std::size_t>(m.pos) >= text_.size() || !node.IsScalar()) return p;
+  // The places of the node's value, made once for the node (a production is located module by
+  // module).
+  if (places_of_ != m.pos) {
+    places_ = scalar_places(text_, static_cast<std::size_t>(m.pos), p.line, p.column, node.Scalar());
+    places_of_ = m.pos;
+  }
+  if (!places_.empty()) {
+    const SourcePlace& q = places_[std::min(offset, places_.size() - 1)];
+    return {file_, q.line, q.column};
+  }
+  // The source did not give the value as scalar_places reads it: the value's offset on the
+  // node's line, past its quote.
   const char first = text_[static_cast<std::size_t>(m.pos)];
   if (first == '"' || first == '\'') return p.shifted(1 + static_cast<int>(offset));
-  if (first == '|' || first == '>') {
-    // Block scalar: its lines start on the next line of the file, at their indentation.
-    const std::string value = node.Scalar();
-    std::size_t line = 0, col = 0;
-    for (std::size_t i = 0; i < offset && i < value.size(); ++i) {
-      if (value[i] == '\n') {
-        ++line;
-        col = 0;
-      } else ++col;
-    }
-    std::size_t k = text_.find('\n', static_cast<std::size_t>(m.pos));
-    int indent = 0;
-    if (k != std::string::npos)
-      while (k + 1 + indent < text_.size() && text_[k + 1 + indent] == ' ') ++indent;
-    return {file_, p.line + 1 + static_cast<int>(line), indent + 1 + static_cast<int>(col)};
-  }
   return p.shifted(static_cast<int>(offset));
 }
 

@@ -2,12 +2,14 @@
 /// Helpers that read typed values out of yaml-cpp nodes and locate them in the source text, so
 /// every grammar error can name file, line and column.
 #include "lsystem/error.hpp"
+#include "lsystem/scalar_places.hpp"
 
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace canopy {
 
@@ -26,8 +28,8 @@ class YamlSource {
   const std::string& file() const { return file_; }
   /// Where `node` starts.
   SourcePos at(const YAML::Node& node) const;
-  /// Where character `offset` of a scalar node's value stands in the file (quoted, plain and
-  /// literal block scalars).
+  /// Where byte `offset` of a scalar node's value stands in the file, in any scalar style (escapes,
+  /// folded lines and block scalars followed back to their source: lsystem/scalar_places.hpp).
   SourcePos at(const YAML::Node& node, std::size_t offset) const;
 
   double number(const YAML::Node& node, std::string_view what) const;
@@ -43,6 +45,8 @@ class YamlSource {
  private:
   std::string file_;
   std::string text_;
+  mutable int places_of_ = -1;  // the node (its source offset) places_ belongs to
+  mutable std::vector<SourcePlace> places_;
 };
 
 }  // namespace canopy

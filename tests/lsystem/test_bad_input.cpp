@@ -188,6 +188,21 @@ TEST_CASE("a grammar file with a NUL byte or in UTF-16 is named at the byte, bef
   std::filesystem::remove(path);
 }
 
+TEST_CASE("errors inside productions written over lines or with escapes name their place") {
+  // The place was the value's offset on the node's first line: 5:23 on a line of 16 characters.
+  const std::string unknown = ": unknown name 'y': not a parameter of this production nor a constant";
+  const std::string head = "steps: 1\naxiom: A(1)\nproductions:\n";
+  CHECK(error_of(head + "  - >-\n    A(x) : x > 0\n    -> B(y)\n") == "test.yaml:6:10" + unknown);  // folded
+  CHECK(error_of(head + "  - |-\n    A(x) : x > 0 ->\n      B(y)\n") == "test.yaml:6:9" + unknown);  // literal
+  CHECK(error_of(head + "  - \"A(x) : x > 0\n    -> B(y)\"\n") == "test.yaml:5:10" + unknown);  // "" over lines
+  CHECK(error_of(head + "  - 'A(x) : x > 0\n    -> B(y)'\n") == "test.yaml:5:10" + unknown);   // '' over lines
+  CHECK(error_of(head + "  - A(x) -> B(x)\n    C(y)\n") == "test.yaml:5:7" + unknown);        // plain
+  // An escape is several characters of the file: \t two, \u00e9 six (two bytes of the value).
+  CHECK(error_of(head + "  - \"A(x) : x > 0 -> \\tB(y)\"\n") == "test.yaml:4:26" + unknown);
+  CHECK(error_of(head + "  - \"A(x) : x > 0 -> \\u00e9 B(y)\"\n") == "test.yaml:4:31" + unknown);
+  CHECK(error_of(head + "  - \"A(x) : x > 0 -> \\\n    B(y)\"\n") == "test.yaml:5:7" + unknown);  // continued
+}
+
 TEST_CASE("a grammar is one YAML document") {
   // The second document's rules were read by nobody and missing from the plants, silently.
   CHECK(error_of("axiom: A\n---\nproductions:\n  - A -> B\n") ==
