@@ -1,5 +1,6 @@
 #include "geometry/staged_folder.hpp"
 
+#include "geometry/folder_ops.hpp"
 #include "geometry/run_files.hpp"
 
 #include <fmt/format.h>
@@ -24,69 +25,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kStagingMark = ".canopy-";
-
-std::string why() { return std::strerror(errno); }
-
-/// An open folder, closed on scope exit.
-struct Fd {
-  int fd = -1;
-  explicit Fd(const std::string& path, int flags = O_RDONLY | O_DIRECTORY | O_CLOEXEC)
-      : fd(::open(path.c_str(), flags)) {}
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
-  }
-  Fd(const Fd&) = delete;
-  Fd& operator=(const Fd&) = delete;
-};
-
-/// The names in folder `path` ("." and ".." left out); empty when it cannot be read.
-std::vector<std::string> names_in(const std::string& path) {
-  std::vector<std::string> out;
-  if (DIR* d = ::opendir(path.c_str())) {
-    while (const dirent* e = ::readdir(d))
-      if (std::strcmp(e->d_name, ".") && std::strcmp(e->d_name, "..")) out.emplace_back(e->d_name);
-    ::closedir(d);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-bool is_folder_at(int dirfd, const std::string& name) {
-  struct stat st;
-  return ::fstatat(dirfd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode);
-}
-
-bool exists_at(int dirfd, const std::string& name) {
-  struct stat st;
-  return ::fstatat(dirfd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
-}
-
-bool same_file_at(int dira, int dirb, const std::string& name) {
-  struct stat a, b;
-  return ::fstatat(dira, name.c_str(), &a, AT_SYMLINK_NOFOLLOW) == 0 &&
-         ::fstatat(dirb, name.c_str(), &b, AT_SYMLINK_NOFOLLOW) == 0 && a.st_dev == b.st_dev &&
-         a.st_ino == b.st_ino;
-}
-
-void sync_folder(const std::string& path) {
-  Fd d(path);
-  if (d.fd >= 0) ::fsync(d.fd);
-}
-
-/// The part after ".NAME.canopy-" of a staging name: "PID-START-K" or "PID-START-K-old"; the
-/// tag ("PID-START") when it is one, else empty.
-std::string staging_tag(std::string_view rest) {
-  if (rest.ends_with("-old")) rest.remove_suffix(4);
-  int dashes = 0;
-  for (char c : rest) {
-    if (c == '-') ++dashes;
-    else if (c < '0' || c > '9') return {};
-  }
-  if (dashes != 2 || rest.front() == '-' || rest.back() == '-' || rest.find("--") != std::string_view::npos)
-    return {};
-  return std::string(rest.substr(0, rest.rfind('-')));
-}
+using namespace folder_ops;
 
 std::atomic<unsigned> g_staging_count{0};
 
@@ -176,21 +115,24 @@ namespace {
 
 /// Where the staging folder for output folder `p` (`dir` as named) can be made: `p`'s parent, or
 /// its nearest existing ancestor for a new folder. Throws when `p` cannot be replaced as a whole.
-fs::path staging_place(const fs::path& p, const std::string& dir) {
+/// Where the staging folder of output `p` goes: beside it, or inside it when the folder must stay
+/// the same folder (`in_place`): the working folder (a shell in it would be left in a removed
+/// folder) or a mount point (which cannot be renamed).
+fs::path staging_place(const fs::path& p, const std::string& dir, bool* in_place = nullptr) {
   const auto refuse = [&](const std::string& reason) {
     throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, reason));
   };
+  if (in_place) *in_place = false;
   struct stat st;
   if (::lstat(p.c_str(), &st) == 0) {
     if (!S_ISDIR(st.st_mode)) refuse("it exists and is not a folder");
     struct stat here, parent;
-    if (::stat(".", &here) == 0 && here.st_dev == st.st_dev && here.st_ino == st.st_ino)
-      refuse(
-          "it is the working folder, and a run replaces its output folder as a whole (which would leave this "
-          "shell in a "
-          "removed folder); name a folder inside it or beside it");
-    if (::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev)
-      refuse("it is a mount point, which cannot be replaced as a whole; name a folder inside it");
+    const bool working = ::stat(".", &here) == 0 && here.st_dev == st.st_dev && here.st_ino == st.st_ino;
+    const bool mount = ::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev;
+    if (working || mount) {
+      if (in_place) *in_place = true;
+      return p;
+    }
     return p.parent_path();
   }
   if (errno != ENOENT && errno != ENOTDIR) refuse(why());
@@ -231,11 +173,14 @@ void StagedFolder::open(const std::string& dir) {
   dir_ = output_folder(dir);
   named_ = dir;
   const fs::path p(dir_);
-  base_ = staging_place(p, dir).string();
+  base_ = staging_place(p, dir, &in_place_).string();
   parent_ = p.parent_path().string();
   name_ = p.filename().string();
   remove_leftovers();
-  staging_ = fmt::format("{}/.{}{}{}-{}", parent_, name_, kStagingMark, process_tag(), g_staging_count++);
+  finish_in_place_leftovers();
+  staging_ = in_place_ ? fmt::format("{}/{}{}-{}", dir_, kStagingMark, process_tag(), g_staging_count++)
+                       : fmt::format("{}/.{}{}{}-{}", parent_, name_, kStagingMark, process_tag(),
+                                     g_staging_count++);
 }
 
 void StagedFolder::make() {
@@ -366,6 +311,7 @@ StagedFolder::Committed StagedFolder::commit() {
   }
   sync_folder(staging_);
 
+  if (in_place_) return commit_in_place();
   auto lock = lock_run_paths();  // a signal now waits until the folder is swapped and registered as such
   struct stat st;
   const bool earlier = ::lstat(dir_.c_str(), &st) == 0;

@@ -16,6 +16,9 @@
 /// never absent; other folders are moved into it just before the swap. Nothing is ever removed recursively: a
 /// folder that cannot be carried across keeps the earlier folder in place under its staging name, and
 /// commit() says so.
+///
+/// The working folder and mount points cannot be swapped: they are committed in place, the
+/// staging folder inside them and the files moved in one by one (geometry/staged_in_place.cpp).
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -30,8 +33,8 @@ namespace canopy {
 std::string output_folder(const std::string& dir);
 
 /// Checks, leaving nothing behind, that a StagedFolder can later replace `dir`: an existing `dir`
-/// is a folder, not the working folder (the shell would be left in a removed folder) and not a
-/// mount point (those cannot be renamed); a folder can be made beside it, or in its nearest
+/// is a folder (the working folder and mount points are written in place, a folder made inside
+/// them: geometry/staged_in_place.cpp); a folder can be made beside it, or in its nearest
 /// existing ancestor when it is new. Throws std::runtime_error "cannot create the output folder
 /// DIR: why".
 void check_output_dir(const std::string& dir);
@@ -93,8 +96,13 @@ class StagedFolder {
  private:
   void open(const std::string& dir);
   void remove_leftovers();
+  /// In place (geometry/staged_in_place.cpp): the files moved into the folder one by one, and what
+  /// a run killed while doing so left finished by the next.
+  Committed commit_in_place();
+  void finish_in_place_leftovers();
   std::string dir_, named_, base_, parent_, name_, staging_;
   bool made_ = false;
+  bool in_place_ = false;  // the output folder stays the folder it is (see staging_place)
   std::vector<std::string> replaces_;
   std::string marker_;
   std::uint64_t staging_id_ = 0;

@@ -298,11 +298,58 @@ TEST_CASE("output folders that cannot be replaced as a whole are refused up fron
   CHECK_THROWS_AS(check_output_dir("/proc/canopy-cannot-write-here"), std::runtime_error);
   const fs::path here = fs::current_path();
   fs::current_path(root);
-  CHECK_THROWS_WITH_AS(check_output_dir("."), doctest::Contains("it is the working folder"),
-                       std::runtime_error);
   CHECK_NOTHROW(check_output_dir("sub/new"));
   fs::current_path(here);
   CHECK(names(root) == std::set<std::string>{"file"});  // the checks leave nothing behind
+  fs::remove_all(root);
+}
+
+TEST_CASE("the working folder is written in place: the same folder, one set, what a kill left finished") {
+  // A shell in the folder stays in it: the folder is not swapped but its files replaced.
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  write_set(dir.string(), "old", {"organs.csv", "plants.csv", "stand.ply"});
+  put(dir / "notes.txt", "mine");
+  const ino_t folder = inode(dir), notes = inode(dir / "notes.txt");
+  const fs::path here = fs::current_path();
+  fs::current_path(dir);
+  CHECK_NOTHROW(check_output_dir("."));
+  StagedFolder::Committed c;
+  {
+    OutputSet set(".", kStand);
+    set.open("organs.csv").write("new");
+    set.open("plants.csv").write("new");
+    c = set.commit_all();
+  }
+  CHECK(inode(dir) == folder);
+  CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv"});
+  CHECK(slurp(dir / "organs.csv") == "new");
+  CHECK(inode(dir / "notes.txt") == notes);
+  CHECK(c.dropped == std::vector<std::string>{"stand.ply"});
+  {
+    OutputSet failed(".", kStand);  // not committed: nothing of it stays
+    failed.open("organs.csv").write("torn");
+  }
+  CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv"});
+  CHECK(slurp(dir / "organs.csv") == "new");
+  // A run killed while moving its files in left its list and the files not yet moved: the next
+  // run finishes that move (one set again), then writes its own.
+  fs::create_directory(dir / (".canopy-" + kDeadTag + "-0"));
+  put(dir / (".canopy-" + kDeadTag + "-0") / "plants.csv", "killed");
+  put(dir / (".canopy-" + kDeadTag + "-0") / ".canopy-commit", "organs.csv\n");
+  fs::create_directory(dir / (".canopy-" + kDeadTag + "-1"));  // killed before its files were complete
+  put(dir / (".canopy-" + kDeadTag + "-1") / "organs.csv", "half");
+  {
+    OutputSet next(".", kStand);
+    CHECK(names(dir) == std::set<std::string>{"notes.txt", "plants.csv"});
+    CHECK(slurp(dir / "plants.csv") == "killed");
+    CHECK(next.folder().leftovers_removed().size() == 2);
+    next.open("report.json").write("next");
+    next.commit_all();
+  }
+  CHECK(names(dir) == std::set<std::string>{"notes.txt", "report.json"});
+  fs::current_path(here);
+  CHECK(names(root) == std::set<std::string>{"out"});
   fs::remove_all(root);
 }
 

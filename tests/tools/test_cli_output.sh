@@ -55,9 +55,17 @@ check "replace: meshes named" "1" "$(grep -c '^removed stand.ply left by an earl
 check "replace: light named" "1" "$(grep -c '^removed light.csv, light.json, which described the earlier stand' "$tmp/o")"
 check "replace: new seed" "7" "$(python3 -c "import json;print(json.load(open('$out/report.json'))['seed'])")"
 check "replace: nothing beside" "0" "$(hidden "$tmp")"
-# The folder named as the working folder is refused (the shell would be left in a removed one).
-(cd "$out" && "$canopy" stand "$g" "${small[@]}" -o . >/dev/null 2>"$tmp/e")
-check "working folder refused" "1" "$(grep -c 'it is the working folder' "$tmp/e")"
+# The working folder is written in place (a swap would leave the shell in a removed folder): the
+# same folder, the new set, the user's files kept, nothing hidden left in it or beside it.
+folder_inode=$(stat -c %i "$out")
+(cd "$out" && "$canopy" stand "$g" "${small[@]}" --seed 9 -o . >/dev/null 2>"$tmp/e")
+check "working folder: exit" "0" "$?"
+check "working folder: the same folder" "$folder_inode" "$(stat -c %i "$out")"
+check "working folder: new seed" "9" "$(python3 -c "import json;print(json.load(open('$out/report.json'))['seed'])")"
+check "working folder: user file" "$inode" "$(stat -c %i "$out/notes.txt")"
+check "working folder: nothing hidden" "0 0" "$(hidden "$tmp") $(hidden "$out")"
+(cd "$out" && "$canopy" detect . --backend cpu >/dev/null 2>&1)
+check "working folder: read back" "0" "$?"
 
 # SIGINT and SIGTERM during a run: the run ends by the signal, said on stderr, nothing of it is
 # left on disk (its files have no name until the set is complete), the earlier stand untouched.

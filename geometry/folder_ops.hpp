@@ -1,0 +1,85 @@
+#pragma once
+/// Small operations on folders that the staged folder's two ways of committing share
+/// (geometry/staged_folder.cpp, geometry/staged_in_place.cpp): open folders, their entries, syncs
+/// and the names of staging folders.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <dirent.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace canopy::folder_ops {
+
+/// A staging folder's name is ".NAME" + kStagingMark + "PID-START-K" beside the output, or
+/// kStagingMark + "PID-START-K" inside it when the output is committed in place.
+inline constexpr const char* kStagingMark = ".canopy-";
+
+inline std::string why() { return std::strerror(errno); }
+
+/// An open folder, closed on scope exit.
+struct Fd {
+  int fd = -1;
+  explicit Fd(const std::string& path, int flags = O_RDONLY | O_DIRECTORY | O_CLOEXEC)
+      : fd(::open(path.c_str(), flags)) {}
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+};
+
+/// The names in folder `path` ("." and ".." left out); empty when it cannot be read.
+inline std::vector<std::string> names_in(const std::string& path) {
+  std::vector<std::string> out;
+  if (DIR* d = ::opendir(path.c_str())) {
+    while (const dirent* e = ::readdir(d))
+      if (std::strcmp(e->d_name, ".") && std::strcmp(e->d_name, "..")) out.emplace_back(e->d_name);
+    ::closedir(d);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+inline bool is_folder_at(int dirfd, const std::string& name) {
+  struct stat st;
+  return ::fstatat(dirfd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode);
+}
+
+inline bool exists_at(int dirfd, const std::string& name) {
+  struct stat st;
+  return ::fstatat(dirfd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
+}
+
+inline bool same_file_at(int dira, int dirb, const std::string& name) {
+  struct stat a, b;
+  return ::fstatat(dira, name.c_str(), &a, AT_SYMLINK_NOFOLLOW) == 0 &&
+         ::fstatat(dirb, name.c_str(), &b, AT_SYMLINK_NOFOLLOW) == 0 && a.st_dev == b.st_dev &&
+         a.st_ino == b.st_ino;
+}
+
+inline void sync_folder(const std::string& path) {
+  Fd d(path);
+  if (d.fd >= 0) ::fsync(d.fd);
+}
+
+/// The part after ".NAME.canopy-" of a staging name: "PID-START-K" or "PID-START-K-old"; the
+/// tag ("PID-START") when it is one, else empty.
+inline std::string staging_tag(std::string_view rest) {
+  if (rest.ends_with("-old")) rest.remove_suffix(4);
+  int dashes = 0;
+  for (char c : rest) {
+    if (c == '-') ++dashes;
+    else if (c < '0' || c > '9') return {};
+  }
+  if (dashes != 2 || rest.front() == '-' || rest.back() == '-' || rest.find("--") != std::string_view::npos)
+    return {};
+  return std::string(rest.substr(0, rest.rfind('-')));
+}
+
+}  // namespace canopy::folder_ops

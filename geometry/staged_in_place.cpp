@@ -1,0 +1,111 @@
+// A staged folder committed in place: the output folder is the working folder or a mount point,
+// so it must stay the folder it is and cannot be swapped for the staging folder. The staging
+// folder is made inside it; once every file is complete and synced, a list of the earlier set's
+// files the new set drops is written there and synced, then the files are moved in one by one
+// and the dropped ones removed. Readers that open the folder's files together
+// (open_in_one_set) see the folder change and open them again; a run killed while moving leaves
+// the list, and the next run into the folder finishes the move before anything else.
+#include "geometry/folder_ops.hpp"
+#include "geometry/run_files.hpp"
+#include "geometry/staged_folder.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace canopy {
+using namespace folder_ops;
+namespace {
+
+/// In a staging folder inside its output: the files are being moved in; its lines name the files
+/// to remove once they are.
+constexpr const char* kCommitList = ".canopy-commit";
+
+std::vector<std::string> read_list(const std::string& path) {
+  std::vector<std::string> out;
+  if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+    std::string line;
+    for (int c; (c = std::fgetc(f)) != EOF;) {
+      if (c != '\n') line += static_cast<char>(c);
+      else if (!line.empty()) out.push_back(line), line.clear();
+    }
+    std::fclose(f);
+  }
+  return out;
+}
+
+/// Moves every file of `staging` but its list into `dir`, removes `drop` from `dir`, then the
+/// list and the staging folder; false (with errno) where a move fails.
+bool finish(const std::string& dir, const std::string& staging, const std::vector<std::string>& drop) {
+  Fd from(staging), to(dir);
+  if (from.fd < 0 || to.fd < 0) return false;
+  for (const std::string& n : names_in(staging))
+    if (n != kCommitList && ::renameat(from.fd, n.c_str(), to.fd, n.c_str()) != 0) return false;
+  for (const std::string& n : drop) ::unlinkat(to.fd, n.c_str(), 0);  // gone already: no matter
+  ::fsync(to.fd);
+  ::unlinkat(from.fd, kCommitList, 0);
+  return ::rmdir(staging.c_str()) == 0;
+}
+
+}  // namespace
+
+StagedFolder::Committed StagedFolder::commit_in_place() {
+  Committed out;
+  auto lock = lock_run_paths();  // a signal waits until every file is in place
+  if (required_ && !(folder_identity(dir_) == *required_))
+    throw std::runtime_error(fmt::format(
+        "{} was replaced by another run while this one read it; nothing of this run was written (run it "
+        "again on the folder as it is now)",
+        dir_));
+  Fd to(dir_), from(staging_);
+  if (to.fd < 0 || from.fd < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", dir_, why()));
+  // A folder without the marker holds no earlier set: files of those names are the user's.
+  if (marker_.empty() || exists_at(to.fd, marker_))
+    for (const std::string& n : replaces_)
+      if (!exists_at(from.fd, n) && exists_at(to.fd, n) && !is_folder_at(to.fd, n)) out.dropped.push_back(n);
+  {
+    const std::string list = staging_ + "/" + kCommitList;
+    std::string text;
+    for (const std::string& n : out.dropped) text += n + "\n";
+    std::FILE* f = std::fopen(list.c_str(), "wb");
+    const bool ok = f && std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0 &&
+                    ::fsync(fileno(f)) == 0;
+    if (f) std::fclose(f);
+    if (!ok) throw std::runtime_error(fmt::format("cannot write {}: {}", list, why()));
+    ::fsync(from.fd);
+  }
+  if (!finish(dir_, staging_, out.dropped))
+    throw std::runtime_error(fmt::format(
+        "cannot move the files of {} into {}: {} (the next run into {} finishes the move)", staging_, dir_,
+        why(), named_));
+  committed_ = true;
+  unregister_run_path(staging_id_);
+  staging_id_ = 0;
+  for (std::uint64_t id : created_ids_) unregister_run_path(id);
+  return out;
+}
+
+void StagedFolder::finish_in_place_leftovers() {
+  const std::string mark = kStagingMark;
+  for (const std::string& e : names_in(dir_)) {
+    if (!e.starts_with(mark)) continue;
+    const std::string tag = staging_tag(std::string_view(e).substr(mark.size()));
+    if (tag.empty() || !tag_is_dead(tag)) continue;
+    const std::string path = dir_ + "/" + e;
+    Fd at(path);
+    if (at.fd >= 0 && exists_at(at.fd, kCommitList)) {
+      // Killed while moving its files in: finished now, so the folder holds one set again.
+      if (finish(dir_, path, read_list(path + "/" + kCommitList))) leftovers_.push_back(e + " (its files moved in)");
+      else
+        leftover_notes_.push_back(
+            fmt::format("kept {}, left by a run that ended while moving its files into {}: {}", path, dir_, why()));
+    } else if (remove_flat_folder(path)) {
+      leftovers_.push_back(e);  // ended before its files were complete
+    }
+  }
+}
+
+}  // namespace canopy
