@@ -43,23 +43,35 @@ std::atomic<bool> g_interrupted{false};
 
 std::string num(double v) { return fmt::format("{}", v); }
 
-/// Rows of an earlier sweep whose spacing is one of this sweep's within a rounding (ranges wrote
-/// 0.30000000000000004 before they were tidied to 0.3) take this sweep's text for it, so that
-/// resuming finds them done and the summary keeps one cell.
+/// Rows of an earlier sweep whose cell is one of this sweep's within a rounding (ranges wrote
+/// 0.30000000000000004 before they were tidied to 0.3) take this sweep's text for its spacings,
+/// so that resuming finds them done and the summary keeps one cell. A row is matched by its
+/// plant and row spacing together; one whose text is a cell's exactly keeps it (densities give
+/// spacings of other cells one rounding apart: 1/(2 x 0.6) and 1/(1.5 x 0.8)), and no row takes
+/// the key of another.
 void adopt_spacings(std::vector<RunRow>& rows, const std::vector<SweepCell>& cells) {
-  const auto adopt = [&](std::string& text, auto value_of) {
+  const auto value = [](const std::string& text) -> std::optional<double> {
     std::size_t used = 0;
     const double v = leading_number(text, used);
-    if (used == 0 || used != text.size()) return;
-    for (const SweepCell& c : cells)
-      if (const double w = value_of(c); v != w && std::abs(v - w) <= 1e-12 * std::abs(w)) {
-        text = num(w);
-        return;
-      }
+    if (used == 0 || used != text.size()) return std::nullopt;
+    return v;
   };
+  // Tidied range values moved by at most half a unit of their 12th digit: 5e-12 relative.
+  const auto near = [](double v, double w) { return std::abs(v - w) <= 1e-11 * std::abs(w); };
+  std::set<std::string> exact, keys;
+  for (const SweepCell& c : cells) exact.insert(num(c.plant_spacing) + "|" + num(c.row_spacing));
+  for (const RunRow& r : rows) keys.insert(run_key(r));
   for (RunRow& r : rows) {
-    adopt(r["plant_spacing"], [](const SweepCell& c) { return c.plant_spacing; });
-    adopt(r["row_spacing"], [](const SweepCell& c) { return c.row_spacing; });
+    if (exact.count(r["plant_spacing"] + "|" + r["row_spacing"])) continue;
+    const auto p = value(r["plant_spacing"]), w = value(r["row_spacing"]);
+    if (!p || !w) continue;
+    for (const SweepCell& c : cells) {
+      if (!near(*p, c.plant_spacing) || !near(*w, c.row_spacing)) continue;
+      RunRow adopted = r;
+      adopted["plant_spacing"] = num(c.plant_spacing), adopted["row_spacing"] = num(c.row_spacing);
+      if (keys.insert(run_key(adopted)).second) r = std::move(adopted);
+      break;
+    }
   }
 }
 

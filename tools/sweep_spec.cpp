@@ -53,9 +53,11 @@ std::vector<double> parse_number_list(const std::string& name, const std::string
       throw std::invalid_argument(fmt::format("{}: the range '{}' has more than 100,000 values", name, text));
     const auto n = static_cast<long>(last);
     // start + k x step carries the step's rounding (0.1:0.5:0.1 made 0.30000000000000004): a
-    // value is the double nearest its first 12 significant digits where that moves it by less
-    // than a millionth of the step (so no two values of a range ever merge).
-    for (long k = 0; k <= n; ++k) {
+    // value after the start (which is as typed) is the double nearest its first 12 significant
+    // digits where that moves it by less than a millionth of the step (so no two values of a
+    // range ever merge).
+    out.push_back(a);
+    for (long k = 1; k <= n; ++k) {
       const double raw = a + static_cast<double>(k) * step;
       const double tidy = std::stod(fmt::format("{:.12g}", raw));
       out.push_back(std::abs(tidy - raw) < 1e-6 * step ? tidy : raw);

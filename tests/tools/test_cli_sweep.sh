@@ -131,6 +131,13 @@ sed -i 's/^2,0.3,/2,0.30000000000000004,/' "$tmp/r/runs.csv"
 tiny >"$tmp/o" 2>&1
 check "earlier range value resumes" "0 1" "$? $(grep -c '^sweep: 0 runs made now' "$tmp/o")"
 check "earlier range value adopted" "0.1 0.2 0.3|3" "$(col "$tmp/r/runs.csv" plant_spacing)|$(($(wc -l < "$tmp/r/summary.csv") - 1))"
+# Densities give plant spacings one rounding apart in different row-spacing cells (1/(2 x 0.6),
+# 1/(1.5 x 0.8)): a finished sweep run again makes nothing and keeps its four cells.
+dens() { "$canopy" sweep "$g" --row-spacing 0.6,0.8 --density 1.5,2 --steps 3 --seeds 1 --rows 1 --per-row 2 --no-light \
+  --no-resolve --backend cpu -o "$tmp/dn"; }
+dens >/dev/null 2>&1
+dens >"$tmp/o" 2>&1
+check "density sweep resumes" "1 5" "$(grep -c '^sweep: 0 runs made now (0 failed), 4 in' "$tmp/o") $(wc -l < "$tmp/dn/summary.csv")"
 # runs.csv as only a sweep writes it: a run's second row (pooled in the summary as another seed)
 # and a torn line that is not the last (only a kill tears, and only the last) are refused by line.
 cp "$tmp/r/runs.csv" "$tmp/r.good"
