@@ -86,7 +86,7 @@ class OutputSet {
   const std::string& dir() const { return folder_.dir(); }
   const StagedFolder& folder() const { return folder_; }
   /// See StagedFolder::require_folder.
-  void require_folder(FolderIdentity read) { folder_.require_folder(read); }
+  void require_folder(FolderIdentity read, std::string file) { folder_.require_folder(read, std::move(file)); }
   /// The files' write times and bytes, summed (those already committed included).
   WriteTimes times() const;
 

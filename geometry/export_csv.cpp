@@ -203,7 +203,7 @@ Stand read_stand(const std::string& dir) {
     }
   };
   std::unique_ptr<InputFile> pin, oin;
-  open_in_one_set(dir, [&] {  // never plants of one run and organs of another
+  open_in_one_set(dir, {pfile, ofile}, [&] {  // never plants of one run and organs of another
     pin = open(pfile, "plants table", kMaxPlantsCsvBytes);
     oin = open(ofile, "organs table", kMaxOrgansCsvBytes);
   });

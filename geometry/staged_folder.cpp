@@ -56,30 +56,56 @@ int process_umask() {
 
 }  // namespace
 
-FolderIdentity folder_identity(const std::string& dir) {
+FolderIdentity folder_identity(const std::string& dir, const std::string& file) {
   struct stat st {};
   if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return {};
-  return {static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino)};
+  FolderIdentity id{static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino), 0};
+  if (!file.empty() && ::stat((dir + "/" + file).c_str(), &st) == 0) id.file_ino = st.st_ino;
+  return id;
 }
 
-void open_in_one_set(const std::string& dir, const std::function<void()>& open_all) {
-  // The change time too: a folder made after the one read may get its inode number.
+void open_in_one_set(const std::string& dir, const std::vector<std::string>& paths,
+                     const std::function<void()>& open_all) {
+  // The folder (its change time too: a folder made after the one read may get its inode
+  // number), and each file: a run writing the folder in place replaces the files, not the folder.
   const auto identity = [&] {
+    std::vector<std::int64_t> id(4 + paths.size(), 0);
     struct stat st {};
-    if (::stat(dir.c_str(), &st) != 0) return std::tuple<dev_t, ino_t, time_t, long>(0, 0, 0, 0);
-    return std::tuple<dev_t, ino_t, time_t, long>(st.st_dev, st.st_ino, st.st_ctim.tv_sec,
-                                                  st.st_ctim.tv_nsec);
+    if (::stat(dir.c_str(), &st) == 0)
+      id[0] = static_cast<std::int64_t>(st.st_dev), id[1] = static_cast<std::int64_t>(st.st_ino),
+      id[2] = st.st_ctim.tv_sec, id[3] = st.st_ctim.tv_nsec;
+    for (std::size_t i = 0; i < paths.size(); ++i)
+      if (::stat(paths[i].c_str(), &st) == 0) id[4 + i] = static_cast<std::int64_t>(st.st_ino);
+    return id;
   };
-  for (int attempt = 0; attempt < 16; ++attempt) {
+  // A live run moving its files in (geometry/staged_in_place.cpp): its list is in its staging
+  // folder inside `dir` until the last file is in.
+  const auto moving_in = [&] {
+    for (const std::string& e : names_in(dir)) {
+      if (!e.starts_with(kStagingMark)) continue;
+      const std::string tag = staging_tag(std::string_view(e).substr(std::strlen(kStagingMark)));
+      struct stat st {};
+      if (!tag.empty() && !tag_is_dead(tag) && ::stat((dir + "/" + e + "/.canopy-commit").c_str(), &st) == 0)
+        return true;
+    }
+    return false;
+  };
+  for (int attempt = 0, waits = 0; attempt < 16;) {
+    if (waits < 2000 && moving_in()) {
+      ++waits;
+      ::usleep(1000);
+      continue;
+    }
     const auto before = identity();
     open_all();
-    if (identity() == before) return;
+    if (identity() == before && (waits >= 2000 || !moving_in())) return;
+    ++attempt;
   }
 }
 
 void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files,
                      const std::vector<std::string>& paths) {
-  open_in_one_set(dir, [&] {
+  open_in_one_set(dir, paths, [&] {
     for (std::size_t i = 0; i < files.size(); ++i) {
       files[i]->close();
       files[i]->clear();
@@ -316,9 +342,13 @@ StagedFolder::Committed StagedFolder::commit() {
   struct stat st;
   const bool earlier = ::lstat(dir_.c_str(), &st) == 0;
   std::string old_path;  // where the earlier folder is once the new one is in place
-  const auto replaced_meanwhile = [&](const struct stat& now) {
-    return required_ && !(FolderIdentity{static_cast<std::uint64_t>(now.st_dev),
-                                         static_cast<std::uint64_t>(now.st_ino)} == *required_);
+  // The folder that fd `at` is (with its required file) is not the one the files were made from.
+  const auto replaced_meanwhile = [&](int at) {
+    struct stat now {};
+    if (!required_ || at < 0 || ::fstat(at, &now) != 0) return required_.has_value();
+    FolderIdentity id{static_cast<std::uint64_t>(now.st_dev), static_cast<std::uint64_t>(now.st_ino), 0};
+    if (!required_file_.empty() && ::fstatat(at, required_file_.c_str(), &now, 0) == 0) id.file_ino = now.st_ino;
+    return !(id == *required_);
   };
   const auto refuse_replaced = [&] {
     return std::runtime_error(fmt::format(
@@ -326,7 +356,7 @@ StagedFolder::Committed StagedFolder::commit() {
         "again on the folder as it is now)",
         dir_));
   };
-  if (required_ && (!earlier || replaced_meanwhile(st))) throw refuse_replaced();
+  if (required_ && !(folder_identity(dir_, required_file_) == *required_)) throw refuse_replaced();
   // A folder without the marker holds no earlier set: files of those names are the user's.
   bool earlier_set = true;
   const auto in_earlier_set = [&](const std::string& n) {
@@ -390,9 +420,7 @@ StagedFolder::Committed StagedFolder::commit() {
       for (const std::string& n : moved) ::renameat(new_fd.fd, n.c_str(), old_fd.fd, n.c_str());
     };
     // Checked again at the last moment: the entries were carried from the folder read.
-    struct stat old_now, dir_now;
-    if (required_ && (::fstat(old_fd.fd, &old_now) != 0 || replaced_meanwhile(old_now) ||
-                      ::stat(dir_.c_str(), &dir_now) != 0 || replaced_meanwhile(dir_now))) {
+    if (required_ && (replaced_meanwhile(old_fd.fd) || !(folder_identity(dir_, required_file_) == *required_))) {
       put_back();
       throw refuse_replaced();
     }

@@ -39,12 +39,14 @@ std::string output_folder(const std::string& dir);
 /// DIR: why".
 void check_output_dir(const std::string& dir);
 
-/// Which folder a path names now (device and inode; zeros where there is none).
+/// Which folder a path names now (device and inode; zeros where there is none), and which file
+/// `file` is in it (its inode; 0 where there is none): a run that writes the folder in place
+/// keeps the folder and replaces its files.
 struct FolderIdentity {
-  std::uint64_t dev = 0, ino = 0;
+  std::uint64_t dev = 0, ino = 0, file_ino = 0;
   bool operator==(const FolderIdentity&) const = default;
 };
-FolderIdentity folder_identity(const std::string& dir);
+FolderIdentity folder_identity(const std::string& dir, const std::string& file = {});
 
 class StagedFolder {
  public:
@@ -75,10 +77,14 @@ class StagedFolder {
   bool unnamed_file_possible() const;
   /// Links unnamed file `fd` into the staging folder (made now) as `name`.
   void link_in(int fd, const std::string& name);
-  /// The files were made from the folder `read` (canopy light DIR reads a stand and adds its
-  /// light): commit() refuses, leaving `dir` as it is, where `dir` is by then another folder or
-  /// none (another run replaced it meanwhile; the light would join a stand it was not made for).
-  void require_folder(FolderIdentity read) { required_ = read; }
+  /// The files were made from the folder `read`, read with its `file` (canopy light DIR reads a
+  /// stand and adds its light): commit() refuses, leaving `dir` as it is, where `dir` is by then
+  /// another folder or none, or its `file` another file (another run replaced the folder or its
+  /// stand meanwhile; the light would join a stand it was not made for).
+  void require_folder(FolderIdentity read, std::string file) {
+    required_ = read;
+    required_file_ = std::move(file);
+  }
 
   struct Committed {
     std::vector<std::string> dropped;  // names in `replaces` the earlier folder had and the new set has not
@@ -111,16 +117,20 @@ class StagedFolder {
   std::vector<std::string> leftovers_, leftover_notes_;
   bool committed_ = false;
   std::optional<FolderIdentity> required_;
+  std::string required_file_;
 };
 
 /// Opens `files[i]` on `paths[i]` (files of folder `dir`) so that all come from one set: the
-/// folder's identity is read before and after they are opened, and they are opened again when a
-/// run swapped the folder in between. Once open, a file reads whole whatever replaces it.
+/// folder's identity and its files' are read before and after they are opened, and they are
+/// opened again when a run swapped the folder or replaced a file in between; while a run moves
+/// its files into the folder in place, opening waits for it (up to about two seconds). Once
+/// open, a file reads whole whatever replaces it.
 void open_in_one_set(const std::string& dir, const std::vector<std::ifstream*>& files,
                      const std::vector<std::string>& paths);
-/// The same rule for any way of opening: `open_all` (which replaces what it opened before) is
-/// called again until the folder was not swapped while it ran.
-void open_in_one_set(const std::string& dir, const std::function<void()>& open_all);
+/// The same rule for any way of opening: `open_all` (which replaces what it opened before, the
+/// files `paths`) is called again until neither the folder nor those files changed while it ran.
+void open_in_one_set(const std::string& dir, const std::vector<std::string>& paths,
+                     const std::function<void()>& open_all);
 
 /// Whether `name` is a temporary file of a canopy run that has ended ("X.tmp-PID[-START]" with
 /// that process gone) or a temporary name of an earlier canopy version: safe to remove.

@@ -55,13 +55,19 @@ bool finish(const std::string& dir, const std::string& staging, const std::vecto
 StagedFolder::Committed StagedFolder::commit_in_place() {
   Committed out;
   auto lock = lock_run_paths();  // a signal waits until every file is in place
-  if (required_ && !(folder_identity(dir_) == *required_))
+  if (required_ && !(folder_identity(dir_, required_file_) == *required_))
     throw std::runtime_error(fmt::format(
         "{} was replaced by another run while this one read it; nothing of this run was written (run it "
         "again on the folder as it is now)",
         dir_));
   Fd to(dir_), from(staging_);
   if (to.fd < 0 || from.fd < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", dir_, why()));
+  // What would stop a file going in, found before any does (the run then fails with the folder as
+  // it was): a folder of its name.
+  for (const std::string& n : names_in(staging_))
+    if (is_folder_at(to.fd, n))
+      throw std::runtime_error(
+          fmt::format("cannot put {} into {}: a folder of that name is there", n, named_));
   // A folder without the marker holds no earlier set: files of those names are the user's.
   if (marker_.empty() || exists_at(to.fd, marker_))
     for (const std::string& n : replaces_)
@@ -77,10 +83,17 @@ StagedFolder::Committed StagedFolder::commit_in_place() {
     if (!ok) throw std::runtime_error(fmt::format("cannot write {}: {}", list, why()));
     ::fsync(from.fd);
   }
-  if (!finish(dir_, staging_, out.dropped))
+  if (!finish(dir_, staging_, out.dropped)) {
+    // Some files are in and the earlier ones they replaced are gone: the staging folder and its
+    // list stay for the next run into the folder to finish (a signal no longer removes them).
+    const std::string reason = why();
+    committed_ = true;
+    unregister_run_path(staging_id_);
     throw std::runtime_error(fmt::format(
-        "cannot move the files of {} into {}: {} (the next run into {} finishes the move)", staging_, dir_,
-        why(), named_));
+        "cannot move the files of {} into {}: {}; the folder holds files of two stands until the next run "
+        "into {} finishes the move",
+        staging_, dir_, reason, named_));
+  }
   committed_ = true;
   unregister_run_path(staging_id_);
   staging_id_ = 0;

@@ -235,11 +235,17 @@ LightOutcome run_light(LightOptions o, bool print) {
     files.open("light.csv").write(out.csv);
   };
   if (std::filesystem::is_directory(o.source)) {
-    const Stand stand = read_stand(o.source);
-    const FolderIdentity read = folder_identity(o.source);  // read_stand read one set of this folder
+    // The folder and its stand as read: taken before and after reading (read_stand reads one set,
+    // which a run replacing the folder meanwhile may have made the next one).
+    FolderIdentity read = folder_identity(o.source, "organs.csv");
+    Stand stand = read_stand(o.source);
+    for (int again = 0; again < 3 && !(folder_identity(o.source, "organs.csv") == read); ++again) {
+      read = folder_identity(o.source, "organs.csv");
+      stand = read_stand(o.source);
+    }
     out.dir = o.source;
     OutputSet files(out.dir);
-    files.require_folder(read);  // a stand written there meanwhile does not take this light
+    files.require_folder(read, "organs.csv");  // a stand written there meanwhile does not take this light
     light_files(stand, folder_layout(o.source), files);
     files.commit_all();
   } else {

@@ -113,22 +113,23 @@ TEST_CASE("files made from a folder that another run replaced meanwhile are not 
   const fs::path root = temp_dir();
   const fs::path dir = root / "out";
   write_set(dir.string(), "first", {"organs.csv", "plants.csv"});
-  const FolderIdentity read = folder_identity(dir.string());
+  const FolderIdentity read = folder_identity(dir.string(), "organs.csv");
   CHECK(read.ino == inode(dir));
+  CHECK(read.file_ino == inode(dir / "organs.csv"));
   CHECK(folder_identity((root / "none").string()) == FolderIdentity{});
   {
     OutputSet same(dir.string());  // nothing replaced it: the light joins the stand
-    same.require_folder(read);
+    same.require_folder(read, "organs.csv");
     same.open("light.csv").write("light of the first");
     same.commit_all();
   }
   CHECK(slurp(dir / "light.csv") == "light of the first");
   CHECK(slurp(dir / "organs.csv") == "first");
-  const FolderIdentity second_read = folder_identity(dir.string());  // the swap made a new folder
+  const FolderIdentity second_read = folder_identity(dir.string(), "organs.csv");  // a new folder
   write_set(dir.string(), "second", {"organs.csv", "plants.csv"});  // another run, meanwhile
   {
     OutputSet late(dir.string());
-    late.require_folder(second_read);
+    late.require_folder(second_read, "organs.csv");
     late.open("light.csv").write("light of the first, again");
     CHECK_THROWS_WITH(late.commit_all(), doctest::Contains("was replaced by another run while this one read it"));
   }
@@ -138,7 +139,7 @@ TEST_CASE("files made from a folder that another run replaced meanwhile are not 
   fs::remove_all(dir);
   {
     OutputSet gone(dir.string());  // the folder removed meanwhile: nothing made in its place
-    gone.require_folder(second_read);
+    gone.require_folder(second_read, "organs.csv");
     gone.open("light.csv").write("x");
     CHECK_THROWS(gone.commit_all());
   }
@@ -288,6 +289,38 @@ TEST_CASE("readers never see a mix of two sets") {
   fs::remove_all(root);
 }
 
+TEST_CASE("readers never see a mix of two sets written in place") {
+  // The working folder: its files are moved in one by one, which a reader waits out, and each
+  // file it opened is checked again after opening them all.
+  const fs::path root = temp_dir();
+  const std::string dir = (root / "out").string();
+  write_set(dir, "run 0");
+  const fs::path here = fs::current_path();
+  fs::current_path(dir);
+  std::atomic<bool> stop{false};
+  std::thread writer([&] {
+    for (int k = 1; k <= 300; ++k) write_set(".", "run " + std::to_string(k));
+    stop = true;
+  });
+  int mixed = 0, reads = 0;
+  while (!stop) {
+    std::ifstream a, b;
+    open_in_one_set(dir, {&a, &b}, {dir + "/organs.csv", dir + "/plants.csv"});
+    if (!a || !b) continue;
+    std::ostringstream sa, sb;
+    sa << a.rdbuf(), sb << b.rdbuf();
+    ++reads;
+    if (sa.str() != sb.str()) ++mixed;
+  }
+  writer.join();
+  fs::current_path(here);
+  CHECK(reads > 0);
+  CHECK(mixed == 0);
+  CHECK(names(root) == std::set<std::string>{"out"});
+  CHECK(names(dir) == std::set<std::string>{"organs.csv", "plants.csv"});
+  fs::remove_all(root);
+}
+
 TEST_CASE("output folders that cannot be replaced as a whole are refused up front") {
   const fs::path root = temp_dir();
   put(root / "file", "x");
@@ -327,11 +360,31 @@ TEST_CASE("the working folder is written in place: the same folder, one set, wha
   CHECK(inode(dir / "notes.txt") == notes);
   CHECK(c.dropped == std::vector<std::string>{"stand.ply"});
   {
+    // Written in place, the folder stays the folder: its stand file tells a replaced stand.
+    const FolderIdentity read = folder_identity(".", "organs.csv");
+    write_set(".", "another", {"organs.csv", "plants.csv"});
+    OutputSet light(".");
+    light.require_folder(read, "organs.csv");
+    light.open("light.csv").write("light of the stand before");
+    CHECK_THROWS_WITH(light.commit_all(), doctest::Contains("was replaced by another run"));
+  }
+  CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv"});
+  {
+    // A folder where a file goes: found before any file moves, the folder as it was.
+    fs::create_directory(dir / "report.json");
+    OutputSet blocked(".", kStand);
+    blocked.open("organs.csv").write("blocked");
+    blocked.open("report.json").write("blocked");
+    CHECK_THROWS_WITH(blocked.commit_all(), doctest::Contains("cannot put report.json into .: a folder of that name is there"));
+    fs::remove(dir / "report.json");
+  }
+  CHECK(slurp(dir / "organs.csv") == "another");
+  {
     OutputSet failed(".", kStand);  // not committed: nothing of it stays
     failed.open("organs.csv").write("torn");
   }
   CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv"});
-  CHECK(slurp(dir / "organs.csv") == "new");
+  CHECK(slurp(dir / "organs.csv") == "another");
   // A run killed while moving its files in left its list and the files not yet moved: the next
   // run finishes that move (one set again), then writes its own.
   fs::create_directory(dir / (".canopy-" + kDeadTag + "-0"));
