@@ -131,9 +131,8 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
       if (out.symbols.size() > max_modules) cap_exceeded(g, max_modules, step, applied);
       continue;
     } else if (mode == RewriteMode::constant) {
-      const RuleGroup& rg = table.groups[table.by_symbol[x][0]];
-      const Successor& sc = rg.successors[0];
-      applied = &rg.pos;
+      const Successor& sc = table.groups[table.by_symbol[x][0]].successors[0];
+      applied = &sc.pos;
       out.symbols.append(sc.constant_symbols.data(), sc.constant_symbols.size());
       out.params.append(sc.constant_params.data(), sc.constant_params.size());
       if constexpr (Track)
@@ -182,7 +181,7 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
           }
         }
         matched = true;
-        applied = &rg.pos;
+        applied = &sc->pos;
         break;
       }
       if (!matched) {

@@ -34,6 +34,7 @@ struct SuccessorModule {
 
 struct Successor {
   std::vector<SuccessorModule> modules;
+  SourcePos pos;          // its production (a group's members each have their own)
   double cumulative = 1;  // upper end of this successor's share of [0, 1)
   /// When every argument is a literal: the modules ready to copy.
   bool constant = false;

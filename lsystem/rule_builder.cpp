@@ -42,7 +42,11 @@ std::string canonical_condition(std::string_view text, const std::vector<std::st
       const std::size_t b = i;
       while (i < text.size() && word(text[i])) ++i;
       const std::string_view name = text.substr(b, i - b);
-      const auto f = std::find(formals.begin(), formals.end(), name);
+      // A name before '(' is a function (as the expression reads it), whatever a formal is called.
+      std::size_t after = i;
+      while (after < text.size() && std::isspace(static_cast<unsigned char>(text[after]))) ++after;
+      const bool call = after < text.size() && text[after] == '(';
+      const auto f = call ? formals.end() : std::find(formals.begin(), formals.end(), name);
       out += f == formals.end() ? std::string(name) : "$" + std::to_string(f - formals.begin());
     } else {
       out += c, ++i;
@@ -210,6 +214,7 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     }
 
     Successor succ;
+    succ.pos = src.locate(parts.predecessor.begin);
     succ.modules = compile_modules(parts.successor.of(text), src.locate, parts.successor.begin, resolve);
     check_brackets(succ.modules, src.locate(parts.successor.begin), "a successor");
     succ.constant = true;

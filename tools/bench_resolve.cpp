@@ -48,7 +48,12 @@ struct Spacing {
 }  // namespace
 
 int main(int argc, char** argv) {
-  canopy::rerun_for_run(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "cpu")), true, argv);
+  try {
+    canopy::rerun_for_run(canopy::heap_pages_for(canopy::command_runs_on_gpu(argc, argv, "cpu")), true, argv);
+  } catch (const std::invalid_argument& e) {  // the environment's heap-page choice, misspelt
+    std::fprintf(stderr, "bench_resolve: error: %s\n", e.what());
+    return 2;
+  }
   canopy::keep_freed_memory();
   std::vector<int> sizes{100, 1000, 10000}, dense_sizes{100, 1000};
   std::vector<std::string> backends{"cpu"}, levels{"exact", "organ"};

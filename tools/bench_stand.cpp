@@ -193,7 +193,12 @@ int main(int argc, char** argv) {
   }
   if (child >= 0) {
     // As canopy's main: the heap's pages chosen (a rerun of this process) before anything else.
-    rerun_for_run(heap_pages_for(command_runs_on_gpu(argc, argv, "auto")), true, argv);
+    try {
+      rerun_for_run(heap_pages_for(command_runs_on_gpu(argc, argv, "auto")), true, argv);
+    } catch (const std::invalid_argument& e) {  // the environment's heap-page choice, misspelt
+      std::fprintf(stderr, "bench_stand: error: %s\n", e.what());
+      return 2;
+    }
     keep_freed_memory();
     return end_process(run_child(s, child, spawned, result));
   }

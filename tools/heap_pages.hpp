@@ -32,7 +32,7 @@ enum class HeapPages { small, large };
 /// CANOPY_HEAP_PAGES if set to "large" or "small", else `gpu_run ? large : small`; throws
 /// std::invalid_argument when it is set to anything else.
 inline HeapPages heap_pages_for(bool gpu_run) {
-  if (const char* v = std::getenv("CANOPY_HEAP_PAGES")) {
+  if (const char* v = std::getenv("CANOPY_HEAP_PAGES"); v && *v) {  // set empty: as unset
     if (!std::strcmp(v, "large")) return HeapPages::large;
     if (!std::strcmp(v, "small")) return HeapPages::small;
     // A misspelt value was passed over and the run took the default unannounced.

@@ -100,6 +100,11 @@ productions:
           grammar("constants: {x: 1}\naxiom: A(3)\nproductions:\n  - \"A(x) : x > 2 -> B : 0.5\"\n"
                   "  - \"A(y) : x > 2 -> C : 0.5\"\n");
         }).find("sum to 0.5, not 1") != std::string::npos);
+  // A name before '(' is a function even where a formal has that name: two conditions.
+  CHECK(grammar_error([] {
+          grammar("axiom: A(1, 0.2)\nproductions:\n  - \"A(sin, x) : sin(x) > 0.5 -> B : 0.5\"\n"
+                  "  - \"A(cos, x) : cos(x) > 0.5 -> C : 0.5\"\n");
+        }).find("sum to 0.5, not 1") != std::string::npos);
   // Contexts count: with and without a left context are two productions.
   CHECK(grammar_error([] {
           grammar("axiom: B A(1)\nproductions:\n  - \"B < A(x) -> C : 0.5\"\n  - \"A(y) -> D : 0.5\"\n");

@@ -151,6 +151,9 @@ TEST_CASE("module cap stops exponential growth with a clear error") {
   CHECK_THROWS_WITH(derive(fib, DeriveRequest{40, 1, 100}),
                     doctest::Contains("test.yaml:4:5: the derived string exceeds the module cap of 100 "
                                         "modules at step 11"));
+  // A stochastic group's member that applied, not the group's first.
+  const Grammar coin = grammar("axiom: A\nproductions:\n  - \"A -> A : 0.5\"\n  - \"A -> A A A A A A A A : 0.5\"\n");
+  CHECK_THROWS_WITH(derive(coin, DeriveRequest{40, 1, 1000}), doctest::Contains("test.yaml:4:6: the derived string"));
   CHECK_THROWS_WITH(derive(grammar("axiom: A A A\n"), DeriveRequest{0, 1, 2}),
                     "test.yaml:1:8: the axiom has more than the module cap of 2 modules (raise --max-modules)");
   const Grammar wide = grammar("axiom: A\ninterpretation:\n  - A -> A A A A A A\n");
