@@ -3,6 +3,7 @@
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -55,7 +56,7 @@ class ExprParser {
  private:
   template <typename... A>
   [[noreturn]] void error(std::size_t at, fmt::format_string<A...> f, A&&... a) {
-    throw GrammarError(pos_.shifted(static_cast<int>(at)), fmt::format(f, std::forward<A>(a)...));
+    throw GrammarError(out_.place(at), fmt::format(f, std::forward<A>(a)...));
   }
   bool at_end() const { return i_ >= s_.size(); }
   void skip() {
@@ -243,10 +244,28 @@ class ExprParser {
   Expr& out_;
 };
 
-Expr Expr::compile(std::string_view text, const SourcePos& pos, const NameResolver& resolve) {
+SourcePos Expr::place(std::size_t k) const {
+  if (places_.empty()) return pos_.shifted(static_cast<int>(k));
+  const auto& [line, column] = places_[std::min(k, places_.size() - 1)];
+  return {pos_.file, line, column};
+}
+
+Expr Expr::compile(std::string_view text, const SourcePos& pos, const NameResolver& resolve,
+                   const Place& place) {
   Expr e;
   e.pos_ = pos;
   e.text_ = std::string(text);
+  if (place) {
+    // Kept only where some character is not on the first one's line at its offset.
+    bool shifted = true;
+    std::vector<std::pair<int, int>> places(text.size() + 1);
+    for (std::size_t k = 0; k <= text.size(); ++k) {
+      const SourcePos p = place(k);
+      places[k] = {p.line, p.column};
+      shifted = shifted && p.line == pos.line && p.column == pos.column + static_cast<int>(k);
+    }
+    if (!shifted) e.places_ = std::move(places);
+  }
   ExprParser(text, pos, resolve, e).parse();
   bool has_params = false;
   for (const auto& in : e.code_) has_params |= in.op == Op::Param;
@@ -312,7 +331,7 @@ double Expr::run(const double* frame, Rng* rng) const {
         break;
       case Op::Div:
         --sp;
-        if (st[sp + 1] == 0) fail_at(pos_.shifted(in.column), "division by zero in '{}'", text_);
+        if (st[sp + 1] == 0) fail_at(place(static_cast<std::size_t>(in.column)), "division by zero in '{}'", text_);
         st[sp] /= st[sp + 1];
         break;
       case Op::Pow:
@@ -379,7 +398,7 @@ double Expr::run(const double* frame, Rng* rng) const {
       }
       case Op::Rand: {
         if (!rng)
-          fail_at(pos_.shifted(in.column), "rand() cannot be used here (only in productions and the axiom)");
+          fail_at(place(static_cast<std::size_t>(in.column)), "rand() cannot be used here (only in productions and the axiom)");
         --sp;
         st[sp] = std::isfinite(st[sp]) && std::isfinite(st[sp + 1]) ? rng->uniform(st[sp], st[sp + 1])
                                                                     : bad(st[sp], st[sp + 1]);

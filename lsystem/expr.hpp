@@ -64,8 +64,13 @@ using NameResolver = std::function<std::optional<NameRef>(std::string_view)>;
 class Expr {
  public:
   Expr() = default;
+  /// Where character k of an expression's text is in the file.
+  using Place = std::function<SourcePos(std::size_t)>;
   /// Compiles `text`, found at `pos` in the grammar file; names are looked up with `resolve`.
-  static Expr compile(std::string_view text, const SourcePos& pos, const NameResolver& resolve);
+  /// `place`, where given, says where each character is (an expression written over lines or
+  /// with escapes in a YAML string is not its first character's line shifted).
+  static Expr compile(std::string_view text, const SourcePos& pos, const NameResolver& resolve,
+                      const Place& place = {});
   /// A literal value.
   static Expr constant(double v, const SourcePos& pos = {});
 
@@ -78,6 +83,8 @@ class Expr {
   bool is_constant() const { return code_.size() == 1 && code_[0].op == Op::Const; }
   bool uses_rand() const { return uses_rand_; }
   const SourcePos& pos() const { return pos_; }
+  /// Where character k of the text is in the file.
+  SourcePos place(std::size_t k) const;
   const std::string& text() const { return text_; }
 
  private:
@@ -86,6 +93,7 @@ class Expr {
   std::vector<Instr> code_;
   SourcePos pos_;
   std::string text_;
+  std::vector<std::pair<int, int>> places_;  // line, column per character; empty: pos_ shifted
   int max_stack_ = 0;
   bool uses_rand_ = false;
 };

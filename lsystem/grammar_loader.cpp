@@ -98,7 +98,8 @@ class Loader {
                                          for (const auto& [cn, cv] : g_.constants)
                                            if (cn == n) return NameRef{false, 0, cv};
                                          return std::nullopt;
-                                       });
+                                       },
+                                       [this, &kv](std::size_t k) { return src_.at(kv.second, k); });
           if (e.uses_rand())
             fail_at(src_.at(kv.second, 0),
                     "constant '{}' may not use rand(); draw per plant in a production instead", name);

@@ -103,7 +103,9 @@ std::vector<SuccessorModule> RuleBuilder::compile_modules(std::string_view text,
     note_arity(m.symbol, static_cast<int>(raw.args.size()), m.pos);
     for (const auto& a : raw.args) {
       const std::size_t lead = leading_blanks(a.text);
-      m.args.push_back(Expr::compile(trim(a.text), locate(base + a.offset + lead), resolve));
+      const std::size_t at = base + a.offset + lead;
+      m.args.push_back(Expr::compile(trim(a.text), locate(at), resolve,
+                                     [&locate, at](std::size_t k) { return locate(at + k); }));
     }
     out.push_back(std::move(m));
   }
@@ -186,7 +188,9 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
               group.frame_size, kMaxFrame);
     const NameResolver resolve = resolver(&formals);
     if (parts.condition.present) {
-      group.condition = Expr::compile(parts.condition.of(text), src.locate(parts.condition.begin), resolve);
+      const std::size_t at = parts.condition.begin;
+      group.condition = Expr::compile(parts.condition.of(text), src.locate(at), resolve,
+                                      [&src, at](std::size_t k) { return src.locate(at + k); });
       if (group.condition->is_constant() && group.condition->eval_constant() == 0) {
         // A condition that is always false is legal; it simply never applies.
       }
@@ -229,7 +233,10 @@ RuleTable RuleBuilder::rule_table(const std::vector<Source>& sources, std::strin
     const bool has_prob = parts.probability.present;
     const SourcePos ppos = src.locate(parts.probability.begin);
     if (has_prob) {
-      probability = Expr::compile(parts.probability.of(text), ppos, resolver(nullptr)).eval_constant();
+      const std::size_t at = parts.probability.begin;
+      probability = Expr::compile(parts.probability.of(text), ppos, resolver(nullptr),
+                                  [&src, at](std::size_t k) { return src.locate(at + k); })
+                        .eval_constant();
       if (!(probability >= 0 && probability <= 1))
         fail_at(ppos, "a probability must lie in [0, 1], got {}", probability);
     }

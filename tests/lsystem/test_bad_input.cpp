@@ -201,6 +201,12 @@ TEST_CASE("errors inside productions written over lines or with escapes name the
   CHECK(error_of(head + "  - \"A(x) : x > 0 -> \\tB(y)\"\n") == "test.yaml:4:26" + unknown);
   CHECK(error_of(head + "  - \"A(x) : x > 0 -> \\u00e9 B(y)\"\n") == "test.yaml:4:31" + unknown);
   CHECK(error_of(head + "  - \"A(x) : x > 0 -> \\\n    B(y)\"\n") == "test.yaml:5:7" + unknown);  // continued
+  // Inside one expression too: a condition or an argument broken over lines, an escape in it.
+  CHECK(error_of(head + "  - >-\n    A(x) : x > 0 &&\n    y > 1 -> B\n") == "test.yaml:6:5" + unknown);
+  CHECK(error_of(head + "  - >-\n    A(x) -> B(x +\n    y)\n") == "test.yaml:6:5" + unknown);
+  CHECK(error_of(head + "  - \"A(x) -> B(x +\\t y)\"\n") == "test.yaml:4:22" + unknown);
+  CHECK(error_of(head + "  - >-\n    A(x) -> B(1 /\n    (x - 1))\n") ==
+        "test.yaml:5:17: division by zero in '1 / (x - 1)'");  // at run time, at the '/'
 }
 
 TEST_CASE("a grammar is one YAML document") {
