@@ -36,21 +36,65 @@ std::string read_grammar_file(const std::string& path) {
   }
 }
 
+namespace {
+
+/// Where a second YAML document's first content stands in `text` (line and column, 1-based), or
+/// line 0 where there is none. A document starts at a "---" line (column 0, then nothing, a space
+/// or a tab) or after a "..." line; the first "---" starts the first document only where nothing
+/// but comments, blank lines and directives came before it. Found in the text, not by parsing on
+/// (yaml-cpp 0.7's LoadAll loops forever on some malformed text after a first document).
+std::pair<int, int> second_document(std::string_view text) {
+  const auto marker = [](std::string_view l, std::string_view m) {
+    return l.starts_with(m) && (l.size() == 3 || l[3] == ' ' || l[3] == '\t');
+  };
+  const auto content_at = [](std::string_view l) -> int {  // column of content, 0 for none
+    const std::size_t c = l.find_first_not_of(" \t");
+    return c == std::string_view::npos || l[c] == '#' ? 0 : static_cast<int>(c) + 1;
+  };
+  int line = 0;
+  bool content = false, started = false, ended = false;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    std::string_view l = text.substr(at, end - at);
+    at = end + 1;
+    ++line;
+    if (line == 1 && l.starts_with("\xEF\xBB\xBF")) l.remove_prefix(3);
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    if (marker(l, "---")) {
+      const bool next = content || started || ended;
+      started = true, ended = false;
+      if (const int c = content_at(l.substr(3))) {
+        if (next) return {line, 3 + c};
+        content = true;
+      } else if (next) {
+        content = false, ended = true;  // a new document, empty so far: its content would be the second's
+      }
+      continue;
+    }
+    if (marker(l, "...")) {
+      ended = ended || content || started;
+      continue;
+    }
+    if (!content && !started && l.starts_with('%')) continue;  // a directive
+    if (const int c = content_at(l)) {
+      if (ended) return {line, c};
+      content = true;
+    }
+  }
+  return {0, 0};
+}
+
+}  // namespace
+
 YAML::Node parse_yaml_document(const std::string& text, const std::string& file) {
   try {
-    std::vector<YAML::Node> docs = YAML::LoadAll(text);
     // A grammar is one document: a second after '---' was read by nobody, its rules and organs
-    // silently missing from the plants.
-    // (An empty one, a trailing '---', holds nothing to miss.)
-    const auto extra = std::find_if(docs.begin() + std::min<std::ptrdiff_t>(1, std::ssize(docs)), docs.end(),
-                                    [](const YAML::Node& d) { return !d.IsNull(); });
-    if (extra != docs.end()) {
-      const YAML::Mark m = extra->Mark();
-      throw GrammarError({file, m.line >= 0 ? m.line + 1 : 0, m.line >= 0 ? m.column + 1 : 0},
+    // silently missing from the plants. (An empty one, a trailing '---', holds nothing to miss.)
+    if (const auto [line, column] = second_document(text); line > 0)
+      throw GrammarError({file, line, column},
                          "a second YAML document: a grammar is one document (merge it into the first, or "
                          "remove the '---' that starts it)");
-    }
-    return docs.empty() ? YAML::Node() : docs[0];
+    return YAML::Load(text);
   } catch (const YAML::DeepRecursion& e) {
     // yaml-cpp stops nesting at a bound of its own and says only "bad file".
     throw GrammarError({file, e.mark.line + 1, e.mark.column + 1},

@@ -216,6 +216,15 @@ TEST_CASE("a grammar is one YAML document") {
         "remove the '---' that starts it)");
   CHECK(error_of("---\naxiom: A\n...\n") == "");  // markers around one document
   CHECK(error_of("axiom: A\n---\n") == "");        // a trailing marker holds nothing to miss
+  CHECK(error_of("%YAML 1.2\n---\naxiom: A\n--- # a comment\n") == "");
+  CHECK(error_of("axiom: A\n...\nsteps: 2\n") ==
+        "test.yaml:3:1: a second YAML document: a grammar is one document (merge it into the first, or "
+        "remove the '---' that starts it)");
+  CHECK(error_of("axiom: A\n--- {steps: 2}\n").starts_with("test.yaml:2:5: a second YAML document"));
+  // Found in the text: yaml-cpp's LoadAll never returned from this (a fuzzer's find).
+  CHECK(error_of(", The Algorithmic Beauty of' Plants, Figure 1.24f: a N6canopy12Grammarbracketed t2ree grown "
+                 "from an apEx X.\nname: abop-1.24f\nsteps: 5\nangle:2Grammarbracketed t2ree gro\n  - X -> "
+                 "F-[e\n  internode_mX\n  - F -> FF\n") != "");
 }
 
 TEST_CASE("a list or map key with nothing after it is empty, as [] or {}") {
