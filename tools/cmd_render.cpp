@@ -112,9 +112,18 @@ Command add_render(CLI::App& root) {
   o->resolve.add_to(*app);
   return {app, [o]() -> int {
             const ThreadLimit thread_limit(o->detect.threads);
+            // Two decimal whole numbers and an 'x', nothing else ("100x100abc" was 100x100).
             int w = 0, h = 0;
-            char x = 0;
-            if (std::sscanf(o->size.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 16 || h < 16 ||
+            const std::string& sz = o->size;
+            const std::size_t x = sz.find('x');
+            const auto whole = [&](std::size_t from, std::size_t to, int& v) {
+              if (to <= from || to - from > 5) return false;
+              for (std::size_t i = from; i < to; ++i)
+                if (sz[i] < '0' || sz[i] > '9') return false;
+              v = std::stoi(sz.substr(from, to - from));
+              return true;
+            };
+            if (x == std::string::npos || !whole(0, x, w) || !whole(x + 1, sz.size(), h) || w < 16 || h < 16 ||
                 w > 16384 || h > 16384)
               throw std::invalid_argument(
                   fmt::format("--size: '{}' is not WIDTHxHEIGHT between 16 and 16384", o->size));

@@ -187,6 +187,12 @@ else
   check "info --self-test without a GPU" "1:1" "$rc:$(grep -c '^canopy: error: --self-test: \(no CUDA device to test\|this build has no CUDA backend\)' "$tmp/err")"
 fi
 
+# render --size is two decimal whole numbers and an 'x', nothing more ("100x100abc" rendered 100x100).
+for size in 100x100abc 100x100x3 " 100x100" +100x+100 15x16; do
+  run render "$tmp" --size "$size" -o "$tmp/r.png"
+  check "render --size '$size'" "2:canopy: error: --size: '$size' is not WIDTHxHEIGHT between 16 and 16384" "$rc:$(err)"
+done
+
 # canopy detect reads back only what canopy writes.
 run stand "$g" --rows 1 --per-row 2 --steps 6 --backend cpu -o st
 check "stand for detect" "0" "$rc"

@@ -79,5 +79,12 @@ TEST_CASE("render: contact organs magenta where they were placed, others in thei
   CHECK(back.width == img.width);
   CHECK(back.height == img.height);
   CHECK(back.rgb == img.rgb);
+  // A picture that cannot be written whole fails and leaves the one before it: /dev/full takes
+  // no byte (it exited 0 saying "wrote"), and a PNG is never written in place.
+  CHECK_THROWS(render::write_png(plain, "/dev/full"));
+  render::write_png(plain, path);
+  CHECK(render::read_png(path).rgb == plain.rgb);
+  for (const auto& e : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
+    CHECK(e.path().filename().string().find("canopy_test_render.png.tmp-") == std::string::npos);
   std::remove(path.c_str());
 }
