@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,6 +22,14 @@ namespace canopy::folder_ops {
 inline constexpr const char* kStagingMark = ".canopy-";
 
 inline std::string why() { return std::strerror(errno); }
+
+/// The refusal of a commit whose files were made from a folder (or stand) that another run
+/// replaced meanwhile (StagedFolder::require_folder), the same for both ways of committing.
+inline std::runtime_error replaced_meanwhile(const std::string& dir) {
+  return std::runtime_error(
+      dir + " was replaced by another run while this one read it; nothing of this run was written (run it "
+            "again on the folder as it is now)");
+}
 
 /// An open folder, closed on scope exit.
 struct Fd {

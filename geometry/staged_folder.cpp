@@ -343,20 +343,14 @@ StagedFolder::Committed StagedFolder::commit() {
   const bool earlier = ::lstat(dir_.c_str(), &st) == 0;
   std::string old_path;  // where the earlier folder is once the new one is in place
   // The folder that fd `at` is (with its required file) is not the one the files were made from.
-  const auto replaced_meanwhile = [&](int at) {
+  const auto is_another = [&](int at) {
     struct stat now {};
     if (!required_ || at < 0 || ::fstat(at, &now) != 0) return required_.has_value();
     FolderIdentity id{static_cast<std::uint64_t>(now.st_dev), static_cast<std::uint64_t>(now.st_ino), 0};
     if (!required_file_.empty() && ::fstatat(at, required_file_.c_str(), &now, 0) == 0) id.file_ino = now.st_ino;
     return !(id == *required_);
   };
-  const auto refuse_replaced = [&] {
-    return std::runtime_error(fmt::format(
-        "{} was replaced by another run while this one read it; nothing of this run was written (run it "
-        "again on the folder as it is now)",
-        dir_));
-  };
-  if (required_ && !(folder_identity(dir_, required_file_) == *required_)) throw refuse_replaced();
+  if (required_ && !(folder_identity(dir_, required_file_) == *required_)) throw replaced_meanwhile(dir_);
   // A folder without the marker holds no earlier set: files of those names are the user's.
   bool earlier_set = true;
   const auto in_earlier_set = [&](const std::string& n) {
@@ -420,9 +414,9 @@ StagedFolder::Committed StagedFolder::commit() {
       for (const std::string& n : moved) ::renameat(new_fd.fd, n.c_str(), old_fd.fd, n.c_str());
     };
     // Checked again at the last moment: the entries were carried from the folder read.
-    if (required_ && (replaced_meanwhile(old_fd.fd) || !(folder_identity(dir_, required_file_) == *required_))) {
+    if (required_ && (is_another(old_fd.fd) || !(folder_identity(dir_, required_file_) == *required_))) {
       put_back();
-      throw refuse_replaced();
+      throw replaced_meanwhile(dir_);
     }
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) == 0) {
       old_path = staging_;

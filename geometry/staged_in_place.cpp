@@ -56,10 +56,7 @@ StagedFolder::Committed StagedFolder::commit_in_place() {
   Committed out;
   auto lock = lock_run_paths();  // a signal waits until every file is in place
   if (required_ && !(folder_identity(dir_, required_file_) == *required_))
-    throw std::runtime_error(fmt::format(
-        "{} was replaced by another run while this one read it; nothing of this run was written (run it "
-        "again on the folder as it is now)",
-        dir_));
+    throw replaced_meanwhile(dir_);
   Fd to(dir_), from(staging_);
   if (to.fd < 0 || from.fd < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", dir_, why()));
   // What would stop a file going in, found before any does (the run then fails with the folder as
