@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
                                              canopy::cli::add_render(app), canopy::cli::add_light(app),
                                              canopy::cli::add_info(app)};
   canopy::cli::one_value_per_use(app);
+  canopy::cli::refuse_empty_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -85,6 +85,17 @@ void one_value_per_use(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) one_value_per_use(*sub);
 }
 
+void refuse_empty_values(CLI::App& app) {
+  for (CLI::Option* o : app.get_options())
+    if (o->get_type_size_max() > 0)
+      o->check(CLI::Validator(
+          [](std::string& in) {
+            return in.empty() ? std::string("needs a value, got an empty one") : std::string();
+          },
+          "", "not empty"));
+  for (CLI::App* sub : app.get_subcommands({})) refuse_empty_values(*sub);
+}
+
 std::string parse_error_line(const CLI::Error& e) {
   std::string m = e.what();
   for (char& c : m)

@@ -62,6 +62,10 @@ std::string parse_error_line(const CLI::Error& e);
 /// each time it is given: CLI11 let a list option take the words after it, so `canopy derive
 /// --set r=2 GRAMMAR` took the grammar as a second --set and refused the command.
 void one_value_per_use(CLI::App& app);
+/// No option or argument of `app` and its subcommands takes an empty value: `detect --csv ""`
+/// wrote nothing and exited 0, `stand --positions ""` grew the grammar's layout instead, an empty
+/// folder or file name failed late with an unclear message.
+void refuse_empty_values(CLI::App& app);
 
 /// A distance in metres that is rarely meant above 0.1 m (a clearance): a larger value runs as
 /// asked, with a note on stderr saying what it means, since millimetres typed where metres are

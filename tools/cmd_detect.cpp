@@ -14,24 +14,6 @@
 #include <stdexcept>
 
 namespace canopy::cli {
-namespace {
-
-/// --csv naming one of the stand folder's own files would replace the table the stand is read
-/// from (or the contacts its report counts).
-void refuse_stand_file(const std::string& csv, const std::string& dir) {
-  namespace fs = std::filesystem;
-  std::error_code a, b;
-  const fs::path file = fs::weakly_canonical(csv, a), folder = fs::weakly_canonical(dir, b);
-  if (a || b || file.parent_path() != folder) return;
-  for (const std::string& name : stand_folder_files())
-    if (file.filename() == name)
-      throw std::invalid_argument(fmt::format(
-          "--csv {}: that is the stand folder's own {}, which this would replace; name another file", csv,
-          name));
-}
-
-}  // namespace
-
 Command add_detect(CLI::App& root) {
   struct Options {
     std::string dir;
@@ -46,7 +28,7 @@ Command add_detect(CLI::App& root) {
   o->detect.add_to(*app);
   return {app, [o]() {
             const ThreadLimit thread_limit(o->detect.threads);
-            if (!o->csv.empty()) refuse_stand_file(o->csv, o->dir);
+            if (!o->csv.empty()) refuse_stand_file("--csv", o->csv);
             const auto t0 = std::chrono::steady_clock::now();
             const Stand stand = read_stand(o->dir);
             const double read_s = seconds_since(t0);

@@ -4,6 +4,7 @@
 #include "geometry/prototype.hpp"
 #include "tools/cli_common.hpp"
 #include "tools/light_run.hpp"
+#include "tools/stand_options.hpp"
 
 #include <fmt/format.h>
 
@@ -54,47 +55,21 @@ Command add_light(CLI::App& root) {
       ->check(CLI::IsMember({"auto", "trace", "raster"}));
   // From a grammar: canopy stand's options.
   StandOptions& s = o->stand;
-  app->add_option("-o,--out", s.out, "From a grammar: the stand's folder (default out)");
-  app->add_option("--steps", s.steps, "From a grammar: derivation steps")->transform(whole_in(0, kMaxSteps));
-  app->add_option("--set", s.set, "From a grammar: override a constant NAME=VALUE (repeatable)");
-  app->add_option("--lod", s.lod, "From a grammar: level of detail (default 2)")
-      ->transform(whole_in(1, kMaxLod));
-  app->add_option("--formats", s.formats, "From a grammar: mesh formats of the stand (default glb)");
-  app->add_option("--max-modules", s.max_modules, "From a grammar: module cap per plant derivation")
-      ->transform(whole_in(1, INT64_MAX));
+  {
+    const OptionGroup group(*app, kFilesGroup);
+    app->add_option("-o,--out", s.out, "From a grammar: the stand's folder (default out)");
+  }
+  add_grow_options(*app, s, "From a grammar: ");
+  add_file_options(*app, s, "From a grammar: ");
   s.detect.add_to(*app);
   s.resolve.add_to(*app);
-  auto* layout = app->add_option_group("layout", "From a grammar: rows or a positions file, as canopy stand");
-  layout->add_option("--rows", s.rows.rows, "Number of rows")->transform(whole_in(1, INT32_MAX));
-  layout->add_option("--per-row", s.rows.per_row, "Plants per row")->transform(whole_in(1, INT32_MAX));
-  layout->add_option("--row-spacing", s.rows.row_spacing, "Metres between rows")
-      ->check(kFinite)
-      ->check(CLI::NonNegativeNumber);
-  layout->add_option("--plant-spacing", s.rows.plant_spacing, "Metres between plants in a row")
-      ->check(kFinite)
-      ->check(CLI::NonNegativeNumber);
-  layout->add_option("--double-rows", s.rows.double_rows, "Rows in pairs GAP metres apart")
-      ->check(kFinite)
-      ->check(CLI::NonNegativeNumber);
-  layout->add_option("--jitter", s.rows.jitter, "Jitter radius, metres")
-      ->check(kFinite)
-      ->check(CLI::NonNegativeNumber);
-  layout->add_flag("--random-rotation", s.random_rotation, "Turn each plant by a random angle about Z");
-  layout->add_option("--seed", s.rows.seed, "Stand seed")->transform(kSeed);
-  layout->add_option("--positions", s.positions,
-                     "CSV with columns x,y,rotation,seed (give --tile for a periodic field)");
-  add_target_options(*app, s.target);
   return {app, [o, app]() {
             o->threads = o->stand.detect.threads;
             // A folder holds its stand: the options that grow one would be ignored, so say so.
             if (std::filesystem::is_directory(o->source))
-              for (const char* name :
-                   {"--out", "--steps", "--set", "--lod", "--formats", "--max-modules", "--rows", "--per-row",
-                    "--row-spacing", "--plant-spacing", "--double-rows", "--jitter", "--random-rotation",
-                    "--seed", "--positions", "--target-lai", "--target-ground-cover", "--no-resolve"})
-                if (app->count(name) > 0)
-                  throw std::invalid_argument(fmt::format(
-                      "{} grows a stand from a grammar: {} is a folder that holds one", name, o->source));
+              refuse_for_folder(*app, o->source,
+                                {kGrowGroup, kLayoutGroup, kFilesGroup, kResolveGroup, kDetectGroup},
+                                {"--threads", "--backend"});
             run_light(*o);
             return 0;
           }};

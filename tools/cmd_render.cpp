@@ -10,6 +10,7 @@
 #include "tools/cli_common.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/resolve_options.hpp"
+#include "tools/stand_options.hpp"
 #ifdef CANOPY_HAVE_EMBREE
 #include "tools/render/scene.hpp"
 #endif
@@ -18,6 +19,7 @@
 #include <nlohmann/json.hpp>
 #include <sys/resource.h>
 
+#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -27,28 +29,65 @@ namespace {
 
 struct RenderOptions {
   std::string source, out = "stand.png", size = "1920x1080", view = "oblique";
-  StandSpec rows;
-  bool random_rotation = false;
-  std::optional<int> steps;
-  std::vector<std::string> set;
-  int lod = kDefaultLod;
-  DetectOptions detect;
-  ResolveOptions resolve;
+  StandOptions stand;  // from a grammar: canopy stand's options (its files aside)
 };
 
+/// --size: two decimal whole numbers and an 'x', nothing else ("100x100abc" was 100x100).
+std::pair<int, int> picture_size(const std::string& sz) {
+  int w = 0, h = 0;
+  const std::size_t x = sz.find('x');
+  const auto whole = [&](std::size_t from, std::size_t to, int& v) {
+    if (to <= from || to - from > 5) return false;
+    for (std::size_t i = from; i < to; ++i)
+      if (sz[i] < '0' || sz[i] > '9') return false;
+    v = std::stoi(sz.substr(from, to - from));
+    return true;
+  };
+  if (x == std::string::npos || !whole(0, x, w) || !whole(x + 1, sz.size(), h) || w < 16 || h < 16 ||
+      w > 16384 || h > 16384)
+    throw std::invalid_argument(fmt::format("--size: '{}' is not WIDTHxHEIGHT between 16 and 16384", sz));
+  return {w, h};
+}
+
 #ifdef CANOPY_HAVE_EMBREE
-/// Organs of the organ-level rows of a contacts file, flagged.
-std::vector<std::uint8_t> flags_from_csv(const std::string& path, std::size_t organs) {
+/// Organs of the organ-level rows of a stand's contacts file (contacts.csv's columns), flagged.
+/// A file that is not such a table is refused by line: it was drawn as a stand without contacts.
+std::vector<std::uint8_t> flags_from_csv(const std::string& path, const Stand& stand) {
+  const std::size_t organs = stand.organ_count(), plants = stand.plant_count();
   std::vector<std::uint8_t> f(organs, 0);
-  if (!std::filesystem::exists(path)) return f;
   InputFile in(path, "contacts table", kMaxOrgansCsvBytes);
   std::string line;
-  in.next_line(line);
+  const std::string header = "organ_a,organ_b,plant_a,plant_b,level";
+  if (!in.next_line(line) || line != header)
+    throw std::runtime_error(
+        fmt::format("{}:1: not a stand's contacts table: the header is not {}", path, header));
+  const auto id = [&](std::string_view cell, std::size_t count, const char* column) {
+    long long v = 0;
+    const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+    if (ec != std::errc() || end != cell.data() + cell.size() || v < -1 || v >= static_cast<long long>(count))
+      throw std::runtime_error(fmt::format("{}:{}: column '{}': '{}' is not -1 or an id below {}", path,
+                                              in.line_number(), column, cell, count));
+    return v;
+  };
   while (in.next_line(line)) {
-    long a = -1, b = -1;
-    if (std::sscanf(line.c_str(), "%ld,%ld", &a, &b) != 2) continue;
-    for (long k : {a, b})
-      if (k >= 0 && static_cast<std::size_t>(k) < organs) f[static_cast<std::size_t>(k)] = 1;
+    std::vector<std::string_view> cells;
+    for (std::size_t at = 0;;) {
+      const std::size_t comma = line.find(',', at);
+      cells.emplace_back(std::string_view(line).substr(at, comma == std::string::npos ? comma : comma - at));
+      if (comma == std::string::npos) break;
+      at = comma + 1;
+    }
+    if (cells.size() != 5)
+      throw std::runtime_error(fmt::format("{}:{}: {} cells where the table has 5 ({})", path,
+                                              in.line_number(), cells.size(), header));
+    if (!parse_contact_level(std::string(cells[4])))
+      throw std::runtime_error(
+          fmt::format("{}:{}: column 'level': '{}' is not plant, leaf, organ or exact", path,
+                      in.line_number(), cells[4]));
+    const long long a = id(cells[0], organs, "organ_a"), b = id(cells[1], organs, "organ_b");
+    id(cells[2], plants, "plant_a"), id(cells[3], plants, "plant_b");
+    for (long long k : {a, b})
+      if (k >= 0) f[static_cast<std::size_t>(k)] = 1;
   }
   return f;
 }
@@ -90,44 +129,26 @@ Command add_render(CLI::App& root) {
          "--view", o->view,
          "The upper view: oblique (default, from the front-left and above) or side (level, across the rows)")
       ->check(CLI::IsMember({"oblique", "side"}));
-  app->add_option("--rows", o->rows.rows, "From a grammar: rows")->transform(whole_in(1, INT32_MAX));
-  app->add_option("--per-row", o->rows.per_row, "From a grammar: plants per row")
-      ->transform(whole_in(1, INT32_MAX));
-  app->add_option("--row-spacing", o->rows.row_spacing, "From a grammar: metres between rows")
-      ->check(kFinite)
-      ->check(at_least(0));
-  app->add_option("--plant-spacing", o->rows.plant_spacing, "From a grammar: metres between plants")
-      ->check(kFinite)
-      ->check(at_least(0));
-  app->add_option("--jitter", o->rows.jitter, "From a grammar: jitter radius, metres")
-      ->check(kFinite)
-      ->check(at_least(0));
-  app->add_flag("--random-rotation", o->random_rotation, "From a grammar: turn each plant at random");
-  app->add_option("--seed", o->rows.seed, "From a grammar: stand seed")->transform(kSeed);
-  app->add_option("--steps", o->steps, "From a grammar: derivation steps")->transform(whole_in(0, kMaxSteps));
-  app->add_option("--set", o->set, "From a grammar: override a constant NAME=VALUE (repeatable)");
-  app->add_option("--lod", o->lod, "From a grammar: level of detail (default 2)")
-      ->transform(whole_in(1, kMaxLod));
-  o->detect.add_to(*app);
-  o->resolve.add_to(*app);
-  return {app, [o]() -> int {
-            const ThreadLimit thread_limit(o->detect.threads);
-            // Two decimal whole numbers and an 'x', nothing else ("100x100abc" was 100x100).
-            int w = 0, h = 0;
-            const std::string& sz = o->size;
-            const std::size_t x = sz.find('x');
-            const auto whole = [&](std::size_t from, std::size_t to, int& v) {
-              if (to <= from || to - from > 5) return false;
-              for (std::size_t i = from; i < to; ++i)
-                if (sz[i] < '0' || sz[i] > '9') return false;
-              v = std::stoi(sz.substr(from, to - from));
-              return true;
-            };
-            if (x == std::string::npos || !whole(0, x, w) || !whole(x + 1, sz.size(), h) || w < 16 || h < 16 ||
-                w > 16384 || h > 16384)
-              throw std::invalid_argument(
-                  fmt::format("--size: '{}' is not WIDTHxHEIGHT between 16 and 16384", o->size));
+  StandOptions& s = o->stand;
+  add_grow_options(*app, s, "From a grammar: ");
+  s.detect.add_to(*app);
+  s.resolve.add_to(*app);
+  return {app, [o, app]() -> int {
+            StandOptions& s = o->stand;
+            const ThreadLimit thread_limit(s.detect.threads);
+            const auto [w, h] = picture_size(o->size);
+            const bool folder = std::filesystem::is_directory(o->source);
+            // A folder is drawn as written: options that would grow, detect or resolve are refused.
+            if (folder)
+              refuse_for_folder(*app, o->source, {kGrowGroup, kLayoutGroup, kDetectGroup, kResolveGroup},
+                                {"--threads"});
+            refuse_stand_file("-o", o->out);
+            if (s.detect.level == "plant" || s.detect.level == "leaf")
+              throw std::invalid_argument(fmt::format(
+                  "--level {}: a picture marks the organs in contact, found at the organ or exact level",
+                  s.detect.level));
 #ifndef CANOPY_HAVE_EMBREE
+            (void)w, (void)h;
             throw std::invalid_argument(
                 "canopy render: this build has no renderer (Embree was not found: apt-get install "
                 "libembree-dev, then build again)");
@@ -136,49 +157,63 @@ Command add_render(CLI::App& root) {
             const render::View upper = o->view == "side" ? render::View::side : render::View::oblique;
             render::Image picture(w, h);
             std::size_t organs = 0;
-            if (std::filesystem::is_directory(o->source)) {
+            PrototypeLibrary lib;
+            if (folder) {
               const Stand stand = read_stand(o->source);
               organs = stand.organ_count();
               // The contacts this geometry has: after resolution, or as grown without it.
               std::string contacts = o->source + "/contacts_after.csv";
               if (!std::filesystem::exists(contacts)) contacts = o->source + "/contacts.csv";
-              PrototypeLibrary lib;
+              const std::vector<std::uint8_t> hot = std::filesystem::exists(contacts)
+                                                        ? flags_from_csv(contacts, stand)
+                                                        : std::vector<std::uint8_t>(organs, 0);
               const render::Scene scene(stand, lib);
-              picture = panel(scene, flags_from_csv(contacts, stand.organ_count()), w, h, upper);
+              picture = panel(scene, hot, w, h, upper);
             } else {
-              GrowRequest req = grow_request(o->source, o->set, o->steps, o->lod, o->detect.threads, kDefaultMaxModules);
-              if (o->random_rotation) o->rows.random_rotation = true;
-              const Grammar g = load_grammar(o->source, req.load);
-              req.plants = row_layout(choose_layout(o->rows, g.stand).layout);  // field by field over the grammar's entry
-              Stand stand = grow_stand(req);
+              s.grammar = o->source;
+              const DetectRequest dreq = s.detect.request();  // bad options fail before any work
+              StandPlan plan = plan_stand(s);
+              if (s.positions.empty()) {
+                check_plan_fits(plan, static_cast<std::size_t>(plan.layout.rows) *
+                                          static_cast<std::size_t>(plan.layout.per_row));
+                plan.request.plants = row_layout(plan.layout);
+              }
+              if (s.target.set()) check_target(s);
+              Stand stand = grow_stand(plan.request);
+              if (s.target.set()) reach_target(stand, plan.layout, s.target);
               organs = stand.organ_count();
               std::string note;
-              auto backend = make_backend(o->detect.backend, note);
-              DetectRequest dreq = o->detect.request();
-              dreq.level = ContactLevel::exact;
+              auto backend = make_backend(s.detect.backend, note);
               const Contacts before = backend->detect(stand, dreq);
-              PrototypeLibrary lib;
-              {
+              if (s.resolve.no_resolve) {
+                // The stand as grown, the whole picture.
                 const render::Scene scene(stand, lib);
-                picture.paste(panel(scene, flags_from(before, organs), w / 2, h, upper), 0, 0);
+                picture = panel(scene, flags_from(before, organs), w, h, upper);
+                fmt::print("{} contacts at the {} level (not resolved)\n", before.pairs.size(),
+                           kContactLevelNames[static_cast<std::size_t>(dreq.level)]);
+              } else {
+                {
+                  const render::Scene scene(stand, lib);
+                  picture.paste(panel(scene, flags_from(before, organs), w / 2, h, upper), 0, 0);
+                }
+                const ResolveConfig rc = s.resolve.config();
+                DetectRequest at = dreq;
+                at.level = rc.level;
+                const Contacts start = rc.level == dreq.level ? before : backend->detect(stand, at);
+                const ResolveResult r = run_resolution(stand, *backend, dreq, s.resolve, start);
+                const Contacts after = backend->detect(stand, dreq);
+                const render::Scene scene(stand, lib);
+                picture.paste(panel(scene, flags_from(after, organs), w - w / 2, h, upper), w / 2, 0);
+                fmt::print(
+                    "before (left): {} contacts; after (right): {} contacts, {} organs turned (mean {:.2f} deg)\n",
+                    before.pairs.size(), after.pairs.size(), r.organs_moved, r.mean_turn_deg);
               }
-              const ResolveConfig rc = o->resolve.config();
-              DetectRequest at = dreq;
-              at.level = rc.level;
-              const Contacts start = rc.level == ContactLevel::exact ? before : backend->detect(stand, at);
-              const ResolveResult r = run_resolution(stand, *backend, dreq, o->resolve, start);
-              const Contacts after = backend->detect(stand, dreq);
-              const render::Scene scene(stand, lib);
-              picture.paste(panel(scene, flags_from(after, organs), w - w / 2, h, upper), w / 2, 0);
-              fmt::print("before (left): {} contacts; after (right): {} contacts, {} organs turned (mean {:.2f} deg)\n",
-                         before.pairs.size(), after.pairs.size(), r.organs_moved, r.mean_turn_deg);
             }
             render::write_png(picture, o->out);
             rusage ru{};
             getrusage(RUSAGE_SELF, &ru);
             fmt::print("wrote {} ({}x{}, {} organs) in {:.2f} s, peak memory {:.2f} GB\n", o->out, w, h, organs,
-                       seconds_since(t0),
-                       static_cast<double>(ru.ru_maxrss) / (1024.0 * 1024.0));
+                       seconds_since(t0), static_cast<double>(ru.ru_maxrss) / (1024.0 * 1024.0));
             return 0;
 #endif
           }};

@@ -1,5 +1,6 @@
 #include "tools/detect_options.hpp"
 #include "resolution/auto_backend.hpp"
+#include "tools/stand_options.hpp"
 #include "tools/sweep_spec.hpp"
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 namespace canopy::cli {
 
 void DetectOptions::add_to(CLI::App& app) {
+  const OptionGroup group(app, kDetectGroup);
   app.add_option("--level", level, "Contact level: plant, leaf, organ or exact (default exact)")
       ->check(CLI::IsMember({"plant", "leaf", "organ", "exact"}));
   app.add_option("--clearance", clearance,

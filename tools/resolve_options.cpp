@@ -1,6 +1,7 @@
 #include "tools/resolve_options.hpp"
 
 #include "tools/resolve_stats.hpp"
+#include "tools/stand_options.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -10,6 +11,7 @@
 namespace canopy::cli {
 
 void ResolveOptions::add_to(CLI::App& app) {
+  const OptionGroup group(app, kResolveGroup);
   app.add_flag("--no-resolve", no_resolve,
                "Export the stand as grown, without turning organs out of contact");
   app.add_option("--max-rounds", max_rounds, "Resolution: detection rounds before giving up (default 30)")

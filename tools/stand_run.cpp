@@ -99,6 +99,21 @@ const std::vector<std::string>& stand_folder_files() {
   return names;
 }
 
+void refuse_stand_file(const std::string& option, const std::string& path) {
+  namespace fs = std::filesystem;
+  // Through links: a link to a stand's plants.csv would be written through.
+  std::error_code ec;
+  fs::path file = fs::weakly_canonical(path, ec);
+  if (ec) file = path;
+  const fs::path folder = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  const auto& names = stand_folder_files();
+  if (std::find(names.begin(), names.end(), file.filename().string()) == names.end()) return;
+  if (!fs::exists(folder / kStandFolderMarker, ec)) return;
+  throw std::invalid_argument(
+      fmt::format("{} {}: that is the stand folder's own {}, which this would replace; name another file",
+                  option, path, file.filename().string()));
+}
+
 void print_folder_changes(const StagedFolder& folder, const StagedFolder::Committed& committed) {
   const auto list = [](const std::vector<std::string>& names) {
     std::string out;

@@ -108,6 +108,10 @@ const std::vector<std::string>& stand_folder_files();
 /// The file every stand folder holds: a folder without it holds no earlier stand, and files of
 /// the names above there are the user's (kept unless a run writes them again).
 inline constexpr const char* kStandFolderMarker = "organs.csv";
+/// Throws std::invalid_argument when `path`, given with `option` for a file a command writes
+/// (`detect --csv`, `render -o`), names one of stand_folder_files() in a folder that holds a stand:
+/// writing it would replace the stand's own table (or the contacts its report counts).
+void refuse_stand_file(const std::string& option, const std::string& path);
 /// Says on standard output which files of the earlier stand the swap dropped (a mesh format not
 /// asked for this time, light tables) and which dead runs' leftovers were removed, and on
 /// standard error what was kept against the plan (nothing when all went as planned).

@@ -193,6 +193,17 @@ for size in 100x100abc 100x100x3 " 100x100" +100x+100 15x16; do
   check "render --size '$size'" "2:canopy: error: --size: '$size' is not WIDTHxHEIGHT between 16 and 16384" "$rc:$(err)"
 done
 
+# An empty value is refused by every option and argument (`detect --csv ""` wrote nothing and
+# exited 0; `stand --positions ""` grew the grammar's layout).
+run stand "$g" --positions "" -o e1
+check "stand --positions ''" "105:canopy: error: --positions: needs a value, got an empty one:0" "$rc:$(err):$(ls -d e1 2>/dev/null | wc -l)"
+run detect "$tmp" --csv ""
+check "detect --csv ''" "105:canopy: error: --csv: needs a value, got an empty one" "$rc:$(err)"
+run stand "$g" -o ""
+check "stand -o ''" "105:canopy: error: --out: needs a value, got an empty one" "$rc:$(err)"
+run derive ""
+check "derive ''" "105:canopy: error: GRAMMAR: needs a value, got an empty one" "$rc:$(err)"
+
 # canopy detect reads back only what canopy writes.
 run stand "$g" --rows 1 --per-row 2 --steps 6 --backend cpu -o st
 check "stand for detect" "0" "$rc"

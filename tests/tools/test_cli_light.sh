@@ -121,7 +121,9 @@ bad "night" "at 23 h the sun is" --latitude 52 --day 172 --hours 23
 bad "tile" "\-\-tile: '1,2,3' is not XMIN,YMIN,XMAX,YMAX" --tile 1,2,3
 bad "tile inverted" "has XMAX <= XMIN" --tile 1,0,0,1
 bad "too many rays" "rays in one direction (the limit is" --rays-per-m2 1e9 --sky-directions 0
-bad "grammar options on a folder" "\-\-rows grows a stand from a grammar" --rows 3
+bad "grammar options on a folder" "\-\-rows: .* is a folder that holds a stand already" --rows 3
+bad "detection options on a folder" "\-\-level: .* is a folder that holds a stand already" --level organ
+bad "resolution options on a folder" "\-\-max-rounds: .* is a folder that holds a stand already" --max-rounds 3
 "$canopy" light "$tmp/nowhere" >"$tmp/o" 2>"$tmp/e"
 check "missing source exit" "1" "$([ $? -ne 0 ] && echo 1 || echo 0)"
 

@@ -1,0 +1,48 @@
+#pragma once
+/// canopy stand's options that grow a stand and choose its files, registered alike by every command
+/// that grows one from a grammar (stand, light, render): the same names, checks and help, and a
+/// command given a folder instead of a grammar refuses the options that would have grown one.
+#include "tools/stand_run.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <initializer_list>
+#include <string>
+#include <string_view>
+
+namespace canopy::cli {
+
+/// The help's groups, and what refuse_for_folder() tells apart.
+inline constexpr const char* kGrowGroup = "Growing a stand";
+inline constexpr const char* kLayoutGroup = "Layout";
+inline constexpr const char* kFilesGroup = "Stand files";
+inline constexpr const char* kDetectGroup = "Detection";
+inline constexpr const char* kResolveGroup = "Resolution";
+
+/// Options added to `app` while one lives go to help group `name`.
+class OptionGroup {
+ public:
+  OptionGroup(CLI::App& app, std::string name);
+  ~OptionGroup();
+  OptionGroup(const OptionGroup&) = delete;
+  OptionGroup& operator=(const OptionGroup&) = delete;
+
+ private:
+  CLI::App& app_;
+  std::string before_;
+};
+
+/// --steps, --set, --lod, --max-modules, --any-grammar-path, the target options, and the layout
+/// (rows, or --positions) as an option group. `prefix` starts each description ("From a grammar: "
+/// where SOURCE may also be a folder).
+void add_grow_options(CLI::App& app, StandOptions& s, const std::string& prefix = "");
+/// --formats, --glb-instancing, --glb-compact.
+void add_file_options(CLI::App& app, StandOptions& s, const std::string& prefix = "");
+
+/// Throws std::invalid_argument naming the first option of `groups` (those in `except` aside) given
+/// on the command line: SOURCE `folder` holds a stand already, and the option would be ignored.
+void refuse_for_folder(const CLI::App& app, const std::string& folder,
+                       std::initializer_list<std::string_view> groups,
+                       std::initializer_list<std::string_view> except = {});
+
+}  // namespace canopy::cli
