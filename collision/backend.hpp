@@ -35,8 +35,12 @@ struct DetectRequest {
   std::size_t memory_limit = 0;
 };
 
+/// The largest clearance (metres) detection and resolution take: past it every organ pair of a
+/// field is a contact, and past 3e38 the clearance is no longer a float.
+inline constexpr double kMaxClearance = 100;
+
 /// Throws std::invalid_argument naming what is wrong when a request cannot be met: a clearance
-/// that is negative, NaN or infinite (every comparison with NaN is false, so a NaN clearance
+/// that is negative, NaN, infinite or above kMaxClearance (every comparison with NaN is false, so a NaN clearance
 /// would let every bound reject everything), or a negative thread count. Both backends call it
 /// before anything else.
 void check_request(const DetectRequest& request);

@@ -1,5 +1,7 @@
 #include "resolution/resolve_policy.hpp"
 
+#include "collision/backend.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -16,9 +18,10 @@ void ResolveConfig::check() const {
       throw std::invalid_argument(
           fmt::format("resolution: {} must be a finite number above 0 (got {})", what, v));
   };
-  if (!std::isfinite(clearance) || clearance < 0)
-    throw std::invalid_argument(fmt::format(
-        "resolution: the clearance must be a finite number of metres, at least 0 (got {})", clearance));
+  if (!std::isfinite(clearance) || clearance < 0 || clearance > kMaxClearance)
+    throw std::invalid_argument(
+        fmt::format("resolution: the clearance must be a finite number of metres from 0 to {} (got {})",
+                    kMaxClearance, clearance));
   positive("the angle tolerance (degrees)", angle_tolerance_deg);
   positive("the scan step (degrees)", scan_step_deg);
   positive("the bend step (degrees)", bend_step_deg);

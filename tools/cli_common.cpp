@@ -87,7 +87,7 @@ void one_value_per_use(CLI::App& app) {
 
 void refuse_empty_values(CLI::App& app) {
   for (CLI::Option* o : app.get_options())
-    if (o->get_type_size_max() > 0)
+    if (o->get_expected_max() > 0)  // not a flag
       o->check(CLI::Validator(
           [](std::string& in) {
             return in.empty() ? std::string("needs a value, got an empty one") : std::string();

@@ -43,9 +43,6 @@ inline const CLI::Validator kSeed(
 /// rewrites the value as an integer, so `--steps 1e3` reads as 1000 rather than failing to convert:
 /// register it with ->transform() (->check() hands validators a copy).
 CLI::Validator whole_in(long long lo, long long hi);
-/// The largest clearance (metres) --clearance and --resolve-clearance take: past it every organ
-/// pair of a field is a contact, and past 3e38 the clearance is no longer a float.
-inline constexpr double kMaxClearance = 100;
 /// A finite number of at least `lo`.
 CLI::Validator at_least(double lo);
 /// A finite number greater than `lo`.

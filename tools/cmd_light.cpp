@@ -12,11 +12,9 @@
 
 namespace canopy::cli {
 
-Command add_light(CLI::App& root) {
+std::shared_ptr<LightOptions> register_light(CLI::App& app_ref) {
+  CLI::App* app = &app_ref;
   auto o = std::make_shared<LightOptions>();
-  CLI::App* app = root.add_subcommand("light",
-                                      "Light interception of a stand: direct beams, diffuse sky, ground "
-                                      "cover, STAR; writes light.json and light.csv");
   app->add_option(
          "SOURCE", o->source,
          "A folder written by canopy stand, or a grammar to grow a stand from (with canopy stand's options)")
@@ -63,13 +61,27 @@ Command add_light(CLI::App& root) {
   add_file_options(*app, s, "From a grammar: ");
   s.detect.add_to(*app);
   s.resolve.add_to(*app);
+  return o;
+}
+
+void check_light_command(const CLI::App& app, LightOptions& o) {
+  o.threads = o.stand.detect.threads;
+  // A folder holds its stand: the options that grow, detect or resolve one would be ignored.
+  if (std::filesystem::is_directory(o.source))
+    refuse_given(
+        app, {kGrowGroup, kLayoutGroup, kFilesGroup, kResolveGroup, kDetectGroup}, {"--threads", "--backend"},
+        fmt::format("{} is a folder that holds a stand already, which this option would not change (it "
+                    "applies to a grammar)",
+                    o.source));
+}
+
+Command add_light(CLI::App& root) {
+  CLI::App* app = root.add_subcommand("light",
+                                      "Light interception of a stand: direct beams, diffuse sky, ground "
+                                      "cover, STAR; writes light.json and light.csv");
+  auto o = register_light(*app);
   return {app, [o, app]() {
-            o->threads = o->stand.detect.threads;
-            // A folder holds its stand: the options that grow one would be ignored, so say so.
-            if (std::filesystem::is_directory(o->source))
-              refuse_for_folder(*app, o->source,
-                                {kGrowGroup, kLayoutGroup, kFilesGroup, kResolveGroup, kDetectGroup},
-                                {"--threads", "--backend"});
+            check_light_command(*app, *o);
             run_light(*o);
             return 0;
           }};

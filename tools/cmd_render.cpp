@@ -66,7 +66,7 @@ std::vector<std::uint8_t> flags_from_csv(const std::string& path, const Stand& s
     const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v);
     if (ec != std::errc() || end != cell.data() + cell.size() || v < -1 || v >= static_cast<long long>(count))
       throw std::runtime_error(fmt::format("{}:{}: column '{}': '{}' is not -1 or an id below {}", path,
-                                              in.line_number(), column, cell, count));
+                                           in.line_number(), column, cell, count));
     return v;
   };
   while (in.next_line(line)) {
@@ -79,11 +79,10 @@ std::vector<std::uint8_t> flags_from_csv(const std::string& path, const Stand& s
     }
     if (cells.size() != 5)
       throw std::runtime_error(fmt::format("{}:{}: {} cells where the table has 5 ({})", path,
-                                              in.line_number(), cells.size(), header));
+                                           in.line_number(), cells.size(), header));
     if (!parse_contact_level(std::string(cells[4])))
-      throw std::runtime_error(
-          fmt::format("{}:{}: column 'level': '{}' is not plant, leaf, organ or exact", path,
-                      in.line_number(), cells[4]));
+      throw std::runtime_error(fmt::format("{}:{}: column 'level': '{}' is not plant, leaf, organ or exact",
+                                           path, in.line_number(), cells[4]));
     const long long a = id(cells[0], organs, "organ_a"), b = id(cells[1], organs, "organ_b");
     id(cells[2], plants, "plant_a"), id(cells[3], plants, "plant_b");
     for (long long k : {a, b})
@@ -140,8 +139,11 @@ Command add_render(CLI::App& root) {
             const bool folder = std::filesystem::is_directory(o->source);
             // A folder is drawn as written: options that would grow, detect or resolve are refused.
             if (folder)
-              refuse_for_folder(*app, o->source, {kGrowGroup, kLayoutGroup, kDetectGroup, kResolveGroup},
-                                {"--threads"});
+              refuse_given(
+                  *app, {kGrowGroup, kLayoutGroup, kDetectGroup, kResolveGroup}, {"--threads"},
+                  fmt::format("{} is a folder that holds a stand already, which this option would not "
+                              "change (it applies to a grammar)",
+                              o->source));
             refuse_stand_file("-o", o->out);
             if (s.detect.level == "plant" || s.detect.level == "leaf")
               throw std::invalid_argument(fmt::format(

@@ -10,15 +10,20 @@
 
 namespace canopy::cli {
 
-Command add_stand(CLI::App& root) {
+std::shared_ptr<StandOptions> register_stand(CLI::App& app) {
   auto o = std::make_shared<StandOptions>();
+  app.add_option("GRAMMAR", o->grammar, "Grammar file (YAML)")->required();
+  app.add_option("-o,--out", o->out, "Output folder (created if missing; default out)");
+  add_grow_options(app, *o);
+  add_file_options(app, *o);
+  o->detect.add_to(app);
+  o->resolve.add_to(app);
+  return o;
+}
+
+Command add_stand(CLI::App& root) {
   CLI::App* app = root.add_subcommand("stand", "Grow a stand of plants from a grammar and write its files");
-  app->add_option("GRAMMAR", o->grammar, "Grammar file (YAML)")->required();
-  app->add_option("-o,--out", o->out, "Output folder (created if missing; default out)");
-  add_grow_options(*app, *o);
-  add_file_options(*app, *o);
-  o->detect.add_to(*app);
-  o->resolve.add_to(*app);
+  auto o = register_stand(*app);
   return {app, [o]() {
 #ifdef CANOPY_WITH_MPI
             if (mpi::launched()) {

@@ -359,10 +359,9 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   return out;
 }
 
-Command add_sweep(CLI::App& root) {
+std::shared_ptr<SweepOptions> register_sweep(CLI::App& app_ref) {
+  CLI::App* app = &app_ref;
   auto o = std::make_shared<SweepOptions>();
-  CLI::App* app = root.add_subcommand(
-      "sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
   app->add_option("GRAMMAR", o->grammar, "Grammar file (YAML)")->required();
   app->add_option("-o,--out", o->out,
                   "Output folder: runs.csv, summary.csv (default sweep); an existing one is resumed");
@@ -385,6 +384,14 @@ Command add_sweep(CLI::App& root) {
                   "the grammar's stand entry says otherwise)")
       ->check(kFinite)
       ->check(at_least(0));
+  CLI::Option* turned = app->add_flag_callback(
+      "--random-rotation", [o] { o->random_rotation = true; },
+      "Turn each plant by a random angle about Z (the default unless the grammar's stand entry says "
+      "otherwise)");
+  app->add_flag_callback(
+         "--no-random-rotation", [o] { o->random_rotation = false; },
+         "Every plant facing the same way (overrides the grammar's stand entry)")
+      ->excludes(turned);
   app->add_option("--lod", o->lod, "Level of detail (default 2)")->transform(whole_in(1, kMaxLod));
   app->add_option("--set", o->set, "Override a grammar constant: NAME=VALUE (repeatable)");
   app->add_option("--max-modules", o->max_modules,
@@ -410,6 +417,13 @@ Command add_sweep(CLI::App& root) {
       ->excludes(light_error);
   o->detect.add_to(*app);
   o->resolve.add_to(*app);
+  return o;
+}
+
+Command add_sweep(CLI::App& root) {
+  CLI::App* app = root.add_subcommand(
+      "sweep", "Run a spacing / density x age experiment: one CSV row per run, a summary per cell");
+  auto o = register_sweep(*app);
   return {app, [o]() {
 #ifdef CANOPY_WITH_MPI
             if (mpi::launched()) {

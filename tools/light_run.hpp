@@ -6,9 +6,11 @@
 #include "geometry/stand.hpp"
 #include "tools/stand_run.hpp"
 
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +42,13 @@ struct LightOptions {
   int threads = 0;
   StandOptions stand;
 };
+
+/// `canopy light`'s arguments and options registered on `app` (the subcommand, or an app of the
+/// Python module's own).
+std::shared_ptr<LightOptions> register_light(CLI::App& app);
+/// After parsing: the thread count taken from --threads, and a folder SOURCE's refusal of the
+/// options that would grow, detect or resolve a stand.
+void check_light_command(const CLI::App& app, LightOptions& o);
 
 /// The sun positions asked for: each --sun, then one per --hours entry from --latitude and --day
 /// (the hour kept beside it; NaN for --sun).

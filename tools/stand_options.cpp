@@ -120,14 +120,10 @@ const CLI::Option* first_given(const CLI::App& app, std::initializer_list<std::s
 
 }  // namespace
 
-void refuse_for_folder(const CLI::App& app, const std::string& folder,
-                       std::initializer_list<std::string_view> groups,
-                       std::initializer_list<std::string_view> except) {
+void refuse_given(const CLI::App& app, std::initializer_list<std::string_view> groups,
+                  std::initializer_list<std::string_view> except, const std::string& reason) {
   if (const CLI::Option* o = first_given(app, groups, except))
-    throw std::invalid_argument(
-        fmt::format("{}: {} is a folder that holds a stand already, which this option would not change (it "
-                    "applies to a grammar)",
-                    o->get_name(), folder));
+    throw std::invalid_argument(fmt::format("{}: {}", o->get_name(), reason));
 }
 
 }  // namespace canopy::cli

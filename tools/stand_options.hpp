@@ -12,7 +12,7 @@
 
 namespace canopy::cli {
 
-/// The help's groups, and what refuse_for_folder() tells apart.
+/// The help's groups, and what refuse_given() tells apart.
 inline constexpr const char* kGrowGroup = "Growing a stand";
 inline constexpr const char* kLayoutGroup = "Layout";
 inline constexpr const char* kFilesGroup = "Stand files";
@@ -39,10 +39,14 @@ void add_grow_options(CLI::App& app, StandOptions& s, const std::string& prefix 
 /// --formats, --glb-instancing, --glb-compact.
 void add_file_options(CLI::App& app, StandOptions& s, const std::string& prefix = "");
 
-/// Throws std::invalid_argument naming the first option of `groups` (those in `except` aside) given
-/// on the command line: SOURCE `folder` holds a stand already, and the option would be ignored.
-void refuse_for_folder(const CLI::App& app, const std::string& folder,
-                       std::initializer_list<std::string_view> groups,
-                       std::initializer_list<std::string_view> except = {});
+/// Throws std::invalid_argument "OPTION: `reason`" naming the first option of `groups` (those in
+/// `except` aside) given on the command line: options a run would ignore (SOURCE a folder that
+/// holds its stand already; Python's Stand.light on the stand it holds).
+void refuse_given(const CLI::App& app, std::initializer_list<std::string_view> groups,
+                  std::initializer_list<std::string_view> except, const std::string& reason);
+
+/// `canopy stand`'s arguments and options registered on `app` (the subcommand, or an app of its
+/// own for the Python module, which parses its keywords with it).
+std::shared_ptr<StandOptions> register_stand(CLI::App& app);
 
 }  // namespace canopy::cli

@@ -6,7 +6,10 @@
 #include "tools/resolve_options.hpp"
 #include "tools/sweep_table.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,5 +63,9 @@ struct SweepRanks {
 
 SweepOutcome run_sweep(const SweepOptions& o, bool print = true, const SweepCallback& after_run = {},
                        const SweepRanks* ranks = nullptr);
+
+/// `canopy sweep`'s arguments and options registered on `app` (the subcommand, or an app of the
+/// Python module's own).
+std::shared_ptr<SweepOptions> register_sweep(CLI::App& app);
 
 }  // namespace canopy::cli

@@ -303,6 +303,15 @@ TEST_CASE("settings that cannot be met are refused by name, before any work") {
     CHECK_THROWS_WITH_AS(resolve(s, *cpu, req, first), doctest::Contains("resolution: the petiole weight"),
                          std::invalid_argument);
   }
+  // Past 100 m every organ pair of a field is a contact: refused by the library (Python took it).
+  DetectRequest far;
+  far.clearance = 100.5f;
+  CHECK_THROWS_WITH_AS(cpu->detect(s, far), doctest::Contains("from 0 to 100 (got 100.5)"),
+                       std::invalid_argument);
+  ResolveRequest far_turn;
+  far_turn.config.clearance = 100.5;
+  CHECK_THROWS_WITH_AS(resolve(s, *cpu, far_turn, first),
+                       doctest::Contains("resolution: the clearance must be"), std::invalid_argument);
   DetectRequest threads;
   threads.threads = -1;
   CHECK_THROWS_AS(cpu->detect(s, threads), std::invalid_argument);

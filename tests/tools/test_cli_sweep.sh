@@ -207,5 +207,13 @@ for opt in --plant-spacing --row-spacing --density --steps --seeds --rows --per-
   --sky-directions --light-error --no-light; do
   check "help $opt" "1" "$(grep -q -- "$opt" <<<"$help" && echo 1 || echo 0)"
 done
+# --no-random-rotation: every plant facing the same way, recorded in sweep.json (both ways given
+# at once is refused).
+"$canopy" sweep "$g" --plant-spacing 0.3 --steps 10 --seeds 1 --rows 1 --per-row 3 --no-light --backend cpu \
+  --no-random-rotation -o "$tmp/nr" >/dev/null 2>&1
+check "sweep --no-random-rotation" "0 False" "$? $(python3 -c "import json; print(json.load(open('$tmp/nr/sweep.json')).get('random_rotation', True))")"
+"$canopy" sweep "$g" --plant-spacing 0.3 --steps 10 --seeds 1 --rows 1 --per-row 3 --no-light --backend cpu \
+  --random-rotation --no-random-rotation -o "$tmp/nr2" >/dev/null 2>&1
+check "sweep: both rotations refused" "108" "$?"
 echo "$pass passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -62,8 +62,8 @@ inline py::object json_to_py(const nlohmann::ordered_json& j) {
 struct PyStand {
   Stand stand;
   std::string grammar;
-  std::optional<Contacts> last;     // the last detection (for export)
-  std::optional<RowLayout> layout;  // the rows it was grown in (its lattice is light's tile)
+  std::optional<Contacts> before, after;  // export's contacts.csv and contacts_after.csv
+  std::optional<RowLayout> layout;        // the rows it was grown in (its lattice is light's tile)
 };
 
 /// A path from str, bytes or os.PathLike (bytes as they are: a file name need not be UTF-8).
@@ -86,19 +86,6 @@ inline std::vector<std::string> overrides(const std::map<std::string, double>& s
   return v;
 }
 
-inline DetectRequest detect_request(const std::string& level, double clearance, const std::string& collide,
-                                    int threads) {
-  cli::DetectOptions d;
-  d.level = level;
-  d.clearance = clearance;
-  d.collide = collide;
-  d.threads = threads;
-  if (!parse_contact_level(level))
-    throw std::invalid_argument(fmt::format("level: '{}' is not plant, leaf, organ or exact", level));
-  if (clearance < 0) throw std::invalid_argument("clearance must not be negative");
-  return d.request();
-}
-
 inline py::array contacts_array(const std::vector<Contact>& pairs) {
   py::dtype dt = py::dtype::from_args(
       py::list(py::make_tuple(py::make_tuple("organ_a", "<i4"), py::make_tuple("organ_b", "<i4"),
@@ -112,6 +99,7 @@ inline py::array contacts_array(const std::vector<Contact>& pairs) {
 }
 
 inline std::unique_ptr<DetectionBackend> backend_named(const std::string& name, std::string& note) {
+  cli::check_backend_name(name);  // 'bogus' ran as auto
   return cli::make_backend(name, note);
 }
 

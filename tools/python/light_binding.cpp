@@ -5,6 +5,8 @@
 #include "tools/light_device.hpp"
 #include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
+#include "tools/python/keywords.hpp"
+#include "tools/stand_options.hpp"
 
 #include <pybind11/stl.h>
 
@@ -13,37 +15,8 @@
 namespace canopy::python {
 namespace {
 
-/// Keyword options shared by Stand.light and canopy.light; false when `k` is not one of them.
-bool light_option(cli::LightOptions& o, const std::string& k, py::handle v) {
-  if (k == "suns") {
-    o.suns.clear();
-    for (auto s : v) {
-      const auto pair = s.cast<std::pair<double, double>>();
-      o.suns.push_back(fmt::format("{},{}", pair.first, pair.second));
-    }
-  } else if (k == "latitude") o.latitude = v.cast<double>();
-  else if (k == "day") o.day = v.cast<int>();
-  else if (k == "hours") {
-    if (py::isinstance<py::str>(v)) o.hours = v.cast<std::string>();
-    else
-      for (auto x : v) o.hours += (o.hours.empty() ? "" : ",") + fmt::format("{}", x.cast<double>());
-  } else if (k == "sky") o.sky = v.cast<std::string>();
-  else if (k == "sky_directions") o.sky_directions = v.cast<int>();
-  else if (k == "tile") {
-    const auto t = v.cast<std::array<double, 4>>();
-    o.tile = fmt::format("{},{},{},{}", t[0], t[1], t[2], t[3]);
-  } else if (k == "periodic") o.no_periodic = !v.cast<bool>();
-  else if (k == "error") o.error = v.cast<double>();
-  else if (k == "plant_error") o.plant_error = v.cast<double>();
-  else if (k == "rays_per_m2") o.rays_per_m2 = v.cast<double>();
-  else if (k == "layer") o.layer = v.cast<double>();
-  else if (k == "ray_seed") o.ray_seed = v.cast<std::uint64_t>();
-  else if (k == "threads") o.threads = v.cast<int>();
-  else if (k == "caster") o.caster = v.cast<std::string>();
-  else if (k == "backend") o.stand.detect.backend = v.cast<std::string>();
-  else return false;
-  return true;
-}
+/// Python's names for options the command line spells otherwise.
+const std::map<std::string, std::string> kLightNames{{"suns", "sun"}};
 
 #ifdef CANOPY_HAVE_LIGHT
 /// light.csv's columns as NumPy arrays (float64), keyed by name.
@@ -75,13 +48,17 @@ void bind_light(py::module_& m) {
         (void)s, (void)kwargs;
         throw std::invalid_argument("light: this build has no ray caster (Embree was not found)");
 #else
-        cli::LightOptions o;
+        CLI::App app;
+        const std::shared_ptr<cli::LightOptions> options = cli::register_light(app);
+        parse_keywords(app, "Stand.light", {"stand"}, kwargs, kLightNames);
+        cli::refuse_given(
+            app,
+            {cli::kGrowGroup, cli::kLayoutGroup, cli::kFilesGroup, cli::kResolveGroup, cli::kDetectGroup},
+            {"--threads", "--backend"},
+            "Stand.light lights the stand it is called on (canopy.light grows one from a grammar)");
+        cli::LightOptions& o = *options;
+        o.threads = o.stand.detect.threads;
         o.source = s.grammar;
-        for (auto item : kwargs) {
-          const std::string k = py::str(item.first);
-          if (!light_option(o, k, item.second))
-            throw std::invalid_argument(fmt::format("light: unknown option '{}'", k));
-        }
         nlohmann::ordered_json j;
         std::string csv;
         {
@@ -116,37 +93,14 @@ void bind_light(py::module_& m) {
   m.def(
       "light",
       [](py::object source, py::dict kwargs) {
-        cli::LightOptions o;
-        o.source = path_of(source);
-        for (auto item : kwargs) {
-          const std::string k = py::str(item.first);
-          py::handle v = item.second;
-          if (light_option(o, k, v)) continue;
-          // From a grammar: canopy stand's options.
-          cli::StandOptions& st = o.stand;
-          if (k == "out") st.out = path_of(v);
-          else if (k == "steps") st.steps = v.cast<int>();
-          else if (k == "set") st.set = overrides(v.cast<std::map<std::string, double>>());
-          else if (k == "lod") st.lod = v.cast<int>();
-          else if (k == "rows") st.rows.rows = v.cast<int>();
-          else if (k == "per_row") st.rows.per_row = v.cast<int>();
-          else if (k == "row_spacing") st.rows.row_spacing = v.cast<double>();
-          else if (k == "plant_spacing") st.rows.plant_spacing = v.cast<double>();
-          else if (k == "double_rows") st.rows.double_rows = v.cast<double>();
-          else if (k == "jitter") st.rows.jitter = v.cast<double>();
-          else if (k == "random_rotation") st.random_rotation = v.cast<bool>();
-          else if (k == "seed") st.rows.seed = v.cast<std::uint64_t>();
-          else if (k == "positions") st.positions = path_of(v);
-          else if (k == "backend") st.detect.backend = v.cast<std::string>();
-          else if (k == "no_resolve") st.resolve.no_resolve = v.cast<bool>();
-          else if (k == "target_lai") st.target.lai = v.cast<double>();
-          else if (k == "target_ground_cover") st.target.ground_cover = v.cast<double>();
-          else throw std::invalid_argument(fmt::format("light: unknown option '{}'", k));
-        }
+        CLI::App app;
+        const std::shared_ptr<cli::LightOptions> o = cli::register_light(app);
+        parse_keywords(app, "light", {path_of(source)}, kwargs, kLightNames);
+        cli::check_light_command(app, *o);
         cli::LightOutcome r;
         {
           py::gil_scoped_release nogil;
-          r = cli::run_light(o, false);
+          r = cli::run_light(*o, false);
         }
         return json_to_py(r.json);
       },

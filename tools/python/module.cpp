@@ -12,6 +12,8 @@
 #include "tools/detect_options.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/python/common.hpp"
+#include "tools/python/keywords.hpp"
+#include "tools/stand_options.hpp"
 #include "tools/stand_run.hpp"
 #include "tools/sweep_run.hpp"
 
@@ -87,106 +89,36 @@ PYBIND11_MODULE(_canopy, m) {
 
   m.def(
       "stand",
-      [](const std::string& grammar, const std::string& out, py::dict kwargs, py::object progress) {
-        cli::StandOptions o;
-        o.grammar = grammar;
-        o.out = out;
-        for (auto item : kwargs) {
-          const std::string k = py::str(item.first);
-          py::handle v = item.second;
-          if (k == "steps") o.steps = v.cast<int>();
-          else if (k == "set") o.set = overrides(v.cast<std::map<std::string, double>>());
-          else if (k == "lod") o.lod = v.cast<int>();
-          else if (k == "formats") o.formats = v.cast<std::string>();
-          else if (k == "glb_instancing") o.glb_instancing = v.cast<bool>();
-          else if (k == "glb_compact") o.glb_compact = v.cast<bool>();
-          else if (k == "max_modules") o.max_modules = v.cast<std::size_t>();
-          else if (k == "rows") o.rows.rows = v.cast<int>();
-          else if (k == "per_row") o.rows.per_row = v.cast<int>();
-          else if (k == "row_spacing") o.rows.row_spacing = v.cast<double>();
-          else if (k == "plant_spacing") o.rows.plant_spacing = v.cast<double>();
-          else if (k == "double_rows") o.rows.double_rows = v.cast<double>();
-          else if (k == "jitter") o.rows.jitter = v.cast<double>();
-          else if (k == "random_rotation")
-            o.rows.random_rotation = v.cast<bool>();  // False too: over the grammar's entry
-          else if (k == "seed") o.rows.seed = v.cast<std::uint64_t>();
-          else if (k == "positions") o.positions = path_of(v);
-          else if (k == "any_grammar_path") o.any_grammar_path = v.cast<bool>();
-          else if (k == "level") o.detect.level = v.cast<std::string>();
-          else if (k == "clearance") o.detect.clearance = v.cast<double>();
-          else if (k == "collide") o.detect.collide = v.cast<std::string>();
-          else if (k == "backend") o.detect.backend = v.cast<std::string>();
-          else if (k == "threads") o.detect.threads = v.cast<int>();
-          else if (k == "no_resolve") o.resolve.no_resolve = v.cast<bool>();
-          else if (k == "max_rounds") o.resolve.max_rounds = v.cast<int>();
-          else if (k == "resolve_clearance") o.resolve.clearance = v.cast<double>();
-          else if (k == "resolve_level") o.resolve.level = v.cast<std::string>();
-          else if (k == "target_lai") o.target.lai = v.cast<double>();
-          else if (k == "target_ground_cover") o.target.ground_cover = v.cast<double>();
-          else if (k == "target_error") o.target.error = v.cast<double>();
-          else throw std::invalid_argument(fmt::format("stand: unknown option '{}'", k));
-        }
-        if (!parse_contact_level(o.detect.level))
-          throw std::invalid_argument(
-              fmt::format("level: '{}' is not plant, leaf, organ or exact", o.detect.level));
+      [](py::object grammar, py::object out, py::dict kwargs, py::object progress) {
+        CLI::App app;
+        const std::shared_ptr<cli::StandOptions> o = cli::register_stand(app);
+        py::dict with_out = kwargs.attr("copy")();
+        with_out["out"] = out;
+        parse_keywords(app, "stand", {path_of(grammar)}, with_out);
         Callback cb(std::move(progress));
         cli::StandOutcome r;
         try {
           py::gil_scoped_release nogil;
           std::function<void(const ResolveProgress&)> hook;
           if (cb.set()) hook = [&](const ResolveProgress& p) { cb(p.round, p.contacts, p.seconds); };
-          r = cli::run_stand(o, false, hook);
+          r = cli::run_stand(*o, false, hook);
         } catch (const CallbackRaised&) {
           cb.rethrow();
         }
         return json_to_py(r.report);
       },
       py::arg("grammar"), py::arg("out"), py::arg("options") = py::dict(), py::arg("progress") = py::none(),
-      "canopy stand GRAMMAR -o OUT with the command line's options (underscores for dashes); returns "
-      "report.json.");
+      "canopy stand GRAMMAR -o OUT with the command line's options (underscores for dashes), read by its "
+      "parser; returns report.json.");
 
   m.def(
       "sweep",
-      [](const std::string& grammar, const std::string& out, py::dict kwargs, py::object progress) {
-        cli::SweepOptions o;
-        o.grammar = grammar;
-        o.out = out;
-        const auto list = [](py::handle v) -> std::string {
-          if (py::isinstance<py::str>(v)) return v.cast<std::string>();
-          std::string s;
-          for (auto x : v) s += (s.empty() ? "" : ",") + fmt::format("{}", x.cast<double>());
-          return s;
-        };
-        for (auto item : kwargs) {
-          const std::string k = py::str(item.first);
-          py::handle v = item.second;
-          if (k == "plant_spacing") o.plant_spacing = list(v);
-          else if (k == "row_spacing") o.row_spacing = list(v);
-          else if (k == "density") o.density = list(v);
-          else if (k == "steps") o.steps = list(v);
-          else if (k == "seeds") o.seeds = v.cast<int>();
-          else if (k == "rows") o.rows = v.cast<int>();
-          else if (k == "per_row") o.per_row = v.cast<int>();
-          else if (k == "jitter") o.jitter = v.cast<double>();
-          else if (k == "random_rotation") o.random_rotation = v.cast<bool>();
-          else if (k == "lod") o.lod = v.cast<int>();
-          else if (k == "set") o.set = overrides(v.cast<std::map<std::string, double>>());
-          else if (k == "retry_failed") o.retry_failed = v.cast<bool>();
-          else if (k == "max_modules") o.max_modules = v.cast<std::size_t>();
-          else if (k == "backend") o.detect.backend = v.cast<std::string>();
-          else if (k == "threads") o.detect.threads = v.cast<int>();
-          else if (k == "collide") o.detect.collide = v.cast<std::string>();
-          else if (k == "no_resolve") o.resolve.no_resolve = v.cast<bool>();
-          else if (k == "max_rounds") o.resolve.max_rounds = v.cast<int>();
-          else if (k == "sun") o.sun = list(v);
-          else if (k == "sky") o.sky = v.cast<std::string>();
-          else if (k == "sky_directions") o.sky_directions = v.cast<int>();
-          else if (k == "light_error") o.light_error = v.cast<double>();
-          else if (k == "no_light") o.no_light = v.cast<bool>();
-          else throw std::invalid_argument(fmt::format("sweep: unknown option '{}'", k));
-        }
-        if (o.seeds < 1 || o.rows < 1 || o.per_row < 1)
-          throw std::invalid_argument("sweep: seeds, rows and per_row must be at least 1");
+      [](py::object grammar, py::object out, py::dict kwargs, py::object progress) {
+        CLI::App app;
+        const std::shared_ptr<cli::SweepOptions> o = cli::register_sweep(app);
+        py::dict with_out = kwargs.attr("copy")();
+        with_out["out"] = out;
+        parse_keywords(app, "sweep", {path_of(grammar)}, with_out);
         Callback cb(std::move(progress));
         cli::SweepOutcome r;
         try {
@@ -196,7 +128,7 @@ PYBIND11_MODULE(_canopy, m) {
             hook = [&](std::size_t i, std::size_t total, const cli::RunRow& row) {
               cb(i, total, std::map<std::string, std::string>(row.begin(), row.end()));
             };
-          r = cli::run_sweep(o, false, hook);
+          r = cli::run_sweep(*o, false, hook);
         } catch (const CallbackRaised&) {
           cb.rethrow();
         }
@@ -205,7 +137,8 @@ PYBIND11_MODULE(_canopy, m) {
         return d;
       },
       py::arg("grammar"), py::arg("out"), py::arg("options") = py::dict(), py::arg("progress") = py::none(),
-      "canopy sweep GRAMMAR -o OUT (lists as Python lists or 'a,b' / 'start:stop:step'); progress(index, "
-      "total, row) after "
-      "each run. Returns counts; the rows are in OUT/runs.csv and OUT/summary.csv.");
+      "canopy sweep GRAMMAR -o OUT with the command line's options, read by its parser (lists as Python "
+      "lists "
+      "or 'a,b' / 'start:stop:step'); progress(index, total, row) after each run. Returns counts; the rows "
+      "are in OUT/runs.csv and OUT/summary.csv.");
 }

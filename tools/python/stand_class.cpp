@@ -7,6 +7,7 @@
 #include "tools/cli_common.hpp"
 #include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
+#include "tools/python/keywords.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/stand_run.hpp"
 
@@ -26,10 +27,21 @@ void bind_stand(py::module_& m) {
           [](py::object grammar_arg, std::optional<int> rows, std::optional<int> per_row,
              std::optional<double> row_spacing, std::optional<double> plant_spacing,
              std::optional<double> double_rows, std::optional<double> jitter,
-             std::optional<bool> random_rotation, std::optional<std::uint64_t> seed,
+             std::optional<bool> random_rotation, py::object seed_arg,
              std::optional<py::array_t<double>> positions, std::optional<int> steps,
              const std::map<std::string, double>& set, int lod, int threads, std::size_t max_modules) {
             const std::string grammar = path_of(grammar_arg);
+            // A whole number from 0 to 2^64 - 1, as --seed (pybind's cast said only "incompatible
+            // arguments").
+            std::optional<std::uint64_t> seed;
+            if (!seed_arg.is_none()) {
+              const bool whole = py::isinstance<py::int_>(seed_arg) && !py::isinstance<py::bool_>(seed_arg);
+              seed = whole ? parse_seed(py::str(seed_arg).cast<std::string>()) : std::nullopt;
+              if (!seed)
+                throw std::invalid_argument(
+                    fmt::format("seed: needs a whole number from 0 to 18446744073709551615, got {}",
+                                py::repr(seed_arg).cast<std::string>()));
+            }
             GrowRequest req = cli::grow_request(grammar, overrides(set), steps, lod, threads, max_modules);
             StandSpec spec;
             spec.rows = rows, spec.per_row = per_row, spec.row_spacing = row_spacing,
@@ -59,7 +71,19 @@ void bind_stand(py::module_& m) {
               const Grammar g = load_grammar(grammar, req.load);
               out->layout =
                   cli::choose_layout(spec, g.stand).layout;  // field by field over the grammar's entry
+              // Said before placing and growing, with the command line's estimate, when the stand
+              // cannot fit (10^10 plants' placements alone ran out of memory).
+              RowLayout one = *out->layout;
+              one.rows = one.per_row = 1;
+              GrowRequest first = req;
+              first.plants = row_layout(one);
+              check_stand_fits(first, static_cast<std::size_t>(out->layout->rows) *
+                                          static_cast<std::size_t>(out->layout->per_row));
               req.plants = row_layout(*out->layout);
+            } else if (!req.plants.empty()) {
+              GrowRequest first = req;
+              first.plants.resize(1);
+              check_stand_fits(first, req.plants.size());
             }
             out->grammar = grammar;
             {
@@ -184,16 +208,19 @@ void bind_stand(py::module_& m) {
           "Structured array of the plants (x, y, rotation, seed, steps, organ_count).")
       .def(
           "detect",
-          [](PyStand& s, const std::string& level, double clearance, const std::string& collide,
-             const std::string& backend, int threads) {
-            const DetectRequest req = detect_request(level, clearance, collide, threads);
+          [](PyStand& s, py::kwargs kwargs) {
+            CLI::App app;
+            cli::DetectOptions d;
+            d.add_to(app);
+            parse_keywords(app, "Stand.detect", {}, kwargs);
+            const DetectRequest req = d.request();
             std::string note;
             Contacts c;
             std::string name, device;
             {
               py::gil_scoped_release nogil;
-              const ThreadLimit thread_limit(threads);
-              auto b = backend_named(backend, note);
+              const ThreadLimit thread_limit(d.threads);
+              auto b = backend_named(d.backend, note);
               c = b->detect(s.stand, req);
               name = b->name(), device = b->device();
             }
@@ -203,40 +230,48 @@ void bind_stand(py::module_& m) {
             out["backend"] = name;
             out["device"] = device;
             out["note"] = note;
-            s.last = std::move(c);
+            s.before = c;  // as canopy stand --no-resolve writes them
+            s.after = std::move(c);
             return out;
           },
-          py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0,
-          py::arg("collide") = cli::DetectOptions{}.collide, py::arg("backend") = "auto",
-          py::arg("threads") = 0,
-          "Detects contacts (every organ kind unless collide narrows them): {'contacts': structured array, "
-          "'counts': per "
-          "level, 'backend': name, 'device', 'note': how the backend was chosen}.")
+          "Detects contacts with canopy stand's detection options, read by its parser: level='exact', "
+          "clearance=0, collide (every organ kind by default), backend='auto', threads=0, max_device_memory. "
+          "Returns {'contacts': structured array, 'counts': per level, 'backend': name, 'device', 'note': "
+          "how "
+          "the backend was chosen}.")
       .def(
           "resolve",
-          [](PyStand& s, const std::string& level, double clearance, double resolve_clearance,
-             const std::string& collide, int max_rounds, const std::string& backend, int threads,
-             py::object progress) {
-            DetectRequest dreq = detect_request("exact", clearance, collide, threads);
+          [](PyStand& s, py::object progress, py::kwargs kwargs) {
+            CLI::App app;
+            cli::DetectOptions d;
+            d.add_to(app);
             cli::ResolveOptions ro;
-            ro.level = level;
-            ro.clearance = resolve_clearance;
-            ro.max_rounds = max_rounds;
+            ro.add_to(app);
+            parse_keywords(app, "Stand.resolve", {}, kwargs,
+                           {{"level", "resolve_level"},
+                            {"candidates", "resolve_candidates"},
+                            {"axes", "resolve_axes"},
+                            {"step", "resolve_step"},
+                            {"host_search", "resolve_host_search"},
+                            {"device_search", "resolve_device_search"},
+                            {"lanes", "resolve_lanes"},
+                            {"stats", "resolve_stats"}});
+            if (app.count("--no-resolve") > 0)
+              throw std::invalid_argument("Stand.resolve: unknown option 'no_resolve'");
             ro.progress = false;
-            if (!parse_contact_level(level) || (level != "exact" && level != "organ"))
-              throw std::invalid_argument(fmt::format("level: '{}' is not exact or organ", level));
-            if (max_rounds < 1) throw std::invalid_argument("max_rounds must be at least 1");
+            const DetectRequest dreq = d.request();  // exact: what is left is counted exactly
             Callback cb(std::move(progress));
             ResolveResult r;
-            Contacts after;
+            Contacts before, after;
             std::string name, device, note;
             try {
               py::gil_scoped_release nogil;
-              const ThreadLimit thread_limit(threads);
-              auto b = backend_named(backend, note);
+              const ThreadLimit thread_limit(d.threads);
+              auto b = backend_named(d.backend, note);
+              before = b->detect(s.stand, dreq);
               DetectRequest at = dreq;
               at.level = ro.config().level;
-              const Contacts start = b->detect(s.stand, at);
+              const Contacts start = at.level == dreq.level ? before : b->detect(s.stand, at);
               std::function<void(const ResolveProgress&)> hook;
               if (cb.set()) hook = [&](const ResolveProgress& p) { cb(p.round, p.contacts, p.seconds); };
               r = cli::run_resolution(s.stand, *b, dreq, ro, start, hook);
@@ -250,17 +285,17 @@ void bind_stand(py::module_& m) {
             out["backend"] = name;
             out["device"] = device;
             out["note"] = note;
-            s.last = std::move(after);
+            s.before = std::move(before);
+            s.after = std::move(after);
             return out;
           },
-          py::kw_only(), py::arg("level") = "exact", py::arg("clearance") = 0.0,
-          py::arg("resolve_clearance") = 1e-4, py::arg("collide") = cli::DetectOptions{}.collide,
-          py::arg("max_rounds") = 30, py::arg("backend") = "auto", py::arg("threads") = 0,
           py::arg("progress") = py::none(),
-          "Turns organs out of contact (canopy stand's resolution); progress(round, contacts_left, seconds) "
-          "is called each "
-          "round, and raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and "
-          "'search' say "
+          "Turns organs out of contact (canopy stand's resolution) with its options, read by its parser: "
+          "level='exact' (--resolve-level), clearance, resolve_clearance=1e-4, collide, max_rounds=30, "
+          "candidates, axes, step, bend_joints, bend_step, host_search, lanes, stats, backend='auto', "
+          "threads=0, max_device_memory. progress(round, contacts_left, seconds) is called each round, and "
+          "raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and 'search' "
+          "say "
           "what planned the rounds) with 'contacts_after', 'backend', 'device' and 'note'.")
       .def(
           "export",
@@ -278,14 +313,17 @@ void bind_stand(py::module_& m) {
             // The folder's earlier stand is replaced as a set, as canopy stand does.
             OutputSet files(dir, cli::stand_folder_files(), cli::kStandFolderMarker);
             cli::write_stand_files(s.stand, lib, fs, glb, files);
-            if (s.last) write_contacts_csv(s.stand, *s.last, files.open("contacts.csv"));
+            // canopy stand's contact tables: before the last resolution and after it (the last
+            // detection both, as canopy stand --no-resolve writes them).
+            if (s.before) write_contacts_csv(s.stand, *s.before, files.open("contacts.csv"));
+            if (s.after) write_contacts_csv(s.stand, *s.after, files.open("contacts_after.csv"));
             files.commit_all();
           },
           py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"},
           py::arg("glb_instancing") = false, py::arg("glb_compact") = false,
-          "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does (and contacts.csv "
-          "of the last "
-          "detection or resolution); glb_compact writes stand.glb quantized (KHR_mesh_quantization, "
+          "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does, and its "
+          "contacts.csv and contacts_after.csv after detect() (both that detection) or resolve() (before and "
+          "after it); glb_compact writes stand.glb quantized (KHR_mesh_quantization, "
           "positions in steps "
           "of at most 50 um, half the default resolution clearance).");
 }

@@ -52,8 +52,9 @@ def derive(grammar, *, steps=None, seed=None, stats=False, interpreted=False, ma
 
 
 def stand(grammar, out, progress=None, **options):
-    """``canopy stand GRAMMAR -o OUT`` with the command line's options (``per_row=5`` for
-    ``--per-row 5``, ``set={"name": value}`` for ``--set``, ``no_resolve=True``...). Writes the
+    """``canopy stand GRAMMAR -o OUT`` with the command line's options, read by its own parser
+    (``per_row=5`` for ``--per-row 5``, ``set={"name": value}`` for ``--set``, ``no_resolve=True``,
+    ``random_rotation=False`` for ``--no-random-rotation``...). Writes the
     files and returns report.json as a dict. ``progress(round, contacts_left, seconds)`` is called
     each resolution round."""
     return _stand(_path(grammar), _path(out), options, progress)
@@ -65,7 +66,7 @@ def light(source, **options):
     ``day=``, ``hours=[...]``, ``sky="soc"``, ``sky_directions=46``, ``tile=(xmin, ymin, xmax,
     ymax)``, ``periodic=True``, ``error=0.002``, ``plant_error=``, ``rays_per_m2=``. Writes
     light.json and light.csv into the folder and returns light.json as a dict."""
-    return _light(str(source), options)
+    return _light(_path(source), options)
 
 
 def sweep(grammar, out, progress=None, **options):

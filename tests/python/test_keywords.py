@@ -1,0 +1,111 @@
+"""The module's keyword options are read by the command line's own parser: every option of a
+command is there, and what the command line refuses (a bad value, two options that exclude each
+other, an unknown name) is refused with its message. Run by ctest (suite `python`)."""
+import json
+import os
+import subprocess
+
+import pytest
+
+import canopy
+
+SRC = os.environ.get("CANOPY_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+TOMATO = os.path.join(SRC, "grammars", "tomato.yaml")
+SMALL = dict(rows=1, per_row=2, steps=8, backend="cpu")
+
+
+def cli_error(*args):
+    r = subprocess.run([os.environ["CANOPY"], *args], capture_output=True, text=True, timeout=120)
+    assert r.returncode != 0
+    return r.stderr.strip().removeprefix("canopy: error: ")
+
+
+def test_stand_takes_every_option_of_the_command_line(tmp_path):
+    # Resolution tuning, the rotation switch and device memory were not keywords of canopy.stand.
+    opts = ["--rows", "2", "--per-row", "3", "--steps", "14", "--backend", "cpu", "--no-random-rotation",
+            "--bend-joints", "2", "--resolve-candidates", "3", "--resolve-axes", "6", "--resolve-step", "2",
+            "--max-device-memory", "1G", "--jitter", "0.03"]
+    assert subprocess.run([os.environ["CANOPY"], "stand", TOMATO, "-o", str(tmp_path / "cli"), *opts],
+                          capture_output=True, timeout=300).returncode == 0
+    rep = canopy.stand(TOMATO, tmp_path / "py", rows=2, per_row=3, steps=14, backend="cpu", no_random_rotation=True,
+                       bend_joints=2, resolve_candidates=3, resolve_axes=6, resolve_step=2, max_device_memory="1G",
+                       jitter=0.03)
+    want = json.load(open(tmp_path / "cli" / "report.json"))
+    assert {**rep["config"], "out": None} == {**want["config"], "out": None}
+    for f in ("organs.csv", "plants.csv", "contacts.csv", "contacts_after.csv", "stand.glb"):
+        assert (tmp_path / "cli" / f).read_bytes() == (tmp_path / "py" / f).read_bytes(), f
+
+
+@pytest.mark.parametrize("options, args", [
+    (dict(clearance=150), ["--clearance", "150"]),
+    (dict(seed=-1), ["--seed", "-1"]),
+    (dict(per_row=0), ["--per-row", "0"]),
+    (dict(no_resolve=True, max_rounds=3), ["--no-resolve", "--max-rounds", "3"]),
+    (dict(glb_instancing=True, formats="ply"), ["--glb-instancing", "--formats", "ply"]),
+    (dict(random_rotation=True, no_random_rotation=True), ["--random-rotation", "--no-random-rotation"]),
+    (dict(positions=""), ["--positions", ""]),
+    (dict(level="twig"), ["--level", "twig"]),
+])
+def test_stand_refuses_what_the_command_line_refuses(tmp_path, options, args):
+    message = cli_error("stand", TOMATO, "--rows", "1", "--per-row", "2", "--steps", "8", *args, "-o", str(tmp_path / "c"))
+    with pytest.raises(ValueError) as e:
+        canopy.stand(TOMATO, tmp_path / "p", **{**dict(rows=1, per_row=2, steps=8), **options})
+    assert str(e.value) == message
+    assert not (tmp_path / "p").exists()
+
+
+def test_keyword_types(tmp_path):
+    never = tmp_path / "never"
+    with pytest.raises(ValueError, match="stand: no_resolve takes True or False, got 1"):
+        canopy.stand(TOMATO, never, no_resolve=1)
+    with pytest.raises(ValueError, match="stand: unknown option 'help'"):
+        canopy.stand(TOMATO, never, help=True)
+    with pytest.raises(ValueError, match="sweep: unknown option 'rowz'"):
+        canopy.sweep(TOMATO, never, rowz=2)
+    assert not never.exists()
+    with pytest.raises(ValueError, match="seed: needs a whole number from 0 to 18446744073709551615, got -1"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, seed=-1)
+    with pytest.raises(ValueError, match="got 18446744073709551616"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, seed=2**64)
+    with pytest.raises(ValueError, match="got 1.5"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, seed=1.5)
+
+
+def test_detect_and_resolve_check_as_the_command_line():
+    s = canopy.Stand.grow(TOMATO, rows=1, per_row=2, steps=8)
+    with pytest.raises(ValueError, match="--backend: bogus not in"):  # ran as auto
+        s.detect(backend="bogus")
+    with pytest.raises(ValueError, match="--backend: bogus not in"):
+        s.resolve(backend="bogus")
+    with pytest.raises(ValueError, match="--clearance: needs a number from 0 to 100, got 150"):  # was taken
+        s.detect(clearance=150)
+    with pytest.raises(ValueError, match="--resolve-clearance: needs a number from 0 to 100, got 101"):
+        s.resolve(resolve_clearance=101)
+    with pytest.raises(ValueError, match="Stand.resolve: unknown option 'no_resolve'"):
+        s.resolve(no_resolve=True)
+    with pytest.raises(ValueError, match="--max-device-memory: .lots. is not a size"):
+        s.detect(max_device_memory="lots")
+    # Resolution's tuning reaches it: with one joint a chain never bends.
+    rep = canopy.Stand.grow(TOMATO, rows=2, per_row=3, steps=14).resolve(backend="cpu", bend_joints=1)
+    assert rep["bends"] == 0 and rep["bend_joints"] == 0
+
+
+def test_light_paths_and_options(tmp_path):
+    out = tmp_path / "s"
+    canopy.stand(TOMATO, out, **SMALL)
+    a = canopy.light(os.fsencode(str(out)), suns=[(60, 180)], sky_directions=4, error=0.01)  # was "b'...'"
+    b = canopy.light(out, suns=[(60, 180)], sky_directions=4, error=0.01)
+    assert a["direct"] == b["direct"]
+    with pytest.raises(TypeError):
+        canopy.light(5)
+    with pytest.raises(ValueError, match="--rows: .* is a folder that holds a stand already"):
+        canopy.light(out, rows=3)
+    with pytest.raises(ValueError, match="--rows: Stand.light lights the stand it is called on"):
+        canopy.Stand.read(out).light(rows=3)
+    lit = canopy.Stand.read(out).light(suns=[(60, 180)], sky_directions=4, error=0.01, periodic=False)
+    assert lit["periodic"] is False
+
+
+def test_a_stand_that_cannot_fit_is_refused_before_growing():
+    with pytest.raises(RuntimeError, match="a stand of 10000000000 plants needs about"):  # was MemoryError
+        canopy.Stand.grow(TOMATO, rows=100000, per_row=100000)

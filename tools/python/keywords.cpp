@@ -1,0 +1,99 @@
+#include "tools/python/keywords.hpp"
+
+#include "tools/cli_common.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace canopy::python {
+namespace {
+
+bool is_sequence(py::handle v) { return py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v); }
+
+/// One word of the command line: bytes and paths as they are (a file name need not be UTF-8),
+/// anything else as Python prints it (floats as their shortest round trip).
+std::string word(py::handle v) {
+  if (py::isinstance<py::bytes>(v)) return v.cast<std::string>();
+  if (py::hasattr(v, "__fspath__")) return py::module_::import("os").attr("fspath")(v).cast<std::string>();
+  return py::str(v).cast<std::string>();
+}
+
+/// The item of a list: a pair (elevation, azimuth) is "60,180".
+std::string item_word(py::handle v) {
+  if (!is_sequence(v)) return word(v);
+  std::string s;
+  for (py::handle x : v) s += (s.empty() ? "" : ",") + word(x);
+  return s;
+}
+
+std::string dashed(std::string name) {
+  std::replace(name.begin(), name.end(), '_', '-');
+  return "--" + name;
+}
+
+}  // namespace
+
+void parse_keywords(CLI::App& app, const std::string& command, const std::vector<std::string>& positionals,
+                    const py::dict& kwargs, const std::map<std::string, std::string>& renames) {
+  cli::one_value_per_use(app);
+  cli::refuse_empty_values(app);
+  std::vector<std::string> words;
+  for (auto item : kwargs) {
+    const std::string key = py::str(item.first);
+    const py::handle v = item.second;
+    if (v.is_none()) continue;
+    const auto renamed = renames.find(key);
+    const std::string name = dashed(renamed == renames.end() ? key : renamed->second);
+    const CLI::Option* opt = key == "help" ? nullptr : app.get_option_no_throw(name);
+    const CLI::Option* negation = app.get_option_no_throw("--no-" + name.substr(2));
+    if (!opt && !negation) throw std::invalid_argument(fmt::format("{}: unknown option '{}'", command, key));
+    if (!opt || opt->get_expected_max() == 0) {  // a flag
+      if (!py::isinstance<py::bool_>(v))
+        throw std::invalid_argument(
+            fmt::format("{}: {} takes True or False, got {}", command, key, py::repr(v).cast<std::string>()));
+      if (v.cast<bool>()) {
+        if (!opt) continue;  // periodic=True: the default, no flag says it
+        words.push_back(name);
+      } else if (negation && negation->get_expected_max() == 0) {
+        words.push_back(negation->get_name());
+      }
+      continue;
+    }
+    std::vector<std::string> values;
+    if (py::isinstance<py::dict>(v)) {
+      for (auto kv : v.cast<py::dict>()) values.push_back(word(kv.first) + "=" + word(kv.second));
+    } else if (is_sequence(v)) {
+      for (py::handle x : v) values.push_back(item_word(x));
+    } else {
+      values.push_back(word(v));
+    }
+    // NAME=VALUE, so a value that starts with '-' is not taken for an option; an empty value as a
+    // word of its own, which the parser checks (it passes "--positions=" as no value at all).
+    const auto use = [&](const std::string& x) {
+      if (x.empty()) words.insert(words.end(), {name, x});
+      else words.push_back(name + "=" + x);
+    };
+    if (opt->get_expected_max() > 1) {  // repeatable: one use per value
+      for (const std::string& x : values) use(x);
+    } else {
+      std::string joined;
+      for (const std::string& x : values) joined += (joined.empty() ? "" : ",") + x;
+      use(joined);
+    }
+  }
+  words.push_back("--");  // what follows is an argument even where it starts with '-'
+  words.insert(words.end(), positionals.begin(), positionals.end());
+  std::reverse(words.begin(), words.end());  // CLI11 takes the words last first
+  try {
+    app.parse(words);
+  } catch (const CLI::ParseError& e) {
+    std::string m = cli::parse_error_line(e);
+    const std::string prefix = "canopy: error: ";
+    if (m.starts_with(prefix)) m.erase(0, prefix.size());
+    throw std::invalid_argument(m);
+  }
+}
+
+}  // namespace canopy::python
