@@ -91,4 +91,27 @@ inline std::string staging_tag(std::string_view rest) {
   return std::string(rest.substr(0, rest.rfind('-')));
 }
 
+/// In a staging folder inside its output (a folder committed in place): the files are being moved
+/// in; its lines name the files to remove once they are.
+inline constexpr const char* kCommitList = ".canopy-commit";
+
+/// A staging folder inside an output folder committed in place: its name (kStagingMark +
+/// "PID-START-K") and its run's tag ("PID-START").
+struct InPlaceStaging {
+  std::string name, tag;
+};
+
+/// The staging folders inside `dir` whose names carry a run's tag: what a reader waits for while
+/// their run lives, and what the next run finishes or removes once it is dead.
+inline std::vector<InPlaceStaging> in_place_stagings(const std::string& dir) {
+  std::vector<InPlaceStaging> out;
+  const std::size_t mark = std::strlen(kStagingMark);
+  for (std::string& e : names_in(dir)) {
+    if (!e.starts_with(kStagingMark)) continue;
+    std::string tag = staging_tag(std::string_view(e).substr(mark));
+    if (!tag.empty()) out.push_back({std::move(e), std::move(tag)});
+  }
+  return out;
+}
+
 }  // namespace canopy::folder_ops

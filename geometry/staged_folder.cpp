@@ -81,12 +81,9 @@ void open_in_one_set(const std::string& dir, const std::vector<std::string>& pat
   // A live run moving its files in (geometry/staged_in_place.cpp): its list is in its staging
   // folder inside `dir` until the last file is in.
   const auto moving_in = [&] {
-    for (const std::string& e : names_in(dir)) {
-      if (!e.starts_with(kStagingMark)) continue;
-      const std::string tag = staging_tag(std::string_view(e).substr(std::strlen(kStagingMark)));
+    for (const InPlaceStaging& e : in_place_stagings(dir)) {
       struct stat st {};
-      if (!tag.empty() && !tag_is_dead(tag) && ::stat((dir + "/" + e + "/.canopy-commit").c_str(), &st) == 0)
-        return true;
+      if (!tag_is_dead(e.tag) && ::stat((dir + "/" + e.name + "/" + kCommitList).c_str(), &st) == 0) return true;
     }
     return false;
   };

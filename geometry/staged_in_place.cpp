@@ -20,10 +20,6 @@ namespace canopy {
 using namespace folder_ops;
 namespace {
 
-/// In a staging folder inside its output: the files are being moved in; its lines name the files
-/// to remove once they are.
-constexpr const char* kCommitList = ".canopy-commit";
-
 std::vector<std::string> read_list(const std::string& path) {
   std::vector<std::string> out;
   if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
@@ -99,11 +95,9 @@ StagedFolder::Committed StagedFolder::commit_in_place() {
 }
 
 void StagedFolder::finish_in_place_leftovers() {
-  const std::string mark = kStagingMark;
-  for (const std::string& e : names_in(dir_)) {
-    if (!e.starts_with(mark)) continue;
-    const std::string tag = staging_tag(std::string_view(e).substr(mark.size()));
-    if (tag.empty() || !tag_is_dead(tag)) continue;
+  for (const InPlaceStaging& staging : in_place_stagings(dir_)) {
+    if (!tag_is_dead(staging.tag)) continue;
+    const std::string& e = staging.name;
     const std::string path = dir_ + "/" + e;
     Fd at(path);
     if (at.fd >= 0 && exists_at(at.fd, kCommitList)) {
