@@ -53,6 +53,15 @@ int main(int argc, char** argv) {
                                              canopy::cli::add_info(app)};
   canopy::cli::one_value_per_use(app);
   canopy::cli::refuse_empty_values(app);
+  // "--csv=" is an empty value, but CLI11 takes the next word as the value ("--csv= --threads=1"
+  // wrote a file named "--threads=1"): refused here as refuse_empty_values refuses "--csv ''".
+  for (int i = 1; i < argc && std::string_view(argv[i]) != "--"; ++i) {
+    const std::string_view a = argv[i];
+    if (a.starts_with("--") && a.find('=') == a.size() - 1) {
+      fmt::print(stderr, "canopy: error: {}: needs a value, got an empty one\n", a.substr(0, a.size() - 1));
+      return static_cast<int>(CLI::ExitCodes::ValidationError);
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

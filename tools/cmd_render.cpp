@@ -55,7 +55,14 @@ std::pair<int, int> picture_size(const std::string& sz) {
 std::vector<std::uint8_t> flags_from_csv(const std::string& path, const Stand& stand) {
   const std::size_t organs = stand.organ_count(), plants = stand.plant_count();
   std::vector<std::uint8_t> f(organs, 0);
-  InputFile in(path, "contacts table", kMaxOrgansCsvBytes);
+  // A stand folder's table: one it cannot read is the folder's fault (exit 1), as read_stand's.
+  std::optional<InputFile> opened;
+  try {
+    opened.emplace(path, "contacts table", kMaxOrgansCsvBytes);
+  } catch (const FileNotFound& e) {
+    throw std::runtime_error(e.what());
+  }
+  InputFile& in = *opened;
   std::string line;
   const std::string header = "organ_a,organ_b,plant_a,plant_b,level";
   if (!in.next_line(line) || line != header)
@@ -132,28 +139,43 @@ Command add_render(CLI::App& root) {
   add_grow_options(*app, s, "From a grammar: ");
   s.detect.add_to(*app);
   s.resolve.add_to(*app);
-  return {app, [o, app]() -> int {
-            StandOptions& s = o->stand;
-            const ThreadLimit thread_limit(s.detect.threads);
-            const auto [w, h] = picture_size(o->size);
-            const bool folder = std::filesystem::is_directory(o->source);
-            // A folder is drawn as written: options that would grow, detect or resolve are refused.
-            if (folder)
-              refuse_given(
-                  *app, {kGrowGroup, kLayoutGroup, kDetectGroup, kResolveGroup}, {"--threads"},
-                  fmt::format("{} is a folder that holds a stand already, which this option would not "
-                              "change (it applies to a grammar)",
-                              o->source));
-            refuse_stand_file("-o", o->out);
-            if (s.detect.level == "plant" || s.detect.level == "leaf")
-              throw std::invalid_argument(fmt::format(
-                  "--level {}: a picture marks the organs in contact, found at the organ or exact level",
-                  s.detect.level));
-#ifndef CANOPY_HAVE_EMBREE
-            (void)w, (void)h;
+  return {
+      app, [o, app]() -> int {
+        StandOptions& s = o->stand;
+        const ThreadLimit thread_limit(s.detect.threads);
+        const auto [w, h] = picture_size(o->size);
+        const bool folder = std::filesystem::is_directory(o->source);
+        // A folder is drawn as written: options that would grow, detect or resolve are refused.
+        if (folder)
+          refuse_given(*app, {kGrowGroup, kLayoutGroup, kDetectGroup, kResolveGroup}, {"--threads"},
+                       fmt::format("{} is a folder that holds a stand already, which this option would not "
+                                   "change (it applies to a grammar)",
+                                   o->source));
+        refuse_stand_file("-o", o->out);
+        // Said before the work: a folder named as the picture, or a folder it cannot go in.
+        {
+          namespace fs = std::filesystem;
+          const fs::path out(o->out);
+          const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
+          if (fs::is_directory(out))
+            throw std::invalid_argument(fmt::format("-o {}: a folder; name the PNG file to write", o->out));
+          if (!fs::is_directory(parent))
             throw std::invalid_argument(
-                "canopy render: this build has no renderer (Embree was not found: apt-get install "
-                "libembree-dev, then build again)");
+                fmt::format("-o {}: there is no folder {} to write it in", o->out, parent.string()));
+        }
+        // Nothing reads the resolution clearance of a stand that is not resolved (canopy stand
+        // takes it for its compact glb's step; a picture has none).
+        if (s.resolve.no_resolve && app->count("--resolve-clearance") > 0)
+          throw std::invalid_argument("--resolve-clearance: with --no-resolve a picture has no use for it");
+        if (s.detect.level == "plant" || s.detect.level == "leaf")
+          throw std::invalid_argument(fmt::format(
+              "--level {}: a picture marks the organs in contact, found at the organ or exact level",
+              s.detect.level));
+#ifndef CANOPY_HAVE_EMBREE
+        (void)w, (void)h;
+        throw std::invalid_argument(
+            "canopy render: this build has no renderer (Embree was not found: apt-get install "
+            "libembree-dev, then build again)");
 #else
             const auto t0 = std::chrono::steady_clock::now();
             const render::View upper = o->view == "side" ? render::View::side : render::View::oblique;
@@ -164,9 +186,13 @@ Command add_render(CLI::App& root) {
               const Stand stand = read_stand(o->source);
               organs = stand.organ_count();
               // The contacts this geometry has: after resolution, or as grown without it.
+              // A link counts as there even where it leads nowhere (then its read fails, by name).
+              const auto there = [](const std::string& p) {
+                return std::filesystem::symlink_status(p).type() != std::filesystem::file_type::not_found;
+              };
               std::string contacts = o->source + "/contacts_after.csv";
-              if (!std::filesystem::exists(contacts)) contacts = o->source + "/contacts.csv";
-              const std::vector<std::uint8_t> hot = std::filesystem::exists(contacts)
+              if (!there(contacts)) contacts = o->source + "/contacts.csv";
+              const std::vector<std::uint8_t> hot = there(contacts)
                                                         ? flags_from_csv(contacts, stand)
                                                         : std::vector<std::uint8_t>(organs, 0);
               const render::Scene scene(stand, lib);
@@ -218,7 +244,7 @@ Command add_render(CLI::App& root) {
                        seconds_since(t0), static_cast<double>(ru.ru_maxrss) / (1024.0 * 1024.0));
             return 0;
 #endif
-          }};
+      }};
 }
 
 }  // namespace canopy::cli

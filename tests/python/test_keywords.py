@@ -109,3 +109,27 @@ def test_light_paths_and_options(tmp_path):
 def test_a_stand_that_cannot_fit_is_refused_before_growing():
     with pytest.raises(RuntimeError, match="a stand of 10000000000 plants needs about"):  # was MemoryError
         canopy.Stand.grow(TOMATO, rows=100000, per_row=100000)
+
+
+def test_values_as_python_holds_them(tmp_path):
+    import numpy as np
+    # Paths are paths: another type is a TypeError, as for a path argument (out=3 made a folder '3').
+    with pytest.raises(TypeError):
+        canopy.stand(TOMATO, tmp_path / "a", positions=True)
+    with pytest.raises(TypeError):
+        canopy.light(TOMATO, out=3, **SMALL)
+    assert not (tmp_path / "a").exists() and not os.path.exists("3")
+    # Any iterable is a list: a range, a NumPy array (rows of pairs for suns), a set.
+    r = canopy.sweep(TOMATO, tmp_path / "w", steps=range(8, 9), plant_spacing=np.array([0.3, 0.4]), rows=1,
+                     per_row=2, seeds=1, no_light=True, backend="cpu")
+    assert r["total"] == 2
+    out = tmp_path / "s"
+    canopy.stand(TOMATO, out, collide={"leaflet", "petiole"}, **SMALL)
+    a = canopy.light(out, suns=np.array([[60, 180]]), sky_directions=4, error=0.01)
+    b = canopy.light(out, suns=[(60, 180)], sky_directions=4, error=0.01)
+    assert a["direct"] == b["direct"]
+    # NumPy's integers and bools are integers and bools.
+    assert canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=4, seed=np.int64(3)).plants["seed"][0] == \
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=4, seed=3).plants["seed"][0]
+    rep = canopy.stand(TOMATO, tmp_path / "n", no_resolve=np.bool_(True), **SMALL)
+    assert rep["resolution"]["ran"] is False

@@ -203,6 +203,9 @@ run stand "$g" -o ""
 check "stand -o ''" "105:canopy: error: --out: needs a value, got an empty one" "$rc:$(err)"
 run derive ""
 check "derive ''" "105:canopy: error: GRAMMAR: needs a value, got an empty one" "$rc:$(err)"
+# "--csv=" too: CLI11 took the next word as its value ("--csv= --threads=1" wrote a file of that name).
+run detect "$tmp" --csv= --threads=1
+check "detect --csv= --threads=1" "105:canopy: error: --csv: needs a value, got an empty one:0" "$rc:$(err):$(ls -- "--threads=1" 2>/dev/null | wc -l)"
 
 # canopy detect reads back only what canopy writes.
 run stand "$g" --rows 1 --per-row 2 --steps 6 --backend cpu -o st

@@ -73,5 +73,19 @@ run render bad "${size[@]}" -o e.png
 check "render: short row" "1:1" "$rc:$(grep -c "contacts_after.csv:2: 4 cells where the table has 5" "$tmp/err")"
 check "no picture from bad tables" "0" "$(ls e.png 2>/dev/null | wc -l)"
 
+# A contacts table that is a dangling link is refused by name, not passed over for contacts.csv.
+cp -r sr dangling && rm dangling/contacts_after.csv && ln -s "$tmp/nowhere.csv" dangling/contacts_after.csv
+run render dangling "${size[@]}" -o f.png
+check "render: dangling contacts_after.csv" "1:1" "$rc:$(grep -c "contacts_after.csv" "$tmp/err")"
+
+# Refused before any work: -o a folder or in no folder, a clearance nothing reads.
+run render "$g" --rows 1 --per-row 2 --steps 8 --backend cpu "${size[@]}" -o sr
+check "render -o a folder" "2:canopy: error: -o sr: a folder; name the PNG file to write:" "$rc:$(cat "$tmp/err"):$(cat "$tmp/out")"
+run render "$g" --rows 1 --per-row 2 --steps 8 --backend cpu "${size[@]}" -o nowhere/x.png
+check "render -o in no folder" "2:canopy: error: -o nowhere/x.png: there is no folder nowhere to write it in" "$rc:$(cat "$tmp/err")"
+run render "$g" --rows 1 --per-row 2 --steps 8 --backend cpu --no-resolve --resolve-clearance 0.05 "${size[@]}" -o g.png
+check "render --no-resolve --resolve-clearance" "2:canopy: error: --resolve-clearance: with --no-resolve a picture has no use for it" \
+  "$rc:$(cat "$tmp/err")"
+
 echo "$pass passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -10,7 +10,24 @@
 namespace canopy::python {
 namespace {
 
-bool is_sequence(py::handle v) { return py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v); }
+/// Options that name a file or folder: their values are paths (str, bytes or os.PathLike, as
+/// os.fspath takes them; anything else is a TypeError, as a path argument is).
+bool is_path_option(const std::string& name) { return name == "--out" || name == "--positions"; }
+
+/// A list of values: any iterable but a string, bytes, a dict or a path (a list, tuple, range,
+/// set or NumPy array).
+bool is_sequence(py::handle v) {
+  return !py::isinstance<py::str>(v) && !py::isinstance<py::bytes>(v) && !py::isinstance<py::dict>(v) &&
+         !py::hasattr(v, "__fspath__") && py::hasattr(v, "__iter__");
+}
+
+/// True or False, NumPy's bool too (not 1 or "yes": a flag is not a count).
+bool is_bool(py::handle v) {
+  if (py::isinstance<py::bool_>(v)) return true;
+  const std::string type = py::str(py::type::handle_of(v).attr("__name__"));
+  const std::string module = py::str(py::getattr(py::type::handle_of(v), "__module__", py::str("")));
+  return module == "numpy" && (type == "bool_" || type == "bool");
+}
 
 /// One word of the command line: bytes and paths as they are (a file name need not be UTF-8),
 /// anything else as Python prints it (floats as their shortest round trip).
@@ -50,10 +67,10 @@ void parse_keywords(CLI::App& app, const std::string& command, const std::vector
     const CLI::Option* negation = app.get_option_no_throw("--no-" + name.substr(2));
     if (!opt && !negation) throw std::invalid_argument(fmt::format("{}: unknown option '{}'", command, key));
     if (!opt || opt->get_expected_max() == 0) {  // a flag
-      if (!py::isinstance<py::bool_>(v))
+      if (!is_bool(v))
         throw std::invalid_argument(
             fmt::format("{}: {} takes True or False, got {}", command, key, py::repr(v).cast<std::string>()));
-      if (v.cast<bool>()) {
+      if (PyObject_IsTrue(v.ptr()) == 1) {
         if (!opt) continue;  // periodic=True: the default, no flag says it
         words.push_back(name);
       } else if (negation && negation->get_expected_max() == 0) {
@@ -62,7 +79,9 @@ void parse_keywords(CLI::App& app, const std::string& command, const std::vector
       continue;
     }
     std::vector<std::string> values;
-    if (py::isinstance<py::dict>(v)) {
+    if (is_path_option(name)) {
+      values.push_back(py::module_::import("os").attr("fspath")(v).cast<std::string>());
+    } else if (py::isinstance<py::dict>(v)) {
       for (auto kv : v.cast<py::dict>()) values.push_back(word(kv.first) + "=" + word(kv.second));
     } else if (is_sequence(v)) {
       for (py::handle x : v) values.push_back(item_word(x));

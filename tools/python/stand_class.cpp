@@ -35,8 +35,14 @@ void bind_stand(py::module_& m) {
             // arguments").
             std::optional<std::uint64_t> seed;
             if (!seed_arg.is_none()) {
-              const bool whole = py::isinstance<py::int_>(seed_arg) && !py::isinstance<py::bool_>(seed_arg);
-              seed = whole ? parse_seed(py::str(seed_arg).cast<std::string>()) : std::nullopt;
+              // Any integer (NumPy's too, through operator.index), never a bool or a float.
+              std::optional<std::string> whole;
+              if (!py::isinstance<py::bool_>(seed_arg)) try {
+                  whole =
+                      py::str(py::module_::import("operator").attr("index")(seed_arg)).cast<std::string>();
+                } catch (const py::error_already_set&) {
+                }
+              seed = whole ? parse_seed(*whole) : std::nullopt;
               if (!seed)
                 throw std::invalid_argument(
                     fmt::format("seed: needs a whole number from 0 to 18446744073709551615, got {}",
