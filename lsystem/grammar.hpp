@@ -106,6 +106,9 @@ struct Grammar {
   int compound_leaf = -1;
   std::optional<Tropism> tropism;
   std::optional<StandSpec> stand;
+  /// What the grammar allows but is likely a mistake, located ("FILE:LINE:COL: ..."): an organ
+  /// that neither the axiom nor any rule writes. The commands print them as notes.
+  std::vector<std::string> notes;
 
   /// The value of constant `name`, if the grammar has it.
   std::optional<double> constant(const std::string& name) const;

@@ -69,6 +69,7 @@ class Loader {
     g_.interpretation = build_rules(builder, root["interpretation"], "interpretation");
     read_organs(root["organs"], builder);
     builder.check_turtle_arities(g_.organs);
+    note_organs_never_written();
     read_names(root);
     read_tropism(root["tropism"]);
     read_stand(root["stand"]);
@@ -76,6 +77,23 @@ class Loader {
   }
 
  private:
+  /// An organ whose symbol no successor writes grows nothing: a misspelt symbol (organs: {Lf: ...}
+  /// beside productions writing L) would give a stand without leaflets and no word of it.
+  void note_organs_never_written() {
+    std::vector<char> written(g_.symbols.size(), 0);
+    for (const SuccessorModule& m : g_.axiom) written[m.symbol] = 1;
+    for (const RuleTable* t : {&g_.productions, &g_.interpretation})
+      for (const RuleGroup& group : t->groups)
+        for (const Successor& s : group.successors)
+          for (const SuccessorModule& m : s.modules) written[m.symbol] = 1;
+    for (const auto& [sym, organ] : g_.organs)
+      if (!written[sym])
+        g_.notes.push_back(
+            fmt::format("{}:{}:{}: organ '{}' is written by neither the axiom nor any rule, so "
+                        "the plants have none (a misspelt symbol?)",
+                        organ.pos.file, organ.pos.line, organ.pos.column, g_.symbols.name(sym)));
+  }
+
   void read_constants(const YAML::Node& node) {
     std::vector<bool> applied(options_.overrides.size(), false);
     if (node && !node.IsNull()) {  // `constants:` with nothing after it: none
@@ -93,13 +111,14 @@ class Loader {
           }
         if (!overridden) {
           const std::string text = src_.string(kv.second, fmt::format("constant '{}'", name));
-          const Expr e = Expr::compile(text, src_.at(kv.second, 0),
-                                       [this](std::string_view n) -> std::optional<NameRef> {
-                                         for (const auto& [cn, cv] : g_.constants)
-                                           if (cn == n) return NameRef{false, 0, cv};
-                                         return std::nullopt;
-                                       },
-                                       [this, &kv](std::size_t k) { return src_.at(kv.second, k); });
+          const Expr e = Expr::compile(
+              text, src_.at(kv.second, 0),
+              [this](std::string_view n) -> std::optional<NameRef> {
+                for (const auto& [cn, cv] : g_.constants)
+                  if (cn == n) return NameRef{false, 0, cv};
+                return std::nullopt;
+              },
+              [this, &kv](std::size_t k) { return src_.at(kv.second, k); });
           if (e.uses_rand())
             fail_at(src_.at(kv.second, 0),
                     "constant '{}' may not use rand(); draw per plant in a production instead", name);

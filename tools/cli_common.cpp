@@ -85,6 +85,10 @@ void one_value_per_use(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) one_value_per_use(*sub);
 }
 
+void print_notes(const std::vector<std::string>& notes) {
+  for (const std::string& n : notes) std::fprintf(stderr, "canopy: note: %s\n", n.c_str());
+}
+
 void refuse_empty_values(CLI::App& app) {
   for (CLI::Option* o : app.get_options())
     if (o->get_expected_max() > 0)  // not a flag

@@ -79,6 +79,9 @@ inline CLI::Validator metres_note(std::string option) {
       "", "metres");
 }
 
+/// A grammar's notes (Grammar::notes) on standard error, one "canopy: note: ..." line each.
+void print_notes(const std::vector<std::string>& notes);
+
 /// A subcommand: registers its options on `app` and returns what runs it after parsing.
 struct Command {
   CLI::App* app = nullptr;

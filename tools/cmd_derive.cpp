@@ -39,6 +39,7 @@ Command add_derive(CLI::App& root) {
             LoadOptions lo;
             for (const auto& s : opt->set) lo.overrides.push_back(parse_override(s));
             const Grammar g = load_grammar(opt->grammar, lo);
+            print_notes(g.notes);
             DeriveRequest req;
             req.steps = opt->steps;
             req.seed = opt->seed;

@@ -201,6 +201,7 @@ Command add_render(CLI::App& root) {
               s.grammar = o->source;
               const DetectRequest dreq = s.detect.request();  // bad options fail before any work
               StandPlan plan = plan_stand(s);
+              print_notes(plan.grammar.notes);
               if (s.positions.empty()) {
                 check_plan_fits(plan, static_cast<std::size_t>(plan.layout.rows) *
                                           static_cast<std::size_t>(plan.layout.per_row));

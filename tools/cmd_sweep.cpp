@@ -181,6 +181,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     return l;
   }();
   const Grammar g = load_grammar(o.grammar, load);
+  if (print) print_notes(g.notes);
   // Jitter and rotation: the options', else the grammar's stand entry's, else the default stand's.
   const StandSpec entry = g.stand.value_or(StandSpec{});
   const char* jitter_from = o.jitter ? "command line" : entry.jitter ? "grammar" : "default";

@@ -237,6 +237,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   const std::set<std::string> formats = parse_formats(o.formats);
   const GlbForm glb = glb_form(o);
   StandPlan plan = plan_stand(o);
+  if (print) print_notes(plan.grammar.notes);
   const DetectRequest dreq = o.detect.request();  // bad options fail before any work
   // A GPU's start (its driver and context, 0.2-0.4 s) runs on a thread of its own while the stand
   // grows; without a GPU's device files, or with --backend cpu, the backend is made at once (so
@@ -385,6 +386,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   }
   StandOutcome out;
   out.report = std::move(report);
+  out.notes = plan.grammar.notes;
   out.contacts_before = contacts.pairs.size();
   out.contacts_after = after.pairs.size();
   out.export_bytes = written.bytes;

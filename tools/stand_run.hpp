@@ -54,6 +54,7 @@ struct StandOutcome {
   std::size_t contacts_before = 0, contacts_after = 0;
   std::uint64_t export_bytes = 0;  // the mesh and table files (report.json aside)
   double commit_s = 0;             // the files closed and put in place, after report.json
+  std::vector<std::string> notes;  // the grammar's (Grammar::notes), printed when the run prints
 };
 
 /// What a stand is grown from: the grammar, the grow request (placements filled in for a

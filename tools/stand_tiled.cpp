@@ -63,6 +63,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     if (o.glb_instancing)
       throw std::invalid_argument("--glb-instancing is written by one process only; run it without mpirun");
     plan = plan_stand(o);
+    if (rank == 0) print_notes(plan.grammar.notes);
     dreq = o.detect.request();
     backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());
     if (rank == 0) check_output_dir(o.out);  // made only once the files are complete

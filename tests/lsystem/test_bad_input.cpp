@@ -193,9 +193,11 @@ TEST_CASE("errors inside productions written over lines or with escapes name the
   const std::string unknown = ": unknown name 'y': not a parameter of this production nor a constant";
   const std::string head = "steps: 1\naxiom: A(1)\nproductions:\n";
   CHECK(error_of(head + "  - >-\n    A(x) : x > 0\n    -> B(y)\n") == "test.yaml:6:10" + unknown);  // folded
-  CHECK(error_of(head + "  - |-\n    A(x) : x > 0 ->\n      B(y)\n") == "test.yaml:6:9" + unknown);  // literal
-  CHECK(error_of(head + "  - \"A(x) : x > 0\n    -> B(y)\"\n") == "test.yaml:5:10" + unknown);  // "" over lines
-  CHECK(error_of(head + "  - 'A(x) : x > 0\n    -> B(y)'\n") == "test.yaml:5:10" + unknown);   // '' over lines
+  CHECK(error_of(head + "  - |-\n    A(x) : x > 0 ->\n      B(y)\n") ==
+        "test.yaml:6:9" + unknown);  // literal
+  CHECK(error_of(head + "  - \"A(x) : x > 0\n    -> B(y)\"\n") ==
+        "test.yaml:5:10" + unknown);                                                          // "" over lines
+  CHECK(error_of(head + "  - 'A(x) : x > 0\n    -> B(y)'\n") == "test.yaml:5:10" + unknown);  // '' over lines
   CHECK(error_of(head + "  - A(x) -> B(x)\n    C(y)\n") == "test.yaml:5:7" + unknown);        // plain
   // An escape is several characters of the file: \t two, \u00e9 six (two bytes of the value).
   CHECK(error_of(head + "  - \"A(x) : x > 0 -> \\tB(y)\"\n") == "test.yaml:4:26" + unknown);
@@ -215,16 +217,17 @@ TEST_CASE("a grammar is one YAML document") {
         "test.yaml:3:1: a second YAML document: a grammar is one document (merge it into the first, or "
         "remove the '---' that starts it)");
   CHECK(error_of("---\naxiom: A\n...\n") == "");  // markers around one document
-  CHECK(error_of("axiom: A\n---\n") == "");        // a trailing marker holds nothing to miss
+  CHECK(error_of("axiom: A\n---\n") == "");       // a trailing marker holds nothing to miss
   CHECK(error_of("%YAML 1.2\n---\naxiom: A\n--- # a comment\n") == "");
   CHECK(error_of("axiom: A\n...\nsteps: 2\n") ==
         "test.yaml:3:1: a second YAML document: a grammar is one document (merge it into the first, or "
         "remove the '---' that starts it)");
   CHECK(error_of("axiom: A\n--- {steps: 2}\n").starts_with("test.yaml:2:5: a second YAML document"));
   // Found in the text: yaml-cpp's LoadAll never returned from this (a fuzzer's find).
-  CHECK(error_of(", The Algorithmic Beauty of' Plants, Figure 1.24f: a N6canopy12Grammarbracketed t2ree grown "
-                 "from an apEx X.\nname: abop-1.24f\nsteps: 5\nangle:2Grammarbracketed t2ree gro\n  - X -> "
-                 "F-[e\n  internode_mX\n  - F -> FF\n") != "");
+  CHECK(
+      error_of(", The Algorithmic Beauty of' Plants, Figure 1.24f: a N6canopy12Grammarbracketed t2ree grown "
+               "from an apEx X.\nname: abop-1.24f\nsteps: 5\nangle:2Grammarbracketed t2ree gro\n  - X -> "
+               "F-[e\n  internode_mX\n  - F -> FF\n") != "");
 }
 
 TEST_CASE("a list or map key with nothing after it is empty, as [] or {}") {
@@ -320,4 +323,24 @@ TEST_CASE("YAML nested past yaml-cpp's bound says so") {
       error_of("axiom: F\nmodules: " + deep + "\n");  // was "malformed YAML: bad file"
   CHECK(message.starts_with("test.yaml:2:"));
   CHECK(message.ends_with(": malformed YAML: lists and maps nested too deeply"));
+}
+
+TEST_CASE("an organ no rule writes is a located note, and the shipped grammars have none") {
+  // organs: {Lf: ...} beside productions writing L gave a stand without leaflets and no word.
+  const Grammar g = grammar(
+      "axiom: A\nproductions:\n  - A -> I(1, 0.1) [L(1, 1)]\ninterpretation:\n  - X -> F(1, 0.1)\n"
+      "organs:\n  I: {prototype: cylinder, kind: internode}\n  Lf: {prototype: leaflet, kind: leaflet}\n"
+      "  F: {prototype: cylinder, kind: internode}\n");
+  REQUIRE(g.notes.size() == 1);
+  CHECK(g.notes[0] ==
+        "test.yaml:8:3: organ 'Lf' is written by neither the axiom nor any rule, so the plants have none (a "
+        "misspelt symbol?)");
+  // F, written by an interpretation rule alone, and I, by a production, have none; nor has an organ
+  // only the axiom writes.
+  CHECK(grammar("axiom: I(1, 0.1)\norgans:\n  I: {prototype: cylinder, kind: internode}\n").notes.empty());
+  for (const char* file : {"grammars/tomato.yaml", "grammars/tomato_mature.yaml",
+                           "grammars/tomato_young.yaml", "grammars/sunflower.yaml"}) {
+    CAPTURE(file);
+    CHECK(load_grammar(source(file)).notes.empty());
+  }
 }

@@ -106,6 +106,15 @@ def test_light_paths_and_options(tmp_path):
     assert lit["periodic"] is False
 
 
+def test_grammar_notes_are_warnings(tmp_path):
+    typo = tmp_path / "typo.yaml"
+    typo.write_text(open(TOMATO).read().replace("\n  L:  {prototype: leaflet", "\n  Lf: {prototype: leaflet"))
+    for call in (lambda: canopy.derive(typo, steps=2), lambda: canopy.Stand.grow(typo, rows=1, per_row=1, steps=4),
+                 lambda: canopy.stand(typo, tmp_path / "o", **SMALL)):
+        with pytest.warns(UserWarning, match="organ 'Lf' is written by neither the axiom nor any rule"):
+            call()
+
+
 def test_a_stand_that_cannot_fit_is_refused_before_growing():
     with pytest.raises(RuntimeError, match="a stand of 10000000000 plants needs about"):  # was MemoryError
         canopy.Stand.grow(TOMATO, rows=100000, per_row=100000)

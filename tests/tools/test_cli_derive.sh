@@ -60,5 +60,17 @@ for opt in --steps --seed --set --stats --max-modules --interpreted; do
   check "help $opt" "1" "$(grep -q -- "$opt" <<<"$help" && echo 1 || echo 0)"
 done
 
+# An organ no rule writes (a misspelt symbol): a located note on stderr, the run goes on; the
+# same from canopy stand.
+sed 's/^  L:  {prototype: leaflet/  Lf: {prototype: leaflet/' "$src/grammars/tomato.yaml" > "$tmp/typo.yaml"
+line=$(grep -n '^  Lf:' "$tmp/typo.yaml" | cut -d: -f1)
+note="canopy: note: $tmp/typo.yaml:$line:3: organ 'Lf' is written by neither the axiom nor any rule, so the plants have none (a misspelt symbol?)"
+"$canopy" derive "$tmp/typo.yaml" --steps 2 >/dev/null 2>"$tmp/err"
+check "note: unwritten organ" "0:$note" "$?:$(cat "$tmp/err")"
+"$canopy" stand "$tmp/typo.yaml" --rows 1 --per-row 1 --steps 4 --backend cpu -o "$tmp/typo" >/dev/null 2>"$tmp/err"
+check "note: unwritten organ, stand" "0:$note" "$?:$(cat "$tmp/err")"
+"$canopy" derive "$src/grammars/tomato.yaml" --steps 2 >/dev/null 2>"$tmp/err"
+check "no note for the tomato" "" "$(cat "$tmp/err")"
+
 echo "$pass passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -54,6 +54,12 @@ class Callback {
   std::optional<py::error_already_set> error_;
 };
 
+/// A grammar's notes (Grammar::notes) as Python warnings (UserWarning), the GIL held.
+inline void warn_notes(const std::vector<std::string>& notes) {
+  for (const std::string& n : notes)
+    if (PyErr_WarnEx(PyExc_UserWarning, n.c_str(), 1) != 0) throw py::error_already_set();
+}
+
 inline py::object json_to_py(const nlohmann::ordered_json& j) {
   return py::module_::import("json").attr("loads")(j.dump());
 }

@@ -61,9 +61,11 @@ PYBIND11_MODULE(_canopy, m) {
         LoadOptions lo;
         for (const auto& s : overrides(set)) lo.overrides.push_back(parse_override(s));
         std::string text;
+        std::vector<std::string> notes;
         {
           py::gil_scoped_release nogil;
           const Grammar g = load_grammar(grammar, lo);
+          notes = g.notes;
           DeriveRequest req;
           req.steps = steps;
           req.seed = seed;
@@ -76,6 +78,7 @@ PYBIND11_MODULE(_canopy, m) {
             text = format_modules(g, s);
           }
         }
+        warn_notes(notes);
         if (stats) return py::module_::import("json").attr("loads")(text);
         return py::str(text);
       },
@@ -105,6 +108,7 @@ PYBIND11_MODULE(_canopy, m) {
         } catch (const CallbackRaised&) {
           cb.rethrow();
         }
+        warn_notes(r.notes);
         return json_to_py(r.report);
       },
       py::arg("grammar"), py::arg("out"), py::arg("options") = py::dict(), py::arg("progress") = py::none(),

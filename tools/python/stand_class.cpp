@@ -75,6 +75,7 @@ void bind_stand(py::module_& m) {
             auto out = std::make_shared<PyStand>();
             if (!positions) {
               const Grammar g = load_grammar(grammar, req.load);
+              warn_notes(g.notes);
               out->layout =
                   cli::choose_layout(spec, g.stand).layout;  // field by field over the grammar's entry
               // Said before placing and growing, with the command line's estimate, when the stand
