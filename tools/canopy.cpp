@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #ifdef CANOPY_WITH_MPI
@@ -54,16 +55,30 @@ int main(int argc, char** argv) {
   canopy::cli::one_value_per_use(app);
   canopy::cli::refuse_empty_values(app);
   // "--csv=" is an empty value, but CLI11 takes the next word as the value ("--csv= --threads=1"
-  // wrote a file named "--threads=1"): refused here as refuse_empty_values refuses "--csv ''".
-  for (int i = 1; i < argc && std::string_view(argv[i]) != "--"; ++i) {
+  // wrote a file named "--threads=1"): an option of the command given so is passed as the option
+  // and an empty word, which refuse_empty_values refuses as it refuses "--csv ''". Other words
+  // ending in '=' (an unknown option, the value of the word before) are left to the parser.
+  std::vector<std::string> words;
+  const CLI::App* command = nullptr;
+  for (int i = 1; i < argc; ++i) {
     const std::string_view a = argv[i];
-    if (a.starts_with("--") && a.find('=') == a.size() - 1) {
-      fmt::print(stderr, "canopy: error: {}: needs a value, got an empty one\n", a.substr(0, a.size() - 1));
-      return static_cast<int>(CLI::ExitCodes::ValidationError);
+    if (!command)
+      for (const CLI::App* sub : app.get_subcommands({}))
+        if (sub->get_name() == a) command = sub;
+    const bool option_without_value = command && a.size() > 3 && a.starts_with("--") &&
+                                      a.find('=') == a.size() - 1 &&
+                                      command->get_option_no_throw(std::string(a.substr(0, a.size() - 1)));
+    if (a == "--") {
+      words.insert(words.end(), argv + i, argv + argc);
+      break;
     }
+    if (option_without_value)
+      words.insert(words.end(), {std::string(a.substr(0, a.size() - 1)), std::string()});
+    else words.emplace_back(a);
   }
+  std::reverse(words.begin(), words.end());  // CLI11 takes the words last first
   try {
-    app.parse(argc, argv);
+    app.parse(words);
   } catch (const CLI::ParseError& e) {
     // --help and --version print and exit 0 as CLI11 does; a bad command line is one line in
     // the form of every other error, with CLI11's exit code.

@@ -160,8 +160,10 @@ Command add_render(CLI::App& root) {
           if (fs::is_directory(out))
             throw std::invalid_argument(fmt::format("-o {}: a folder; name the PNG file to write", o->out));
           if (!fs::is_directory(parent))
-            throw std::invalid_argument(
-                fmt::format("-o {}: there is no folder {} to write it in", o->out, parent.string()));
+            throw std::invalid_argument(fmt::format("-o {}: {} to write it in", o->out,
+                                                    fs::exists(parent)
+                                                        ? parent.string() + " is a file, not a folder"
+                                                        : "there is no folder " + parent.string()));
         }
         // Nothing reads the resolution clearance of a stand that is not resolved (canopy stand
         // takes it for its compact glb's step; a picture has none).

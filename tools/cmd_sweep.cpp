@@ -182,6 +182,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   }();
   const Grammar g = load_grammar(o.grammar, load);
   if (print) print_notes(g.notes);
+  std::vector<std::string> notes = g.notes;
   // Jitter and rotation: the options', else the grammar's stand entry's, else the default stand's.
   const StandSpec entry = g.stand.value_or(StandSpec{});
   const char* jitter_from = o.jitter ? "command line" : entry.jitter ? "grammar" : "default";
@@ -350,6 +351,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   if (stopped) std::rethrow_exception(stopped);
   SweepOutcome out;
   out.total = total, out.ran = ran, out.failed = failed;
+  out.notes = std::move(notes);
   out.interrupted = g_interrupted;
   if (g_interrupted) {
     if (print) fmt::print("interrupted: run the same command again to go on where it stopped\n");

@@ -258,7 +258,7 @@ LightOutcome run_light(LightOptions o, bool print) {
     o.stand.more_files = [&](const Stand& stand, const nlohmann::ordered_json& report, OutputSet& files) {
       light_files(stand, report_layout(report, out.dir + "/report.json"), files);
     };
-    run_stand(o.stand, print);
+    out.notes = run_stand(o.stand, print).notes;
   }
   const light::LightResult& r = *result;
   if (print) {

@@ -71,6 +71,7 @@ struct LightOutcome {
   nlohmann::ordered_json json;  // light.json as written
   std::string csv;              // light.csv as written
   std::string dir;
+  std::vector<std::string> notes;  // from a grammar: its notes (Grammar::notes)
 };
 
 /// Runs `canopy light` with `o`: writes light.json and light.csv (from a grammar, with the

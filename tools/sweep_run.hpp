@@ -46,7 +46,8 @@ struct SweepOptions {
 struct SweepOutcome {
   std::size_t total = 0, ran = 0, failed = 0;
   bool interrupted = false;
-  int exit_code = 0;  // 0, 3 (some run failed) or 130 (interrupted)
+  int exit_code = 0;               // 0, 3 (some run failed) or 130 (interrupted)
+  std::vector<std::string> notes;  // the grammar's (Grammar::notes), printed when the sweep prints
 };
 
 /// Called after each run made (its row already in runs.csv): run index, total runs, the row.

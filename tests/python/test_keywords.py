@@ -109,8 +109,13 @@ def test_light_paths_and_options(tmp_path):
 def test_grammar_notes_are_warnings(tmp_path):
     typo = tmp_path / "typo.yaml"
     typo.write_text(open(TOMATO).read().replace("\n  L:  {prototype: leaflet", "\n  Lf: {prototype: leaflet"))
+    import numpy as np
     for call in (lambda: canopy.derive(typo, steps=2), lambda: canopy.Stand.grow(typo, rows=1, per_row=1, steps=4),
-                 lambda: canopy.stand(typo, tmp_path / "o", **SMALL)):
+                 lambda: canopy.Stand.grow(typo, positions=np.array([[0, 0, 0, 1.0]]), steps=4),
+                 lambda: canopy.stand(typo, tmp_path / "o", **SMALL),
+                 lambda: canopy.light(typo, out=tmp_path / "l", sky_directions=0, rays_per_m2=200, **SMALL),
+                 lambda: canopy.sweep(typo, tmp_path / "w", steps=[4], rows=1, per_row=2, seeds=1, no_light=True,
+                                      backend="cpu")):
         with pytest.warns(UserWarning, match="organ 'Lf' is written by neither the axiom nor any rule"):
             call()
 
@@ -142,3 +147,9 @@ def test_values_as_python_holds_them(tmp_path):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=4, seed=3).plants["seed"][0]
     rep = canopy.stand(TOMATO, tmp_path / "n", no_resolve=np.bool_(True), **SMALL)
     assert rep["resolution"]["ran"] is False
+    with pytest.raises(ValueError, match="seed: needs a whole number"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, seed=np.bool_(True))
+    # A NumPy array of no dimensions is one value.
+    r = canopy.sweep(TOMATO, tmp_path / "z", steps=np.array(4), seeds=np.array(1), rows=1, per_row=2, no_light=True,
+                     backend="cpu")
+    assert r["total"] == 1

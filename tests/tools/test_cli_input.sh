@@ -206,6 +206,10 @@ check "derive ''" "105:canopy: error: GRAMMAR: needs a value, got an empty one" 
 # "--csv=" too: CLI11 took the next word as its value ("--csv= --threads=1" wrote a file of that name).
 run detect "$tmp" --csv= --threads=1
 check "detect --csv= --threads=1" "105:canopy: error: --csv: needs a value, got an empty one:0" "$rc:$(err):$(ls -- "--threads=1" 2>/dev/null | wc -l)"
+run derive --bogus= "$g"
+check "derive --bogus=: unknown, not empty" "109:canopy: error: The following argument was not expected: --bogus=" "$rc:$(err)"
+run derive --help --x=
+check "derive --help --x=" "0" "$rc"
 
 # canopy detect reads back only what canopy writes.
 run stand "$g" --rows 1 --per-row 2 --steps 6 --backend cpu -o st

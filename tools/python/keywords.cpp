@@ -17,17 +17,23 @@ bool is_path_option(const std::string& name) { return name == "--out" || name ==
 /// A list of values: any iterable but a string, bytes, a dict or a path (a list, tuple, range,
 /// set or NumPy array).
 bool is_sequence(py::handle v) {
-  return !py::isinstance<py::str>(v) && !py::isinstance<py::bytes>(v) && !py::isinstance<py::dict>(v) &&
-         !py::hasattr(v, "__fspath__") && py::hasattr(v, "__iter__");
+  if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v) || py::isinstance<py::dict>(v) ||
+      py::hasattr(v, "__fspath__") || !py::hasattr(v, "__iter__"))
+    return false;
+  // A NumPy array of no dimensions (np.array(2)) has __iter__ but is one value.
+  return !(py::hasattr(v, "ndim") && py::int_(v.attr("ndim")).cast<int>() == 0);
 }
 
-/// True or False, NumPy's bool too (not 1 or "yes": a flag is not a count).
+}  // namespace
+
 bool is_bool(py::handle v) {
   if (py::isinstance<py::bool_>(v)) return true;
   const std::string type = py::str(py::type::handle_of(v).attr("__name__"));
   const std::string module = py::str(py::getattr(py::type::handle_of(v), "__module__", py::str("")));
   return module == "numpy" && (type == "bool_" || type == "bool");
 }
+
+namespace {
 
 /// One word of the command line: bytes and paths as they are (a file name need not be UTF-8),
 /// anything else as Python prints it (floats as their shortest round trip).

@@ -14,6 +14,9 @@ namespace canopy::python {
 
 namespace py = pybind11;
 
+/// True or False, NumPy's bool too (not 1 or "yes": a flag is not a count, nor a seed a bool).
+bool is_bool(py::handle v);
+
 /// Parses `kwargs` with `app` (a command's options registered on an app of its own), then
 /// `positionals` as its arguments. A keyword is the option of its name with dashes for
 /// underscores (`renames` maps a Python name to another option: suns -> sun); None is an option

@@ -102,6 +102,7 @@ void bind_light(py::module_& m) {
           py::gil_scoped_release nogil;
           r = cli::run_light(*o, false);
         }
+        warn_notes(r.notes);
         return json_to_py(r.json);
       },
       py::arg("source"), py::arg("options") = py::dict(),

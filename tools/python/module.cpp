@@ -136,6 +136,7 @@ PYBIND11_MODULE(_canopy, m) {
         } catch (const CallbackRaised&) {
           cb.rethrow();
         }
+        warn_notes(r.notes);
         py::dict d;
         d["total"] = r.total, d["ran"] = r.ran, d["failed"] = r.failed;
         return d;

@@ -37,7 +37,7 @@ void bind_stand(py::module_& m) {
             if (!seed_arg.is_none()) {
               // Any integer (NumPy's too, through operator.index), never a bool or a float.
               std::optional<std::string> whole;
-              if (!py::isinstance<py::bool_>(seed_arg)) try {
+              if (!is_bool(seed_arg)) try {
                   whole =
                       py::str(py::module_::import("operator").attr("index")(seed_arg)).cast<std::string>();
                 } catch (const py::error_already_set&) {
@@ -88,6 +88,7 @@ void bind_stand(py::module_& m) {
                                           static_cast<std::size_t>(out->layout->per_row));
               req.plants = row_layout(*out->layout);
             } else if (!req.plants.empty()) {
+              warn_notes(load_grammar(grammar, req.load).notes);
               GrowRequest first = req;
               first.plants.resize(1);
               check_stand_fits(first, req.plants.size());
