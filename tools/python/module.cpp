@@ -31,6 +31,23 @@ using namespace canopy;
 
 using namespace canopy::python;
 
+namespace {
+
+/// `canopy COMMAND GRAMMAR -o OUT` with keyword options: the options `add` registers (the
+/// command's own), parsed from the keywords.
+template <typename Register>
+auto parse_command(Register add, const std::string& command, py::handle grammar, py::handle out,
+                   const py::dict& kwargs) {
+  CLI::App app;
+  auto options = add(app);
+  py::dict with_out = kwargs.attr("copy")();
+  with_out["out"] = out;
+  parse_keywords(app, command, {path_of(grammar)}, with_out);
+  return options;
+}
+
+}  // namespace
+
 PYBIND11_MODULE(_canopy, m) {
   m.doc() = "canopy: penetration-free plant stands from parametric L-system grammars (C++ core)";
   m.attr("__version__") = CANOPY_VERSION;
@@ -93,11 +110,7 @@ PYBIND11_MODULE(_canopy, m) {
   m.def(
       "stand",
       [](py::object grammar, py::object out, py::dict kwargs, py::object progress) {
-        CLI::App app;
-        const std::shared_ptr<cli::StandOptions> o = cli::register_stand(app);
-        py::dict with_out = kwargs.attr("copy")();
-        with_out["out"] = out;
-        parse_keywords(app, "stand", {path_of(grammar)}, with_out);
+        const auto o = parse_command(cli::register_stand, "stand", grammar, out, kwargs);
         Callback cb(std::move(progress));
         cli::StandOutcome r;
         try {
@@ -118,11 +131,7 @@ PYBIND11_MODULE(_canopy, m) {
   m.def(
       "sweep",
       [](py::object grammar, py::object out, py::dict kwargs, py::object progress) {
-        CLI::App app;
-        const std::shared_ptr<cli::SweepOptions> o = cli::register_sweep(app);
-        py::dict with_out = kwargs.attr("copy")();
-        with_out["out"] = out;
-        parse_keywords(app, "sweep", {path_of(grammar)}, with_out);
+        const auto o = parse_command(cli::register_sweep, "sweep", grammar, out, kwargs);
         Callback cb(std::move(progress));
         cli::SweepOutcome r;
         try {
