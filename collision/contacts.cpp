@@ -11,7 +11,7 @@ void write_contacts_csv(const Stand& stand, const Contacts& c, AtomicFile& out) 
 
 void write_contacts_csv(const ExportScope& e, const std::vector<Contact>& pairs, ContactLevel level,
                         ChunkWriter& out) {
-  out.fixed("organ_a,organ_b,plant_a,plant_b,level\n");
+  out.fixed(std::string(kContactsCsvHeader) + "\n");
   // Rows grouped by their first plant: sorted pairs keep each plant's rows together.
   std::vector<std::size_t> first(e.stand.plant_count() + 1, 0);
   for (const Contact& k : pairs) ++first[static_cast<std::size_t>(k.plant_a) + 1];

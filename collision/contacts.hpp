@@ -72,6 +72,8 @@ CANOPY_HD inline bool adjacent(const OrganRecord& a, std::int32_t ia, const Orga
 }
 
 /// contacts.csv of a whole stand: header `organ_a,organ_b,plant_a,plant_b,level`, rows sorted.
+/// contacts.csv's header (without its line end), as written and as canopy render reads it back.
+inline constexpr std::string_view kContactsCsvHeader = "organ_a,organ_b,plant_a,plant_b,level";
 void write_contacts_csv(const Stand& stand, const Contacts& c, AtomicFile& out);
 /// contacts.csv over an ExportScope: the rows of the scope's plants (a row belongs to its first
 /// plant), ids mapped to the whole stand's (the same bytes as for the whole stand).

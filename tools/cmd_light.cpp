@@ -68,11 +68,8 @@ void check_light_command(const CLI::App& app, LightOptions& o) {
   o.threads = o.stand.detect.threads;
   // A folder holds its stand: the options that grow, detect or resolve one would be ignored.
   if (std::filesystem::is_directory(o.source))
-    refuse_given(
-        app, {kGrowGroup, kLayoutGroup, kFilesGroup, kResolveGroup, kDetectGroup}, {"--threads", "--backend"},
-        fmt::format("{} is a folder that holds a stand already, which this option would not change (it "
-                    "applies to a grammar)",
-                    o.source));
+    refuse_given(app, {kGrowGroup, kLayoutGroup, kFilesGroup, kResolveGroup, kDetectGroup},
+                 {"--threads", "--backend"}, holds_a_stand(o.source));
 }
 
 Command add_light(CLI::App& root) {

@@ -5,6 +5,7 @@
 #include "geometry/clock.hpp"
 #include "geometry/export.hpp"
 #include "geometry/input_file.hpp"
+#include "geometry/split_list.hpp"
 #include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
@@ -64,7 +65,7 @@ std::vector<std::uint8_t> flags_from_csv(const std::string& path, const Stand& s
   }
   InputFile& in = *opened;
   std::string line;
-  const std::string header = "organ_a,organ_b,plant_a,plant_b,level";
+  const std::string_view header = kContactsCsvHeader;
   if (!in.next_line(line) || line != header)
     throw std::runtime_error(
         fmt::format("{}:1: not a stand's contacts table: the header is not {}", path, header));
@@ -77,17 +78,11 @@ std::vector<std::uint8_t> flags_from_csv(const std::string& path, const Stand& s
     return v;
   };
   while (in.next_line(line)) {
-    std::vector<std::string_view> cells;
-    for (std::size_t at = 0;;) {
-      const std::size_t comma = line.find(',', at);
-      cells.emplace_back(std::string_view(line).substr(at, comma == std::string::npos ? comma : comma - at));
-      if (comma == std::string::npos) break;
-      at = comma + 1;
-    }
+    const std::vector<std::string> cells = split_list(line);
     if (cells.size() != 5)
       throw std::runtime_error(fmt::format("{}:{}: {} cells where the table has 5 ({})", path,
                                            in.line_number(), cells.size(), header));
-    if (!parse_contact_level(std::string(cells[4])))
+    if (!parse_contact_level(cells[4]))
       throw std::runtime_error(fmt::format("{}:{}: column 'level': '{}' is not plant, leaf, organ or exact",
                                            path, in.line_number(), cells[4]));
     const long long a = id(cells[0], organs, "organ_a"), b = id(cells[1], organs, "organ_b");
@@ -148,9 +143,7 @@ Command add_render(CLI::App& root) {
         // A folder is drawn as written: options that would grow, detect or resolve are refused.
         if (folder)
           refuse_given(*app, {kGrowGroup, kLayoutGroup, kDetectGroup, kResolveGroup}, {"--threads"},
-                       fmt::format("{} is a folder that holds a stand already, which this option would not "
-                                   "change (it applies to a grammar)",
-                                   o->source));
+                       holds_a_stand(o->source));
         refuse_stand_file("-o", o->out);
         // Said before the work: a folder named as the picture, or a folder it cannot go in.
         {
@@ -204,12 +197,7 @@ Command add_render(CLI::App& root) {
               const DetectRequest dreq = s.detect.request();  // bad options fail before any work
               StandPlan plan = plan_stand(s);
               print_notes(plan.grammar.notes);
-              if (s.positions.empty()) {
-                check_plan_fits(plan, static_cast<std::size_t>(plan.layout.rows) *
-                                          static_cast<std::size_t>(plan.layout.per_row));
-                plan.request.plants = row_layout(plan.layout);
-              }
-              if (s.target.set()) check_target(s);
+              place_plan(plan, s);
               Stand stand = grow_stand(plan.request);
               if (s.target.set()) reach_target(stand, plan.layout, s.target);
               organs = stand.organ_count();

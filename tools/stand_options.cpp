@@ -120,6 +120,13 @@ const CLI::Option* first_given(const CLI::App& app, std::initializer_list<std::s
 
 }  // namespace
 
+std::string holds_a_stand(const std::string& folder) {
+  return fmt::format(
+      "{} is a folder that holds a stand already, which this option would not change (it applies to a "
+      "grammar)",
+      folder);
+}
+
 void refuse_given(const CLI::App& app, std::initializer_list<std::string_view> groups,
                   std::initializer_list<std::string_view> except, const std::string& reason) {
   if (const CLI::Option* o = first_given(app, groups, except))

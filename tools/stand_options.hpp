@@ -45,6 +45,9 @@ void add_file_options(CLI::App& app, StandOptions& s, const std::string& prefix 
 void refuse_given(const CLI::App& app, std::initializer_list<std::string_view> groups,
                   std::initializer_list<std::string_view> except, const std::string& reason);
 
+/// refuse_given's reason where SOURCE `folder` holds a stand (canopy light DIR, canopy render DIR).
+std::string holds_a_stand(const std::string& folder);
+
 /// `canopy stand`'s arguments and options registered on `app` (the subcommand, or an app of its
 /// own for the Python module, which parses its keywords with it).
 std::shared_ptr<StandOptions> register_stand(CLI::App& app);

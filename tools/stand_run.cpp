@@ -186,6 +186,16 @@ void check_plan_fits(const StandPlan& plan, std::size_t plants) {
   if (!first.plants.empty() && plants > 0) check_stand_fits(first, plants);
 }
 
+void place_plan(StandPlan& plan, const StandOptions& o) {
+  if (o.positions.empty()) {
+    // Say so before trying when the stand cannot fit: probe with its first plant.
+    check_plan_fits(
+        plan, static_cast<std::size_t>(plan.layout.rows) * static_cast<std::size_t>(plan.layout.per_row));
+    plan.request.plants = row_layout(plan.layout);
+  }
+  if (o.target.set()) check_target(o);
+}
+
 void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats,
                   const StandPlan& plan) {
   const RowLayout& layout = plan.layout;
@@ -255,13 +265,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   // removes it, so the output folder is as it was (none made when it had none).
   OutputSet files(o.out, stand_folder_files(), kStandFolderMarker);
   GrowRequest& req = plan.request;
-  const RowLayout& layout = plan.layout;
-  if (o.positions.empty()) {
-    // Say so before trying when the stand cannot fit: probe with its first plant.
-    check_plan_fits(plan, static_cast<std::size_t>(layout.rows) * static_cast<std::size_t>(layout.per_row));
-    req.plants = row_layout(layout);
-  }
-  if (o.target.set()) check_target(o);
+  place_plan(plan, o);
   const auto t_grow = std::chrono::steady_clock::now();
   GrowTimings gt;
   StagePeak grow_peak;

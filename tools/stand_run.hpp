@@ -72,6 +72,9 @@ StandPlan plan_stand(StandOptions& o);
 void check_target(const StandOptions& o);
 /// Throws before growing when `plants` plants like the plan's first would not fit in memory.
 void check_plan_fits(const StandPlan& plan, std::size_t plants);
+/// Before growing: a row layout's plants placed in plan.request (said first when they cannot fit
+/// in memory; a positions file's are there already), and a target's options checked.
+void place_plan(StandPlan& plan, const StandOptions& o);
 /// report.json's "config" (every option echoed), "grammar" and "seed".
 void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats,
                   const StandPlan& plan);
