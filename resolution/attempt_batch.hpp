@@ -45,7 +45,7 @@ struct AttemptGroup {
 
 /// Whether the boxes of a pair meet when the moving organ (OBB `x`, no clearance) turns by
 /// `turn`: its box carried and grown by the search clearance against the kept organ's box `y`
-/// grown by its gap (TurnSearch::attempt's first test, with keep_box made the same way).
+/// grown by its gap (TurnSearch::attempt's first test, made the same way).
 CANOPY_HD inline bool turned_boxes_meet(const Obb& x, const Obb& y, const KeepEntry& keep, const Motion& turn,
                                         float clearance) {
   return obb_overlap(carried_box(x, turn, clearance), grown(y, keep.gap), keep.offset);

@@ -92,7 +92,7 @@ void BatchedScan::add_tables(std::span<Candidate* const> cands, bool near) {
       for (std::uint32_t p = pairs.first[i]; p < pairs.first[i + 1]; ++p) {
         // The witness the round began with (the organs met touched then; neighbours did not,
         // and have none on the candidate).
-        const Witness* w = p < pairs.witness.size() ? &pairs.witness[p] : nullptr;
+        const Witness* w = pairs.find(p);
         tables_.witness[at] =
             w && w->latest >= 0 ? std::uint32_t{w->tri_a[w->latest]} << 16 | w->tri_b[w->latest] : kNoWitness;
         tables_.pairs[at++] = PairEntry{t.moving + static_cast<std::uint32_t>(i),

@@ -84,11 +84,11 @@ void TurnSearch::Candidate::recycle() {
   Candidate old = std::move(*this);
   *this = Candidate{};
   const auto reuse = [](auto& to, auto& from) { from.clear(), to = std::move(from); };
-  reuse(moving, old.moving), reuse(keep, old.keep), reuse(keep_box, old.keep_box),
-      reuse(keep_off, old.keep_off);
+  reuse(moving, old.moving), reuse(keep, old.keep), reuse(keep_off, old.keep_off);
   reuse(axes, old.axes), reuse(axis_block, old.axis_block);
   for (auto [to, from] : {std::pair{&met_pairs, &old.met_pairs}, std::pair{&near_pairs, &old.near_pairs}})
-    reuse(to->first, from->first), reuse(to->y, from->y), reuse(to->witness, from->witness);
+    reuse(to->first, from->first), reuse(to->y, from->y), reuse(to->witness, from->witness),
+        reuse(to->slot, from->slot);
 }
 
 void TurnSearch::keep_offsets(Candidate& c, std::size_t from) const {
@@ -106,14 +106,11 @@ void TurnSearch::keep_offsets(Candidate& c, std::size_t from) const {
 }
 
 void TurnSearch::host_state(Candidate& c) const {
-  c.keep_box.reserve(c.keep.size());
-  for (std::size_t i = c.keep_box.size(); i < c.keep.size(); ++i)
-    c.keep_box.push_back(
-        grown(boxes[static_cast<std::size_t>(c.keep[i])], i < c.met_count ? clearance : detect_clearance));
   // The neighbours did not touch when the round began: no witness yet (met pairs have theirs
   // from prepare).
-  if (c.near_pairs.witness.size() != c.near_pairs.y.size())
-    c.near_pairs.witness.assign(c.near_pairs.y.size(), Witness{});
+  TurnSearch::PairSet& near = c.near_pairs;
+  near.sparse = true;
+  if (near.slot.size() != near.y.size()) near.witness.clear(), near.slot.assign(near.y.size(), kNoPair);
 }
 
 TurnSearch::Candidate TurnSearch::prepare(std::uint32_t mover, const MetPairs& met_all, bool strict) const {
@@ -188,7 +185,6 @@ void TurnSearch::gather_neighbours(Candidate& c, double deg) const {
   const double cover = std::min(c.reach_deg, std::max(deg + 2 * level_deg, 2 * c.near_deg));
   c.near_deg = cover;
   c.keep.resize(met), c.keep_off.resize(met);
-  if (c.keep_box.size() > met) c.keep_box.resize(met);
   for (Candidate::Blocker& b : c.blocker)
     if (b.set == 1) b = Candidate::Blocker{};
   for (Candidate::AxisBlock& b : c.axis_block)

@@ -68,10 +68,28 @@ struct TurnSearch {
   /// y[first[i], first[i+1]).
   struct PairSet {
     std::vector<std::uint32_t> first, y;
-    /// Per pair: the triangles that touched last (the neighbours' made by the host's attempts
-    /// when they first need them; a batched search keeps its own on the runner's side).
+    /// The triangles that touched last: one per pair for the organs met (they touched when the
+    /// round began); for the neighbours (`sparse`), which mostly never touch, only those of
+    /// pairs that touched since, `slot[p]` naming pair p's (kNoPair: none). The host's attempts
+    /// make the neighbours' lists when they first need them (host_state); a batched search
+    /// keeps its own on the runner's side.
     std::vector<Witness> witness;
-    void clear() { first.clear(), y.clear(), witness.clear(); }
+    std::vector<std::uint32_t> slot;
+    bool sparse = false;
+    void clear() { first.clear(), y.clear(), witness.clear(), slot.clear(); }
+    /// Pair p's witness, or null where it has none.
+    Witness* find(std::uint32_t p) {
+      if (!sparse) return p < witness.size() ? &witness[p] : nullptr;
+      return p < slot.size() && slot[p] != kNoPair ? &witness[slot[p]] : nullptr;
+    }
+    const Witness* find(std::uint32_t p) const { return const_cast<PairSet*>(this)->find(p); }
+    /// Pair p's witness, made empty where a sparse set has none (a reference valid until the
+    /// next one is made).
+    Witness& make(std::uint32_t p) {
+      if (Witness* w = find(p)) return *w;
+      slot[p] = static_cast<std::uint32_t>(witness.size());
+      return witness.emplace_back();
+    }
   };
   /// One mover's search state: what moves, what it must clear, its axes and reach.
   struct Candidate {
@@ -86,10 +104,6 @@ struct TurnSearch {
     std::vector<std::int32_t> moving,
         keep;  // keep: the organs met first (met_count of them), then neighbours
     std::size_t met_count = 0;
-    /// Per keep organ: its OBB grown by the clearance it must keep (made by attempt, the host's
-    /// search, when it first needs them: a batched search never reads them, and at 10,000 plants
-    /// they would be hundreds of megabytes written a round).
-    std::vector<Obb> keep_box;
     std::vector<Vec3f> keep_off;  // per keep organ: the offset into the mover's plant frame
     std::vector<Vec3d> axes;
     /// Pairs with the organs met, and (a strict search) with the neighbours to keep clear. The
@@ -170,8 +184,8 @@ struct TurnSearch {
   bool near_limit(const Candidate& c, double deg) const;
   /// keep_off for keep[from, end).
   void keep_offsets(Candidate& c, std::size_t from) const;
-  /// What only the host's attempts read, made for what is new since they last looked: keep_box
-  /// and the neighbour pairs' witnesses.
+  /// What only the host's attempts read, made for what is new since they last looked: the
+  /// neighbour pairs' witnesses.
   void host_state(Candidate& c) const;
   /// The pairs of moving organs with keep[from, to) that a turn by at most `max_deg` could bring
   /// together.
