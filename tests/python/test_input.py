@@ -164,3 +164,20 @@ def test_unknown_backend_and_caster_refused(tmp_path):
         canopy.light(str(out), suns=[(60, 180)], backend="CUDA")
     with pytest.raises(ValueError, match="--caster: bogus not in {auto,trace,raster}"):
         canopy.light(str(out), suns=[(60, 180)], caster="bogus")
+
+
+def test_two_threads_first_arrays_do_not_stall():
+    # Two threads whose first calls return NumPy arrays, in an interpreter that has not imported
+    # NumPy itself: pybind11's one-time NumPy set-up stalled both for good.
+    young = os.path.join(SRC, "grammars", "tomato_young.yaml")
+    r = in_child(f"""
+import threading
+stands = [canopy.Stand.grow({young!r}, rows=1, per_row=3, threads=1) for _ in range(2)]
+ts = [threading.Thread(target=lambda s=s: s.detect(threads=1)) for s in stands]
+[t.start() for t in ts]
+[t.join(60) for t in ts]
+print("stalled" if any(t.is_alive() for t in ts) else "done", flush=True)
+import os
+os._exit(0)
+""")
+    assert r.returncode == 0 and r.stdout.strip() == "done", r.stdout + r.stderr

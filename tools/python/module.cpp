@@ -51,6 +51,12 @@ auto parse_command(Register add, const std::string& command, py::handle grammar,
 PYBIND11_MODULE(_canopy, m) {
   m.doc() = "canopy: penetration-free plant stands from parametric L-system grammars (C++ core)";
   m.attr("__version__") = CANOPY_VERSION;
+  // pybind11 sets up NumPy's C API once, on the first call that makes an array, under a lock of
+  // its own while it imports NumPy; an import can let go of the GIL, and a second thread then
+  // waiting on that lock with the GIL held stalls both for good (two threads' first
+  // Stand.detect). Set up here, at import, where nothing else runs.
+  py::module_::import("numpy");
+  (void)py::dtype::of<double>();
 
   static py::exception<ModuleCapError> module_cap(m, "ModuleCapError", PyExc_ValueError);
   py::register_exception_translator([](std::exception_ptr p) {
