@@ -196,6 +196,7 @@ Command add_render(CLI::App& root) {
               s.grammar = o->source;
               const DetectRequest dreq = s.detect.request();  // bad options fail before any work
               StandPlan plan = plan_stand(s);
+              refuse_output_over_inputs(plan_inputs(plan, s), {}, o->out);
               print_notes(plan.grammar.notes);
               place_plan(plan, s);
               Stand stand = grow_stand(plan.request);

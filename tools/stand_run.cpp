@@ -114,6 +114,36 @@ void refuse_stand_file(const std::string& option, const std::string& path) {
                   option, path, file.filename().string()));
 }
 
+std::vector<RunInput> plan_inputs(const StandPlan& plan, const StandOptions& o) {
+  std::vector<RunInput> in{{"the grammar", o.grammar}};
+  if (!o.positions.empty()) in.push_back({"the positions file", o.positions});
+  std::set<std::string> named;
+  for (const PlantPlacement& p : plan.request.plants)
+    if (!p.grammar.empty() && named.insert(p.grammar).second)
+      in.push_back({"a grammar the positions file names",
+                    std::filesystem::path(p.grammar).is_relative() && !plan.request.relative_to.empty()
+                        ? (std::filesystem::path(plan.request.relative_to) / p.grammar).string()
+                        : p.grammar});
+  return in;
+}
+
+void refuse_output_over_inputs(const std::vector<RunInput>& inputs, const std::string& out_dir,
+                               const std::string& out_file) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> outputs;
+  if (!out_file.empty()) outputs.emplace_back(out_file);
+  if (!out_dir.empty())
+    for (const std::string& n : stand_folder_files()) outputs.push_back(fs::path(out_dir) / n);
+  for (const RunInput& in : inputs)
+    for (const fs::path& out : outputs) {
+      std::error_code ec;
+      if (!fs::equivalent(in.path, out, ec) || ec) continue;  // either missing: not the same file
+      throw std::invalid_argument(
+          fmt::format("-o {}: this would replace {}, {} this run reads; write elsewhere or move it first",
+                      out_file.empty() ? out_dir : out_file, out.string(), in.what));
+    }
+}
+
 void print_folder_changes(const StagedFolder& folder, const StagedFolder::Committed& committed) {
   const auto list = [](const std::vector<std::string>& names) {
     std::string out;
@@ -312,6 +342,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   // The staging folder beside the output (dead runs' leftovers removed first): the files go
   // there and the folder is swapped in once they are complete; a failed or interrupted run
   // removes it, so the output folder is as it was (none made when it had none).
+  refuse_output_over_inputs(plan_inputs(plan, o), o.out);  // before the folder is touched
   OutputSet files(o.out, stand_folder_files(), kStandFolderMarker);
   GrowRequest& req = plan.request;
   place_plan(plan, o);

@@ -116,6 +116,18 @@ inline constexpr const char* kStandFolderMarker = "organs.csv";
 /// (`detect --csv`, `render -o`), names one of stand_folder_files() in a folder that holds a stand:
 /// writing it would replace the stand's own table (or the contacts its report counts).
 void refuse_stand_file(const std::string& option, const std::string& path);
+/// A file this run reads (`what`: "the grammar", "the positions file") and its path.
+struct RunInput {
+  std::string what, path;
+};
+/// The files a stand plan reads: the grammar, the positions file and the grammars it names.
+std::vector<RunInput> plan_inputs(const StandPlan& plan, const StandOptions& o);
+/// Throws std::invalid_argument when an input is the same file (through links) as one the run
+/// writes or replaces: `out_file` itself, or, for a stand folder `out_dir`, any of
+/// stand_folder_files() in it. Its data would be lost (`--positions DIR/plants.csv -o DIR` took
+/// the stand's table for the user's positions).
+void refuse_output_over_inputs(const std::vector<RunInput>& inputs, const std::string& out_dir,
+                               const std::string& out_file = {});
 /// Says on standard output which files of the earlier stand the swap dropped (a mesh format not
 /// asked for this time, light tables) and which dead runs' leftovers were removed, and on
 /// standard error what was kept against the plan (nothing when all went as planned).

@@ -63,6 +63,7 @@ TiledStand grow_detect_resolve_tiled(StandOptions& o, bool lower_levels) {
     if (o.glb_instancing)
       throw std::invalid_argument("--glb-instancing is written by one process only; run it without mpirun");
     plan = plan_stand(o);
+    refuse_output_over_inputs(plan_inputs(plan, o), o.out);
     if (rank == 0) print_notes(plan.grammar.notes);
     dreq = o.detect.request();
     backend = make_backend(o.detect.backend, backend_note, mpi::local_rank());

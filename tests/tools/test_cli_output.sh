@@ -134,6 +134,20 @@ done
 "$canopy" stand "$g" "${small[@]}" -o "$tmp/mix" >/dev/null 2>&1
 check "after the kills: nothing beside" "0" "$(hidden "$tmp")"
 
+# A run never writes over what it reads: positions given as the output folder's plants.csv (or a
+# link to it), a grammar named as one of its files. The user's file stays as it was.
+mkdir -p "$tmp/field" && printf 'x,y,rotation,seed\n0,0,0,1\n1,0,0,2\n' > "$tmp/field/plants.csv"
+sums_pos=$(md5sum < "$tmp/field/plants.csv")
+"$canopy" stand "$g" --positions "$tmp/field/plants.csv" --steps 8 --backend cpu -o "$tmp/field" >"$tmp/o" 2>"$tmp/e"
+check "positions in the output folder refused" "2 1 $sums_pos 0" \
+  "$? $(grep -c "this would replace $tmp/field/plants.csv, the positions file this run reads" "$tmp/e") $(md5sum < "$tmp/field/plants.csv") $(wc -c < "$tmp/o")"
+ln -s "$tmp/field/plants.csv" "$tmp/pos_link.csv"
+"$canopy" stand "$g" --positions "$tmp/pos_link.csv" --steps 8 --backend cpu -o "$tmp/field" >/dev/null 2>"$tmp/e"
+check "positions through a link refused" "2 $sums_pos" "$? $(md5sum < "$tmp/field/plants.csv")"
+cp "$g" "$tmp/field/report.json"
+"$canopy" stand "$tmp/field/report.json" --rows 1 --per-row 2 --steps 8 --backend cpu -o "$tmp/field" >/dev/null 2>"$tmp/e"
+check "grammar in the output folder refused" "2 1" "$? $(grep -c "report.json, the grammar this run reads" "$tmp/e")"
+
 # A folder of the user's that holds no stand (no organs.csv): their files of a stand file's name
 # stay unless the run writes them again.
 mkdir -p "$tmp/mine" && echo "my mesh" > "$tmp/mine/stand.obj" && echo "notes" > "$tmp/mine/notes.txt"

@@ -83,6 +83,12 @@ run render "$g" --rows 1 --per-row 2 --steps 8 --backend cpu "${size[@]}" -o sr
 check "render -o a folder" "2:canopy: error: -o sr: a folder; name the PNG file to write:" "$rc:$(cat "$tmp/err"):$(cat "$tmp/out")"
 run render "$g" --rows 1 --per-row 2 --steps 8 --backend cpu "${size[@]}" -o nowhere/x.png
 check "render -o in no folder" "2:canopy: error: -o nowhere/x.png: there is no folder nowhere to write it in" "$rc:$(cat "$tmp/err")"
+# Never over what it reads: the grammar or the positions file named as the picture.
+cp "$g" own.yaml && printf 'x,y,rotation,seed\n0,0,0,1\n' > own.csv
+run render own.yaml --steps 8 --backend cpu "${size[@]}" -o own.yaml
+check "render -o its grammar" "2:1:$(md5sum < "$g")" "$rc:$(grep -c "this would replace own.yaml, the grammar this run reads" "$tmp/err"):$(md5sum < own.yaml)"
+run render own.yaml --positions own.csv --steps 8 --backend cpu "${size[@]}" -o own.csv
+check "render -o its positions" "2:1:x,y,rotation,seed" "$rc:$(grep -c "the positions file this run reads" "$tmp/err"):$(head -1 own.csv)"
 run render "$g" --rows 1 --per-row 2 --steps 8 --backend cpu --no-resolve --resolve-clearance 0.05 "${size[@]}" -o g.png
 check "render --no-resolve --resolve-clearance" "2:canopy: error: --resolve-clearance: with --no-resolve a picture has no use for it" \
   "$rc:$(cat "$tmp/err")"
