@@ -102,7 +102,8 @@ void check_reach(const RowLayout& l) {
         "--per-row {} x --plant-spacing {:g} m (+ --jitter {:g} m) reaches x = {:.10g} m: plants may "
         "stand at most {:g} m from the origin",
         l.per_row, l.plant_spacing, l.jitter, x, kMaxPlantCoordinate));
-  double y = (l.rows - 1) * l.row_spacing;
+  // The farthest row: the last, or with double rows the farther of the last two.
+  double y = l.double_rows ? 0.0 : (l.rows - 1) * l.row_spacing;
   if (l.double_rows)
     for (int r = std::max(0, l.rows - 2); r < l.rows; ++r)
       y = std::max(y, (r / 2) * l.row_spacing + (r % 2) * *l.double_rows);
@@ -141,6 +142,13 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
     if (!(v >= 0) || !std::isfinite(v))
       throw std::invalid_argument(
           fmt::format("the {} must be a finite number of metres, not negative (got {})", name, v));
+  // A pair's second row lies between its first and the next pair's: a gap of 0, or of the row
+  // spacing or more, stacked rows on one line or put them out of order, without a word.
+  if (l.double_rows && (*l.double_rows <= 0 || (l.rows > 2 && *l.double_rows >= l.row_spacing)))
+    throw std::invalid_argument(fmt::format(
+        "--double-rows {:g} m: the two rows of a pair must be more than 0 m and less than the row "
+        "spacing ({:g} m, from pair to pair) apart",
+        *l.double_rows, l.row_spacing));
   check_reach(l);
   std::vector<PlantPlacement> out;
   out.reserve(static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.per_row));

@@ -146,18 +146,7 @@ Command add_render(CLI::App& root) {
                        holds_a_stand(o->source));
         refuse_stand_file("-o", o->out);
         // Said before the work: a folder named as the picture, or a folder it cannot go in.
-        {
-          namespace fs = std::filesystem;
-          const fs::path out(o->out);
-          const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
-          if (fs::is_directory(out))
-            throw std::invalid_argument(fmt::format("-o {}: a folder; name the PNG file to write", o->out));
-          if (!fs::is_directory(parent))
-            throw std::invalid_argument(fmt::format("-o {}: {} to write it in", o->out,
-                                                    fs::exists(parent)
-                                                        ? parent.string() + " is a file, not a folder"
-                                                        : "there is no folder " + parent.string()));
-        }
+        refuse_file_place("-o", o->out, "PNG");
         // Nothing reads the resolution clearance of a stand that is not resolved (canopy stand
         // takes it for its compact glb's step; a picture has none).
         if (s.resolve.no_resolve && app->count("--resolve-clearance") > 0)

@@ -114,6 +114,18 @@ void refuse_stand_file(const std::string& option, const std::string& path) {
                   option, path, file.filename().string()));
 }
 
+void refuse_file_place(const std::string& option, const std::string& path, const std::string& kind) {
+  namespace fs = std::filesystem;
+  const fs::path out(path);
+  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  if (fs::is_directory(out))
+    throw std::invalid_argument(fmt::format("{} {}: a folder; name the {} file to write", option, path, kind));
+  if (!fs::is_directory(parent))
+    throw std::invalid_argument(fmt::format("{} {}: {} to write it in", option, path,
+                                            fs::exists(parent) ? parent.string() + " is a file, not a folder"
+                                                               : "there is no folder " + parent.string()));
+}
+
 std::vector<RunInput> plan_inputs(const StandPlan& plan, const StandOptions& o) {
   std::vector<RunInput> in{{"the grammar", o.grammar}};
   if (!o.positions.empty()) in.push_back({"the positions file", o.positions});

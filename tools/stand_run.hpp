@@ -116,6 +116,9 @@ inline constexpr const char* kStandFolderMarker = "organs.csv";
 /// (`detect --csv`, `render -o`), names one of stand_folder_files() in a folder that holds a stand:
 /// writing it would replace the stand's own table (or the contacts its report counts).
 void refuse_stand_file(const std::string& option, const std::string& path);
+/// Throws std::invalid_argument, before any work, where a file to write (`option`'s `path`,
+/// a `kind` such as "PNG" or "CSV") cannot be: a folder, or in a folder that does not exist.
+void refuse_file_place(const std::string& option, const std::string& path, const std::string& kind);
 /// A file this run reads (`what`: "the grammar", "the positions file") and its path.
 struct RunInput {
   std::string what, path;

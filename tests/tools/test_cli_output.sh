@@ -157,6 +157,13 @@ check "user's folder: their stand.obj kept" "0 my mesh|notes" "$? $(cat "$tmp/mi
 sums_nr=$(md5sum < "$tmp/mine/organs.csv")
 "$canopy" detect "$tmp/mine" --csv "$tmp/mine/organs.csv" >/dev/null 2>"$tmp/e"
 check "detect --csv over organs.csv refused" "2 1 $sums_nr" "$? $(grep -c "stand folder's own organs.csv" "$tmp/e") $(md5sum < "$tmp/mine/organs.csv")"
+# ... nor into a folder, nor in a folder that is not there: said before detecting, nothing printed.
+"$canopy" detect "$tmp/mine" --csv "$tmp/nodir/x.csv" >"$tmp/o" 2>"$tmp/e"
+check "detect --csv in no folder" "2 0 canopy: error: --csv $tmp/nodir/x.csv: there is no folder $tmp/nodir to write it in" \
+  "$? $(wc -c < "$tmp/o") $(cat "$tmp/e")"
+"$canopy" detect "$tmp/mine" --csv "$tmp/mine" >"$tmp/o" 2>"$tmp/e"
+check "detect --csv a folder" "2 0 canopy: error: --csv $tmp/mine: a folder; name the CSV file to write" \
+  "$? $(wc -c < "$tmp/o") $(cat "$tmp/e")"
 echo old > "$tmp/target.csv" && ln -sf target.csv "$tmp/link.csv"
 "$canopy" detect "$tmp/mine" --csv "$tmp/link.csv" >/dev/null 2>&1
 check "detect --csv through a link" "link organ_a,organ_b,plant_a,plant_b,level" \
