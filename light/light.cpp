@@ -327,6 +327,38 @@ void check_config(const LightConfig& c) {
     throw std::invalid_argument("first passes need at least 2 rays");
 }
 
+namespace {
+
+/// How many copies of the tile (px x py) the path of a ray from `toward` crosses on its way down
+/// through a stand `height` m tall: the copies its footprint's box meets, as Scene::trace walks
+/// them (and, without periodic bounds, about how many tiles of ground the region it lights spans).
+double copies_crossed(Vec3d toward, double height, double px, double py) {
+  const double run = height / toward.z;  // the path's horizontal length per unit horizontal part
+  return (std::abs(toward.x) * run / px + 1) * (std::abs(toward.y) * run / py + 1);
+}
+
+/// Refuses a direction so near the horizon that its rays cross more than kMaxRayCopies copies of
+/// the tile: tracing walks every copy a ray's footprint meets, and drawing stretches each
+/// triangle as far, so such a sun took minutes and gigabytes for light it hardly brings (a
+/// horizontal surface gets sin(elevation) of it). Names the lowest elevation taken there.
+void check_low_sun(double elevation_deg, double azimuth_deg, double height, double px, double py,
+                   const char* what) {
+  const double n = copies_crossed(toward(elevation_deg, azimuth_deg), height, px, py);
+  if (n <= kMaxRayCopies) return;
+  double lo = elevation_deg, hi = 90;  // the lowest elevation within the bound, at this azimuth
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (copies_crossed(toward(mid, azimuth_deg), height, px, py) <= kMaxRayCopies ? hi : lo) = mid;
+  }
+  throw std::invalid_argument(fmt::format(
+      "{} at elevation {:g} degrees (azimuth {:g}): its rays cross about {:.3g} copies of the {:.3g} x {:.3g} m "
+      "tile on their way down through the stand ({:.3g} m tall; at most {:g}); a sun this low lights the "
+      "stand hardly at all: give one above {:.3g} degrees here, or a larger tile",
+      what, elevation_deg, azimuth_deg, n, px, py, height, kMaxRayCopies, hi));
+}
+
+}  // namespace
+
 LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const LightConfig& cfg) {
   check_config(cfg);
   LightResult r;
@@ -354,6 +386,16 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
                       "spacing x row "
                       "spacing per plant)",
                       cfg.tile.width(), cfg.tile.height(), w, h, copies, kMaxTileCopies));
+  }
+  if (scene.hi().z > scene.lo().z) {
+    const double height = scene.hi().z - std::min(0.0, scene.lo().z);
+    for (const Beam& b : cfg.suns)
+      check_low_sun(b.elevation_deg, b.azimuth_deg, height, cfg.tile.width(), cfg.tile.height(),
+                    "a sun (--sun, --hours)");
+    if (cfg.sky_directions > 0)
+      for (const SkyDirection& d : sky_directions(cfg.sky, cfg.sky_directions))
+        check_low_sun(d.elevation_deg, d.azimuth_deg, height, cfg.tile.width(), cfg.tile.height(),
+                      "--sky-directions: a sky direction");
   }
   const OrganIndex organs(stand);
   r.scene_s = seconds_since(t_scene);

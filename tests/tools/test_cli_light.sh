@@ -92,6 +92,16 @@ check "positions isolated" "False" "$(json "$tmp/p/light.json" "j['periodic']")"
 # times was refused after the stand was written).
 "$canopy" light "$g" --rows 1 --per-row 2 --steps 10 --backend cpu --tile 0,0,0.001,0.001 -o "$tmp/tiny" >"$tmp/o" 2>"$tmp/e"
 check "tiny tile: refused, no folder" "2 1 0" "$? $(grep -c 'copies of the stand over each point' "$tmp/e") $(ls -d "$tmp/tiny" "$tmp"/.tiny* 2>/dev/null | wc -l)"
+# A sun so near the horizon that its rays cross more than 10,000 copies of the tile: refused at
+# once (at 1e-6 degrees the trace ran for minutes and its memory grew without bound), naming the
+# lowest elevation taken; one just above it is traced. The same from a sunrise hour.
+timeout 60 "$canopy" light "$tmp/p" --sky-directions 0 --tile -0.3,-0.5,0.8,0.5 --sun 1e-6,0 >"$tmp/o" 2>"$tmp/e"
+check "sun at the horizon refused" "2 1" "$? $(grep -c 'copies of the 1.1 x 1 m tile .*at most 10000).* give one above' "$tmp/e")"
+low=$(sed -n 's/.*give one above \([0-9.e-]*\) degrees.*/\1/p' "$tmp/e")
+timeout 60 "$canopy" light "$tmp/p" --sky-directions 0 --tile -0.3,-0.5,0.8,0.5 --sun "$(python3 -c "print($low * 1.01)"),0" --error 0.05 >/dev/null 2>&1
+check "sun just above the bound traced" "0" "$?"
+timeout 60 "$canopy" light "$tmp/p" --sky-directions 0 --tile -0.3,-0.5,0.8,0.5 --latitude 52 --day 172 --hours 3.7517 >/dev/null 2>"$tmp/e"
+check "sunrise hour refused" "2 1" "$? $(grep -c 'a sun (--sun, --hours) at elevation' "$tmp/e")"
 # A grammar whose stand entry is a positions file has no lattice either: refused before growing.
 mkdir -p "$tmp/gp"
 sed 's/^stand:.*$//' "$g" > "$tmp/gp/t.yaml"
