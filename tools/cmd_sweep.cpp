@@ -29,9 +29,11 @@
 
 #include <cerrno>
 #include <atomic>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <map>
 #include <optional>
 #include <filesystem>
 #include <set>
@@ -199,6 +201,8 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
 
   const std::string runs_path = o.out + "/runs.csv";
   std::set<std::string> finished;
+  std::map<std::string, std::string> numbers;  // run key -> its number in runs.csv
+  std::uint64_t next_number = 0;               // the first number no row has
   // Rank 0 reads runs.csv and tells the others what is done, or why the sweep cannot go on: then
   // every rank stops with that error instead of waiting for rank 0.
   std::string answer;
@@ -228,6 +232,18 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
             "sweep: another canopy sweep is writing {}; wait for it to end, or give another -o", o.out));
       std::vector<RunRow> done = read_runs(runs_path);
       check_sweep_settings(o.out, sweep_settings(o), done.size());
+      // A run keeps its number, a retried one too; runs new to the folder take the numbers after
+      // the largest (numbering them by their place in a grown grid gave two runs one number).
+      std::map<std::string, std::string> numbers;
+      std::uint64_t next = 0;
+      for (const RunRow& r : done) {
+        const std::string& n = r.at("run");
+        std::uint64_t v = 0;
+        if (std::from_chars(n.data(), n.data() + n.size(), v).ptr == n.data() + n.size() && !n.empty())
+          next = std::max(next, v + 1);
+        numbers[run_key(r)] = n;
+      }
+      a["numbers"] = numbers, a["next"] = next;
       if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
       adopt_spacings(done, cells);
       write_runs(runs_path, done);  // drops a torn last line
@@ -249,6 +265,8 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       throw std::runtime_error(a["error"].get<std::string>());
     }
     finished = a["finished"].get<std::set<std::string>>();
+    numbers = a["numbers"].get<std::map<std::string, std::string>>();
+    next_number = a["next"].get<std::uint64_t>();
   }
 
   const std::size_t total = cells.size() * static_cast<std::size_t>(o.seeds);
@@ -280,14 +298,17 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
   for (const SweepCell& cell : cells)
     for (int seed = 1; seed <= o.seeds; ++seed, ++index) {
       RunRow row;
-      row["run"] = std::to_string(index);
       row["plant_spacing"] = num(cell.plant_spacing);
       row["row_spacing"] = num(cell.row_spacing);
       row["density"] = fmt::format("{:.4f}", cell.density);
       row["steps"] = std::to_string(cell.steps.value_or(g.steps));
       row["seed"] = std::to_string(seed);
       row["backend"] = backend->name();
-      if (!finished.count(run_key(row))) pending.push_back({index, &cell, seed, std::move(row)});
+      const std::string key = run_key(row);
+      if (finished.count(key)) continue;
+      const auto known = numbers.find(key);
+      row["run"] = known != numbers.end() ? known->second : std::to_string(next_number++);
+      pending.push_back({index, &cell, seed, std::move(row)});
     }
   // Waves of one run per rank; the rows of a wave are appended in run order by rank 0.
   for (std::size_t wave = 0; wave < pending.size() && !stopped; wave += static_cast<std::size_t>(team)) {

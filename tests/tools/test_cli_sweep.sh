@@ -121,6 +121,15 @@ check "failed: kept on resume" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/lo
 "$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu --retry-failed \
   -o "$tmp/f" >"$tmp/log6" 2>&1
 check "failed: retried" "1" "$(grep -c '^sweep: 1 runs made now (1 failed)' "$tmp/log6")"
+check "failed: retried run keeps its number" "0:3 1:40" "$(python3 -c "
+import csv; print(' '.join(r['run'] + ':' + r['steps'] for r in csv.DictReader(open('$tmp/f/runs.csv'))))")"
+
+# A run keeps its number when the grid grows: the new runs take the numbers after the largest
+# (numbered by their place in the grown grid, two runs shared a number).
+grow() { "$canopy" sweep "$g" --plant-spacing 0.45 --steps 3,4 --rows 1 --per-row 2 --no-light --backend cpu -o "$tmp/n" "$@"; }
+grow --seeds 1 >/dev/null 2>&1 && grow --seeds 2 >/dev/null 2>&1
+check "grown grid: numbers" "0:3:1 1:4:1 2:3:2 3:4:2" "$(python3 -c "
+import csv; print(' '.join(r['run'] + ':' + r['steps'] + ':' + r['seed'] for r in csv.DictReader(open('$tmp/n/runs.csv'))))")"
 
 # A range's values are the decimals it names (0.1:0.3:0.1 made 0.30000000000000004); a sweep begun
 # with such a value resumes with it done and keeps one cell for it.
