@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace canopy {
@@ -88,7 +89,12 @@ LeafAngles leaf_angles(const LeafAngleSums& t) {
   LeafAngles a;
   a.leaf_area = t.area;
   a.area = t.bins;
-  if (!(t.area > 0)) return a;
+  // No leaflet area: the fractions, mean and G are undefined (NaN, null in JSON), not 0.
+  if (!(t.area > 0)) {
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    a.fraction.fill(none), a.g.fill(none), a.mean_inclination_deg = none;
+    return a;
+  }
   for (std::size_t i = 0; i < a.fraction.size(); ++i) a.fraction[i] = t.bins[i] / t.area;
   a.mean_inclination_deg = t.inclination_area / t.area;
   for (std::size_t k = 0; k < a.g.size(); ++k) a.g[k] = t.g_area[k] / t.area;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 
@@ -99,6 +100,9 @@ struct Run {
     const double cp = c * static_cast<double>(stand.plant_count());
     const double silhouette = per_ray * toward.z;  // area across the direction per ray
     d.fraction = {static_cast<double>(t.hits) * c, std::sqrt(static_cast<double>(t.hits_diff)) * c};
+    // STAR of no leaflet area is undefined (NaN: null in light.json, empty in the tables), not 0.
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    d.star = {none, none};
     if (leaf_area > 0)
       d.star = {static_cast<double>(t.leaf) * silhouette / leaf_area,
                 std::sqrt(static_cast<double>(t.leaf_diff)) * silhouette / leaf_area};
@@ -108,6 +112,7 @@ struct Run {
       d.plant[p] = {static_cast<double>(t.plant[p]) * cp,
                     std::sqrt(static_cast<double>(t.plant_diff[p])) * cp};
       const double la = plant_leaf_area[p];
+      d.plant_star[p] = {none, none};
       if (la > 0)
         d.plant_star[p] = {static_cast<double>(t.plant_leaf[p]) * silhouette / la,
                            std::sqrt(static_cast<double>(t.plant_leaf_diff[p])) * silhouette / la};

@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace canopy::cli {
 namespace {
 
@@ -142,8 +144,11 @@ std::string light_csv(const light::LightResult& r, const Stand& s) {
       out += fmt::format(",{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p));
     if (r.diffuse) {
       const auto& d = *r.diffuse;
+      // A plant without leaflets has no STAR: empty cells.
+      const bool none = std::isnan(d.plant_star[p].value);
       out += fmt::format(",{},{},{},{},{}", d.plant[p].value, d.plant[p].se, share(d, p),
-                         d.plant_star[p].value, d.plant_star[p].se);
+                         none ? std::string() : fmt::format("{}", d.plant_star[p].value),
+                         none ? std::string() : fmt::format("{}", d.plant_star[p].se));
     }
     out += "\n";
   }

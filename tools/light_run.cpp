@@ -262,7 +262,9 @@ LightOutcome run_light(LightOptions o, bool print) {
   }
   const light::LightResult& r = *result;
   if (print) {
-    const auto pm = [](const light::Estimate& e) { return fmt::format("{:.4f} +- {:.4f}", e.value, e.se); };
+    const auto pm = [](const light::Estimate& e) {
+      return std::isnan(e.value) ? std::string("none (no leaflets)") : fmt::format("{:.4f} +- {:.4f}", e.value, e.se);
+    };
     fmt::print(
         "light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n",
         plants, r.tile.width(), r.tile.height(), r.periodic ? "periodic" : "isolated", r.lai, r.rays,
@@ -284,7 +286,10 @@ LightOutcome run_light(LightOptions o, bool print) {
           pm(r.diffuse->fraction), r.diffuse->rays);
       fmt::print("  {:<34} {}\n", "STAR (leaflets, over the sky)", pm(r.diffuse->star));
     }
-    fmt::print("  {:<34} {:.1f} deg\n", "mean leaflet inclination", r.leaf_angles.mean_inclination_deg);
+    if (std::isnan(r.leaf_angles.mean_inclination_deg))
+      fmt::print("  {:<34} none (no leaflets)\n", "mean leaflet inclination");
+    else
+      fmt::print("  {:<34} {:.1f} deg\n", "mean leaflet inclination", r.leaf_angles.mean_inclination_deg);
     if (r.organs_skipped)
       fmt::print("  note: {} organs flattened to nothing were left out\n", r.organs_skipped);
     fmt::print("wrote {}/light.json and {}/light.csv\n", out.dir, out.dir);

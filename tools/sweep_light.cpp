@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -69,12 +70,15 @@ double light_columns(const Stand& stand, const RowLayout& layout, const SweepOpt
     }
   }();
   const double se =
-      std::max({r.ground.fraction.se, r.direct[0].fraction.se, r.diffuse->fraction.se, r.diffuse->star.se});
+      std::max({r.ground.fraction.se, r.direct[0].fraction.se, r.diffuse->fraction.se,
+                std::isnan(r.diffuse->star.se) ? 0.0 : r.diffuse->star.se});
   row["ground_cover_" + when] = fmt::format("{:.5f}", r.ground.fraction.value);
   row["direct_" + when] = fmt::format("{:.5f}", r.direct[0].fraction.value);
   row["diffuse_" + when] = fmt::format("{:.5f}", r.diffuse->fraction.value);
-  row["star_" + when] = fmt::format("{:.5f}", r.diffuse->star.value);
-  row["mean_inclination_" + when] = fmt::format("{:.4f}", r.leaf_angles.mean_inclination_deg);
+  // Undefined without leaflets: an empty cell, which summary.csv leaves out of its means.
+  const auto cell = [](double v, int digits) { return std::isnan(v) ? std::string() : fmt::format("{:.{}f}", v, digits); };
+  row["star_" + when] = cell(r.diffuse->star.value, 5);
+  row["mean_inclination_" + when] = cell(r.leaf_angles.mean_inclination_deg, 4);
   row["light_se_" + when] = fmt::format("{:.5f}", se);
   return seconds_since(t0);
 #else

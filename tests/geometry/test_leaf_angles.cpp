@@ -77,7 +77,10 @@ TEST_CASE("leaf angles: bins, mean inclination and G of hand-placed disks") {
         (2 * std::cos(th) + mean_projection(th, 47 * kDeg) + 2 * std::sin(th) / std::numbers::pi) / 4;
     CHECK(la.g[k] == doctest::Approx(want).epsilon(1e-5));
   }
-  // An empty stand: zeros, no division by zero.
+  // No leaflet area: the mean, fractions and G are undefined (NaN), not 0 as of flat leaflets.
   const LeafAngles none = leaf_angles(LeafAngleSums{});
-  CHECK(none.mean_inclination_deg == 0);
+  CHECK(none.leaf_area == 0);
+  CHECK(std::isnan(none.mean_inclination_deg));
+  CHECK(std::isnan(none.fraction[0]));
+  CHECK(std::isnan(none.g[0]));
 }

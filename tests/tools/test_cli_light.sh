@@ -102,6 +102,13 @@ timeout 60 "$canopy" light "$tmp/p" --sky-directions 0 --tile -0.3,-0.5,0.8,0.5 
 check "sun just above the bound traced" "0" "$?"
 timeout 60 "$canopy" light "$tmp/p" --sky-directions 0 --tile -0.3,-0.5,0.8,0.5 --latitude 52 --day 172 --hours 3.7517 >/dev/null 2>"$tmp/e"
 check "sunrise hour refused" "2 1" "$? $(grep -c 'a sun (--sun, --hours) at elevation' "$tmp/e")"
+# A stand without leaflets has no STAR and no leaf angles: null in the JSON, empty in light.csv,
+# "none" on the terminal (they read 0, as if its leaflets were all flat and lit nothing).
+printf 'name: t\naxiom: I(0.3,0.01)\norgans:\n  I: {prototype: cylinder, kind: internode}\n' > "$tmp/bare.yaml"
+"$canopy" light "$tmp/bare.yaml" --rows 2 --per-row 2 --sun 60,180 --sky-directions 8 --error 0.05 -o "$tmp/bare" >"$tmp/o" 2>&1
+check "no leaflets: undefined, not 0" "0 None None None None 2" \
+  "$? $(json "$tmp/bare/light.json" "j['star'], j['star_standard_error']") $(json "$tmp/bare/report.json" "j['leaf_angles']['mean_inclination_deg'], j['leaf_angles']['g'][0]['g']") $(grep -c 'none (no leaflets)' "$tmp/o")"
+check "no leaflets: light.csv star empty" ",," "$(sed -n 2p "$tmp/bare/light.csv" | grep -o ',,$')"
 # A grammar whose stand entry is a positions file has no lattice either: refused before growing.
 mkdir -p "$tmp/gp"
 sed 's/^stand:.*$//' "$g" > "$tmp/gp/t.yaml"
