@@ -8,11 +8,40 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
 
 namespace canopy::cli {
+namespace {
+
+/// `--sun E,A` as numbers in their shortest form ("60.0, 180" -> "60,180"), so that a sweep resumed
+/// with the same sun written otherwise is the same sweep; text that is not two numbers as it is
+/// (the light's own parser refuses it).
+std::string canonical_sun(const std::string& text) {
+  const auto comma = text.find(',');
+  if (comma == std::string::npos) return text;
+  const auto number = [](std::string t, double& v) {
+    t.erase(0, t.find_first_not_of(" \t")), t.erase(t.find_last_not_of(" \t") + 1);
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+    return !t.empty() && r.ec == std::errc() && r.ptr == t.data() + t.size() && std::isfinite(v);
+  };
+  double e = 0, a = 0;
+  if (!number(text.substr(0, comma), e) || !number(text.substr(comma + 1), a)) return text;
+  return fmt::format("{},{}", e, a);
+}
+
+/// The light's sun in settings read or made, canonical (older sweep.json files hold it as typed).
+void canonical_light(nlohmann::ordered_json& settings) {
+  if (settings.contains("light") && settings["light"].is_object() && settings["light"].contains("sun") &&
+      settings["light"]["sun"].is_string())
+    settings["light"]["sun"] = canonical_sun(settings["light"]["sun"].get<std::string>());
+}
+
+}  // namespace
+
 
 nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
   const KindMask collide = parse_collide_kinds(o.detect.collide);
@@ -42,7 +71,7 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
       {"collide", kinds},
       {"resolve", resolve},
       {"light", o.no_light ? nlohmann::ordered_json(nullptr)
-                           : nlohmann::ordered_json{{"sun", o.sun},
+                           : nlohmann::ordered_json{{"sun", canonical_sun(o.sun)},
                                                     {"sky", o.sky},
                                                     {"sky_directions", o.sky_directions},
                                                     {"error", o.light_error}}}};
@@ -55,7 +84,8 @@ void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& 
                           std::size_t finished_runs) {
   const std::string path = (std::filesystem::path(dir) / "sweep.json").string();
   if (finished_runs > 0 && std::filesystem::exists(path)) {
-    const nlohmann::ordered_json before = read_sweep_settings(path);
+    nlohmann::ordered_json before = read_sweep_settings(path);
+    canonical_light(before);
     // As written (a name's bytes that are not UTF-8 became U+FFFD), so that a resumed sweep
     // compares like with like.
     const nlohmann::ordered_json now = nlohmann::ordered_json::parse(json_text(settings));

@@ -131,6 +131,14 @@ grow --seeds 1 >/dev/null 2>&1 && grow --seeds 2 >/dev/null 2>&1
 check "grown grid: numbers" "0:3:1 1:4:1 2:3:2 3:4:2" "$(python3 -c "
 import csv; print(' '.join(r['run'] + ':' + r['steps'] + ':' + r['seed'] for r in csv.DictReader(open('$tmp/n/runs.csv'))))")"
 
+# The same sun written otherwise is the same sweep (compared as text, "60.0,180" was refused).
+sunny() { "$canopy" sweep "$g" --plant-spacing 0.45 --steps 3 --seeds 1 --rows 1 --per-row 2 --backend cpu --light-error 0.05 -o "$tmp/sun" "$@"; }
+sunny --sun 60,180 >/dev/null 2>&1
+sunny --sun " 60.0,180" >"$tmp/o" 2>&1
+check "sun written otherwise resumes" "0 1" "$? $(grep -c '^sweep: 0 runs made now' "$tmp/o")"
+sunny --sun 61,180 >/dev/null 2>"$tmp/e"
+check "another sun refused" "2 1" "$? $(grep -c 'made with other settings (light' "$tmp/e")"
+
 # A range's values are the decimals it names (0.1:0.3:0.1 made 0.30000000000000004); a sweep begun
 # with such a value resumes with it done and keeps one cell for it.
 tiny() { "$canopy" sweep "$g" --plant-spacing 0.1:0.3:0.1 --rows 1 --per-row 2 --seeds 1 --steps 3 --no-light --backend cpu -o "$tmp/r"; }
