@@ -7,8 +7,11 @@
 #include <unistd.h>
 #include <dirent.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -20,6 +23,19 @@ namespace canopy::folder_ops {
 /// A staging folder's name is ".NAME" + kStagingMark + "PID-START-K" beside the output, or
 /// kStagingMark + "PID-START-K" inside it when the output is committed in place.
 inline constexpr const char* kStagingMark = ".canopy-";
+
+/// The NAME part of a staging folder beside output NAME: NAME itself, or for a name too long to
+/// take the ~45 bytes a staging name adds within a name's 255 (a folder named with 226 or more
+/// bytes could not be written), its first 163 bytes, '~' and 16 hex digits of a hash of the whole
+/// name, so that two long names that begin alike keep apart. The run and the next run's clean-up
+/// name it alike.
+inline std::string staging_stem(const std::string& name) {
+  constexpr std::size_t kKeep = 163;
+  if (name.size() <= kKeep + 17) return name;
+  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
+  for (unsigned char c : name) h = (h ^ c) * 1099511628211ULL;
+  return name.substr(0, kKeep) + fmt::format("~{:016x}", h);
+}
 
 inline std::string why() { return std::strerror(errno); }
 

@@ -202,7 +202,7 @@ void StagedFolder::open(const std::string& dir) {
   remove_leftovers();
   finish_in_place_leftovers();
   staging_ = in_place_ ? fmt::format("{}/{}{}-{}", dir_, kStagingMark, process_tag(), g_staging_count++)
-                       : fmt::format("{}/.{}{}{}-{}", parent_, name_, kStagingMark, process_tag(),
+                       : fmt::format("{}/.{}{}{}-{}", parent_, staging_stem(name_), kStagingMark, process_tag(),
                                      g_staging_count++);
 }
 
@@ -280,7 +280,8 @@ void StagedFolder::remove_leftovers() {
   // ".NAME.canopy-TAG-K" of a process that has ended: an unfinished new set (the run died before
   // its swap; things of the user's it carried across are put back), or the earlier set after the
   // swap; "...-old" the earlier folder where renames stood in for the exchange.
-  const std::string prefix = "." + name_ + kStagingMark;
+  std::string prefix = ".";
+  prefix.append(staging_stem(name_)).append(kStagingMark);
   std::vector<std::string> dead;
   for (const std::string& e : names_in(parent_)) {
     if (!e.starts_with(prefix)) continue;

@@ -148,6 +148,13 @@ cp "$g" "$tmp/field/report.json"
 "$canopy" stand "$tmp/field/report.json" --rows 1 --per-row 2 --steps 8 --backend cpu -o "$tmp/field" >/dev/null 2>"$tmp/e"
 check "grammar in the output folder refused" "2 1" "$? $(grep -c "report.json, the grammar this run reads" "$tmp/e")"
 
+# A folder named with 240 bytes (a name may have 255): its staging folder's name is shortened to
+# fit (it passed the limit: "File name too long"); made, then replaced, nothing left beside it.
+mkdir -p "$tmp/long" && long="$tmp/long/$(printf 'a%.0s' $(seq 240))"
+"$canopy" stand "$g" --rows 1 --per-row 2 --steps 8 --backend cpu -o "$long" >/dev/null 2>"$tmp/e" &&
+  "$canopy" stand "$g" --rows 1 --per-row 3 --steps 8 --backend cpu -o "$long" >/dev/null 2>>"$tmp/e"
+check "240-byte folder name" "0 4 1" "$? $(wc -l < "$long/plants.csv") $(ls -A "$tmp/long" | wc -l)"
+
 # A folder of the user's that holds no stand (no organs.csv): their files of a stand file's name
 # stay unless the run writes them again.
 mkdir -p "$tmp/mine" && echo "my mesh" > "$tmp/mine/stand.obj" && echo "notes" > "$tmp/mine/notes.txt"
