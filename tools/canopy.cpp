@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help and --version print and exit 0 as CLI11 does; a bad command line is one line in
     // the form of every other error, with CLI11's exit code.
-    if (e.get_exit_code() == 0) return app.exit(e);
+    if (e.get_exit_code() == 0) return canopy::cli::checked_output(app.exit(e));
     fmt::print(stderr, "{}\n", canopy::cli::parse_error_line(e));
     return e.get_exit_code();
   }

@@ -104,7 +104,13 @@ if [ -w /dev/full ]; then
   check "info > /dev/full" "1:canopy: error: writing standard output failed: No space left on device" "$rc:$(err)"
   timeout 60 "$canopy" derive "$g" --steps 2 >/dev/full 2>"$tmp/err"; rc=$?
   check "derive > /dev/full" "1:canopy: error: writing standard output failed: No space left on device" "$rc:$(err)"
+  for words in "--help" "--version" "stand --help"; do
+    timeout 60 "$canopy" $words >/dev/full 2>"$tmp/err"; rc=$?
+    check "$words > /dev/full" "1:1" "$rc:$(grep -c '^canopy: error: writing standard output failed' "$tmp/err")"
+  done
 fi
+timeout 60 "$canopy" stand --help >&- 2>"$tmp/err"; rc=$?
+check "stand --help >&-" "1" "$rc"
 timeout 60 "$canopy" info >&- 2>"$tmp/err"; rc=$?
 check "info >&-" "1:canopy: error: writing standard output failed: Bad file descriptor" "$rc:$(err)"
 timeout 60 "$canopy" stand "$g" --steps 4 --rows 1 --per-row 2 --backend cpu -o closed >&- 2>"$tmp/err"; rc=$?
