@@ -252,7 +252,14 @@ class Loader {
         ignored.push_back(g_.symbols.intern(n));
       }
     if (const auto& l = root["modules"])
-      for (const auto& item : l) g_.symbols.intern(src_.string(item, "modules"));
+      for (const auto& item : l) {
+        const std::string n = src_.string(item, "modules");
+        try {
+          g_.symbols.intern(n);
+        } catch (const std::length_error& e) {
+          fail_at(src_.at(item), "{}: '{}' is one more", e.what(), n);
+        }
+      }
     g_.ignored.assign(g_.symbols.size(), 0);
     for (Symbol s : ignored) g_.ignored[s] = 1;
     for (RuleTable* t : {&g_.productions, &g_.interpretation}) {

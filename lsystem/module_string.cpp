@@ -12,7 +12,7 @@ SymbolTable::SymbolTable() {
 
 Symbol SymbolTable::intern(const std::string& name) {
   if (auto it = index_.find(name); it != index_.end()) return it->second;
-  if (names_.size() >= 0xffff) throw std::runtime_error("too many distinct module names (at most 65535)");
+  if (names_.size() >= 0xffff) throw std::length_error("too many distinct module names (at most 65535)");
   const auto id = static_cast<Symbol>(names_.size());
   names_.push_back(name);
   arity_.push_back(-1);

@@ -344,3 +344,14 @@ TEST_CASE("an organ no rule writes is a located note, and the shipped grammars h
     CHECK(load_grammar(source(file)).notes.empty());
   }
 }
+
+TEST_CASE("too many distinct module names: located where the one too many stands") {
+  // 65,535 names at most (brackets included): past them, the name that is one too many is named
+  // at its place (here in the module list; a rule's names are located alike).
+  std::string list = "modules: [";
+  for (int i = 0; i < 65600; ++i) list += (i ? ", M" : "M") + std::to_string(i);
+  list += "]\naxiom: M1\n";
+  const std::string e = error_of(list);
+  CHECK(e.starts_with("test.yaml:1:"));
+  CHECK(e.find("too many distinct module names (at most 65535): 'M65533' is one more") != std::string::npos);
+}
