@@ -95,6 +95,13 @@ class Loader {
   }
 
   void read_constants(const YAML::Node& node) {
+    // One value a name: a second --set of it was taken over the first without a word.
+    for (std::size_t i = 0; i < options_.overrides.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if (options_.overrides[i].name == options_.overrides[j].name)
+          throw std::invalid_argument(fmt::format("--set {}: given twice ({:g} and {:g}); give it once",
+                                                  options_.overrides[i].name, options_.overrides[j].value,
+                                                  options_.overrides[i].value));
     std::vector<bool> applied(options_.overrides.size(), false);
     if (node && !node.IsNull()) {  // `constants:` with nothing after it: none
       src_.check_map(node, "constants", "");

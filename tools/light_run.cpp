@@ -38,6 +38,11 @@ std::vector<SunSpec> parse_suns(const LightOptions& o) {
   std::vector<SunSpec> out;
   for (const std::string& s : o.suns) {
     const auto [e, a] = number_pair("--sun", s);
+    // One beam a direction, as --hours takes an hour once: a second was traced again and counted
+    // as a sun of its own.
+    for (const SunSpec& y : out)
+      if (y.elevation_deg == e && y.azimuth_deg == a)
+        throw std::invalid_argument(fmt::format("--sun {}: given twice; give each sun once", s));
     SunSpec x;
     x.elevation_deg = e, x.azimuth_deg = a;
     out.push_back(x);

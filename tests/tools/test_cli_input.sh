@@ -118,6 +118,10 @@ check "stand >&-: files as with output" "1:0" "$rc:$(grep -c 'stand:' closed/org
 run stand "$g" --no-such-option -o s
 check "unknown option: one line" "109:1:1" "$rc:$(grep -c '^canopy: error: ' "$tmp/err"):$(lines)"
 
+# A constant set twice is refused (the last one was taken, both echoed in report.json).
+run derive "$g" --steps 1 --set nodes=10 --set nodes=12
+check "--set twice" "2:canopy: error: --set nodes: given twice (10 and 12); give it once" "$rc:$(err)"
+
 # Thread counts: refused past the maximum instead of crashing in libgomp.
 run stand "$g" --steps 4 --threads 100000 -o s
 check "stand --threads 100000" "105:canopy: error: --threads: needs a whole number from 0 to 1024, got 100000" "$rc:$(err)"

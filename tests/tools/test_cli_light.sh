@@ -109,6 +109,9 @@ printf 'name: t\naxiom: I(0.3,0.01)\norgans:\n  I: {prototype: cylinder, kind: i
 check "no leaflets: undefined, not 0" "0 None None None None 2" \
   "$? $(json "$tmp/bare/light.json" "j['star'], j['star_standard_error']") $(json "$tmp/bare/report.json" "j['leaf_angles']['mean_inclination_deg'], j['leaf_angles']['g'][0]['g']") $(grep -c 'none (no leaflets)' "$tmp/o")"
 check "no leaflets: light.csv star empty" ",," "$(sed -n 2p "$tmp/bare/light.csv" | grep -o ',,$')"
+# A sun given twice is refused, as an hour given twice is (it was traced twice, two suns).
+"$canopy" light "$tmp/p" --sky-directions 0 --tile -0.3,-0.5,0.8,0.5 --sun 60,180 --sun 60.0,180 >/dev/null 2>"$tmp/e"
+check "sun given twice" "2 canopy: error: --sun 60.0,180: given twice; give each sun once" "$? $(cat "$tmp/e")"
 # A grammar whose stand entry is a positions file has no lattice either: refused before growing.
 mkdir -p "$tmp/gp"
 sed 's/^stand:.*$//' "$g" > "$tmp/gp/t.yaml"
