@@ -142,9 +142,10 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
     if (!(v >= 0) || !std::isfinite(v))
       throw std::invalid_argument(
           fmt::format("the {} must be a finite number of metres, not negative (got {})", name, v));
-  // A pair's second row lies between its first and the next pair's: a gap of 0, or of the row
-  // spacing or more, stacked rows on one line or put them out of order, without a word.
-  if (l.double_rows && (*l.double_rows <= 0 || (l.rows > 2 && *l.double_rows >= l.row_spacing)))
+  // A pair's second row lies between its first and the next pair's (periodic light repeats even a
+  // single pair every row spacing): a gap of 0, or of the row spacing or more, stacked rows on one
+  // line or put them out of order, without a word.
+  if (l.double_rows && (*l.double_rows <= 0 || *l.double_rows >= l.row_spacing))
     throw std::invalid_argument(fmt::format(
         "--double-rows {:g} m: the two rows of a pair must be more than 0 m and less than the row "
         "spacing ({:g} m, from pair to pair) apart",

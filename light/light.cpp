@@ -347,7 +347,7 @@ double copies_crossed(Vec3d toward, double height, double px, double py) {
 /// triangle as far, so such a sun took minutes and gigabytes for light it hardly brings (a
 /// horizontal surface gets sin(elevation) of it). Names the lowest elevation taken there.
 void check_low_sun(double elevation_deg, double azimuth_deg, double height, double px, double py,
-                   const char* what) {
+                   const char* what, bool sky) {
   const double n = copies_crossed(toward(elevation_deg, azimuth_deg), height, px, py);
   if (n <= kMaxRayCopies) return;
   double lo = elevation_deg, hi = 90;  // the lowest elevation within the bound, at this azimuth
@@ -355,11 +355,16 @@ void check_low_sun(double elevation_deg, double azimuth_deg, double height, doub
     const double mid = 0.5 * (lo + hi);
     (copies_crossed(toward(mid, azimuth_deg), height, px, py) <= kMaxRayCopies ? hi : lo) = mid;
   }
+  // The bound shown rounded up (3 figures), so that the value printed is taken.
+  const double scale = std::pow(10.0, std::floor(std::log10(hi)) - 2);
+  const double shown = std::ceil(hi / scale) * scale;
   throw std::invalid_argument(fmt::format(
       "{} at elevation {:g} degrees (azimuth {:g}): its rays cross about {:.3g} copies of the {:.3g} x {:.3g} m "
       "tile on their way down through the stand ({:.3g} m tall; at most {:g}); a sun this low lights the "
-      "stand hardly at all: give one above {:.3g} degrees here, or a larger tile",
-      what, elevation_deg, azimuth_deg, n, px, py, height, kMaxRayCopies, hi));
+      "stand hardly at all: {}",
+      what, elevation_deg, azimuth_deg, n, px, py, height, kMaxRayCopies,
+      sky ? "give fewer --sky-directions (their lowest ring sinks as they grow), or a larger tile"
+          : fmt::format("give one above {:.3g} degrees here, or a larger tile", shown)));
 }
 
 }  // namespace
@@ -396,11 +401,11 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
     const double height = scene.hi().z - std::min(0.0, scene.lo().z);
     for (const Beam& b : cfg.suns)
       check_low_sun(b.elevation_deg, b.azimuth_deg, height, cfg.tile.width(), cfg.tile.height(),
-                    "a sun (--sun, --hours)");
+                    "a sun (--sun, --hours)", false);
     if (cfg.sky_directions > 0)
       for (const SkyDirection& d : sky_directions(cfg.sky, cfg.sky_directions))
         check_low_sun(d.elevation_deg, d.azimuth_deg, height, cfg.tile.width(), cfg.tile.height(),
-                      "--sky-directions: a sky direction");
+                      "--sky-directions: a sky direction", true);
   }
   const OrganIndex organs(stand);
   r.scene_s = seconds_since(t_scene);

@@ -40,8 +40,10 @@ std::vector<SunSpec> parse_suns(const LightOptions& o) {
     const auto [e, a] = number_pair("--sun", s);
     // One beam a direction, as --hours takes an hour once: a second was traced again and counted
     // as a sun of its own.
+    // Azimuths a turn apart are one direction (60,180 and 60,-180).
+    const auto turn = [](double az) { return std::fmod(std::fmod(az, 360.0) + 360.0, 360.0); };
     for (const SunSpec& y : out)
-      if (y.elevation_deg == e && y.azimuth_deg == a)
+      if (y.elevation_deg == e && turn(y.azimuth_deg) == turn(a))
         throw std::invalid_argument(fmt::format("--sun {}: given twice; give each sun once", s));
     SunSpec x;
     x.elevation_deg = e, x.azimuth_deg = a;

@@ -426,6 +426,8 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     return check_stand(stand, lib, dreq, contacts, resolved.has_value(), o.detect.threads, o.ends_process, gpu,
                        std::move(b));
   });
+  // --threads N bounds every computing phase to N threads: then the two do not overlap.
+  if (o.detect.threads > 0) checking.wait();
   const auto t_export = std::chrono::steady_clock::now();
   write_stand_files(stand, lib, formats, glb, files);
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));

@@ -268,6 +268,17 @@ def test_light_equals_the_command_line(cli_stand, tmp_path):
         canopy.Stand.read(folder).light(sunz=[(5, 10)])
 
 
+def test_light_of_a_stand_without_leaflets_is_undefined_not_zero(tmp_path):
+    # STAR and leaf angles of no leaflet area: None in the results, NaN per plant (light.csv's
+    # empty cells once stopped Stand.light with a parse error).
+    bare = tmp_path / "bare.yaml"
+    bare.write_text("name: t\naxiom: I(0.3,0.01)\norgans:\n  I: {prototype: cylinder, kind: internode}\n")
+    got = canopy.Stand.grow(bare, rows=2, per_row=2, threads=1).light(suns=[(60, 180)], sky_directions=8, error=0.05)
+    assert got["star"] is None and got["leaf_angles"]["mean_inclination_deg"] is None
+    assert np.isnan(got["per_plant"]["star"]).all()
+    assert (got["per_plant"]["sun1_fraction"] >= 0).all()
+
+
 def test_an_export_replaces_the_stand_and_keeps_the_rest(tmp_path):
     out = tmp_path / "out"
     canopy.stand(TOMATO, out, rows=1, per_row=2, steps=10, backend="cpu")

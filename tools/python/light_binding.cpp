@@ -10,6 +10,8 @@
 
 #include <pybind11/stl.h>
 
+#include <limits>
+
 #include <sstream>
 
 namespace canopy::python {
@@ -28,7 +30,9 @@ py::dict csv_columns(const std::string& csv) {
   std::vector<std::vector<double>> cols(names.size());
   while (std::getline(in, line)) {
     const std::vector<std::string> cells = split_list(line);
-    for (std::size_t c = 0; c < names.size(); ++c) cols[c].push_back(std::stod(cells.at(c)));
+    // An empty cell (the STAR of a plant without leaflets) is undefined: NaN.
+    for (std::size_t c = 0; c < names.size(); ++c)
+      cols[c].push_back(cells.at(c).empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(cells.at(c)));
   }
   py::dict out;
   for (std::size_t c = 0; c < names.size(); ++c)

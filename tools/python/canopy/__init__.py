@@ -78,7 +78,8 @@ def sweep(grammar, out, progress=None, **options):
 
 
 def sweep_rows(out, summary=False):
-    """The rows of OUT/runs.csv (or OUT/summary.csv) as a list of dicts, numbers as floats."""
+    """The rows of OUT/runs.csv (or OUT/summary.csv) as a list of dicts, numbers as floats (an
+    empty STAR or mean inclination, of a stand without leaflets, as nan)."""
     import csv
     import os
 
@@ -86,6 +87,9 @@ def sweep_rows(out, summary=False):
     with open(os.path.join(str(out), "summary.csv" if summary else "runs.csv"), newline="") as f:
         for r in csv.DictReader(f):
             for k, v in r.items():
+                if v == "" and (k.startswith("star_") or k.startswith("mean_inclination_")):
+                    r[k] = float("nan")
+                    continue
                 try:
                     r[k] = float(v)
                 except (TypeError, ValueError):
