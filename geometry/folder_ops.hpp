@@ -7,11 +7,12 @@
 #include <unistd.h>
 #include <dirent.h>
 
+#include "geometry/fnv1a.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -32,9 +33,7 @@ inline constexpr const char* kStagingMark = ".canopy-";
 inline std::string staging_stem(const std::string& name) {
   constexpr std::size_t kKeep = 163;
   if (name.size() <= kKeep + 17) return name;
-  std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
-  for (unsigned char c : name) h = (h ^ c) * 1099511628211ULL;
-  return name.substr(0, kKeep) + fmt::format("~{:016x}", h);
+  return name.substr(0, kKeep) + fmt::format("~{:016x}", fnv1a(name));
 }
 
 inline std::string why() { return std::strerror(errno); }

@@ -202,8 +202,8 @@ void StagedFolder::open(const std::string& dir) {
   remove_leftovers();
   finish_in_place_leftovers();
   staging_ = in_place_ ? fmt::format("{}/{}{}-{}", dir_, kStagingMark, process_tag(), g_staging_count++)
-                       : fmt::format("{}/.{}{}{}-{}", parent_, staging_stem(name_), kStagingMark, process_tag(),
-                                     g_staging_count++);
+                       : fmt::format("{}/.{}{}{}-{}", parent_, staging_stem(name_), kStagingMark,
+                                     process_tag(), g_staging_count++);
 }
 
 void StagedFolder::make() {

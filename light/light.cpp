@@ -359,7 +359,8 @@ void check_low_sun(double elevation_deg, double azimuth_deg, double height, doub
   const double scale = std::pow(10.0, std::floor(std::log10(hi)) - 2);
   const double shown = std::ceil(hi / scale) * scale;
   throw std::invalid_argument(fmt::format(
-      "{} at elevation {:g} degrees (azimuth {:g}): its rays cross about {:.3g} copies of the {:.3g} x {:.3g} m "
+      "{} at elevation {:g} degrees (azimuth {:g}): its rays cross about {:.3g} copies of the {:.3g} x "
+      "{:.3g} m "
       "tile on their way down through the stand ({:.3g} m tall; at most {:g}); a sun this low lights the "
       "stand hardly at all: {}",
       what, elevation_deg, azimuth_deg, n, px, py, height, kMaxRayCopies,

@@ -3,6 +3,7 @@
 // sequences and scalar values, each scalar with its length), so comments, blank lines,
 // indentation, quoting and block or flow style change nothing, while any key, value or their
 // order does.
+#include "geometry/fnv1a.hpp"
 #include "lsystem/grammar.hpp"
 #include "lsystem/yaml_source.hpp"
 
@@ -15,11 +16,7 @@
 namespace canopy {
 namespace {
 
-std::string fnv1a(std::string_view bytes) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (const char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
-  return fmt::format("{:016x}", h);
-}
+std::string hex_digest(std::string_view bytes) { return fmt::format("{:016x}", fnv1a(bytes)); }
 
 /// The tree in one form whatever its style: {key:value,...} [item,...] and LENGTH:scalar.
 void canonical(const YAML::Node& node, std::string& out) {
@@ -56,9 +53,9 @@ std::string grammar_digest(const std::string& path) {
   const YAML::Node root = parse_yaml_document(read_grammar_file(path), path);
   std::string form;
   canonical(root, form);
-  return fnv1a(form);
+  return hex_digest(form);
 }
 
-std::string grammar_text_digest(const std::string& path) { return fnv1a(read_grammar_file(path)); }
+std::string grammar_text_digest(const std::string& path) { return hex_digest(read_grammar_file(path)); }
 
 }  // namespace canopy

@@ -77,15 +77,6 @@ class Loader {
   }
 
  private:
-  /// The symbol of `name`, the table's limit on names said at `node`, where the name stands.
-  Symbol intern_at(const YAML::Node& node, const std::string& name) {
-    try {
-      return g_.symbols.intern(name);
-    } catch (const std::length_error& e) {
-      fail_at(src_.at(node), "{}: '{}' is one more", e.what(), name);
-    }
-  }
-
   /// An organ whose symbol no successor writes grows nothing: a misspelt symbol (organs: {Lf: ...}
   /// beside productions writing L) would give a stand without leaflets and no word of it.
   void note_organs_never_written() {
@@ -237,7 +228,7 @@ class Loader {
                   organ.joint_limit_deg);
       }
       if (e["lod"]) organ.lod = static_cast<int>(src_.integer(e["lod"], "lod", 1, kMaxLod));
-      const Symbol sym = intern_at(kv.first, name);
+      const Symbol sym = g_.symbols.intern(name, src_.at(kv.first));
       // A leaflet takes 2 to 5 (its curvature trailing); the name keeps the count it is used with.
       const int least = arity_of(organ.prototype), most = max_arity_of(organ.prototype);
       int want = least;
@@ -259,16 +250,16 @@ class Loader {
 
   void read_names(const YAML::Node& root) {
     if (const auto& c = root["compound_leaf"])
-      g_.compound_leaf = intern_at(c, src_.string(c, "compound_leaf"));
+      g_.compound_leaf = g_.symbols.intern(src_.string(c, "compound_leaf"), src_.at(c));
     std::vector<Symbol> ignored;
     if (const auto& l = root["ignore"])
       for (const auto& item : l) {
         const std::string n = src_.string(item, "ignore");
         if (n == "[" || n == "]") fail_at(src_.at(item), "brackets cannot be ignored");
-        ignored.push_back(intern_at(item, n));
+        ignored.push_back(g_.symbols.intern(n, src_.at(item)));
       }
     if (const auto& l = root["modules"])
-      for (const auto& item : l) intern_at(item, src_.string(item, "modules"));
+      for (const auto& item : l) g_.symbols.intern(src_.string(item, "modules"), src_.at(item));
     g_.ignored.assign(g_.symbols.size(), 0);
     for (Symbol s : ignored) g_.ignored[s] = 1;
     for (RuleTable* t : {&g_.productions, &g_.interpretation}) {

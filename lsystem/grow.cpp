@@ -49,14 +49,6 @@ void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit
                     n, need / 1e9, first.turtle.organs.size(), static_cast<double>(limit) / 1e9));
 }
 
-/// The grammar file a placement names (relative to the positions file), or the stand's.
-std::string grammar_path(const GrowRequest& req, const std::string& name) {
-  if (name.empty()) return req.grammar;
-  if (!req.relative_to.empty() && std::filesystem::path(name).is_relative())
-    return (std::filesystem::path(req.relative_to) / name).string();
-  return name;
-}
-
 /// The grammar a placement names; a file that cannot be opened is reported with the positions
 /// file's line that names it.
 Grammar load_placement_grammar(const GrowRequest& req, const PlantPlacement& pl) {
@@ -100,6 +92,13 @@ void grow_plant(const Grammar& g, const PlantPlacement& pl, const GrowRequest& r
 }
 
 }  // namespace
+
+std::string grammar_path(const GrowRequest& req, const std::string& name) {
+  if (name.empty()) return req.grammar;
+  if (!req.relative_to.empty() && std::filesystem::path(name).is_relative())
+    return (std::filesystem::path(req.relative_to) / name).string();
+  return name;
+}
 
 void check_stand_fits(const GrowRequest& req, std::size_t plants) {
   if (req.plants.empty()) return;

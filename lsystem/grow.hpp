@@ -32,6 +32,10 @@ struct GrowTimings {
   double derive_s = 0, turtle_s = 0, place_s = 0;
 };
 
+/// The grammar file a placement names (`name`, relative to the positions file), or the stand's
+/// where it names none.
+std::string grammar_path(const GrowRequest& req, const std::string& name);
+
 /// Throws GrammarError for grammar problems (an organ's parameter out of range located at the
 /// expression that wrote it), std::invalid_argument for a level of detail outside 1..kMaxLod,
 /// steps outside 0..kMaxSteps, a thread count past max_threads() (or OMP_NUM_THREADS past it when

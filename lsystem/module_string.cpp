@@ -1,5 +1,7 @@
 #include "lsystem/module_string.hpp"
 
+#include "lsystem/error.hpp"
+
 #include <stdexcept>
 
 namespace canopy {
@@ -18,6 +20,12 @@ Symbol SymbolTable::intern(const std::string& name) {
   arity_.push_back(-1);
   index_.emplace(name, id);
   return id;
+}
+
+Symbol SymbolTable::intern(const std::string& name, const SourcePos& at) {
+  if (names_.size() >= 0xffff && !index_.count(name))
+    fail_at(at, "too many distinct module names (at most 65535): '{}' is one more", name);
+  return intern(name);
 }
 
 int SymbolTable::find(const std::string& name) const {

@@ -92,10 +92,14 @@ struct ModuleString {
 };
 
 /// Module names and their parameter counts, shared by a grammar and the strings it derives.
+struct SourcePos;
+
 class SymbolTable {
  public:
-  /// The id of `name`, added if new.
+  /// The id of `name`, added if new (std::length_error past 65,535 names).
   Symbol intern(const std::string& name);
+  /// The same for a name a grammar writes at `at`: past the limit, a GrammarError located there.
+  Symbol intern(const std::string& name, const SourcePos& at);
   /// The id of `name` or -1.
   int find(const std::string& name) const;
   const std::string& name(Symbol s) const { return names_[s]; }

@@ -93,26 +93,13 @@ NameResolver RuleBuilder::resolver(const std::vector<std::string>* formals) cons
   };
 }
 
-namespace {
-
-/// The symbol of `name`, the table's limit on names said at `pos`, where the name stands.
-Symbol intern_at(SymbolTable& symbols, const std::string& name, const SourcePos& pos) {
-  try {
-    return symbols.intern(name);
-  } catch (const std::length_error& e) {
-    fail_at(pos, "{}: '{}' is one more", e.what(), name);
-  }
-}
-
-}  // namespace
-
 std::vector<SuccessorModule> RuleBuilder::compile_modules(std::string_view text, const Locate& locate,
                                                           std::size_t base, const NameResolver& resolve) {
   std::vector<SuccessorModule> out;
   for (const RawModule& raw : lexer_.lex(text, locate(base))) {
     SuccessorModule m;
     m.pos = locate(base + raw.offset);
-    m.symbol = intern_at(g_.symbols, raw.name, m.pos);
+    m.symbol = g_.symbols.intern(raw.name, m.pos);
     note_arity(m.symbol, static_cast<int>(raw.args.size()), m.pos);
     for (const auto& a : raw.args) {
       const std::size_t lead = leading_blanks(a.text);
@@ -150,7 +137,7 @@ std::vector<ModulePattern> RuleBuilder::patterns(std::string_view text, const Lo
   for (const RawModule& raw : lexer_.lex(text, locate(base))) {
     ModulePattern p;
     p.pos = locate(base + raw.offset);
-    p.symbol = intern_at(g_.symbols, raw.name, p.pos);
+    p.symbol = g_.symbols.intern(raw.name, p.pos);
     p.first_slot = static_cast<int>(formals.size());
     if (p.symbol == g_.symbols.open_bracket() || p.symbol == g_.symbols.close_bracket())
       fail_at(p.pos,

@@ -43,21 +43,20 @@ bool TurnSearch::attempt(Candidate& c, const Vec3d& a, double deg, Mat3d& local,
     const std::uint32_t yi = pairs.y[p];
     const std::int32_t x = c.moving[i], y = c.keep[yi];
     if (box_of != x) ox = carried_box(boxes[static_cast<std::size_t>(x)], turn, clearance), box_of = x;
-    const bool met = set == 0;
+    const float gap = set == 0 ? clearance : detect_clearance;  // the organs met, or neighbours
     // The kept organ's box grown by the clearance it keeps, made here rather than kept per
     // candidate (a copy per neighbour of every candidate: 0.24 GB of the 10,000-plant CPU run's
     // 2.2 GB peak, heaptrack): the same bits either way, as the device's turned_boxes_meet.
-    const Obb yb = grown(boxes[static_cast<std::size_t>(y)], met ? clearance : detect_clearance);
+    const Obb yb = grown(boxes[static_cast<std::size_t>(y)], gap);
     if (!obb_overlap(ox, yb, c.keep_off[yi])) return false;
     if (config.level == ContactLevel::organ) return true;
     const Affine3f& tx_now = pose(x);
     const Affine3f& ty = s.transforms[static_cast<std::size_t>(y)];
-    const float gap = met ? clearance : detect_clearance;
     // A neighbour pair without a witness gets one when its test finds a touch.
     Witness fresh;
     Witness* known = pairs.find(p);
-    const bool touch = organs_touch_either(s, lib, x, tx_now, y, ty, gap, scratch, known ? known : &fresh,
-                                           witness_tried);
+    const bool touch =
+        organs_touch_either(s, lib, x, tx_now, y, ty, gap, scratch, known ? known : &fresh, witness_tried);
     if (!known && fresh.latest >= 0) pairs.make(p) = fresh;
     return touch;
   };

@@ -28,7 +28,8 @@ Command add_detect(CLI::App& root) {
   o->detect.add_to(*app);
   return {app, [o]() {
             const ThreadLimit thread_limit(o->detect.threads);
-            if (!o->csv.empty()) refuse_stand_file("--csv", o->csv), refuse_file_place("--csv", o->csv, "CSV");
+            if (!o->csv.empty())
+              refuse_stand_file("--csv", o->csv), refuse_file_place("--csv", o->csv, "CSV");
             const auto t0 = std::chrono::steady_clock::now();
             const Stand stand = read_stand(o->dir);
             const double read_s = seconds_since(t0);

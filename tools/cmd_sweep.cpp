@@ -234,16 +234,16 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       check_sweep_settings(o.out, sweep_settings(o), done.size());
       // A run keeps its number, a retried one too; runs new to the folder take the numbers after
       // the largest (numbering them by their place in a grown grid gave two runs one number).
-      std::map<std::string, std::string> numbers;
+      std::map<std::string, std::string> held;  // run key -> number, as rank 0 read them
       std::uint64_t next = 0;
       for (const RunRow& r : done) {
         const std::string& n = r.at("run");
         std::uint64_t v = 0;
         if (std::from_chars(n.data(), n.data() + n.size(), v).ptr == n.data() + n.size() && !n.empty())
           next = std::max(next, v + 1);
-        numbers[run_key(r)] = n;
+        held[run_key(r)] = n;
       }
-      a["numbers"] = numbers, a["next"] = next;
+      a["numbers"] = held, a["next"] = next;
       if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
       adopt_spacings(done, cells);
       write_runs(runs_path, done);  // drops a torn last line

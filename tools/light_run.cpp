@@ -16,32 +16,14 @@
 #include <fstream>
 
 namespace canopy::cli {
-namespace {
-
-/// "a,b" -> {a, b}; throws naming `option`.
-std::pair<double, double> number_pair(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  const double a = leading_number(text, used);
-  if (used == 0 || used >= text.size() || text[used] != ',')
-    throw std::invalid_argument(fmt::format("{}: '{}' is not ELEVATION,AZIMUTH", option, text));
-  const std::string rest = text.substr(used + 1);
-  std::size_t used2 = 0;
-  const double b = leading_number(rest, used2);
-  if (used2 == 0 || used2 != rest.size() || !std::isfinite(a) || !std::isfinite(b))
-    throw std::invalid_argument(fmt::format("{}: '{}' is not ELEVATION,AZIMUTH", option, text));
-  return {a, b};
-}
-
-}  // namespace
 
 std::vector<SunSpec> parse_suns(const LightOptions& o) {
   std::vector<SunSpec> out;
+  // One beam a direction, as --hours takes an hour once (a second was traced again and counted as
+  // a sun of its own); azimuths a turn apart are one direction (60,180 and 60,-180).
+  const auto turn = [](double az) { return std::fmod(std::fmod(az, 360.0) + 360.0, 360.0); };
   for (const std::string& s : o.suns) {
     const auto [e, a] = number_pair("--sun", s);
-    // One beam a direction, as --hours takes an hour once: a second was traced again and counted
-    // as a sun of its own.
-    // Azimuths a turn apart are one direction (60,180 and 60,-180).
-    const auto turn = [](double az) { return std::fmod(std::fmod(az, 360.0) + 360.0, 360.0); };
     for (const SunSpec& y : out)
       if (y.elevation_deg == e && turn(y.azimuth_deg) == turn(a))
         throw std::invalid_argument(fmt::format("--sun {}: given twice; give each sun once", s));
@@ -270,7 +252,8 @@ LightOutcome run_light(LightOptions o, bool print) {
   const light::LightResult& r = *result;
   if (print) {
     const auto pm = [](const light::Estimate& e) {
-      return std::isnan(e.value) ? std::string("none (no leaflets)") : fmt::format("{:.4f} +- {:.4f}", e.value, e.se);
+      return std::isnan(e.value) ? std::string("none (no leaflets)")
+                                 : fmt::format("{:.4f} +- {:.4f}", e.value, e.se);
     };
     fmt::print(
         "light: {} plants, tile {:.3g} x {:.3g} m ({}), LAI {:.3f}, {} rays in {:.2f} s (scene {:.2f} s)\n",
@@ -295,8 +278,7 @@ LightOutcome run_light(LightOptions o, bool print) {
     }
     if (std::isnan(r.leaf_angles.mean_inclination_deg))
       fmt::print("  {:<34} none (no leaflets)\n", "mean leaflet inclination");
-    else
-      fmt::print("  {:<34} {:.1f} deg\n", "mean leaflet inclination", r.leaf_angles.mean_inclination_deg);
+    else fmt::print("  {:<34} {:.1f} deg\n", "mean leaflet inclination", r.leaf_angles.mean_inclination_deg);
     if (r.organs_skipped)
       fmt::print("  note: {} organs flattened to nothing were left out\n", r.organs_skipped);
     fmt::print("wrote {}/light.json and {}/light.csv\n", out.dir, out.dir);

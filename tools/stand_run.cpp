@@ -119,7 +119,8 @@ void refuse_file_place(const std::string& option, const std::string& path, const
   const fs::path out(path);
   const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
   if (fs::is_directory(out))
-    throw std::invalid_argument(fmt::format("{} {}: a folder; name the {} file to write", option, path, kind));
+    throw std::invalid_argument(
+        fmt::format("{} {}: a folder; name the {} file to write", option, path, kind));
   if (!fs::is_directory(parent))
     throw std::invalid_argument(fmt::format("{} {}: {} to write it in", option, path,
                                             fs::exists(parent) ? parent.string() + " is a file, not a folder"
@@ -132,10 +133,7 @@ std::vector<RunInput> plan_inputs(const StandPlan& plan, const StandOptions& o) 
   std::set<std::string> named;
   for (const PlantPlacement& p : plan.request.plants)
     if (!p.grammar.empty() && named.insert(p.grammar).second)
-      in.push_back({"a grammar the positions file names",
-                    std::filesystem::path(p.grammar).is_relative() && !plan.request.relative_to.empty()
-                        ? (std::filesystem::path(plan.request.relative_to) / p.grammar).string()
-                        : p.grammar});
+      in.push_back({"a grammar the positions file names", grammar_path(plan.request, p.grammar)});
   return in;
 }
 
@@ -286,7 +284,7 @@ namespace {
 
 /// What the report needs besides the files (check_stand).
 struct StandChecks {
-  Contacts after;
+  std::optional<Contacts> after;  // the detection after resolution (none without one)
   double detect_s = 0, detect_peak_gb = 0;
   std::string backend;
   nlohmann::ordered_json device;
@@ -294,12 +292,11 @@ struct StandChecks {
   nlohmann::ordered_json leaf_angles;
 };
 
-/// The stand's detection after resolution (`resolved`; else the first one's `contacts` stand),
-/// the backend's name and device, then the counts and leaf angles, on `threads` (0: all). Where
-/// `ends_process`, the backend (and the context of `gpu`, its device: -1 none) is let go as soon
-/// as the detection is made.
-StandChecks check_stand(const Stand& stand, PrototypeLibrary& lib, const DetectRequest& dreq,
-                        const Contacts& contacts, bool resolved, int threads, bool ends_process, [[maybe_unused]] int gpu,
+/// The stand's detection after resolution (where `resolved`), the backend's name and device, then
+/// the counts and leaf angles, on `threads` (0: all). Where `ends_process`, the backend (and the
+/// context of `gpu`, its device: -1 none) is let go as soon as the detection is made.
+StandChecks check_stand(const Stand& stand, PrototypeLibrary& lib, const DetectRequest& dreq, bool resolved,
+                        int threads, bool ends_process, [[maybe_unused]] int gpu,
                         std::unique_ptr<DetectionBackend> backend) {
   const ThreadLimit thread_limit(threads);  // the export's default team is bounded on its own thread
   StandChecks c;
@@ -309,8 +306,6 @@ StandChecks check_stand(const Stand& stand, PrototypeLibrary& lib, const DetectR
     c.after = backend->detect(stand, dreq);
     c.detect_s = seconds_since(t);
     c.detect_peak_gb = peak.gb();
-  } else {
-    c.after = contacts;
   }
   c.backend = backend->name();
   c.device = backend->device();
@@ -423,7 +418,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
 #endif
   StagePeak export_peak;
   std::future<StandChecks> checking = std::async(std::launch::async, [&, b = std::move(backend)]() mutable {
-    return check_stand(stand, lib, dreq, contacts, resolved.has_value(), o.detect.threads, o.ends_process, gpu,
+    return check_stand(stand, lib, dreq, resolved.has_value(), o.detect.threads, o.ends_process, gpu,
                        std::move(b));
   });
   // --threads N bounds every computing phase to N threads: then the two do not overlap.
@@ -433,7 +428,7 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
   write_contacts_csv(stand, contacts, files.open("contacts.csv"));
   rep.timings["export"] = seconds_since(t_export);
   StandChecks checked = checking.get();
-  const Contacts& after = checked.after;
+  const Contacts& after = checked.after ? *checked.after : contacts;  // unresolved: as first found
   write_contacts_csv(stand, after, files.open("contacts_after.csv"));
   if (resolved) {
     rep.timings["detect_after"] = checked.detect_s;

@@ -69,14 +69,15 @@ double light_columns(const Stand& stand, const RowLayout& layout, const SweepOpt
           t[2] - t[0], t[3] - t[1], what.substr(8, what.find(": give") - 8)));
     }
   }();
-  const double se =
-      std::max({r.ground.fraction.se, r.direct[0].fraction.se, r.diffuse->fraction.se,
-                std::isnan(r.diffuse->star.se) ? 0.0 : r.diffuse->star.se});
+  const double se = std::max({r.ground.fraction.se, r.direct[0].fraction.se, r.diffuse->fraction.se,
+                              std::isnan(r.diffuse->star.se) ? 0.0 : r.diffuse->star.se});
   row["ground_cover_" + when] = fmt::format("{:.5f}", r.ground.fraction.value);
   row["direct_" + when] = fmt::format("{:.5f}", r.direct[0].fraction.value);
   row["diffuse_" + when] = fmt::format("{:.5f}", r.diffuse->fraction.value);
   // Undefined without leaflets: an empty cell, which summary.csv leaves out of its means.
-  const auto cell = [](double v, int digits) { return std::isnan(v) ? std::string() : fmt::format("{:.{}f}", v, digits); };
+  const auto cell = [](double v, int digits) {
+    return std::isnan(v) ? std::string() : fmt::format("{:.{}f}", v, digits);
+  };
   row["star_" + when] = cell(r.diffuse->star.value, 5);
   row["mean_inclination_" + when] = cell(r.leaf_angles.mean_inclination_deg, 4);
   row["light_se_" + when] = fmt::format("{:.5f}", se);

@@ -1,5 +1,6 @@
 #include "tools/sweep_settings.hpp"
 #include "tools/json_text.hpp"
+#include "tools/sweep_spec.hpp"
 #include "tools/sweep_table.hpp"
 
 #include "collision/mbvt.hpp"
@@ -8,8 +9,6 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-#include <cmath>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -17,20 +16,16 @@
 namespace canopy::cli {
 namespace {
 
-/// `--sun E,A` as numbers in their shortest form ("60.0, 180" -> "60,180"), so that a sweep resumed
-/// with the same sun written otherwise is the same sweep; text that is not two numbers as it is
-/// (the light's own parser refuses it).
+/// `--sun E,A` as numbers in their shortest form ("60.0, 180" -> "60,180"), read as the light
+/// reads it, so that a sweep resumed with the same sun written otherwise is the same sweep; text
+/// the light refuses stays as it is (the run refuses it, with the light's message).
 std::string canonical_sun(const std::string& text) {
-  const auto comma = text.find(',');
-  if (comma == std::string::npos) return text;
-  const auto number = [](std::string t, double& v) {
-    t.erase(0, t.find_first_not_of(" \t")), t.erase(t.find_last_not_of(" \t") + 1);
-    const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-    return !t.empty() && r.ec == std::errc() && r.ptr == t.data() + t.size() && std::isfinite(v);
-  };
-  double e = 0, a = 0;
-  if (!number(text.substr(0, comma), e) || !number(text.substr(comma + 1), a)) return text;
-  return fmt::format("{},{}", e, a);
+  try {
+    const auto [e, a] = number_pair("--sun", text);
+    return fmt::format("{},{}", e, a);
+  } catch (const std::invalid_argument&) {
+    return text;
+  }
 }
 
 /// The light's sun in settings read or made, canonical (older sweep.json files hold it as typed).
@@ -41,7 +36,6 @@ void canonical_light(nlohmann::ordered_json& settings) {
 }
 
 }  // namespace
-
 
 nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
   const KindMask collide = parse_collide_kinds(o.detect.collide);

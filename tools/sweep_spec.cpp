@@ -31,6 +31,19 @@ double leading_number(const std::string& s, std::size_t& used) {
   }
 }
 
+std::pair<double, double> number_pair(const std::string& option, const std::string& text) {
+  std::size_t used = 0;
+  const double a = leading_number(text, used);
+  if (used == 0 || used >= text.size() || text[used] != ',')
+    throw std::invalid_argument(fmt::format("{}: '{}' is not ELEVATION,AZIMUTH", option, text));
+  const std::string rest = text.substr(used + 1);
+  std::size_t used2 = 0;
+  const double b = leading_number(rest, used2);
+  if (used2 == 0 || used2 != rest.size() || !std::isfinite(a) || !std::isfinite(b))
+    throw std::invalid_argument(fmt::format("{}: '{}' is not ELEVATION,AZIMUTH", option, text));
+  return {a, b};
+}
+
 std::vector<double> parse_number_list(const std::string& name, const std::string& text, double min,
                                       bool strict) {
   std::vector<double> out;

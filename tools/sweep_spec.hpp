@@ -3,6 +3,7 @@
 /// `a,b,c` or a range `start:stop:step` (stop included), with several seeds per cell.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace canopy::cli {
@@ -10,6 +11,9 @@ namespace canopy::cli {
 /// The number at the start of `s` (std::stod without exceptions): how many characters it took
 /// in `used` (0 when there is none).
 double leading_number(const std::string& s, std::size_t& used);
+/// "a,b" -> {a, b} (--sun's ELEVATION,AZIMUTH), both finite; throws std::invalid_argument naming
+/// `option`.
+std::pair<double, double> number_pair(const std::string& option, const std::string& text);
 
 /// Parses a list or range of numbers for option `name`; throws std::invalid_argument naming the
 /// option on an empty list, a bad number, a zero or backward step, or a value below `min`

@@ -103,13 +103,15 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   l.double_rows = 4e7;  // rows at 0, 4e7, 5e7, 9e7: within
   CHECK(message(l).empty());
   l.row_spacing = 7e7;  // the second row of the second pair at 1.1e8
-  CHECK(message(l).starts_with(
-      "--rows 4 x --row-spacing 7e+07 m with --double-rows 4e+07 m (+ --jitter 0 m) reaches y = 110000000 m"));
+  CHECK(
+      message(l).starts_with("--rows 4 x --row-spacing 7e+07 m with --double-rows 4e+07 m (+ --jitter 0 m) "
+                             "reaches y = 110000000 m"));
   // A pair's rows on one line, or past the next pair's first row: refused, not stacked.
   for (double gap : {0.0, 7e7, 9e7}) {
     l.double_rows = gap;
-    CHECK(message(l).find("the two rows of a pair must be more than 0 m and less than the row spacing (7e+07 m, "
-                          "from pair to pair) apart") != std::string::npos);
+    CHECK(message(l).find(
+              "the two rows of a pair must be more than 0 m and less than the row spacing (7e+07 m, "
+              "from pair to pair) apart") != std::string::npos);
   }
   l.rows = 2, l.double_rows = 9e7;  // one pair too: periodic light repeats it every row spacing
   CHECK(message(l).find("the two rows of a pair must be") != std::string::npos);

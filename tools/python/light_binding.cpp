@@ -32,7 +32,8 @@ py::dict csv_columns(const std::string& csv) {
     const std::vector<std::string> cells = split_list(line);
     // An empty cell (the STAR of a plant without leaflets) is undefined: NaN.
     for (std::size_t c = 0; c < names.size(); ++c)
-      cols[c].push_back(cells.at(c).empty() ? std::numeric_limits<double>::quiet_NaN() : std::stod(cells.at(c)));
+      cols[c].push_back(cells.at(c).empty() ? std::numeric_limits<double>::quiet_NaN()
+                                            : std::stod(cells.at(c)));
   }
   py::dict out;
   for (std::size_t c = 0; c < names.size(); ++c)
