@@ -1,5 +1,6 @@
 #include "geometry/atomic_file.hpp"
 
+#include "geometry/folder_ops.hpp"
 #include "geometry/run_files.hpp"
 
 #include <fmt/format.h>
@@ -19,10 +20,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
+/// The temporary name of `path` before its process tag: "NAME.tmp-", NAME shortened as a staging
+/// folder's is (a name of 230 bytes and more would pass the 255 a file name may have).
+std::string temporary_prefix(const std::string& path) {
+  const fs::path p(path);
+  return (p.parent_path() / (folder_ops::staging_stem(p.filename().string()) + ".tmp-")).string();
+}
+
 /// Removes "NAME.tmp-TAG" beside `path` where TAG names a process that has ended.
 void remove_dead_temporaries(const std::string& path) {
   const fs::path p(path);
-  const std::string prefix = p.filename().string() + ".tmp-";
+  const std::string prefix = fs::path(temporary_prefix(path)).filename().string();
   std::error_code ec;
   const fs::path folder = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
@@ -64,7 +72,7 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   }
   path_ = link_target(path_);
   remove_dead_temporaries(path_);
-  tmp_ = fmt::format("{}.tmp-{}", path_, process_tag());
+  tmp_ = temporary_prefix(path_) + process_tag();
   const auto lock = lock_run_paths();  // registered before it exists: a signal's clean-up sees it
   registered_ = register_run_path(tmp_, RunPath::file);
   f_ = std::fopen(tmp_.c_str(), "wb");

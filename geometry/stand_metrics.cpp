@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -64,6 +65,8 @@ LeafInclination leaf_inclination(const Stand& s, PrototypeLibrary& lib, int bins
   if (out.area > 0) {
     for (double& f : out.fraction) f /= out.area;
     out.mean_deg = angle_area / out.area;
+  } else {
+    for (double& f : out.fraction) f = std::numeric_limits<double>::quiet_NaN();
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include "geometry/stand.hpp"
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace canopy {
@@ -29,10 +30,12 @@ std::vector<double> leaflet_area_per_plant(const Stand& stand, PrototypeLibrary&
 
 /// The leaf inclination distribution: the angle of each leaflet triangle's normal from the
 /// vertical (0: a horizontal blade, 90: an upright one), weighted by the triangle's area, in
-/// `bins` classes of 90 / bins degrees (fractions summing to 1), and its area-weighted mean.
+/// `bins` classes of 90 / bins degrees (fractions summing to 1), and its area-weighted mean. A
+/// stand without leaflet area has no inclination: the mean and the fractions are NaN (a flat
+/// blade would read 0).
 struct LeafInclination {
   std::vector<double> fraction;
-  double mean_deg = 0;
+  double mean_deg = std::numeric_limits<double>::quiet_NaN();
   double area = 0;  // m2 of leaflet blade counted
 };
 LeafInclination leaf_inclination(const Stand& stand, PrototypeLibrary& lib, int bins = 9);

@@ -1,5 +1,6 @@
 // Output folders replaced as one unit, temporary names of dead runs, checked number formatting.
 #include "geometry/atomic_file.hpp"
+#include "geometry/folder_ops.hpp"
 #include "tests/geometry/test_files.hpp"
 #include "geometry/run_files.hpp"
 #include "geometry/staged_folder.hpp"
@@ -437,6 +438,21 @@ TEST_CASE("temporary names carry their process; a dead one's are removed, a live
   }  // not committed: the earlier file stays, the temporary goes
   CHECK(slurp(root / "summary.csv") == "whole");
   CHECK(names(root) == std::set<std::string>{"summary.csv", "summary.csv.tmp-1"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("a file name of up to 255 bytes is written; its temporary name is shortened") {
+  const fs::path root = temp_dir();
+  const std::string name = std::string(251, 'n') + ".csv";  // 255 bytes: ".tmp-PID-START" would pass
+  const std::string stem = folder_ops::staging_stem(name);
+  put(root / (stem + ".tmp-" + kDeadTag), "debris");
+  {
+    AtomicFile f((root / name).string());
+    f.write("whole");
+    f.commit();
+  }
+  CHECK(names(root) == std::set<std::string>{name});
+  CHECK(slurp(root / name) == "whole");
   fs::remove_all(root);
 }
 

@@ -94,4 +94,11 @@ TEST_CASE("leaf inclination: the area of leaflet blades by the angle of their no
   CHECK(li.mean_deg == doctest::Approx(45).epsilon(1e-4));
   // The upright disk reaches 0.1 above its centre at 0.6; the stem's top is at 0.5.
   CHECK(plant_heights(s, lib).at(0) == doctest::Approx(0.7).epsilon(1e-6));
+  // A plant without leaflets has no inclination: not the 0 of flat blades.
+  Stand bare;
+  add_plant(bare, 0, 0, 0, 0.1f);
+  const LeafInclination none = leaf_inclination(bare, lib);
+  CHECK(none.area == 0);
+  CHECK(std::isnan(none.mean_deg));
+  for (double f : none.fraction) CHECK(std::isnan(f));
 }
