@@ -232,6 +232,9 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
             "sweep: another canopy sweep is writing {}; wait for it to end, or give another -o", o.out));
       std::vector<RunRow> done = read_runs(runs_path);
       check_sweep_settings(o.out, sweep_settings(o), done.size());
+      // Spacings first: a run is known by its key with this sweep's text for its cell, also a
+      // failed run retried below.
+      adopt_spacings(done, cells);
       // A run keeps its number, a retried one too; runs new to the folder take the numbers after
       // the largest (numbering them by their place in a grown grid gave two runs one number).
       std::map<std::string, std::string> held;  // run key -> number, as rank 0 read them
@@ -245,7 +248,6 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       }
       a["numbers"] = held, a["next"] = next;
       if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
-      adopt_spacings(done, cells);
       write_runs(runs_path, done);  // drops a torn last line
       std::set<std::string> keys;
       for (const RunRow& r : done) keys.insert(run_key(r));

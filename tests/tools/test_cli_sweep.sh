@@ -141,13 +141,25 @@ check "another sun refused" "2 1" "$? $(grep -c 'made with other settings (light
 
 # A range's values are the decimals it names (0.1:0.3:0.1 made 0.30000000000000004); a sweep begun
 # with such a value resumes with it done and keeps one cell for it.
-tiny() { "$canopy" sweep "$g" --plant-spacing 0.1:0.3:0.1 --rows 1 --per-row 2 --seeds 1 --steps 3 --no-light --backend cpu -o "$tmp/r"; }
+tiny() { "$canopy" sweep "$g" --plant-spacing 0.1:0.3:0.1 --rows 1 --per-row 2 --seeds 1 --steps 3 --no-light --backend cpu -o "$tmp/r" "$@"; }
 tiny >"$tmp/o" 2>&1
 check "range values" "0.1 0.2 0.3" "$(col "$tmp/r/runs.csv" plant_spacing)"
 sed -i 's/^2,0.3,/2,0.30000000000000004,/' "$tmp/r/runs.csv"
 tiny >"$tmp/o" 2>&1
 check "earlier range value resumes" "0 1" "$? $(grep -c '^sweep: 0 runs made now' "$tmp/o")"
 check "earlier range value adopted" "0.1 0.2 0.3|3" "$(col "$tmp/r/runs.csv" plant_spacing)|$(($(wc -l < "$tmp/r/summary.csv") - 1))"
+# A failed run written with such a value keeps its number when it is run again.
+python3 - "$tmp/r/runs.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+for r in rows:
+    if r["run"] == "2": r["plant_spacing"], r["status"] = "0.30000000000000004", "failed"
+with open(sys.argv[1], "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n"); w.writeheader(); w.writerows(rows)
+PY
+tiny --retry-failed >"$tmp/o" 2>&1
+check "earlier range value retried keeps its number" "0 0:0.1:ok 1:0.2:ok 2:0.3:ok" "$? $(python3 -c "
+import csv; print(' '.join(r['run'] + ':' + r['plant_spacing'] + ':' + r['status'] for r in csv.DictReader(open('$tmp/r/runs.csv'))))")"
 # Densities give plant spacings one rounding apart in different row-spacing cells (1/(2 x 0.6),
 # 1/(1.5 x 0.8)): a finished sweep run again makes nothing and keeps its four cells.
 dens() { "$canopy" sweep "$g" --row-spacing 0.6,0.8 --density 1.5,2 --steps 3 --seeds 1 --rows 1 --per-row 2 --no-light \
