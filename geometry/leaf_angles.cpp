@@ -49,7 +49,7 @@ std::vector<LeafAngleSums> leaf_angle_sums(const Stand& s, PrototypeLibrary& lib
   std::vector<LeafAngleSums> out(s.plant_count());
   // Meshes made before the threads share the library.
   for (std::size_t i = 0; i < s.organ_count(); ++i)
-    if (s.organs[i].kind == OrganKind::leaflet) lib.get(s.organs[i].prototype, s.organs[i].lod);
+    if (s.organs[i].kind == OrganKind::leaflet) lib.get(s.organs[i]);
   std::array<double, kGZenithsDeg.size()> cz{}, sz{};
   for (std::size_t k = 0; k < cz.size(); ++k)
     cz[k] = std::cos(kGZenithsDeg[k] * std::numbers::pi / 180),
@@ -61,12 +61,12 @@ std::vector<LeafAngleSums> leaf_angle_sums(const Stand& s, PrototypeLibrary& lib
     for (std::size_t i = plant.first_organ; i < plant.first_organ + plant.organ_count; ++i) {
       if (s.organs[i].kind != OrganKind::leaflet) continue;
       const PrototypeKind proto = s.organs[i].prototype;
-      const PrototypeMesh& m = lib.get(proto, s.organs[i].lod);
+      const PrototypeMesh& m = lib.get(s.organs[i]);  // a curved leaflet's own mesh
       const Affine3f& t = s.transforms[i];
       // A u x A v = cof(A) (u x v): each triangle's area vector from its local cross product.
       const Vec3d c0 = to_double(t.c0), c1 = to_double(t.c1), c2 = to_double(t.c2);
       const Vec3d k0 = cross(c1, c2), k1 = cross(c2, c0), k2 = cross(c0, c1);
-      if (proto == PrototypeKind::leaflet || proto == PrototypeKind::disk) {
+      if ((proto == PrototypeKind::leaflet && s.organs[i].shape == 0) || proto == PrototypeKind::disk) {
         // A flat blade (local z = 0): every triangle's area vector is k2 times its local one.
         const double len = length(k2);
         if (!(len > 0)) continue;

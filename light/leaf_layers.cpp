@@ -9,7 +9,7 @@ std::vector<double> layer_leaf_area(const Stand& s, PrototypeLibrary& lib, doubl
                                     std::size_t layers) {
   std::vector<std::vector<double>> per_plant(s.plant_count());
   for (std::size_t i = 0; i < s.organ_count(); ++i)
-    if (s.organs[i].kind == OrganKind::leaflet) lib.get(s.organs[i].prototype, s.organs[i].lod);
+    if (s.organs[i].kind == OrganKind::leaflet) lib.get(s.organs[i]);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
     std::vector<double>& a = per_plant[p];
@@ -17,7 +17,7 @@ std::vector<double> layer_leaf_area(const Stand& s, PrototypeLibrary& lib, doubl
     const PlantRecord& plant = s.plants[p];
     for (std::size_t i = plant.first_organ; i < plant.first_organ + plant.organ_count; ++i) {
       if (s.organs[i].kind != OrganKind::leaflet) continue;
-      const PrototypeMesh& m = lib.get(s.organs[i].prototype, s.organs[i].lod);
+      const PrototypeMesh& m = lib.get(s.organs[i]);  // a curved leaflet's own mesh
       const Affine3f& t = s.transforms[i];
       for (std::size_t k = 0; k + 2 < m.indices.size(); k += 3) {
         const Vec3d p0 = to_double(apply(t, m.positions[m.indices[k]])),

@@ -172,7 +172,7 @@ int bench_main(int argc, char** argv) {
     const Stand stand = grow_stand(req);
     PrototypeLibrary lib;
     std::size_t triangles = 0;
-    for (const OrganRecord& r : stand.organs) triangles += lib.get(r.prototype, r.lod).triangle_count();
+    for (const OrganRecord& r : stand.organs) triangles += lib.get(r).triangle_count();
     // The scene alone: its build time and the memory it holds.
     const double mb0 = resident_mb();
     double scene_mb = 0;

@@ -1,5 +1,7 @@
 // The leaf angle distribution and G-function against hand-placed disks of known inclination.
 #include "geometry/leaf_angles.hpp"
+#include "geometry/leaflet_shape.hpp"
+#include "geometry/organ_mesh.hpp"
 
 #include <doctest/doctest.h>
 
@@ -83,4 +85,46 @@ TEST_CASE("leaf angles: bins, mean inclination and G of hand-placed disks") {
   CHECK(std::isnan(none.mean_inclination_deg));
   CHECK(std::isnan(none.fraction[0]));
   CHECK(std::isnan(none.g[0]));
+}
+
+TEST_CASE("leaf angles of curved leaflets are their own meshes' (bent, cupped, folded), not a flat blade's") {
+  // Leaflets of several shapes, horizontal and tilted, against the area-weighted inclination of
+  // their posed triangles (organ_mesh: what the exports write).
+  Stand s;
+  PlantRecord p;
+  const LeafletShape shapes[] = {{0, 0, 0}, {-80, 0, 0}, {40, -30, 0}, {0, 15, 30}, {-50, -15, 20}};
+  for (int tilt : {0, 35}) {
+    const float c = static_cast<float>(std::cos(tilt * kDeg)), sn = static_cast<float>(std::sin(tilt * kDeg));
+    for (const LeafletShape& shape : shapes) {
+      OrganRecord o;
+      o.kind = OrganKind::leaflet, o.prototype = PrototypeKind::leaflet, o.lod = 2;
+      o.shape = *leaflet_shape_code(shape);
+      Affine3f t;
+      t.c0 = {0.2f * c, 0, 0.2f * sn}, t.c1 = {0, 0.1f, 0}, t.c2 = {-0.1f * sn, 0, 0.1f * c};
+      s.organs.push_back(o), s.transforms.push_back(t), s.params.push_back({0.2f, 0.1f}),
+          s.joint_limit_deg.push_back(60);
+    }
+  }
+  p.organ_count = static_cast<std::uint32_t>(s.organ_count());
+  s.plants.push_back(p);
+  PrototypeLibrary lib;
+  double area = 0, weighted = 0;
+  OrganMesh m;
+  for (std::size_t i = 0; i < s.organ_count(); ++i) {
+    organ_mesh(s, i, lib, m, true);
+    const std::vector<std::uint32_t>& idx = m.prototype->indices;
+    for (std::size_t k = 0; k + 2 < idx.size(); k += 3) {
+      const Vec3d a = to_double(m.positions[idx[k]]), b = to_double(m.positions[idx[k + 1]]),
+                  d = to_double(m.positions[idx[k + 2]]);
+      const Vec3d n = cross(b - a, d - a);
+      const double len = length(n);
+      if (!(len > 0)) continue;
+      area += 0.5 * len;
+      weighted += 0.5 * len * std::acos(std::min(1.0, std::abs(n.z) / len)) / kDeg;
+    }
+  }
+  const LeafAngles la = leaf_angles(leaf_angle_sums(s, lib));
+  CHECK(la.leaf_area == doctest::Approx(area).epsilon(1e-6));
+  CHECK(la.mean_inclination_deg == doctest::Approx(weighted / area).epsilon(1e-5));
+  CHECK(la.mean_inclination_deg > 20);  // the flat blades alone would say (0 + 35) / 2
 }

@@ -226,4 +226,15 @@ TEST_CASE("a curved leaflet casts the shadow of its own curved mesh, not of the 
   const light::LightResult res = light::compute_light(s, lib, beams({{90, 0}}, tile, false, 0.0005));
   check_area(res.ground, tile, want);
   check_area(res.direct[0], tile, want);
+  // The vertical profile counts the curved blade's own area, not the flat blade's.
+  double mesh_area = 0;
+  for (std::size_t k = 0; k + 2 < curved.indices.size(); k += 3) {
+    const Vec3d a = to_double(apply(t, curved.positions[curved.indices[k]])),
+                b = to_double(apply(t, curved.positions[curved.indices[k + 1]])),
+                c = to_double(apply(t, curved.positions[curved.indices[k + 2]]));
+    mesh_area += 0.5 * length(cross(b - a, c - a));
+  }
+  double layered = 0;
+  for (const double a : res.layer_leaf_area) layered += a;
+  CHECK(layered == doctest::Approx(mesh_area).epsilon(1e-6));
 }
