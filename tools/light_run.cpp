@@ -113,6 +113,9 @@ std::optional<RowLayout> report_layout(const Json& j, const std::string& path) {
 
 std::optional<RowLayout> folder_layout(const std::string& dir) {
   const std::string path = dir + "/report.json";
+  // Without a report (Stand.export writes none) the layout is not known: a tile must be given.
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return std::nullopt;
   std::ifstream in(path);
   if (!in)
     throw std::invalid_argument(
@@ -159,8 +162,8 @@ light::LightConfig light_config(const LightOptions& o, const Stand& s, const std
          y1 + std::max(pad, 0.05)};
   } else {
     throw std::invalid_argument(
-        "a stand from a positions file has no lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or "
-        "--no-periodic)");
+        "a stand from a positions file (or a folder without report.json, as Stand.export writes it) has no "
+        "lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
   }
   const Vec3d org = s.stand_origin;
   c.tile = {t[0] - org.x, t[1] - org.y, t[2] - org.x, t[3] - org.y};

@@ -64,7 +64,7 @@ std::array<double, 4> parse_tile(const std::string& text);
 /// spacing, the first plant's centred on the origin; double rows repeat per pair of rows.
 std::array<double, 4> lattice_tile(const RowLayout& layout);
 /// The row layout a folder written by canopy stand was made with (report.json's config), or
-/// nothing for a positions file.
+/// nothing for a positions file or a folder without report.json (Stand.export writes none).
 std::optional<RowLayout> folder_layout(const std::string& dir);
 
 struct LightOutcome {

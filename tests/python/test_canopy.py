@@ -176,6 +176,37 @@ def test_positions_array_equals_a_positions_file(tmp_path):
         assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / "py" / f, shallow=False), f
 
 
+def test_a_grammar_naming_a_positions_file_grows_those_plants(tmp_path):
+    """A grammar whose stand entry names a positions file grows those plants from Python as on
+    the command line (Stand.grow took one plant at the origin); the export never replaces the file."""
+    (tmp_path / "plants.csv").write_text("x,y,rotation,seed\n0,0,0,1\n0.5,0,90,2\n1,0.2,45,3\n")
+    text = open(TOMATO).read()
+    lines = [line for line in text.splitlines() if not line.startswith("stand:")]
+    assert len(lines) == len(text.splitlines()) - 1  # the entry is one line, replaced here
+    (tmp_path / "g.yaml").write_text("\n".join(lines + ["stand: {positions: plants.csv}"]) + "\n")
+    grammar = str(tmp_path / "g.yaml")
+    s = canopy.Stand.grow(grammar, steps=8)
+    assert s.plant_count == 3
+    assert not s.ids.flags.writeable  # read-only, as the views
+    assert cli("stand", grammar, "--steps", "8", "--no-resolve", "--backend", "cpu", "-o", str(tmp_path / "cli")).returncode == 0
+    s.export(tmp_path / "py")
+    for f in ["stand.glb", "organs.csv", "plants.csv"]:
+        assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / "py" / f, shallow=False), f
+    with pytest.raises(ValueError, match="the positions file"):
+        s.export(tmp_path)
+    # The exported folder reads back and takes light, with a tile: it holds no report.json (the
+    # layout), as a positions stand has no lattice.
+    assert canopy.Stand.read(tmp_path / "py").plant_count == 3
+    lit = cli("light", str(tmp_path / "py"), "--sun", "60,180", "--error", "0.02", "--tile", "-0.5,-0.5,1.5,0.7")
+    assert lit.returncode == 0, lit.stderr
+    no_tile = cli("light", str(tmp_path / "py"), "--sun", "60,180")
+    assert no_tile.returncode == 2 and "without report.json" in no_tile.stderr
+    assert (tmp_path / "plants.csv").read_text().startswith("x,y,rotation,seed\n0,0,0,1\n")
+    assert canopy.Stand.grow(grammar, rows=1, per_row=2, steps=8).plant_count == 2  # row options win
+    with pytest.raises(ValueError, match="rows: needs a whole number from 1 to 2147483647, got -1"):
+        canopy.Stand.grow(TOMATO, rows=-1, per_row=2, steps=4)
+
+
 def test_compact_glb_equals_the_command_line(tmp_path):
     args = ["--positions", str(tmp_path / "p.csv"), "--steps", "12", "--backend", "cpu", "--no-resolve"]
     (tmp_path / "p.csv").write_text("x,y,rotation,seed\n0,0,30,7\n0.35,0.1,200,8\n")
@@ -214,6 +245,7 @@ def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
         canopy.sweep(TOMATO, tmp_path / "w", progress=once, plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=1, per_row=2, backend="cpu")
     assert seen == ["ok"]
     assert len(canopy.sweep_rows(tmp_path / "w")) == 1
+    assert len(canopy.sweep_rows(os.fsencode(tmp_path / "w"))) == 1  # bytes, as every path
     left = canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=1, per_row=2, backend="cpu")
     assert left["ran"] == 1 and len(canopy.sweep_rows(tmp_path / "w")) == 2
     assert len(canopy.sweep_rows(tmp_path / "w", summary=True)) == 2

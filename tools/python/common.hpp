@@ -3,6 +3,7 @@
 // C++ loops, the stand object arrays view, and small conversions.
 #include "collision/backend.hpp"
 #include "tools/detect_options.hpp"
+#include "tools/stand_run.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -70,6 +71,7 @@ struct PyStand {
   std::string grammar;
   std::optional<Contacts> before, after;  // export's contacts.csv and contacts_after.csv
   std::optional<RowLayout> layout;        // the rows it was grown in (its lattice is light's tile)
+  std::vector<cli::RunInput> inputs;      // the files it was grown from: export never replaces them
 };
 
 /// A path from str, bytes or os.PathLike (bytes as they are: a file name need not be UTF-8).

@@ -16,6 +16,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <set>
 
 namespace canopy::python {
 
@@ -72,12 +74,28 @@ void bind_stand(py::module_& m) {
                 req.plants.push_back(p);
               }
             }
+            // Whole numbers of plants, as --rows and --per-row say (a negative count wrapped to
+            // 2^64 - 1 plants in the size check).
+            for (const auto& [name, count] : {std::pair{"rows", rows}, std::pair{"per_row", per_row}})
+              if (count && *count < 1)
+                throw std::invalid_argument(
+                    fmt::format("{}: needs a whole number from 1 to 2147483647, got {}", name, *count));
             auto out = std::make_shared<PyStand>();
-            if (!positions) {
-              const Grammar g = load_grammar(grammar, req.load);
-              warn_notes(g.notes);
-              out->layout =
-                  cli::choose_layout(spec, g.stand).layout;  // field by field over the grammar's entry
+            out->inputs.push_back({"the grammar", grammar});
+            // The layout: the positions given, else rows (options over the grammar's stand entry
+            // field by field), else the positions file the grammar's stand entry names (relative
+            // to the grammar's folder), as canopy stand chooses.
+            const Grammar g = load_grammar(grammar, req.load);
+            warn_notes(g.notes);
+            if (!positions && !cli::any_row_option(spec) && g.stand && g.stand->positions) {
+              const std::string file =
+                  (std::filesystem::path(grammar).parent_path() / *g.stand->positions).string();
+              req.plants = read_positions(file);
+              req.relative_to = std::filesystem::path(file).parent_path().string();
+              req.positions_file = file;
+              out->inputs.push_back({"the positions file", file});
+            } else if (!positions) {
+              out->layout = cli::choose_layout(spec, g.stand).layout;
               // Said before placing and growing, with the command line's estimate, when the stand
               // cannot fit (10^10 plants' placements alone ran out of memory).
               RowLayout one = *out->layout;
@@ -87,8 +105,12 @@ void bind_stand(py::module_& m) {
               check_stand_fits(first, static_cast<std::size_t>(out->layout->rows) *
                                           static_cast<std::size_t>(out->layout->per_row));
               req.plants = row_layout(*out->layout);
-            } else if (!req.plants.empty()) {
-              warn_notes(load_grammar(grammar, req.load).notes);
+            }
+            std::set<std::string> named;
+            for (const PlantPlacement& p : req.plants)
+              if (!p.grammar.empty() && named.insert(p.grammar).second)
+                out->inputs.push_back({"a grammar the positions file names", grammar_path(req, p.grammar)});
+            if (!out->layout && !req.plants.empty()) {
               GrowRequest first = req;
               first.plants.resize(1);
               check_stand_fits(first, req.plants.size());
@@ -130,7 +152,7 @@ void bind_stand(py::module_& m) {
             py::array_t<std::int64_t> a(static_cast<py::ssize_t>(s.stand.organ_count()));
             auto* p = a.mutable_data();
             for (std::size_t i = 0; i < s.stand.organ_count(); ++i) p[i] = static_cast<std::int64_t>(i);
-            return a;
+            return read_only(a);  // as the views: canopy's arrays change only through its calls
           },
           "Organ ids (global, as in organs.csv and contacts): 0 .. organ_count - 1.")
       .def_property_readonly("organ_count", [](const PyStand& s) { return s.stand.organ_count(); })
@@ -310,6 +332,7 @@ void bind_stand(py::module_& m) {
           [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing,
              bool glb_compact) {
             const std::string dir = path_of(dir_arg);
+            cli::refuse_output_over_inputs(s.inputs, dir);  // as canopy stand: never over what it read
             std::string list;
             for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
             const auto fs = cli::parse_formats(list);

@@ -84,7 +84,9 @@ def sweep_rows(out, summary=False):
     import os
 
     rows = []
-    with open(os.path.join(str(out), "summary.csv" if summary else "runs.csv"), newline="") as f:
+    out = _path(out)
+    name = b"summary.csv" if summary else b"runs.csv"
+    with open(os.path.join(out, name if isinstance(out, bytes) else name.decode()), newline="") as f:
         for r in csv.DictReader(f):
             for k, v in r.items():
                 if v == "" and (k.startswith("star_") or k.startswith("mean_inclination_")):
