@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Plots with gnuplot (Debian gnuplot-nox), each as PNG and SVG.
 #   tools/plot.sh sweep DIR            from DIR/summary.csv (canopy sweep): contacts per plant and
-#                                      mean turn against density, one curve per age; leaf area
+#                                      mean turn against density, one curve per age (and row
+#                                      spacing, where the sweep has several); leaf area
 #                                      index against density; intercepted fraction of the direct
 #                                      beam and of the diffuse sky against density, per age, after
 #                                      resolution (solid) and before it (dashed)
@@ -22,11 +23,34 @@ render() {
   echo "wrote $name.png $name.svg"
 }
 
+# curves DIR PREFIX: the data files DIR/PREFIX_<steps>_<row spacing>.dat, one per line, by age
+# then row spacing as numbers (a listing splits folder names with spaces and sorts 20 before 6).
+curves() {
+  find "$1" -maxdepth 1 -name "$2_*.dat" -printf '%f\n' | sort -t_ -k2,2n -k3,3g
+}
+
+# title STEPS ROW_SPACING ROW_SPACINGS: a curve's title; the row spacing named where the sweep
+# has several (a curve per age and row spacing: one per age joined cells of different rows).
+title() {
+  if [ "$3" -gt 1 ]; then echo "age $1 steps, rows $2 m"; else echo "age $1 steps"; fi
+}
+
+# plot_if DATA PREFIX COLUMN NAME SCRIPT: renders NAME from SCRIPT where some curve of DATA's
+# PREFIX files has a value in COLUMN (gnuplot fails on a plot with none: a sweep without
+# resolution has no turns); else says what was skipped.
+plot_if() {
+  if cat "$1"/"$2"_*.dat | awk -v c="$3" '$c != "NaN" { found = 1 } END { exit !found }'; then
+    render "$4" "$5"
+  else
+    echo "skipped $4: no cell has a value"
+  fi
+}
+
 sweep() {
   local dir=$1 sum=$1/summary.csv
   [ -f "$sum" ] || { echo "plot.sh: no $sum (run canopy sweep first)" >&2; exit 1; }
-  local cd cs cb cw cbs cws ct cts cl cls
-  cd=$(column "$sum" density); cs=$(column "$sum" steps)
+  local cd cs cr cb cw cbs cws ct cts cl cls
+  cd=$(column "$sum" density); cs=$(column "$sum" steps); cr=$(column "$sum" row_spacing)
   cb=$(column "$sum" exact_between_per_plant_mean); cbs=$(column "$sum" exact_between_per_plant_sd)
   cw=$(column "$sum" exact_within_per_plant_mean); cws=$(column "$sum" exact_within_per_plant_sd)
   ct=$(column "$sum" mean_turn_deg_mean); cts=$(column "$sum" mean_turn_deg_sd)
@@ -34,28 +58,37 @@ sweep() {
   local data=$dir/plot_data
   mkdir -p "$data"
   rm -f "$data"/age_*.dat
-  # One file per age: density, contacts per plant (between + within) and its spread, turn, LAI.
-  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v b="$cb" -v bs="$cbs" -v w="$cw" -v ws="$cws" \
-    -v t="$ct" -v ts="$cts" -v l="$cl" -v ls="$cls" -v out="$data" \
-    '{ f = out "/age_" $s ".dat"; print $d, $b + $w, sqrt($bs * $bs + $ws * $ws), $t, $ts, $l, $ls > f }'
-  local plots_c="" plots_t="" plots_l=""
-  for f in $(ls "$data"/age_*.dat | sort -t_ -k2n); do
-    local age; age=$(basename "$f" .dat); age=${age#age_}
-    plots_c+="'$f' using 1:2:3 with yerrorlines title 'age $age steps', "
-    plots_t+="'$f' using 1:4:5 with yerrorlines title 'age $age steps', "
-    plots_l+="'$f' using 1:6:7 with yerrorlines title 'age $age steps', "
-  done
+  local spacings; spacings=$(tail -n +2 "$sum" | cut -d, -f"$cr" | sort -u | wc -l)
+  # One file per age and row spacing: density, contacts per plant (between + within) and its
+  # spread, turn, LAI. An empty cell (every run of the cell failed) is NaN, a gap, never 0.
+  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v r="$cr" -v b="$cb" -v bs="$cbs" -v w="$cw" \
+    -v ws="$cws" -v t="$ct" -v ts="$cts" -v l="$cl" -v ls="$cls" -v out="$data" '
+    function v(x) { return x == "" ? "NaN" : x }
+    { f = out "/age_" $s "_" $r ".dat";
+      sum = ($b == "" || $w == "") ? "NaN" : $b + $w;
+      spread = ($bs == "" || $ws == "") ? "NaN" : sqrt($bs * $bs + $ws * $ws);
+      print $d, sum, spread, v($t), v($ts), v($l), v($ls) > f }'
+  local plots_c="" plots_t="" plots_l="" name
+  while IFS= read -r name; do
+    local f=$data/$name key steps spacing
+    key=${name#age_}; key=${key%.dat}; steps=${key%%_*}; spacing=${key#*_}
+    local label; label=$(title "$steps" "$spacing" "$spacings")
+    plots_c+="'$f' using 1:2:3 with yerrorlines title '$label', "
+    plots_t+="'$f' using 1:4:5 with yerrorlines title '$label', "
+    plots_l+="'$f' using 1:6:7 with yerrorlines title '$label', "
+  done < <(curves "$data" age)
   local common="set key left top; set grid; set offsets graph 0.03, graph 0.03, graph 0.08, 0; set xlabel 'density (plants per m^2)';"
-  render "$dir/contacts_vs_density" "$common set ylabel 'organ contacts per plant before resolution (exact)'; plot ${plots_c%, }"
-  render "$dir/turn_vs_density" "$common set ylabel 'mean turn after resolution (degrees)'; plot ${plots_t%, }"
-  render "$dir/lai_vs_density" "$common set ylabel 'leaf area index (inner plants)'; plot ${plots_l%, }"
-  light_plots "$dir" "$sum" "$cd" "$cs"
+  plot_if "$data" age 2 "$dir/contacts_vs_density" "$common set ylabel 'organ contacts per plant before resolution (exact)'; plot ${plots_c%, }"
+  plot_if "$data" age 4 "$dir/turn_vs_density" "$common set ylabel 'mean turn after resolution (degrees)'; plot ${plots_t%, }"
+  plot_if "$data" age 6 "$dir/lai_vs_density" "$common set ylabel 'leaf area index (inner plants)'; plot ${plots_l%, }"
+  light_plots "$dir" "$sum" "$cd" "$cs" "$cr" "$spacings"
 }
 
-# light_plots DIR SUMMARY DENSITY_COL STEPS_COL: interception against density per age (sweeps
-# made with their light columns; skipped when the columns are empty).
+# light_plots DIR SUMMARY DENSITY_COL STEPS_COL ROW_SPACING_COL ROW_SPACINGS: interception against
+# density per age and row spacing (sweeps made with their light columns; skipped when the columns
+# are empty).
 light_plots() {
-  local dir=$1 sum=$2 cd=$3 cs=$4 data=$1/plot_data
+  local dir=$1 sum=$2 cd=$3 cs=$4 cr=$5 spacings=$6 data=$1/plot_data
   local cols="" name
   for name in direct_before direct_after diffuse_before diffuse_after; do
     local c m; m=$(column "$sum" "${name}_mean"); [ -n "$m" ] || return 0
@@ -63,20 +96,22 @@ light_plots() {
   done
   [ -n "$(tail -n +2 "$sum" | awk -F, -v c="${cols%% *}" '$c != ""')" ] || return 0
   rm -f "$data"/light_*.dat
-  # One file per age: density, then mean and sd of direct before, after, diffuse before, after
-  # (NaN where a run had no resolution).
-  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v cols="$cols" -v out="$data" \
-    'BEGIN { n = split(cols, c, " ") } { f = out "/light_" $s ".dat"; line = $d;
+  # One file per age and row spacing: density, then mean and sd of direct before, after, diffuse
+  # before, after (NaN where a run had no resolution or the cell failed).
+  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v r="$cr" -v cols="$cols" -v out="$data" \
+    'BEGIN { n = split(cols, c, " ") } { f = out "/light_" $s "_" $r ".dat"; line = $d;
       for (i = 1; i <= n; i++) line = line " " ($c[i] == "" ? "NaN" : $c[i]); print line > f }'
   local pd="" pf="" k=0
-  for f in $(ls "$data"/light_*.dat | sort -t_ -k3n); do
-    local age; age=$(basename "$f" .dat); age=${age#light_}; k=$((k + 1))
-    pd+="'$f' using 1:4:5 with yerrorlines lc $k pt 7 title 'age $age steps, resolved', '' using 1:2 with lines lc $k dt 2 title 'as grown', "
-    pf+="'$f' using 1:8:9 with yerrorlines lc $k pt 7 title 'age $age steps, resolved', '' using 1:6 with lines lc $k dt 2 title 'as grown', "
-  done
+  while IFS= read -r name; do
+    local f=$data/$name key steps spacing
+    key=${name#light_}; key=${key%.dat}; steps=${key%%_*}; spacing=${key#*_}; k=$((k + 1))
+    local label; label=$(title "$steps" "$spacing" "$spacings")
+    pd+="'$f' using 1:4:5 with yerrorlines lc $k pt 7 title '$label, resolved', '' using 1:2 with lines lc $k dt 2 title 'as grown', "
+    pf+="'$f' using 1:8:9 with yerrorlines lc $k pt 7 title '$label, resolved', '' using 1:6 with lines lc $k dt 2 title 'as grown', "
+  done < <(curves "$data" light)
   local common="set key right bottom; set grid; set offsets graph 0.03, graph 0.03, graph 0.08, graph 0.08; set xlabel 'density (plants per m^2)';"
-  render "$dir/interception_direct_vs_density" "$common set ylabel 'intercepted fraction of the direct beam (periodic)'; plot ${pd%, }"
-  render "$dir/interception_diffuse_vs_density" "$common set ylabel 'intercepted fraction of the diffuse sky (periodic)'; plot ${pf%, }"
+  plot_if "$data" light 4 "$dir/interception_direct_vs_density" "$common set ylabel 'intercepted fraction of the direct beam (periodic)'; plot ${pd%, }"
+  plot_if "$data" light 8 "$dir/interception_diffuse_vs_density" "$common set ylabel 'intercepted fraction of the diffuse sky (periodic)'; plot ${pf%, }"
 }
 
 # first_machine CSV: the CSV's header and the rows of the machine of its first row, where it has a

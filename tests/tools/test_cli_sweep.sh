@@ -167,6 +167,17 @@ dens() { "$canopy" sweep "$g" --row-spacing 0.6,0.8 --density 1.5,2 --steps 3 --
 dens >/dev/null 2>&1
 dens >"$tmp/o" 2>&1
 check "density sweep resumes" "1 5" "$(grep -c '^sweep: 0 runs made now (0 failed), 4 in' "$tmp/o") $(wc -l < "$tmp/dn/summary.csv")"
+# Plots: a curve per age and row spacing (one per age joined the two row spacings' cells), in a
+# folder whose name has a space; a cell whose runs all failed is a gap (NaN), not 0 contacts.
+if command -v gnuplot >/dev/null; then
+  cp -r "$tmp/dn" "$tmp/d n"
+  bash "$src/tools/plot.sh" sweep "$tmp/d n" >/dev/null 2>&1
+  check "plot: folder with a space, a curve per row spacing" "0 age_3_0.6.dat age_3_0.8.dat" \
+    "$? $(cd "$tmp/d n/plot_data" && ls age_*.dat | tr '\n' ' ' | sed 's/ $//')"
+  check "plot: rows named in titles" "1" "$(grep -c "age 3 steps, rows 0.6 m" "$tmp/d n/contacts_vs_density.svg" | sed 's/[2-9]/1/')"
+  bash "$src/tools/plot.sh" sweep "$tmp/f" >/dev/null 2>&1
+  check "plot: failed cell is a gap" "0 NaN" "$? $(cut -d' ' -f2 "$tmp/f/plot_data/age_40_1.dat")"
+fi
 # runs.csv as only a sweep writes it: a run's second row (pooled in the summary as another seed)
 # and a torn line that is not the last (only a kill tears, and only the last) are refused by line.
 cp "$tmp/r/runs.csv" "$tmp/r.good"
