@@ -38,6 +38,9 @@ KindMask parse_collide_kinds(const std::string& list) {
     return k;
   }
   for (const std::string& name : split_list(list)) {
+    if (name == "all")
+      throw std::invalid_argument(
+          fmt::format("--collide: 'all' stands alone (every kind), not in a list of kinds ('{}')", list));
     const auto kind = parse_organ_kind(name);
     if (!kind)
       throw std::invalid_argument(

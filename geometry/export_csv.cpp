@@ -317,6 +317,12 @@ Stand read_stand(const std::string& dir) {
           ofile, ln, r.leaf, r.plant, pr.first_leaf));
     if (r.leaf >= 0 && static_cast<std::uint32_t>(r.leaf) == pr.first_leaf + pr.leaf_count)
       ++pr.leaf_count, ++next_leaf;
+    // area and length: computed again where used, but a table of NaN or negative ones is not a
+    // stand canopy wrote (every number finite, as the limits say).
+    for (const int k : {5, 6})
+      if (!(finite(parse<double>(c[k], ofile, ln, k + 1), c[k], ofile, ln, k + 1) >= 0))
+        throw std::runtime_error(
+            fmt::format("{}:{}: column {} '{}' must not be negative", ofile, ln, k + 1, c[k]));
     const float p0 = size(parse<float>(c[8], ofile, ln, 9), c[8], ofile, ln, 9);
     const float p1 = size(parse<float>(c[9], ofile, ln, 10), c[9], ofile, ln, 10);
     s.params.push_back({p0, p1});

@@ -147,8 +147,8 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
   // line or put them out of order, without a word.
   if (l.double_rows && (*l.double_rows <= 0 || *l.double_rows >= l.row_spacing))
     throw std::invalid_argument(fmt::format(
-        "--double-rows {:g} m: the two rows of a pair must be more than 0 m and less than the row "
-        "spacing ({:g} m, from pair to pair) apart",
+        "double rows {:g} m apart (--double-rows, or double_rows in the grammar's stand entry): the two rows "
+        "of a pair must be more than 0 m and less than the row spacing ({:g} m, from pair to pair) apart",
         *l.double_rows, l.row_spacing));
   check_reach(l);
   std::vector<PlantPlacement> out;

@@ -23,6 +23,7 @@ std::optional<double> finite_number(const std::string& in) {
 CLI::Validator whole_in(long long lo, long long hi) {
   return CLI::Validator(
       [lo, hi](std::string& in) {
+        if (in.empty()) return std::string("needs a value, got an empty one");  // not 0 (--steps "")
         // Decimal only, rewritten in canonical form: CLI11 reads a leading 0 as octal ("010" was
         // 8 plants) and takes 0x; digits alone are read exactly (as a double, numbers near 2^63
         // rounded past the bound).
@@ -36,7 +37,10 @@ CLI::Validator whole_in(long long lo, long long hi) {
           return std::string();
         }
         std::optional<double> v;
-        if (double d = 0; std::from_chars(first, end, d).ptr == end && std::isfinite(d)) v = d;
+        // (An empty word fails with ptr == end: the error is what tells it apart, else "" was 0.)
+        if (double d = 0;
+            std::from_chars(first, end, d) == std::from_chars_result{end, std::errc()} && std::isfinite(d))
+          v = d;
         // 2^63 and up do not fit a long long, though INT64_MAX as a double rounds up to 2^63.
         if (!v || *v != std::floor(*v) || *v < static_cast<double>(lo) || *v > static_cast<double>(hi) ||
             *v >= 0x1p63)

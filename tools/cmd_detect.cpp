@@ -4,6 +4,7 @@
 #include "geometry/export.hpp"
 #include "geometry/thread_limit.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/folder_counts.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/stand_run.hpp"
 
@@ -32,6 +33,7 @@ Command add_detect(CLI::App& root) {
               refuse_stand_file("--csv", o->csv), refuse_file_place("--csv", o->csv, "CSV");
             const auto t0 = std::chrono::steady_clock::now();
             const Stand stand = read_stand(o->dir);
+            print_notes(folder_count_notes(o->dir, stand));
             const double read_s = seconds_since(t0);
             std::string note;
             auto backend = make_backend(o->detect.backend, note);

@@ -9,6 +9,7 @@
 #include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/folder_counts.hpp"
 #include "tools/detect_options.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/stand_options.hpp"
@@ -168,6 +169,7 @@ Command add_render(CLI::App& root) {
             PrototypeLibrary lib;
             if (folder) {
               const Stand stand = read_stand(o->source);
+              print_notes(folder_count_notes(o->source, stand));
               organs = stand.organ_count();
               // The contacts this geometry has: after resolution, or as grown without it.
               // A link counts as there even where it leads nowhere (then its read fails, by name).

@@ -1,5 +1,6 @@
 // canopy light's run: the stand (a folder or a grammar), the tile, the light, the files.
 #include "tools/light_run.hpp"
+#include "tools/folder_counts.hpp"
 #include "tools/json_text.hpp"
 
 #include "tools/light_device.hpp"
@@ -235,6 +236,7 @@ LightOutcome run_light(LightOptions o, bool print) {
       read = folder_identity(o.source, "organs.csv");
       stand = read_stand(o.source);
     }
+    if (print) print_notes(folder_count_notes(o.source, stand));
     out.dir = o.source;
     OutputSet files(out.dir);
     files.require_folder(read, "organs.csv");  // a stand written there meanwhile does not take this light

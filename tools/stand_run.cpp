@@ -191,6 +191,11 @@ StandPlan plan_stand(StandOptions& o) {
     o.positions = (std::filesystem::path(o.grammar).parent_path() / *plan.grammar.stand->positions).string();
   if (!o.positions.empty()) {
     plan.request.plants = read_positions(o.positions, o.any_grammar_path);
+    // An empty stand is a stand (its files are valid), but a header alone is more often a file
+    // cut short or not yet filled than one asked for.
+    if (plan.request.plants.empty())
+      plan.grammar.notes.push_back(
+          fmt::format("{} holds a header and no plants: the stand is empty", o.positions));
     plan.request.relative_to = std::filesystem::path(o.positions).parent_path().string();
     plan.request.positions_file = o.positions;
   } else {

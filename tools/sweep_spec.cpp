@@ -11,11 +11,13 @@
 namespace canopy::cli {
 namespace {
 
+/// A decimal number, as the other options take them (strtod also reads hexadecimal: 0x10 was
+/// 16 plants' steps and a 16 m spacing).
 double number(const std::string& name, const std::string& s) {
   std::size_t used = 0;
   const double v = leading_number(s, used);
-  if (used == 0 || used != s.size() || !std::isfinite(v))
-    throw std::invalid_argument(fmt::format("{}: '{}' is not a number", name, s));
+  if (used == 0 || used != s.size() || !std::isfinite(v) || s.find_first_of("xX") != std::string::npos)
+    throw std::invalid_argument(fmt::format("{}: '{}' is not a decimal number", name, s));
   return v;
 }
 

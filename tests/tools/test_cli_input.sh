@@ -159,6 +159,8 @@ p 'x,y,rotation,seed,x\n0,0,0,1,3\n'
 check "positions duplicate column" "2:canopy: error: pos/p.csv:1:19: column 'x' appears twice in the header (cells 1 and 5)" "$rc:$(err)"
 p 'x,y,rotation,seed,steps\n0,0,0,1,1e9\n'
 check "positions steps 1e9" "2:canopy: error: pos/p.csv:2:9: column 'steps' needs a whole number from 0 to 100000, got '1e9'" "$rc:$(err)"
+p 'x,y,rotation,seed\n'
+check "positions: a header alone" "0:canopy: note: pos/p.csv holds a header and no plants: the stand is empty" "$rc:$(err)"
 p 'x,y,rotation,seed\n1e400,0,0,1\n'
 check "positions out of range" "2:canopy: error: pos/p.csv:2:1: column 'x' needs a finite number, got '1e400', which is out of range" "$rc:$(err)"
 printf 'a secret first line\nand a second\n' > not_a_grammar
@@ -213,6 +215,14 @@ run stand "$g" -o ""
 check "stand -o ''" "105:canopy: error: --out: needs a value, got an empty one" "$rc:$(err)"
 run derive ""
 check "derive ''" "105:canopy: error: GRAMMAR: needs a value, got an empty one" "$rc:$(err)"
+# Whole-number options whose range starts at 0: an empty word was read as 0 (--steps "" grew
+# plants of no organs, --threads "" took every core).
+run derive "$g" --steps ""
+check "derive --steps ''" "105:canopy: error: --steps: needs a value, got an empty one" "$rc:$(err)"
+run stand "$g" --rows 1 --per-row 1 --steps= -o e2
+check "stand --steps=" "105:canopy: error: --steps: needs a value, got an empty one:0" "$rc:$(err):$(ls -d e2 2>/dev/null | wc -l)"
+run stand "$g" --rows 1 --per-row 1 --threads "" -o e3
+check "stand --threads ''" "105:canopy: error: --threads: needs a value, got an empty one:0" "$rc:$(err):$(ls -d e3 2>/dev/null | wc -l)"
 # "--csv=" too: CLI11 took the next word as its value ("--csv= --threads=1" wrote a file of that name).
 run detect "$tmp" --csv= --threads=1
 check "detect --csv= --threads=1" "105:canopy: error: --csv: needs a value, got an empty one:0" "$rc:$(err):$(ls -- "--threads=1" 2>/dev/null | wc -l)"
@@ -235,6 +245,16 @@ check "detect: NaN transform" "1:canopy: error: nan/organs.csv:2: column 13 'nan
 edit big 2 13 1e300
 run detect big --backend cpu
 check "detect: 1e300 out of range" "1:canopy: error: big/organs.csv:2: column 13 '1e300' is out of range" "$rc:$(err)"
+edit area 2 6 nan
+run detect area --backend cpu
+check "detect: NaN area" "1:canopy: error: area/organs.csv:2: column 6 'nan' is not a finite number" "$rc:$(err)"
+edit length 3 7 -1
+run detect length --backend cpu
+check "detect: negative length" "1:canopy: error: length/organs.csv:3: column 7 '-1' must not be negative" "$rc:$(err)"
+# organs.csv cut at a line end reads as a smaller stand: the report's counts say so.
+rm -rf cut; cp -r st cut; head -20 st/organs.csv > cut/organs.csv
+run detect cut --backend cpu
+check "detect: a table cut short" "0:1" "$rc:$(grep -c "^canopy: note: cut: the tables hold 2 plants and 19 organs, its report.json counted 2 and" "$tmp/err")"
 edit parent 3 3 -7
 run detect parent --backend cpu
 check "detect: parent out of range" "1:canopy: error: parent/organs.csv:3: parent -7 is not an earlier organ of plant 0" "$rc:$(err)"

@@ -234,6 +234,7 @@ expect_error "positions cell" "pos2.csv:2:3: column 'y' needs a finite number, g
 expect_error "too large" "needs about .* GB .* more than the .* GB available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
 expect_error "formats" "unknown format 'fbx'" "$src/grammars/tomato.yaml" --formats glb,fbx
 expect_error "collide" "unknown organ kind 'root'" "$src/grammars/tomato.yaml" --collide leaflet,root
+expect_error "collide all in a list" "'all' stands alone (every kind), not in a list of kinds ('all,leaflet')" "$src/grammars/tomato.yaml" --collide all,leaflet
 expect_error "two glb forms" "--glb-instancing and --glb-compact are two forms of stand.glb: choose one" \
   "$src/grammars/tomato.yaml" --rows 1 --per-row 2 --glb-instancing --glb-compact
 # A run into a folder of an earlier one in other formats: the earlier meshes go (the folder holds

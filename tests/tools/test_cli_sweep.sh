@@ -208,7 +208,8 @@ bad() {  # bad NAME PATTERN ARGS...
 bad "empty range" "range '0.5:0.3:0.1' is empty" --plant-spacing 0.5:0.3:0.1
 bad "negative spacing" "\-\-plant-spacing: -0.3 must be greater than 0" --plant-spacing 0.3,-0.3
 bad "zero step" "step of '0.3:0.5:0' must be positive" --row-spacing 0.3:0.5:0
-bad "not a number" "'abc' is not a number" --density 2,abc
+bad "not a number" "'abc' is not a decimal number" --density 2,abc
+bad "hexadecimal" "'0x10' is not a decimal number" --steps 3,0x10
 bad "empty item" "empty item in '0.3,,0.4'" --plant-spacing 0.3,,0.4
 bad "a value twice" "\-\-plant-spacing: 0.3 is given twice in '0.3,0.2,0.3'" --plant-spacing 0.3,0.2,0.3
 bad "a density twice" "\-\-density: 2 is given twice" --density 2,3,2.0

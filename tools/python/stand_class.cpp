@@ -5,6 +5,7 @@
 #include "geometry/thread_limit.hpp"
 #include "lsystem/grow.hpp"
 #include "tools/cli_common.hpp"
+#include "tools/folder_counts.hpp"
 #include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
 #include "tools/python/keywords.hpp"
@@ -139,9 +140,12 @@ void bind_stand(py::module_& m) {
           [](py::object dir_arg) {
             const std::string dir = path_of(dir_arg);
             auto out = std::make_shared<PyStand>();
-            py::gil_scoped_release nogil;
-            out->stand = read_stand(dir);
-            out->layout = cli::folder_layout(dir);
+            {
+              py::gil_scoped_release nogil;
+              out->stand = read_stand(dir);
+              out->layout = cli::folder_layout(dir);
+            }
+            warn_notes(cli::folder_count_notes(dir, out->stand));
             return out;
           },
           py::arg("dir"), "Reads a stand back from a folder written by canopy stand.")
