@@ -29,4 +29,18 @@ void check_resolution_fits(std::size_t contacts, std::size_t limit) {
                   contacts, need / 1e9, static_cast<double>(budget) / 1e9));
 }
 
+MemoryCeiling::MemoryCeiling(std::size_t limit) : budget_(memory_budget(limit)) {
+  if (budget_ > 0) ceiling_ = resident_memory() + budget_ / 10 * 9;
+}
+
+bool MemoryCeiling::over() const { return ceiling_ > 0 && resident_memory() > ceiling_; }
+
+void MemoryCeiling::refuse(const char* what) const {
+  throw std::runtime_error(
+      fmt::format("{} grew past the {:.1f} GB of memory available (the process holds {:.1f} GB): organs that "
+                  "turn carry long chains, or plants overlap heavily; run with --no-resolve or --max-rounds, "
+                  "or give fewer or shorter plants",
+                  what, static_cast<double>(budget_) / 1e9, static_cast<double>(resident_memory()) / 1e9));
+}
+
 }  // namespace canopy

@@ -38,4 +38,24 @@ inline std::uint64_t most_plant_pairs(std::size_t budget) {
 /// (0: the memory available).
 void check_resolution_fits(std::size_t contacts, std::size_t limit);
 
+/// A ceiling on the process's resident memory for work whose size shows only as it grows:
+/// resolution's candidates each carry their subtree, so a long chain turning (a vine of
+/// thousands of segments coiled on itself) needs far more than the per-contact estimate above
+/// (21.5 GB for 163,680 contacts of one 2,000-segment coil). The ceiling is what is resident when
+/// it is set plus 90 % of the budget; the work checks it as it goes and stops with a clear error
+/// instead of an out-of-memory kill.
+class MemoryCeiling {
+ public:
+  /// `limit`: as memory_budget's (0: the memory available; no ceiling where unknown).
+  explicit MemoryCeiling(std::size_t limit);
+  /// Whether the process holds more than the ceiling now (reads /proc/self/statm).
+  bool over() const;
+  /// Throws std::runtime_error naming `what` grew past the ceiling.
+  [[noreturn]] void refuse(const char* what) const;
+
+ private:
+  std::size_t ceiling_ = 0;  // 0: none
+  std::size_t budget_ = 0;
+};
+
 }  // namespace canopy

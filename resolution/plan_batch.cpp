@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 
 namespace canopy::planning {
 namespace {
@@ -109,14 +110,24 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
         std::clamp<std::size_t>(scan.size() / (16 * static_cast<std::size_t>(threads)), 1, 8));
     times.lap(PhaseTimes::bookkeeping);
     const double prepare_start = now_seconds();
+    // The candidates' lists (each carries its subtree) are where memory grows without a bound
+    // known before: checked every few candidates made, the level's others skipped once past it.
+    std::atomic<bool> outgrown{false};
 #pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
     for (std::size_t j = 0; j < scan.size(); ++j) {
+      if (outgrown.load(std::memory_order_relaxed)) continue;
       const double started = times.on ? now_seconds() : 0;
       const std::size_t k = scan[j];
       const std::uint32_t m = movers[slots[k]];
       const auto me = static_cast<std::size_t>(omp_get_thread_num());
-      if (!state[k])
+      if (!state[k]) {
         state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
+        thread_local unsigned made = 0;
+        if (request.ceiling && ++made % 32 == 0 && request.ceiling->over()) {
+          outgrown = true;
+          continue;
+        }
+      }
       // Found (now, or by the runner at the last level): refined to its smallest turn at once,
       // by the same thread (it depends on the candidate alone).
       if (host && search.scan_level(*state[k], level, (*lane.scratches)[me]))
@@ -129,6 +140,7 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
       }
     }
     lane.prepare_s += now_seconds() - prepare_start;
+    if (outgrown) request.ceiling->refuse("resolution's candidate turns");
     const auto candidates = [&](const std::vector<std::size_t>& ks) {
       std::vector<TurnSearch::Candidate*> out;
       for (std::size_t k : ks) out.push_back(state[k]);

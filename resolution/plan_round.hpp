@@ -7,6 +7,7 @@
 /// another does its host work.
 /// Batches are independent (a contact's pick depends only on its own candidates' scans) and
 /// their turns are merged in batch order, so the plan is the same for any number of lanes.
+#include "collision/memory_budget.hpp"
 #include "resolution/attempt_batch.hpp"
 #include "collision/contacts.hpp"
 #include "resolution/joints.hpp"
@@ -66,6 +67,8 @@ struct PlanRequest {
   std::vector<AttemptTables>* tables = nullptr;
   /// Per lane, where the round's time went, added to (grown here; ResolveRequest::statistics).
   std::vector<PlanLaneStats>* lane_stats = nullptr;
+  /// Checked as candidates are prepared (null: none): past it the round stops with an error.
+  const MemoryCeiling* ceiling = nullptr;
 };
 
 /// One round's turns, all planned against the poses at the start of the round. Each contact

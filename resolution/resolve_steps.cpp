@@ -126,6 +126,7 @@ bool Resolution::plan_turns(Round& w) {
   preq.pools = &pools;
   preq.tables = &tables;
   preq.lane_stats = req.statistics ? &lane_stats : nullptr;
+  preq.ceiling = &ceiling;
   w.plan = plan_round(s, joints, contacts, touching, search, preq, times);
   ResolveRound& rr = w.record;
   // Asked after planning: a runner that fell back to the host half-way says so.

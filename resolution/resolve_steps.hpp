@@ -118,6 +118,8 @@ struct Resolution {
   std::vector<AttemptTables> tables;              // per lane of bulk planning
   std::optional<LaneThreads> lane_threads;        // made at the first round with a runner of several lanes
   std::vector<PlanLaneStats> lane_stats;          // per lane of planning (ResolveRequest::statistics)
+  /// What resolution may hold, set as it starts (the memory limit, else what is available).
+  const MemoryCeiling ceiling{req.detect.memory_limit};
 };
 
 }  // namespace canopy::resolving

@@ -9,6 +9,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <unistd.h>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -436,4 +439,30 @@ TEST_CASE("resolution refuses contacts past its memory, with a clear message, be
   CHECK(failure([&] {
           resolve(s, *cpu, rr, cpu->detect(s, DetectRequest{}));
         }).starts_with(fmt::format("resolving {} contacts needs about", c.pairs.size())));
+}
+
+TEST_CASE("resolution stops with a clear message when its candidates outgrow the memory") {
+  // One petiole chain of 800 segments coiled on itself (a vine): every loop meets every other,
+  // and each candidate turn carries the chain beyond it. Its 25,000 contacts pass the per-contact
+  // estimate, but the candidates would take about 1 GB; a budget of 1.2 x the estimate stops
+  // the round as it grows past 90 % of it, instead of running the machine out of memory.
+  char name[] = "/tmp/canopy-coil-XXXXXX";
+  const int fd = mkstemp(name);
+  REQUIRE(fd >= 0);
+  close(fd);
+  std::ofstream(name) << "axiom: A\nsteps: 800\norgans:\n  P: {prototype: cylinder, kind: petiole}\n"
+                         "productions:\n  - \"A -> P(0.01,0.002)+(10)A\"\n";
+  GrowRequest req;
+  req.grammar = name;
+  req.plants.resize(1);
+  Stand s = grow_stand(req);
+  std::remove(name);
+  auto cpu = make_cpu_backend();
+  const Contacts c = cpu->detect(s, DetectRequest{});
+  REQUIRE(c.pairs.size() > 20000);
+  ResolveRequest rr;
+  rr.detect.memory_limit =
+      static_cast<std::size_t>(1.2 * static_cast<double>(c.pairs.size()) * kResolutionBytesPerContact);
+  rr.config.max_rounds = 1;
+  CHECK(failure([&] { resolve(s, *cpu, rr, c); }).starts_with("resolution's candidate turns grew past the "));
 }
