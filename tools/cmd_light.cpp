@@ -25,7 +25,8 @@ std::shared_ptr<LightOptions> register_light(CLI::App& app_ref) {
   app->add_option("--latitude", o->latitude,
                   "Beams from the sun's position: latitude, degrees (north positive)")
       ->check(kFinite);
-  app->add_option("--day", o->day, "Beams from the sun's position: day of the year, 1-366");
+  app->add_option("--day", o->day, "Beams from the sun's position: day of the year, 1-366")
+      ->transform(whole_in(1, 366));
   app->add_option("--hours", o->hours,
                   "Beams from the sun's position: local solar times, a list 8,10,12 or a range 8:16:2");
   app->add_option("--sky", o->sky, "Diffuse sky radiance: soc (standard overcast, default) or uniform");

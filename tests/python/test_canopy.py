@@ -194,6 +194,10 @@ def test_a_grammar_naming_a_positions_file_grows_those_plants(tmp_path):
         assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / "py" / f, shallow=False), f
     with pytest.raises(ValueError, match="the positions file"):
         s.export(tmp_path)
+    s.export(tmp_path / "str", formats="glb")  # one string, as canopy.stand takes it
+    assert filecmp.cmp(tmp_path / "cli" / "stand.glb", tmp_path / "str" / "stand.glb", shallow=False)
+    with pytest.raises(ValueError, match="formats: give at least one of glb, obj, ply"):
+        s.export(tmp_path / "none", formats=[])
     # The exported folder reads back and takes light, with a tile: it holds no report.json (the
     # layout), as a positions stand has no lattice.
     assert canopy.Stand.read(tmp_path / "py").plant_count == 3
@@ -229,6 +233,11 @@ def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
         calls.append(round_)
         raise RuntimeError("stop here")
 
+    with pytest.raises(TypeError, match="progress must be callable"):
+        s.resolve(backend="cpu", progress=1)
+    with pytest.raises(TypeError, match="progress must be callable"):
+        canopy.sweep(TOMATO, tmp_path / "never", progress=5, plant_spacing=[0.3], steps=[10], seeds=1, rows=1, per_row=2)
+    assert not (tmp_path / "never").exists()
     with pytest.raises(RuntimeError, match="stop here"):
         s.resolve(backend="cpu", progress=stop)
     assert calls == [1]

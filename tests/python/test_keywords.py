@@ -69,6 +69,10 @@ def test_keyword_types(tmp_path):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, seed=2**64)
     with pytest.raises(ValueError, match="got 1.5"):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, seed=1.5)
+    with pytest.raises(ValueError, match="light: give periodic or no_periodic, not both"):
+        canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=6).light(periodic=True, no_periodic=True)
+    with pytest.raises(ValueError, match="embedded null byte"):
+        canopy.Stand.grow(TOMATO + "\0ignored", rows=1, per_row=1)
 
 
 def test_detect_and_resolve_check_as_the_command_line():

@@ -138,6 +138,8 @@ bad "rays per m2" "\-\-rays-per-m2: -1 is not in" --rays-per-m2 -1
 bad "sky" "\-\-sky: 'clear' is not uniform or soc" --sky clear
 bad "hours alone" "\-\-latitude, \-\-day and \-\-hours go together" --hours 12
 bad "night" "at 23 h the sun is" --latitude 52 --day 172 --hours 23
+"$canopy" light "$tmp/a" --latitude 52 --day 172.5 --hours 12 >"$tmp/o" 2>"$tmp/e"
+check "day not a whole number" "105 1" "$? $(grep -c -- '--day: needs a whole number from 1 to 366, got 172.5' "$tmp/e")"
 bad "tile" "\-\-tile: '1,2,3' is not XMIN,YMIN,XMAX,YMAX" --tile 1,2,3
 bad "tile inverted" "has XMAX <= XMIN" --tile 1,0,0,1
 bad "too many rays" "rays in one direction (the limit is" --rays-per-m2 1e9 --sky-directions 0

@@ -27,7 +27,13 @@ struct CallbackRaised {};
 /// (to be re-raised by `rethrow`) and the C++ work is stopped with CallbackRaised.
 class Callback {
  public:
-  explicit Callback(py::object f) : f_(std::move(f)) {}
+  /// Refuses what cannot be called before any work (progress=1 failed at its first call, after
+  /// a sweep's first run was written).
+  explicit Callback(py::object f) : f_(std::move(f)) {
+    if (!f_.is_none() && !PyCallable_Check(f_.ptr()))
+      throw py::type_error(
+          fmt::format("progress must be callable (a function), got {}", py::repr(f_).cast<std::string>()));
+  }
   ~Callback() {
     py::gil_scoped_acquire gil;
     error_.reset();
@@ -77,7 +83,10 @@ struct PyStand {
 /// A path from str, bytes or os.PathLike (bytes as they are: a file name need not be UTF-8).
 /// (py::str of bytes is their repr, "b'...'", which named a file that does not exist.)
 inline std::string path_of(py::handle h) {
-  return py::module_::import("os").attr("fspath")(h).cast<std::string>();
+  std::string path = py::module_::import("os").attr("fspath")(h).cast<std::string>();
+  // As Python's open(): a NUL would cut the name where the system reads it.
+  if (path.find('\0') != std::string::npos) throw py::value_error("embedded null byte in a path");
+  return path;
 }
 
 /// A NumPy view of a stand's memory that NumPy may not write: the stand's arrays change only

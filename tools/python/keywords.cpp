@@ -63,6 +63,14 @@ void parse_keywords(CLI::App& app, const std::string& command, const std::vector
   cli::one_value_per_use(app);
   cli::refuse_empty_values(app);
   std::vector<std::string> words;
+  // periodic=True beside no_periodic=True said nothing (periodic is no flag of its own, only
+  // its negation is; where both are flags, the parser refuses the pair): one of the two.
+  for (auto item : kwargs) {
+    const std::string key = py::str(item.first);
+    if (key.starts_with("no_") && !item.second.is_none() && kwargs.contains(key.substr(3)) &&
+        !kwargs[py::str(key.substr(3))].is_none() && !app.get_option_no_throw(dashed(key.substr(3))))
+      throw std::invalid_argument(fmt::format("{}: give {} or {}, not both", command, key.substr(3), key));
+  }
   for (auto item : kwargs) {
     const std::string key = py::str(item.first);
     const py::handle v = item.second;

@@ -327,18 +327,24 @@ void bind_stand(py::module_& m) {
           "Turns organs out of contact (canopy stand's resolution) with its options, read by its parser: "
           "level='exact' (--resolve-level), clearance, resolve_clearance=1e-4, collide, max_rounds=30, "
           "candidates, axes, step, bend_joints, bend_step, host_search, lanes, stats, backend='auto', "
-          "threads=0, max_device_memory. progress(round, contacts_left, seconds) is called each round, and "
+          "threads=0, max_device_memory. progress(round, contacts_left, seconds) is called as each round "
+          "goes on (several times while "
+          "a long round is planned) and at its end, and "
           "raising from it stops the run. Returns report.json's 'resolution' (its 'planning' and 'search' "
           "say "
           "what planned the rounds) with 'contacts_after', 'backend', 'device' and 'note'.")
       .def(
           "export",
-          [](PyStand& s, py::object dir_arg, const std::vector<std::string>& formats, bool glb_instancing,
-             bool glb_compact) {
+          [](PyStand& s, py::object dir_arg, py::object formats, bool glb_instancing, bool glb_compact) {
             const std::string dir = path_of(dir_arg);
             cli::refuse_output_over_inputs(s.inputs, dir);  // as canopy stand: never over what it read
+            // A list of formats, or one string "glb,ply" as canopy.stand and --formats take it.
             std::string list;
-            for (const auto& f : formats) list += (list.empty() ? "" : ",") + f;
+            if (py::isinstance<py::str>(formats)) list = formats.cast<std::string>();
+            else
+              for (const auto& f : formats.cast<std::vector<std::string>>())
+                list += (list.empty() ? "" : ",") + f;
+            if (list.empty()) throw std::invalid_argument("formats: give at least one of glb, obj, ply");
             const auto fs = cli::parse_formats(list);
             const cli::GlbForm glb = cli::glb_form(glb_instancing, glb_compact, 0);
             if (glb.compact && fs.count("glb")) check_glb_compact(ExportScope::whole(s.stand));
@@ -354,7 +360,7 @@ void bind_stand(py::module_& m) {
             if (s.after) write_contacts_csv(s.stand, *s.after, files.open("contacts_after.csv"));
             files.commit_all();
           },
-          py::arg("dir"), py::kw_only(), py::arg("formats") = std::vector<std::string>{"glb"},
+          py::arg("dir"), py::kw_only(), py::arg("formats") = py::str("glb"),
           py::arg("glb_instancing") = false, py::arg("glb_compact") = false,
           "Writes the stand's mesh files, organs.csv and plants.csv as canopy stand does, and its "
           "contacts.csv and contacts_after.csv after detect() (both that detection) or resolve() (before and "
