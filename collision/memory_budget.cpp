@@ -29,7 +29,7 @@ void check_resolution_fits(std::size_t contacts, std::size_t limit) {
                   contacts, need / 1e9, static_cast<double>(budget) / 1e9));
 }
 
-MemoryCeiling::MemoryCeiling(std::size_t limit) : budget_(memory_budget(limit)) {
+MemoryCeiling::MemoryCeiling(std::size_t limit) : budget_(memory_budget(limit)), limited_(limit > 0) {
   if (budget_ > 0) ceiling_ = resident_memory() + budget_ / 10 * 9;
 }
 
@@ -37,10 +37,11 @@ bool MemoryCeiling::over() const { return ceiling_ > 0 && resident_memory() > ce
 
 void MemoryCeiling::refuse(const char* what) const {
   throw std::runtime_error(
-      fmt::format("{} grew past the {:.1f} GB of memory available (the process holds {:.1f} GB): organs that "
-                  "turn carry long chains, or plants overlap heavily; run with --no-resolve or --max-rounds, "
-                  "or give fewer or shorter plants",
-                  what, static_cast<double>(budget_) / 1e9, static_cast<double>(resident_memory()) / 1e9));
+      fmt::format("{} grew past the {:.1f} GB of memory {} (the process holds {:.1f} GB): organs that turn "
+                  "carry long chains, or plants overlap heavily; run with --no-resolve, or give fewer or "
+                  "shorter plants",
+                  what, static_cast<double>(budget_) / 1e9, limited_ ? "it may use" : "available",
+                  static_cast<double>(resident_memory()) / 1e9));
 }
 
 }  // namespace canopy

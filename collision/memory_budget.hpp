@@ -43,7 +43,9 @@ void check_resolution_fits(std::size_t contacts, std::size_t limit);
 /// thousands of segments coiled on itself) needs far more than the per-contact estimate above
 /// (21.5 GB for 163,680 contacts of one 2,000-segment coil). The ceiling is what is resident when
 /// it is set plus 90 % of the budget; the work checks it as it goes and stops with a clear error
-/// instead of an out-of-memory kill.
+/// instead of an out-of-memory kill. Like the other bounds it depends on the machine (what is
+/// available, and the threads and lanes that hold candidates at once): a run it stops would
+/// otherwise have taken the machine's last memory; the runs that finish give the same files.
 class MemoryCeiling {
  public:
   /// `limit`: as memory_budget's (0: the memory available; no ceiling where unknown).
@@ -56,6 +58,7 @@ class MemoryCeiling {
  private:
   std::size_t ceiling_ = 0;  // 0: none
   std::size_t budget_ = 0;
+  bool limited_ = false;  // the budget is a limit given, not the memory available
 };
 
 }  // namespace canopy

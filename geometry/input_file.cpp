@@ -93,9 +93,15 @@ bool InputFile::next_line(std::string& line, std::size_t max_line) {
       return true;
     }
   }
+  // A file whose lines end with a carriage return alone (an old Mac format) is one long line.
+  const bool cr_only = buf_.find('\r', at_) != std::string::npos;
   throw InputRefused(
       path_, line_ + 1,
-      fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
+      cr_only
+          ? fmt::format("the {}'s lines end with a carriage return alone (an old Mac format); "
+                        "save it with \\n or \\r\\n line ends",
+                        what_)
+          : fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
 }
 
 std::string InputFile::read_all() {

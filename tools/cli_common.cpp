@@ -14,7 +14,8 @@ namespace {
 /// `in` as a finite number, or nothing.
 std::optional<double> finite_number(const std::string& in) {
   double v = 0;
-  if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v)) return std::nullopt;
+  if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v) || in.find_first_of("xX") != std::string::npos)
+    return std::nullopt;  // decimal only (strtod also reads hexadecimal)
   return v;
 }
 

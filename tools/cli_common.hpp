@@ -15,12 +15,14 @@
 namespace canopy::cli {
 
 /// CLI11's number checks (NonNegativeNumber, Range, ...) compare, and every comparison with NaN
-/// is false, so they let "nan" through: options taking a real number add this check first.
+/// is false, so they let "nan" through: options taking a real number add this check first. Decimal
+/// only, as the whole numbers (strtod also reads "0x1p-4").
 inline const CLI::Validator kFinite(
     [](std::string& in) {
       double v = 0;
       std::string error;
-      if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v))
+      if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v) ||
+          in.find_first_of("xX") != std::string::npos)
         error.append("needs a finite number, got ").append(in);
       return error;
     },

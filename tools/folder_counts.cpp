@@ -1,18 +1,24 @@
 #include "tools/folder_counts.hpp"
 
+#include "geometry/input_file.hpp"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
-#include <fstream>
 
 namespace canopy::cli {
 
 std::vector<std::string> folder_count_notes(const std::string& dir, const Stand& s) {
   const std::string path = (std::filesystem::path(dir) / "report.json").string();
-  std::ifstream in(path);
-  if (!in) return {};
-  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  // Read as every user file is: a regular file of bounded size (a FIFO there would wait for ever).
+  std::string text;
+  try {
+    text = read_input_file(path, "report", 64 << 20);
+  } catch (const std::exception&) {
+    return {};  // no report, or not one canopy wrote: nothing to compare with
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object() || !j.contains("counts") || !j["counts"].is_object()) return {};
   const nlohmann::json& c = j["counts"];
   const auto count = [&](const char* key) -> long long {

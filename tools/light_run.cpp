@@ -1,6 +1,7 @@
 // canopy light's run: the stand (a folder or a grammar), the tile, the light, the files.
 #include "tools/light_run.hpp"
 #include "tools/folder_counts.hpp"
+#include "geometry/input_file.hpp"
 #include "tools/json_text.hpp"
 
 #include "tools/light_device.hpp"
@@ -117,13 +118,15 @@ std::optional<RowLayout> folder_layout(const std::string& dir) {
   // Without a report (Stand.export writes none) the layout is not known: a tile must be given.
   std::error_code ec;
   if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return std::nullopt;
-  std::ifstream in(path);
-  if (!in)
-    throw std::invalid_argument(
-        fmt::format("{}: cannot be read (a folder written by canopy stand holds it)", path));
+  std::string text;
+  try {
+    text = read_input_file(path, "report", 64 << 20);  // a regular file of bounded size
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(fmt::format("{} (a folder written by canopy stand holds it)", e.what()));
+  }
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(in);
+    j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(fmt::format("{}: no layout in its config ({})", path, e.what()));
   }
@@ -236,7 +239,9 @@ LightOutcome run_light(LightOptions o, bool print) {
       read = folder_identity(o.source, "organs.csv");
       stand = read_stand(o.source);
     }
-    if (print) print_notes(folder_count_notes(o.source, stand));
+    // Said at once on the command line; Python warns with the outcome's notes.
+    for (std::string& note : folder_count_notes(o.source, stand)) out.notes.push_back(std::move(note));
+    if (print) print_notes(out.notes);
     out.dir = o.source;
     OutputSet files(out.dir);
     files.require_folder(read, "organs.csv");  // a stand written there meanwhile does not take this light

@@ -15,11 +15,15 @@ command -v gnuplot >/dev/null || { echo "plot.sh: gnuplot is missing (apt-get in
 # column FILE NAME: the 1-based index of a CSV column.
 column() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 
+# quoted TEXT: TEXT inside a gnuplot string in single quotes, where a quote is written twice (a
+# folder named d'x ended the string).
+quoted() { printf '%s' "${1//\'/\'\'}"; }
+
 # render NAME SCRIPT: runs the gnuplot SCRIPT body twice, into NAME.png and NAME.svg.
 render() {
-  local name=$1 body=$2
-  gnuplot <<<"set terminal pngcairo size 900,600 font 'sans,11'; set output '$name.png'; $body"
-  gnuplot <<<"set terminal svg size 900,600 font 'sans,11'; set output '$name.svg'; $body"
+  local name=$1 body=$2 out; out=$(quoted "$1")
+  gnuplot <<<"set terminal pngcairo size 900,600 font 'sans,11'; set output '$out.png'; $body"
+  gnuplot <<<"set terminal svg size 900,600 font 'sans,11'; set output '$out.svg'; $body"
   echo "wrote $name.png $name.svg"
 }
 
@@ -70,8 +74,8 @@ sweep() {
       print $d, sum, spread, v($t), v($ts), v($l), v($ls) > f }'
   local plots_c="" plots_t="" plots_l="" name
   while IFS= read -r name; do
-    local f=$data/$name key steps spacing
-    key=${name#age_}; key=${key%.dat}; steps=${key%%_*}; spacing=${key#*_}
+    local f key steps spacing
+    f=$(quoted "$data/$name"); key=${name#age_}; key=${key%.dat}; steps=${key%%_*}; spacing=${key#*_}
     local label; label=$(title "$steps" "$spacing" "$spacings")
     plots_c+="'$f' using 1:2:3 with yerrorlines title '$label', "
     plots_t+="'$f' using 1:4:5 with yerrorlines title '$label', "
@@ -103,8 +107,8 @@ light_plots() {
       for (i = 1; i <= n; i++) line = line " " ($c[i] == "" ? "NaN" : $c[i]); print line > f }'
   local pd="" pf="" k=0
   while IFS= read -r name; do
-    local f=$data/$name key steps spacing
-    key=${name#light_}; key=${key%.dat}; steps=${key%%_*}; spacing=${key#*_}; k=$((k + 1))
+    local f key steps spacing
+    f=$(quoted "$data/$name"); key=${name#light_}; key=${key%.dat}; steps=${key%%_*}; spacing=${key#*_}; k=$((k + 1))
     local label; label=$(title "$steps" "$spacing" "$spacings")
     pd+="'$f' using 1:4:5 with yerrorlines lc $k pt 7 title '$label, resolved', '' using 1:2 with lines lc $k dt 2 title 'as grown', "
     pf+="'$f' using 1:8:9 with yerrorlines lc $k pt 7 title '$label, resolved', '' using 1:6 with lines lc $k dt 2 title 'as grown', "

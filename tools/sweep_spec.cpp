@@ -16,7 +16,7 @@ namespace {
 double number(const std::string& name, const std::string& s) {
   std::size_t used = 0;
   const double v = leading_number(s, used);
-  if (used == 0 || used != s.size() || !std::isfinite(v) || s.find_first_of("xX") != std::string::npos)
+  if (used == 0 || used != s.size() || !std::isfinite(v))
     throw std::invalid_argument(fmt::format("{}: '{}' is not a decimal number", name, s));
   return v;
 }
@@ -26,7 +26,10 @@ double number(const std::string& name, const std::string& s) {
 double leading_number(const std::string& s, std::size_t& used) {
   used = 0;
   try {
-    return std::stod(s, &used);
+    const double v = std::stod(s, &used);
+    // Decimal only, as every number canopy reads (strtod also takes "0x3c" and "0x1p-4").
+    if (s.substr(0, used).find_first_of("xX") != std::string::npos) used = 0;
+    return used ? v : 0;
   } catch (const std::exception&) {
     used = 0;
     return 0;

@@ -73,6 +73,11 @@ def test_keyword_types(tmp_path):
         canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=6).light(periodic=True, no_periodic=True)
     with pytest.raises(ValueError, match="embedded null byte"):
         canopy.Stand.grow(TOMATO + "\0ignored", rows=1, per_row=1)
+    with pytest.raises(ValueError, match="embedded null byte"):
+        canopy.stand(TOMATO, tmp_path / "nul", positions=str(tmp_path / "p.csv") + "\0junk")
+    lit = canopy.Stand.grow(TOMATO, rows=1, per_row=1, steps=6).light(periodic=False, no_periodic=True, sky_directions=0,
+                                                                      suns=[(60, 180)], error=0.05)
+    assert lit["direct"][0]["intercepted_fraction"] >= 0  # the two agree: taken
 
 
 def test_detect_and_resolve_check_as_the_command_line():

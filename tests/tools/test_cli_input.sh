@@ -217,6 +217,9 @@ run derive ""
 check "derive ''" "105:canopy: error: GRAMMAR: needs a value, got an empty one" "$rc:$(err)"
 # Whole-number options whose range starts at 0: an empty word was read as 0 (--steps "" grew
 # plants of no organs, --threads "" took every core).
+# Real numbers are decimal too: strtod read --jitter 0x1p-4 as 0.0625.
+run stand "$g" --rows 1 --per-row 2 --jitter 0x1p-4 -o e4
+check "stand --jitter 0x1p-4" "105:canopy: error: --jitter: needs a finite number, got 0x1p-4:0" "$rc:$(err):$(ls -d e4 2>/dev/null | wc -l)"
 run derive "$g" --steps ""
 check "derive --steps ''" "105:canopy: error: --steps: needs a value, got an empty one" "$rc:$(err)"
 run stand "$g" --rows 1 --per-row 1 --steps= -o e2
@@ -251,6 +254,10 @@ check "detect: NaN area" "1:canopy: error: area/organs.csv:2: column 6 'nan' is 
 edit length 3 7 -1
 run detect length --backend cpu
 check "detect: negative length" "1:canopy: error: length/organs.csv:3: column 7 '-1' must not be negative" "$rc:$(err)"
+# A report.json that is no regular file (a FIFO) is passed over, never waited on.
+rm -rf fifo; cp -r st fifo; rm fifo/report.json; mkfifo fifo/report.json
+rc=0; timeout 20 "$canopy" detect fifo --backend cpu >"$tmp/out" 2>"$tmp/err" || rc=$?
+check "detect: report.json a FIFO" "0" "$rc"
 # organs.csv cut at a line end reads as a smaller stand: the report's counts say so.
 rm -rf cut; cp -r st cut; head -20 st/organs.csv > cut/organs.csv
 run detect cut --backend cpu

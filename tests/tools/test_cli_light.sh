@@ -132,6 +132,7 @@ bad() {  # bad NAME PATTERN ARGS...
 }
 bad "sun below the horizon" "elevation 0 is not above the horizon" --sun 0,10
 bad "sun not a pair" "'60;10' is not ELEVATION,AZIMUTH" --sun "60;10"
+bad "sun in hexadecimal" "'0x3c,180' is not ELEVATION,AZIMUTH" --sun 0x3c,180
 bad "error zero" "\-\-error: 0 is not in" --error 0
 bad "plant error" "\-\-plant-error: 2 is not in" --plant-error 2
 bad "rays per m2" "\-\-rays-per-m2: -1 is not in" --rays-per-m2 -1

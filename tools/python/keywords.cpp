@@ -1,6 +1,7 @@
 #include "tools/python/keywords.hpp"
 
 #include "tools/cli_common.hpp"
+#include "tools/python/common.hpp"
 
 #include <fmt/format.h>
 
@@ -38,9 +39,13 @@ namespace {
 /// One word of the command line: bytes and paths as they are (a file name need not be UTF-8),
 /// anything else as Python prints it (floats as their shortest round trip).
 std::string word(py::handle v) {
-  if (py::isinstance<py::bytes>(v)) return v.cast<std::string>();
-  if (py::hasattr(v, "__fspath__")) return py::module_::import("os").attr("fspath")(v).cast<std::string>();
-  return py::str(v).cast<std::string>();
+  // A NUL would cut the word where the system reads it (a path, a grammar's name), as
+  // Python's open() refuses it.
+  std::string w = py::isinstance<py::bytes>(v)   ? v.cast<std::string>()
+                  : py::hasattr(v, "__fspath__") ? path_of(v)
+                                                 : py::str(v).cast<std::string>();
+  if (w.find('\0') != std::string::npos) throw py::value_error("embedded null byte in a value");
+  return w;
 }
 
 /// The item of a list: a pair (elevation, azimuth) is "60,180".
@@ -64,11 +69,13 @@ void parse_keywords(CLI::App& app, const std::string& command, const std::vector
   cli::refuse_empty_values(app);
   std::vector<std::string> words;
   // periodic=True beside no_periodic=True said nothing (periodic is no flag of its own, only
-  // its negation is; where both are flags, the parser refuses the pair): one of the two.
+  // its negation is; where both are flags, the parser refuses the pair): the two must agree.
   for (auto item : kwargs) {
     const std::string key = py::str(item.first);
     if (key.starts_with("no_") && !item.second.is_none() && kwargs.contains(key.substr(3)) &&
-        !kwargs[py::str(key.substr(3))].is_none() && !app.get_option_no_throw(dashed(key.substr(3))))
+        !kwargs[py::str(key.substr(3))].is_none() && app.get_option_no_throw(dashed(key)) &&
+        !app.get_option_no_throw(dashed(key.substr(3))) &&
+        PyObject_IsTrue(item.second.ptr()) == PyObject_IsTrue(kwargs[py::str(key.substr(3))].ptr()))
       throw std::invalid_argument(fmt::format("{}: give {} or {}, not both", command, key.substr(3), key));
   }
   for (auto item : kwargs) {
@@ -94,7 +101,7 @@ void parse_keywords(CLI::App& app, const std::string& command, const std::vector
     }
     std::vector<std::string> values;
     if (is_path_option(name)) {
-      values.push_back(py::module_::import("os").attr("fspath")(v).cast<std::string>());
+      values.push_back(path_of(v));
     } else if (py::isinstance<py::dict>(v)) {
       for (auto kv : v.cast<py::dict>()) values.push_back(word(kv.first) + "=" + word(kv.second));
     } else if (is_sequence(v)) {

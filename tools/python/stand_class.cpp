@@ -92,6 +92,8 @@ void bind_stand(py::module_& m) {
               const std::string file =
                   (std::filesystem::path(grammar).parent_path() / *g.stand->positions).string();
               req.plants = read_positions(file);
+              if (req.plants.empty())  // as canopy stand says it
+                warn_notes({fmt::format("{} holds a header and no plants: the stand is empty", file)});
               req.relative_to = std::filesystem::path(file).parent_path().string();
               req.positions_file = file;
               out->inputs.push_back({"the positions file", file});
