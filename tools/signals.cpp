@@ -98,6 +98,10 @@ void end_on_terminate() {
 
 void start_signal_thread() {
   if (g_thread_started.exchange(true)) return;
+  // A file-size limit (ulimit -f) killed the process by SIGXFSZ without a word, leaving its
+  // temporary files: ignored, a write past it fails with EFBIG and the run ends as any write
+  // error does (one line, its files removed).
+  std::signal(SIGXFSZ, SIG_IGN);
   const sigset_t set = handled();
   pthread_sigmask(SIG_BLOCK, &set, nullptr);
   std::thread([set] {

@@ -6,6 +6,9 @@
 #include "geometry/atomic_file.hpp"
 
 #include <fmt/format.h>
+#include <cstring>
+#include <cerrno>
+#include <fcntl.h>
 
 #include <charconv>
 #include <cmath>
@@ -187,13 +190,22 @@ void write_runs(const std::string& path, const std::vector<RunRow>& rows) {
 }
 
 void append_run(const std::string& path, const RunRow& row) {
-  std::FILE* f = std::fopen(path.c_str(), "a");
-  if (!f) throw std::runtime_error(fmt::format("cannot append to {}", path));
+  const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) throw std::runtime_error(fmt::format("cannot append to {}: {}", path, std::strerror(errno)));
+  const off_t before = ::lseek(fd, 0, SEEK_END);
   const std::string l = line_of(row);
-  const bool ok =
-      std::fwrite(l.data(), 1, l.size(), f) == l.size() && std::fflush(f) == 0 && fsync(fileno(f)) == 0;
-  std::fclose(f);
-  if (!ok) throw std::runtime_error(fmt::format("cannot append to {}", path));
+  std::size_t done = 0;
+  int error = 0;
+  while (done < l.size() && !error) {
+    const ssize_t n = ::write(fd, l.data() + done, l.size() - done);
+    if (n > 0) done += static_cast<std::size_t>(n);
+    else if (n < 0 && errno != EINTR) error = errno;
+  }
+  if (!error && ::fsync(fd) != 0) error = errno;
+  // A row written in part (the disk filled) is cut off again: the table keeps whole rows only.
+  if (error && before >= 0) (void)!::ftruncate(fd, before);
+  ::close(fd);
+  if (error) throw std::runtime_error(fmt::format("cannot append to {}: {}", path, std::strerror(error)));
 }
 
 std::string summary_csv(const std::vector<RunRow>& rows) {

@@ -199,5 +199,12 @@ check "one spot message" "1" "$(grep -c "^canopy: error: the plants' bounds meet
 check "one spot no folder" "no" "$([ -e "$tmp/spot" ] && echo yes || echo no)"
 fi
 
+# A file-size limit (ulimit -f) killed the run by SIGXFSZ without a word, leaving its temporaries:
+# the write fails instead, and the run ends as on any write error.
+mkdir -p "$tmp/xfsz"
+( ulimit -f 1000; "$canopy" stand "$g" --rows 2 --per-row 5 --seed 4 -o "$tmp/xfsz/st" >/dev/null 2>"$tmp/e" )
+check "file-size limit: one line, exit 1" "1:1" "$?:$(grep -c '^canopy: error: writing .*: File too large$' "$tmp/e")"
+check "file-size limit: nothing left" "" "$(ls -A "$tmp/xfsz")"
+
 echo "$pass passed, $failures failed"
 [ "$failures" -eq 0 ]

@@ -256,5 +256,13 @@ check "sweep --no-random-rotation" "0 False" "$? $(python3 -c "import json; prin
 "$canopy" sweep "$g" --plant-spacing 0.3 --steps 10 --seeds 1 --rows 1 --per-row 3 --no-light --backend cpu \
   --random-rotation --no-random-rotation -o "$tmp/nr2" >/dev/null 2>&1
 check "sweep: both rotations refused" "108" "$?"
+# A row the file-size limit cut is cut off again: runs.csv keeps whole rows (the disk filling does
+# the same); the run says why.
+( ulimit -f 2; "$canopy" sweep "$g" --seeds 12 --rows 2 --per-row 3 --steps 10 --no-light --backend cpu \
+  -o "$tmp/xf" >/dev/null 2>"$tmp/e" )
+check "sweep past a file-size limit" "1:1" "$?:$(grep -c 'cannot append to .*runs.csv: File too large' "$tmp/e")"
+check "sweep past a file-size limit: whole rows" "True" "$(python3 -c "
+import csv; r=list(csv.reader(open('$tmp/xf/runs.csv'))); print(len(r) > 2 and all(len(x) == len(r[0]) for x in r))")"
+
 echo "$pass passed, $failures failed"
 [ "$failures" -eq 0 ]
