@@ -121,13 +121,17 @@ bool is_dead_temporary(const std::string& name) {
 
 std::string output_folder(const std::string& dir) {
   if (dir.empty()) throw std::runtime_error("cannot create the output folder: no folder named");
-  fs::path p = fs::absolute(dir).lexically_normal();
-  if (p.filename().empty()) p = p.parent_path();
+  // The folder the kernel names: "L/../Z" with L a link into another folder is that folder's
+  // sibling, not ./Z (read as text, a run replaced ./Z while readers followed the link). The
+  // existing part of the path is resolved (links, "..", "."), the rest taken as written.
   std::error_code ec;
-  if (fs::is_symlink(p, ec)) {
-    const fs::path target = fs::canonical(p, ec);
-    if (!ec && fs::is_directory(target, ec)) p = target;
-  }
+  fs::path p = fs::weakly_canonical(fs::absolute(dir), ec);
+  if (ec) p = fs::absolute(dir).lexically_normal();  // a loop of links: named as written
+  if (p.filename().empty()) p = p.parent_path();
+  // A link to what is not a folder stays itself, and is refused as a file is.
+  if (const fs::path named = fs::absolute(dir).lexically_normal();
+      fs::is_symlink(named, ec) && !fs::is_directory(p, ec))
+    p = named;
   if (p == p.root_path() || p.filename().empty() || p.filename() == "..")
     throw std::runtime_error(
         fmt::format("cannot create the output folder {}: the file system's root cannot be replaced", dir));

@@ -199,6 +199,13 @@ check "one spot message" "1" "$(grep -c "^canopy: error: the plants' bounds meet
 check "one spot no folder" "no" "$([ -e "$tmp/spot" ] && echo yes || echo no)"
 fi
 
+# -o through a link and "..": the folder the kernel names (L/../Z with L -> X/Y is X/Z), never
+# the ./Z that reading the path as text gave.
+mkdir -p "$tmp/dd/X/Y" && ln -s X/Y "$tmp/dd/L"
+"$canopy" stand "$g" --rows 1 --per-row 2 --steps 6 -o "$tmp/dd/Z" >/dev/null 2>&1
+(cd "$tmp/dd" && "$canopy" stand "$g" --rows 1 --per-row 3 --steps 6 -o L/../Z >/dev/null 2>&1)
+check "-o L/../Z: the kernel's folder" "0:3:2" "$?:$(($(wc -l < "$tmp/dd/X/Z/plants.csv") - 1)):$(($(wc -l < "$tmp/dd/Z/plants.csv") - 1))"
+
 # A file-size limit (ulimit -f) killed the run by SIGXFSZ without a word, leaving its temporaries:
 # the write fails instead, and the run ends as on any write error.
 mkdir -p "$tmp/xfsz"
