@@ -223,10 +223,13 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
         throw std::runtime_error(fmt::format("cannot create the sweep folder {}: {}", o.out,
                                              made ? made.message() : "it exists and is not a folder"));
       // One sweep writes a folder at a time: two at once each ran every cell and appended its own
-      // rows, and summary.csv pooled the duplicates. The lock is the folder's own (flock on its
-      // descriptor, held by sweep_lock until the sweep returns; the kernel lets it go however the
-      // process ends).
-      sweep_lock.fd = ::open(o.out.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      // rows, and summary.csv pooled the duplicates. The lock is a file of the folder's,
+      // .sweep.lock (flock, held by sweep_lock until the sweep returns; the kernel lets it go
+      // however the process ends): a stand run that replaces the folder links its files into the
+      // new one, the lock's among them, where a lock on the folder itself stayed with the folder
+      // swapped away and a second sweep ran beside the first.
+      sweep_lock.fd =
+          ::open((std::filesystem::path(o.out) / ".sweep.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
       if (sweep_lock.fd >= 0 && ::flock(sweep_lock.fd, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)
         throw std::invalid_argument(fmt::format(
             "sweep: another canopy sweep is writing {}; wait for it to end, or give another -o", o.out));

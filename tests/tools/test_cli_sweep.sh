@@ -235,11 +235,16 @@ check "light option with --no-light" "108 1 0" "$? $(grep -c 'excludes' "$tmp/e"
 # their duplicate rows): the folder's lock, held here as a running sweep holds it.
 if command -v flock >/dev/null; then
   mkdir -p "$tmp/locked"
-  flock "$tmp/locked" sleep 5 &
+  flock "$tmp/locked/.sweep.lock" sleep 5 &
   holder=$!
   sleep 0.3
   "$canopy" sweep "$g" --rows 1 --per-row 2 --plant-spacing 0.4 --steps 4 --seeds 1 --no-light -o "$tmp/locked" >"$tmp/o" 2>"$tmp/e"
-  check "a folder another sweep writes" "2 1 0" "$? $(grep -c 'another canopy sweep is writing' "$tmp/e") $(ls -A "$tmp/locked" | wc -l)"
+  check "a folder another sweep writes" "2 1 .sweep.lock" "$? $(grep -c 'another canopy sweep is writing' "$tmp/e") $(ls -A "$tmp/locked")"
+  # A stand run that replaces the folder meanwhile keeps the lock (a lock on the folder itself
+  # stayed with the folder swapped away, and a second sweep ran beside the first).
+  "$canopy" stand "$g" --rows 1 --per-row 2 --steps 4 -o "$tmp/locked" >/dev/null 2>&1
+  "$canopy" sweep "$g" --rows 1 --per-row 2 --plant-spacing 0.4 --steps 4 --seeds 1 --no-light -o "$tmp/locked" >"$tmp/o" 2>"$tmp/e"
+  check "a folder another sweep writes, replaced by a stand" "2 1" "$? $(grep -c 'another canopy sweep is writing' "$tmp/e")"
   kill "$holder" 2>/dev/null; wait "$holder" 2>/dev/null
 fi
 
