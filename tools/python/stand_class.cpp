@@ -17,8 +17,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <filesystem>
-#include <set>
 
 namespace canopy::python {
 
@@ -51,15 +49,24 @@ void bind_stand(py::module_& m) {
                     fmt::format("seed: needs a whole number from 0 to 18446744073709551615, got {}",
                                 py::repr(seed_arg).cast<std::string>()));
             }
-            GrowRequest req = cli::grow_request(grammar, overrides(set), steps, lod, threads, max_modules);
-            StandSpec spec;
-            spec.rows = rows, spec.per_row = per_row, spec.row_spacing = row_spacing,
-            spec.plant_spacing = plant_spacing;
-            spec.double_rows = double_rows, spec.jitter = jitter, spec.random_rotation = random_rotation,
-            spec.seed = seed;
+            // The command line's plan: the grammar loaded, the layout chosen (row options over the
+            // grammar's stand entry field by field, else the positions file that entry names).
+            cli::StandOptions o;
+            o.grammar = grammar, o.set = overrides(set), o.steps = steps, o.lod = lod;
+            o.detect.threads = threads, o.max_modules = max_modules;
+            o.rows.rows = rows, o.rows.per_row = per_row, o.rows.row_spacing = row_spacing,
+            o.rows.plant_spacing = plant_spacing, o.rows.double_rows = double_rows, o.rows.jitter = jitter,
+            o.rows.random_rotation = random_rotation, o.rows.seed = seed;
+            if (positions && cli::any_row_option(o.rows))
+              throw std::invalid_argument("positions cannot be combined with row options");
+            // Whole numbers of plants, as --rows and --per-row say (a negative count wrapped to
+            // 2^64 - 1 plants in the size check).
+            for (const auto& [name, count] : {std::pair{"rows", rows}, std::pair{"per_row", per_row}})
+              if (count && *count < 1)
+                throw std::invalid_argument(
+                    fmt::format("{}: needs a whole number from 1 to 2147483647, got {}", name, *count));
+            std::vector<PlantPlacement> given;
             if (positions) {
-              if (cli::any_row_option(spec))
-                throw std::invalid_argument("positions cannot be combined with row options");
               const auto a = positions->unchecked<2>();
               if (a.shape(1) != 4)
                 throw std::invalid_argument("positions: an array of rows x, y, rotation, seed (N x 4)");
@@ -72,52 +79,23 @@ void bind_stand(py::module_& m) {
                       "positions: row {}: the seed must be a non-negative integer below 2^64, got {}", i,
                       a(i, 3)));
                 p.seed = static_cast<std::uint64_t>(a(i, 3));
-                req.plants.push_back(p);
+                given.push_back(p);
               }
             }
-            // Whole numbers of plants, as --rows and --per-row say (a negative count wrapped to
-            // 2^64 - 1 plants in the size check).
-            for (const auto& [name, count] : {std::pair{"rows", rows}, std::pair{"per_row", per_row}})
-              if (count && *count < 1)
-                throw std::invalid_argument(
-                    fmt::format("{}: needs a whole number from 1 to 2147483647, got {}", name, *count));
+            cli::StandPlan plan = cli::plan_stand(o);
+            warn_notes(plan.grammar.notes);
             auto out = std::make_shared<PyStand>();
-            out->inputs.push_back({"the grammar", grammar});
-            // The layout: the positions given, else rows (options over the grammar's stand entry
-            // field by field), else the positions file the grammar's stand entry names (relative
-            // to the grammar's folder), as canopy stand chooses.
-            const Grammar g = load_grammar(grammar, req.load);
-            warn_notes(g.notes);
-            if (!positions && !cli::any_row_option(spec) && g.stand && g.stand->positions) {
-              const std::string file =
-                  (std::filesystem::path(grammar).parent_path() / *g.stand->positions).string();
-              req.plants = read_positions(file);
-              if (req.plants.empty())  // as canopy stand says it
-                warn_notes({fmt::format("{} holds a header and no plants: the stand is empty", file)});
-              req.relative_to = std::filesystem::path(file).parent_path().string();
-              req.positions_file = file;
-              out->inputs.push_back({"the positions file", file});
-            } else if (!positions) {
-              out->layout = cli::choose_layout(spec, g.stand).layout;
+            if (positions) {
+              plan.request.plants = std::move(given);
+            } else if (o.positions.empty()) {
               // Said before placing and growing, with the command line's estimate, when the stand
               // cannot fit (10^10 plants' placements alone ran out of memory).
-              RowLayout one = *out->layout;
-              one.rows = one.per_row = 1;
-              GrowRequest first = req;
-              first.plants = row_layout(one);
-              check_stand_fits(first, static_cast<std::size_t>(out->layout->rows) *
-                                          static_cast<std::size_t>(out->layout->per_row));
-              req.plants = row_layout(*out->layout);
+              cli::place_plan(plan, o);
+              out->layout = plan.layout;
             }
-            std::set<std::string> named;
-            for (const PlantPlacement& p : req.plants)
-              if (!p.grammar.empty() && named.insert(p.grammar).second)
-                out->inputs.push_back({"a grammar the positions file names", grammar_path(req, p.grammar)});
-            if (!out->layout && !req.plants.empty()) {
-              GrowRequest first = req;
-              first.plants.resize(1);
-              check_stand_fits(first, req.plants.size());
-            }
+            if (!out->layout) cli::check_plan_fits(plan, plan.request.plants.size());
+            out->inputs = cli::plan_inputs(plan, o);
+            GrowRequest& req = plan.request;
             out->grammar = grammar;
             {
               py::gil_scoped_release nogil;
