@@ -9,17 +9,12 @@
 
 namespace canopy::cli {
 
-namespace {
-
-/// `in` as a finite number, or nothing.
 std::optional<double> finite_number(const std::string& in) {
   double v = 0;
   if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v) || in.find_first_of("xX") != std::string::npos)
-    return std::nullopt;  // decimal only (strtod also reads hexadecimal)
+    return std::nullopt;
   return v;
 }
-
-}  // namespace
 
 CLI::Validator whole_in(long long lo, long long hi) {
   return CLI::Validator(

@@ -9,23 +9,19 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace canopy::cli {
 
+/// `in` as a finite decimal number, or nothing (strtod also reads hexadecimal: "0x1p-4").
+std::optional<double> finite_number(const std::string& in);
+
 /// CLI11's number checks (NonNegativeNumber, Range, ...) compare, and every comparison with NaN
-/// is false, so they let "nan" through: options taking a real number add this check first. Decimal
-/// only, as the whole numbers (strtod also reads "0x1p-4").
+/// is false, so they let "nan" through: options taking a real number add this check first.
 inline const CLI::Validator kFinite(
-    [](std::string& in) {
-      double v = 0;
-      std::string error;
-      if (!CLI::detail::lexical_cast(in, v) || !std::isfinite(v) ||
-          in.find_first_of("xX") != std::string::npos)
-        error.append("needs a finite number, got ").append(in);
-      return error;
-    },
+    [](std::string& in) { return finite_number(in) ? std::string() : "needs a finite number, got " + in; },
     "", "finite");
 
 /// A seed: a whole number in [0, 2^64). CLI11 reads an unsigned option with strtoull, which takes
