@@ -22,6 +22,7 @@ inline constexpr std::uint64_t kMaxPlantsCsvBytes = std::uint64_t{1} << 30;   //
 inline constexpr std::uint64_t kMaxOrgansCsvBytes = std::uint64_t{64} << 30;  // 64 GiB
 inline constexpr std::uint64_t kMaxRunsCsvBytes = std::uint64_t{1} << 30;     // 1 GiB
 inline constexpr std::uint64_t kMaxSweepJsonBytes = std::uint64_t{1} << 20;   // 1 MiB
+inline constexpr std::uint64_t kMaxReportBytes = std::uint64_t{64} << 20;     // 64 MiB (report.json)
 /// The longest line a CSV input may have (canopy writes lines of a few hundred bytes; a grammar
 /// path in a positions file is at most PATH_MAX).
 inline constexpr std::size_t kMaxCsvLineBytes = 64 << 10;  // 64 KiB

@@ -14,7 +14,7 @@ std::vector<std::string> folder_count_notes(const std::string& dir, const Stand&
   // Read as every user file is: a regular file of bounded size (a FIFO there would wait for ever).
   std::string text;
   try {
-    text = read_input_file(path, "report", 64 << 20);
+    text = read_input_file(path, "report", kMaxReportBytes);
   } catch (const std::exception&) {
     return {};  // no report, or not one canopy wrote: nothing to compare with
   }

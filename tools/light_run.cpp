@@ -120,7 +120,7 @@ std::optional<RowLayout> folder_layout(const std::string& dir) {
   if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return std::nullopt;
   std::string text;
   try {
-    text = read_input_file(path, "report", 64 << 20);  // a regular file of bounded size
+    text = read_input_file(path, "report", kMaxReportBytes);  // a regular file of bounded size
   } catch (const std::exception& e) {
     throw std::invalid_argument(fmt::format("{} (a folder written by canopy stand holds it)", e.what()));
   }
