@@ -108,6 +108,26 @@ TEST_CASE("a replaced folder keeps the user's files and folders, drops the earli
   fs::remove_all(root);
 }
 
+TEST_CASE("a folder under a name of the set is refused before any work, the folder as it was") {
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  write_set(dir.string(), "old");
+  fs::create_directories(dir / "stand.ply" / "mine");
+  put(dir / "stand.ply" / "mine" / "a.txt", "kept");
+  CHECK_THROWS_WITH(
+      OutputSet(dir.string(), kStand),
+      doctest::Contains("stand.ply is a folder there, where the run writes a file of that name"));
+  CHECK(names(dir) == std::set<std::string>{"organs.csv", "plants.csv", "stand.ply"});
+  CHECK(slurp(dir / "stand.ply" / "mine" / "a.txt") == "kept");
+  CHECK(names(root) == std::set<std::string>{"out"});  // no staging folder
+  // A folder of another name is the user's, carried across.
+  fs::rename(dir / "stand.ply", dir / "renders");
+  write_set(dir.string(), "new");
+  CHECK(slurp(dir / "renders" / "mine" / "a.txt") == "kept");
+  CHECK(slurp(dir / "organs.csv") == "new");
+  fs::remove_all(root);
+}
+
 TEST_CASE("files made from a folder that another run replaced meanwhile are not put in") {
   // canopy light DIR reads the stand and adds its light; a stand written to DIR in between would
   // have taken a light made for the stand before it.
@@ -371,11 +391,15 @@ TEST_CASE("the working folder is written in place: the same folder, one set, wha
   }
   CHECK(names(dir) == std::set<std::string>{"notes.txt", "organs.csv", "plants.csv"});
   {
-    // A folder where a file goes: found before any file moves, the folder as it was.
+    // A folder where a file goes: refused before any work; one made during the run is found
+    // before any file moves. The folder as it was, either way.
     fs::create_directory(dir / "report.json");
+    CHECK_THROWS_WITH(OutputSet(".", kStand), doctest::Contains("report.json is a folder there"));
+    fs::remove(dir / "report.json");
     OutputSet blocked(".", kStand);
     blocked.open("organs.csv").write("blocked");
     blocked.open("report.json").write("blocked");
+    fs::create_directory(dir / "report.json");
     CHECK_THROWS_WITH(blocked.commit_all(), doctest::Contains("cannot put report.json into .: a folder of that name is there"));
     fs::remove(dir / "report.json");
   }
