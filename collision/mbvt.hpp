@@ -62,21 +62,22 @@ struct PlantBound {
 
 struct Mbvt {
   MbvtConfig config;
-  std::vector<Obb, FirstTouchAllocator<Obb>>
-      obbs;                                   // per organ (of every organ; unused where not taking part)
-  std::vector<std::uint8_t> takes_part;       // per organ
-  std::vector<std::int32_t> parent_of;        // per organ: its record's parent (the pass's adjacency test)
-  std::vector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
+  FirstTouchVector<Obb> obbs;  // per organ (of every organ; unused where not taking part)
+  /// The shape's arrays are written in full by its parallel loops: made unzeroed, their pages
+  /// first touched by those loops (geometry/first_touch.hpp).
+  UnzeroedVector<std::uint8_t> takes_part;       // per organ
+  UnzeroedVector<std::int32_t> parent_of;        // per organ: its record's parent (the pass's adjacency test)
+  UnzeroedVector<std::uint32_t> cluster_organs;  // organ ids, cluster by cluster
   /// Beside cluster_organs: each organ's later organs in its cluster that are not adjacent to
   /// it (free_pair_masks), and per cluster whether it holds such a pair; the host's (the CPU
   /// pass's own pairs), made with the shape.
-  std::vector<std::uint64_t> free_after;
-  std::vector<std::uint8_t> cluster_has_free;
+  UnzeroedVector<std::uint64_t> free_after;
+  UnzeroedVector<std::uint8_t> cluster_has_free;
   /// Per plant: whether its organs taking part hold a pair that is not adjacent, so it meets
   /// itself at the plant level (made with the shape; plants_with_free_pairs reads it).
   std::vector<std::uint8_t> plant_has_free;
-  std::vector<Cluster> clusters;  // plant by plant
-  std::vector<LcdNode> nodes;
+  UnzeroedVector<Cluster> clusters;  // plant by plant
+  UnzeroedVector<LcdNode> nodes;
   std::vector<PlantBound> plants;
   float max_radius = 0;
   OrganLanes lanes;  // the organs' axis-aligned boxes in lanes: the host's (fit_mbvt, refit_mbvt)

@@ -41,12 +41,16 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     name_ = r.devices[static_cast<std::size_t>(device)].name;
     CANOPY_CUDA_CHECK(cudaSetDevice(device));
     counters_.resize(1);
+    // The stand's staging blocks now, on the thread that starts the GPU while the stand grows
+    // (canopy stand): the first large load would otherwise allocate them.
+    dev_.reserve_staging();
   }
   std::string name() const override { return "cuda"; }
   std::string device() const override { return name_; }
 
-  /// The tree's shape on the host (the stand's structure alone), stand and shape uploaded
-  /// (`load_s`); then every box fitted on the device (`build_s`: the shape and the fit) and the
+  /// The stand's arrays set travelling, the tree's shape built on the host meanwhile (the
+  /// stand's structure alone), then the rest of the upload (`load_s`: the upload the shape did
+  /// not cover); then every box fitted on the device (`build_s`: the shape and the fit) and the
   /// stages.
   Contacts detect(const Stand& s, const DetectRequest& req) override {
     check_request(req);
@@ -54,13 +58,17 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     double t = now_seconds();
     lib_ = std::make_unique<PrototypeLibrary>();
     attempts_.reset();  // its tables belong to the stand held before
+    tree_.reset();
+    plants_.reset();
+    dev_.begin_load(s, *lib_);
+    double load_s = now_seconds() - t;
+    t = now_seconds();
     tree_ = build_mbvt_topology(s, mbvt_config(req));
     const std::vector<std::uint8_t> self = plants_with_free_pairs(s, *tree_);
     const double shape_s = now_seconds() - t;
     t = now_seconds();
-    dev_.load(s, *tree_, *lib_, self);
-    plants_.reset();
-    const double load_s = now_seconds() - t;
+    dev_.end_load(s, *tree_, self);
+    load_s += now_seconds() - t;
     t = now_seconds();
     dev_.fit(req.clearance);
     CANOPY_CUDA_CHECK(cudaDeviceSynchronize());

@@ -75,12 +75,14 @@ class DeviceBuffer {
   }
   /// Room for n items, exactly when `tight` (a device memory budget is in force), else at least.
   void fit(std::size_t n, bool tight) { tight ? resize(n) : grow(n); }
-  void upload(const std::vector<T>& v) {
+  template <class Alloc>
+  void upload(const std::vector<T, Alloc>& v) {
     resize(v.size());
     if (!v.empty()) CANOPY_CUDA_CHECK(cudaMemcpy(p_, v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
   }
   /// The same, queued on `via`: copied by via.finish() (v must stay as it is until then).
-  void upload(const std::vector<T>& v, PinnedUpload& via) {
+  template <class Alloc>
+  void upload(const std::vector<T, Alloc>& v, PinnedUpload& via) {
     resize(v.size());
     via.copy(p_, v.data(), v.size() * sizeof(T));
   }

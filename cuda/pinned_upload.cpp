@@ -10,6 +10,7 @@
 namespace canopy::cuda {
 
 PinnedUpload::~PinnedUpload() {
+  drop();  // copies under way end before their blocks go
   for (Worker& w : workers_) {
     if (w.stream) cudaStreamSynchronize(w.stream), cudaStreamDestroy(w.stream);
     for (int i = 0; i < 2; ++i) {
@@ -56,7 +57,11 @@ void PinnedUpload::run(Worker& w, std::size_t lo, std::size_t hi) const {
   CANOPY_CUDA_CHECK(cudaStreamSynchronize(w.stream));
 }
 
-void PinnedUpload::finish() {
+void PinnedUpload::reserve() {
+  if (workers_.empty()) allocate();
+}
+
+void PinnedUpload::start() {
   std::size_t total = 0;
   for (const Job& j : jobs_) total += j.bytes;
   if (total < kStagedFrom) {
@@ -64,30 +69,33 @@ void PinnedUpload::finish() {
     jobs_.clear();
     return;
   }
-  if (workers_.empty()) allocate();
+  reserve();
   // A load replaces what kernels of any stream may still read: they finish first.
   CANOPY_CUDA_CHECK(cudaDeviceSynchronize());
-  const auto share = [&](int w) { return total * static_cast<std::size_t>(w) / workers_.size(); };
-  std::vector<std::exception_ptr> failed(workers_.size());
-  {
-    std::vector<std::jthread> threads;
-    for (int w = 1; w < static_cast<int>(workers_.size()); ++w)
-      threads.emplace_back([&, w] {
-        try {
-          run(workers_[static_cast<std::size_t>(w)], share(w), share(w + 1));
-        } catch (...) {
-          failed[static_cast<std::size_t>(w)] = std::current_exception();
-        }
-      });
-    try {
-      run(workers_[0], 0, share(1));
-    } catch (...) {
-      failed[0] = std::current_exception();
-    }
-  }
+  const auto share = [&](std::size_t w) { return total * w / workers_.size(); };
+  failed_.assign(workers_.size(), nullptr);
+  for (std::size_t w = 0; w < workers_.size(); ++w)
+    threads_.emplace_back([this, w, lo = share(w), hi = share(w + 1)] {
+      try {
+        run(workers_[w], lo, hi);
+      } catch (...) {
+        failed_[w] = std::current_exception();
+      }
+    });
+}
+
+void PinnedUpload::drop() noexcept {
+  threads_.clear();  // joined
   jobs_.clear();
-  for (const auto& e : failed)
+  failed_.clear();
+}
+
+void PinnedUpload::wait() {
+  threads_.clear();  // joined
+  jobs_.clear();
+  for (const auto& e : failed_)
     if (e) std::rethrow_exception(e);
+  failed_.clear();
 }
 
 }  // namespace canopy::cuda

@@ -7,49 +7,68 @@
 
 namespace canopy::cuda {
 
-void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib,
-                         const std::vector<std::uint8_t>& self) {
-  std::vector<MeshRef> meshes(kMeshSlots);
-  std::vector<Box3f> boxes(kMeshSlots);
-  std::vector<Vec3f> positions;
-  std::vector<std::uint32_t> indices;
-  for (const OrganRecord& r : s.organs) {
-    const std::size_t slot = static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape));
-    MeshRef& ref = meshes[slot];
-    if (ref.vertex_count) continue;
-    const PrototypeMesh& pm = lib.get(r);
-    ref = {static_cast<std::uint32_t>(positions.size()), static_cast<std::uint32_t>(pm.positions.size()),
-           static_cast<std::uint32_t>(indices.size()), static_cast<std::uint32_t>(pm.triangle_count())};
-    boxes[slot] = pm.box;
-    positions.insert(positions.end(), pm.positions.begin(), pm.positions.end());
-    indices.insert(indices.end(), pm.indices.begin(), pm.indices.end());
-  }
-  std::vector<PlantOrigin> origins(s.plant_count());
+void StandOnDevice::begin_load(const Stand& s, PrototypeLibrary& lib) {
+  staging_.drop();  // an earlier load abandoned halfway (its buffers are about to be replaced)
+  host_origins_.resize(s.plant_count());
   double x1 = 0, y1 = 0;
   for (std::size_t p = 0; p < s.plant_count(); ++p) {
-    origins[p] = {s.plants[p].x, s.plants[p].y};
+    host_origins_[p] = {s.plants[p].x, s.plants[p].y};
     x0_ = p ? std::min(x0_, s.plants[p].x) : s.plants[p].x,
     x1 = p ? std::max(x1, s.plants[p].x) : s.plants[p].x;
     y0_ = p ? std::min(y0_, s.plants[p].y) : s.plants[p].y,
     y1 = p ? std::max(y1, s.plants[p].y) : s.plants[p].y;
   }
   span_ = std::max(x1 - x0_, y1 - y0_);
-  // The stand's arrays are queued and copied together by finish() (cuda/pinned_upload.hpp).
   transforms_.upload(s.transforms, staging_);
   organs_.upload(s.organs, staging_);
+  origins_.upload(host_origins_, staging_);
   obbs_.resize(s.organ_count());
+  staging_.start();
+  // Meanwhile the meshes the stand uses (each slot's first organ, found on all threads: a pass
+  // over every organ record), stored once in slot order.
+  std::vector<std::size_t> first(kMeshSlots, s.organs.size());
+#pragma omp parallel
+  {
+    std::vector<std::size_t> mine(kMeshSlots, s.organs.size());
+#pragma omp for schedule(static) nowait
+    for (std::size_t i = 0; i < s.organs.size(); ++i) {
+      const OrganRecord& r = s.organs[i];
+      std::size_t& f = mine[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
+      if (f == s.organs.size()) f = i;
+    }
+#pragma omp critical
+    for (std::size_t k = 0; k < first.size(); ++k) first[k] = std::min(first[k], mine[k]);
+  }
+  mesh_refs_.assign(kMeshSlots, MeshRef{});
+  mesh_boxes_.assign(kMeshSlots, Box3f{});
+  mesh_positions_.clear();
+  mesh_indices_.clear();
+  for (std::size_t slot = 0; slot < first.size(); ++slot) {
+    if (first[slot] == s.organs.size()) continue;
+    const PrototypeMesh& pm = lib.get(s.organs[first[slot]]);
+    mesh_refs_[slot] = {
+        static_cast<std::uint32_t>(mesh_positions_.size()), static_cast<std::uint32_t>(pm.positions.size()),
+        static_cast<std::uint32_t>(mesh_indices_.size()), static_cast<std::uint32_t>(pm.triangle_count())};
+    mesh_boxes_[slot] = pm.box;
+    mesh_positions_.insert(mesh_positions_.end(), pm.positions.begin(), pm.positions.end());
+    mesh_indices_.insert(mesh_indices_.end(), pm.indices.begin(), pm.indices.end());
+  }
+}
+
+void StandOnDevice::end_load(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>& self) {
+  staging_.wait();
+  // The tree's arrays, queued and copied together (cuda/pinned_upload.hpp).
   cluster_organs_.upload(m.cluster_organs, staging_);
   clusters_.upload(m.clusters, staging_);
   nodes_.upload(m.nodes, staging_);
   plants_.upload(m.plants, staging_);
-  origins_.upload(origins, staging_);
+  staging_.finish();
   self_.upload(self);
   max_radius_.resize(1);
-  positions_.upload(positions);
-  indices_.upload(indices);
-  meshes_.upload(meshes);
-  boxes_.upload(boxes);
-  staging_.finish();
+  positions_.upload(mesh_positions_);
+  indices_.upload(mesh_indices_);
+  meshes_.upload(mesh_refs_);
+  boxes_.upload(mesh_boxes_);
   view_ = {transforms_.get(), organs_.get(), obbs_.get(),   cluster_organs_.get(),
            clusters_.get(),   nodes_.get(),  plants_.get(), positions_.get(),
            indices_.get(),    meshes_.get(), origins_.get()};
@@ -59,8 +78,8 @@ void StandOnDevice::load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib,
            s.organ_count() * sizeof(Obb) + m.cluster_organs.size() * 4 + m.clusters.size() * sizeof(Cluster) +
            m.nodes.size() * sizeof(LcdNode) +
            m.plants.size() * (sizeof(PlantBound) + sizeof(PlantOrigin) + 1) +
-           positions.size() * sizeof(Vec3f) + indices.size() * 4 + meshes.size() * sizeof(MeshRef) +
-           boxes.size() * sizeof(Box3f) + sizeof(float);
+           mesh_positions_.size() * sizeof(Vec3f) + mesh_indices_.size() * 4 +
+           mesh_refs_.size() * sizeof(MeshRef) + mesh_boxes_.size() * sizeof(Box3f) + sizeof(float);
 }
 
 void StandOnDevice::fit(float clearance) {

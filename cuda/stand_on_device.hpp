@@ -19,7 +19,18 @@ class StandOnDevice {
  public:
   /// Uploads the stand, the shape of its tree `m` (boxes not needed), the flags of plants that
   /// meet themselves, and the prototype meshes.
-  void load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, const std::vector<std::uint8_t>& self);
+  void load(const Stand& s, const Mbvt& m, PrototypeLibrary& lib, const std::vector<std::uint8_t>& self) {
+    begin_load(s, lib);
+    end_load(s, m, self);
+  }
+  /// The same in two halves, so that the host builds the tree's shape while the stand travels:
+  /// begin_load sets the stand's own arrays (transforms, organ records, plant origins) copying
+  /// on the staging threads, gathers the prototype meshes meanwhile and returns; end_load waits
+  /// for the copies and uploads the rest. `s` must stay as it is in between.
+  void begin_load(const Stand& s, PrototypeLibrary& lib);
+  void end_load(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>& self);
+  /// The staging blocks allocated now (a backend starting on a thread of its own).
+  void reserve_staging() { staging_.reserve(); }
   /// Every OBB, cluster axis, LCD box and plant bound, on the device (no copy).
   void fit(float clearance);
   /// After organs `moved` turned: their transforms up, their OBBs, their plants' cluster boxes
@@ -60,6 +71,11 @@ class StandOnDevice {
   DeviceBuffer<Box3f> boxes_;
   DeviceBuffer<std::uint32_t> ids_, dirty_clusters_, dirty_plants_;
   DeviceBuffer<Affine3f> moved_transforms_;
+  std::vector<PlantOrigin> host_origins_;  // the origins' source while they travel
+  std::vector<MeshRef> mesh_refs_;         // the meshes gathered by begin_load, per slot
+  std::vector<Box3f> mesh_boxes_;
+  std::vector<Vec3f> mesh_positions_;
+  std::vector<std::uint32_t> mesh_indices_;
   StandView view_{};
   TreeView tree_{};
   double x0_ = 0, y0_ = 0, span_ = 0;
