@@ -206,7 +206,7 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
   m.plants.assign(np, PlantBound{});  // bounds empty until fit
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t p = 0; p < np; ++p) {
-    const PlantPart& part = parts[p];
+    PlantPart& part = parts[p];
     const auto oo = static_cast<std::uint32_t>(o0[p]), no = static_cast<std::uint32_t>(n0[p]);
     std::copy(part.organs.begin(), part.organs.end(),
               m.cluster_organs.begin() + static_cast<std::ptrdiff_t>(o0[p]));
@@ -230,6 +230,7 @@ void lay_out_topology(Mbvt& m, const Stand& s, const MbvtConfig& config) {
     PlantBound& pb = m.plants[p];
     pb.first_cluster = static_cast<std::uint32_t>(c0[p]);
     pb.cluster_count = static_cast<std::uint32_t>(part.clusters.size());
+    parts[p] = {};  // let go here, on all threads (10,000 plants' lists freed on one took 7 ms)
   }
 }
 
