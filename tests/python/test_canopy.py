@@ -225,6 +225,32 @@ def test_compact_glb_equals_the_command_line(tmp_path):
         s.export(tmp_path / "both", glb_compact=True, glb_instancing=True)
 
 
+def test_a_stand_at_work_refuses_other_calls_on_it(tmp_path):
+    # From resolve's own progress callback: detect, resolve, export and light on the stand being
+    # resolved are refused (they read or turned organs under the resolution); another stand is free.
+    s = canopy.Stand.grow(TOMATO, rows=1, per_row=4, plant_spacing=0.25, steps=16)
+    other = canopy.Stand.grow(TOMATO, rows=1, per_row=2, steps=10)
+    refused, free = [], []
+
+    def nested(round_, left, seconds):
+        if refused:
+            return
+        for call in (lambda: s.detect(backend="cpu"), lambda: s.resolve(backend="cpu"),
+                     lambda: s.export(tmp_path / "mid"), lambda: s.light(backend="cpu", sky=4)):
+            with pytest.raises(RuntimeError, match="in use by Stand.resolve"):
+                call()
+            refused.append(1)
+        free.append(len(other.detect(backend="cpu")["contacts"]) >= 0)
+
+    rep = s.resolve(backend="cpu", progress=nested)
+    assert len(refused) == 4 and free == [True]
+    assert len(rep["contacts_after"]) == 0
+    assert not (tmp_path / "mid").exists()
+    s.detect(backend="cpu")  # free again once it returned
+    s.export(tmp_path / "after")
+    assert (tmp_path / "after" / "organs.csv").exists()
+
+
 def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
     s = canopy.Stand.grow(TOMATO, rows=1, per_row=4, plant_spacing=0.25, steps=16)
     calls = []

@@ -78,6 +78,29 @@ struct PyStand {
   std::optional<Contacts> before, after;  // export's contacts.csv and contacts_after.csv
   std::optional<RowLayout> layout;        // the rows it was grown in (its lattice is light's tile)
   std::vector<cli::RunInput> inputs;      // the files it was grown from: export never replaces them
+  const char* in_use_by = nullptr;        // the call working on it with the GIL released (StandInUse)
+};
+
+/// Held by a call that works on a stand with the GIL released (detect, resolve, export, light):
+/// another such call on the same stand meanwhile, from a progress callback or another Python
+/// thread, is refused instead of reading or turning organs under the first. Made and dropped
+/// with the GIL held, so the flag needs no lock.
+class StandInUse {
+ public:
+  StandInUse(PyStand& s, const char* call) : s_(s) {
+    if (s.in_use_by)
+      throw std::runtime_error(
+          fmt::format("{}: this stand is in use by {} (called from its progress callback or another thread); "
+                      "call it once that returns",
+                      call, s.in_use_by));
+    s.in_use_by = call;
+  }
+  ~StandInUse() { s_.in_use_by = nullptr; }
+  StandInUse(const StandInUse&) = delete;
+  StandInUse& operator=(const StandInUse&) = delete;
+
+ private:
+  PyStand& s_;
 };
 
 /// A path from str, bytes or os.PathLike (bytes as they are: a file name need not be UTF-8).

@@ -49,6 +49,7 @@ void bind_light(py::module_& m) {
   cls.def(
       "light",
       [](PyStand& s, py::kwargs kwargs) {
+        const StandInUse in_use(s, "Stand.light");
 #ifndef CANOPY_HAVE_LIGHT
         (void)s, (void)kwargs;
         throw std::invalid_argument("light: this build has no ray caster (Embree was not found)");

@@ -223,6 +223,7 @@ void bind_stand(py::module_& m) {
       .def(
           "detect",
           [](PyStand& s, py::kwargs kwargs) {
+            const StandInUse in_use(s, "Stand.detect");
             CLI::App app;
             cli::DetectOptions d;
             d.add_to(app);
@@ -256,6 +257,7 @@ void bind_stand(py::module_& m) {
       .def(
           "resolve",
           [](PyStand& s, py::object progress, py::kwargs kwargs) {
+            const StandInUse in_use(s, "Stand.resolve");
             CLI::App app;
             cli::DetectOptions d;
             d.add_to(app);
@@ -316,6 +318,7 @@ void bind_stand(py::module_& m) {
       .def(
           "export",
           [](PyStand& s, py::object dir_arg, py::object formats, bool glb_instancing, bool glb_compact) {
+            const StandInUse in_use(s, "Stand.export");
             const std::string dir = path_of(dir_arg);
             cli::refuse_output_over_inputs(s.inputs, dir);  // as canopy stand: never over what it read
             // A list of formats, or one string "glb,ply" as canopy.stand and --formats take it.
