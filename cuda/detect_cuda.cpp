@@ -41,8 +41,8 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     name_ = r.devices[static_cast<std::size_t>(device)].name;
     CANOPY_CUDA_CHECK(cudaSetDevice(device));
     counters_.resize(1);
-    // The stand's staging blocks now, on the thread that starts the GPU while the stand grows
-    // (canopy stand): the first large load would otherwise allocate them.
+    // The stand's staging blocks from now on, while the stand grows (canopy stand starts the
+    // backend meanwhile): the first large load would otherwise allocate them.
     dev_.reserve_staging();
   }
   std::string name() const override { return "cuda"; }

@@ -6,10 +6,12 @@
 #include <cstring>
 #include <exception>
 #include <thread>
+#include <utility>
 
 namespace canopy::cuda {
 
 PinnedUpload::~PinnedUpload() {
+  if (reserving_.joinable()) reserving_.join();
   drop();  // copies under way end before their blocks go
   for (Worker& w : workers_) {
     if (w.stream) cudaStreamSynchronize(w.stream), cudaStreamDestroy(w.stream);
@@ -58,7 +60,25 @@ void PinnedUpload::run(Worker& w, std::size_t lo, std::size_t hi) const {
 }
 
 void PinnedUpload::reserve() {
+  if (reserving_.joinable()) {
+    reserving_.join();
+    if (reserve_failed_) std::rethrow_exception(std::exchange(reserve_failed_, nullptr));
+  }
   if (workers_.empty()) allocate();
+}
+
+void PinnedUpload::reserve_in_background() {
+  if (!workers_.empty() || reserving_.joinable()) return;
+  int device = 0;
+  CANOPY_CUDA_CHECK(cudaGetDevice(&device));
+  reserving_ = std::jthread([this, device] {
+    try {
+      CANOPY_CUDA_CHECK(cudaSetDevice(device));  // a thread's current device is its own
+      allocate();
+    } catch (...) {
+      reserve_failed_ = std::current_exception();
+    }
+  });
 }
 
 void PinnedUpload::start() {

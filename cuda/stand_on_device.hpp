@@ -29,8 +29,8 @@ class StandOnDevice {
   /// for the copies and uploads the rest. `s` must stay as it is in between.
   void begin_load(const Stand& s, PrototypeLibrary& lib);
   void end_load(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>& self);
-  /// The staging blocks allocated now (a backend starting on a thread of its own).
-  void reserve_staging() { staging_.reserve(); }
+  /// The staging blocks allocated from now on, on a thread of their own (a backend starting).
+  void reserve_staging() { staging_.reserve_in_background(); }
   /// Every OBB, cluster axis, LCD box and plant bound, on the device (no copy).
   void fit(float clearance);
   /// After organs `moved` turned: their transforms up, their OBBs, their plants' cluster boxes

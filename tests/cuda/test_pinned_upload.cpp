@@ -63,3 +63,18 @@ TEST_CASE("a small load is copied by start() itself; a dropped load leaves the s
   up.finish();
   CHECK(db.download(big.size()) == big);
 }
+
+TEST_CASE("blocks reserved in the background serve the first large load, or go unused") {
+  {
+    PinnedUpload unused;
+    unused.reserve_in_background();  // a small stand's backend: never waited for, joined at the end
+  }
+  PinnedUpload up;
+  up.reserve_in_background();
+  up.reserve_in_background();  // once
+  const auto big = counting(PinnedUpload::kStagedFrom / 4 + 77, 21);
+  DeviceBuffer<std::uint32_t> db;
+  db.upload(big, up);
+  up.finish();
+  CHECK(db.download(big.size()) == big);
+}
