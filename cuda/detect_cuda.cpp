@@ -63,8 +63,15 @@ class CudaBackend : public DetectionBackend, public AttemptSource {
     dev_.begin_load(s, *lib_);
     double load_s = now_seconds() - t;
     t = now_seconds();
-    tree_ = build_mbvt_topology(s, mbvt_config(req));
-    const std::vector<std::uint8_t> self = plants_with_free_pairs(s, *tree_);
+    std::vector<std::uint8_t> self;
+    try {
+      tree_ = build_mbvt_topology(s, mbvt_config(req));
+      self = plants_with_free_pairs(s, *tree_);
+    } catch (...) {
+      dev_.abandon_load();  // the caller may free the stand as this unwinds
+      tree_.reset();
+      throw;
+    }
     const double shape_s = now_seconds() - t;
     t = now_seconds();
     dev_.end_load(s, *tree_, self);

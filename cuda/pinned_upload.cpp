@@ -10,29 +10,44 @@
 
 namespace canopy::cuda {
 
+namespace {
+
+void free_worker(PinnedUpload::Worker& w) noexcept {
+  if (w.stream) cudaStreamSynchronize(w.stream), cudaStreamDestroy(w.stream);
+  for (int i = 0; i < 2; ++i) {
+    if (w.done[i]) cudaEventDestroy(w.done[i]);
+    if (w.host[i]) cudaFreeHost(w.host[i]);
+  }
+  w = {};
+}
+
+}  // namespace
+
 PinnedUpload::~PinnedUpload() {
   if (reserving_.joinable()) reserving_.join();
   drop();  // copies under way end before their blocks go
-  for (Worker& w : workers_) {
-    if (w.stream) cudaStreamSynchronize(w.stream), cudaStreamDestroy(w.stream);
-    for (int i = 0; i < 2; ++i) {
-      if (w.done[i]) cudaEventDestroy(w.done[i]);
-      if (w.host[i]) cudaFreeHost(w.host[i]);
-    }
-  }
+  for (Worker& w : workers_) free_worker(w);
 }
 
 void PinnedUpload::allocate() {
-  CANOPY_CUDA_CHECK(cudaGetDevice(&device_));
-  workers_.resize(kWorkers);
-  for (Worker& w : workers_) {
-    CANOPY_CUDA_CHECK(cudaStreamCreateWithFlags(&w.stream, cudaStreamNonBlocking));
-    for (int i = 0; i < 2; ++i) {
-      CANOPY_CUDA_CHECK(cudaHostAlloc(&w.host[i], kBlock, cudaHostAllocDefault));
-      CANOPY_CUDA_CHECK(cudaEventCreateWithFlags(&w.done[i], cudaEventDisableTiming));
-      CANOPY_CUDA_CHECK(cudaEventRecord(w.done[i], w.stream));
+  // Made aside and kept only whole: a failure partway (pinned memory refused) leaves none, so a
+  // later load tries again instead of copying through a missing block.
+  std::vector<Worker> made(kWorkers);
+  try {
+    CANOPY_CUDA_CHECK(cudaGetDevice(&device_));
+    for (Worker& w : made) {
+      CANOPY_CUDA_CHECK(cudaStreamCreateWithFlags(&w.stream, cudaStreamNonBlocking));
+      for (int i = 0; i < 2; ++i) {
+        CANOPY_CUDA_CHECK(cudaHostAlloc(&w.host[i], kBlock, cudaHostAllocDefault));
+        CANOPY_CUDA_CHECK(cudaEventCreateWithFlags(&w.done[i], cudaEventDisableTiming));
+        CANOPY_CUDA_CHECK(cudaEventRecord(w.done[i], w.stream));
+      }
     }
+  } catch (...) {
+    for (Worker& w : made) free_worker(w);
+    throw;
   }
+  workers_ = std::move(made);
 }
 
 void PinnedUpload::copy(void* dst, const void* src, std::size_t bytes) {
@@ -113,9 +128,9 @@ void PinnedUpload::drop() noexcept {
 void PinnedUpload::wait() {
   threads_.clear();  // joined
   jobs_.clear();
-  for (const auto& e : failed_)
+  std::vector<std::exception_ptr> failed = std::exchange(failed_, {});
+  for (const auto& e : failed)
     if (e) std::rethrow_exception(e);
-  failed_.clear();
 }
 
 }  // namespace canopy::cuda

@@ -50,16 +50,18 @@ class PinnedUpload {
   static constexpr std::size_t kStagedFrom = std::size_t(64) << 20;
   static constexpr int kWorkers = 4;
 
+  /// One staging thread's two pinned blocks, their events and its stream.
+  struct Worker {
+    void* host[2] = {nullptr, nullptr};
+    cudaEvent_t done[2] = {nullptr, nullptr};
+    cudaStream_t stream = nullptr;
+  };
+
  private:
   struct Job {
     char* dst;
     const char* src;
     std::size_t bytes;
-  };
-  struct Worker {
-    void* host[2] = {nullptr, nullptr};
-    cudaEvent_t done[2] = {nullptr, nullptr};
-    cudaStream_t stream = nullptr;
   };
   void allocate();
   /// Worker w's share [lo, hi) of the queued bytes, taken in order.

@@ -19,13 +19,9 @@ void StandOnDevice::begin_load(const Stand& s, PrototypeLibrary& lib) {
     y1 = p ? std::max(y1, s.plants[p].y) : s.plants[p].y;
   }
   span_ = std::max(x1 - x0_, y1 - y0_);
-  transforms_.upload(s.transforms, staging_);
-  organs_.upload(s.organs, staging_);
-  origins_.upload(host_origins_, staging_);
-  obbs_.resize(s.organ_count());
-  staging_.start();
-  // Meanwhile the meshes the stand uses (each slot's first organ, found on all threads: a pass
-  // over every organ record), stored once in slot order.
+  // The meshes the stand uses (each slot's first organ, found on all threads: a pass over every
+  // organ record), stored once in slot order; made before the copies start, so that nothing
+  // between here and end_load throws while they run.
   std::vector<std::size_t> first(kMeshSlots, s.organs.size());
 #pragma omp parallel
   {
@@ -53,6 +49,11 @@ void StandOnDevice::begin_load(const Stand& s, PrototypeLibrary& lib) {
     mesh_positions_.insert(mesh_positions_.end(), pm.positions.begin(), pm.positions.end());
     mesh_indices_.insert(mesh_indices_.end(), pm.indices.begin(), pm.indices.end());
   }
+  transforms_.upload(s.transforms, staging_);
+  organs_.upload(s.organs, staging_);
+  origins_.upload(host_origins_, staging_);
+  obbs_.resize(s.organ_count());
+  staging_.start();
 }
 
 void StandOnDevice::end_load(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>& self) {

@@ -24,11 +24,19 @@ class StandOnDevice {
     end_load(s, m, self);
   }
   /// The same in two halves, so that the host builds the tree's shape while the stand travels:
-  /// begin_load sets the stand's own arrays (transforms, organ records, plant origins) copying
-  /// on the staging threads, gathers the prototype meshes meanwhile and returns; end_load waits
-  /// for the copies and uploads the rest. `s` must stay as it is in between.
+  /// begin_load gathers the prototype meshes, sets the stand's own arrays (transforms, organ
+  /// records, plant origins) copying on the staging threads and returns; end_load waits for the
+  /// copies and uploads the rest. `s` must stay as it is until end_load or abandon_load.
   void begin_load(const Stand& s, PrototypeLibrary& lib);
   void end_load(const Stand& s, const Mbvt& m, const std::vector<std::uint8_t>& self);
+  /// Waits for begin_load's copies and forgets them: what fails between the halves calls it
+  /// before the stand may go (a copy would read freed memory).
+  void abandon_load() noexcept { staging_.drop(); }
+  StandOnDevice() = default;
+  StandOnDevice(const StandOnDevice&) = delete;
+  StandOnDevice& operator=(const StandOnDevice&) = delete;
+  /// Copies under way end before the buffers they write are freed.
+  ~StandOnDevice() { staging_.drop(); }
   /// The staging blocks allocated from now on, on a thread of their own (a backend starting).
   void reserve_staging() { staging_.reserve_in_background(); }
   /// Every OBB, cluster axis, LCD box and plant bound, on the device (no copy).

@@ -205,15 +205,16 @@ void StagedFolder::open(const std::string& dir) {
   name_ = p.filename().string();
   remove_leftovers();
   finish_in_place_leftovers();
-  // A folder under a name of the set cannot be replaced by the set's file (nothing is removed
-  // recursively): refused before any work, in both ways of committing.
+  // The set's names are its files': a folder under one (which a file of the set could not
+  // replace, nothing being removed recursively) is refused before any work, in both ways of
+  // committing, whether this run writes that file or not.
   for (const std::string& n : replaces_) {
     struct stat st;
     if (::lstat((p / n).c_str(), &st) == 0 && S_ISDIR(st.st_mode))
-      throw std::runtime_error(fmt::format(
-          "cannot write the output folder {}: {} is a folder there, where the run writes a file of that "
-          "name; move or rename it",
-          named_, n));
+      throw std::runtime_error(
+          fmt::format("cannot write the output folder {}: {} is a folder there, under the name of one of the "
+                      "folder's files; move or rename it",
+                      named_, n));
   }
   staging_ = in_place_ ? fmt::format("{}/{}{}-{}", dir_, kStagingMark, process_tag(), g_staging_count++)
                        : fmt::format("{}/.{}{}{}-{}", parent_, staging_stem(name_), kStagingMark,

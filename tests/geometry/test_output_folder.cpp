@@ -116,7 +116,7 @@ TEST_CASE("a folder under a name of the set is refused before any work, the fold
   put(dir / "stand.ply" / "mine" / "a.txt", "kept");
   CHECK_THROWS_WITH(
       OutputSet(dir.string(), kStand),
-      doctest::Contains("stand.ply is a folder there, where the run writes a file of that name"));
+      doctest::Contains("stand.ply is a folder there, under the name of one of the folder's files"));
   CHECK(names(dir) == std::set<std::string>{"organs.csv", "plants.csv", "stand.ply"});
   CHECK(slurp(dir / "stand.ply" / "mine" / "a.txt") == "kept");
   CHECK(names(root) == std::set<std::string>{"out"});  // no staging folder
