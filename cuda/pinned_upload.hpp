@@ -42,8 +42,8 @@ class PinnedUpload {
   /// Allocates the staging blocks now, if not yet (waiting for reserve_in_background's).
   void reserve();
   /// Starts allocating them on a thread of its own, on the calling thread's device, and returns:
-  /// a backend that starts while the stand grows has them by its first large load, and a small
-  /// stand (copied without them) does not wait 10-14 ms for them (the H100 machine).
+  /// a backend that starts while the stand grows has them by its first large load (the
+  /// allocation, 10-14 ms on the H100 machine, may hold up a small stand's first copies instead).
   void reserve_in_background();
 
   static constexpr std::size_t kBlock = std::size_t(4) << 20;
