@@ -1,4 +1,5 @@
 #include "geometry/atomic_file.hpp"
+#include "geometry/write_all.hpp"
 
 #include "geometry/folder_ops.hpp"
 #include "geometry/run_files.hpp"
@@ -134,16 +135,10 @@ void AtomicFile::write_raw(const void* data, std::size_t n) {
     // Large blocks go straight to the kernel: no second copy through stdio's buffer.
     if (std::fflush(f_) != 0)
       throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
-    const char* p = static_cast<const char*>(data);
     const std::size_t block = n;
     const off_t at = ::lseek(fileno(f_), 0, SEEK_CUR);
-    while (n > 0) {
-      const ssize_t w = ::write(fileno(f_), p, n);
-      if (w < 0 && errno == EINTR) continue;
-      if (w <= 0) throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(errno)));
-      p += w;
-      n -= static_cast<std::size_t>(w);
-    }
+    if (const int error = write_all(fileno(f_), data, n))
+      throw std::runtime_error(fmt::format("writing {} failed: {}", path_, std::strerror(error)));
     // The block's write-back starts now, while the next is formatted: the sync before the folder
     // is swapped in then finds little left to write (a hint only; the sync decides).
     if (at >= 0) ::sync_file_range(fileno(f_), at, static_cast<off_t>(block), SYNC_FILE_RANGE_WRITE);

@@ -4,6 +4,7 @@
 
 #include "geometry/input_file.hpp"
 #include "geometry/atomic_file.hpp"
+#include "geometry/write_all.hpp"
 
 #include <fmt/format.h>
 #include <cstring>
@@ -194,13 +195,7 @@ void append_run(const std::string& path, const RunRow& row) {
   if (fd < 0) throw std::runtime_error(fmt::format("cannot append to {}: {}", path, std::strerror(errno)));
   const off_t before = ::lseek(fd, 0, SEEK_END);
   const std::string l = line_of(row);
-  std::size_t done = 0;
-  int error = 0;
-  while (done < l.size() && !error) {
-    const ssize_t n = ::write(fd, l.data() + done, l.size() - done);
-    if (n > 0) done += static_cast<std::size_t>(n);
-    else if (n < 0 && errno != EINTR) error = errno;
-  }
+  int error = write_all(fd, l.data(), l.size());
   if (!error && ::fsync(fd) != 0) error = errno;
   // A row written in part (the disk filled) is cut off again: the table keeps whole rows only.
   if (error && before >= 0) (void)!::ftruncate(fd, before);
