@@ -77,31 +77,38 @@ bool InputFile::next_line(std::string& line, std::size_t max_line) {
     if (nl != std::string::npos) {
       if (nl - at_ > max_line) break;
       line.assign(buf_, at_, nl - at_);
-      if (!line.empty() && line.back() == '\r') line.pop_back();  // a file with Windows line ends
       at_ = nl + 1;
-      ++line_;
-      return true;
+      return take_line(line);
     }
     if (buf_.size() - at_ > max_line) break;
     scanned = buf_.size() - at_;  // fill() moves the unread part to the front
     if (!fill()) {
       if (at_ == buf_.size()) return false;
       line.assign(buf_, at_, std::string::npos);  // a last line without '\n'
-      if (!line.empty() && line.back() == '\r') line.pop_back();
       at_ = buf_.size();
-      ++line_;
-      return true;
+      return take_line(line);
     }
   }
-  // A file whose lines end with a carriage return alone (an old Mac format) is one long line.
-  const bool cr_only = buf_.find('\r', at_) != std::string::npos;
+  if (buf_.find('\r', at_) != std::string::npos) throw InputRefused(path_, line_ + 1, old_mac_lines());
   throw InputRefused(
       path_, line_ + 1,
-      cr_only
-          ? fmt::format("the {}'s lines end with a carriage return alone (an old Mac format); "
-                        "save it with \\n or \\r\\n line ends",
-                        what_)
-          : fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
+      fmt::format("a line of the {} is longer than the {} canopy reads", what_, size_text(max_line)));
+}
+
+bool InputFile::take_line(std::string& line) {
+  ++line_;
+  if (!line.empty() && line.back() == '\r') line.pop_back();  // a file with Windows line ends
+  // A carriage return left inside: lines ended by one alone (an old Mac format) read as one long
+  // line, whose first cells would be taken for a header running into the rows.
+  if (line.find('\r') != std::string::npos) throw InputRefused(path_, line_, old_mac_lines());
+  return true;
+}
+
+std::string InputFile::old_mac_lines() const {
+  return fmt::format(
+      "the {}'s lines end with a carriage return alone (an old Mac format); save the file with \\n or "
+      "\\r\\n line ends",
+      what_);
 }
 
 std::string InputFile::read_all() {

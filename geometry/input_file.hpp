@@ -54,7 +54,8 @@ class InputFile {
   InputFile(const InputFile&) = delete;
   InputFile& operator=(const InputFile&) = delete;
 
-  /// The next line, without its '\n' (or "\r\n"); false at the end of the file. `max_line` bounds it.
+  /// The next line, without its '\n' (or "\r\n"); false at the end of the file. `max_line` bounds it;
+  /// a carriage return inside a line (an old Mac file's line end) is refused.
   bool next_line(std::string& line, std::size_t max_line = kMaxCsvLineBytes);
   /// Lines read so far (the number of the line next_line gave last).
   int line_number() const { return line_; }
@@ -65,6 +66,9 @@ class InputFile {
  private:
   /// Refills the buffer; false at the end of the file.
   bool fill();
+  /// Counts the line `line` just taken, drops its "\r" end and refuses one left inside; true.
+  bool take_line(std::string& line);
+  std::string old_mac_lines() const;
 
   std::string path_, what_;
   std::uint64_t max_bytes_ = 0, read_ = 0;

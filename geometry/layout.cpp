@@ -198,13 +198,6 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
     const int line_no = in.line_number();
     // A spreadsheet's "CSV UTF-8" export starts with a byte-order mark: not part of the header.
     if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
-    // Lines ended by a carriage return alone (old Mac files) read as one line whose header ran
-    // into the rows ("missing column 'seed'").
-    if (line.find('\r') != std::string::npos)
-      throw std::invalid_argument(fmt::format(
-          "{}:{}: lines end with a carriage return alone (an old Mac format); save the file with \\n or "
-          "\\r\\n line ends",
-          path, line_no));
     if (trim(line).empty() || trim(line)[0] == '#') continue;
     int open_quote = 0;
     const auto cells = split(line, open_quote);

@@ -4,6 +4,7 @@
 // table, writes CSV (one row per run; bench/run.sh adds commit, date and machine).
 // Usage: bench_light [--plants 1000,10000] [--threads T] [--errors 0.01,0.005,0.002,0.001]
 //                    [--plant-errors 0.05,0.02] [--sky-directions 46] [--sun 60,180] [--csv FILE] [--append]
+#include "geometry/available_memory.hpp"
 #include "geometry/clock.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/split_list.hpp"
@@ -65,13 +66,7 @@ std::string machine() {
   return fmt::format("{} ({} cores, host {})", model, sysconf(_SC_NPROCESSORS_ONLN), host);
 }
 
-double resident_mb() {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-  return 0;
-}
+double resident_mb() { return static_cast<double>(resident_memory()) / (1024.0 * 1024.0); }
 
 double cpu_seconds() {
   rusage u{};

@@ -59,6 +59,28 @@ TEST_CASE("a long line across many reads, and one longer than the bound") {
   std::remove(f.c_str());
 }
 
+TEST_CASE(
+    "lines ended by a carriage return alone are refused, short or long, with or without a last line end") {
+  const std::string mac =
+      "the test file's lines end with a carriage return alone (an old Mac format); save the "
+      "file with \\n or \\r\\n line ends";
+  for (const std::string text : {"a,b\rc,d\r", "a,b\rc,d\r\n", "ok\r\na,b\rc,d"}) {
+    CAPTURE(text);
+    const std::string f = write_temp(text);
+    InputFile in(f, "test file", 100);
+    std::string line;
+    const bool first_ok = text.starts_with("ok");
+    if (first_ok) REQUIRE(in.next_line(line));
+    CHECK_THROWS_WITH_AS(in.next_line(line), (f + (first_ok ? ":2: " : ":1: ") + mac).c_str(), InputRefused);
+    std::remove(f.c_str());
+  }
+  const std::string f = write_temp("a,b\r" + std::string(70000, 'x') + "\r");
+  InputFile in(f, "test file", 1 << 20);
+  std::string line;
+  CHECK_THROWS_WITH_AS(in.next_line(line), (f + ":1: " + mac).c_str(), InputRefused);
+  std::remove(f.c_str());
+}
+
 TEST_CASE("files larger than the limit, by their size or by what is read") {
   const std::string f = write_temp(std::string(2000, 'y'));
   CHECK_THROWS_WITH_AS(InputFile(f, "test file", 1024),

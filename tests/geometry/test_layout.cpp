@@ -206,10 +206,10 @@ TEST_CASE("positions files: missing columns and bad cells name the place") {
         "are separated by ';' "
         "or tabs, and positions files use commas");
   CHECK(error_of("") == ": empty positions file (expected a header x,y,rotation,seed)");
-  CHECK(
-      error_of("x,y,rotation,seed\r0,0,0,1\r") ==
-      ":1: lines end with a carriage return alone (an old Mac format); save the file with \\n or \\r\\n line "
-      "ends");
+  CHECK(error_of("x,y,rotation,seed\r0,0,0,1\r") ==
+        ":1: the positions file's lines end with a carriage return alone (an old Mac format); save the file "
+        "with "
+        "\\n or \\r\\n line ends");
 }
 
 TEST_CASE("positions past the bound on plant positions name file, line and column") {
