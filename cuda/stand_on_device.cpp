@@ -1,6 +1,7 @@
 #include "cuda/stand_on_device.hpp"
 
 #include "cuda/scatter.hpp"
+#include "geometry/organ_mesh.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -19,29 +20,16 @@ void StandOnDevice::begin_load(const Stand& s, PrototypeLibrary& lib) {
     y1 = p ? std::max(y1, s.plants[p].y) : s.plants[p].y;
   }
   span_ = std::max(x1 - x0_, y1 - y0_);
-  // The meshes the stand uses (each slot's first organ, found on all threads: a pass over every
-  // organ record), stored once in slot order; made before the copies start, so that nothing
-  // between here and end_load throws while they run.
-  std::vector<std::size_t> first(kMeshSlots, s.organs.size());
-#pragma omp parallel
-  {
-    std::vector<std::size_t> mine(kMeshSlots, s.organs.size());
-#pragma omp for schedule(static) nowait
-    for (std::size_t i = 0; i < s.organs.size(); ++i) {
-      const OrganRecord& r = s.organs[i];
-      std::size_t& f = mine[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))];
-      if (f == s.organs.size()) f = i;
-    }
-#pragma omp critical
-    for (std::size_t k = 0; k < first.size(); ++k) first[k] = std::min(first[k], mine[k]);
-  }
+  // The meshes the stand uses, stored once in slot order; made before the copies start, so that
+  // nothing between here and end_load throws while they run.
+  const std::vector<const PrototypeMesh*> meshes = make_meshes(s, lib);
   mesh_refs_.assign(kMeshSlots, MeshRef{});
   mesh_boxes_.assign(kMeshSlots, Box3f{});
   mesh_positions_.clear();
   mesh_indices_.clear();
-  for (std::size_t slot = 0; slot < first.size(); ++slot) {
-    if (first[slot] == s.organs.size()) continue;
-    const PrototypeMesh& pm = lib.get(s.organs[first[slot]]);
+  for (std::size_t slot = 0; slot < meshes.size(); ++slot) {
+    if (!meshes[slot]) continue;
+    const PrototypeMesh& pm = *meshes[slot];
     mesh_refs_[slot] = {
         static_cast<std::uint32_t>(mesh_positions_.size()), static_cast<std::uint32_t>(pm.positions.size()),
         static_cast<std::uint32_t>(mesh_indices_.size()), static_cast<std::uint32_t>(pm.triangle_count())};

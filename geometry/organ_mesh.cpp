@@ -88,7 +88,7 @@ void write_ordered(AtomicFile& out, std::size_t n, std::size_t chunk,
   wait(writing, out);
 }
 
-void make_meshes(const Stand& s, PrototypeLibrary& lib, int threads) {
+std::vector<const PrototypeMesh*> make_meshes(const Stand& s, PrototypeLibrary& lib, int threads) {
   const int t = threads > 0 ? threads : omp_get_max_threads();
   // Which (prototype, lod, shape) slots occur; an organ the library would refuse (a level of
   // detail out of range, a shape on another prototype than the leaflet) is left to it.
@@ -107,16 +107,18 @@ void make_meshes(const Stand& s, PrototypeLibrary& lib, int threads) {
 #pragma omp critical
     for (std::size_t i = 0; i < used.size(); ++i) used[i] = used[i] | mine[i];
   }
-  if (odd) {  // the library reports it, at the first such organ
+  if (odd)  // the library reports it, at the first such organ
     for (const OrganRecord& r : s.organs) lib.get(r);
-    return;
-  }
+  std::vector<const PrototypeMesh*> meshes(kMeshSlots, nullptr);
   for (std::size_t p = 0; p < kPrototypeNames.size(); ++p)
     for (int l = 1; l <= kMaxLod; ++l)
       for (int shape = 0; shape < (p == static_cast<std::size_t>(PrototypeKind::leaflet) ? kShapeCount : 1);
-           ++shape)
-        if (used[static_cast<std::size_t>(mesh_slot(static_cast<PrototypeKind>(p), l, shape))])
-          lib.get(static_cast<PrototypeKind>(p), l, static_cast<std::uint8_t>(shape));
+           ++shape) {
+        const auto slot = static_cast<std::size_t>(mesh_slot(static_cast<PrototypeKind>(p), l, shape));
+        if (used[slot])
+          meshes[slot] = &lib.get(static_cast<PrototypeKind>(p), l, static_cast<std::uint8_t>(shape));
+      }
+  return meshes;
 }
 
 double organ_area(const Stand& stand, std::size_t id, PrototypeLibrary& library) {

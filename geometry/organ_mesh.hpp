@@ -23,8 +23,9 @@ struct OrganMesh {
 
 /// Makes every mesh the stand's organs use, before threads share the library (which ones: found
 /// on `threads` threads, 0 = OpenMP's default; a level of detail out of range is left to the
-/// library to report, organ by organ in order).
-void make_meshes(const Stand& stand, PrototypeLibrary& library, int threads = 0);
+/// library to report, organ by organ in order). Per mesh slot (mesh_slot), the mesh where the
+/// stand uses it, null where it does not.
+std::vector<const PrototypeMesh*> make_meshes(const Stand& stand, PrototypeLibrary& library, int threads = 0);
 
 /// Fills `out` with organ `id` of `stand` (normals too unless `positions_only`).
 void organ_mesh(const Stand& stand, std::size_t id, PrototypeLibrary& library, OrganMesh& out,

@@ -131,3 +131,33 @@ TEST_CASE("normals stay perpendicular under non-uniform scale, and degenerate ma
   CHECK(std::isfinite(d.x));
   CHECK(length(d) == doctest::Approx(1));
 }
+
+TEST_CASE("make_meshes gives the mesh of every slot the stand uses and no other") {
+  Stand s;
+  const auto add = [&](PrototypeKind kind, int lod, std::uint8_t shape) {
+    OrganRecord o;
+    o.prototype = kind, o.lod = static_cast<std::uint8_t>(lod), o.shape = shape;
+    s.organs.push_back(o), s.transforms.push_back({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, 0}});
+    s.params.push_back({0.1f, 0.01f}), s.joint_limit_deg.push_back(60);
+  };
+  add(PrototypeKind::cylinder, 2, 0);
+  add(PrototypeKind::leaflet, 1, 0);
+  add(PrototypeKind::leaflet, 1, 3);
+  add(PrototypeKind::cylinder, 2, 0);  // a slot used twice
+  PlantRecord p;
+  p.organ_count = static_cast<std::uint32_t>(s.organ_count());
+  s.plants.push_back(p);
+  PrototypeLibrary lib;
+  const std::vector<const PrototypeMesh*> meshes = make_meshes(s, lib, 2);
+  REQUIRE(meshes.size() == static_cast<std::size_t>(kMeshSlots));
+  std::size_t made = 0;
+  for (std::size_t slot = 0; slot < meshes.size(); ++slot) made += meshes[slot] != nullptr;
+  CHECK(made == 3);
+  for (const OrganRecord& r : s.organs) {
+    CAPTURE(static_cast<int>(r.prototype));
+    CHECK(meshes[static_cast<std::size_t>(mesh_slot(r.prototype, r.lod, r.shape))] == &lib.get(r));
+  }
+  // A level of detail out of range is the library's to refuse.
+  add(PrototypeKind::sphere, kMaxLod + 1, 0);
+  CHECK_THROWS(make_meshes(s, lib, 2));
+}
