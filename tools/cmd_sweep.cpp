@@ -371,19 +371,31 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     summary.write(summary_csv(all));
     summary.commit();
   }
-  if (print)
+  // Runs recorded as failed, made now or kept from an earlier call (rank 0 reads the table; the
+  // other ranks know this call's).
+  std::size_t failed_rows = failed;
+  if (me == 0)
+    failed_rows =
+        std::count_if(all.begin(), all.end(), [](const RunRow& r) { return r.at("status") != "ok"; });
+  if (print) {
     fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(),
                runs_path, total, seconds_since(t0));
+    if (failed_rows > failed)
+      fmt::print(
+          "sweep: {} runs of {} are recorded as failed by an earlier call; --retry-failed runs them "
+          "again\n",
+          failed_rows - failed, runs_path);
+  }
   if (stopped) std::rethrow_exception(stopped);
   SweepOutcome out;
-  out.total = total, out.ran = ran, out.failed = failed;
+  out.total = total, out.ran = ran, out.failed = failed, out.failed_in_table = failed_rows;
   out.notes = std::move(notes);
   out.interrupted = g_interrupted;
   if (g_interrupted) {
     if (print) fmt::print("interrupted: run the same command again to go on where it stopped\n");
     out.exit_code = 130;
   } else {
-    out.exit_code = failed ? 3 : 0;
+    out.exit_code = failed_rows ? 3 : 0;
   }
   return out;
 }

@@ -283,6 +283,7 @@ def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
     assert len(canopy.sweep_rows(os.fsencode(tmp_path / "w"))) == 1  # bytes, as every path
     left = canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=1, per_row=2, backend="cpu")
     assert left["ran"] == 1 and len(canopy.sweep_rows(tmp_path / "w")) == 2
+    assert left["failed"] == 0 and left["failed_in_table"] == 0
     assert len(canopy.sweep_rows(tmp_path / "w", summary=True)) == 2
     with pytest.raises(ValueError, match=r"holds 2 run\(s\) made with other settings \(rows 1 -> 2\)"):
         canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=2, per_row=2, backend="cpu")
@@ -372,3 +373,12 @@ def test_a_failed_run_leaves_the_file_system_as_it_was(tmp_path):
     with pytest.raises(ValueError, match="farther from the origin than the 1e\\+08 m plants may stand"):
         canopy.Stand.grow(TOMATO, positions=np.array([[1e57, 0, 0, 1]]), steps=5)
     assert [p.name for p in tmp_path.iterdir()] == ["neg.yaml"]
+
+
+def test_sweep_counts_failed_runs_kept_from_an_earlier_call(tmp_path):
+    """A run past the module cap is recorded as failed; resuming keeps it and counts it."""
+    kw = dict(plant_spacing=[0.3], steps=[10, 40], seeds=1, rows=1, per_row=2, backend="cpu", max_modules=500)
+    first = canopy.sweep(TOMATO, tmp_path / "f", **kw)
+    assert first["ran"] == 2 and first["failed"] == 1 and first["failed_in_table"] == 1
+    again = canopy.sweep(TOMATO, tmp_path / "f", **kw)
+    assert again["ran"] == 0 and again["failed"] == 0 and again["failed_in_table"] == 1

@@ -117,7 +117,10 @@ check "failed: statuses" "ok failed" "$(col "$tmp/f/runs.csv" status)"
 check "failed: message" "1" "$(python3 -c "
 import csv; r=list(csv.DictReader(open('$tmp/f/runs.csv'))); print(int('module' in r[1]['message']))")"
 "$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu -o "$tmp/f" >"$tmp/log5" 2>&1
-check "failed: kept on resume" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/log5")"
+rc5=$?
+check "failed: kept on resume, exit 3" "1 3" "$(grep -c '^sweep: 0 runs made now' "$tmp/log5") $rc5"
+check "failed: resume names the kept failure" "1" \
+  "$(grep -c '^sweep: 1 runs of .* are recorded as failed by an earlier call; --retry-failed runs them again' "$tmp/log5")"
 "$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu --retry-failed \
   -o "$tmp/f" >"$tmp/log6" 2>&1
 check "failed: retried" "1" "$(grep -c '^sweep: 1 runs made now (1 failed)' "$tmp/log6")"

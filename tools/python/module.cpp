@@ -153,12 +153,15 @@ PYBIND11_MODULE(_canopy, m) {
         }
         warn_notes(r.notes);
         py::dict d;
-        d["total"] = r.total, d["ran"] = r.ran, d["failed"] = r.failed;
+        d["total"] = r.total, d["ran"] = r.ran, d["failed"] = r.failed,
+        d["failed_in_table"] = r.failed_in_table;
         return d;
       },
       py::arg("grammar"), py::arg("out"), py::arg("options") = py::dict(), py::arg("progress") = py::none(),
       "canopy sweep GRAMMAR -o OUT with the command line's options, read by its parser (lists as Python "
       "lists "
-      "or 'a,b' / 'start:stop:step'); progress(index, total, row) after each run. Returns counts; the rows "
-      "are in OUT/runs.csv and OUT/summary.csv.");
+      "or 'a,b' / 'start:stop:step'); progress(index, total, row) after each run. Returns counts (total, "
+      "ran, "
+      "failed now, failed_in_table: runs.csv's failed rows, earlier ones too); the rows are in OUT/runs.csv "
+      "and OUT/summary.csv.");
 }
