@@ -9,18 +9,30 @@ namespace {
 
 /// The cap passed: named at the production whose successor made the string pass it (where none
 /// applied yet, the axiom). `step`: the derivation step, 0 for the axiom, -1 the interpretation.
-[[noreturn]] void cap_exceeded(const Grammar& g, std::size_t cap, int step, const SourcePos* where) {
+/// Whether `s` is past the module cap: its modules, or its parameters past kParamsPerModule per
+/// module of the cap (a module of many parameters weighs as much as many modules: each is 8
+/// bytes, twice over while a step writes the next string).
+bool over_cap(const ModuleString& s, std::size_t cap) {
+  return s.symbols.size() > cap || s.params.size() > kParamsPerModule * cap;
+}
+
+[[noreturn]] void cap_exceeded(const Grammar& g, const ModuleString& s, std::size_t cap, int step,
+                               const SourcePos* where) {
   SourcePos at = where ? *where : g.axiom.empty() ? SourcePos{g.file, 0, 0} : g.axiom.front().pos;
   if (at.file.empty()) at.file = g.file;
+  const std::string what =
+      s.symbols.size() > cap
+          ? fmt::format("the module cap of {} modules", cap)
+          : fmt::format("the {} parameters the module cap of {} modules allows ({} per module)",
+                        kParamsPerModule * cap, cap, kParamsPerModule);
   if (step == 0)
-    throw ModuleCapError(fmt::format("{}: the axiom has more than the module cap of {} modules (raise --max-modules)",
-                                     at.str(), cap));
+    throw ModuleCapError(fmt::format("{}: the axiom has more than {} (raise --max-modules)", at.str(), what));
   const std::string when = step > 0 ? fmt::format(" at step {}, as this production applied", step)
                                     : std::string(" in the interpretation, as this production applied");
   throw ModuleCapError(fmt::format(
-      "{}: the derived string exceeds the module cap of {} modules{} (the grammar grows too fast for this "
-      "many steps; lower --steps or raise --max-modules)",
-      at.str(), cap, when));
+      "{}: the derived string exceeds {}{} (the grammar grows too fast for this many steps; lower --steps or "
+      "raise --max-modules)",
+      at.str(), what, when));
 }
 
 /// Copies a module's `n` parameters, starting at params[offset], into the production's frame.
@@ -128,7 +140,7 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
       if constexpr (Track) out_origin->append(in_origin->data() + i, j - i);
       i = j - 1;
       p = q;
-      if (out.symbols.size() > max_modules) cap_exceeded(g, max_modules, step, applied);
+      if (over_cap(out, max_modules)) cap_exceeded(g, out, max_modules, step, applied);
       continue;
     } else if (mode == RewriteMode::constant) {
       const Successor& sc = table.groups[table.by_symbol[x][0]].successors[0];
@@ -191,7 +203,7 @@ void rewrite_step(const Grammar& g, const RuleTable& table, const ModuleString& 
       }
     }
     p += static_cast<std::size_t>(ar);
-    if (out.symbols.size() > max_modules) cap_exceeded(g, max_modules, step, applied);
+    if (over_cap(out, max_modules)) cap_exceeded(g, out, max_modules, step, applied);
   }
 }
 
@@ -209,7 +221,7 @@ ModuleString derive(const Grammar& g, const DeriveRequest& req) {
         fmt::format("the derivation steps must lie in 0..{} (got {})", kMaxSteps, steps));
   Rng rng(req.seed.value_or(g.seed));
   ModuleString cur = evaluate_axiom(g, rng);
-  if (cur.size() > req.max_modules) cap_exceeded(g, req.max_modules, 0, nullptr);
+  if (over_cap(cur, req.max_modules)) cap_exceeded(g, cur, req.max_modules, 0, nullptr);
   if (g.productions.empty()) return cur;
   ModuleString next;
   for (int step = 1; step <= steps; ++step) {

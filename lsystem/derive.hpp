@@ -11,9 +11,13 @@
 
 namespace canopy {
 
-/// Default module cap: 40 M modules keeps two strings, their parameters and the context arrays
-/// of a derivation under about 2 GB.
+/// Default module cap: 40 M modules (and kParamsPerModule parameters per module of the cap) keeps
+/// two strings, their parameters and the context arrays of a derivation under about 2 GB.
 inline constexpr std::size_t kDefaultMaxModules = 40'000'000;
+/// The module cap bounds the parameters too: a string may hold this many per module of the cap,
+/// so that modules of a thousand parameters count as the memory they take (the tomato grammars'
+/// strings hold 1.1-1.7 parameters per module, derived or interpreted).
+inline constexpr std::size_t kParamsPerModule = 2;
 
 struct DeriveRequest {
   std::optional<int> steps;           // default: the grammar's `steps`; 0..kMaxSteps

@@ -255,6 +255,24 @@ TEST_CASE("production syntax") {
 TEST_CASE("grammars that grow exponentially stop at the module cap, not out of memory") {
   const Grammar g = grammar("axiom: A\nsteps: 200\nproductions:\n  - A -> A A\n");
   CHECK_THROWS_AS(derive(g), ModuleCapError);
+  // Modules of many parameters: the cap bounds the parameters too (two per module of the cap),
+  // so 100 modules of 50 parameters pass a cap of 1,000 modules no more than 5,000 modules would.
+  std::string wide = "B(1";
+  for (int i = 1; i < 50; ++i) wide += ",1";
+  wide += ")";
+  const Grammar w = grammar("axiom: A\nsteps: 12\nproductions:\n  - A -> A " + wide + "\n");
+  CHECK(derive(w, DeriveRequest{1, 1, 1000}).size() == 2);
+  CHECK_THROWS_WITH_AS(
+      derive(w, DeriveRequest{45, 1, 1000}),
+      "test.yaml:4:5: the derived string exceeds the 2000 parameters the module cap of 1000 modules "
+      "allows (2 per module) at step 41, as this production applied (the grammar grows too fast "
+      "for this many steps; lower --steps or raise --max-modules)",
+      ModuleCapError);
+  CHECK_THROWS_WITH_AS(
+      derive(grammar("axiom: " + wide + "\n"), DeriveRequest{0, 1, 10}),
+      "test.yaml:1:8: the axiom has more than the 20 parameters the module cap of 10 modules allows "
+      "(2 per module) (raise --max-modules)",
+      ModuleCapError);
 }
 
 TEST_CASE("expressions nested deeper than the parser's bound are a located error, not a stack overflow") {
