@@ -391,6 +391,12 @@ StagedFolder::Committed StagedFolder::commit() {
     if (old_fd.fd < 0 || new_fd.fd < 0)
       throw std::runtime_error(fmt::format("cannot open {} or {}: {}", dir_, staging_, why()));
     earlier_set = marker_.empty() || exists_at(old_fd.fd, marker_);
+    // A folder under the name of a new file would go with the earlier folder, and be removed with
+    // it: found before anything is carried across (the run then fails with the folder as it was).
+    for (const std::string& n : names_in(staging_))
+      if (is_folder_at(old_fd.fd, n))
+        throw std::runtime_error(
+            fmt::format("cannot put {} into {}: a folder of that name is there", n, named_));
     // The earlier folder's other entries carried across: files linked (present in both until the
     // swap), folders moved (absent from the earlier folder for the instant before the swap).
     std::vector<std::string> moved;

@@ -243,7 +243,8 @@ LightOutcome run_light(LightOptions o, bool print) {
     for (std::string& note : folder_count_notes(o.source, stand)) out.notes.push_back(std::move(note));
     if (print) print_notes(out.notes);
     out.dir = o.source;
-    OutputSet files(out.dir);
+    // Its names are the light's files: a folder under one is refused before any work.
+    OutputSet files(out.dir, {"light.json", "light.csv"});
     files.require_folder(read, "organs.csv");  // a stand written there meanwhile does not take this light
     light_files(stand, folder_layout(o.source), files);
     files.commit_all();

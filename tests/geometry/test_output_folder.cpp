@@ -125,6 +125,20 @@ TEST_CASE("a folder under a name of the set is refused before any work, the fold
   write_set(dir.string(), "new");
   CHECK(slurp(dir / "renders" / "mine" / "a.txt") == "kept");
   CHECK(slurp(dir / "organs.csv") == "new");
+  // A set that names none of its files (only what it writes is known) is refused when it swaps
+  // the folder in: the folder under a new file's name went with the earlier folder, and was removed.
+  fs::create_directories(dir / "light.json" / "mine");
+  put(dir / "light.json" / "mine" / "b.txt", "kept too");
+  const std::set<std::string> before = names(dir);
+  {
+    OutputSet light(dir.string());
+    light.open("light.json").write("{}");
+    CHECK_THROWS_WITH(light.commit_all(), doctest::Contains("cannot put light.json into"));
+  }
+  CHECK(slurp(dir / "light.json" / "mine" / "b.txt") == "kept too");
+  CHECK(slurp(dir / "renders" / "mine" / "a.txt") == "kept");
+  CHECK(names(dir) == before);
+  CHECK(names(root) == std::set<std::string>{"out"});
   fs::remove_all(root);
 }
 

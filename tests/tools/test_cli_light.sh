@@ -41,6 +41,11 @@ strip() { python3 -c "import json; j=json.load(open('$1')); j.pop('timings_s'); 
 check "folder = grammar" "$(strip "$tmp/grammar.json")" "$(strip "$tmp/a/light.json")"
 cmp -s "$tmp/grammar.csv" "$tmp/a/light.csv"
 check "light.csv: one thread = all" "0" "$?"
+# A folder of the user's under a light file's name is refused before any work, never removed.
+cp -r "$tmp/a" "$tmp/uf"; rm "$tmp/uf/light.json"; mkdir -p "$tmp/uf/light.json/mine"; echo kept > "$tmp/uf/light.json/mine/a.txt"
+"$canopy" light "$tmp/uf" "${light[@]}" --backend cpu >"$tmp/o" 2>"$tmp/e"
+check "a folder named light.json: refused, kept" "1 1 kept" \
+  "$? $(grep -c 'light.json is a folder there' "$tmp/e") $(cat "$tmp/uf/light.json/mine/a.txt")"
 
 # Rays answered by drawing the stand (--caster raster) or traced one by one (trace): the same rays,
 # the same fractions but for rays grazing an edge.
