@@ -169,6 +169,19 @@ light::LightConfig light_config(const LightOptions& o, const Stand& s, const std
         "a stand from a positions file (or a folder without report.json, as Stand.export writes it) has no "
         "lattice: give its tile with --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)");
   }
+  // An isolated stand's tile is the ground it stands on, whose light the fractions are over: a
+  // tile that leaves plants out makes them the light of ground the stand does not stand on, and
+  // a small one asks for rays by the billion (its errors are asked over its light).
+  if (o.no_periodic && !o.tile.empty())
+    for (std::size_t p = 0; p < s.plant_count(); ++p) {
+      const PlantRecord& pl = s.plants[p];
+      if (!(pl.x >= t[0] && pl.x <= t[2] && pl.y >= t[1] && pl.y <= t[3]))
+        throw std::invalid_argument(
+            fmt::format("--tile {}: with --no-periodic the tile is the ground the stand stands on (the "
+                        "fractions are over "
+                        "its light) and must hold every plant's base; plant {} stands at ({:.4g}, {:.4g})",
+                        o.tile, p, pl.x, pl.y));
+    }
   const Vec3d org = s.stand_origin;
   c.tile = {t[0] - org.x, t[1] - org.y, t[2] - org.x, t[3] - org.y};
   setup.tile = t;
@@ -217,6 +230,7 @@ LightOutcome run_light(LightOptions o, bool print) {
   LightSetup setup;
   std::optional<light::LightResult> result;
   std::size_t plants = 0;
+  std::vector<std::string> light_notes;  // about the light made, said once it is
   // The light of `stand` (laid out as `layout`) into `files`.
   const auto light_files = [&](const Stand& stand, std::optional<RowLayout> layout, OutputSet& files) {
     if (!o.tile.empty()) layout.reset();
@@ -224,6 +238,17 @@ LightOutcome run_light(LightOptions o, bool print) {
     cfg.device = device.get();
     PrototypeLibrary lib;
     result = light::compute_light(stand, lib, cfg);
+    if (!result->periodic) {
+      double most = result->ground.fraction.value;
+      for (const light::DirectionLight& d : result->direct) most = std::max(most, d.fraction.value);
+      if (result->diffuse) most = std::max(most, result->diffuse->fraction.value);
+      if (most > 1)
+        light_notes.push_back(fmt::format(
+            "the isolated stand intercepts light from beyond its tile (a fraction of {:.3f}): its fractions "
+            "are "
+            "of the light on the tile, and exceed 1 where the stand's shadow is larger than the tile",
+            most));
+    }
     out.json = light_json(*result, stand, o, setup);
     out.csv = light_csv(*result, stand);
     plants = stand.plant_count();
@@ -260,6 +285,8 @@ LightOutcome run_light(LightOptions o, bool print) {
     };
     out.notes = run_stand(o.stand, print).notes;
   }
+  if (print) print_notes(light_notes);
+  out.notes.insert(out.notes.end(), light_notes.begin(), light_notes.end());
   const light::LightResult& r = *result;
   if (print) {
     const auto pm = [](const light::Estimate& e) {

@@ -41,6 +41,13 @@ strip() { python3 -c "import json; j=json.load(open('$1')); j.pop('timings_s'); 
 check "folder = grammar" "$(strip "$tmp/grammar.json")" "$(strip "$tmp/a/light.json")"
 cmp -s "$tmp/grammar.csv" "$tmp/a/light.csv"
 check "light.csv: one thread = all" "0" "$?"
+# An isolated stand: a tile that leaves out a plant is refused before any ray; a fraction above
+# 1 (the stand's shadow longer than its tile) is said.
+"$canopy" light "$tmp/a" --no-periodic --tile 0,0,0.1,0.1 --backend cpu >"$tmp/o" 2>"$tmp/e"
+check "isolated: tile leaving plants out refused" "2 1" "$? $(grep -c 'must hold every plant.s base; plant 0 stands at' "$tmp/e")"
+"$canopy" light "$tmp/a" --no-periodic --sun 3,0 --sky-directions 0 --backend cpu >"$tmp/o" 2>"$tmp/e"
+check "isolated: a fraction above 1 is said" "0 1 True" "$? $(grep -c 'note: the isolated stand intercepts light from beyond its tile' "$tmp/e") \
+$(json "$tmp/a/light.json" "j['direct'][0]['intercepted_fraction'] > 1")"
 # A folder of the user's under a light file's name is refused before any work, never removed.
 cp -r "$tmp/a" "$tmp/uf"; rm "$tmp/uf/light.json"; mkdir -p "$tmp/uf/light.json/mine"; echo kept > "$tmp/uf/light.json/mine/a.txt"
 "$canopy" light "$tmp/uf" "${light[@]}" --backend cpu >"$tmp/o" 2>"$tmp/e"
