@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -28,6 +29,8 @@ constexpr const char* kOrganHeader =
 /// A stand with a curved leaflet has three more columns, its angles (geometry/leaflet_shape.hpp;
 /// 0 for every other organ); a stand without one keeps the columns above, byte for byte.
 constexpr const char* kShapeColumns = ",bend,cup,fold";
+/// The cosine between two axes of an organ's frame above which organs.csv is refused as sheared.
+constexpr double kMaxFrameShear = 1e-4;
 constexpr const char* kPlantHeader = "id,x,y,rotation,seed,grammar,steps\n";
 
 /// A header as a message quotes it, on the message's one line.
@@ -339,6 +342,22 @@ Stand read_stand(const std::string& dir) {
         throw std::runtime_error(fmt::format("{}:{}: column {} '{}' is out of range (at most {} m)", ofile,
                                              ln, 13 + k, cell, kMaxOrganExtent));
     }
+    // An organ's frame is turned and scaled, never sheared (canopy writes its axes orthogonal to
+    // 1.5e-7 of their lengths): the bounds detection fits to a frame hold its mesh only then.
+    for (int i = 0; i < 3; ++i)
+      for (int j = i + 1; j < 3; ++j) {
+        double dot = 0, ni = 0, nj = 0;
+        for (int k = 0; k < 3; ++k)
+          dot += double{v[3 * i + k]} * v[3 * j + k], ni += double{v[3 * i + k]} * v[3 * i + k],
+              nj += double{v[3 * j + k]} * v[3 * j + k];
+        if (std::fabs(dot) > kMaxFrameShear * std::sqrt(ni * nj))
+          throw std::runtime_error(fmt::format(
+              "{}:{}: the organ's frame (columns 13-21) is sheared: its axes {} and {} meet at {:.4g} "
+              "degrees, "
+              "not 90 (canopy turns and scales organs, never shears them; bounds would not hold the mesh)",
+              ofile, ln, "hlu"[i], "hlu"[j],
+              std::acos(std::clamp(dot / std::sqrt(ni * nj), -1.0, 1.0)) * 180 / M_PI));
+      }
     s.transforms.push_back(
         {{v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, {v[9], v[10], v[11]}});
     s.organs.push_back(r);

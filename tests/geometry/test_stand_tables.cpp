@@ -30,10 +30,10 @@ const std::string kOrgansHeader =
 const std::vector<std::string> kOrgans{
     "0,0,-1,internode,-1,0.1,0.1,cylinder,0.1,0.01,2,60,0,0,0.1,0,-0.01,0,0.01,0,0,0,0,0",
     "1,0,0,petiole,0,0.1,0.1,cylinder,0.08,0.004,2,60,0.06,0,0.04,0,-0.004,0,0.002,0,-0.003,0,0,0.1",
-    "2,0,1,leaflet,0,0.1,0.1,leaflet,0.07,0.04,2,60,0.02,0.06,0.008,0.03,-0.01,0.02,0.02,-0.001,-0.03,0.1,0."
+    "2,0,1,leaflet,0,0.1,0.1,leaflet,0.07,0.04,2,60,0.042,0.056,0,-0.032,0.024,0,0,0,0.02,0.1,0."
     "01,0.15",
     "3,1,-1,internode,-1,0.1,0.1,cylinder,0.1,0.01,2,60,0,0,0.1,0,-0.01,0,0.01,0,0,0,0,0",
-    "4,1,3,leaflet,1,0.1,0.1,leaflet,0.07,0.04,2,60,0.02,0.06,0.008,0.03,-0.01,0.02,0.02,-0.001,-0.03,0.1,0."
+    "4,1,3,leaflet,1,0.1,0.1,leaflet,0.07,0.04,2,60,0.042,0.056,0,-0.032,0.024,0,0,0,0.02,0.1,0."
     "01,0.15",
 };
 
@@ -131,6 +131,12 @@ TEST_CASE("numbers that are not finite, or do not fit, are refused with their pl
         "DIR/organs.csv:2: column 15 '2e6' is out of range (at most 1000000 m)");
   CHECK(Folder(kPlants, organs_with(2, 8, "-0.5")).error() ==
         "DIR/organs.csv:4: column 9 '-0.5' is out of range (a size from 0 to 1000000 m)");
+  // A sheared frame (canopy's are orthogonal): the bounds detection fits would not hold its mesh.
+  CHECK(Folder(kPlants, organs_with(2, 13, "0.06")).error() ==
+        "DIR/organs.csv:4: the organ's frame (columns 13-21) is sheared: its axes h and l meet at 88.12 "
+        "degrees, "
+        "not 90 (canopy turns and scales organs, never shears them; bounds would not hold the mesh)");
+  CHECK(Folder(kPlants, organs_with(2, 13, "0.056000001")).error() == "");  // float rounding is no shear
   CHECK(Folder(kPlants, organs_with(2, 11, "200")).error() ==
         "DIR/organs.csv:4: column 12 (joint_limit) must lie in [0, 180], got 200");
   CHECK(Folder(kPlants, organs_with(2, 1, "abc")).error() ==
