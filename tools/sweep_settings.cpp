@@ -77,7 +77,14 @@ nlohmann::ordered_json sweep_settings(const SweepOptions& o) {
 void check_sweep_settings(const std::string& dir, const nlohmann::ordered_json& settings,
                           std::size_t finished_runs) {
   const std::string path = (std::filesystem::path(dir) / "sweep.json").string();
-  if (finished_runs > 0 && std::filesystem::exists(path)) {
+  // A sweep writes its settings before its first run: runs without them were made with settings
+  // nothing can compare (a resumed sweep would mix two kinds of stand in one table).
+  if (finished_runs > 0 && !std::filesystem::exists(path))
+    throw std::invalid_argument(fmt::format(
+        "sweep: {} holds {} run(s) but no sweep.json, which says with what settings they were made; give "
+        "another -o, or put sweep.json back to resume it",
+        dir, finished_runs));
+  if (finished_runs > 0) {
     nlohmann::ordered_json before = read_sweep_settings(path);
     canonical_light(before);
     // As written (a name's bytes that are not UTF-8 became U+FFFD), so that a resumed sweep

@@ -96,6 +96,11 @@ for c in open('$tmp/gd.yaml','rb').read(): h=((h^c)*0x100000001b3)&(2**64-1)
 j['grammar_digest']=format(h,'016x'); json.dump(j,open(p,'w'),indent=2)"
 oneg >"$tmp/o" 2>&1
 check "earlier sweep.json resumes" "1" "$(grep -c '^sweep: 0 runs made now' "$tmp/o")"
+# Runs without their sweep.json cannot be compared with any settings: refused, the table as it was.
+cp -r "$tmp/d" "$tmp/nojson"; rm "$tmp/nojson/sweep.json"; cp "$tmp/nojson/runs.csv" "$tmp/runs.nojson"
+"$canopy" sweep "$tmp/gd.yaml" --plant-spacing 0.45 --steps 10 --seeds 1 --rows 1 --per-row 2 --backend cpu -o "$tmp/nojson" >"$tmp/o" 2>"$tmp/e"
+check "runs without sweep.json: refused, table kept" "2 1 0" \
+  "$? $(grep -c 'holds 1 run(s) but no sweep.json' "$tmp/e") $(cmp -s "$tmp/nojson/runs.csv" "$tmp/runs.nojson"; echo $?)"
 sed -i 's/^  nodes: 18 /  nodes: 17 /' "$tmp/gd.yaml"
 oneg >"$tmp/o" 2>"$tmp/e"
 check "grammar value refused" "2" "$?"
