@@ -1,23 +1,101 @@
 #pragma once
-/// The memory a run may still take: MemAvailable from /proc/meminfo (what the kernel can hand out
-/// without swapping), or 0 where it cannot be read; and what the process holds.
+/// The memory a run may still take, and what the process holds. The machine's MemAvailable from
+/// /proc/meminfo (what the kernel can hand out without swapping) is not what a process in a
+/// container or under a batch system's limit may take: the smallest of it, the memory control
+/// group's limit less its working set (cgroup v2 or v1: a container's, a systemd unit's, a Slurm
+/// job's) and the address-space limit (`ulimit -v`) less the process's size is; 0 where none can
+/// be read. Past the limit of a control group the kernel kills the process; past the address-space
+/// limit allocations fail, both without the clear refusal a budget gives.
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 namespace canopy {
+namespace memory_detail {
+
+/// The first number of file `path` (false where it cannot be read or is "max").
+inline bool read_number(const std::string& path, std::uint64_t& out) {
+  std::ifstream in(path);
+  return static_cast<bool>(in >> out);
+}
+
+/// The value of `key` in a memory.stat file (0 where absent).
+inline std::uint64_t stat_value(const std::string& path, const std::string& key) {
+  std::ifstream in(path);
+  std::string k;
+  std::uint64_t v = 0;
+  while (in >> k >> v)
+    if (k == key) return v;
+  return 0;
+}
+
+/// What the process's memory control group lets it still take (~0: no limit found). A group's
+/// files are looked for under its path and at the mount's root (a container sees its own group
+/// there). The working set leaves out inactive file pages, which the kernel reclaims first.
+inline std::uint64_t cgroup_room() {
+  std::uint64_t room = ~std::uint64_t{0};
+  std::ifstream groups("/proc/self/cgroup");
+  std::string line;
+  while (std::getline(groups, line)) {
+    const std::size_t a = line.find(':'), b = a == std::string::npos ? a : line.find(':', a + 1);
+    if (b == std::string::npos) continue;
+    const std::string controllers = line.substr(a + 1, b - a - 1), path = line.substr(b + 1);
+    const bool v2 = controllers.empty() && line.compare(0, a, "0") == 0;
+    bool v1 = false;
+    std::stringstream list(controllers);
+    for (std::string c; std::getline(list, c, ',');) v1 = v1 || c == "memory";
+    if (!v1 && !v2) continue;
+    const std::string base = v2 ? "/sys/fs/cgroup" : "/sys/fs/cgroup/memory";
+    for (const std::string dir : {base + path, base}) {
+      std::uint64_t limit = 0, used = 0;
+      if (!read_number(dir + (v2 ? "/memory.max" : "/memory.limit_in_bytes"), limit) ||
+          !read_number(dir + (v2 ? "/memory.current" : "/memory.usage_in_bytes"), used))
+        continue;
+      if (limit >= (std::uint64_t{1} << 60)) break;  // v1's "no limit" (v2 writes "max", not read)
+      const std::uint64_t inactive =
+          stat_value(dir + "/memory.stat", v2 ? "inactive_file" : "total_inactive_file");
+      const std::uint64_t working = used > inactive ? used - inactive : 0;
+      room = std::min(room, limit > working ? limit - working : 0);
+      break;
+    }
+  }
+  return room;
+}
+
+/// What the address-space limit lets the process still map (~0: none).
+inline std::uint64_t address_space_room() {
+  rlimit r{};
+  if (::getrlimit(RLIMIT_AS, &r) != 0 || r.rlim_cur == RLIM_INFINITY) return ~std::uint64_t{0};
+  std::ifstream in("/proc/self/statm");
+  std::uint64_t pages = 0;
+  if (!(in >> pages)) return ~std::uint64_t{0};
+  const std::uint64_t size = pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  return r.rlim_cur > size ? r.rlim_cur - size : 0;
+}
+
+}  // namespace memory_detail
 
 inline std::size_t memory_available() {
   std::ifstream in("/proc/meminfo");
   std::string key, unit;
   std::size_t kb = 0;
+  std::uint64_t avail = 0;
   while (in >> key >> kb >> unit)
-    if (key == "MemAvailable:") return kb * 1024;
-  return 0;
+    if (key == "MemAvailable:") {
+      avail = std::uint64_t{kb} * 1024;
+      break;
+    }
+  if (avail == 0) return 0;
+  avail = std::min({avail, memory_detail::cgroup_room(), memory_detail::address_space_room()});
+  return static_cast<std::size_t>(std::max<std::uint64_t>(avail, 1));  // 0 says "unknown"
 }
 
 /// The process's resident memory (/proc/self/statm), or 0 where it cannot be read. Read into a

@@ -7,6 +7,7 @@
 #include "geometry/thread_limit.hpp"
 #include "lsystem/turtle.hpp"
 
+#include <atomic>
 #include <exception>
 #include <cmath>
 #include <filesystem>
@@ -33,13 +34,17 @@ Affine3f rotate_z(const Affine3f& m, double deg) {
   return {r(m.c0), r(m.c1), r(m.c2), r(m.t)};
 }
 
-void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit) {
+/// What a grown plant takes until the stand is placed: its turtle's organs and the stand's
+/// arrays for them, beside its placement and record.
+double plant_need(const GrownPlant& gp) {
   const std::size_t per_organ =
       sizeof(Affine3f) + sizeof(OrganRecord) + 2 * sizeof(float) + sizeof(float) + sizeof(OrganInstance);
-  const double need =
-      static_cast<double>(n) *
-      (static_cast<double>((first.turtle.organs.size() + 1) * per_organ + first.modules * 10) +
-       sizeof(PlantPlacement) + sizeof(PlantRecord));
+  return static_cast<double>((gp.turtle.organs.size() + 1) * per_organ + gp.modules * 10) +
+         sizeof(PlantPlacement) + sizeof(PlantRecord);
+}
+
+void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit) {
+  const double need = static_cast<double>(n) * plant_need(first);
   const std::size_t limit = memory_limit ? memory_limit : available_memory();
   if (limit && need > static_cast<double>(limit))
     throw std::runtime_error(
@@ -171,20 +176,42 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
   };
 
   const double t0 = now_seconds();
+  const std::size_t limit = req.memory_limit ? req.memory_limit : available_memory();
   if (n > 0) {
     grow_one(0);
-    check_fits(grown[0], n, req.memory_limit);
+    check_fits(grown[0], n, limit);
   }
+  // The first plant speaks for the others only where they are alike: plants of other seeds, ages
+  // or grammars may be far larger. What the plants grown so far need is summed as they grow; past
+  // the memory available the growth stops (the stand would not fit whatever the others need).
+  std::atomic<double> need{n > 0 ? plant_need(grown[0]) : 0.0};
+  std::atomic<std::size_t> organs_grown{n > 0 ? grown[0].turtle.organs.size() : 0}, plants_grown{n > 0};
+  std::atomic<bool> outgrown{false};
 #pragma omp parallel for schedule(dynamic, 4) num_threads(threads)
   for (std::size_t p = 1; p < n; ++p) {
+    if (outgrown.load(std::memory_order_relaxed)) continue;
     try {
       grow_one(p);
+      double was = need.load(std::memory_order_relaxed);
+      while (!need.compare_exchange_weak(was, was + plant_need(grown[p]), std::memory_order_relaxed)) {
+      }
+      organs_grown.fetch_add(grown[p].turtle.organs.size(), std::memory_order_relaxed);
+      plants_grown.fetch_add(1, std::memory_order_relaxed);
+      if (limit && was + plant_need(grown[p]) > static_cast<double>(limit)) outgrown = true;
     } catch (...) {
       errors[p] = std::current_exception();
     }
   }
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);  // the first failing plant, in plant order, as it was thrown
+  if (outgrown)
+    throw std::runtime_error(fmt::format(
+        "a stand of {} plants needs more than the {:.1f} GB available: {} of them, grown, need about {:.1f} "
+        "GB "
+        "({} organs; the first plant has {}, the others are larger); use fewer plants, fewer steps or a "
+        "coarser --lod",
+        n, static_cast<double>(limit) / 1e9, plants_grown.load(), need.load() / 1e9, organs_grown.load(),
+        grown[0].turtle.organs.size()));
   const double t1 = now_seconds();
 
   // Place: global ids plant by plant, then in string order.

@@ -298,3 +298,24 @@ TEST_CASE("a leaflet's trailing parameters give its curvature; zeros give the fl
   CHECK_THROWS_WITH(turtle("L(0.1, 0.05, 0, 0, 45)"),
                     doctest::Contains("leaflet fold must lie in [0, 30] degrees (got 45)"));
 }
+
+TEST_CASE("plants larger than the first are summed as they grow: past the memory limit, refused") {
+  // The first plant (no steps: a seedling) speaks for a stand of seedlings; the others are older.
+  GrowRequest req;
+  req.grammar = source("grammars/tomato.yaml");
+  req.steps = 12;
+  req.plants.resize(20);
+  for (std::size_t p = 0; p < req.plants.size(); ++p) req.plants[p].seed = p + 1;
+  req.plants[0].steps = 0;
+  req.memory_limit = std::size_t{1} << 30;
+  const Stand s = grow_stand(req);
+  const std::size_t later = s.plants[1].organ_count;
+  REQUIRE(later > 20 * (s.plants[0].organ_count + 1));
+  // A limit the first plant's twenty copies fit in, and a few of the others do not.
+  req.memory_limit = 5 * later * 150;
+  CHECK_THROWS_WITH_AS(grow_stand(req), doctest::Contains("a stand of 20 plants needs more than the"),
+                       std::runtime_error);
+  req.plants[0].steps.reset();  // a first plant like the others: refused before the others grow
+  CHECK_THROWS_WITH_AS(grow_stand(req), doctest::Contains("a stand of 20 plants needs about"),
+                       std::runtime_error);
+}
