@@ -146,16 +146,33 @@ class Loader {
 
   void collect_declared_names(const YAML::Node& root) {
     std::set<std::string> names;
-    auto add = [&](const std::string& n) {
+    // A name holding white space, a bracket, a parenthesis or a comma would be matched as one
+    // module where the file's readers see several ('A B' declared made 'A B' one module and
+    // 'A  B' two), or break the brackets and argument lists around it.
+    auto add = [&](const std::string& n, const SourcePos& at, const char* what) {
+      if (const std::size_t bad = n.find_first_of(" \t\r\n()[],"); bad != std::string::npos) {
+        const char c = n[bad];
+        fail_at(at, "{} '{}' holds {}, which no module name may: {}", what, n,
+                c == ' '                 ? std::string("a space")
+                : c == '\t'              ? std::string("a tab")
+                : c == '\r' || c == '\n' ? std::string("a line break")
+                                         : fmt::format("'{}'", c),
+                std::string_view(what) == "the predecessor"
+                    ? "a predecessor is one module (its contexts go before '<' and after '>')"
+                    : "names are one module each");
+      }
       if (n.size() > 1 || (!n.empty() && static_cast<unsigned char>(n[0]) >= 0x80)) names.insert(n);
     };
     if (const auto& o = root["organs"]; o && o.IsMap())
-      for (const auto& kv : o) add(kv.first.Scalar());
-    if (const auto& c = root["compound_leaf"]; c) add(src_.string(c, "compound_leaf"));
+      for (const auto& kv : o) add(kv.first.Scalar(), src_.at(kv.first), "the organ symbol");
+    if (const auto& c = root["compound_leaf"]; c)
+      add(src_.string(c, "compound_leaf"), src_.at(c), "compound_leaf");
     for (const char* key : {"ignore", "modules"}) {
       if (const auto& l = root[key]; l) {
         src_.check_sequence(l, key);
-        for (const auto& item : l) add(src_.string(item, key));
+        for (const auto& item : l)
+          add(src_.string(item, key), src_.at(item),
+              key == std::string_view("ignore") ? "the ignored name" : "the module name");
       }
     }
     for (const char* key : {"productions", "interpretation"}) {
@@ -167,8 +184,9 @@ class Loader {
         const std::string text = src_.string(item, "a production");
         const ProductionParts parts = split_production(text, src_.at(item, 0));
         std::string_view pred = parts.predecessor.of(text);
+        const std::size_t lead = std::min(pred.find_first_not_of(" \t"), pred.size());
         pred = trim(pred.substr(0, pred.find('(')));
-        add(std::string(pred));
+        add(std::string(pred), src_.at(item, parts.predecessor.begin + lead), "the predecessor");
       }
     }
     g_.multi_char_names.assign(names.begin(), names.end());

@@ -373,3 +373,28 @@ TEST_CASE("too many distinct module names: located where the one too many stands
   CHECK(e.starts_with("test.yaml:1:"));
   CHECK(e.find("too many distinct module names (at most 65535): 'M65533' is one more") != std::string::npos);
 }
+
+TEST_CASE("declared names that cannot be one module are refused where they are declared") {
+  // A predecessor with a space became one declared name: 'A B' was rewritten as one module and
+  // 'A  B' (two spaces) was not.
+  CHECK(error_of("axiom: A B A  B\nproductions:\n  - A B -> C\n") ==
+        "test.yaml:3:5: the predecessor 'A B' holds a space, which no module name may: a predecessor is one "
+        "module (its contexts go before '<' and after '>')");
+  CHECK(error_of("axiom: F\nproductions:\n  - \"B < F F > B -> X\"\n") ==
+        "test.yaml:3:10: the predecessor 'F F' holds a space, which no module name may: a predecessor is one "
+        "module (its contexts go before '<' and after '>')");
+  CHECK(
+      error_of("axiom: F[X]\nmodules: [\"X]\"]\n") ==
+      "test.yaml:2:11: the module name 'X]' holds ']', which no module name may: names are one module each");
+  CHECK(error_of("axiom: F\ncompound_leaf: \"[\"\n") ==
+        "test.yaml:2:16: compound_leaf '[' holds '[', which no module name may: names are one module each");
+  CHECK(
+      error_of("axiom: F\norgans:\n  \"L,x\": {prototype: leaflet, kind: leaflet}\n") ==
+      "test.yaml:3:3: the organ symbol 'L,x' holds ',', which no module name may: names are one module each");
+  CHECK(
+      error_of("axiom: F\nignore: [\"a b\"]\n") ==
+      "test.yaml:2:10: the ignored name 'a b' holds a space, which no module name may: names are one module "
+      "each");
+  // Names of several characters, and a predecessor with its parameters, are as they were.
+  CHECK(error_of("axiom: Leaf(1)\nproductions:\n  - \" Leaf(x) -> Leaf(x + 1)\"\n") == "");
+}
