@@ -293,7 +293,7 @@ namespace {
 
 // A NaN or an infinity is an error at the expression's place (docs/grammar.md), found by the check
 // of the result: so the operations that would hide one (a comparison, && || !, min and max, pow
-// with a 0 exponent, rand's bounds) carry it on instead, NaN if either operand is NaN, else inf.
+// with a 0 exponent, rand's bounds, a division by one) carry it on instead, NaN if either operand is NaN, else inf.
 double bad(double a, double b = 0) {
   return std::isnan(a) || std::isnan(b) ? std::numeric_limits<double>::quiet_NaN()
                                         : std::numeric_limits<double>::infinity();
@@ -332,7 +332,7 @@ double Expr::run(const double* frame, Rng* rng) const {
       case Op::Div:
         --sp;
         if (st[sp + 1] == 0) fail_at(place(static_cast<std::size_t>(in.column)), "division by zero in '{}'", text_);
-        st[sp] /= st[sp + 1];
+        st[sp] = std::isfinite(st[sp + 1]) ? st[sp] / st[sp + 1] : bad(st[sp], st[sp + 1]);  // x / inf hides it
         break;
       case Op::Pow:
         --sp;

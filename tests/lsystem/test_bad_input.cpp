@@ -104,6 +104,9 @@ TEST_CASE("a NaN or infinity inside an expression is not hidden by what comes af
   CHECK(error_of("steps: 1\naxiom: A(-1)\nproductions:\n  - A(x) -> A(sqrt(x)^0)\n") ==
         "test.yaml:4:15: 'sqrt(x)^0' is not a number (NaN)");
   CHECK(error_of("axiom: A(min(sqrt(-1),1))\n") == "test.yaml:1:10: 'min(sqrt(-1),1)' is not a number (NaN)");
+  // A division by an infinity gave 0 (found by a probe).
+  CHECK(error_of("axiom: A(1/(1e200*1e200))\n") == "test.yaml:1:10: '1/(1e200*1e200)' is infinite");
+  CHECK(error_of("axiom: A(1/(sqrt(-1)))\n") == "test.yaml:1:10: '1/(sqrt(-1))' is not a number (NaN)");
   CHECK(error_of(
             "steps: 1\naxiom: A(2)\nproductions:\n  - \"A(x) : x > 1 && min(x,3) >= 2 -> B(max(x,1))\"\n") ==
         "");
