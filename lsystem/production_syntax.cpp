@@ -129,14 +129,30 @@ ProductionParts split_production(std::string_view s, const SourcePos& pos) {
   return p;
 }
 
-ModuleLexer::ModuleLexer(std::vector<std::string> names) : names_(std::move(names)) {
-  std::stable_sort(names_.begin(), names_.end(),
-                   [](const auto& a, const auto& b) { return a.size() > b.size(); });
+ModuleLexer::ModuleLexer(const std::vector<std::string>& names) : terminal_(1, 0) {
+  for (const std::string& n : names) {
+    std::uint32_t node = 0;
+    for (const char c : n) {
+      const auto [it, added] =
+          edges_.try_emplace(edge(node, c), static_cast<std::uint32_t>(terminal_.size()));
+      if (added) terminal_.push_back(0);
+      node = it->second;
+    }
+    terminal_[node] = 1;
+  }
 }
 
 std::size_t ModuleLexer::name_length(std::string_view text, std::size_t i) const {
-  for (const auto& n : names_)
-    if (text.substr(i, n.size()) == n) return n.size();
+  // The longest declared name that starts here: a walk down the trie as far as the text goes.
+  std::size_t longest = 0;
+  std::uint32_t node = 0;
+  for (std::size_t k = i; k < text.size(); ++k) {
+    const auto it = edges_.find(edge(node, text[k]));
+    if (it == edges_.end()) break;
+    node = it->second;
+    if (terminal_[node]) longest = k - i + 1;
+  }
+  if (longest) return longest;
   return std::min(utf8_length(static_cast<unsigned char>(text[i])), text.size() - i);
 }
 

@@ -21,6 +21,18 @@ axiom: Apex Ap A p FF
   CHECK(g.symbols.name(s.symbols[5]) == "F");
 }
 
+TEST_CASE("the longest declared name wins where a shorter one and a dead end share its start") {
+  // "Apexa" starts like "Apexes" (no name there) and holds "Apex"; "Apx" holds only "Ap".
+  const Grammar g = grammar(R"g(
+modules: [Ap, Apex, Apexes]
+axiom: ApexaApxApexes
+)g");
+  const ModuleString s = derive(g, DeriveRequest{0, 1, kDefaultMaxModules});
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < s.size(); ++i) names.push_back(g.symbols.name(s.symbols[i]));
+  CHECK(names == std::vector<std::string>{"Apex", "a", "Ap", "x", "Apexes"});
+}
+
 TEST_CASE("a production's predecessor declares its name") {
   const Grammar g = grammar(R"g(
 axiom: Bud(1)
