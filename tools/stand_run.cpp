@@ -57,12 +57,17 @@ GlbForm glb_form(bool instancing, bool compact, double resolve_clearance) {
   return g;
 }
 
+void check_glb_written(bool instancing, bool compact, const std::string& formats, const OptionNames& names) {
+  // A form of a file not written would be taken without a word (and echoed into report.json).
+  if ((instancing || compact) && !parse_formats(formats).count("glb"))
+    throw std::invalid_argument(fmt::format("{} is a form of stand.glb, and {} {} writes none: add glb",
+                                            compact ? names.compact : names.instancing, names.formats,
+                                            formats));
+}
+
 GlbForm glb_form(const StandOptions& o) {
-  // A form of a file not written would be taken without a word and echoed into report.json.
-  if ((o.glb_instancing || o.glb_compact) && !parse_formats(o.formats).count("glb"))
-    throw std::invalid_argument(
-        fmt::format("{} is a form of stand.glb, and --formats {} writes none: add glb",
-                    o.glb_compact ? "--glb-compact" : "--glb-instancing", o.formats));
+  check_glb_written(o.glb_instancing, o.glb_compact, o.formats,
+                    {"--glb-instancing", "--glb-compact", "--formats"});
   return glb_form(o.glb_instancing, o.glb_compact, o.resolve.clearance);
 }
 

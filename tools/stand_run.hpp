@@ -88,6 +88,12 @@ struct GlbForm {
 /// The form the options ask for; the compact glb's step stays below half the resolution
 /// clearance (half the default clearance when it is 0). Throws when both forms are asked for.
 GlbForm glb_form(const StandOptions& o);
+/// The names a caller gives the glb forms and the format list, in its refusals.
+struct OptionNames {
+  const char *instancing, *compact, *formats;
+};
+/// Refuses a glb form (instancing or compact) when `formats` writes no glb.
+void check_glb_written(bool instancing, bool compact, const std::string& formats, const OptionNames& names);
 GlbForm glb_form(bool instancing, bool compact, double resolve_clearance);
 
 /// "glb,obj" -> {glb, obj}; throws std::invalid_argument on an unknown format.

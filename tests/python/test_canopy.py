@@ -223,6 +223,12 @@ def test_compact_glb_equals_the_command_line(tmp_path):
         assert filecmp.cmp(tmp_path / "cli" / "stand.glb", tmp_path / d / "stand.glb", shallow=False), d
     with pytest.raises(ValueError, match="choose one"):
         s.export(tmp_path / "both", glb_compact=True, glb_instancing=True)
+    # A glb form without a glb is refused, as canopy stand refuses it; nothing is written.
+    with pytest.raises(ValueError, match=r"glb_compact is a form of stand.glb, and formats ply writes none"):
+        s.export(tmp_path / "noglb", formats=["ply"], glb_compact=True)
+    with pytest.raises(ValueError, match=r"glb_instancing is a form of stand.glb, and formats obj writes none"):
+        s.export(tmp_path / "noglb", formats="obj", glb_instancing=True)
+    assert not (tmp_path / "noglb").exists()
 
 
 def test_a_stand_at_work_refuses_other_calls_on_it(tmp_path):

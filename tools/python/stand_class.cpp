@@ -330,6 +330,8 @@ void bind_stand(py::module_& m) {
             if (list.empty()) throw std::invalid_argument("formats: give at least one of glb, obj, ply");
             const auto fs = cli::parse_formats(list);
             const cli::GlbForm glb = cli::glb_form(glb_instancing, glb_compact, 0);
+            cli::check_glb_written(glb_instancing, glb_compact, list,
+                                   {"glb_instancing", "glb_compact", "formats"});
             if (glb.compact && fs.count("glb")) check_glb_compact(ExportScope::whole(s.stand));
             py::gil_scoped_release nogil;
             const ThreadLimit thread_limit(0);  // refuses an OMP_NUM_THREADS past canopy's maximum
