@@ -85,8 +85,8 @@ std::vector<std::pair<std::string, int>> split(std::string_view line, int& open_
   return cells;
 }
 
-/// Refuses a row layout whose spacings or jitter place a plant farther than kMaxPlantCoordinate
-/// from the origin, naming the options (before any placement is made).
+}  // namespace
+
 void check_reach(const RowLayout& l) {
   const std::pair<const char*, double> options[] = {{"--plant-spacing", l.plant_spacing},
                                                     {"--row-spacing", l.row_spacing},
@@ -114,8 +114,6 @@ void check_reach(const RowLayout& l) {
         l.rows, l.row_spacing, l.double_rows ? fmt::format(" with --double-rows {:g} m", *l.double_rows) : "",
         l.jitter, y + l.jitter, kMaxPlantCoordinate));
 }
-
-}  // namespace
 
 std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant) {
   return mix64(mix64(stand_seed) ^ (plant * 0xd1b54a32d192ed03ULL)) >>

@@ -61,6 +61,9 @@ std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant);
 /// Positions in row-major order. Throws std::invalid_argument on a negative spacing or count, and
 /// naming the option for a spacing, jitter or row that reaches past kMaxPlantCoordinate.
 std::vector<PlantPlacement> row_layout(const RowLayout& layout);
+/// Refuses a row layout whose spacings or jitter place a plant farther than kMaxPlantCoordinate
+/// from the origin, naming the options (row_layout checks it before any placement is made).
+void check_reach(const RowLayout& layout);
 
 /// A seed as written in a positions file or on the command line: a whole number from 0 to
 /// 2^64 - 1 in decimal and nothing else (no sign, no spaces), or nothing.

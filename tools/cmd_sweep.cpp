@@ -77,9 +77,8 @@ void adopt_spacings(std::vector<RunRow>& rows, const std::vector<SweepCell>& cel
   }
 }
 
-/// One run: grow, detect (every level up to the exact one), resolve; the row of runs.csv.
-RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, DetectionBackend& backend,
-               RunRow row) {
+/// The row layout of a cell's run of seed `seed`.
+RowLayout cell_layout(const SweepOptions& o, const SweepCell& cell, int seed) {
   RowLayout layout;
   layout.rows = o.rows;
   layout.per_row = o.per_row;
@@ -88,6 +87,27 @@ RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, Detection
   layout.jitter = o.jitter.value();  // filled in by run_sweep
   layout.random_rotation = o.random_rotation.value();
   layout.seed = static_cast<std::uint64_t>(seed);
+  return layout;
+}
+
+/// Refuses, before any run, a cell whose plants would stand farther from the origin than a
+/// stand's may (each of its runs would fail alike); a density names itself and its spacing.
+void check_cells_reach(const SweepOptions& o, const std::vector<SweepCell>& cells, bool by_density) {
+  for (const SweepCell& cell : cells) try {
+      check_reach(cell_layout(o, cell, 0));
+    } catch (const std::invalid_argument& e) {
+      if (!by_density) throw;
+      throw std::invalid_argument(
+          fmt::format("--density {:g} plants/m2 (a plant spacing of {:g} m at a row "
+                      "spacing of {:g} m): {}",
+                      cell.density, cell.plant_spacing, cell.row_spacing, e.what()));
+    }
+}
+
+/// One run: grow, detect (every level up to the exact one), resolve; the row of runs.csv.
+RunRow run_one(const SweepOptions& o, const SweepCell& cell, int seed, DetectionBackend& backend,
+               RunRow row) {
+  const RowLayout layout = cell_layout(o, cell, seed);
   GrowRequest req = grow_request(o.grammar, o.set, cell.steps, o.lod, o.detect.threads, o.max_modules);
   req.plants = row_layout(layout);
   auto t = std::chrono::steady_clock::now();
@@ -197,6 +217,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     throw std::invalid_argument(
         fmt::format("--jitter must be a finite number of metres, at least 0 (got {})", *o.jitter));
   const std::vector<SweepCell> cells = sweep_cells(rows_sp, plant_sp, dens, steps);
+  check_cells_reach(o, cells, !dens.empty());
   auto backend = make_backend(o.detect.backend, note, ranks ? ranks->local_rank : 0);
 
   const std::string runs_path = o.out + "/runs.csv";

@@ -198,6 +198,15 @@ tiny >"$tmp/o" 2>"$tmp/e"
 check "a torn middle line" "2 1" "$? $(grep -c 'runs.csv:3: not a whole row of 43 columns, and not the last line' "$tmp/e")"
 check "refusals leave runs.csv" "$(sed 3d "$tmp/r.good")" "$(sed 3d "$tmp/r/runs.csv")"
 
+# A cell whose plants would stand past 1e8 m is refused before any run (each run failed alike),
+# a density naming itself and its spacing; no folder is made.
+"$canopy" sweep "$g" --density 1e-300 --rows 1 --per-row 2 --seeds 1 --steps 8 --backend cpu -o "$tmp/far" >"$tmp/o" 2>"$tmp/e"
+check "far density refused up front" "2 1 0" \
+  "$? $(grep -c 'density 1e-300 plants/m2 (a plant spacing of 1e+300 m at a row spacing of 1 m): --plant-spacing 1e+300 m: plants may stand at most' "$tmp/e") $(ls -d "$tmp/far" 2>/dev/null | wc -l)"
+"$canopy" sweep "$g" --plant-spacing 0.4,1e9 --rows 1 --per-row 2 --seeds 1 --steps 8 --backend cpu -o "$tmp/far" >"$tmp/o" 2>"$tmp/e"
+check "far spacing refused up front" "2 1 0" \
+  "$? $(grep -c 'plant-spacing 1e+09 m: plants may stand at most 1e+08 m' "$tmp/e") $(ls -d "$tmp/far" 2>/dev/null | wc -l)"
+
 # A sweep's light tile is its lattice (it has no --tile): a spacing too small for light fails the
 # run naming the spacings.
 "$canopy" sweep "$g" --plant-spacing 0.0001 --row-spacing 0.001 --rows 2 --per-row 3 --seeds 1 --steps 8 --backend cpu \
