@@ -4,6 +4,7 @@ CANOPY at the canopy program."""
 import filecmp
 import gc
 import json
+import re
 import os
 import subprocess
 
@@ -33,6 +34,16 @@ def test_derive_equals_the_command_line():
         canopy.derive(TOMATO, steps=3, nosuchconstant=1)
     stats = canopy.derive(TOMATO, steps=9, stats=True)
     assert stats == json.loads(cli("derive", TOMATO, "--steps", "9", "--stats").stdout)
+    # Counts out of range: the command line's refusal as a ValueError (pybind11 raised TypeError).
+    for kw, message in [({"seed": -1}, "seed: needs a whole number from 0 to 18446744073709551615, got -1"),
+                        ({"seed": 2**64}, "seed: needs a whole number from 0 to"),
+                        ({"steps": 2**70}, "steps: needs a whole number from 0 to 100000"),
+                        ({"max_modules": 0}, "max_modules: needs a whole number from 1 to")]:
+        with pytest.raises(ValueError, match=re.escape(message)):
+            canopy.derive(TOMATO, **kw)
+    with pytest.raises(TypeError, match="steps: needs an int"):
+        canopy.derive(TOMATO, steps=2.5)
+    assert canopy.derive(TOMATO, steps=5, seed=2**64 - 1) == cli("derive", TOMATO, "--steps", "5", "--seed", str(2**64 - 1)).stdout.strip()
 
 
 @pytest.fixture(scope="module")

@@ -3,11 +3,13 @@
 // C++ loops, the stand object arrays view, and small conversions.
 #include "collision/backend.hpp"
 #include "tools/detect_options.hpp"
+#include "tools/cli_common.hpp"
 #include "tools/stand_run.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <charconv>
 #include <map>
 #include <optional>
 #include <string>
@@ -118,6 +120,24 @@ inline std::string path_of(py::handle h) {
 inline py::array read_only(py::array a) {
   a.attr("setflags")(py::arg("write") = false);
   return a;
+}
+
+/// A whole-number argument checked by the command line's validator `check` (its message, as a
+/// ValueError naming `name`); None: none given. Not an int (a float, a bool): a TypeError.
+template <typename T>
+std::optional<T> whole_arg(py::handle v, const char* name, const CLI::Validator& check) {
+  if (v.is_none()) return std::nullopt;
+  if (!PyLong_Check(v.ptr()) || PyBool_Check(v.ptr()))
+    throw py::type_error(
+        fmt::format("{}: needs an int, got {}", name, py::str(py::type::of(v)).cast<std::string>()));
+  std::string text = py::str(v).cast<std::string>();
+  if (const std::string error = check(text); !error.empty())
+    throw std::invalid_argument(fmt::format("{}: {}", name, error));
+  T out{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  if (ec != std::errc{} || end != text.data() + text.size())
+    throw std::invalid_argument(fmt::format("{}: {} does not fit", name, text));
+  return out;
 }
 
 inline std::vector<std::string> overrides(const std::map<std::string, double>& set) {

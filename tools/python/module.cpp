@@ -77,10 +77,16 @@ PYBIND11_MODULE(_canopy, m) {
 
   m.def(
       "derive",
-      [](py::object grammar_arg, std::optional<int> steps, std::optional<std::uint64_t> seed,
+      [](py::object grammar_arg, py::object steps_arg, py::object seed_arg,
          const std::map<std::string, double>& set, bool stats, bool interpreted,
-         std::size_t max_modules) -> py::object {
+         py::object max_modules_arg) -> py::object {
         const std::string grammar = path_of(grammar_arg);
+        // The counts checked as canopy derive checks them (a ValueError with its message, not
+        // pybind11's TypeError for an int that does not fit).
+        const std::optional<int> steps = whole_arg<int>(steps_arg, "steps", cli::whole_in(0, kMaxSteps));
+        const std::optional<std::uint64_t> seed = whole_arg<std::uint64_t>(seed_arg, "seed", cli::kSeed);
+        const std::size_t max_modules =
+            whole_arg<std::size_t>(max_modules_arg, "max_modules", cli::whole_in(1, INT64_MAX)).value();
         LoadOptions lo;
         for (const auto& s : overrides(set)) lo.overrides.push_back(parse_override(s));
         std::string text;
@@ -107,7 +113,7 @@ PYBIND11_MODULE(_canopy, m) {
       },
       py::arg("grammar"), py::kw_only(), py::arg("steps") = py::none(), py::arg("seed") = py::none(),
       py::arg("set") = std::map<std::string, double>{}, py::arg("stats") = false,
-      py::arg("interpreted") = false, py::arg("max_modules") = kDefaultMaxModules,
+      py::arg("interpreted") = false, py::arg("max_modules") = py::int_(kDefaultMaxModules),
       "The derived string (canopy derive), or with stats=True its module counts as a dict.");
 
   bind_stand(m);
