@@ -267,8 +267,17 @@ class Loader {
   }
 
   void read_names(const YAML::Node& root) {
-    if (const auto& c = root["compound_leaf"])
+    if (const auto& c = root["compound_leaf"]) {
       g_.compound_leaf = g_.symbols.intern(src_.string(c, "compound_leaf"), src_.at(c));
+      // The symbol opens a compound leaf and emits nothing; as an organ too, its leaflets were
+      // left out of every leaf (leaf -1) and of leaf-level detection without a word.
+      if (const auto it = g_.organs.find(static_cast<Symbol>(g_.compound_leaf)); it != g_.organs.end())
+        fail_at(src_.at(c),
+                "compound_leaf '{}' is also an organ ({}:{}:{}): the symbol that begins a compound "
+                "leaf emits no organ; give it a name of its own, before the leaf's organs",
+                src_.string(c, "compound_leaf"), it->second.pos.file, it->second.pos.line,
+                it->second.pos.column);
+    }
     std::vector<Symbol> ignored;
     if (const auto& l = root["ignore"])
       for (const auto& item : l) {

@@ -131,7 +131,14 @@ TurtleResult run_turtle(const Grammar& g, const ModuleString& s, const TurtleCon
       st.last_organ = static_cast<int>(out.organs.size());
       out.organs.push_back(o);
       if (o.prototype == PrototypeKind::cylinder) {
+        // A cylinder advances the turtle as F does, within the same bound (its far end is the
+        // next organ's base).
         st.f.position = st.f.position + st.f.heading * static_cast<double>(o.params[0]);
+        if (too_far(st.f.position))
+          fail(i, p,
+               fmt::format("the cylinder takes the turtle farther than {} m from the plant's origin",
+                           kMaxOrganExtent),
+               0);
         if (g.tropism) apply_tropism(st.f, *g.tropism);
       }
     } else if (static_cast<int>(x) == g.compound_leaf) {

@@ -401,3 +401,12 @@ TEST_CASE("declared names that cannot be one module are refused where they are d
   // Names of several characters, and a predecessor with its parameters, are as they were.
   CHECK(error_of("axiom: Leaf(1)\nproductions:\n  - \" Leaf(x) -> Leaf(x + 1)\"\n") == "");
 }
+
+TEST_CASE("a compound_leaf symbol that is also an organ is refused at both places") {
+  // Its leaflets were left out of every leaf (leaf -1 in organs.csv) without a word.
+  CHECK(error_of("axiom: F(1,0.1)[L(0.1,0.05)]\ncompound_leaf: L\norgans:\n  L: {prototype: leaflet, kind: "
+                 "leaflet}\n  F: {prototype: cylinder, kind: internode}\n") ==
+        "test.yaml:2:16: compound_leaf 'L' is also an organ (test.yaml:4:3): the symbol that begins a "
+        "compound leaf "
+        "emits no organ; give it a name of its own, before the leaf's organs");
+}

@@ -259,9 +259,12 @@ TEST_CASE("organ parameter errors name the file, line and column of the expressi
         "FILE:4:10: plant 0 (seed 1), module 0 'F(1e+300)': the step takes the turtle farther than 1000000 m "
         "from the plant's "
         "origin");
+  // A cylinder advances the turtle within the bound, as F does (its far end reached 2e6 m).
   CHECK(grow_error(organs + "axiom: I(1e6, 1) I(1e6, 1) L(1, 1)\n") ==
-        "FILE:4:28: plant 0 (seed 1), module 2 'L(1,1)': the organ lies farther than 1000000 m from its "
-        "plant's origin");
+        "FILE:4:20: plant 0 (seed 1), module 1 'I(1e+06,1)': the cylinder takes the turtle farther than "
+        "1000000 m "
+        "from the plant's origin");
+  CHECK(grow_error(organs + "axiom: I(1e6, 1) L(1, 1)\n") == "");  // to the bound itself
   CHECK(grow_error(organs + "axiom: L(1e6, 1e6)\n") == "");  // the bound itself is allowed
 }
 
