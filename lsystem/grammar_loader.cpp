@@ -297,7 +297,8 @@ class Loader {
 
   void read_tropism(const YAML::Node& node) {
     if (!node) return;
-    src_.check_map(node, "tropism", "direction strength");
+    // `tropism:` with nothing after it is the empty map, as grammar.md says of every such key.
+    if (!node.IsNull()) src_.check_map(node, "tropism", "direction strength");
     Tropism t;
     if (const auto& d = node["direction"]) {
       if (!d.IsSequence() || d.size() != 3)
@@ -328,7 +329,7 @@ class Loader {
                                                "double_rows", "jitter",  "random_rotation", "seed"};
     std::string keys;
     for (const char* k : kRowKeys) keys += std::string(k) + " ";
-    src_.check_map(node, "stand", keys + "positions");
+    if (!node.IsNull()) src_.check_map(node, "stand", keys + "positions");
     StandSpec s;
     auto positive = [&](const char* key) -> std::optional<double> {
       if (!node[key]) return std::nullopt;

@@ -410,3 +410,11 @@ TEST_CASE("a compound_leaf symbol that is also an organ is refused at both place
         "compound leaf "
         "emits no organ; give it a name of its own, before the leaf's organs");
 }
+
+TEST_CASE("tropism: and stand: with nothing after them are the empty map") {
+  const Grammar none = grammar("axiom: F\ntropism:\nstand:\n"),
+                empty = grammar("axiom: F\ntropism: {}\nstand: {}\n");
+  REQUIRE(none.tropism.has_value() == empty.tropism.has_value());
+  REQUIRE(none.stand.has_value() == empty.stand.has_value());
+  CHECK(error_of("axiom: F\ntropism: 3\n") == "test.yaml:2:10: tropism must be a map");
+}
