@@ -38,15 +38,17 @@ Command add_detect(CLI::App& root) {
             std::string note;
             auto backend = make_backend(o->detect.backend, note);
             const Contacts c = backend->detect(stand, o->detect.request());
-            fmt::print("stand: {} plants, {} organs (read in {:.3f} s)\n", stand.plant_count(),
-                       stand.organ_count(), read_s);
-            print_contacts_table(c, note);
+            // The file first: a write that fails (a full disk) leaves nothing on standard output,
+            // as every error does.
             if (!o->csv.empty()) {
               AtomicFile f(o->csv);
               write_contacts_csv(stand, c, f);
               f.commit();
-              fmt::print("wrote {}\n", o->csv);
             }
+            fmt::print("stand: {} plants, {} organs (read in {:.3f} s)\n", stand.plant_count(),
+                       stand.organ_count(), read_s);
+            print_contacts_table(c, note);
+            if (!o->csv.empty()) fmt::print("wrote {}\n", o->csv);
             return 0;
           }};
 }

@@ -104,6 +104,10 @@ if [ -w /dev/full ]; then
   check "info > /dev/full" "1:canopy: error: writing standard output failed: No space left on device" "$rc:$(err)"
   timeout 60 "$canopy" derive "$g" --steps 2 >/dev/full 2>"$tmp/err"; rc=$?
   check "derive > /dev/full" "1:canopy: error: writing standard output failed: No space left on device" "$rc:$(err)"
+  # A --csv that cannot be written: the error alone, no table on standard output first.
+  "$canopy" stand "$g" --steps 4 --rows 1 --per-row 2 --backend cpu -o csvstand >/dev/null 2>&1
+  timeout 60 "$canopy" detect csvstand --backend cpu --csv /dev/full >"$tmp/out" 2>"$tmp/err"; rc=$?
+  check "detect --csv /dev/full" "1:canopy: error: writing /dev/full failed: No space left on device:0" "$rc:$(err):$(wc -c < "$tmp/out")"
   for words in "--help" "--version" "stand --help"; do
     timeout 60 "$canopy" $words >/dev/full 2>"$tmp/err"; rc=$?
     check "$words > /dev/full" "1:1" "$rc:$(grep -c '^canopy: error: writing standard output failed' "$tmp/err")"
