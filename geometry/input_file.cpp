@@ -101,6 +101,12 @@ bool InputFile::take_line(std::string& line) {
   // A carriage return left inside: lines ended by one alone (an old Mac format) read as one long
   // line, whose first cells would be taken for a header running into the rows.
   if (line.find('\r') != std::string::npos) throw InputRefused(path_, line_, old_mac_lines());
+  // A NUL byte (a binary or damaged file) would also cut every message quoting the line there.
+  if (const std::size_t nul = keep_nul_ ? std::string::npos : line.find('\0'); nul != std::string::npos)
+    throw InputRefused(
+        path_, line_,
+        fmt::format("column {}: a NUL byte, which no text file holds (the {} is binary or damaged)", nul + 1,
+                    what_));
   return true;
 }
 

@@ -55,8 +55,11 @@ class InputFile {
   InputFile& operator=(const InputFile&) = delete;
 
   /// The next line, without its '\n' (or "\r\n"); false at the end of the file. `max_line` bounds it;
-  /// a carriage return inside a line (an old Mac file's line end) is refused.
+  /// a carriage return inside a line (an old Mac file's line end) or a NUL byte is refused.
   bool next_line(std::string& line, std::size_t max_line = kMaxCsvLineBytes);
+  /// Takes lines with NUL bytes as they are (a reader that drops a torn last line: a file
+  /// appended to when the machine lost power may end in NULs).
+  void keep_nul_bytes() { keep_nul_ = true; }
   /// Lines read so far (the number of the line next_line gave last).
   int line_number() const { return line_; }
   /// The rest of the file.
@@ -66,7 +69,8 @@ class InputFile {
  private:
   /// Refills the buffer; false at the end of the file.
   bool fill();
-  /// Counts the line `line` just taken, drops its "\r" end and refuses one left inside; true.
+  /// Counts the line `line` just taken, drops its "\r" end and refuses one left inside, or a NUL
+  /// byte; true.
   bool take_line(std::string& line);
   std::string old_mac_lines() const;
 
@@ -74,6 +78,7 @@ class InputFile {
   std::uint64_t max_bytes_ = 0, read_ = 0;
   int fd_ = -1;
   int line_ = 0;
+  bool keep_nul_ = false;
   std::string buf_;
   std::size_t at_ = 0;
 };

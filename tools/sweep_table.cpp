@@ -117,6 +117,7 @@ std::vector<RunRow> read_runs(const std::string& path) {
   std::vector<RunRow> rows;
   if (!std::filesystem::exists(std::filesystem::symlink_status(path))) return rows;
   InputFile in(path, "sweep's runs.csv", kMaxRunsCsvBytes);
+  in.keep_nul_bytes();  // a torn last line may be NULs; its columns tell it
   std::string line;
   if (!in.next_line(line)) return rows;
   if (line + "\n" != header())

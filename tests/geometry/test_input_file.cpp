@@ -81,6 +81,18 @@ TEST_CASE(
   std::remove(f.c_str());
 }
 
+TEST_CASE("a NUL byte in a line is refused with its place (it cut the messages quoting the line)") {
+  const std::string f = write_temp(std::string("a,b\nc,0.", 8) + std::string(1, '\0') + "5\n");
+  InputFile in(f, "test file", 100);
+  std::string line;
+  REQUIRE(in.next_line(line));
+  CHECK_THROWS_WITH_AS(
+      in.next_line(line),
+      (f + ":2: column 5: a NUL byte, which no text file holds (the test file is binary or damaged)").c_str(),
+      InputRefused);
+  std::remove(f.c_str());
+}
+
 TEST_CASE("files larger than the limit, by their size or by what is read") {
   const std::string f = write_temp(std::string(2000, 'y'));
   CHECK_THROWS_WITH_AS(InputFile(f, "test file", 1024),

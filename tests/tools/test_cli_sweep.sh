@@ -113,6 +113,10 @@ sweep -o "$tmp/s" >"$tmp/log3" 2>&1
 check "interrupted: resumed runs" "1" "$(grep -c '^sweep: 5 runs made now' "$tmp/log3")"
 check "interrupted: rows" "9" "$(wc -l < "$tmp/s/runs.csv" | tr -d ' ')"
 check "interrupted: same results" "$(cut -d, -f1-25 "$tmp/runs.before" | sort)" "$(cut -d, -f1-25 "$tmp/s/runs.csv" | sort)"
+# A machine that lost power may leave the appended line as NUL bytes: torn, dropped, run again.
+cp "$tmp/s/runs.csv" "$tmp/runs.whole"; head -8 "$tmp/runs.whole" > "$tmp/s/runs.csv"; head -c 40 /dev/zero >> "$tmp/s/runs.csv"
+sweep -o "$tmp/s" >"$tmp/log3" 2>&1
+check "NUL tail: one run made again" "1 9" "$(grep -c '^sweep: 1 runs made now' "$tmp/log3") $(wc -l < "$tmp/s/runs.csv" | tr -d ' ')"
 
 # A failed run is recorded as failed, kept on resuming, run again with --retry-failed.
 printf 'axiom: A(1)\nsteps: 3\nproductions:\n  - A(x) -> I(0.1, 0.01) [ A(x) ] [ A(x) ]\norgans:\n  I: {prototype: cylinder, kind: internode}\n' > "$tmp/exp.yaml"
