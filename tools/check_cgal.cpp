@@ -12,10 +12,12 @@
 #include "collision/contacts.hpp"
 #include "collision/mbvt.hpp"
 #include "geometry/export.hpp"
+#include "tools/bench_usage.hpp"
 #include "tools/organ_triangles.hpp"
 
 #include <CGAL/intersections.h>
 #include <CGAL/squared_distance_3.h>
+
 #include <fmt/format.h>
 
 #include <cstring>
@@ -92,22 +94,35 @@ double min_distance2(const OrganGeometry& a, const OrganGeometry& b) {
 
 }  // namespace
 
+int run_check(int argc, char** argv);
+
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    fmt::print(
-        stderr,
-        "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE] [--glb] [--strict]\n");
-    return 2;
+  try {
+    return run_check(argc, argv);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "check_cgal: error: {}\n", e.what());
+    return 1;
   }
-  const std::string dir = argv[1];
+}
+
+int run_check(int argc, char** argv) {
+  const std::string usage =
+      "usage: check_cgal DIR [--collide KINDS (default all)] [--contacts FILE] [--glb] [--strict]\n";
+  std::string dir;
   KindMask collide = parse_collide_kinds("all");  // every organ in the file, fruit and flowers included
   std::string contacts_file = "contacts.csv";
   bool glb = false, strict = false;
-  for (int i = 2; i < argc; ++i)
+  for (int i = 1; i < argc; ++i)
     if (!std::strcmp(argv[i], "--glb")) glb = true;
     else if (!std::strcmp(argv[i], "--strict")) strict = true;
     else if (i + 1 < argc && !std::strcmp(argv[i], "--collide")) collide = parse_collide_kinds(argv[++i]);
     else if (i + 1 < argc && !std::strcmp(argv[i], "--contacts")) contacts_file = argv[++i];
+    else if (argv[i][0] != '-' && dir.empty()) dir = argv[i];
+    else return help_or_refuse("check_cgal", argv[i], usage);
+  if (dir.empty()) {
+    std::fputs(usage.c_str(), stderr);
+    return 2;
+  }
   const Stand s = read_stand(dir);
   std::vector<OrganGeometry> organs(s.organ_count());
   if (glb) check::read_glb_organs(dir + "/stand.glb", organs);

@@ -77,5 +77,11 @@ for seed in 1 2 3; do
     echo "$name: $fruit fruit, $(($(wc -l < "$tmp/$name/contacts.csv") - 1)) contacts before resolution, none after; $(tail -1 "$tmp/cgal")"
   fi
 done
+# Its own arguments: --help is usage (exit 0), a folder that is no stand a one-line error (exit 1).
+checks=$((checks + 2))
+"$CHECK_CGAL" --help >"$tmp/o" 2>&1; rc=$?
+if [ "$rc" -ne 0 ] || ! grep -q '^usage: check_cgal DIR' "$tmp/o"; then echo "FAIL check_cgal --help: $rc"; failures=$((failures + 1)); fi
+"$CHECK_CGAL" "$tmp/none" >"$tmp/o" 2>&1; rc=$?
+if [ "$rc" -ne 1 ] || ! grep -q '^check_cgal: error: .*none/plants.csv: cannot open' "$tmp/o"; then echo "FAIL check_cgal on no stand: $rc"; failures=$((failures + 1)); fi
 echo "$((checks - failures)) passed, $failures failed"
 [ "$failures" -eq 0 ]
