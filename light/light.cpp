@@ -36,6 +36,9 @@ struct Run {
   std::unique_ptr<RasterStand> raster;  // made on the first rasterized pass
   std::unique_ptr<std::uint64_t[]> cells;
   std::size_t cells_size = 0;
+  /// The first passes' rays grow by this (1: as configured): with a periodic tile larger than the
+  /// stand's box, the rays that meet the stand are the box's share of the tile's.
+  double pilot_scale = 1;
 
   enum class Way { trace, device, host };
   /// How a pass of `n` rays is answered: drawn on the GPU where one is given and its memory holds
@@ -196,7 +199,7 @@ struct Run {
   /// at least 20% more rays a pass) until the errors are met.
   DirectionLight beam(Vec3d toward, std::uint64_t id) {
     if (cfg.rays_per_m2) return trace(toward, *cfg.rays_per_m2 * region(toward).area(), id << 8);
-    DirectionLight d = trace(toward, cfg.pilot_rays, id << 8);
+    DirectionLight d = trace(toward, cfg.pilot_rays * pilot_scale, id << 8);
     double r = shortfall(d.fraction.se, plant_rms(d.plant)), n_prev = 0, r_prev = 0;
     check_reachable(static_cast<double>(d.rays), r);
     for (std::uint64_t round = 1; round < kRounds && r > 1; ++round) {
@@ -253,10 +256,11 @@ struct Run {
         d[i] = trace(to[i], *cfg.rays_per_m2 * region(to[i]).area(), (first_id + i) << 8);
       return d;
     }
-    for (std::size_t i = 0; i < sky.size(); ++i) d[i] = trace(to[i], cfg.sky_pilot_rays, (first_id + i) << 8);
+    const double pilot = cfg.sky_pilot_rays * pilot_scale;
+    for (std::size_t i = 0; i < sky.size(); ++i) d[i] = trace(to[i], pilot, (first_id + i) << 8);
     DirectionLight c = combine(d, sky);
     double r = shortfall(c.fraction.se, plant_rms(c.plant)), n_prev = 0, r_prev = 0;
-    check_reachable(static_cast<double>(cfg.sky_pilot_rays) * static_cast<double>(sky.size()), r);
+    check_reachable(pilot * static_cast<double>(sky.size()), r);
     for (std::uint64_t round = 1; round < kRounds && r > 1; ++round) {
       double n_all = 0;
       for (const DirectionLight& x : d) n_all += static_cast<double>(x.rays);
@@ -386,8 +390,23 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   Scene scene(stand, lib);
   if (cfg.periodic) scene.set_period(cfg.tile.width(), cfg.tile.height());
   r.organs_skipped = scene.skipped();
+  double pilot_scale = 1;
   if (cfg.periodic && scene.hi().x > scene.lo().x) {
     const double w = scene.hi().x - scene.lo().x, h = scene.hi().y - scene.lo().y;
+    // A tile far larger than the stand's box (a sparse field: one plant in 10 x 10 m) leaves the
+    // stand the box's share of a pass's rays: the first passes grow so that the stand gets their
+    // configured count (the errors then size the rest), and a tile so large that no pass within
+    // the limit would meet the stand is refused (a first pass met nothing and reported every
+    // fraction and STAR as 0 with an error of 0).
+    const double cover = std::max(w, 1e-3) * std::max(h, 1e-3) / cfg.tile.area();
+    if (cover < 1) pilot_scale = 1 / cover;
+    if (!(std::max(cfg.pilot_rays, cfg.sky_pilot_rays) * pilot_scale <= kMaxRaysPerDirection))
+      throw std::invalid_argument(fmt::format(
+          "--tile: a tile of {:.3g} x {:.3g} m over a stand {:.3g} x {:.3g} m wide ({:.3g} times its area): "
+          "a "
+          "pass would need more than {:.3g} rays to meet the stand; give a tile nearer the stand's size (its "
+          "lattice: plant spacing x row spacing per plant)",
+          cfg.tile.width(), cfg.tile.height(), w, h, 1 / cover, kMaxRaysPerDirection));
     const double copies = std::ceil(w / cfg.tile.width()) * std::ceil(h / cfg.tile.height());
     if (!(copies <= kMaxTileCopies))
       throw std::invalid_argument(
@@ -419,7 +438,8 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   r.layer_leaf_area = layer_leaf_area(stand, lib, cfg.layer_m, layers);
 
   const auto t_trace = std::chrono::steady_clock::now();
-  Run run{stand, cfg, scene, organs, layers, r.plant_leaf_area, r.leaf_area, lib, 0, 0, 0, 0, 0, {}, {}, 0};
+  Run run{stand, cfg, scene, organs, layers, r.plant_leaf_area, r.leaf_area, lib, 0, 0, 0,
+          0,     0,   {},    {},     0,      pilot_scale};
   r.ground = run.beam({0, 0, 1}, 0);
   for (std::size_t i = 0; i < cfg.suns.size(); ++i) {
     const Beam& b = cfg.suns[i];

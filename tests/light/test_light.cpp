@@ -85,6 +85,22 @@ TEST_CASE("a periodic tile far smaller than the stand is refused, one near its s
   CHECK_NOTHROW(light::compute_light(s, lib, beams({{90, 0}}, {0, 0, 0.1, 0.1}, true, 0.01)));
 }
 
+TEST_CASE("a periodic tile far larger than the stand: its share sampled, or refused past the ray limit") {
+  // A disk 0.3 m across in a 20 m tile (4,400 times its box): the first pass had 4096 rays over the
+  // tile, one on the disk; it now puts them on the disk's share, and the area comes out.
+  const double r = 0.15;
+  const Stand s =
+      one_organ(PrototypeKind::disk, OrganKind::leaflet, 2, disk_at({0, 0, 0.4f}, static_cast<float>(r), 0));
+  PrototypeLibrary lib;
+  const light::Box2d wide{-10, -10, 10, 10};
+  const light::LightResult res = light::compute_light(s, lib, beams({{90, 0}}, wide, true, 0.00002));
+  check_area(res.direct[0], wide, polygon_area(16, r));
+  // 1e9 m: no pass within the limit meets it (every fraction and STAR came out 0 with an error of 0).
+  CHECK_THROWS_WITH_AS(light::compute_light(s, lib, beams({{90, 0}}, {0, 0, 1e9, 1e9}, true, 0.01)),
+                       doctest::Contains("--tile: a tile of 1e+09 x 1e+09 m over a stand"),
+                       std::invalid_argument);
+}
+
 TEST_CASE("turbid medium: horizontal leaves intercept 1 - (1 - G a / (A cos theta))^N with G = cos theta") {
   const Stand s = turbid("turbid_horizontal");
   PrototypeLibrary lib;
