@@ -99,12 +99,32 @@ std::optional<RowLayout> report_layout(const Json& j, const std::string& path) {
   try {
     const auto& l = j.at("config").at("layout");
     if (l.contains("positions")) return std::nullopt;
+    // Checked as canopy stand's options are: the light's tile and LAI follow from them (a rows of
+    // 2.5 read as 2, one of 1e30 overflowed).
+    const auto whole = [&](const char* key) {
+      const auto& v = l.at(key);
+      if (!v.is_number_integer() || v.template get<long long>() < 1 ||
+          v.template get<long long>() > INT32_MAX)
+        throw std::invalid_argument(
+            fmt::format("{}: config.layout.{} must be a whole number from 1 to {}, got {}", path, key,
+                        INT32_MAX, v.dump()));
+      return static_cast<int>(v.template get<long long>());
+    };
+    const auto metres = [&](const char* key) {
+      const auto& v = l.at(key);
+      if (!v.is_number() ||
+          !(v.template get<double>() >= 0 && v.template get<double>() <= kMaxPlantCoordinate))
+        throw std::invalid_argument(
+            fmt::format("{}: config.layout.{} must be a number of metres from 0 to {:g}, got {}", path, key,
+                        kMaxPlantCoordinate, v.dump()));
+      return v.template get<double>();
+    };
     RowLayout r;
-    r.rows = l.at("rows").template get<int>();
-    r.per_row = l.at("per_row").template get<int>();
-    r.row_spacing = l.at("row_spacing").template get<double>();
-    r.plant_spacing = l.at("plant_spacing").template get<double>();
-    if (!l.at("double_rows").is_null()) r.double_rows = l.at("double_rows").template get<double>();
+    r.rows = whole("rows");
+    r.per_row = whole("per_row");
+    r.row_spacing = metres("row_spacing");
+    r.plant_spacing = metres("plant_spacing");
+    if (!l.at("double_rows").is_null()) r.double_rows = metres("double_rows");
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(fmt::format("{}: no layout in its config ({})", path, e.what()));
@@ -271,7 +291,17 @@ LightOutcome run_light(LightOptions o, bool print) {
     // Its names are the light's files: a folder under one is refused before any work.
     OutputSet files(out.dir, {"light.json", "light.csv"});
     files.require_folder(read, "organs.csv");  // a stand written there meanwhile does not take this light
-    light_files(stand, folder_layout(o.source), files);
+    std::optional<RowLayout> layout = folder_layout(o.source);
+    // The lattice tile holds rows x per_row plants: a report of another stand would light this one
+    // over another tile (a 5 x 10 stand read with 2 rows: LAI 3.3 instead of 1.3).
+    if (layout && o.tile.empty() &&
+        static_cast<std::uint64_t>(layout->rows) * static_cast<std::uint64_t>(layout->per_row) !=
+            stand.plant_count())
+      throw std::invalid_argument(fmt::format(
+          "{}/report.json: its layout ({} rows of {} plants) does not match the {} plants of plants.csv: the "
+          "files are not of one stand; give --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)",
+          o.source, layout->rows, layout->per_row, stand.plant_count()));
+    light_files(stand, layout, files);
     files.commit_all();
   } else {
     o.stand.grammar = o.source;

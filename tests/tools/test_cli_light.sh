@@ -48,6 +48,15 @@ check "isolated: tile leaving plants out refused" "2 1" "$? $(grep -c 'must hold
 "$canopy" light "$tmp/a" --no-periodic --sun 3,0 --sky-directions 0 --backend cpu >"$tmp/o" 2>"$tmp/e"
 check "isolated: a fraction above 1 is said" "0 1 True" "$? $(grep -c 'note: the isolated stand intercepts light from beyond its tile' "$tmp/e") \
 $(json "$tmp/a/light.json" "j['direct'][0]['intercepted_fraction'] > 1")"
+# The lattice tile comes from report.json's layout: one that is not of this stand's plants, or not
+# a layout canopy stand writes, is refused naming report.json.
+cp -r "$tmp/a" "$tmp/rl"
+python3 -c "import json; p='$tmp/rl/report.json'; j=json.load(open(p)); j['config']['layout']['rows']=1; json.dump(j,open(p,'w'))"
+"$canopy" light "$tmp/rl" --backend cpu >"$tmp/o" 2>"$tmp/e"
+check "report's layout of other plants refused" "2 1" "$? $(grep -c 'report.json: its layout (1 rows of 3 plants) does not match the 6 plants of plants.csv' "$tmp/e")"
+python3 -c "import json; p='$tmp/rl/report.json'; j=json.load(open(p)); j['config']['layout']['rows']=2.5; json.dump(j,open(p,'w'))"
+"$canopy" light "$tmp/rl" --backend cpu >"$tmp/o" 2>"$tmp/e"
+check "report's rows 2.5 refused" "2 1" "$? $(grep -c 'report.json: config.layout.rows must be a whole number from 1 to 2147483647, got 2.5' "$tmp/e")"
 # A folder of the user's under a light file's name is refused before any work, never removed.
 cp -r "$tmp/a" "$tmp/uf"; rm "$tmp/uf/light.json"; mkdir -p "$tmp/uf/light.json/mine"; echo kept > "$tmp/uf/light.json/mine/a.txt"
 "$canopy" light "$tmp/uf" "${light[@]}" --backend cpu >"$tmp/o" 2>"$tmp/e"
