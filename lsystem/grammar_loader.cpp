@@ -335,6 +335,11 @@ class Loader {
       if (!node[key]) return std::nullopt;
       const double v = src_.number(node[key], key);
       if (v < 0) fail_at(src_.at(node[key]), "{} must not be negative, got {}", key, v);
+      // Past the reach plants may have, refused here with its place (the layout's own check
+      // names the command-line option the value would have come from).
+      if (v > kMaxPlantCoordinate)
+        fail_at(src_.at(node[key]), "{} is {:g} m: plants may stand at most {:g} m from the origin", key, v,
+                kMaxPlantCoordinate);
       return v;
     };
     if (node["rows"]) s.rows = static_cast<int>(src_.integer(node["rows"], "rows", 1, 100000000));

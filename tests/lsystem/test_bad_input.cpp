@@ -418,3 +418,12 @@ TEST_CASE("tropism: and stand: with nothing after them are the empty map") {
   REQUIRE(none.stand.has_value() == empty.stand.has_value());
   CHECK(error_of("axiom: F\ntropism: 3\n") == "test.yaml:2:10: tropism must be a map");
 }
+
+TEST_CASE("a stand entry's lengths past the plants' reach are refused at their place") {
+  // They were refused later naming --plant-spacing or --jitter, which the user had not given.
+  CHECK(error_of("axiom: F\nstand: {rows: 2, per_row: 2, plant_spacing: 1e300}\n") ==
+        "test.yaml:2:45: plant_spacing is 1e+300 m: plants may stand at most 1e+08 m from the origin");
+  CHECK(error_of("axiom: F\nstand:\n  jitter: 1e9\n") ==
+        "test.yaml:3:11: jitter is 1e+09 m: plants may stand at most 1e+08 m from the origin");
+  CHECK(error_of("axiom: F\nstand: {row_spacing: 1e8}\n") == "");  // the bound itself
+}
