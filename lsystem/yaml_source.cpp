@@ -7,6 +7,7 @@
 #include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <unordered_set>
@@ -131,12 +132,24 @@ SourcePos YamlSource::at(const YAML::Node& node, std::size_t offset) const {
   return p.shifted(static_cast<int>(offset));
 }
 
+namespace {
+
+/// A number's text without the '+' YAML's core schema allows before it (from_chars takes none).
+std::string_view unsigned_text(const std::string& s) {
+  if (s.size() > 1 && s[0] == '+' && (std::isdigit(static_cast<unsigned char>(s[1])) || s[1] == '.'))
+    return std::string_view(s).substr(1);
+  return s;
+}
+
+}  // namespace
+
 double YamlSource::number(const YAML::Node& node, std::string_view what) const {
   if (!node.IsScalar()) fail_at(at(node), "{} must be a number", what);
   const std::string s = node.Scalar();
+  const std::string_view t = unsigned_text(s);
   double v = 0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v))
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !std::isfinite(v))
     fail_at(at(node), "{} must be a finite number, got '{}'", what, s);
   return v;
 }
@@ -145,9 +158,10 @@ long long YamlSource::integer(const YAML::Node& node, std::string_view what, lon
                               long long hi) const {
   if (!node.IsScalar()) fail_at(at(node), "{} must be a whole number", what);
   const std::string s = node.Scalar();
+  const std::string_view t = unsigned_text(s);
   long long v = 0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size())
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (r.ec != std::errc() || r.ptr != t.data() + t.size())
     fail_at(at(node), "{} must be a whole number, got '{}'", what, s);
   if (v < lo || v > hi) fail_at(at(node), "{} must be between {} and {}, got {}", what, lo, hi, v);
   return v;
@@ -169,8 +183,11 @@ std::string YamlSource::string(const YAML::Node& node, std::string_view what) co
 bool YamlSource::boolean(const YAML::Node& node, std::string_view what) const {
   if (node.IsScalar()) {
     const std::string s = node.Scalar();
-    if (s == "true" || s == "yes" || s == "on") return true;
-    if (s == "false" || s == "no" || s == "off") return false;
+    // YAML's core schema (true, True, TRUE) and YAML 1.1's yes/no/on/off, as YAML readers take them.
+    for (const char* t : {"true", "True", "TRUE", "yes", "Yes", "YES", "on", "On", "ON"})
+      if (s == t) return true;
+    for (const char* f : {"false", "False", "FALSE", "no", "No", "NO", "off", "Off", "OFF"})
+      if (s == f) return false;
   }
   fail_at(at(node), "{} must be true or false", what);
 }

@@ -427,3 +427,19 @@ TEST_CASE("a stand entry's lengths past the plants' reach are refused at their p
         "test.yaml:3:11: jitter is 1e+09 m: plants may stand at most 1e+08 m from the origin");
   CHECK(error_of("axiom: F\nstand: {row_spacing: 1e8}\n") == "");  // the bound itself
 }
+
+TEST_CASE("YAML core-schema scalars: a leading + and True/False are taken as YAML readers take them") {
+  const Grammar g =
+      grammar("axiom: F\nsteps: +3\nstand: {plant_spacing: +0.5, random_rotation: True, jitter: .5}\n");
+  CHECK(g.steps == 3);
+  REQUIRE(g.stand.has_value());
+  CHECK(*g.stand->plant_spacing == 0.5);
+  CHECK(*g.stand->random_rotation);
+  CHECK(grammar("axiom: F\nstand: {random_rotation: FALSE}\n").stand->random_rotation == false);
+  CHECK(parse_override("k=+2").value == 2);
+  // A sign of its own is still no number.
+  CHECK(error_of("axiom: F\nstand: {plant_spacing: +-0.5}\n") ==
+        "test.yaml:2:24: plant_spacing must be a finite number, got '+-0.5'");
+  CHECK(error_of("axiom: F\nstand: {random_rotation: Truth}\n") ==
+        "test.yaml:2:26: random_rotation must be true or false");
+}
