@@ -188,6 +188,9 @@ class ExprParser {
     }
     double v = 0;
     const auto r = std::from_chars(s_.data() + start, s_.data() + i_, v);
+    if (r.ec == std::errc::result_out_of_range && r.ptr == s_.data() + i_)
+      error(start, "number '{}' is out of a double's range (about 1e-308 to 1e308 in size)",
+            s_.substr(start, i_ - start));
     if (r.ec != std::errc() || r.ptr != s_.data() + i_)
       error(start, "malformed number '{}'", s_.substr(start, i_ - start));
     emit(Op::Const, start, 1, 0, v);
@@ -398,7 +401,9 @@ double Expr::run(const double* frame, Rng* rng) const {
       }
       case Op::Rand: {
         if (!rng)
-          fail_at(place(static_cast<std::size_t>(in.column)), "rand() cannot be used here (only in productions and the axiom)");
+          fail_at(place(static_cast<std::size_t>(in.column)),
+                  "rand() cannot be used here: only in a production's condition or successor and in the "
+                  "axiom (not in a constant or a probability)");
         --sp;
         st[sp] = std::isfinite(st[sp]) && std::isfinite(st[sp + 1]) ? rng->uniform(st[sp], st[sp + 1])
                                                                     : bad(st[sp], st[sp + 1]);

@@ -63,16 +63,19 @@ namespace {
 std::vector<std::size_t> top_level(std::string_view s, std::string_view tok, std::size_t from, std::size_t to,
                                    const SourcePos& pos) {
   std::vector<std::size_t> hits;
-  int depth = 0;
+  std::vector<std::size_t> open;  // the '(' not yet closed
   for (std::size_t i = from; i < to; ++i) {
     const char c = s[i];
-    if (c == '(') ++depth;
+    if (c == '(') open.push_back(i);
     else if (c == ')') {
-      if (--depth < 0) fail_at(pos.shifted(static_cast<int>(i)), "')' without a matching '('");
-    } else if (depth == 0 && s.substr(i, tok.size()) == tok && i + tok.size() <= to) {
+      if (open.empty()) fail_at(pos.shifted(static_cast<int>(i)), "')' without a matching '('");
+      open.pop_back();
+    } else if (open.empty() && s.substr(i, tok.size()) == tok && i + tok.size() <= to) {
       hits.push_back(i);
     }
   }
+  // A '(' left open hides everything after it (an arrow too): it is the error to name.
+  if (!open.empty()) fail_at(pos.shifted(static_cast<int>(open.front())), "this '(' is never closed");
   return hits;
 }
 

@@ -443,3 +443,15 @@ TEST_CASE("YAML core-schema scalars: a leading + and True/False are taken as YAM
   CHECK(error_of("axiom: F\nstand: {random_rotation: Truth}\n") ==
         "test.yaml:2:26: random_rotation must be true or false");
 }
+
+TEST_CASE(
+    "messages that name the real cause: a number out of range, an unclosed '(', rand() in a probability") {
+  CHECK(error_of("axiom: A(1e400)\n") ==
+        "test.yaml:1:10: number '1e400' is out of a double's range (about 1e-308 to 1e308 in size)");
+  CHECK(error_of("axiom: A\nproductions:\n  - \"A(x -> A(x)\"\n") ==
+        "test.yaml:3:7: this '(' is never closed");
+  CHECK(
+      error_of("axiom: A\nproductions:\n  - \"A -> B : rand(0,1)\"\n") ==
+      "test.yaml:3:15: rand() cannot be used here: only in a production's condition or successor and in the "
+      "axiom (not in a constant or a probability)");
+}
