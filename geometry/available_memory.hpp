@@ -37,9 +37,11 @@ inline std::uint64_t stat_value(const std::string& path, const std::string& key)
   return 0;
 }
 
-/// What the process's memory control group lets it still take (~0: no limit found). A group's
-/// files are looked for under its path and at the mount's root (a container sees its own group
-/// there). The working set leaves out inactive file pages, which the kernel reclaims first.
+/// What the process's memory control group lets it still take (~0: no limit found): the least
+/// room over its group and the groups above it, up to the mount's root (a limit is often set on
+/// a parent: a Slurm job above its steps, a systemd slice above its scopes; a container sees its
+/// own group at the root). A group's room is its limit less what it holds besides file pages
+/// (the page cache, which the kernel reclaims before it kills).
 inline std::uint64_t cgroup_room() {
   std::uint64_t room = ~std::uint64_t{0};
   std::ifstream groups("/proc/self/cgroup");
@@ -54,17 +56,19 @@ inline std::uint64_t cgroup_room() {
     for (std::string c; std::getline(list, c, ',');) v1 = v1 || c == "memory";
     if (!v1 && !v2) continue;
     const std::string base = v2 ? "/sys/fs/cgroup" : "/sys/fs/cgroup/memory";
-    for (const std::string dir : {base + path, base}) {
+    std::string dir = base + (path == "/" ? std::string() : path);
+    for (;;) {
       std::uint64_t limit = 0, used = 0;
-      if (!read_number(dir + (v2 ? "/memory.max" : "/memory.limit_in_bytes"), limit) ||
-          !read_number(dir + (v2 ? "/memory.current" : "/memory.usage_in_bytes"), used))
-        continue;
-      if (limit >= (std::uint64_t{1} << 60)) break;  // v1's "no limit" (v2 writes "max", not read)
-      const std::uint64_t inactive =
-          stat_value(dir + "/memory.stat", v2 ? "inactive_file" : "total_inactive_file");
-      const std::uint64_t working = used > inactive ? used - inactive : 0;
-      room = std::min(room, limit > working ? limit - working : 0);
-      break;
+      // v2 writes "max" where there is no limit (not read as a number); v1 a number near 2^63.
+      if (read_number(dir + (v2 ? "/memory.max" : "/memory.limit_in_bytes"), limit) &&
+          limit < (std::uint64_t{1} << 60) &&
+          read_number(dir + (v2 ? "/memory.current" : "/memory.usage_in_bytes"), used)) {
+        const std::uint64_t files = stat_value(dir + "/memory.stat", v2 ? "file" : "total_cache");
+        const std::uint64_t held = used > files ? used - files : 0;
+        room = std::min(room, limit > held ? limit - held : 0);
+      }
+      if (dir.size() <= base.size()) break;
+      dir.erase(dir.rfind('/'));
     }
   }
   return room;

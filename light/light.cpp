@@ -36,8 +36,10 @@ struct Run {
   std::unique_ptr<RasterStand> raster;  // made on the first rasterized pass
   std::unique_ptr<std::uint64_t[]> cells;
   std::size_t cells_size = 0;
-  /// The first passes' rays grow by this (1: as configured): with a periodic tile larger than the
-  /// stand's box, the rays that meet the stand are the box's share of the tile's.
+  /// A first pass that met nothing is made again with this many times its rays (1: never): with a
+  /// periodic tile larger than the stand's box, the rays that can meet the stand are the box's
+  /// share of the tile's, and none of a few thousand may (its fractions, STAR and their errors all
+  /// came out 0). Passes that met the stand are kept as they were.
   double pilot_scale = 1;
 
   enum class Way { trace, device, host };
@@ -199,7 +201,9 @@ struct Run {
   /// at least 20% more rays a pass) until the errors are met.
   DirectionLight beam(Vec3d toward, std::uint64_t id) {
     if (cfg.rays_per_m2) return trace(toward, *cfg.rays_per_m2 * region(toward).area(), id << 8);
-    DirectionLight d = trace(toward, cfg.pilot_rays * pilot_scale, id << 8);
+    DirectionLight d = trace(toward, cfg.pilot_rays, id << 8);
+    if (d.fraction.value == 0 && pilot_scale > 1)
+      d = trace(toward, cfg.pilot_rays * pilot_scale, id << 8 | 0xff);
     double r = shortfall(d.fraction.se, plant_rms(d.plant)), n_prev = 0, r_prev = 0;
     check_reachable(static_cast<double>(d.rays), r);
     for (std::uint64_t round = 1; round < kRounds && r > 1; ++round) {
@@ -256,11 +260,14 @@ struct Run {
         d[i] = trace(to[i], *cfg.rays_per_m2 * region(to[i]).area(), (first_id + i) << 8);
       return d;
     }
-    const double pilot = cfg.sky_pilot_rays * pilot_scale;
-    for (std::size_t i = 0; i < sky.size(); ++i) d[i] = trace(to[i], pilot, (first_id + i) << 8);
+    for (std::size_t i = 0; i < sky.size(); ++i) {
+      d[i] = trace(to[i], cfg.sky_pilot_rays, (first_id + i) << 8);
+      if (d[i].fraction.value == 0 && pilot_scale > 1)
+        d[i] = trace(to[i], cfg.sky_pilot_rays * pilot_scale, (first_id + i) << 8 | 0xff);
+    }
     DirectionLight c = combine(d, sky);
     double r = shortfall(c.fraction.se, plant_rms(c.plant)), n_prev = 0, r_prev = 0;
-    check_reachable(pilot * static_cast<double>(sky.size()), r);
+    check_reachable(static_cast<double>(cfg.sky_pilot_rays) * static_cast<double>(sky.size()), r);
     for (std::uint64_t round = 1; round < kRounds && r > 1; ++round) {
       double n_all = 0;
       for (const DirectionLight& x : d) n_all += static_cast<double>(x.rays);
@@ -394,11 +401,11 @@ LightResult compute_light(const Stand& stand, PrototypeLibrary& lib, const Light
   if (cfg.periodic && scene.hi().x > scene.lo().x) {
     const double w = scene.hi().x - scene.lo().x, h = scene.hi().y - scene.lo().y;
     // A tile far larger than the stand's box (a sparse field: one plant in 10 x 10 m) leaves the
-    // stand the box's share of a pass's rays: the first passes grow so that the stand gets their
-    // configured count (the errors then size the rest), and a tile so large that no pass within
-    // the limit would meet the stand is refused (a first pass met nothing and reported every
-    // fraction and STAR as 0 with an error of 0).
-    const double cover = std::max(w, 1e-3) * std::max(h, 1e-3) / cfg.tile.area();
+    // stand the box's share of a pass's rays: a first pass that met nothing is made again with
+    // enough rays for the stand to get its configured count (Run::pilot_scale), and a tile so large
+    // that such a pass would pass the ray limit is refused (a box taken at least 1 cm a side: a
+    // stand in one plane still meets oblique rays).
+    const double cover = std::max(w, 0.01) * std::max(h, 0.01) / cfg.tile.area();
     if (cover < 1) pilot_scale = 1 / cover;
     if (!(std::max(cfg.pilot_rays, cfg.sky_pilot_rays) * pilot_scale <= kMaxRaysPerDirection))
       throw std::invalid_argument(fmt::format(

@@ -1,5 +1,6 @@
 #include "lsystem/derive.hpp"
 
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -12,8 +13,13 @@ namespace {
 /// Whether `s` is past the module cap: its modules, or its parameters past kParamsPerModule per
 /// module of the cap (a module of many parameters weighs as much as many modules: each is 8
 /// bytes, twice over while a step writes the next string).
+std::size_t params_cap(std::size_t cap) {
+  return cap > SIZE_MAX / kParamsPerModule ? SIZE_MAX
+                                           : kParamsPerModule * cap;  // Stand.grow takes any size_t
+}
+
 bool over_cap(const ModuleString& s, std::size_t cap) {
-  return s.symbols.size() > cap || s.params.size() > kParamsPerModule * cap;
+  return s.symbols.size() > cap || s.params.size() > params_cap(cap);
 }
 
 [[noreturn]] void cap_exceeded(const Grammar& g, const ModuleString& s, std::size_t cap, int step,
@@ -24,7 +30,7 @@ bool over_cap(const ModuleString& s, std::size_t cap) {
       s.symbols.size() > cap
           ? fmt::format("the module cap of {} modules", cap)
           : fmt::format("the {} parameters the module cap of {} modules allows ({} per module)",
-                        kParamsPerModule * cap, cap, kParamsPerModule);
+                        params_cap(cap), cap, kParamsPerModule);
   if (step == 0)
     throw ModuleCapError(fmt::format("{}: the axiom has more than {} (raise --max-modules)", at.str(), what));
   const std::string when = step > 0 ? fmt::format(" at step {}, as this production applied", step)

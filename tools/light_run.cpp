@@ -299,7 +299,7 @@ LightOutcome run_light(LightOptions o, bool print) {
             stand.plant_count())
       throw std::invalid_argument(fmt::format(
           "{}/report.json: its layout ({} rows of {} plants) does not match the {} plants of plants.csv: the "
-          "files are not of one stand; give --tile XMIN,YMIN,XMAX,YMAX (or --no-periodic)",
+          "files are not of one stand; give the tile with --tile XMIN,YMIN,XMAX,YMAX",
           o.source, layout->rows, layout->per_row, stand.plant_count()));
     light_files(stand, layout, files);
     files.commit_all();

@@ -244,7 +244,8 @@ void place_plan(StandPlan& plan, const StandOptions& o) {
     // took 20 s to grow, and was grown twice).
     const std::size_t n =
         static_cast<std::size_t>(plan.layout.rows) * static_cast<std::size_t>(plan.layout.per_row);
-    if (static_cast<double>(n) * sizeof(PlantPlacement) > static_cast<double>(available_memory()) / 16)
+    if (const std::size_t room = available_memory();
+        room && static_cast<double>(n) * sizeof(PlantPlacement) > static_cast<double>(room) / 16)
       check_plan_fits(plan, n);
     plan.request.plants = row_layout(plan.layout);
   }

@@ -43,6 +43,7 @@ def test_derive_equals_the_command_line():
             canopy.derive(TOMATO, **kw)
     with pytest.raises(TypeError, match="steps: needs an int"):
         canopy.derive(TOMATO, steps=2.5)
+    assert canopy.derive(TOMATO, steps=np.int64(5), seed=np.uint64(3)) == canopy.derive(TOMATO, steps=5, seed=3)
     assert canopy.derive(TOMATO, steps=5, seed=2**64 - 1) == cli("derive", TOMATO, "--steps", "5", "--seed", str(2**64 - 1)).stdout.strip()
 
 

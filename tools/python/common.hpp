@@ -123,14 +123,18 @@ inline py::array read_only(py::array a) {
 }
 
 /// A whole-number argument checked by the command line's validator `check` (its message, as a
-/// ValueError naming `name`); None: none given. Not an int (a float, a bool): a TypeError.
+/// ValueError naming `name`); None: none given. Not an int nor an integer of NumPy's (a float, a
+/// bool): a TypeError.
 template <typename T>
 std::optional<T> whole_arg(py::handle v, const char* name, const CLI::Validator& check) {
   if (v.is_none()) return std::nullopt;
-  if (!PyLong_Check(v.ptr()) || PyBool_Check(v.ptr()))
+  // An int or what stands for one (NumPy's integers: operator.index), not a bool or a float.
+  if (PyBool_Check(v.ptr()) || !PyIndex_Check(v.ptr()))
     throw py::type_error(
         fmt::format("{}: needs an int, got {}", name, py::str(py::type::of(v)).cast<std::string>()));
-  std::string text = py::str(v).cast<std::string>();
+  PyObject* index = PyNumber_Index(v.ptr());
+  if (!index) throw py::error_already_set();  // its __index__ raised
+  std::string text = py::str(py::reinterpret_steal<py::object>(index)).cast<std::string>();
   if (const std::string error = check(text); !error.empty())
     throw std::invalid_argument(fmt::format("{}: {}", name, error));
   T out{};
