@@ -138,6 +138,16 @@ ResolveResult run_resolution(Stand& stand, DetectionBackend& backend, const Dete
                  p.round, p.contacts, p.unplanned, p.seconds);
       std::fflush(stderr);
     };
+  else if (o.progress && o.progress_lines)
+    // A log or a pipe: nothing for a short resolution, then a line a round (a large clearance
+    // made one run for minutes without a word).
+    req.progress = [last = 0](const ResolveProgress& p) mutable {
+      if (p.seconds < ResolveOptions::kQuietSeconds || p.round == last) return;
+      last = p.round;
+      fmt::print(stderr, "  resolving: round {}, {} contacts left, {:.1f} s\n", p.round, p.contacts,
+                 p.seconds);
+      std::fflush(stderr);
+    };
   ResolveResult r = resolve(stand, backend, req, initial);
   if (tty) fmt::print(stderr, "\r{:90}\r", "");
   if (o.stats) fmt::print(stderr, "{}", resolve_stats_text(r.stats));

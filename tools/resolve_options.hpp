@@ -21,6 +21,10 @@ struct ResolveOptions {
   int bend_joints = ResolveConfig{}.bend_joints;
   double bend_step = ResolveConfig{}.bend_step_deg;
   bool progress = true;
+  /// Off a terminal, a line a round once resolution has run kQuietSeconds (canopy stand printing;
+  /// on a terminal the one line rewritten in place is shown either way).
+  bool progress_lines = false;
+  static constexpr double kQuietSeconds = 10;
   /// Plan with the host's candidate-by-candidate search even where the backend runs attempts in
   /// bulk (CUDA, or auto on a GPU: on the device, the default there). The turns are the same either way.
   bool host_search = false;

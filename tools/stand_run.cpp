@@ -413,7 +413,9 @@ StandOutcome run_stand(StandOptions o, bool print, std::function<void(const Reso
     at.level = rc.level;
     // Resolution starts from its own level's contacts, on a tree the backend keeps.
     const Contacts start = dreq.level == rc.level ? contacts : backend->detect(stand, at);
-    resolved = run_resolution(stand, *backend, dreq, o.resolve, start, progress);
+    ResolveOptions ro = o.resolve;
+    ro.progress_lines = print;
+    resolved = run_resolution(stand, *backend, dreq, ro, start, progress);
     rep.timings["resolve"] = seconds_since(t_resolve);
     rep.peak_memory["resolve"] = resolve_peak.gb();
     rep.resolution = resolution_json(*resolved);
