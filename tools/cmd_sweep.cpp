@@ -320,6 +320,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     RunRow row;
   };
   std::vector<Pending> pending;
+  std::set<std::string> grid;  // the keys of every run this call asks for, made or not
   std::size_t index = 0;
   for (const SweepCell& cell : cells)
     for (int seed = 1; seed <= o.seeds; ++seed, ++index) {
@@ -331,6 +332,7 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
       row["seed"] = std::to_string(seed);
       row["backend"] = backend->name();
       const std::string key = run_key(row);
+      grid.insert(key);
       if (finished.count(key)) continue;
       const auto known = numbers.find(key);
       row["run"] = known != numbers.end() ? known->second : std::to_string(next_number++);
@@ -392,12 +394,17 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     summary.write(summary_csv(all));
     summary.commit();
   }
-  // Runs recorded as failed, made now or kept from an earlier call (rank 0 reads the table; the
-  // other ranks know this call's).
+  // Runs of this call's grid recorded as failed, made now or kept from an earlier call (rank 0
+  // reads the table; the other ranks know this call's). A table's failed rows of cells this call
+  // does not ask for (a sweep resumed with another grid) are not its runs.
   std::size_t failed_rows = failed;
-  if (me == 0)
-    failed_rows =
-        std::count_if(all.begin(), all.end(), [](const RunRow& r) { return r.at("status") != "ok"; });
+  if (me == 0) {
+    std::vector<RunRow> keyed = all;
+    adopt_spacings(keyed, cells);  // the earlier text of a spacing, as the runs were matched
+    failed_rows = std::count_if(keyed.begin(), keyed.end(), [&](const RunRow& r) {
+      return r.at("status") != "ok" && grid.count(run_key(r));
+    });
+  }
   if (print) {
     fmt::print("sweep: {} runs made now ({} failed), {} in {} of {}; {:.1f} s\n", ran, failed, all.size(),
                runs_path, total, seconds_since(t0));

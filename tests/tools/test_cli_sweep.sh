@@ -130,6 +130,9 @@ rc5=$?
 check "failed: kept on resume, exit 3" "1 3" "$(grep -c '^sweep: 0 runs made now' "$tmp/log5") $rc5"
 check "failed: resume names the kept failure" "1" \
   "$(grep -c '^sweep: 1 runs of .* are recorded as failed by an earlier call; --retry-failed runs them again' "$tmp/log5")"
+# A grid without the failed run's cell: its failure is not this call's (exit 0, nothing said).
+"$canopy" sweep "$tmp/exp.yaml" --steps 3 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu -o "$tmp/f" >"$tmp/log5b" 2>&1
+check "failed run outside the grid: exit 0" "0 0" "$? $(grep -c 'recorded as failed' "$tmp/log5b")"
 "$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu --retry-failed \
   -o "$tmp/f" >"$tmp/log6" 2>&1
 check "failed: retried" "1" "$(grep -c '^sweep: 1 runs made now (1 failed)' "$tmp/log6")"
