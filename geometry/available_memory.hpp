@@ -1,11 +1,11 @@
 #pragma once
 /// The memory a run may still take, and what the process holds. The machine's MemAvailable from
 /// /proc/meminfo (what the kernel can hand out without swapping) is not what a process in a
-/// container or under a batch system's limit may take: the smallest of it, the memory control
-/// group's limit less its working set (cgroup v2 or v1: a container's, a systemd unit's, a Slurm
-/// job's) and the address-space limit (`ulimit -v`) less the process's size is; 0 where none can
-/// be read. Past the limit of a control group the kernel kills the process; past the address-space
-/// limit allocations fail, both without the clear refusal a budget gives.
+/// container or under a batch system's limit may take: the smallest of it, the room under the
+/// memory control groups' limits (memory_detail::cgroup_room) and the address-space limit
+/// (`ulimit -v`) less the process's size is; 0 where none can be read. Past the limit of a control
+/// group the kernel kills the process; past the address-space limit allocations fail, both without
+/// the clear refusal a budget gives.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -74,14 +74,30 @@ inline std::uint64_t cgroup_room() {
   return room;
 }
 
+/// The process's size and resident memory in bytes (/proc/self/statm's first two fields); false
+/// where they cannot be read. Read into a buffer on the stack: resident_memory is asked when
+/// memory runs short (a stream would allocate).
+inline bool statm(std::uint64_t& size, std::uint64_t& resident) {
+  const int fd = ::open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  char text[128];
+  const ssize_t n = ::read(fd, text, sizeof text - 1);
+  ::close(fd);
+  if (n <= 0) return false;
+  text[n] = '\0';
+  unsigned long long pages = 0, held = 0;
+  if (std::sscanf(text, "%llu %llu", &pages, &held) != 2) return false;
+  const auto page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  size = pages * page, resident = held * page;
+  return true;
+}
+
 /// What the address-space limit lets the process still map (~0: none).
 inline std::uint64_t address_space_room() {
   rlimit r{};
   if (::getrlimit(RLIMIT_AS, &r) != 0 || r.rlim_cur == RLIM_INFINITY) return ~std::uint64_t{0};
-  std::ifstream in("/proc/self/statm");
-  std::uint64_t pages = 0;
-  if (!(in >> pages)) return ~std::uint64_t{0};
-  const std::uint64_t size = pages * static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
+  std::uint64_t size = 0, resident = 0;
+  if (!statm(size, resident)) return ~std::uint64_t{0};
   return r.rlim_cur > size ? r.rlim_cur - size : 0;
 }
 
@@ -102,19 +118,10 @@ inline std::size_t memory_available() {
   return static_cast<std::size_t>(std::max<std::uint64_t>(avail, 1));  // 0 says "unknown"
 }
 
-/// The process's resident memory (/proc/self/statm), or 0 where it cannot be read. Read into a
-/// buffer on the stack: it is asked when memory runs short (a stream would allocate).
+/// The process's resident memory (/proc/self/statm), or 0 where it cannot be read.
 inline std::size_t resident_memory() {
-  const int fd = ::open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return 0;
-  char text[128];
-  const ssize_t n = ::read(fd, text, sizeof text - 1);
-  ::close(fd);
-  if (n <= 0) return 0;
-  text[n] = '\0';
-  unsigned long long pages = 0, resident = 0;
-  if (std::sscanf(text, "%llu %llu", &pages, &resident) != 2) return 0;
-  return static_cast<std::size_t>(resident) * static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  std::uint64_t size = 0, resident = 0;
+  return memory_detail::statm(size, resident) ? static_cast<std::size_t>(resident) : 0;
 }
 
 }  // namespace canopy

@@ -156,6 +156,14 @@ struct Run {
     return evaluate(t, reg, toward);
   }
 
+  /// A direction's first pass of `n` rays; one that met nothing, made again with pilot_scale
+  /// times the rays (stream `stream` | 0xff, apart from the later passes' rounds).
+  DirectionLight first_pass(Vec3d toward, double n, std::uint64_t stream) {
+    DirectionLight d = trace(toward, n, stream);
+    if (d.fraction.value == 0 && pilot_scale > 1) d = trace(toward, n * pilot_scale, stream | 0xff);
+    return d;
+  }
+
   static double plant_rms(const std::vector<Estimate>& v) {
     if (v.empty()) return 0;
     double s = 0;
@@ -201,9 +209,7 @@ struct Run {
   /// at least 20% more rays a pass) until the errors are met.
   DirectionLight beam(Vec3d toward, std::uint64_t id) {
     if (cfg.rays_per_m2) return trace(toward, *cfg.rays_per_m2 * region(toward).area(), id << 8);
-    DirectionLight d = trace(toward, cfg.pilot_rays, id << 8);
-    if (d.fraction.value == 0 && pilot_scale > 1)
-      d = trace(toward, cfg.pilot_rays * pilot_scale, id << 8 | 0xff);
+    DirectionLight d = first_pass(toward, cfg.pilot_rays, id << 8);
     double r = shortfall(d.fraction.se, plant_rms(d.plant)), n_prev = 0, r_prev = 0;
     check_reachable(static_cast<double>(d.rays), r);
     for (std::uint64_t round = 1; round < kRounds && r > 1; ++round) {
@@ -260,11 +266,8 @@ struct Run {
         d[i] = trace(to[i], *cfg.rays_per_m2 * region(to[i]).area(), (first_id + i) << 8);
       return d;
     }
-    for (std::size_t i = 0; i < sky.size(); ++i) {
-      d[i] = trace(to[i], cfg.sky_pilot_rays, (first_id + i) << 8);
-      if (d[i].fraction.value == 0 && pilot_scale > 1)
-        d[i] = trace(to[i], cfg.sky_pilot_rays * pilot_scale, (first_id + i) << 8 | 0xff);
-    }
+    for (std::size_t i = 0; i < sky.size(); ++i)
+      d[i] = first_pass(to[i], cfg.sky_pilot_rays, (first_id + i) << 8);
     DirectionLight c = combine(d, sky);
     double r = shortfall(c.fraction.se, plant_rms(c.plant)), n_prev = 0, r_prev = 0;
     check_reachable(static_cast<double>(cfg.sky_pilot_rays) * static_cast<double>(sky.size()), r);

@@ -6,7 +6,6 @@
 #include "lsystem/rule_builder.hpp"
 #include "lsystem/yaml_source.hpp"
 
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <set>
@@ -380,10 +379,7 @@ ConstantOverride parse_override(const std::string& text) {
     throw std::invalid_argument(fmt::format("--set {}: expected NAME=VALUE", text));
   ConstantOverride o;
   o.name = std::string(trim(std::string_view(text).substr(0, eq)));
-  std::string_view v = trim(std::string_view(text).substr(eq + 1));
-  // A leading '+' (from_chars takes none), as grammar files may write one.
-  if (v.size() > 1 && v[0] == '+' && (std::isdigit(static_cast<unsigned char>(v[1])) || v[1] == '.'))
-    v.remove_prefix(1);
+  const std::string_view v = unsigned_text(trim(std::string_view(text).substr(eq + 1)));
   const auto r = std::from_chars(v.data(), v.data() + v.size(), o.value);
   if (r.ec == std::errc::result_out_of_range && r.ptr == v.data() + v.size())
     throw std::invalid_argument(

@@ -192,12 +192,11 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     if (outgrown.load(std::memory_order_relaxed)) continue;
     try {
       grow_one(p);
-      double was = need.load(std::memory_order_relaxed);
-      while (!need.compare_exchange_weak(was, was + plant_need(grown[p]), std::memory_order_relaxed)) {
-      }
+      const double mine = plant_need(grown[p]);
+      const double now = need.fetch_add(mine, std::memory_order_relaxed) + mine;
       organs_grown.fetch_add(grown[p].turtle.organs.size(), std::memory_order_relaxed);
       plants_grown.fetch_add(1, std::memory_order_relaxed);
-      if (limit && was + plant_need(grown[p]) > static_cast<double>(limit)) outgrown = true;
+      if (limit && now > static_cast<double>(limit)) outgrown = true;
     } catch (...) {
       errors[p] = std::current_exception();
     }

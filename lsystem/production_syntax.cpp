@@ -63,19 +63,20 @@ namespace {
 std::vector<std::size_t> top_level(std::string_view s, std::string_view tok, std::size_t from, std::size_t to,
                                    const SourcePos& pos) {
   std::vector<std::size_t> hits;
-  std::vector<std::size_t> open;  // the '(' not yet closed
+  int depth = 0;
+  std::size_t outer = 0;  // the '(' that opened depth 1 last
   for (std::size_t i = from; i < to; ++i) {
     const char c = s[i];
-    if (c == '(') open.push_back(i);
-    else if (c == ')') {
-      if (open.empty()) fail_at(pos.shifted(static_cast<int>(i)), "')' without a matching '('");
-      open.pop_back();
-    } else if (open.empty() && s.substr(i, tok.size()) == tok && i + tok.size() <= to) {
+    if (c == '(') {
+      if (depth++ == 0) outer = i;
+    } else if (c == ')') {
+      if (--depth < 0) fail_at(pos.shifted(static_cast<int>(i)), "')' without a matching '('");
+    } else if (depth == 0 && s.substr(i, tok.size()) == tok && i + tok.size() <= to) {
       hits.push_back(i);
     }
   }
   // A '(' left open hides everything after it (an arrow too): it is the error to name.
-  if (!open.empty()) fail_at(pos.shifted(static_cast<int>(open.front())), "this '(' is never closed");
+  if (depth > 0) fail_at(pos.shifted(static_cast<int>(outer)), "this '(' is never closed");
   return hits;
 }
 

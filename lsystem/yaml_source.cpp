@@ -132,16 +132,11 @@ SourcePos YamlSource::at(const YAML::Node& node, std::size_t offset) const {
   return p.shifted(static_cast<int>(offset));
 }
 
-namespace {
-
-/// A number's text without the '+' YAML's core schema allows before it (from_chars takes none).
-std::string_view unsigned_text(const std::string& s) {
+std::string_view unsigned_text(std::string_view s) {
   if (s.size() > 1 && s[0] == '+' && (std::isdigit(static_cast<unsigned char>(s[1])) || s[1] == '.'))
-    return std::string_view(s).substr(1);
+    s.remove_prefix(1);
   return s;
 }
-
-}  // namespace
 
 double YamlSource::number(const YAML::Node& node, std::string_view what) const {
   if (!node.IsScalar()) fail_at(at(node), "{} must be a number", what);

@@ -20,6 +20,9 @@ std::string read_grammar_file(const std::string& path);
 /// The YAML document in `text`; throws GrammarError at the parser's place ("malformed YAML: ...")
 /// naming `file`.
 YAML::Node parse_yaml_document(const std::string& text, const std::string& file);
+/// A number's text without the '+' YAML's core schema allows before it (from_chars takes none):
+/// grammar numbers and --set values alike.
+std::string_view unsigned_text(std::string_view s);
 
 class YamlSource {
  public:

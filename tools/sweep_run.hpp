@@ -45,9 +45,10 @@ struct SweepOptions {
 
 struct SweepOutcome {
   std::size_t total = 0, ran = 0, failed = 0;
-  std::size_t failed_in_table = 0;  // runs.csv's rows recorded as failed, this call's and earlier ones
+  std::size_t failed_in_table =
+      0;  // runs.csv's failed rows of this call's grid, this call's and earlier ones
   bool interrupted = false;
-  int exit_code = 0;               // 0, 3 (runs.csv holds failed runs) or 130 (interrupted)
+  int exit_code = 0;               // 0, 3 (runs.csv holds failed runs of the grid) or 130 (interrupted)
   std::vector<std::string> notes;  // the grammar's (Grammar::notes), printed when the sweep prints
 };
 

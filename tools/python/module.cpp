@@ -168,6 +168,7 @@ PYBIND11_MODULE(_canopy, m) {
       "lists "
       "or 'a,b' / 'start:stop:step'); progress(index, total, row) after each run. Returns counts (total, "
       "ran, "
-      "failed now, failed_in_table: runs.csv's failed rows, earlier ones too); the rows are in OUT/runs.csv "
+      "failed now, failed_in_table: runs.csv's failed rows of the grid, earlier ones too); the rows are in "
+      "OUT/runs.csv "
       "and OUT/summary.csv.");
 }
