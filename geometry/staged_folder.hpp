@@ -115,6 +115,7 @@ class StagedFolder {
   std::vector<std::uint64_t> created_ids_;
   std::vector<std::string> created_;
   std::vector<std::string> leftovers_, leftover_notes_;
+  std::vector<std::string> linked_;  // files linked in by link_in, synced before they had a name
   bool committed_ = false;
   std::optional<FolderIdentity> required_;
   std::string required_file_;
