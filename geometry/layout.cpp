@@ -87,6 +87,30 @@ std::vector<std::pair<std::string, int>> split(std::string_view line, int& open_
 
 }  // namespace
 
+namespace {
+
+/// How a refusal names a layout field: its option, or the grammar's stand entry key it came from.
+std::string field(const RowLayout& l, const std::string& option) {
+  if (!l.from_grammar.count(option)) return option;
+  std::string key = option.substr(2);
+  std::replace(key.begin(), key.end(), '-', '_');
+  return "the stand entry's " + key;
+}
+
+/// "FILE:LINE:COL: " of the first of `options` a grammar's stand entry gave (nothing if none did).
+std::string place(const RowLayout& l, std::initializer_list<std::string> options) {
+  for (const std::string& o : options)
+    if (const auto it = l.from_grammar.find(o); it != l.from_grammar.end()) return it->second + ": ";
+  return "";
+}
+
+/// " (+ --jitter J m)" where there is jitter.
+std::string jitter_part(const RowLayout& l) {
+  return l.jitter > 0 ? fmt::format(" (+ {} {:g} m)", field(l, "--jitter"), l.jitter) : "";
+}
+
+}  // namespace
+
 void check_reach(const RowLayout& l) {
   const std::pair<const char*, double> options[] = {{"--plant-spacing", l.plant_spacing},
                                                     {"--row-spacing", l.row_spacing},
@@ -94,14 +118,14 @@ void check_reach(const RowLayout& l) {
                                                     {"--jitter", l.jitter}};
   for (const auto& [name, v] : options)
     if (v > kMaxPlantCoordinate)
-      throw std::invalid_argument(fmt::format("{} {:g} m: plants may stand at most {:g} m from the origin",
-                                              name, v, kMaxPlantCoordinate));
+      throw std::invalid_argument(fmt::format("{}{} {:g} m: plants may stand at most {:g} m from the origin",
+                                              place(l, {name}), field(l, name), v, kMaxPlantCoordinate));
   const double x = (l.per_row - 1) * l.plant_spacing + l.jitter;
   if (x > kMaxPlantCoordinate)
     throw std::invalid_argument(fmt::format(
-        "--per-row {} x --plant-spacing {:g} m (+ --jitter {:g} m) reaches x = {:.10g} m: plants may "
-        "stand at most {:g} m from the origin",
-        l.per_row, l.plant_spacing, l.jitter, x, kMaxPlantCoordinate));
+        "{}{} {} x {} {:g} m{} reaches x = {:.10g} m: plants may stand at most {:g} m from the origin",
+        place(l, {"--per-row", "--plant-spacing", "--jitter"}), field(l, "--per-row"), l.per_row,
+        field(l, "--plant-spacing"), l.plant_spacing, jitter_part(l), x, kMaxPlantCoordinate));
   // The farthest row: the last, or with double rows the farther of the last two.
   double y = l.double_rows ? 0.0 : (l.rows - 1) * l.row_spacing;
   if (l.double_rows)
@@ -109,10 +133,11 @@ void check_reach(const RowLayout& l) {
       y = std::max(y, (r / 2) * l.row_spacing + (r % 2) * *l.double_rows);
   if (y + l.jitter > kMaxPlantCoordinate)
     throw std::invalid_argument(fmt::format(
-        "--rows {} x --row-spacing {:g} m{} (+ --jitter {:g} m) reaches y = {:.10g} m: plants may "
-        "stand at most {:g} m from the origin",
-        l.rows, l.row_spacing, l.double_rows ? fmt::format(" with --double-rows {:g} m", *l.double_rows) : "",
-        l.jitter, y + l.jitter, kMaxPlantCoordinate));
+        "{}{} {} x {} {:g} m{}{} reaches y = {:.10g} m: plants may stand at most {:g} m from the origin",
+        place(l, {"--rows", "--row-spacing", "--double-rows", "--jitter"}), field(l, "--rows"), l.rows,
+        field(l, "--row-spacing"), l.row_spacing,
+        l.double_rows ? fmt::format(" with {} {:g} m", field(l, "--double-rows"), *l.double_rows) : "",
+        jitter_part(l), y + l.jitter, kMaxPlantCoordinate));
 }
 
 std::uint64_t plant_seed(std::uint64_t stand_seed, std::uint64_t plant) {
@@ -145,9 +170,10 @@ std::vector<PlantPlacement> row_layout(const RowLayout& l) {
   // line or put them out of order, without a word.
   if (l.double_rows && (*l.double_rows <= 0 || *l.double_rows >= l.row_spacing))
     throw std::invalid_argument(fmt::format(
-        "double rows {:g} m apart (--double-rows, or double_rows in the grammar's stand entry): the two rows "
-        "of a pair must be more than 0 m and less than the row spacing ({:g} m, from pair to pair) apart",
-        *l.double_rows, l.row_spacing));
+        "{}double rows {:g} m apart ({}): the two rows of a pair must be more than 0 m and less than the "
+        "row spacing ({:g} m{}, from pair to pair) apart",
+        place(l, {"--double-rows", "--row-spacing"}), *l.double_rows, field(l, "--double-rows"),
+        l.row_spacing, l.from_grammar.count("--row-spacing") ? ", the stand entry's row_spacing" : ""));
   check_reach(l);
   std::vector<PlantPlacement> out;
   out.reserve(static_cast<std::size_t>(l.rows) * static_cast<std::size_t>(l.per_row));

@@ -2,6 +2,7 @@
 /// Where plants stand (docs/design.md "Layout"): rows along +X spaced along +Y with the first plant at
 /// the origin, or a positions file. Each plant gets its own seed from the stand seed.
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -49,6 +50,10 @@ struct RowLayout {
   double jitter = 0;  // radius of a uniform disc around each nominal position, metres
   bool random_rotation = false;
   std::uint64_t seed = 1;
+  /// Fields a grammar's stand entry gave, by the option that would otherwise give them
+  /// ("--plant-spacing"): the entry's place ("FILE:LINE:COL"). A refusal that involves one names
+  /// the entry's key and starts with its place instead of naming an option never given.
+  std::map<std::string, std::string> from_grammar;
 };
 
 /// docs/design.md's default stand of n plants: rows of 100 (one row below 100), 1.0 m between rows,

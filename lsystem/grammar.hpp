@@ -86,6 +86,8 @@ struct StandSpec {
   std::optional<bool> random_rotation;
   std::optional<std::uint64_t> seed;
   std::optional<std::string> positions;
+  /// Where each key was given in the grammar file (key -> "FILE:LINE:COL"; empty for the command line's).
+  std::map<std::string, std::string> where;
 };
 
 struct Grammar {

@@ -357,6 +357,9 @@ class Loader {
           fail_at(src_.at(node[row]), "stand: '{}' is a row layout's, and this stand is a positions file's",
                   row);
     }
+    for (const char* k : kRowKeys)
+      if (node[k]) s.where[k] = src_.at(node[k]).str();
+    if (node["positions"]) s.where["positions"] = src_.at(node["positions"]).str();
     g_.stand = s;
   }
 

@@ -5,7 +5,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
+#include <map>
 
 namespace canopy::cli {
 
@@ -134,11 +136,18 @@ LayoutChoice choose_layout(const StandSpec& given, const std::optional<StandSpec
   StandSpec merged;
   LayoutChoice out;
   // One field: the command line's, else the grammar's; its source named either way.
+  std::map<std::string, std::string> from_grammar;  // by option name: the stand entry's place
   const auto take = [&](const char* name, auto member) {
     const auto& mine = given.*member;
     const auto& theirs = g.*member;
     merged.*member = mine ? mine : theirs;
     out.sources.emplace_back(name, mine ? "command line" : theirs ? "grammar" : "default");
+    if (!mine && theirs) {
+      std::string option = std::string("--") + name;
+      std::replace(option.begin(), option.end(), '_', '-');
+      const auto it = g.where.find(name);
+      from_grammar[option] = it != g.where.end() ? it->second : "the grammar's stand entry";
+    }
   };
   take("rows", &StandSpec::rows);
   take("per_row", &StandSpec::per_row);
@@ -149,6 +158,7 @@ LayoutChoice choose_layout(const StandSpec& given, const std::optional<StandSpec
   take("random_rotation", &StandSpec::random_rotation);
   take("seed", &StandSpec::seed);
   out.layout = to_row_layout(merged);
+  out.layout.from_grammar = std::move(from_grammar);
   return out;
 }
 

@@ -2,6 +2,7 @@
 #include "geometry/clock.hpp"
 #include "tools/json_text.hpp"
 #include "geometry/export.hpp"
+#include "geometry/input_file.hpp"
 #include "geometry/layout.hpp"
 #include "geometry/split_list.hpp"
 #include "geometry/thread_limit.hpp"
@@ -192,10 +193,24 @@ StandPlan plan_stand(StandOptions& o) {
   plan.grammar = load_grammar(o.grammar, plan.request.load);
   // The grammar's stand entry may name a positions file (relative to the grammar's folder): the
   // layout when the command line gives none.
-  if (o.positions.empty() && !any_row_option(o.rows) && plan.grammar.stand && plan.grammar.stand->positions)
+  std::string named_at;  // where the grammar names the positions file, if it does
+  if (o.positions.empty() && !any_row_option(o.rows) && plan.grammar.stand && plan.grammar.stand->positions) {
     o.positions = (std::filesystem::path(o.grammar).parent_path() / *plan.grammar.stand->positions).string();
+    const auto it = plan.grammar.stand->where.find("positions");
+    named_at = it != plan.grammar.stand->where.end() ? it->second : o.grammar;
+  }
   if (!o.positions.empty()) {
-    plan.request.plants = read_positions(o.positions, o.any_grammar_path);
+    try {
+      plan.request.plants = read_positions(o.positions, o.any_grammar_path);
+    } catch (const FileNotFound& e) {
+      // A file the grammar names: the refusal starts with the grammar's place, as its other errors do.
+      if (named_at.empty()) throw;
+      throw FileNotFound(fmt::format("{}: stand: positions: {}", named_at, e.what()));
+    } catch (const InputRefused& e) {
+      if (named_at.empty()) throw;
+      throw InputRefused(fmt::format("{}: stand: positions: {}", named_at, o.positions), e.line(),
+                         e.reason());
+    }
     // An empty stand is a stand (its files are valid), but a header alone is more often a file
     // cut short or not yet filled than one asked for.
     if (plan.request.plants.empty())

@@ -92,8 +92,7 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   CHECK(message(l).starts_with("--plant-spacing 1e+300 m: plants may stand at most 1e+08 m from the origin"));
   l.plant_spacing = 6e7;
   l.per_row = 3;  // 1.2e8 m for the third plant
-  CHECK(
-      message(l).starts_with("--per-row 3 x --plant-spacing 6e+07 m (+ --jitter 0 m) reaches x = 120000000 m"));
+  CHECK(message(l).starts_with("--per-row 3 x --plant-spacing 6e+07 m reaches x = 120000000 m"));
   l.per_row = 1;
   l.jitter = 2e8;
   CHECK(message(l).starts_with("--jitter 2e+08 m:"));
@@ -104,7 +103,7 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   CHECK(message(l).empty());
   l.row_spacing = 7e7;  // the second row of the second pair at 1.1e8
   CHECK(
-      message(l).starts_with("--rows 4 x --row-spacing 7e+07 m with --double-rows 4e+07 m (+ --jitter 0 m) "
+      message(l).starts_with("--rows 4 x --row-spacing 7e+07 m with --double-rows 4e+07 m "
                              "reaches y = 110000000 m"));
   // A pair's rows on one line, or past the next pair's first row: refused, not stacked.
   for (double gap : {0.0, 7e7, 9e7}) {
@@ -115,6 +114,18 @@ TEST_CASE("row layouts that reach past the bound on plant positions name the opt
   }
   l.rows = 2, l.double_rows = 9e7;  // one pair too: periodic light repeats it every row spacing
   CHECK(message(l).find("the two rows of a pair must be") != std::string::npos);
+  // Values a grammar's stand entry gave: named by its key, the message starting at its place
+  // (options never given were named before).
+  l = RowLayout{};
+  l.per_row = 3, l.plant_spacing = 6e7;
+  l.from_grammar = {{"--per-row", "g.yaml:5:16"}, {"--plant-spacing", "g.yaml:5:42"}};
+  CHECK(message(l).starts_with(
+      "g.yaml:5:16: the stand entry's per_row 3 x the stand entry's plant_spacing 6e+07 m "
+      "reaches x = 120000000 m"));
+  l = RowLayout{};
+  l.rows = 2, l.double_rows = 5;
+  l.from_grammar = {{"--double-rows", "g.yaml:6:3"}};
+  CHECK(message(l).starts_with("g.yaml:6:3: double rows 5 m apart (the stand entry's double_rows)"));
   // At the bound itself: accepted.
   RowLayout edge;
   edge.per_row = 2;

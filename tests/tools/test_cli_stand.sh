@@ -179,6 +179,21 @@ check "row options over a positions entry" "3" "$(wc -l < "$tmp/gpo/plants.csv" 
 sed 's/^stand:.*/stand: {positions: pp.csv, rows: 2}/' "$src/grammars/sunflower.yaml" > "$tmp/gp/g2.yaml"
 "$canopy" stand "$tmp/gp/g2.yaml" --steps 4 -o "$tmp/gpo2" >/dev/null 2>"$tmp/e"
 check "positions entry with rows refused" "1 1" "$? $(grep -c "'rows' is a row layout's" "$tmp/e")"
+# Refusals of what the entry gave start with its place: a positions file it names that is not
+# there, double rows wider than its row spacing, plants it would place past 1e8 m (they named
+# the command-line options, never given, or no place at all).
+sed 's/^stand:.*/stand: {positions: gone.csv}/' "$src/grammars/sunflower.yaml" > "$tmp/gp/g3.yaml"
+"$canopy" stand "$tmp/gp/g3.yaml" --steps 4 -o "$tmp/gpo3" >/dev/null 2>"$tmp/e"
+check "missing positions of an entry: its place" "2 1" \
+  "$? $(grep -c "g3.yaml:[0-9]*:[0-9]*: stand: positions: .*gone.csv: cannot open the positions file" "$tmp/e")"
+sed 's/^stand:.*/stand: {rows: 2, per_row: 2, double_rows: 5, row_spacing: 1}/' "$src/grammars/sunflower.yaml" > "$tmp/gp/g4.yaml"
+"$canopy" stand "$tmp/gp/g4.yaml" --steps 4 -o "$tmp/gpo4" >/dev/null 2>"$tmp/e"
+check "entry's double rows: its place" "2 1" \
+  "$? $(grep -c "g4.yaml:[0-9]*:[0-9]*: double rows 5 m apart (the stand entry's double_rows)" "$tmp/e")"
+sed 's/^stand:.*/stand: {rows: 2, per_row: 3, plant_spacing: 60000000}/' "$src/grammars/sunflower.yaml" > "$tmp/gp/g5.yaml"
+"$canopy" stand "$tmp/gp/g5.yaml" --steps 4 -o "$tmp/gpo5" >/dev/null 2>"$tmp/e"
+check "entry's reach: its place, no option named" "2 1 0" \
+  "$? $(grep -c "g5.yaml:[0-9]*:[0-9]*: the stand entry's per_row 3 x the stand entry's plant_spacing" "$tmp/e") $(grep -c -- '--per-row' "$tmp/e")"
 # A row option changes only that field of the grammar's stand entry (tomato.yaml: one row of 100,
 # 1.0 m x 0.4 m, random rotation, 2 cm jitter, seed 1): the plants of the entry with every field
 # written out but that one, and report.json and the terminal say where each value came from.
