@@ -14,8 +14,8 @@ void refuse_plant_pairs(std::uint64_t most, std::size_t budget) {
   throw std::runtime_error(
       fmt::format("the plants' bounds meet in more than {} pairs (plants on or near one spot?): their "
                   "contact lists would need more than the "
-                  "{:.1f} GB of memory available; spread the plants out or use fewer",
-                  most, static_cast<double>(budget) / 1e9));
+                  "{} of memory available; spread the plants out or use fewer",
+                  most, memory_text(static_cast<double>(budget))));
 }
 
 void check_resolution_fits(std::size_t contacts, std::size_t limit) {
@@ -23,10 +23,10 @@ void check_resolution_fits(std::size_t contacts, std::size_t limit) {
   const double need = static_cast<double>(contacts) * kResolutionBytesPerContact;
   if (budget == 0 || need <= static_cast<double>(budget)) return;
   throw std::runtime_error(
-      fmt::format("resolving {} contacts needs about {:.1f} GB of memory, more than the {:.1f} GB available "
+      fmt::format("resolving {} contacts needs about {} of memory, more than the {} available "
                   "(plants overlap heavily); "
                   "run with --no-resolve, or spread the plants out or use fewer",
-                  contacts, need / 1e9, static_cast<double>(budget) / 1e9));
+                  contacts, memory_text(need), memory_text(static_cast<double>(budget))));
 }
 
 MemoryCeiling::MemoryCeiling(std::size_t limit) : budget_(memory_budget(limit)), limited_(limit > 0) {
@@ -37,11 +37,11 @@ bool MemoryCeiling::over() const { return ceiling_ > 0 && resident_memory() > ce
 
 void MemoryCeiling::refuse(const char* what) const {
   throw std::runtime_error(
-      fmt::format("{} grew past the {:.1f} GB of memory {} (the process holds {:.1f} GB): organs that turn "
+      fmt::format("{} grew past the {} of memory {} (the process holds {}): organs that turn "
                   "carry long chains, or plants overlap heavily; run with --no-resolve, or give fewer or "
                   "shorter plants",
-                  what, static_cast<double>(budget_) / 1e9, limited_ ? "it may use" : "available",
-                  static_cast<double>(resident_memory()) / 1e9));
+                  what, memory_text(static_cast<double>(budget_)), limited_ ? "it may use" : "available",
+                  memory_text(static_cast<double>(resident_memory()))));
 }
 
 }  // namespace canopy

@@ -19,6 +19,15 @@
 #include <unistd.h>
 
 namespace canopy {
+
+/// A size for a message: "2.4 GB", or "87 MB" below 1 GB (where "0.0 GB" said nothing).
+inline std::string memory_text(double bytes) {
+  char buf[48];
+  if (bytes >= 1e9) std::snprintf(buf, sizeof buf, "%.1f GB", bytes / 1e9);
+  else std::snprintf(buf, sizeof buf, "%.0f MB", bytes / 1e6);
+  return buf;
+}
+
 namespace memory_detail {
 
 /// The first number of file `path` (false where it cannot be read or is "max").

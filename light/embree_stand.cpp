@@ -33,9 +33,16 @@ RTCScene mesh_scene(RTCDevice dev, const PrototypeMesh& m) {
 
 EmbreeStand::EmbreeStand(const Stand& s, PrototypeLibrary& lib) {
   device_ = rtcNewDevice(fmt::format("threads={}", std::max(1, omp_get_max_threads())).c_str());
-  if (!device_)
+  if (!device_) {
+    const RTCError e = rtcGetDeviceError(nullptr);
+    // Embree's codes (rtcore_device.h): out of memory is what a user can act on.
+    if (e == RTC_ERROR_OUT_OF_MEMORY)
+      throw std::runtime_error(
+          "the ray tracer (Embree) could not start: out of memory (under `ulimit -v`, its threads' stacks "
+          "count too; give it more memory or fewer --threads)");
     throw std::runtime_error(
-        fmt::format("Embree could not start (error {})", static_cast<int>(rtcGetDeviceError(nullptr))));
+        fmt::format("the ray tracer (Embree) could not start (Embree error {})", static_cast<int>(e)));
+  }
   try {
     build(s, lib);
   } catch (...) {

@@ -47,11 +47,10 @@ void check_fits(const GrownPlant& first, std::size_t n, std::size_t memory_limit
   const double need = static_cast<double>(n) * plant_need(first);
   const std::size_t limit = memory_limit ? memory_limit : available_memory();
   if (limit && need > static_cast<double>(limit))
-    throw std::runtime_error(
-        fmt::format("a stand of {} plants needs about {:.1f} GB ({} organs per plant), more than the {:.1f} "
-                    "GB available; "
-                    "use fewer plants or a coarser --lod",
-                    n, need / 1e9, first.turtle.organs.size(), static_cast<double>(limit) / 1e9));
+    throw std::runtime_error(fmt::format(
+        "a stand of {} plants needs about {} ({} organs per plant), more than the {} available; "
+        "use fewer plants or a coarser --lod",
+        n, memory_text(need), first.turtle.organs.size(), memory_text(static_cast<double>(limit))));
 }
 
 /// The grammar a placement names; a file that cannot be opened is reported with the positions
@@ -205,12 +204,11 @@ Stand grow_stand(const GrowRequest& req, GrowTimings* timings) {
     if (e) std::rethrow_exception(e);  // the first failing plant, in plant order, as it was thrown
   if (outgrown)
     throw std::runtime_error(fmt::format(
-        "a stand of {} plants needs more than the {:.1f} GB available: {} of them, grown, need about {:.1f} "
-        "GB "
+        "a stand of {} plants needs more than the {} available: {} of them, grown, need about {} "
         "({} organs; the first plant has {}, the others are larger); use fewer plants, fewer steps or a "
         "coarser --lod",
-        n, static_cast<double>(limit) / 1e9, plants_grown.load(), need.load() / 1e9, organs_grown.load(),
-        grown[0].turtle.organs.size()));
+        n, memory_text(static_cast<double>(limit)), plants_grown.load(), memory_text(need.load()),
+        organs_grown.load(), grown[0].turtle.organs.size()));
   const double t1 = now_seconds();
 
   // Place: global ids plant by plant, then in string order.

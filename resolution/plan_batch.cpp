@@ -1,5 +1,7 @@
 #include "resolution/plan_batch.hpp"
 
+#include "geometry/first_exception.hpp"
+
 #include "resolution/resolve_policy.hpp"
 #include "geometry/clock.hpp"
 
@@ -113,32 +115,37 @@ Picks Round::plan_batch(Lane& lane, std::span<const std::size_t> batch, bool str
     // The candidates' lists (each carries its subtree) are where memory grows without a bound
     // known before: checked every few candidates made, the level's others skipped once past it.
     std::atomic<bool> outgrown{false};
+    // What a thread meets (out of memory in a candidate's lists) may not leave the region.
+    FirstException error;
 #pragma omp parallel for schedule(dynamic, chunk) num_threads(threads)
-    for (std::size_t j = 0; j < scan.size(); ++j) {
-      if (outgrown.load(std::memory_order_relaxed)) continue;
-      const double started = times.on ? now_seconds() : 0;
-      const std::size_t k = scan[j];
-      const std::uint32_t m = movers[slots[k]];
-      const auto me = static_cast<std::size_t>(omp_get_thread_num());
-      if (!state[k]) {
-        state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
-        thread_local unsigned made = 0;
-        if (request.ceiling && ++made % 32 == 0 && request.ceiling->over()) {
-          outgrown = true;
-          continue;
+    for (std::size_t j = 0; j < scan.size(); ++j) try {
+        if (outgrown.load(std::memory_order_relaxed) || error.caught()) continue;
+        const double started = times.on ? now_seconds() : 0;
+        const std::size_t k = scan[j];
+        const std::uint32_t m = movers[slots[k]];
+        const auto me = static_cast<std::size_t>(omp_get_thread_num());
+        if (!state[k]) {
+          state[k] = pools[me].take(), search.prepare(*state[k], m, contacts_of(joints, graph, m), strict);
+          thread_local unsigned made = 0;
+          if (request.ceiling && ++made % 32 == 0 && request.ceiling->over()) {
+            outgrown = true;
+            continue;
+          }
         }
-      }
-      // Found (now, or by the runner at the last level): refined to its smallest turn at once,
-      // by the same thread (it depends on the candidate alone).
-      if (host && search.scan_level(*state[k], level, (*lane.scratches)[me]))
-        refined[k] = search.refine(*state[k], (*lane.scratches)[me]);
-      open[k] = state[k]->searching();
-      if (times.on) {
-        const double busy = now_seconds() - started;
+        // Found (now, or by the runner at the last level): refined to its smallest turn at once,
+        // by the same thread (it depends on the candidate alone).
+        if (host && search.scan_level(*state[k], level, (*lane.scratches)[me]))
+          refined[k] = search.refine(*state[k], (*lane.scratches)[me]);
+        open[k] = state[k]->searching();
+        if (times.on) {
+          const double busy = now_seconds() - started;
 #pragma omp atomic
         times.scan_busy += busy;
       }
-    }
+      } catch (...) {
+        error.keep();
+      }
+    error.rethrow();
     lane.prepare_s += now_seconds() - prepare_start;
     if (outgrown) request.ceiling->refuse("resolution's candidate turns");
     const auto candidates = [&](const std::vector<std::size_t>& ks) {

@@ -67,6 +67,8 @@ void end_on_terminate() {
   // Nothing here allocates where it can help it: the handler may run for an out-of-memory error,
   // and an exception thrown from it would end the process in a second terminate, silently.
   std::set_terminate([] {
+    // Nothing may leave the handler either (the runtime then aborts without a word: it did for
+    // two threads out of memory at once under `ulimit -v`), hence a catch around each step.
     const char* what = nullptr;  // points into the exception, which `e` keeps alive
     const std::exception_ptr e = std::current_exception();
     if (e) {
@@ -80,8 +82,8 @@ void end_on_terminate() {
         what = "an unknown exception";
       }
     }
-    (void)lock_run_paths().release();  // kept: nothing changes on disk after the clean-up
     try {
+      (void)lock_run_paths().release();  // kept: nothing changes on disk after the clean-up
       remove_run_paths();
     } catch (...) {
       // the list of what was removed could not be made; what could be removed was

@@ -246,7 +246,7 @@ printf 'x,y,seed\n0,0,1\n' > "$tmp/pos.csv"
 expect_error "positions columns" "pos.csv:1: missing column 'rotation'" "$src/grammars/tomato.yaml" --positions "$tmp/pos.csv"
 printf 'x,y,rotation,seed\n0,zero,0,1\n' > "$tmp/pos2.csv"
 expect_error "positions cell" "pos2.csv:2:3: column 'y' needs a finite number, got 'zero'" "$src/grammars/tomato.yaml" --positions "$tmp/pos2.csv"
-expect_error "too large" "needs about .* GB .* more than the .* GB available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
+expect_error "too large" "needs about .* [GM]B .* more than the .* [GM]B available" "$src/grammars/tomato.yaml" --rows 100000 --per-row 100000
 expect_error "formats" "unknown format 'fbx'" "$src/grammars/tomato.yaml" --formats glb,fbx
 expect_error "collide" "unknown organ kind 'root'" "$src/grammars/tomato.yaml" --collide leaflet,root
 expect_error "collide all in a list" "'all' stands alone (every kind), not in a list of kinds ('all,leaflet')" "$src/grammars/tomato.yaml" --collide all,leaflet
