@@ -188,6 +188,24 @@ def test_positions_array_equals_a_positions_file(tmp_path):
         assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / "py" / f, shallow=False), f
 
 
+def test_positions_seeds_stay_the_whole_numbers_given(tmp_path):
+    """canopy's own seeds (plants.csv) are 63-bit: a float64 array rounded them to other plants
+    (3395948882924712079 grew as ...936, 321 organs instead of 318), silently."""
+    seed = 3395948882924712079
+    (tmp_path / "p.csv").write_text(f"x,y,rotation,seed\n0,0,0,{seed}\n")
+    assert cli("stand", TOMATO, "--positions", str(tmp_path / "p.csv"), "--steps", "12", "--backend", "cpu", "--no-resolve",
+               "-o", str(tmp_path / "cli")).returncode == 0
+    for i, given in enumerate([np.array([[0, 0, 0, seed]], dtype=np.uint64), [[0, 0, 0, seed]],
+                               np.array([[0.0, 0, 0, seed]], dtype=object)]):
+        canopy.Stand.grow(TOMATO, positions=given, steps=12).export(tmp_path / f"py{i}")
+        for f in ["organs.csv", "plants.csv"]:
+            assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / f"py{i}" / f, shallow=False), (i, f)
+    with pytest.raises(ValueError, match="row 0: the seed lies past 2\\^53"):
+        canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, 0, seed]], dtype=float), steps=5)
+    with pytest.raises(ValueError, match="row 0: the seed must be a whole number, not a bool"):
+        canopy.Stand.grow(TOMATO, positions=[[0, 0, 0, True]], steps=5)
+
+
 def test_a_grammar_naming_a_positions_file_grows_those_plants(tmp_path):
     """A grammar whose stand entry names a positions file grows those plants from Python as on
     the command line (Stand.grow took one plant at the origin); the export never replaces the file."""

@@ -8,6 +8,7 @@
 #include "tools/folder_counts.hpp"
 #include "tools/light_run.hpp"
 #include "tools/python/common.hpp"
+#include "tools/python/positions_array.hpp"
 #include "tools/python/keywords.hpp"
 #include "tools/resolve_options.hpp"
 #include "tools/stand_run.hpp"
@@ -28,10 +29,11 @@ void bind_stand(py::module_& m) {
           [](py::object grammar_arg, std::optional<int> rows, std::optional<int> per_row,
              std::optional<double> row_spacing, std::optional<double> plant_spacing,
              std::optional<double> double_rows, std::optional<double> jitter,
-             std::optional<bool> random_rotation, py::object seed_arg,
-             std::optional<py::array_t<double>> positions, std::optional<int> steps,
-             const std::map<std::string, double>& set, int lod, int threads, std::size_t max_modules) {
+             std::optional<bool> random_rotation, py::object seed_arg, py::object positions_arg,
+             std::optional<int> steps, const std::map<std::string, double>& set, int lod, int threads,
+             std::size_t max_modules) {
             const std::string grammar = path_of(grammar_arg);
+            const bool positions = !positions_arg.is_none();
             // A whole number from 0 to 2^64 - 1, as --seed (pybind's cast said only "incompatible
             // arguments").
             std::optional<std::uint64_t> seed;
@@ -66,22 +68,7 @@ void bind_stand(py::module_& m) {
                 throw std::invalid_argument(
                     fmt::format("{}: needs a whole number from 1 to 2147483647, got {}", name, *count));
             std::vector<PlantPlacement> given;
-            if (positions) {
-              const auto a = positions->unchecked<2>();
-              if (a.shape(1) != 4)
-                throw std::invalid_argument("positions: an array of rows x, y, rotation, seed (N x 4)");
-              for (py::ssize_t i = 0; i < a.shape(0); ++i) {
-                PlantPlacement p;
-                p.x = a(i, 0), p.y = a(i, 1), p.rotation_deg = a(i, 2);
-                // A whole number in [0, 2^64): a cast would truncate 1.5 and wrap 2^70 without a word.
-                if (!(a(i, 3) >= 0 && a(i, 3) < 0x1p64 && std::floor(a(i, 3)) == a(i, 3)))
-                  throw std::invalid_argument(fmt::format(
-                      "positions: row {}: the seed must be a non-negative integer below 2^64, got {}", i,
-                      a(i, 3)));
-                p.seed = static_cast<std::uint64_t>(a(i, 3));
-                given.push_back(p);
-              }
-            }
+            if (positions) given = placements_of(positions_arg);
             cli::StandPlan plan = cli::plan_stand(o);
             warn_notes(plan.grammar.notes);
             auto out = std::make_shared<PyStand>();
