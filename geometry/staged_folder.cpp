@@ -146,6 +146,20 @@ namespace {
 /// Where the staging folder of output `p` goes: beside it, or inside it when the folder must stay
 /// the same folder (`in_place`): the working folder (a shell in it would be left in a removed
 /// folder) or a mount point (which cannot be renamed).
+/// Whether folder `p` (`st` its lstat) is the root of a mount: another device than its parent's,
+/// or, for a bind mount of the same file system (a container's volume), what statx says.
+bool is_mount_root(const fs::path& p, const struct stat& st) {
+  struct stat parent;
+  if (::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev) return true;
+#ifdef STATX_ATTR_MOUNT_ROOT
+  struct statx sx;
+  if (::statx(AT_FDCWD, p.c_str(), AT_SYMLINK_NOFOLLOW, 0, &sx) == 0 &&
+      (sx.stx_attributes_mask & STATX_ATTR_MOUNT_ROOT))
+    return (sx.stx_attributes & STATX_ATTR_MOUNT_ROOT) != 0;
+#endif
+  return false;  // a kernel before 5.8 does not say: a bind mount's rename then fails (EBUSY)
+}
+
 fs::path staging_place(const fs::path& p, const std::string& dir, bool* in_place = nullptr) {
   const auto refuse = [&](const std::string& reason) {
     throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, reason));
@@ -153,10 +167,23 @@ fs::path staging_place(const fs::path& p, const std::string& dir, bool* in_place
   if (in_place) *in_place = false;
   struct stat st;
   if (::lstat(p.c_str(), &st) == 0) {
+    if (S_ISLNK(st.st_mode)) {
+      // output_folder() follows a link to a folder: one left here leads nowhere.
+      struct stat target;
+      const bool there = ::stat(p.c_str(), &target) == 0;
+      const bool loop = !there && errno == ELOOP;
+      std::error_code ec;
+      const std::string to = fs::read_symlink(p, ec).string();
+      if (loop) refuse("it is a symbolic link in a loop of links");
+      refuse(there ? fmt::format("it is a symbolic link to {}, which is not a folder", to)
+                   : fmt::format("it is a symbolic link to {}, which is not there (make that folder, or "
+                                 "remove the link)",
+                                 to));
+    }
     if (!S_ISDIR(st.st_mode)) refuse("it exists and is not a folder");
-    struct stat here, parent;
+    struct stat here;
     const bool working = ::stat(".", &here) == 0 && here.st_dev == st.st_dev && here.st_ino == st.st_ino;
-    const bool mount = ::stat(p.parent_path().c_str(), &parent) == 0 && parent.st_dev != st.st_dev;
+    const bool mount = is_mount_root(p, st);
     if (working || mount) {
       if (in_place) *in_place = true;
       return p;
@@ -404,7 +431,7 @@ StagedFolder::Committed StagedFolder::commit() {
             fmt::format("cannot put {} into {}: a folder of that name is there", n, named_));
     // The earlier folder's other entries carried across: files linked (present in both until the
     // swap), folders moved (absent from the earlier folder for the instant before the swap).
-    std::vector<std::string> moved;
+    std::vector<std::string> moved, folders;
     bool stuck = false;  // an entry of the user's that could be neither linked nor moved
     for (const std::string& n : names_in(dir_)) {
       if (exists_at(new_fd.fd, n)) {
@@ -415,8 +442,7 @@ StagedFolder::Committed StagedFolder::commit() {
         continue;
       }
       if (is_folder_at(old_fd.fd, n)) {
-        if (::renameat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str()) == 0) moved.push_back(n);
-        else stuck = true;
+        folders.push_back(n);  // moved once every file is linked: absent only for that instant
         continue;
       }
       if (in_earlier_set(n)) {
@@ -426,6 +452,10 @@ StagedFolder::Committed StagedFolder::commit() {
       if (is_dead_temporary(n)) continue;
       if (::linkat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str(), 0) == 0) continue;
       // A file that cannot be linked (another user's, where links are protected): moved.
+      if (::renameat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str()) == 0) moved.push_back(n);
+      else stuck = true;
+    }
+    for (const std::string& n : folders) {
       if (::renameat(old_fd.fd, n.c_str(), new_fd.fd, n.c_str()) == 0) moved.push_back(n);
       else stuck = true;
     }

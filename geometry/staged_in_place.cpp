@@ -11,10 +11,13 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <sys/file.h>
 
 namespace canopy {
 using namespace folder_ops;
@@ -55,6 +58,12 @@ StagedFolder::Committed StagedFolder::commit_in_place() {
     throw replaced_meanwhile(dir_);
   Fd to(dir_), from(staging_);
   if (to.fd < 0 || from.fd < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", dir_, why()));
+  // One run at a time moves its files into the folder: two runs at once, each reading what the
+  // folder held and moving its own files in, left files of both stands (3 to 12 of 40 rounds of
+  // three runs into `-o .`). The lock is the folder's own (flock, let go when the process ends
+  // however it ends); the next run reads the folder once the first is done and replaces its set.
+  while (::flock(to.fd, LOCK_EX) != 0)
+    if (errno != EINTR) break;  // a file system without locks: as before
   // What would stop a file going in, found before any does (the run then fails with the folder as
   // it was): a folder of its name.
   for (const std::string& n : names_in(staging_))

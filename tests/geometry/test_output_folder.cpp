@@ -8,10 +8,13 @@
 
 #include <doctest/doctest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -361,6 +364,20 @@ TEST_CASE("output folders that cannot be replaced as a whole are refused up fron
   put(root / "file", "x");
   CHECK_THROWS_WITH_AS(check_output_dir((root / "file").string()),
                        doctest::Contains("it exists and is not a folder"), std::runtime_error);
+  // Links that lead to no folder say where they lead (all three said 'exists and is not a folder').
+  fs::create_symlink(root / "gone", root / "dangling");
+  CHECK_THROWS_WITH_AS(
+      check_output_dir((root / "dangling").string()),
+      doctest::Contains(("a symbolic link to " + (root / "gone").string() + ", which is not there").c_str()),
+      std::runtime_error);
+  fs::create_symlink(root / "loop_b", root / "loop_a");
+  fs::create_symlink(root / "loop_a", root / "loop_b");
+  CHECK_THROWS_WITH_AS(check_output_dir((root / "loop_a").string()),
+                       doctest::Contains("a symbolic link in a loop of links"), std::runtime_error);
+  fs::create_symlink(root / "file", root / "to_file");
+  CHECK_THROWS_WITH_AS(check_output_dir((root / "to_file").string()),
+                       doctest::Contains("which is not a folder"), std::runtime_error);
+  for (const char* l : {"dangling", "loop_a", "loop_b", "to_file"}) fs::remove(root / l);
   CHECK_THROWS_WITH_AS(check_output_dir("/"), doctest::Contains("the file system's root cannot be replaced"),
                        std::runtime_error);
   CHECK_THROWS_AS(check_output_dir("/proc/canopy-cannot-write-here"), std::runtime_error);
@@ -442,6 +459,39 @@ TEST_CASE("the working folder is written in place: the same folder, one set, wha
   CHECK(names(dir) == std::set<std::string>{"notes.txt", "report.json"});
   fs::current_path(here);
   CHECK(names(root) == std::set<std::string>{"out"});
+  fs::remove_all(root);
+}
+
+TEST_CASE("runs into one folder in place take turns: a commit waits for the folder's lock") {
+  // Two runs at once into `-o .` each read the folder and moved their files in, leaving files of
+  // both stands; a commit now holds the folder's flock while it reads and moves.
+  const fs::path root = temp_dir();
+  const fs::path dir = root / "out";
+  write_set(dir.string(), "old", {"organs.csv", "plants.csv", "stand.ply"});
+  const fs::path here = fs::current_path();
+  fs::current_path(dir);
+  const int held = ::open(".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);  // another run's lock
+  REQUIRE(held >= 0);
+  REQUIRE(::flock(held, LOCK_EX) == 0);
+  std::atomic<bool> done{false};
+  std::thread run([&] {
+    write_set(".", "new", {"organs.csv", "plants.csv"});
+    done = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  CHECK_FALSE(done.load());
+  {
+    std::ifstream in("organs.csv");
+    CHECK(std::string(std::istreambuf_iterator<char>(in), {}) == "old");  // nothing moved in yet
+  }
+  ::flock(held, LOCK_UN);
+  ::close(held);
+  run.join();
+  CHECK(done.load());
+  std::ifstream in("organs.csv");
+  CHECK(std::string(std::istreambuf_iterator<char>(in), {}) == "new");
+  CHECK_FALSE(fs::exists("stand.ply"));  // the earlier set went whole
+  fs::current_path(here);
   fs::remove_all(root);
 }
 
