@@ -236,8 +236,6 @@ void check_target(const StandOptions& o) {
         "--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
   if (o.target.lai && o.target.ground_cover)
     throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
-  if (!(o.target.error >= 1e-5 && o.target.error <= 0.5))
-    throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", o.target.error));
 }
 
 void check_plan_fits(const StandPlan& plan, std::size_t plants) {
@@ -264,7 +262,17 @@ void place_plan(StandPlan& plan, const StandOptions& o) {
       check_plan_fits(plan, n);
     plan.request.plants = row_layout(plan.layout);
   }
-  if (o.target.set()) check_target(o);
+  if (o.target.error && !(*o.target.error >= 1e-5 && *o.target.error <= 0.5))
+    throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", *o.target.error));
+  if (o.target.set()) {
+    check_target(o);
+    // The spacing is the target's choice, whatever gave the one it starts from.
+    for (auto& [name, source] : plan.layout_sources)
+      if (name == "plant_spacing") source = o.target.lai ? "--target-lai" : "--target-ground-cover";
+  } else if (o.target.error) {
+    throw std::invalid_argument(
+        "--target-error: the standard error of --target-ground-cover's estimates; give that target too");
+  }
 }
 
 void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats,

@@ -68,7 +68,7 @@ SpacingChoice reach_target(Stand& stand, RowLayout& layout, const TargetOptions&
     place_plants(stand, l);
     light::LightConfig cfg;
     cfg.sky_directions = 0;
-    cfg.error = t.error;
+    cfg.error = t.error.value_or(0.002);
     const std::array<double, 4> tile = lattice_tile(l);
     cfg.tile = {tile[0] - stand.stand_origin.x, tile[1] - stand.stand_origin.y,
                 tile[2] - stand.stand_origin.x, tile[3] - stand.stand_origin.y};

@@ -15,7 +15,7 @@ namespace canopy::cli {
 
 struct TargetOptions {
   std::optional<double> lai, ground_cover;
-  double error = 0.002;  // standard error of each ground cover estimate
+  std::optional<double> error;  // standard error of each ground cover estimate (default 0.002)
   bool set() const { return lai || ground_cover; }
 };
 

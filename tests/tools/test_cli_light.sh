@@ -183,6 +183,8 @@ check "bad sun from a grammar: no folder" "2 0" "$? $([ -e "$tmp/bs" ] && echo 1
 "$canopy" stand "$g" --rows 3 --per-row 3 --steps 12 --random-rotation --backend cpu --target-lai 1.5 -o "$tmp/t" >"$tmp/log" 2>&1
 check "target lai: exit" "0" "$?"
 check "target lai: reached" "True" "$(json "$tmp/t/report.json" "abs(j['config']['target']['reached'] - 1.5) < 1e-6")"
+check "target lai: the spacing's source" "--target-lai 1" \
+  "$(json "$tmp/t/report.json" "j['config']['layout']['sources']['plant_spacing']") $(grep -c 'plant_spacing .* (--target-lai)' "$tmp/log")"
 ps=$(json "$tmp/t/report.json" "repr(j['config']['layout']['plant_spacing'])")
 "$canopy" stand "$g" --rows 3 --per-row 3 --steps 12 --random-rotation --backend cpu --plant-spacing "$ps" -o "$tmp/t2" >/dev/null 2>&1
 cmp -s "$tmp/t/organs.csv" "$tmp/t2/organs.csv" && cmp -s "$tmp/t/plants.csv" "$tmp/t2/plants.csv"
@@ -198,6 +200,11 @@ print(abs(l['ground_cover'] - r['reached']) <= 4 * (l['ground_cover_standard_err
 check "target with --plant-spacing refused" "2 1" "$? $(grep -c 'leave out --plant-spacing' "$tmp/e")"
 "$canopy" stand "$g" --rows 2 --per-row 2 --steps 10 --target-ground-cover 1.5 -o "$tmp/x" >"$tmp/o" 2>"$tmp/e"
 check "target ground cover out of range" "2 1" "$? $(grep -c 'is not in (0, 1)' "$tmp/e")"
+# --target-error alone was taken and ignored, -1 too.
+"$canopy" stand "$g" --rows 2 --per-row 2 --steps 10 --target-error 0.01 -o "$tmp/x" >"$tmp/o" 2>"$tmp/e"
+check "target error without a target refused" "2 1" "$? $(grep -c 'give that target too' "$tmp/e")"
+"$canopy" stand "$g" --rows 2 --per-row 2 --steps 10 --target-error -1 -o "$tmp/x" >"$tmp/o" 2>"$tmp/e"
+check "target error out of range refused" "2 1" "$? $(grep -c 'is not in 1e-05..0.5' "$tmp/e")"
 
 help=$("$canopy" light --help)
 for opt in --sun --latitude --day --hours --sky --sky-directions --tile --no-periodic --error --plant-error --rays-per-m2 --layer \
