@@ -212,7 +212,14 @@ Stand read_stand(const std::string& dir) {
   });
   std::string line;
   std::map<std::string, int> grammar_index;
-  if (!pin->next_line(line) || line + "\n" != kPlantHeader)
+  // A spreadsheet that saved a table as "CSV UTF-8" put a byte-order mark before the header (a
+  // positions file takes it too): not part of the header.
+  const auto header = [](InputFile& in, std::string& l) {
+    if (!in.next_line(l)) return false;
+    if (l.starts_with("\xEF\xBB\xBF")) l.erase(0, 3);
+    return true;
+  };
+  if (!header(*pin, line) || line + "\n" != kPlantHeader)
     throw std::runtime_error(
         fmt::format("{}:1: expected the header {}", pfile, without_newline(kPlantHeader)));
   std::vector<std::string> c;
@@ -250,7 +257,7 @@ Stand read_stand(const std::string& dir) {
   const std::string_view plain(kOrganHeader);
   const std::string with_shapes = std::string(plain.substr(0, plain.size() - 1)) + kShapeColumns + "\n";
   std::size_t columns = 24;
-  if (!oin->next_line(line))
+  if (!header(*oin, line))
     throw std::runtime_error(
         fmt::format("{}:1: expected the header {}", ofile, without_newline(kOrganHeader)));
   if (line + "\n" == with_shapes) columns = 27;

@@ -31,8 +31,9 @@ std::string_view trim(std::string_view s) {
 /// Why a positions file's grammar cell may not be read without --any-grammar-path, or nullptr:
 /// the rule is lexical (an absolute path, or one whose '..' climbs above the positions file's
 /// folder), so it says the same on every machine and before any file is opened.
-const char* grammar_cell_refusal(std::string_view cell) {
-  const std::filesystem::path p{std::string(cell)};
+const char* grammar_cell_refusal(std::string_view cell, const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  const fs::path p{std::string(cell)};
   if (p.is_absolute() || p.has_root_name() || p.has_root_directory()) return "is an absolute path";
   int depth = 0;
   for (const auto& part : p) {
@@ -42,6 +43,16 @@ const char* grammar_cell_refusal(std::string_view cell) {
       ++depth;
     }
   }
+  // Written inside the folder, it may still lead out of it through a symbolic link (a folder
+  // `link -> /elsewhere`): the path the kernel follows must stay in the folder too.
+  std::error_code ec;
+  const fs::path base = fs::weakly_canonical(fs::absolute(folder.empty() ? fs::path(".") : folder), ec);
+  if (ec) return nullptr;
+  const fs::path target = fs::weakly_canonical(base / p, ec);
+  if (ec) return nullptr;
+  const auto rel = target.lexically_relative(base);
+  if (rel.empty() || *rel.begin() == "..")
+    return "leads out of the positions file's folder through a symbolic link";
   return nullptr;
 }
 
@@ -304,7 +315,7 @@ std::vector<PlantPlacement> read_positions(const std::string& path, bool any_gra
     if (col.count("grammar")) {
       const auto& [cell, column] = cells[static_cast<std::size_t>(col["grammar"])];
       if (!any_grammar_path) {
-        if (const char* why = grammar_cell_refusal(cell))
+        if (const char* why = grammar_cell_refusal(cell, std::filesystem::path(path).parent_path()))
           throw std::invalid_argument(
               fmt::format("{}:{}:{}: column 'grammar': '{}' {}; a grammar cell names a file in the positions "
                           "file's folder or below it (--any-grammar-path allows others)",

@@ -80,6 +80,13 @@ def test_keyword_types(tmp_path):
     assert lit["direct"][0]["intercepted_fraction"] >= 0  # the two agree: taken
 
 
+def test_derive_refuses_a_constant_given_twice():
+    """set={"nodes": 3} with nodes=10 took 10 without a word; the command line refuses it."""
+    with pytest.raises(ValueError, match="--set nodes: given twice"):
+        canopy.derive(TOMATO, set={"nodes": 3}, nodes=10, stats=True)
+    assert canopy.derive(TOMATO, nodes=3, stats=True) == canopy.derive(TOMATO, set={"nodes": 3}, stats=True)
+
+
 def test_detect_and_resolve_check_as_the_command_line():
     s = canopy.Stand.grow(TOMATO, rows=1, per_row=2, steps=8)
     with pytest.raises(ValueError, match="--backend: bogus not in"):  # ran as auto

@@ -172,6 +172,12 @@ p 'x,y,rotation,seed,grammar\n0,0,0,1,../not_a_grammar\n'
 check "positions grammar above the folder" "2:canopy: error: pos/p.csv:2:9: column 'grammar': '../not_a_grammar' leaves the positions file's folder; a grammar cell names a file in the positions file's folder or below it (--any-grammar-path allows others)" "$rc:$(err)"
 p "x,y,rotation,seed,grammar\n0,0,0,1,$tmp/not_a_grammar\n"
 check "positions grammar absolute" "2:1" "$rc:$(grep -c "is an absolute path" "$tmp/err")"
+# Written inside the folder, a cell may lead out of it through a link: refused as well.
+mkdir -p "$tmp/elsewhere" && cp "$src/grammars/tomato_young.yaml" "$tmp/elsewhere/g.yaml"
+ln -sfn "$tmp/elsewhere" "$tmp/pos/link"
+p 'x,y,rotation,seed,grammar\n0,0,0,1,link/g.yaml\n'
+check "positions grammar through a link out" "2:1" "$rc:$(grep -c "'link/g.yaml' leads out of the positions file's folder through a symbolic link" "$tmp/err")"
+rm "$tmp/pos/link"
 p 'x,y,rotation,seed,grammar\n0,0,0,1,../not_a_grammar\n' --any-grammar-path
 check "--any-grammar-path reads it" "1:canopy: error: pos/../not_a_grammar:1:1: a grammar file is a YAML map with keys such as axiom and productions" "$rc:$(err)"
 check "its content is not quoted" "0" "$(grep -c secret "$tmp/err")"
@@ -258,6 +264,13 @@ check "detect: NaN area" "1:canopy: error: area/organs.csv:2: column 6 'nan' is 
 edit length 3 7 -1
 run detect length --backend cpu
 check "detect: negative length" "1:canopy: error: length/organs.csv:3: column 7 '-1' must not be negative" "$rc:$(err)"
+# Tables a spreadsheet saved as "CSV UTF-8" start with a byte-order mark: read as without it
+# (it was "expected the header ...", the header looking the same).
+rm -rf bom; cp -r st bom
+for t in plants organs; do printf '\xef\xbb\xbf' | cat - "st/$t.csv" > "bom/$t.csv"; done
+"$canopy" detect st --backend cpu --csv "$tmp/st_contacts.csv" >/dev/null 2>&1
+run detect bom --backend cpu --csv "$tmp/bom_contacts.csv"
+check "detect: tables with a byte-order mark" "0:same" "$rc:$(cmp -s "$tmp/st_contacts.csv" "$tmp/bom_contacts.csv" && echo same)"
 # A report.json that is no regular file (a FIFO) is passed over, never waited on.
 rm -rf fifo; cp -r st fifo; rm fifo/report.json; mkfifo fifo/report.json
 rc=0; timeout 20 "$canopy" detect fifo --backend cpu >"$tmp/out" 2>"$tmp/err" || rc=$?

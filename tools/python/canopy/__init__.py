@@ -46,6 +46,10 @@ def derive(grammar, *, steps=None, seed=None, stats=False, interpreted=False, ma
     as a dict. Constants are overridden as keyword arguments (``derive(g, phyllotaxis=100)``, like
     ``--set phyllotaxis=100``) or as ``set={"phyllotaxis": 100}``."""
     overrides = dict(set or {})
+    for name in constants:
+        if name in overrides:  # as the command line refuses --set NAME=... given twice
+            raise ValueError(f"--set {name}: given twice ({overrides[name]:g} in set= and {constants[name]:g} as "
+                             f"{name}=); give it once")
     overrides.update(constants)
     return _derive(grammar, steps=steps, seed=seed, set=overrides, stats=stats, interpreted=interpreted,
                    max_modules=max_modules)
