@@ -125,6 +125,7 @@ std::optional<RowLayout> report_layout(const Json& j, const std::string& path) {
     r.row_spacing = metres("row_spacing");
     r.plant_spacing = metres("plant_spacing");
     if (!l.at("double_rows").is_null()) r.double_rows = metres("double_rows");
+    r.jitter = metres("jitter");  // how far plants may stand from the layout's places
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(fmt::format("{}: no layout in its config ({})", path, e.what()));
@@ -301,6 +302,24 @@ LightOutcome run_light(LightOptions o, bool print) {
           "{}/report.json: its layout ({} rows of {} plants) does not match the {} plants of plants.csv: the "
           "files are not of one stand; give the tile with --tile XMIN,YMIN,XMAX,YMAX",
           o.source, layout->rows, layout->per_row, stand.plant_count()));
+    // The same count in another shape (3 rows of 1 for 1 row of 3) lit the stand over another
+    // tile: each plant must stand within the layout's jitter of its place in the layout.
+    if (layout && o.tile.empty()) {
+      RowLayout nominal = *layout;
+      nominal.jitter = 0;
+      const std::vector<PlantPlacement> at = row_layout(nominal);
+      const double slack = layout->jitter + 1e-6;
+      for (std::size_t p = 0; p < at.size(); ++p) {
+        const PlantRecord& r = stand.plants[p];
+        if (std::hypot(at[p].x - r.x, at[p].y - r.y) > slack)
+          throw std::invalid_argument(fmt::format(
+              "{}/report.json: its layout ({} rows of {} plants) places plant {} at ({:g}, {:g}) (within "
+              "{:g} m), "
+              "plants.csv at ({:g}, {:g}): the files are not of one stand; give the tile with --tile "
+              "XMIN,YMIN,XMAX,YMAX",
+              o.source, layout->rows, layout->per_row, p, at[p].x, at[p].y, layout->jitter, r.x, r.y));
+      }
+    }
     light_files(stand, layout, files);
     files.commit_all();
   } else {
