@@ -32,8 +32,9 @@ Command add_detect(CLI::App& root) {
             if (!o->csv.empty())
               refuse_stand_file("--csv", o->csv), refuse_file_place("--csv", o->csv, "CSV");
             const auto t0 = std::chrono::steady_clock::now();
+            const FolderIdentity before = folder_identity(o->dir, "organs.csv");
             const Stand stand = read_stand(o->dir);
-            print_notes(folder_count_notes(o->dir, stand));
+            print_notes(folder_count_notes(o->dir, stand, before));
             const double read_s = seconds_since(t0);
             std::string note;
             auto backend = make_backend(o->detect.backend, note);

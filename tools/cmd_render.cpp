@@ -168,8 +168,9 @@ Command add_render(CLI::App& root) {
             std::size_t organs = 0;
             PrototypeLibrary lib;
             if (folder) {
+              const FolderIdentity before = folder_identity(o->source, "organs.csv");
               const Stand stand = read_stand(o->source);
-              print_notes(folder_count_notes(o->source, stand));
+              print_notes(folder_count_notes(o->source, stand, before));
               organs = stand.organ_count();
               // The contacts this geometry has: after resolution, or as grown without it.
               // A link counts as there even where it leads nowhere (then its read fails, by name).

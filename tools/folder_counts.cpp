@@ -9,7 +9,8 @@
 
 namespace canopy::cli {
 
-std::vector<std::string> folder_count_notes(const std::string& dir, const Stand& s) {
+std::vector<std::string> folder_count_notes(const std::string& dir, const Stand& s,
+                                            const FolderIdentity& before) {
   const std::string path = (std::filesystem::path(dir) / "report.json").string();
   // Read as every user file is: a regular file of bounded size (a FIFO there would wait for ever).
   std::string text;
@@ -28,6 +29,9 @@ std::vector<std::string> folder_count_notes(const std::string& dir, const Stand&
   if ((plants < 0 || plants == static_cast<long long>(s.plant_count())) &&
       (organs < 0 || organs == static_cast<long long>(s.organ_count())))
     return {};
+  // Another run replaced the folder while it was read: its report counts another stand (1 to 5
+  // reads in 150 said the tables were cut short while runs replaced the folder).
+  if (!(folder_identity(dir, "organs.csv") == before)) return {};
   return {fmt::format("{}: the tables hold {} plants and {} organs, its report.json counted {} and {}: they "
                       "were changed or cut short since canopy stand wrote them",
                       dir, s.plant_count(), s.organ_count(), plants, organs)};

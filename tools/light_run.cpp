@@ -286,7 +286,7 @@ LightOutcome run_light(LightOptions o, bool print) {
       stand = read_stand(o.source);
     }
     // Said at once on the command line; Python warns with the outcome's notes.
-    for (std::string& note : folder_count_notes(o.source, stand)) out.notes.push_back(std::move(note));
+    for (std::string& note : folder_count_notes(o.source, stand, read)) out.notes.push_back(std::move(note));
     if (print) print_notes(out.notes);
     out.dir = o.source;
     // Its names are the light's files: a folder under one is refused before any work.

@@ -107,12 +107,14 @@ void bind_stand(py::module_& m) {
           [](py::object dir_arg) {
             const std::string dir = path_of(dir_arg);
             auto out = std::make_shared<PyStand>();
+            FolderIdentity before;
             {
               py::gil_scoped_release nogil;
+              before = folder_identity(dir, "organs.csv");
               out->stand = read_stand(dir);
               out->layout = cli::folder_layout(dir);
             }
-            warn_notes(cli::folder_count_notes(dir, out->stand));
+            warn_notes(cli::folder_count_notes(dir, out->stand, before));
             return out;
           },
           py::arg("dir"), "Reads a stand back from a folder written by canopy stand.")
