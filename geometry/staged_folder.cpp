@@ -359,9 +359,9 @@ void StagedFolder::remove_leftovers() {
     if (::rmdir(path.c_str()) == 0) leftovers_.push_back(e);
     else
       leftover_notes_.push_back(fmt::format(
-          "kept {}, left by a run that ended before it finished: it holds {} (not canopy's, and not "
-          "the same as in {})",
-          path, fmt::join(kept, ", "), dir_));
+          "kept {}, left by an earlier run into {} (one that was killed, or that kept it for what it could "
+          "not move back): it holds {} (not canopy's, and not the same as in {})",
+          path, named_, fmt::join(kept, ", "), dir_));
   }
 }
 

@@ -75,10 +75,13 @@ std::array<double, 4> parse_tile(const std::string& text) {
 
 std::array<double, 4> lattice_tile(const RowLayout& l) {
   const double ps = l.plant_spacing, rs = l.row_spacing;
-  if (!(ps > 0) || !(rs > 0))
-    throw std::invalid_argument(
-        "the layout's lattice has no area (plant or row spacing 0): give --tile XMIN,YMIN,XMAX,YMAX or "
-        "--no-periodic");
+  // A spacing of 1e-300 is above 0, but the tile's area is not (it was refused as '--tile: ... has
+  // no area', for a tile no one gave).
+  if (!(ps > 0) || !(rs > 0) || !(ps * rs > 0))
+    throw std::invalid_argument(fmt::format(
+        "the layout's lattice has no area (plant spacing {:g} m x row spacing {:g} m): give --tile "
+        "XMIN,YMIN,XMAX,YMAX or --no-periodic",
+        ps, rs));
   if (l.double_rows) {
     if (l.rows % 2 != 0)
       throw std::invalid_argument(
