@@ -96,14 +96,26 @@ Plan plan_round(const Stand& s, const Joints& joints, const std::vector<Contact>
     for (std::size_t i = 0; i < n; ++i)
       if (!resolved[i] && !cand_slots[i].empty()) waiting.push_back(i);
     round.unplanned = waiting.size();
-    // Batches of at most batch_contacts, as many as a whole number of lanes takes, of one size.
+    // Batches of at most batch_contacts, as many as a whole number of lanes takes, of one size;
+    // each split again where its candidates carry more than batch_organs organs in all.
     std::size_t batches = (waiting.size() + per_batch - 1) / per_batch;
     batches = (batches + n_lanes - 1) / n_lanes * n_lanes;
     const std::size_t size = batches ? std::max<std::size_t>(1, (waiting.size() + batches - 1) / batches) : 1;
-    batches = (waiting.size() + size - 1) / size;
+    std::vector<std::size_t> bounds{0};
+    for (std::size_t from = 0; from < waiting.size(); from += size) {
+      const std::size_t to = std::min(waiting.size(), from + size);
+      std::size_t carried = 0;
+      for (std::size_t i = from; i < to; ++i) {
+        std::size_t c = 0;
+        for (std::size_t g : cand_slots[waiting[i]]) c += joints.subtree_end(movers[g]) - movers[g];
+        if (carried > 0 && carried + c > req.batch_organs) bounds.push_back(i), carried = 0;
+        carried += c;
+      }
+      bounds.push_back(to);
+    }
+    batches = bounds.size() - 1;
     const auto batch = [&](std::size_t b) {
-      return std::span<const std::size_t>(waiting).subspan(b * size,
-                                                           std::min(size, waiting.size() - b * size));
+      return std::span<const std::size_t>(waiting).subspan(bounds[b], bounds[b + 1] - bounds[b]);
     };
     std::vector<Picks> picks(batches);
     // Each lane takes the next batch not taken; any lane may plan any batch. A lane that fails

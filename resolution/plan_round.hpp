@@ -44,6 +44,8 @@ struct Plan {
 
 /// Contacts per batch of planning by default (ResolveRequest::batch_contacts says why this many).
 inline constexpr std::size_t kDefaultBatchContacts = 16384;
+/// Organs carried by a batch's candidates at most by default (ResolveRequest::batch_organs says why).
+inline constexpr std::size_t kDefaultBatchOrgans = std::size_t{8} << 20;
 /// Levels smaller than this go to the host's search by default (ResolveRequest::host_levels_below).
 inline constexpr std::size_t kDefaultHostLevelsBelow = 64;
 
@@ -59,6 +61,7 @@ struct PlanRequest {
   /// one at a time). At most the runner's lanes.
   LaneThreads* lanes = nullptr;
   std::size_t batch_contacts = kDefaultBatchContacts;       // contacts per batch
+  std::size_t batch_organs = kDefaultBatchOrgans;           // ResolveRequest::batch_organs
   std::size_t host_levels_below = kDefaultHostLevelsBelow;  // ResolveRequest::host_levels_below
   /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
   std::vector<std::vector<CandidatePool>>* pools = nullptr;

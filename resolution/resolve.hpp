@@ -74,6 +74,13 @@ struct ResolveRequest {
   /// contacts: fewer levels one after another per lane than two batches each (8,192; faster on a
   /// GPU, bench_resolve at 10,000 plants), for more memory at the peak on the CPU backend (8 %).
   std::size_t batch_contacts = kDefaultBatchContacts;
+  /// A batch is split further where its contacts' candidate movers carry more organs than this
+  /// in all (each candidate holds its subtree's organs and their pairs): a plant whose turning
+  /// organs carry long chains (a 2,000-segment chain: 7,697 contacts of 14 candidates, most
+  /// carrying about 1,000 organs) held 1.38 GB of candidates at once in one batch, past which
+  /// memory ran out. 8 Mi organs: the default stands' batches (1.7 M at 10,000 plants) stay whole.
+  /// The turns do not depend on it.
+  std::size_t batch_organs = kDefaultBatchOrgans;
   /// With bulk attempts: a level of a batch that scans and refines fewer candidates than this is
   /// searched by the host's threads instead (and every later level of the batch: they only get
   /// smaller). The tail of a batch, a few candidates that keep failing up to their reach, costs

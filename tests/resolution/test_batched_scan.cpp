@@ -23,9 +23,11 @@ struct Outcome {
 /// own, through the runner's lanes). `stats`: ResolveRequest::statistics.
 /// `host_below`: levels of fewer candidates searched on the host (0: every level in bulk).
 Outcome run(Stand s, const ResolveConfig& cfg, float clearance, bool bulk, std::size_t lanes = 1,
-            std::size_t batch = 8192, bool stats = false, std::size_t host_below = 0) {
+            std::size_t batch = 8192, bool stats = false, std::size_t host_below = 0,
+            std::size_t batch_organs = kDefaultBatchOrgans) {
   auto cpu = make_cpu_backend();
   ResolveRequest req;
+  req.batch_organs = batch_organs;
   req.statistics = stats;
   req.config = cfg;
   req.detect.clearance = clearance;
@@ -133,6 +135,22 @@ TEST_CASE("batched turn search: batches planned at once on several lanes give th
   cfg.max_rounds = 4;
   const Stand s = random_stand(11, 12);
   same(run(s, cfg, 0, false), run(s, cfg, 0, true, 4, 5));
+}
+
+TEST_CASE("batches split by the organs their candidates carry give the same turns") {
+  // A cap of 40 organs splits nearly every contact into a batch of its own (a petiole carries its
+  // whole leaf): the turns are those of whole batches, on the host's search and in lanes.
+  for (std::uint64_t seed : {2, 5}) {
+    INFO("seed " << seed);
+    const Stand s = row_stand(seed);
+    ResolveConfig cfg;
+    const Outcome whole = run(s, cfg, 0, true, 1, 8192);
+    const Outcome split = run(s, cfg, 0, true, 1, 8192, false, 0, 40);
+    const Outcome split_lanes = run(s, cfg, 0, true, 3, 8192, false, 0, 40);
+    same(whole, split);
+    same(whole, split_lanes);
+    CHECK(whole.result.organs_moved > 10);
+  }
 }
 
 TEST_CASE("batched turn search: small levels searched on the host give the same turns") {
