@@ -3,6 +3,7 @@
 /// (geometry/staged_folder.cpp, geometry/staged_in_place.cpp): open folders, their entries, syncs
 /// and the names of staging folders.
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <dirent.h>
@@ -13,10 +14,12 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 namespace canopy::folder_ops {
@@ -56,6 +59,41 @@ struct Fd {
   }
   Fd(const Fd&) = delete;
   Fd& operator=(const Fd&) = delete;
+};
+
+/// A run's turn at moving files into a folder in place: the folder's flock, held until the
+/// object goes (or the process ends, however it ends). Taken without blocking, retried every 20
+/// ms, so that the signal thread can end the run meanwhile; after `patience` seconds (the lock
+/// held that long by something that is not a canopy run moving files, such as flock(1) around
+/// this very command) the run goes on without it and says so in `note`. A file system without
+/// locks: no turn, as before.
+class FolderTurn {
+ public:
+  FolderTurn(int folder_fd, const std::string& named, std::string& note, double patience = 10)
+      : fd_(folder_fd) {
+    const auto start = std::chrono::steady_clock::now();
+    for (;;) {
+      if (::flock(fd_, LOCK_EX | LOCK_NB) == 0) return;
+      if (errno != EWOULDBLOCK && errno != EINTR) break;  // no locks here
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > patience) {
+        note = fmt::format(
+            "{} has been locked for {:g} s by something that is not moving a stand in; moved "
+            "the files in without waiting for it",
+            named, patience);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    fd_ = -1;
+  }
+  ~FolderTurn() {
+    if (fd_ >= 0) ::flock(fd_, LOCK_UN);
+  }
+  FolderTurn(const FolderTurn&) = delete;
+  FolderTurn& operator=(const FolderTurn&) = delete;
+
+ private:
+  int fd_;
 };
 
 /// The names in folder `path` ("." and ".." left out); empty when it cannot be read.

@@ -19,6 +19,7 @@
 #include <stdexcept>
 #include <tuple>
 #include <sys/stat.h>
+#include <sys/vfs.h>
 #include <unistd.h>
 
 namespace canopy {
@@ -158,6 +159,26 @@ bool is_mount_root(const fs::path& p, const struct stat& st) {
     return (sx.stx_attributes & STATX_ATTR_MOUNT_ROOT) != 0;
 #endif
   return false;  // a kernel before 5.8 does not say: a bind mount's rename then fails (EBUSY)
+}
+
+/// Whether removing the name of a file held open on the file system of folder `fd` only drops the
+/// name (the blocks freed at the last close): local file systems. NFS, SMB and FUSE clients
+/// instead rename such a file to a hidden name (.nfsXXXX) in the folder, which would then not be
+/// empty; there the files are removed by name.
+bool frees_on_close(int fd) {
+  struct statfs fs;
+  if (fd < 0 || ::fstatfs(fd, &fs) != 0) return false;
+  switch (static_cast<unsigned long>(fs.f_type)) {
+    case 0x6969UL:      // NFS
+    case 0xFF534D42UL:  // CIFS
+    case 0xFE534D42UL:  // SMB2
+    case 0x517BUL:      // SMB
+    case 0x65735546UL:  // FUSE
+    case 0x01021997UL:  // 9P
+    case 0x5346414FUL:  // AFS
+      return false;
+    default: return true;
+  }
 }
 
 fs::path staging_place(const fs::path& p, const std::string& dir, bool* in_place = nullptr) {
@@ -516,11 +537,15 @@ StagedFolder::Committed StagedFolder::commit() {
     // Only files the new folder has a file of the same name for (linked, or written again by the
     // new set), the earlier set and dead runs' temporaries go.
     Fd old_fd(old_path), new_fd(dir_);
-    for (const std::string& n : names_in(old_path)) {
+    const std::vector<std::string> entries = names_in(old_path);
+    held->fds.reserve(entries.size());  // no allocation between an open and its keeping
+    const bool hold = frees_on_close(old_fd.fd);
+    for (const std::string& n : entries) {
       if (is_folder_at(old_fd.fd, n)) continue;
-      if (in_earlier_set(n) || is_dead_temporary(n) || same_file_at(old_fd.fd, new_fd.fd, n) ||
-          still_superseded(old_fd.fd, n)) {
-        held->fds.push_back(::openat(old_fd.fd, n.c_str(), O_PATH | O_NOFOLLOW | O_CLOEXEC));
+      const bool linked = same_file_at(old_fd.fd, new_fd.fd, n);  // the user's file, in both
+      if (in_earlier_set(n) || is_dead_temporary(n) || linked || still_superseded(old_fd.fd, n)) {
+        if (hold && !linked)
+          held->fds.push_back(::openat(old_fd.fd, n.c_str(), O_PATH | O_NOFOLLOW | O_CLOEXEC));
         ::unlinkat(old_fd.fd, n.c_str(), 0);
       }
     }

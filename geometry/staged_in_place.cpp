@@ -17,8 +17,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/file.h>
-
 namespace canopy {
 using namespace folder_ops;
 namespace {
@@ -53,17 +51,17 @@ bool finish(const std::string& dir, const std::string& staging, const std::vecto
 
 StagedFolder::Committed StagedFolder::commit_in_place() {
   Committed out;
-  auto lock = lock_run_paths();  // a signal waits until every file is in place
-  if (required_ && !(folder_identity(dir_, required_file_) == *required_))
-    throw replaced_meanwhile(dir_);
   Fd to(dir_), from(staging_);
   if (to.fd < 0 || from.fd < 0) throw std::runtime_error(fmt::format("cannot open {}: {}", dir_, why()));
   // One run at a time moves its files into the folder: two runs at once, each reading what the
   // folder held and moving its own files in, left files of both stands (3 to 12 of 40 rounds of
-  // three runs into `-o .`). The lock is the folder's own (flock, let go when the process ends
-  // however it ends); the next run reads the folder once the first is done and replaces its set.
-  while (::flock(to.fd, LOCK_EX) != 0)
-    if (errno != EINTR) break;  // a file system without locks: as before
+  // three runs into `-o .`). The turn is taken before the registry's lock, so that a signal can
+  // end the run while it waits; the next run reads the folder once the first is done.
+  std::string waited;
+  const FolderTurn turn(to.fd, named_, waited);
+  if (!waited.empty()) out.notes.push_back(waited);
+  auto lock = lock_run_paths();  // a signal waits until every file is in place
+  if (required_ && !(folder_identity(dir_, required_file_) == *required_)) throw replaced_meanwhile(dir_);
   // What would stop a file going in, found before any does (the run then fails with the folder as
   // it was): a folder of its name.
   for (const std::string& n : names_in(staging_))
@@ -110,7 +108,13 @@ void StagedFolder::finish_in_place_leftovers() {
     const std::string path = dir_ + "/" + e;
     Fd at(path);
     if (at.fd >= 0 && exists_at(at.fd, kCommitList)) {
-      // Killed while moving its files in: finished now, so the folder holds one set again.
+      // Killed while moving its files in: finished now, so the folder holds one set again (in
+      // its turn, as a commit moves files in).
+      Fd folder(dir_);
+      std::string waited;
+      const FolderTurn turn(folder.fd, named_, waited);
+      if (!waited.empty()) leftover_notes_.push_back(waited);
+      if (!exists_at(at.fd, kCommitList)) continue;  // another run finished it meanwhile
       if (finish(dir_, path, read_list(path + "/" + kCommitList))) leftovers_.push_back(e + " (its files moved in)");
       else
         leftover_notes_.push_back(

@@ -27,9 +27,11 @@ Command add_stand(CLI::App& root) {
   return {app, [o]() {
 #ifdef CANOPY_WITH_MPI
             if (mpi::launched()) {
-              if (o->target.set())
+              if (o->target.set() || o->target.error)
                 throw std::invalid_argument(
-                    "--target-lai and --target-ground-cover: not under mpirun (run them in one process)");
+                    "--target-lai, --target-ground-cover and --target-error: not under mpirun (run them in "
+                    "one "
+                    "process)");
               run_stand_tiled(*o);
               return 0;
             }

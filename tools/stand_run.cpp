@@ -266,6 +266,11 @@ void place_plan(StandPlan& plan, const StandOptions& o) {
     throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", *o.target.error));
   if (o.target.set()) {
     check_target(o);
+    if (o.target.lai && o.target.error)
+      throw std::invalid_argument(
+          "--target-error: the standard error of --target-ground-cover's estimates; --target-lai's leaf area "
+          "is "
+          "exact (leave it out)");
     // The spacing is the target's choice, whatever gave the one it starts from.
     for (auto& [name, source] : plan.layout_sources)
       if (name == "plant_spacing") source = o.target.lai ? "--target-lai" : "--target-ground-cover";

@@ -200,6 +200,27 @@ def test_positions_seeds_stay_the_whole_numbers_given(tmp_path):
         canopy.Stand.grow(TOMATO, positions=given, steps=12).export(tmp_path / f"py{i}")
         for f in ["organs.csv", "plants.csv"]:
             assert filecmp.cmp(tmp_path / "cli" / f, tmp_path / f"py{i}" / f, shallow=False), (i, f)
+    # What NumPy reads as an array (a DataFrame, anything with __array__) is read as np.asarray
+    # reads it: rows, not columns (a DataFrame's df[0] is a column).
+    class Table:
+        def __init__(self, a):
+            self.a = a
+
+        def __array__(self, dtype=None, copy=None):
+            return self.a
+
+        def __getitem__(self, i):
+            return self.a[:, i]
+
+        def __len__(self):
+            return 4
+
+    rows = np.array([[0, 0, 0, 1], [1, 0, 10, 2], [2, 0, 20, 3], [3, 0, 30, 4]], dtype=float)
+    canopy.Stand.grow(TOMATO, positions=Table(rows), steps=12).export(tmp_path / "table")
+    canopy.Stand.grow(TOMATO, positions=rows, steps=12).export(tmp_path / "array")
+    assert filecmp.cmp(tmp_path / "table" / "plants.csv", tmp_path / "array" / "plants.csv", shallow=False)
+    with pytest.raises(ValueError, match="N x 4"):
+        canopy.Stand.grow(TOMATO, positions=np.zeros((0, 3), dtype=int), steps=5)
     with pytest.raises(ValueError, match="row 0: the seed lies past 2\\^53"):
         canopy.Stand.grow(TOMATO, positions=np.array([[0, 0, 0, seed]], dtype=float), steps=5)
     with pytest.raises(ValueError, match="row 0: the seed must be a whole number, not a bool"):

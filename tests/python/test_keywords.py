@@ -84,6 +84,8 @@ def test_derive_refuses_a_constant_given_twice():
     """set={"nodes": 3} with nodes=10 took 10 without a word; the command line refuses it."""
     with pytest.raises(ValueError, match="--set nodes: given twice"):
         canopy.derive(TOMATO, set={"nodes": 3}, nodes=10, stats=True)
+    with pytest.raises(ValueError, match="--set nodes: given twice \\('3' in set="):
+        canopy.derive(TOMATO, set={"nodes": "3"}, nodes=10, stats=True)
     assert canopy.derive(TOMATO, nodes=3, stats=True) == canopy.derive(TOMATO, set={"nodes": 3}, stats=True)
 
 

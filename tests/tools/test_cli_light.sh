@@ -208,6 +208,8 @@ check "target ground cover out of range" "2 1" "$? $(grep -c 'is not in (0, 1)' 
 # --target-error alone was taken and ignored, -1 too.
 "$canopy" stand "$g" --rows 2 --per-row 2 --steps 10 --target-error 0.01 -o "$tmp/x" >"$tmp/o" 2>"$tmp/e"
 check "target error without a target refused" "2 1" "$? $(grep -c 'give that target too' "$tmp/e")"
+"$canopy" stand "$g" --rows 2 --per-row 2 --steps 10 --target-lai 1 --target-error 0.3 -o "$tmp/x" >"$tmp/o" 2>"$tmp/e"
+check "target error with a leaf area target refused" "2 1" "$? $(grep -c "target-lai's leaf area is exact" "$tmp/e")"
 "$canopy" stand "$g" --rows 2 --per-row 2 --steps 10 --target-error -1 -o "$tmp/x" >"$tmp/o" 2>"$tmp/e"
 check "target error out of range refused" "2 1" "$? $(grep -c 'is not in 1e-05..0.5' "$tmp/e")"
 

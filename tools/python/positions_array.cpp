@@ -68,27 +68,41 @@ std::vector<PlantPlacement> placements_of(const py::object& positions) {
   const auto shape_error = [] {
     return std::invalid_argument("positions: an array of rows x, y, rotation, seed (N x 4)");
   };
-  // A float array (the common case, and large): read through a typed view, seeds checked.
-  if (py::isinstance<py::array>(positions) &&
-      py::array(py::reinterpret_borrow<py::array>(positions)).dtype().kind() == 'f') {
-    const auto arr = py::array_t<double, py::array::forcecast>::ensure(positions);
-    if (!arr || arr.ndim() != 2 || arr.shape(1) != 4) throw shape_error();
-    const auto a = arr.unchecked<2>();
-    out.reserve(static_cast<std::size_t>(a.shape(0)));
-    for (py::ssize_t i = 0; i < a.shape(0); ++i) {
-      PlantPlacement p;
-      p.x = a(i, 0), p.y = a(i, 1), p.rotation_deg = a(i, 2);
-      p.seed = seed_of_float(a(i, 3), i);
-      out.push_back(p);
+  // A list (or tuple) of rows is read row by row: NumPy would make one float64 array of a row of
+  // floats and a large int, rounding the int. Anything else (an array, a DataFrame, what NumPy
+  // reads) becomes an array first, as np.asarray makes it.
+  const bool rows_given = py::isinstance<py::list>(positions) || py::isinstance<py::tuple>(positions);
+  py::array arr;
+  if (!rows_given) {
+    try {
+      arr = py::module_::import("numpy").attr("asarray")(positions);
+    } catch (const py::error_already_set&) {
+      throw shape_error();
     }
-    return out;
+    if (arr.ndim() != 2 || arr.shape(1) != 4) throw shape_error();
+    const char kind = arr.dtype().kind();
+    if (kind == 'f' && arr.dtype().itemsize() > 8)
+      throw std::invalid_argument(
+          "positions: a long double array: give the seeds as integers (an integer array, dtype=np.uint64, or "
+          "a "
+          "list of rows) and the positions as float64");
+    // A float array (the common case, and large): read through a typed view, seeds checked.
+    if (kind == 'f') {
+      const auto a = py::array_t<double, py::array::forcecast>::ensure(arr).unchecked<2>();
+      out.reserve(static_cast<std::size_t>(a.shape(0)));
+      for (py::ssize_t i = 0; i < a.shape(0); ++i) {
+        PlantPlacement p;
+        p.x = a(i, 0), p.y = a(i, 1), p.rotation_deg = a(i, 2);
+        p.seed = seed_of_float(a(i, 3), i);
+        out.push_back(p);
+      }
+      return out;
+    }
   }
-  // Anything else (integer or object arrays, lists of rows): row by row, each seed exact.
+  // Rows (integer or object arrays as lists of Python values, lists of rows): each seed exact.
   py::sequence rows;
   try {
-    rows = py::reinterpret_borrow<py::sequence>(
-        py::isinstance<py::array>(positions) ? positions.attr("tolist")() : positions);
-    if (!py::isinstance<py::sequence>(rows)) throw shape_error();
+    rows = py::reinterpret_borrow<py::sequence>(rows_given ? positions : arr.attr("tolist")());
   } catch (const py::error_already_set&) {
     throw shape_error();
   }

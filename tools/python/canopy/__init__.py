@@ -48,7 +48,7 @@ def derive(grammar, *, steps=None, seed=None, stats=False, interpreted=False, ma
     overrides = dict(set or {})
     for name in constants:
         if name in overrides:  # as the command line refuses --set NAME=... given twice
-            raise ValueError(f"--set {name}: given twice ({overrides[name]:g} in set= and {constants[name]:g} as "
+            raise ValueError(f"--set {name}: given twice ({overrides[name]!r} in set= and {constants[name]!r} as "
                              f"{name}=); give it once")
     overrides.update(constants)
     return _derive(grammar, steps=steps, seed=seed, set=overrides, stats=stats, interpreted=interpreted,
