@@ -46,6 +46,9 @@ struct Plan {
 inline constexpr std::size_t kDefaultBatchContacts = 16384;
 /// Organs carried by a batch's candidates at most by default (ResolveRequest::batch_organs says why).
 inline constexpr std::size_t kDefaultBatchOrgans = std::size_t{8} << 20;
+/// A batch whose candidate movers carry more organs than this each on average is searched on the
+/// host (resolution/plan_batch.cpp says why); the default tomato's carry 8 on average, the mature one's 13.
+inline constexpr std::size_t kHostCarriedPerCandidate = 256;
 /// Levels smaller than this go to the host's search by default (ResolveRequest::host_levels_below).
 inline constexpr std::size_t kDefaultHostLevelsBelow = 64;
 
@@ -63,6 +66,7 @@ struct PlanRequest {
   std::size_t batch_contacts = kDefaultBatchContacts;       // contacts per batch
   std::size_t batch_organs = kDefaultBatchOrgans;           // ResolveRequest::batch_organs
   std::size_t host_levels_below = kDefaultHostLevelsBelow;  // ResolveRequest::host_levels_below
+  std::size_t host_carried = kHostCarriedPerCandidate;      // ResolveRequest::host_carried
   /// Per lane, one pool per thread (grown here; kept by the caller from round to round).
   std::vector<std::vector<CandidatePool>>* pools = nullptr;
   /// Per lane, the batched scan's tables (grown here; kept by the caller from round to round,

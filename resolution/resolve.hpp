@@ -86,6 +86,10 @@ struct ResolveRequest {
   /// smaller). The tail of a batch, a few candidates that keep failing up to their reach, costs
   /// a runner a round trip or two per level whatever its size; the turns are the same either way.
   std::size_t host_levels_below = kDefaultHostLevelsBelow;
+  /// With bulk attempts: a batch whose candidate movers carry more organs than this each on
+  /// average (long chains) is searched on the host's threads throughout (resolution/plan_batch.cpp);
+  /// the turns are the same either way.
+  std::size_t host_carried = kHostCarriedPerCandidate;
   /// Collect ResolveResult::stats: where the time went phase by phase (wall, CPU, page faults),
   /// lane by lane of planning, and what the runner of bulk attempts did (on the device, with a
   /// pair of events around every kernel). Off: none of it is measured; the turns are the same.

@@ -123,6 +123,7 @@ bool Resolution::plan_turns(Round& w) {
   preq.lanes = w.runner && lane_threads ? &*lane_threads : nullptr;
   preq.batch_contacts = req.batch_contacts;
   preq.batch_organs = req.batch_organs;
+  preq.host_carried = req.host_carried;
   preq.host_levels_below = req.host_levels_below;
   preq.pools = &pools;
   preq.tables = &tables;

@@ -137,6 +137,36 @@ TEST_CASE("batched turn search: batches planned at once on several lanes give th
   same(run(s, cfg, 0, false), run(s, cfg, 0, true, 4, 5));
 }
 
+TEST_CASE("batches whose candidates carry long chains are searched on the host: the same turns") {
+  // A threshold of 1 organ a candidate marks every batch as one of long chains.
+  const Stand s = row_stand(3);
+  ResolveConfig cfg;
+  auto cpu = make_cpu_backend();
+  Outcome out[2];
+  for (int heavy = 0; heavy < 2; ++heavy) {
+    Stand t = s;
+    ResolveRequest req;
+    req.statistics = true;
+    req.config = cfg;
+    req.bulk_lanes = 2;
+    req.batch_contacts = 16;
+    req.host_levels_below = 0;
+    if (heavy) req.host_carried = 1;
+    PrototypeLibrary lib;
+    HostAttemptRunner runner(lib, 2, 2);
+    req.attempts = &runner;
+    const Contacts first = cpu->detect(t, req.detect);
+    ResolveResult r = resolve(t, *cpu, req, first);
+    std::size_t levels = 0, host_levels = 0;
+    for (const PlanLaneStats& l : r.stats.lanes) levels += l.levels, host_levels += l.host_levels;
+    CHECK(levels > 0);
+    if (heavy) CHECK(host_levels == levels);
+    else CHECK(host_levels == 0);
+    out[heavy] = {std::move(r), std::move(t)};
+  }
+  same(out[0], out[1]);
+}
+
 TEST_CASE("batches split by the organs their candidates carry give the same turns") {
   // A cap of 40 organs splits nearly every contact into a batch of its own (a petiole carries its
   // whole leaf): the turns are those of whole batches, on the host's search and in lanes.
