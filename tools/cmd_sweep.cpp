@@ -222,6 +222,20 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
 
   const std::string runs_path = o.out + "/runs.csv";
   std::set<std::string> finished;
+  // A run of this call's grid as runs.csv keys it, and the keys of every run it asks for, made or not.
+  const auto grid_row = [&](const SweepCell& cell, int seed) {
+    RunRow row;
+    row["plant_spacing"] = num(cell.plant_spacing);
+    row["row_spacing"] = num(cell.row_spacing);
+    row["density"] = fmt::format("{:.4f}", cell.density);
+    row["steps"] = std::to_string(cell.steps.value_or(g.steps));
+    row["seed"] = std::to_string(seed);
+    row["backend"] = backend->name();
+    return row;
+  };
+  std::set<std::string> grid;
+  for (const SweepCell& cell : cells)
+    for (int seed = 1; seed <= o.seeds; ++seed) grid.insert(run_key(grid_row(cell, seed)));
   std::map<std::string, std::string> numbers;  // run key -> its number in runs.csv
   std::uint64_t next_number = 0;               // the first number no row has
   // Rank 0 reads runs.csv and tells the others what is done, or why the sweep cannot go on: then
@@ -271,7 +285,10 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
         held[run_key(r)] = n;
       }
       a["numbers"] = held, a["next"] = next;
-      if (o.retry_failed) std::erase_if(done, [](const RunRow& r) { return r.at("status") != "ok"; });
+      // Only this call's failed runs are run again: failed rows of cells it does not ask for stay.
+      if (o.retry_failed)
+        std::erase_if(done,
+                      [&](const RunRow& r) { return r.at("status") != "ok" && grid.count(run_key(r)); });
       write_runs(runs_path, done);  // drops a torn last line
       std::set<std::string> keys;
       for (const RunRow& r : done) keys.insert(run_key(r));
@@ -320,19 +337,11 @@ SweepOutcome run_sweep(const SweepOptions& given, bool print, const SweepCallbac
     RunRow row;
   };
   std::vector<Pending> pending;
-  std::set<std::string> grid;  // the keys of every run this call asks for, made or not
   std::size_t index = 0;
   for (const SweepCell& cell : cells)
     for (int seed = 1; seed <= o.seeds; ++seed, ++index) {
-      RunRow row;
-      row["plant_spacing"] = num(cell.plant_spacing);
-      row["row_spacing"] = num(cell.row_spacing);
-      row["density"] = fmt::format("{:.4f}", cell.density);
-      row["steps"] = std::to_string(cell.steps.value_or(g.steps));
-      row["seed"] = std::to_string(seed);
-      row["backend"] = backend->name();
+      RunRow row = grid_row(cell, seed);
       const std::string key = run_key(row);
-      grid.insert(key);
       if (finished.count(key)) continue;
       const auto known = numbers.find(key);
       row["run"] = known != numbers.end() ? known->second : std::to_string(next_number++);

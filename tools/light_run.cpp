@@ -45,7 +45,12 @@ std::vector<SunSpec> parse_suns(const LightOptions& o) {
             fmt::format("--hours: at {} h the sun is {:.1f} degrees below the horizon (latitude {}, day {})",
                         h, -p.elevation_deg, *o.latitude, *o.day));
       SunSpec x;
-      x.elevation_deg = p.elevation_deg, x.azimuth_deg = p.azimuth_deg, x.hour = h, x.from_hours = true;
+      // Azimuth in [0, 360) with no negative zero (light.json wrote -0.0 for a noon sun in the
+      // north, and hours 0 and 24 gave azimuths 0 and 360).
+      double azimuth = std::fmod(p.azimuth_deg, 360.0);
+      if (azimuth < 0) azimuth += 360.0;
+      if (azimuth == 0 || azimuth >= 360.0) azimuth = 0.0;
+      x.elevation_deg = p.elevation_deg, x.azimuth_deg = azimuth, x.hour = h, x.from_hours = true;
       out.push_back(x);
 #else
       (void)h;  // no ray caster: run_light refuses before any beam is used

@@ -53,10 +53,10 @@ plot_if() {
 sweep() {
   local dir=$1 sum=$1/summary.csv
   [ -f "$sum" ] || { echo "plot.sh: no $sum (run canopy sweep first)" >&2; exit 1; }
-  local cd cs cr cb cw cbs cws ct cts cl cls
+  local cd cs cr cb cw ct cts cl cls
   cd=$(column "$sum" density); cs=$(column "$sum" steps); cr=$(column "$sum" row_spacing)
-  cb=$(column "$sum" exact_between_per_plant_mean); cbs=$(column "$sum" exact_between_per_plant_sd)
-  cw=$(column "$sum" exact_within_per_plant_mean); cws=$(column "$sum" exact_within_per_plant_sd)
+  cb=$(column "$sum" exact_between_per_plant_mean)
+  cw=$(column "$sum" exact_within_per_plant_mean)
   ct=$(column "$sum" mean_turn_deg_mean); cts=$(column "$sum" mean_turn_deg_sd)
   cl=$(column "$sum" lai_mean); cls=$(column "$sum" lai_sd)
   local data=$dir/plot_data
@@ -64,14 +64,25 @@ sweep() {
   rm -f "$data"/age_*.dat
   local spacings; spacings=$(tail -n +2 "$sum" | cut -d, -f"$cr" | sort -u | wc -l)
   # One file per age and row spacing: density, contacts per plant (between + within) and its
-  # spread, turn, LAI. An empty cell (every run of the cell failed) is NaN, a gap, never 0.
-  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v r="$cr" -v b="$cb" -v bs="$cbs" -v w="$cw" \
-    -v ws="$cws" -v t="$ct" -v ts="$cts" -v l="$cl" -v ls="$cls" -v out="$data" '
+  # spread, turn, LAI. An empty cell (every run of the cell failed) is NaN, a gap, never 0; an
+  # empty standard deviation (a cell of one run) is drawn without a bar. The spread of between +
+  # within is that of the runs' sums, from runs.csv (the two counts are not independent: summing
+  # their variances drew bars up to 5 times too long).
+  local runs=$dir/runs.csv rd rs rr rst rb rw
+  rd=$(column "$runs" density); rs=$(column "$runs" steps); rr=$(column "$runs" row_spacing)
+  rst=$(column "$runs" status); rb=$(column "$runs" exact_between_per_plant); rw=$(column "$runs" exact_within_per_plant)
+  awk -F, -v d="$rd" -v s="$rs" -v r="$rr" -v st="$rst" -v b="$rb" -v w="$rw" '
+    NR > 1 && $st == "ok" && $b != "" && $w != "" { k = $d "," $s "," $r; x = $b + $w; n[k]++; m[k] += x; q[k] += x * x }
+    END { for (k in n) { mean = m[k] / n[k]; var = n[k] > 1 ? (q[k] - n[k] * mean * mean) / (n[k] - 1) : -1;
+          print k "," (var < 0 ? (n[k] > 1 ? 0 : "") : sqrt(var)) } }' "$runs" > "$data/sum_sd.csv"
+  tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v r="$cr" -v b="$cb" -v w="$cw" \
+    -v t="$ct" -v ts="$cts" -v l="$cl" -v ls="$cls" -v out="$data" -v sds="$data/sum_sd.csv" '
+    BEGIN { while ((getline line < sds) > 0) { split(line, p, ","); sd[p[1] "," p[2] "," p[3]] = p[4] } }
     function v(x) { return x == "" ? "NaN" : x }
+    function e(m, x) { return m == "" ? "NaN" : (x == "" ? 0 : x) }
     { f = out "/age_" $s "_" $r ".dat";
-      sum = ($b == "" || $w == "") ? "NaN" : $b + $w;
-      spread = ($bs == "" || $ws == "") ? "NaN" : sqrt($bs * $bs + $ws * $ws);
-      print $d, sum, spread, v($t), v($ts), v($l), v($ls) > f }'
+      total = ($b == "" || $w == "") ? "" : $b + $w;
+      print $d, v(total), e(total, sd[$d "," $s "," $r]), v($t), e($t, $ts), v($l), e($l, $ls) > f }'
   local plots_c="" plots_t="" plots_l="" name
   while IFS= read -r name; do
     local f key steps spacing
@@ -104,7 +115,8 @@ light_plots() {
   # before, after (NaN where a run had no resolution or the cell failed).
   tail -n +2 "$sum" | sort -t, -k"$cd","$cd"g | awk -F, -v d="$cd" -v s="$cs" -v r="$cr" -v cols="$cols" -v out="$data" \
     'BEGIN { n = split(cols, c, " ") } { f = out "/light_" $s "_" $r ".dat"; line = $d;
-      for (i = 1; i <= n; i++) line = line " " ($c[i] == "" ? "NaN" : $c[i]); print line > f }'
+      for (i = 1; i <= n; i++) line = line " " ($c[i] == "" ? (i % 2 == 0 && $c[i - 1] != "" ? 0 : "NaN") : $c[i]);
+      print line > f }'
   local pd="" pf="" k=0
   while IFS= read -r name; do
     local f key steps spacing
@@ -114,8 +126,9 @@ light_plots() {
     pf+="'$f' using 1:8:9 with yerrorlines lc $k pt 7 title '$label, resolved', '' using 1:6 with lines lc $k dt 2 title 'as grown', "
   done < <(curves "$data" light)
   local common="set key right bottom; set grid; set offsets graph 0.03, graph 0.03, graph 0.08, graph 0.08; set xlabel 'density (plants per m^2)';"
-  plot_if "$data" light 4 "$dir/interception_direct_vs_density" "$common set ylabel 'intercepted fraction of the direct beam (periodic)'; plot ${pd%, }"
-  plot_if "$data" light 8 "$dir/interception_diffuse_vs_density" "$common set ylabel 'intercepted fraction of the diffuse sky (periodic)'; plot ${pf%, }"
+  # Drawn where the stands as grown have values: a sweep without resolution has no resolved curve.
+  plot_if "$data" light 2 "$dir/interception_direct_vs_density" "$common set ylabel 'intercepted fraction of the direct beam (periodic)'; plot ${pd%, }"
+  plot_if "$data" light 6 "$dir/interception_diffuse_vs_density" "$common set ylabel 'intercepted fraction of the diffuse sky (periodic)'; plot ${pf%, }"
 }
 
 # first_machine CSV: the CSV's header and the rows of the machine of its first row, where it has a

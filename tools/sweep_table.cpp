@@ -245,8 +245,9 @@ std::string summary_csv(const std::vector<RunRow>& rows) {
       for (double x : v) mean += x;
       mean /= static_cast<double>(v.size());
       for (double x : v) ss += (x - mean) * (x - mean);
-      const double sd = v.size() > 1 ? std::sqrt(ss / static_cast<double>(v.size() - 1)) : 0.0;
-      out += fmt::format(",{:.6g},{:.6g}", mean, sd);
+      // The sample standard deviation (n - 1): none for one value (it was written 0).
+      out += fmt::format(",{:.6g},", mean);
+      if (v.size() > 1) out += fmt::format("{:.6g}", std::sqrt(ss / static_cast<double>(v.size() - 1)));
     }
     out += "\n";
   }

@@ -342,6 +342,13 @@ def test_a_callback_that_raises_stops_the_run_cleanly(tmp_path):
     assert left["ran"] == 1 and len(canopy.sweep_rows(tmp_path / "w")) == 2
     assert left["failed"] == 0 and left["failed_in_table"] == 0
     assert len(canopy.sweep_rows(tmp_path / "w", summary=True)) == 2
+    # Every number a float, every empty one nan (a cell of one run has no sd; the turns' empty
+    # cells were the string ''), so that the rows make a float array.
+    for summary in (False, True):
+        rows = canopy.sweep_rows(tmp_path / "w", summary=summary)
+        numeric = [k for k in rows[0] if k not in ("status", "backend", "message")]
+        assert np.array([[r[k] for k in numeric] for r in rows], dtype=float).shape == (2, len(numeric))
+    assert np.isnan(canopy.sweep_rows(tmp_path / "w", summary=True)[0]["lai_sd"])
     with pytest.raises(ValueError, match=r"holds 2 run\(s\) made with other settings \(rows 1 -> 2\)"):
         canopy.sweep(TOMATO, tmp_path / "w", plant_spacing=[0.3, 0.4], steps=[10], seeds=1, rows=2, per_row=2, backend="cpu")
 

@@ -213,6 +213,13 @@ check "target error with a leaf area target refused" "2 1" "$? $(grep -c "target
 "$canopy" stand "$g" --rows 2 --per-row 2 --steps 10 --target-error -1 -o "$tmp/x" >"$tmp/o" 2>"$tmp/e"
 check "target error out of range refused" "2 1" "$? $(grep -c 'is not in 1e-05..0.5' "$tmp/e")"
 
+# A stand with no organs (0 steps) meets nothing: its first passes say so (a re-pass for a stand
+# far smaller than its tile cast 3.8 billion rays over 15 empty plants, two minutes).
+"$canopy" stand "$src/grammars/tomato_young.yaml" --rows 3 --per-row 5 --steps 0 --backend cpu -o "$tmp/e0" >/dev/null 2>&1
+"$canopy" light "$tmp/e0" --sun 60,180 --backend cpu >"$tmp/o" 2>"$tmp/e"
+check "empty stand: light at once" "0 0.0 0.0 True" \
+  "$? $(json "$tmp/e0/light.json" "j['ground_cover'], j['direct'][0]['intercepted_fraction'], j['rays'] < 1e6" | tr -d '(),')"
+
 help=$("$canopy" light --help)
 for opt in --sun --latitude --day --hours --sky --sky-directions --tile --no-periodic --error --plant-error --rays-per-m2 --layer \
   --target-lai --target-ground-cover; do

@@ -42,11 +42,33 @@ print(all(float(r[('0.3',a)][c]) > float(r[('0.45',a)][c]) for a in ('10','12') 
 if command -v gnuplot >/dev/null; then
   bash "$src/tools/plot.sh" sweep "$tmp/s" >/dev/null 2>&1
   check "plot exit" "0" "$?"
+  # The contacts' bars are the spread of each cell's runs' between + within (summing the two
+  # counts' variances drew them up to 5 times too long).
+  check "plot: the spread of between + within" "True" "$(python3 -c "
+import csv, glob, statistics
+runs = [r for r in csv.DictReader(open('$tmp/s/runs.csv')) if r['status'] == 'ok']
+ok = True
+for f in glob.glob('$tmp/s/plot_data/age_*.dat'):
+    steps, rows = f.rsplit('/', 1)[1][4:-4].split('_')
+    for line in open(f):
+        d, total, spread = line.split()[:3]
+        xs = [float(r['exact_between_per_plant']) + float(r['exact_within_per_plant']) for r in runs
+              if float(r['density']) == float(d) and r['steps'] == steps and r['row_spacing'] == rows]
+        ok = ok and len(xs) == 2 and abs(float(spread) - statistics.stdev(xs)) <= 1e-6 * (1 + statistics.stdev(xs))
+print(ok)")"
   for f in contacts_vs_density turn_vs_density lai_vs_density interception_direct_vs_density interception_diffuse_vs_density; do
     check "plot $f.png" "PNG" "$(head -c 4 "$tmp/s/$f.png" 2>/dev/null | tail -c 3)"
     check "plot $f.svg" "1" "$(grep -c '<svg' "$tmp/s/$f.svg" 2>/dev/null | sed 's/[2-9]/1/')"
   done
   rm -rf "$tmp/s"/*.png "$tmp/s"/*.svg "$tmp/s/plot_data"
+  # Without resolution the stands as grown are drawn (the plots were skipped: 'no cell has a
+  # value'); a cell of one run has a mean and no standard deviation (it was written 0).
+  "$canopy" sweep "$g" --plant-spacing 0.45 --steps 10 --seeds 1 --rows 3 --per-row 3 --backend cpu --no-resolve \
+    -o "$tmp/nores" >/dev/null 2>&1
+  check "one run: mean, no sd" "0 True True" "$? $(python3 -c "
+import csv; r = next(csv.DictReader(open('$tmp/nores/summary.csv'))); print(r['lai_mean'] != '', r['lai_sd'] == '')")"
+  bash "$src/tools/plot.sh" sweep "$tmp/nores" >/dev/null 2>&1
+  check "plot without resolution: interception drawn" "0 PNG" "$? $(head -c 4 "$tmp/nores/interception_direct_vs_density.png" 2>/dev/null | tail -c 3)"
 else
   check "gnuplot installed (run scripts/setup.sh)" "yes" "no"
 fi
@@ -133,6 +155,10 @@ check "failed: resume names the kept failure" "1" \
 # A grid without the failed run's cell: its failure is not this call's (exit 0, nothing said).
 "$canopy" sweep "$tmp/exp.yaml" --steps 3 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu -o "$tmp/f" >"$tmp/log5b" 2>&1
 check "failed run outside the grid: exit 0" "0 0" "$? $(grep -c 'recorded as failed' "$tmp/log5b")"
+# --retry-failed over that grid leaves the other cell's failure in runs.csv (it was erased).
+"$canopy" sweep "$tmp/exp.yaml" --steps 3 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu --retry-failed \
+  -o "$tmp/f" >"$tmp/log5c" 2>&1
+check "retry outside the failed cell keeps it" "0 ok failed" "$? $(col "$tmp/f/runs.csv" status)"
 "$canopy" sweep "$tmp/exp.yaml" --steps 3,40 --seeds 1 --rows 1 --per-row 2 --max-modules 100000 --backend cpu --retry-failed \
   -o "$tmp/f" >"$tmp/log6" 2>&1
 check "failed: retried" "1" "$(grep -c '^sweep: 1 runs made now (1 failed)' "$tmp/log6")"

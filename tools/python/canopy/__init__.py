@@ -82,18 +82,23 @@ def sweep(grammar, out, progress=None, **options):
 
 
 def sweep_rows(out, summary=False):
-    """The rows of OUT/runs.csv (or OUT/summary.csv) as a list of dicts, numbers as floats (an
-    empty STAR or mean inclination, of a stand without leaflets, as nan)."""
+    """The rows of OUT/runs.csv (or OUT/summary.csv) as a list of dicts, numbers as floats and
+    every empty number as nan (a metric a run did not measure: STAR of a stand without leaflets,
+    turns and resolved light without resolution, a failed run's; a standard deviation of one
+    value). ``status``, ``backend`` and ``message`` stay text."""
     import csv
     import os
 
+    text = {"status", "backend", "message"}
     rows = []
     out = _path(out)
     name = b"summary.csv" if summary else b"runs.csv"
     with open(os.path.join(out, name if isinstance(out, bytes) else name.decode()), newline="") as f:
         for r in csv.DictReader(f):
             for k, v in r.items():
-                if v == "" and (k.startswith("star_") or k.startswith("mean_inclination_")):
+                if k in text:
+                    continue
+                if v == "":
                     r[k] = float("nan")
                     continue
                 try:
