@@ -95,10 +95,6 @@ std::vector<std::pair<std::string, int>> split(std::string_view line, int& open_
   return cells;
 }
 
-}  // namespace
-
-namespace {
-
 /// How a refusal names a layout field: its option, or the grammar's stand entry key it came from.
 std::string field(const RowLayout& l, const std::string& option) {
   if (!l.from_grammar.count(option)) return option;

@@ -15,7 +15,6 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <filesystem>
-#include <memory>
 #include <stdexcept>
 #include <tuple>
 #include <sys/stat.h>
@@ -142,11 +141,6 @@ std::string output_folder(const std::string& dir) {
 
 namespace {
 
-/// Where the staging folder for output folder `p` (`dir` as named) can be made: `p`'s parent, or
-/// its nearest existing ancestor for a new folder. Throws when `p` cannot be replaced as a whole.
-/// Where the staging folder of output `p` goes: beside it, or inside it when the folder must stay
-/// the same folder (`in_place`): the working folder (a shell in it would be left in a removed
-/// folder) or a mount point (which cannot be renamed).
 /// Whether folder `p` (`st` its lstat) is the root of a mount: another device than its parent's,
 /// or, for a bind mount of the same file system (a container's volume), what statx says.
 bool is_mount_root(const fs::path& p, const struct stat& st) {
@@ -181,6 +175,11 @@ bool frees_on_close(int fd) {
   }
 }
 
+/// Where the staging folder for output folder `p` (`dir` as named) can be made: `p`'s parent, or
+/// its nearest existing ancestor for a new folder. Throws when `p` cannot be replaced as a whole.
+/// Where the staging folder of output `p` goes: beside it, or inside it when the folder must stay
+/// the same folder (`in_place`): the working folder (a shell in it would be left in a removed
+/// folder) or a mount point (which cannot be renamed).
 fs::path staging_place(const fs::path& p, const std::string& dir, bool* in_place = nullptr) {
   const auto refuse = [&](const std::string& reason) {
     throw std::runtime_error(fmt::format("cannot create the output folder {}: {}", dir, reason));
@@ -532,32 +531,33 @@ StagedFolder::Committed StagedFolder::commit() {
         if (fd >= 0) ::close(fd);
     }
   };
-  auto held = std::make_unique<Held>();
-  if (!old_path.empty()) {
-    // Only files the new folder has a file of the same name for (linked, or written again by the
-    // new set), the earlier set and dead runs' temporaries go.
-    Fd old_fd(old_path), new_fd(dir_);
-    const std::vector<std::string> entries = names_in(old_path);
-    held->fds.reserve(entries.size());  // no allocation between an open and its keeping
-    const bool hold = frees_on_close(old_fd.fd);
-    for (const std::string& n : entries) {
-      if (is_folder_at(old_fd.fd, n)) continue;
-      const bool linked = same_file_at(old_fd.fd, new_fd.fd, n);  // the user's file, in both
-      if (in_earlier_set(n) || is_dead_temporary(n) || linked || still_superseded(old_fd.fd, n)) {
-        if (hold && !linked)
-          held->fds.push_back(::openat(old_fd.fd, n.c_str(), O_PATH | O_NOFOLLOW | O_CLOEXEC));
-        ::unlinkat(old_fd.fd, n.c_str(), 0);
+  {
+    Held held;
+    if (!old_path.empty()) {
+      // Only files the new folder has a file of the same name for (linked, or written again by the
+      // new set), the earlier set and dead runs' temporaries go.
+      Fd old_fd(old_path), new_fd(dir_);
+      const std::vector<std::string> entries = names_in(old_path);
+      held.fds.reserve(entries.size());  // no allocation between an open and its keeping
+      const bool hold = frees_on_close(old_fd.fd);
+      for (const std::string& n : entries) {
+        if (is_folder_at(old_fd.fd, n)) continue;
+        const bool linked = same_file_at(old_fd.fd, new_fd.fd, n);  // the user's file, in both
+        if (in_earlier_set(n) || is_dead_temporary(n) || linked || still_superseded(old_fd.fd, n)) {
+          if (hold && !linked)
+            held.fds.push_back(::openat(old_fd.fd, n.c_str(), O_PATH | O_NOFOLLOW | O_CLOEXEC));
+          ::unlinkat(old_fd.fd, n.c_str(), 0);
+        }
       }
+      if (::rmdir(old_path.c_str()) != 0)
+        out.notes.push_back(
+            fmt::format("kept the earlier folder as {}: it holds {} that could not be moved into {}",
+                        old_path, fmt::join(names_in(old_path), ", "), dir_));
     }
-    if (::rmdir(old_path.c_str()) != 0)
-      out.notes.push_back(
-          fmt::format("kept the earlier folder as {}: it holds {} that could not be moved into {}", old_path,
-                      fmt::join(names_in(old_path), ", "), dir_));
+    unregister_run_path(staging_id_);
+    // The swap and the removal on disk, then (held's end) the earlier files let go.
+    sync_folder(parent_);
   }
-  unregister_run_path(staging_id_);
-  // The swap and the removal on disk, then the earlier files let go.
-  sync_folder(parent_);
-  held.reset();
   return out;
 }
 

@@ -228,14 +228,28 @@ StandPlan plan_stand(StandOptions& o) {
 }
 
 void check_target(const StandOptions& o) {
+  const TargetOptions& t = o.target;
+  if (t.error && !(*t.error >= 1e-5 && *t.error <= 0.5))
+    throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", *t.error));
+  if (!t.set()) {
+    if (t.error)
+      throw std::invalid_argument(
+          "--target-error: the standard error of --target-ground-cover's estimates; give that target too");
+    return;
+  }
   if (!o.positions.empty())
     throw std::invalid_argument(
         "--target-lai and --target-ground-cover choose a row layout's plant spacing: not with --positions");
   if (o.rows.plant_spacing)
     throw std::invalid_argument(
         "--target-lai and --target-ground-cover choose the plant spacing: leave out --plant-spacing");
-  if (o.target.lai && o.target.ground_cover)
+  if (t.lai && t.ground_cover)
     throw std::invalid_argument("--target-lai and --target-ground-cover: give one of them");
+  if (t.lai && t.error)
+    throw std::invalid_argument(
+        "--target-error: the standard error of --target-ground-cover's estimates; --target-lai's leaf area "
+        "is "
+        "exact (leave it out)");
 }
 
 void check_plan_fits(const StandPlan& plan, std::size_t plants) {
@@ -262,22 +276,11 @@ void place_plan(StandPlan& plan, const StandOptions& o) {
       check_plan_fits(plan, n);
     plan.request.plants = row_layout(plan.layout);
   }
-  if (o.target.error && !(*o.target.error >= 1e-5 && *o.target.error <= 0.5))
-    throw std::invalid_argument(fmt::format("--target-error: {} is not in 1e-05..0.5", *o.target.error));
-  if (o.target.set()) {
-    check_target(o);
-    if (o.target.lai && o.target.error)
-      throw std::invalid_argument(
-          "--target-error: the standard error of --target-ground-cover's estimates; --target-lai's leaf area "
-          "is "
-          "exact (leave it out)");
-    // The spacing is the target's choice, whatever gave the one it starts from.
+  check_target(o);
+  // The spacing is the target's choice, whatever gave the one it starts from.
+  if (o.target.set())
     for (auto& [name, source] : plan.layout_sources)
       if (name == "plant_spacing") source = o.target.lai ? "--target-lai" : "--target-ground-cover";
-  } else if (o.target.error) {
-    throw std::invalid_argument(
-        "--target-error: the standard error of --target-ground-cover's estimates; give that target too");
-  }
 }
 
 void describe_run(StandReport& rep, const StandOptions& o, const std::set<std::string>& formats,

@@ -68,7 +68,8 @@ struct StandPlan {
   LayoutSources layout_sources;  // empty with a positions file
 };
 StandPlan plan_stand(StandOptions& o);
-/// Throws std::invalid_argument when --target-lai / --target-ground-cover cannot apply to `o`.
+/// Throws std::invalid_argument when the target options (--target-lai, --target-ground-cover,
+/// --target-error) cannot apply to `o`; nothing to check without them.
 void check_target(const StandOptions& o);
 /// Throws before growing when `plants` plants like the plan's first would not fit in memory.
 void check_plan_fits(const StandPlan& plan, std::size_t plants);
