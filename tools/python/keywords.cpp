@@ -34,6 +34,15 @@ bool is_bool(py::handle v) {
   return module == "numpy" && (type == "bool_" || type == "bool");
 }
 
+std::optional<std::string> integer_text(py::handle v) {
+  if (is_bool(v)) return std::nullopt;
+  try {
+    return py::str(py::module_::import("operator").attr("index")(v)).cast<std::string>();
+  } catch (const py::error_already_set&) {
+    return std::nullopt;
+  }
+}
+
 namespace {
 
 /// One word of the command line: bytes and paths as they are (a file name need not be UTF-8),

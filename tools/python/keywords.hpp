@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,11 @@ namespace py = pybind11;
 
 /// True or False, NumPy's bool too (not 1 or "yes": a flag is not a count, nor a seed a bool).
 bool is_bool(py::handle v);
+
+/// The decimal text of an integer, Python's or NumPy's (through operator.index); none for a bool
+/// (is_bool) or anything that is not an integer (a float, a string). Seeds are read through it,
+/// so that 64-bit values never pass through a double.
+std::optional<std::string> integer_text(py::handle v);
 
 /// Parses `kwargs` with `app` (a command's options registered on an app of its own), then
 /// `positionals` as its arguments. A keyword is the option of its name with dashes for

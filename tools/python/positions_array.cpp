@@ -4,6 +4,8 @@
 // Python ints, keeps them; a float past 2^53 is refused instead of rounded to another plant.
 #include "tools/python/positions_array.hpp"
 
+#include "tools/python/keywords.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -27,19 +29,14 @@ std::uint64_t seed_of_float(double d, py::ssize_t i) {
   return static_cast<std::uint64_t>(d);
 }
 
-/// Seed `v` of row `i`: an integer (Python's or NumPy's, through operator.index), or a float.
+/// Seed `v` of row `i`: an integer (Python's or NumPy's), or a float.
 std::uint64_t seed_of(const py::handle& v, py::ssize_t i) {
   const auto refuse = [&](const std::string& why) {
     throw std::invalid_argument(
         fmt::format("positions: row {}: the seed {}, got {}", i, why, py::repr(v).cast<std::string>()));
   };
-  if (py::isinstance<py::bool_>(v)) refuse("must be a whole number, not a bool");
-  std::optional<std::string> whole;
-  try {
-    whole = py::str(py::module_::import("operator").attr("index")(v)).cast<std::string>();
-  } catch (const py::error_already_set&) {
-  }
-  if (whole) {
+  if (is_bool(v)) refuse("must be a whole number, not a bool");
+  if (const std::optional<std::string> whole = integer_text(v)) {
     if (const auto s = parse_seed(*whole)) return *s;
     refuse("must be a non-negative integer below 2^64");
   }

@@ -38,13 +38,8 @@ void bind_stand(py::module_& m) {
             // arguments").
             std::optional<std::uint64_t> seed;
             if (!seed_arg.is_none()) {
-              // Any integer (NumPy's too, through operator.index), never a bool or a float.
-              std::optional<std::string> whole;
-              if (!is_bool(seed_arg)) try {
-                  whole =
-                      py::str(py::module_::import("operator").attr("index")(seed_arg)).cast<std::string>();
-                } catch (const py::error_already_set&) {
-                }
+              // Any integer (NumPy's too), never a bool or a float.
+              const std::optional<std::string> whole = integer_text(seed_arg);
               seed = whole ? parse_seed(*whole) : std::nullopt;
               if (!seed)
                 throw std::invalid_argument(
